@@ -1,0 +1,108 @@
+"""The ``landau`` command line.
+
+Each sub-command lives in its own module exposing ``configure(parser)``,
+``run(args) -> dict`` (the JSON document) and ``render(doc) -> str`` (the human
+table).  This module only wires them up and enforces the contract: ``--json`` prints
+one JSON document on stdout; bad input exits with code 2 and a one-line message on
+stderr naming what is wrong.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import importlib.util
+import json
+import math
+import sys
+from typing import Any, Sequence
+
+from landau.errors import InputError, LandauError
+
+#: sub-command -> module implementing it
+COMMANDS: dict[str, str] = {
+    "linear": "landau.commands.linear",
+    "derive": "landau.commands.derive",
+    "scene": "landau.commands.scene",
+    "laws": "landau.commands.laws",
+    "transition": "landau.commands.transition",
+    "figures": "paper_figures.cli",
+    "verify": "verify.cli",
+}
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse that raises instead of exiting, so every bad input becomes exit 2 with one line."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        raise InputError(f"{self.prog}: {message}")
+
+
+def _jsonable(obj: Any) -> Any:
+    if isinstance(obj, dict):
+        return {str(k): _jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_jsonable(v) for v in obj]
+    if isinstance(obj, bool) or obj is None or isinstance(obj, str):
+        return obj
+    if isinstance(obj, int):
+        return float(obj)
+    try:
+        x = float(obj)
+    except (TypeError, ValueError):
+        return str(obj)
+    return x if math.isfinite(x) else None
+
+
+def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Any]]:
+    parser = _Parser(prog="landau", description=__doc__.splitlines()[0])
+    sub = parser.add_subparsers(dest="command", parser_class=_Parser)
+    modules: dict[str, Any] = {}
+    for name, modname in COMMANDS.items():
+        if importlib.util.find_spec(modname.rsplit(".", 1)[0]) is None:
+            continue
+        try:
+            spec = importlib.util.find_spec(modname)
+        except ModuleNotFoundError:
+            spec = None
+        if spec is None:
+            continue
+        mod = importlib.import_module(modname)
+        p = sub.add_parser(name, help=(mod.__doc__ or "").strip().splitlines()[0] if mod.__doc__ else None,
+                           description=mod.__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+        p.add_argument("--json", action="store_true", help="print one JSON document on stdout")
+        mod.configure(p)
+        modules[name] = mod
+    return parser, modules
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    argv = list(sys.argv[1:] if argv is None else argv)
+    try:
+        parser, modules = build_parser()
+        if not argv:
+            argv = ["derive", "dieterich", "--V", "1e-5,2.6e-5,1e-4,1e-3"]
+        args = parser.parse_args(argv)
+        if args.command is None:
+            parser.print_help()
+            return 2
+        mod = modules[args.command]
+        doc = mod.run(args)
+    except InputError as exc:
+        print(f"landau: error: {str(exc).splitlines()[0]}", file=sys.stderr)
+        return 2
+    except LandauError as exc:
+        print(f"landau: {type(exc).__name__}: {str(exc).splitlines()[0]}", file=sys.stderr)
+        return 1
+    if getattr(args, "json", False):
+        json.dump(_jsonable(doc), sys.stdout, indent=1, allow_nan=False)
+        sys.stdout.write("\n")
+    else:
+        sys.stdout.write(mod.render(doc))
+        if not mod.render(doc).endswith("\n"):
+            sys.stdout.write("\n")
+    return int(doc.get("exit_code", 0)) if isinstance(doc, dict) else 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,38 @@
+"""Named errors. Anything a user can cause is an :class:`InputError` (CLI exit code 2)."""
+
+from __future__ import annotations
+
+
+class LandauError(Exception):
+    """Base class of every error the toolkit raises on purpose."""
+
+
+class InputError(LandauError, ValueError):
+    """Bad input: unknown symbol, parameter out of domain, malformed expression, ..."""
+
+
+class ParseError(InputError):
+    """A friction-law string contains a token outside the whitelist."""
+
+
+class NoHopfError(LandauError):
+    """The requested point has no Hopf bifurcation (e.g. velocity strengthening)."""
+
+
+class SingularPointError(LandauError):
+    """The law's derivatives are singular (or undefined) at the requested point."""
+
+
+class IntegratorError(LandauError):
+    """A numerical integration failed; carries the time and state where it happened."""
+
+    def __init__(self, message: str, t: float | None = None, state=None):
+        detail = message
+        if t is not None:
+            detail += f" (at t = {t!r}"
+            if state is not None:
+                detail += f", state = {list(map(float, state))!r}"
+            detail += ")"
+        super().__init__(detail)
+        self.t = t
+        self.state = state

@@ -1,0 +1,64 @@
+"""Regenerate a paper's figures: landau figures PAPER [--only figN,...] [--out DIR]."""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import time
+from pathlib import Path
+
+from landau.errors import InputError
+
+#: paper name -> package holding its FIGURES table
+PAPERS: dict[str, str] = {
+    "putelat2010": "paper_figures.putelat2010",
+    "galvanetto2004": "paper_figures.galvanetto2004",
+    "lancioni": "paper_figures.lancioni",
+    "skurativskyi2019": "paper_figures.skurativskyi2019",
+}
+
+
+def configure(p: argparse.ArgumentParser) -> None:
+    p.add_argument("paper", help="one of: " + ", ".join(PAPERS))
+    p.add_argument("--only", default=None, help="comma-separated figure names (e.g. fig8,fig10)")
+    p.add_argument("--out", default="figures", help="output folder (default: ./figures)")
+    p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
+
+
+def load(paper: str):
+    if paper not in PAPERS:
+        raise InputError(f"unknown paper {paper!r} (known: {', '.join(PAPERS)})")
+    try:
+        return importlib.import_module(PAPERS[paper]).FIGURES
+    except ModuleNotFoundError as exc:
+        raise InputError(f"figures for {paper!r} are not available: {exc}") from None
+
+
+def run(args) -> dict:
+    figures = load(args.paper)
+    names = list(figures)
+    if args.only:
+        wanted = [s.strip() for s in args.only.split(",") if s.strip()]
+        unknown = [w for w in wanted if w not in figures]
+        if unknown:
+            raise InputError(f"unknown figure(s) {', '.join(unknown)} for {args.paper} (known: {', '.join(names)})")
+        names = wanted
+    out = Path(args.out)
+    rows = []
+    from tqdm import tqdm
+
+    bar = tqdm(names, disable=args.no_progress or args.json, desc=args.paper, unit="fig")
+    for name in bar:
+        bar.set_postfix_str(name)
+        t0 = time.perf_counter()
+        paths = figures[name](out)
+        rows.append({"figure": name, "files": [str(p) for p in paths], "seconds": time.perf_counter() - t0})
+    return {"paper": args.paper, "out": str(out), "figures": rows,
+            "seconds": sum(r["seconds"] for r in rows)}
+
+
+def render(doc: dict) -> str:
+    lines = [f"{doc['paper']}: {len(doc['figures'])} figure(s) in {doc['out']} ({doc['seconds']:.1f} s)"]
+    for r in doc["figures"]:
+        lines.append(f"  {r['figure']:<10} {r['seconds']:6.2f} s  " + ", ".join(r["files"]))
+    return "\n".join(lines)
