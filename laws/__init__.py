@@ -1,1 +1,36 @@
-"""laws"""
+"""Friction laws declared symbolically (μ(v, φ…), dφ/dt), with defaults and provenance.
+
+Built-in laws (CLI names): ``dieterich``, ``ruina``, ``spinodal``,
+``modified-dieterich``, ``nanoscale``, ``micron-scale`` (Putelat et al. 2010) and
+``two-state-dieterich``.  A new law: :meth:`FrictionLaw.from_strings` or the
+:class:`FrictionLaw` constructor.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+from landau.errors import InputError
+from laws.law import TABLE1, FrictionLaw, Parameter, v
+from laws import putelat2010 as _p
+
+BUILTIN: dict[str, Callable[[], FrictionLaw]] = {
+    "dieterich": _p.dieterich,
+    "ruina": _p.ruina,
+    "spinodal": _p.spinodal,
+    "modified-dieterich": _p.modified_dieterich,
+    "nanoscale": _p.nanoscale,
+    "micron-scale": _p.micron_scale,
+    "two-state-dieterich": _p.two_state_dieterich,
+}
+
+
+def get_law(name: str) -> FrictionLaw:
+    """A built-in law by its CLI name."""
+    try:
+        return BUILTIN[name]()
+    except KeyError:
+        raise InputError(f"unknown law {name!r} (built-in: {', '.join(BUILTIN)})") from None
+
+
+__all__ = ["FrictionLaw", "Parameter", "TABLE1", "BUILTIN", "get_law", "v"]

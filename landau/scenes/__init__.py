@@ -24,6 +24,7 @@ from landau.errors import InputError
 #: Modules that register scenes (imported on first use of the registry).
 SCENE_MODULES: list[str] = [
     "landau.scenes.putelat2010",
+    "verify.galvanetto.scenes",
 ]
 
 _REGISTRY: dict[str, "Scene"] = {}

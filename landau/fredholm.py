@@ -1,0 +1,122 @@
+"""The multiple-scales expansion and its Fredholm solvability condition (field-generic).
+
+For E·ẏ = f(y; p) with a Hopf point (p_c, ±iω) write p = p_c + ε²p₂, T = ε²t,
+y = y₀ + εy₁ + ε²y₂ + ε³y₃ + … (Putelat et al. 2010, eqs 9–10).  With
+A = iωE − J and the multilinear forms B, C of the second and third derivatives:
+
+* O(ε):  y₁ = A(T) e^{iωt} q + c.c.,  A q = 0,  q_normalise = 1  (u₀ = (1, z), eq. 11)
+* O(ε²): y₂ = A² e^{2iωt} W₂ + c.c. + |A|² W₀,
+         (2iωE − J) W₂ = ½ B(q, q),  −J W₀ = B(q, q̄)           (eq. 12)
+* O(ε³): resonant forcing e^{iωt}[−E q A_T + p₂ A (J_p q − B(q, J⁻¹f_p)) + A|A|² R],
+         R = B(q̄, W₂) + B(q, W₀) + ½ C(q, q, q̄)                (eqs 13–16)
+  Fredholm: ψ·(forcing) = 0 with ψ A = 0 (left null vector u₀*), hence
+         δ A_T = α A + β A|A|²,  δ = ψEq, α = p₂ ψ(J_p q − …), β = ψR   (eqs 17–19)
+
+The functions here work on :class:`~landau.cx.Cx` numbers over any real field, so the
+same code gives closed forms (sympy atoms) and 50-digit numbers (mpmath).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from itertools import combinations
+from typing import Any, Callable, Sequence
+
+from landau.cx import Cx, as_cx, cx_is_zero, solve
+from landau.jets import multilinear
+
+
+@dataclass(frozen=True)
+class FredholmVectors:
+    """Right null vector q (q[normalise] = 1) and left null vector ψ of A = iωE − J."""
+
+    q: list[Cx]
+    psi: list[Cx]
+    delta: Cx  # ψ E q
+
+
+def _pencil(J: Sequence[Sequence[Any]], E: Sequence[Any], s: Any) -> list[list[Cx]]:
+    """s·iE − J as a Cx matrix (s real: the multiple of iω)."""
+    n = len(E)
+    return [[Cx(-J[i][j], (s * E[i]) if i == j else 0 * s) for j in range(n)] for i in range(n)]
+
+
+def _minor(A, drop_row: int, drop_col: int):
+    n = len(A)
+    return [[A[i][j] for j in range(n) if j != drop_col] for i in range(n) if i != drop_row]
+
+
+def null_vectors(J, E, w, normalise: int, drop_row: int, drop_col: int) -> FredholmVectors:
+    """q with (iωE − J)q = 0, q[normalise] = 1 (row ``drop_row`` is the redundant one);
+    ψ with ψ(iωE − J) = 0, ψ[drop_row] = 1 (column ``drop_col`` is the redundant one)."""
+    n = len(E)
+    A = _pencil(J, E, w)
+    rows = [i for i in range(n) if i != drop_row]
+    cols = [j for j in range(n) if j != normalise]
+    q_rest = solve([[A[i][j] for j in cols] for i in rows], [-A[i][normalise] for i in rows]) if cols else []
+    q: list[Cx] = [Cx(0, 0)] * n
+    q[normalise] = as_cx(1 + 0 * w)
+    for j, val in zip(cols, q_rest):
+        q[j] = val
+    # ψ A = 0  ⇔  Aᵀ ψᵀ = 0 (no conjugation: ψ is a row vector, ⟨p, ·⟩ = ψ·)
+    prow = [i for i in range(n) if i != drop_row]
+    pcol = [j for j in range(n) if j != drop_col]
+    psi_rest = solve([[A[i][j] for i in prow] for j in pcol], [-A[drop_row][j] for j in pcol]) if prow else []
+    psi: list[Cx] = [Cx(0, 0)] * n
+    psi[drop_row] = as_cx(1 + 0 * w)
+    for i, val in zip(prow, psi_rest):
+        psi[i] = val
+    delta = Cx(0, 0)
+    for i in range(n):
+        if not cx_is_zero(psi[i]) and not cx_is_zero(q[i]) and E[i] != 0:
+            delta = delta + psi[i] * q[i] * E[i]
+    return FredholmVectors(q, psi, delta)
+
+
+def row_dot(psi: Sequence[Cx], x: Sequence[Cx]) -> Cx:
+    out = Cx(0, 0)
+    for a, b in zip(psi, x):
+        if not (cx_is_zero(a) or cx_is_zero(b)):
+            out = out + a * b
+    return out
+
+
+def linear_coefficient(vec: FredholmVectors, J, Jp, fp, B2) -> Cx:
+    """α/δ per unit p₂ (eq. 18 generalised): ψ(J_p q − B(q, J⁻¹ f_p)) / δ."""
+    n = len(vec.q)
+    Jpq = [Cx(0, 0)] * n
+    for i in range(n):
+        for j in range(n):
+            if Jp[i][j] != 0 and not cx_is_zero(vec.q[j]):
+                Jpq[i] = Jpq[i] + vec.q[j] * Jp[i][j]
+    if any(f != 0 for f in fp):
+        # the equilibrium moves with p: y₀(p_c + ε²p₂) = y₀ − ε² p₂ J⁻¹ f_p
+        shift = solve([[as_cx(J[i][j]) for j in range(n)] for i in range(n)], [as_cx(f) for f in fp])
+        Bq = multilinear(B2, [vec.q, shift], n)
+        Jpq = [a - b for a, b in zip(Jpq, Bq)]
+    return row_dot(vec.psi, Jpq) / vec.delta
+
+
+def cubic_coefficient(vec: FredholmVectors, J, E, w, B2, C3, half) -> Cx:
+    """β/δ (eqs 15–19): ψ[B(q̄, W₂) + B(q, W₀) + ½C(q, q, q̄)] / δ."""
+    n = len(vec.q)
+    q = vec.q
+    qb = [z.conj() for z in q]
+    Bqq = multilinear(B2, [q, q], n)
+    Bqqb = multilinear(B2, [q, qb], n)
+    A2 = _pencil(J, E, 2 * w)
+    W2 = solve(A2, [z * half for z in Bqq])
+    W0 = solve([[Cx(-J[i][j], 0 * w) for j in range(n)] for i in range(n)], Bqqb)
+    R1 = multilinear(B2, [qb, W2], n)
+    R2 = multilinear(B2, [q, W0], n)
+    R3 = multilinear(C3, [q, q, qb], n)
+    R = [a + b + c * half for a, b, c in zip(R1, R2, R3)]
+    return row_dot(vec.psi, R) / vec.delta
+
+
+def best_drop(A: Sequence[Sequence[Cx]], normalise: int, det: Callable[[list], float]) -> tuple[int, int]:
+    """Numeric mode: the (row, column) whose removal leaves the best-conditioned minors."""
+    n = len(A)
+    r = max(range(n), key=lambda i: det(_minor(A, i, normalise)))
+    c = max(range(n), key=lambda j: det(_minor(A, r, j)))
+    return r, c

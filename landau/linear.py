@@ -1,0 +1,230 @@
+"""Linear stability of steady sliding: the Hopf line k_c(V), ω_c(V).
+
+For a system whose Hopf parameter p enters the Jacobian affinely (the spring–block's
+stiffness k), det(λE − J) = P(λ) + p Q(λ).  A pair λ = ±iω crosses the axis where
+P(iω) + p Q(iω) = 0 with p real, i.e. Im(P Q̄)(iω) = 0 and p = −Re(P Q̄)/|Q|².
+Im(P Q̄)/ω is a polynomial in ω²: of degree one for a single state variable, which
+gives Putelat et al.'s closed forms (7)–(8); for n states its roots are found
+numerically and the critical stiffness is the largest positive root (steady sliding is
+stable above it).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+import sympy as sp
+
+from landau.codegen import CompiledFormula, compile_expr
+from landau.errors import InputError, NoHopfError
+from landau.jets import Jets
+from landau.system import V, DynamicalSystem, SpringBlock
+
+lam = sp.Symbol("lambda")
+W = sp.Symbol("W", positive=True)       # ω²
+w = sp.Symbol("omega", positive=True)   # ω
+
+NO_HOPF_STABLE = "no Hopf bifurcation: steady sliding is stable for all k"
+
+
+def _split_at_iw(poly: sp.Poly) -> tuple[sp.Expr, sp.Expr]:
+    """(Re, Im) of a polynomial in λ evaluated at λ = iω."""
+    re, im = sp.Integer(0), sp.Integer(0)
+    for (m,), c in poly.terms():
+        unit = (1, 0) if m % 4 == 0 else (0, 1) if m % 4 == 1 else (-1, 0) if m % 4 == 2 else (0, -1)
+        re += unit[0] * c * w ** m
+        im += unit[1] * c * w ** m
+    return re, im
+
+
+@dataclass(frozen=True)
+class HopfPoint:
+    """Linear stability of steady sliding at one driving velocity V (SI units).
+
+    k_c (eq. 7) is the critical stiffness: steady sliding is unstable for k < k_c;
+    ω_c (eq. 8) the angular frequency at onset.  ``status`` is "ok" or "no-hopf".
+    """
+
+    V: float
+    status: str
+    kc: float = float("nan")
+    omega_c: float = float("nan")
+    phi_ss: tuple[float, ...] = ()
+    mu_ss: float = float("nan")
+    dmu_ss: float = float("nan")
+    reason: str = ""
+
+    def as_dict(self) -> dict[str, Any]:
+        d: dict[str, Any] = {"V": self.V, "status": self.status}
+        if self.status == "ok":
+            d.update(kc=self.kc, omega_c=self.omega_c)
+        else:
+            d["reason"] = self.reason
+        d.update(phi_ss=list(self.phi_ss), mu_ss=self.mu_ss, dmu_ss_dV=self.dmu_ss)
+        return d
+
+    def __repr__(self) -> str:
+        if self.status != "ok":
+            return f"HopfPoint(V={self.V:.4g} m/s: {self.reason})"
+        return f"HopfPoint(V={self.V:.4g} m/s, k_c={self.kc:.6g} N/m, ω_c={self.omega_c:.6g} rad/s)"
+
+    def _repr_latex_(self) -> str:
+        if self.status != "ok":
+            return rf"$V = {self.V:.4g}$: \text{{{self.reason}}}"
+        return rf"$V = {self.V:.4g}\,\mathrm{{m/s}},\ k_c = {self.kc:.6g}\,\mathrm{{N/m}},\ \omega_c = {self.omega_c:.6g}\,\mathrm{{rad/s}}$"
+
+
+class HopfLine:
+    """The Hopf line of a :class:`SpringBlock`: k_c(V) and ω_c(V), symbolic and compiled."""
+
+    def __init__(self, block: SpringBlock, jets: Jets | None = None):
+        self.block = block
+        self.system: DynamicalSystem = block.system
+        self.jets = jets or Jets(self.system)
+        self.args: tuple[sp.Symbol, ...] = block.args
+
+    # --- symbolic ---------------------------------------------------------------------
+    @cached_property
+    def _char(self) -> tuple[sp.Poly, sp.Poly]:
+        J = sp.Matrix(self.jets.jacobian())
+        E = sp.diag(*self.system.mass)
+        char = sp.expand((lam * E - J).det(method="berkowitz"))  # small: entries are atoms
+        p = self.system.parameter
+        if sp.diff(char, p, 2) != 0:
+            raise InputError("the Hopf parameter enters the characteristic polynomial nonlinearly")
+        P = sp.Poly(char.subs(p, 0), lam)
+        Q = sp.Poly(sp.diff(char, p), lam)
+        return P, Q
+
+    @cached_property
+    def _hopf_polys(self) -> tuple[sp.Poly, sp.Expr, sp.Expr]:
+        """(H(W) = Im(P Q̄)/ω as a polynomial in W = ω², Re(P Q̄), |Q|²)."""
+        P, Q = self._char
+        Pr, Pi = _split_at_iw(P)
+        Qr, Qi = _split_at_iw(Q)
+        im = sp.expand((Pi * Qr - Pr * Qi) / w)
+        re = sp.expand(Pr * Qr + Pi * Qi)
+        q2 = sp.expand(Qr ** 2 + Qi ** 2)
+        to_W = lambda e: sp.expand(e).subs(w, sp.sqrt(W))
+        return sp.Poly(to_W(im), W), to_W(re), to_W(q2)
+
+    @cached_property
+    def closed_form(self) -> tuple[sp.Expr, sp.Expr] | None:
+        """(k_c(V), ω_c²(V)) in closed form when the Hopf polynomial is linear in ω² (one state)."""
+        H, re, q2 = self._hopf_polys
+        if H.degree() != 1 or self.system.unknowns:
+            return None
+        c1, c0 = H.all_coeffs()
+        W_c = sp.cancel(-c0 / c1)
+        kc = sp.cancel((-re / q2).subs(W, W_c))
+        return kc, W_c
+
+    @property
+    def kc_expr(self) -> sp.Expr:
+        """k_c(V) in terms of the law (atoms substituted), eq. (7)."""
+        cf = self.closed_form
+        if cf is None:
+            raise InputError(f"{self.system.name}: k_c has no closed form (more than one state); use numeric evaluation")
+        return self.jets.expand_atoms(cf[0])
+
+    @property
+    def omega2_expr(self) -> sp.Expr:
+        """ω_c²(V) in terms of the law (atoms substituted), eq. (8)."""
+        cf = self.closed_form
+        if cf is None:
+            raise InputError(f"{self.system.name}: ω_c² has no closed form (more than one state)")
+        return self.jets.expand_atoms(cf[1])
+
+    # --- numeric ------------------------------------------------------------------------
+    def _argvals(self, Vs: np.ndarray, params: Mapping[str, float]) -> list:
+        return self.block.argvals(Vs, params)
+
+    @cached_property
+    def _compiled_closed(self):
+        kc, W_c = self.closed_form  # type: ignore[misc]
+        atoms = self.jets.atoms
+        return CompiledFormula(kc, self.args, atoms), CompiledFormula(W_c, self.args, atoms)
+
+    @cached_property
+    def _compiled_poly(self):
+        H, re, q2 = self._hopf_polys
+        atoms = self.jets.atoms
+        coeffs = [CompiledFormula(c, self.args, atoms) for c in H.all_coeffs()]
+        return coeffs, CompiledFormula(re, (W, *self.args), atoms), CompiledFormula(q2, (W, *self.args), atoms)
+
+    @cached_property
+    def _compiled_mu(self):
+        mu = self.block.mu_ss()
+        return compile_expr(mu, self.args), compile_expr(sp.diff(mu, V), self.args)
+
+    @cached_property
+    def _compiled_phi(self):
+        return [compile_expr(e, self.args) for e in self.block.steady_state]
+
+    def evaluate(self, Vs: Sequence[float] | float, params: Mapping[str, float] | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Vectorised (k_c, ω_c) over velocities; NaN where there is no Hopf point."""
+        p = self.block.resolve(params)
+        Vs = np.atleast_1d(np.asarray(Vs, dtype=float))
+        if self.closed_form is not None:
+            fk, fW = self._compiled_closed
+            vals = self._argvals(Vs, p)
+            kc = np.asarray(fk(*vals), dtype=float)
+            W_c = np.asarray(fW(*vals), dtype=float)
+            ok = (W_c > 0) & (kc > 0) & np.isfinite(kc)
+            return np.where(ok, kc, np.nan), np.where(ok, np.sqrt(np.where(ok, W_c, 1.0)), np.nan)
+        coeffs, fre, fq2 = self._compiled_poly
+        kcs, oms = np.full(Vs.shape, np.nan), np.full(Vs.shape, np.nan)
+        for n, Vn in enumerate(Vs):
+            vals = self._argvals(np.float64(Vn), p)
+            cs = [float(c(*vals)) for c in coeffs]
+            best = (np.nan, np.nan)
+            for r in np.roots(cs):
+                if abs(r.imag) > 1e-9 * abs(r) or r.real <= 0:
+                    continue
+                Wr = r.real
+                kk = -float(fre(Wr, *vals)) / float(fq2(Wr, *vals))
+                if kk > 0 and not (kk <= best[0]):
+                    best = (kk, np.sqrt(Wr))
+            kcs[n], oms[n] = best
+        return kcs, oms
+
+    def points(self, Vs: Sequence[float] | float, params: Mapping[str, float] | None = None) -> list[HopfPoint]:
+        """One :class:`HopfPoint` per velocity, with the steady state and μ_ss slope."""
+        Vs = np.atleast_1d(np.asarray(Vs, dtype=float))
+        if np.any(~np.isfinite(Vs)) or np.any(Vs <= 0):
+            bad = [x for x in Vs if not (np.isfinite(x) and x > 0)][0]
+            raise InputError(f"driving velocity V must be > 0, got {bad!r}")
+        p = self.block.resolve(params)
+        kc, om = self.evaluate(Vs, p)
+        vals = self._argvals(Vs, p)
+        fmu, fdmu = self._compiled_mu
+        mu = np.broadcast_to(fmu(*vals), Vs.shape)
+        dmu = np.broadcast_to(fdmu(*vals), Vs.shape)
+        phis = [np.broadcast_to(f(*vals), Vs.shape) for f in self._compiled_phi]
+        out = []
+        for i, Vi in enumerate(Vs):
+            phi = tuple(float(ph[i]) for ph in phis)
+            if np.isfinite(kc[i]):
+                out.append(HopfPoint(float(Vi), "ok", float(kc[i]), float(om[i]), phi, float(mu[i]), float(dmu[i])))
+            else:
+                reason = NO_HOPF_STABLE if dmu[i] >= 0 else \
+                    "no Hopf bifurcation: velocity weakening but no oscillatory instability (check the direct effect mu_v > 0)"
+                out.append(HopfPoint(float(Vi), "no-hopf", phi_ss=phi, mu_ss=float(mu[i]), dmu_ss=float(dmu[i]), reason=reason))
+        return out
+
+    def point(self, V0: float, params: Mapping[str, float] | None = None) -> HopfPoint:
+        return self.points([V0], params)[0]
+
+    def require(self, V0: float, params: Mapping[str, float] | None = None) -> HopfPoint:
+        pt = self.point(V0, params)
+        if pt.status != "ok":
+            raise NoHopfError(f"V = {V0:g} m/s: {pt.reason}")
+        return pt
+
+
+def critical_stiffness(block: SpringBlock, V0, params: Mapping[str, float] | None = None):
+    """k_c(V) of eq. (7) (vectorised; NaN where steady sliding is stable for all k)."""
+    return HopfLine(block).evaluate(V0, params)[0]

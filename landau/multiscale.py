@@ -1,0 +1,366 @@
+"""The amplitude equation of the spring–block Hopf bifurcation (Putelat et al. 2010, Sec. 2.2).
+
+``derive(block, quantities=[...])`` returns a lazy :class:`Derivation`: each requested
+coefficient is derived through the Fredholm condition (:mod:`landau.fredholm`) on first
+use and only from the derivative orders it needs — k_c and ω_c need first derivatives;
+Γ̄, Ω̄ add ∂/∂k; Λ and χ add second and third derivatives.
+
+Convention (eq. 20): d|A|/dT = (Γ|A| + Λ|A|³)/2, dθ/dT = (Ω + χ|A|²)/2 with the critical
+mode normalised so that its slip (X) component is 1 (u₀ = (1, z)); Γ = −2Γ̄(k − k_c)/ε²,
+Ω = 2Ω̄(k − k_c)/ε².  Λ < 0: supercritical Hopf; Λ > 0: subcritical.  The
+normalisation-free slip amplitude is max|x − x₀| ≈ C·sqrt(k_c − k),
+C = (4ω_c/|δ|)(F_V/|Λ|)^{1/2} = 2 sqrt(2Γ̄/|Λ|) (eq. 23; for a subcritical point, the
+unstable cycle for k > k_c).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any, Iterable, Mapping, Sequence
+
+import mpmath
+import numpy as np
+import sympy as sp
+
+from landau.codegen import CompiledFormula
+from landau.cx import Cx
+from landau.errors import InputError, NoHopfError, SingularPointError
+from landau.fredholm import cubic_coefficient, linear_coefficient, null_vectors
+from landau.jets import Jets
+from landau.linear import W, HopfLine, w
+from landau.system import V, M, SpringBlock
+
+CONVENTION = ("d|A|/dT = (Gamma |A| + Lambda |A|^3)/2, dtheta/dT = (Omega + chi |A|^2)/2 (Putelat et al. 2010 eq. 20); "
+              "Gamma = -2 Gamma_bar (k - kc)/eps^2, Omega = 2 Omega_bar (k - kc)/eps^2; critical mode normalised "
+              "with slip component 1; Lambda < 0: supercritical, Lambda > 0: subcritical; "
+              "C = max|x - x0| / sqrt(|kc - k|) = 2 sqrt(2 Gamma_bar/|Lambda|) (eq. 23)")
+UNITS = {"V": "m/s", "kc": "N/m", "omega_c": "rad/s", "Gamma_bar": "1/(N s)", "Omega_bar": "1/(N s)",
+         "Lambda": "1/(m^2 s)", "chi": "1/(m^2 s)", "C": "m/sqrt(N/m)", "A2_per_dk": "m^2/N"}
+
+#: quantity -> (LaTeX symbol, description, equation)
+QUANTITIES: dict[str, tuple[str, str, str]] = {
+    "kc": (r"k_c", "critical stiffness", "eq. (7)"),
+    "omega_c": (r"\omega_c", "angular frequency at onset", "eq. (8)"),
+    "Gamma_bar": (r"\bar\Gamma", "linear growth rate per unit k_c - k", "eqs (18), (21)"),
+    "Omega_bar": (r"\bar\Omega", "linear frequency shift per unit k - k_c", "eqs (18), (21)"),
+    "Lambda": (r"\Lambda", "Landau coefficient", "eqs (15)-(21)"),
+    "chi": (r"\chi", "nonlinear frequency coefficient", "eqs (15)-(21)"),
+    "C": (r"C", "slip amplitude per sqrt(k_c - k)", "eq. (23)"),
+}
+
+_GB, _LA = sp.symbols("Gamma_bar Lambda", real=True)
+#: quantities composed from others (name -> the base quantities they need)
+DERIVED = {"C": ("Gamma_bar", "Lambda")}
+
+#: below this relative size of ω_c² (vs. its terms) float64 loses too many digits: use mpmath
+_RHO_MPMATH = 1e-4
+
+
+@dataclass(frozen=True, eq=False)
+class Coefficient:
+    """One amplitude-equation coefficient: formula, closed form, LaTeX and compiled code.
+
+    ``formula`` is in the derivative atoms of the law (see :mod:`landau.jets`) with the
+    onset frequency ``omega`` and stiffness ``k`` as symbols; :attr:`expr` is the same
+    quantity in terms of V and the parameters; ``coef(V, **params)`` evaluates it
+    vectorised (float64, with a 50-digit fallback where ω_c² suffers cancellation).
+    """
+
+    name: str
+    formula: sp.Expr
+    derivation: "Derivation" = field(repr=False)
+    _cache: dict = field(default_factory=dict, repr=False, compare=False)
+
+    @property
+    def symbol(self) -> str:
+        return QUANTITIES[self.name][0]
+
+    @property
+    def units(self) -> str:
+        return UNITS[self.name]
+
+    @property
+    def expr(self) -> sp.Expr:
+        """The coefficient in terms of V and the parameters (atoms substituted, ω = sqrt(ω_c²))."""
+        if "expr" not in self._cache:
+            d = self.derivation
+            kc, W_c = d.hopf.closed_form or (None, None)
+            if kc is None:
+                raise InputError(f"{d.block.law.name}: no closed form (the Hopf line is numeric)")
+            if self.name in DERIVED:
+                e = self.formula.xreplace({_GB: d.coefficient("Gamma_bar").expr, _LA: d.coefficient("Lambda").expr})
+            else:
+                e = d.jets.expand_atoms(self.formula.xreplace({d.k: kc}).xreplace({w: sp.sqrt(W_c)}))
+            self._cache["expr"] = e
+        return self._cache["expr"]
+
+    def closed_form(self) -> sp.Expr:
+        """A simplified closed form: rational laws are cancelled to one fraction (e.g. eqs 32–35, 44–45)."""
+        if "closed" not in self._cache:
+            e = self.expr
+            if all(e.is_rational_function(s) for s in e.free_symbols):
+                e = sp.factor(sp.cancel(sp.together(e)))
+            self._cache["closed"] = e
+        return self._cache["closed"]
+
+    def latex(self) -> str:
+        return f"{self.symbol} = {sp.latex(self.closed_form())}"
+
+    def _repr_latex_(self) -> str:
+        return f"${self.latex()}$"
+
+    def __repr__(self) -> str:
+        return f"Coefficient({self.name}: {QUANTITIES[self.name][1]}, {QUANTITIES[self.name][2]}, [{self.units}])"
+
+    def __call__(self, Vs, **params) -> np.ndarray:
+        return self.derivation.evaluate(Vs, params, [self.name])[self.name]
+
+
+@dataclass(frozen=True)
+class LandauPoint:
+    """Amplitude-equation coefficients at one driving velocity (SI units)."""
+
+    V: float
+    kc: float
+    omega_c: float
+    values: Mapping[str, float]
+    criticality: str
+
+    def __getitem__(self, key: str) -> float:
+        return {"V": self.V, "kc": self.kc, "omega_c": self.omega_c, **self.values}[key]
+
+    def amplitude_equation(self) -> str:
+        lam = self.values.get("Lambda")
+        if lam is None:
+            return "Lambda not computed"
+        return (f"d|A|/dT = (Gamma |A| + Lambda |A|^3)/2 with Lambda = {lam:.6g} 1/(m^2 s): "
+                f"{self.criticality} (Lambda < 0: supercritical)")
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"V": self.V, "kc": self.kc, "omega_c": self.omega_c, **self.values, "criticality": self.criticality}
+
+    def __repr__(self) -> str:
+        vals = ", ".join(f"{k}={v:.6g}" for k, v in self.values.items())
+        return f"LandauPoint(V={self.V:.4g} m/s, kc={self.kc:.6g} N/m, omega_c={self.omega_c:.6g} rad/s, {vals}; {self.criticality})"
+
+    def _repr_latex_(self) -> str:
+        parts = [rf"V = {self.V:.4g}", rf"k_c = {self.kc:.6g}", rf"\omega_c = {self.omega_c:.6g}"]
+        parts += [rf"{QUANTITIES[k][0]} = {v:.6g}" for k, v in self.values.items() if k in QUANTITIES]
+        return "$" + r",\ ".join(parts) + rf"$ ({self.criticality})"
+
+
+def _with_bases(names: Iterable[str]) -> list[str]:
+    """names with the base quantities of derived ones placed before them."""
+    out: list[str] = []
+    for n in names:
+        for b in DERIVED.get(n, ()):
+            if b not in out:
+                out.append(b)
+        if n not in out:
+            out.append(n)
+    return out
+
+
+def criticality(lam: float, scale: float = 0.0) -> str:
+    if not np.isfinite(lam) or abs(lam) <= scale:
+        return "degenerate"
+    return "supercritical" if lam < 0 else "subcritical"
+
+
+class Derivation:
+    """Lazy multiple-scales derivation for a :class:`SpringBlock` (see module docstring)."""
+
+    def __init__(self, block: SpringBlock):
+        self.block = block
+        self.system = block.system
+        self.jets = Jets(self.system)
+        self.hopf = HopfLine(block, self.jets)
+        self.k = self.system.parameter
+        self.args = block.args
+        self.timings: dict[str, float] = {}
+        self._coefs: dict[str, Coefficient] = {}
+        self._compiled: dict[tuple[str, str], CompiledFormula] = {}
+
+    # --- symbolic route ---------------------------------------------------------------
+    def _structure(self) -> tuple[list, list, int, int]:
+        J = self.jets.jacobian()
+        E = list(self.system.mass)
+        p = self.k
+        rows = [i for i in range(len(E)) if any(p in sp.sympify(J[i][j]).free_symbols for j in range(len(E)))]
+        cols = [j for j in range(len(E)) if any(p in sp.sympify(J[i][j]).free_symbols for i in range(len(E)))]
+        if len(rows) != 1 or len(cols) != 1:
+            raise InputError("symbolic route needs the Hopf parameter in exactly one Jacobian entry")
+        return J, E, rows[0], cols[0]
+
+    @cached_property
+    def vectors(self):
+        """u₀ (q) and u₀* (ψ) of eq. (11) in atoms, with ω symbolic."""
+        J, E, r, c = self._structure()
+        return null_vectors(J, E, w, self.system.normalise, r, c)
+
+    @cached_property
+    def alpha_over_delta(self) -> Cx:
+        """α/δ per unit k₂ (eqs 17–18)."""
+        fp, Jp = self.jets.parameter_derivatives()
+        J, _, _, _ = self._structure()
+        B2 = self.jets.order(2) if any(f != 0 for f in fp) else {}
+        return linear_coefficient(self.vectors, J, Jp, fp, B2)
+
+    @cached_property
+    def beta_over_delta(self) -> Cx:
+        """β/δ (eqs 15–19)."""
+        J, E, _, _ = self._structure()
+        return cubic_coefficient(self.vectors, J, E, w, self.jets.order(2), self.jets.order(3), sp.Rational(1, 2))
+
+    def formula(self, name: str) -> sp.Expr:
+        if name == "kc":
+            return self.k
+        if name == "omega_c":
+            return w
+        if name == "Gamma_bar":
+            return -self.alpha_over_delta.re
+        if name == "Omega_bar":
+            return self.alpha_over_delta.im
+        if name == "Lambda":
+            return 2 * self.beta_over_delta.re
+        if name == "chi":
+            return 2 * self.beta_over_delta.im
+        if name == "C":
+            # built from Γ̄ and Λ symbols: never ask sympy for |Λ| of the full expression
+            return 2 * sp.sqrt(2 * _GB / sp.Abs(_LA))
+        raise InputError(f"unknown quantity {name!r} (known: {', '.join(QUANTITIES)})")
+
+    def coefficient(self, name: str) -> Coefficient:
+        """The :class:`Coefficient` ``name`` (one of :data:`QUANTITIES`)."""
+        for base in DERIVED.get(name, ()):
+            self.coefficient(base)
+        if name not in QUANTITIES:
+            raise InputError(f"unknown quantity {name!r} (known: {', '.join(QUANTITIES)})")
+        if name not in self._coefs:
+            t0 = time.perf_counter()
+            self._coefs[name] = Coefficient(name, self.formula(name), self)
+            self.timings[name] = time.perf_counter() - t0
+        return self._coefs[name]
+
+    # --- numerics ---------------------------------------------------------------------
+    def _compiled_formula(self, name: str, modules: str = "numpy") -> CompiledFormula:
+        key = (name, modules)
+        if key not in self._compiled:
+            f = self.coefficient(name).formula
+            self._compiled[key] = CompiledFormula(f, (w, self.k, *self.args), self.jets.atoms, modules)
+        return self._compiled[key]
+
+    @cached_property
+    def _rho(self) -> CompiledFormula | None:
+        """|ω_c²| relative to the size of its terms: small means cancellation (near an extremum of μ_ss)."""
+        cf = self.hopf.closed_form
+        if cf is None:
+            return None
+        num, _ = sp.fraction(sp.together(cf[1]))
+        terms = sp.Add.make_args(sp.expand(num))
+        rho = sp.Abs(num) / sp.Add(*[sp.Abs(t) for t in terms])
+        return CompiledFormula(rho, self.args, self.jets.atoms)
+
+    @cached_property
+    def _hopf_mp(self):
+        kc, W_c = self.hopf.closed_form
+        return (CompiledFormula(kc, self.args, self.jets.atoms, "mpmath"),
+                CompiledFormula(W_c, self.args, self.jets.atoms, "mpmath"))
+
+    def evaluate_mp(self, V0: float, params: Mapping[str, float], names: Iterable[str], dps: int = 50) -> dict[str, Any]:
+        """The same formulas evaluated at one point with mpmath at ``dps`` digits."""
+        p = self.block.resolve(params)
+        with mpmath.workdps(dps):
+            vals = [mpmath.mpf(x) for x in self.block.argvals(V0, p)]
+            fk, fW = self._hopf_mp
+            kc = fk(*vals)
+            W_c = fW(*vals)
+            if W_c <= 0 or kc <= 0:
+                raise NoHopfError(f"V = {V0:g} m/s: no Hopf bifurcation")
+            om = mpmath.sqrt(W_c)
+            out = {"kc": kc, "omega_c": om}
+            for n in _with_bases(names):
+                if n not in out:
+                    if n in DERIVED:
+                        out[n] = 2 * mpmath.sqrt(2 * out["Gamma_bar"] / abs(out["Lambda"]))
+                    else:
+                        out[n] = self._compiled_formula(n, "mpmath")(om, kc, *vals)
+            return out
+
+    def evaluate(self, Vs, params: Mapping[str, float] | None = None,
+                 names: Sequence[str] = ("kc", "omega_c", "Gamma_bar", "Lambda")) -> dict[str, np.ndarray]:
+        """Vectorised evaluation over velocities (any parameter may also be an array).
+
+        NaN where there is no Hopf point.  Points whose ω_c² is ill-conditioned (within
+        ~1e-4 relative of an extremum of μ_ss) are re-evaluated with 50-digit mpmath.
+        """
+        p = self.block.resolve({k: v for k, v in (params or {}).items() if np.ndim(v) == 0})
+        arr = {k: np.asarray(v, dtype=float) for k, v in (params or {}).items() if np.ndim(v) > 0}
+        Vs = np.asarray(Vs, dtype=float)
+        if np.any(~np.isfinite(Vs)) or np.any(Vs <= 0):
+            raise InputError("driving velocity V must be finite and > 0")
+        full = {**p, **arr}
+        vals = self.block.argvals(Vs, full)
+        shape = np.broadcast(*[np.asarray(x) for x in vals]).shape
+        vals = [np.broadcast_to(np.asarray(x, dtype=float), shape) for x in vals]
+        if self.hopf.closed_form is not None:
+            fk, fW = self.hopf._compiled_closed
+            kc = fk(*vals)
+            W_c = fW(*vals)
+            ok = (kc > 0) & (W_c > 0)
+            om = np.sqrt(np.where(ok, W_c, np.nan))
+            kc = np.where(ok, kc, np.nan)
+        else:
+            if arr:
+                raise InputError("array-valued parameters need a closed-form Hopf line (one state variable)")
+            kc, om = self.hopf.evaluate(Vs.ravel(), p)
+            kc, om = kc.reshape(shape), om.reshape(shape)
+        out: dict[str, np.ndarray] = {"V": Vs * np.ones(shape), "kc": kc, "omega_c": om}
+        for n in _with_bases(names):
+            if n in out:
+                continue
+            if n == "C":
+                out[n] = 2 * np.sqrt(2 * out["Gamma_bar"] / np.abs(out["Lambda"]))
+            else:
+                out[n] = np.asarray(self._compiled_formula(n)(om, kc, *vals), dtype=float) * np.ones(shape)
+        extra = [n for n in _with_bases(names) if n not in ("kc", "omega_c")]
+        if extra and self._rho is not None:
+            rho = self._rho(*vals)
+            bad = np.argwhere((rho < _RHO_MPMATH) & np.isfinite(kc))
+            for idx in map(tuple, bad):
+                point = {s.name: float(vals[i + 1][idx]) for i, s in enumerate(self.args[1:])}
+                mp = self.evaluate_mp(float(vals[0][idx]), point, extra)
+                for n in extra:
+                    out[n][idx] = float(mp[n])
+        return out
+
+    def points(self, Vs, params: Mapping[str, float] | None = None,
+               names: Sequence[str] = ("Gamma_bar", "Lambda", "C")) -> list[Any]:
+        """Per-velocity :class:`LandauPoint` (or the linear :class:`HopfPoint` when there is no Hopf point)."""
+        Vs = np.atleast_1d(np.asarray(Vs, dtype=float))
+        res = self.evaluate(Vs, params, ["kc", "omega_c", *names])
+        lin = None
+        out = []
+        for i, Vi in enumerate(Vs):
+            if not np.isfinite(res["kc"][i]):
+                lin = lin or self.hopf.points(Vs, params)
+                out.append(lin[i])
+                continue
+            values = {n: float(res[n][i]) for n in names}
+            crit = criticality(values["Lambda"]) if "Lambda" in values else "unknown"
+            out.append(LandauPoint(float(Vi), float(res["kc"][i]), float(res["omega_c"][i]), values, crit))
+        return out
+
+
+def derive(block: SpringBlock, quantities: Sequence[str] | None = None) -> Derivation:
+    """Derive the requested amplitude-equation coefficients (default: all) — lazily.
+
+    Only the derivative orders the requested quantities need are built; the rest are
+    derived on first use.
+    """
+    d = Derivation(block)
+    for q in quantities or QUANTITIES:
+        d.coefficient(q)
+    return d

@@ -1,0 +1,186 @@
+"""Mechanical systems as data: E·ẏ = f(y; p), and the spring–block of Putelat et al. (eq. 4).
+
+A :class:`DynamicalSystem` is the general smooth first-order (descriptor) system the
+multiple-scales engine works on: states y, right-hand side f, a diagonal "mass" E (1 for
+an ODE; a zero entry makes the system a DAE, which is how the quasi-static spring–block
+M = 0 is handled), the Hopf parameter p, and the equilibrium y₀ as expressions of the
+other parameters.  Where the equilibrium has no closed form it contains *unknown*
+symbols defined by ``equilibrium_equations = 0`` and solved numerically.
+
+:class:`SpringBlock` builds eq. (4), M ẍ = k(Vt − x) − σ μ(ẋ, φ), dφ/dt = rate(ẋ, φ),
+from any :class:`~laws.FrictionLaw`, in coordinates that make steady sliding the
+origin of the mechanical part: X = x − x₀(t), u = ẋ − V, with x₀(t) = Vt − σμ_ss(V)/k.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Mapping
+
+import numpy as np
+import sympy as sp
+
+from landau.errors import InputError
+from laws.law import FrictionLaw, v as v_slip
+
+#: system-level symbols shared by every spring–block
+V = sp.Symbol("V", positive=True)          # driving velocity [m/s]
+k = sp.Symbol("k", real=True)              # spring stiffness [N/m] (Hopf parameter)
+M = sp.Symbol("M", nonnegative=True)       # block mass [kg]
+sigma = sp.Symbol("sigma", positive=True)  # normal load σ = Mg [N]
+g = sp.Symbol("g", positive=True)          # gravity [m/s²]
+
+#: Default mechanical parameters (Putelat et al. 2010, Sec. 3: M = 1.2 kg; notes §1: g = 9.81)
+M_DEFAULT = 1.2
+G_DEFAULT = 9.81
+SYSTEM_UNITS = {"M": "kg", "g": "m/s^2", "sigma": "N", "V": "m/s", "k": "N/m"}
+
+
+@dataclass(frozen=True, eq=False)
+class DynamicalSystem:
+    """E·ẏ = f(y; p, q) with Hopf parameter p and other parameters q (all sympy).
+
+    Subclass contract / fields
+    --------------------------
+    states : state symbols y.
+    rhs : f(y), one expression per state.
+    mass : diagonal of E (expressions; 1 for an ODE row, 0 for an algebraic row).
+    parameter : the Hopf (bifurcation) parameter p.
+    equilibrium : y₀ as expressions of the other parameters (and of ``unknowns``); it
+        must not depend on p — or, if it does, the engine accounts for it.
+    defaults : default values of the other parameters, by name.
+    normalise : index of the state whose component of the critical eigenvector is 1
+        (fixes the normalisation of the Landau coefficient Λ).
+    unknowns / unknown_equations : equilibrium pieces with no closed form, defined by
+        ``unknown_equations = 0`` (solved numerically at each evaluation point).
+    """
+
+    name: str
+    states: tuple[sp.Symbol, ...]
+    rhs: tuple[sp.Expr, ...]
+    mass: tuple[sp.Expr, ...]
+    parameter: sp.Symbol
+    equilibrium: tuple[sp.Expr, ...]
+    defaults: Mapping[str, float] = field(default_factory=dict)
+    normalise: int = 0
+    unknowns: tuple[sp.Symbol, ...] = ()
+    unknown_equations: tuple[sp.Expr, ...] = ()
+    unknown_guess: tuple[sp.Expr, ...] = ()
+    description: str = ""
+
+    def __post_init__(self) -> None:
+        n = len(self.states)
+        if not (len(self.rhs) == len(self.mass) == len(self.equilibrium) == n):
+            raise InputError(f"system {self.name!r}: states, rhs, mass and equilibrium must have equal length")
+
+    @cached_property
+    def parameters(self) -> tuple[sp.Symbol, ...]:
+        """Every free symbol except the states, the Hopf parameter and the unknowns, sorted by name."""
+        syms = set().union(*(e.free_symbols for e in (*self.rhs, *self.mass, *self.equilibrium)))
+        syms -= set(self.states) | {self.parameter} | set(self.unknowns)
+        return tuple(sorted(syms, key=lambda s: s.name))
+
+    def __repr__(self) -> str:
+        return (f"DynamicalSystem({self.name!r}, states={[s.name for s in self.states]}, "
+                f"parameter={self.parameter.name}, parameters={[s.name for s in self.parameters]})")
+
+
+@dataclass(frozen=True, eq=False)
+class SpringBlock:
+    """The spring–block of Putelat et al. (2010), eq. (4), driven at velocity V.
+
+    σ (normal load) is its own parameter, default M·g with M = 1.2 kg, g = 9.81 m/s²
+    (σ = 11.772 N).  Changing M alone changes the inertia only — as the paper's M = 0
+    (quasi-static) curves do; give ``g`` or ``sigma`` to change the load.
+    """
+
+    law: FrictionLaw
+
+    @cached_property
+    def defaults(self) -> dict[str, float]:
+        d = dict(self.law.defaults())
+        d.update(M=M_DEFAULT, g=G_DEFAULT, sigma=M_DEFAULT * G_DEFAULT)
+        return d
+
+    def resolve(self, overrides: Mapping[str, float] | None = None) -> dict[str, float]:
+        """Full parameter dict (law + M, g, sigma) with overrides applied and checked."""
+        p = dict(self.defaults)
+        over = dict(overrides or {})
+        for key, val in over.items():
+            if key not in p:
+                raise InputError(f"unknown parameter {key!r} for law {self.law.name!r} "
+                                 f"(known: {', '.join(sorted(p))})")
+            try:
+                p[key] = float(val)
+            except (TypeError, ValueError):
+                raise InputError(f"parameter {key!r} must be a number, got {val!r}") from None
+            if not np.isfinite(p[key]):
+                raise InputError(f"parameter {key!r} must be finite, got {val!r}")
+        if "sigma" not in over and "g" in over:
+            p["sigma"] = p["M"] * p["g"] if p["M"] > 0 else M_DEFAULT * p["g"]
+        if p["M"] < 0:
+            raise InputError(f"parameter 'M' must be >= 0, got {p['M']!r}")
+        if p["sigma"] <= 0:
+            raise InputError(f"parameter 'sigma' must be > 0, got {p['sigma']!r}")
+        for prm in self.law.parameters:
+            if prm.positive and p[prm.name] <= 0:
+                raise InputError(f"parameter {prm.name!r} must be > 0, got {p[prm.name]!r}")
+        return p
+
+    @cached_property
+    def phi0(self) -> tuple[sp.Symbol, ...]:
+        """Symbols for the steady state φᵢ,₀ (replaced by closed forms where they exist)."""
+        return tuple(sp.Symbol(f"{s.name}_0", positive=True) for s in self.law.states)
+
+    @cached_property
+    def steady_state(self) -> tuple[sp.Expr, ...] | None:
+        """Closed-form φᵢ,ss(V) or None."""
+        ss = self.law.steady_state_closed_form
+        return None if ss is None else tuple(e.subs(v_slip, V) for e in ss)
+
+    @cached_property
+    def system(self) -> DynamicalSystem:
+        """Eq. (4) as E·ẏ = f(y; k): y = (X, u, φ…), E = diag(1, M, 1…)."""
+        X, u = sp.symbols("X u", real=True)
+        phis = self.law.states
+        mu = self.law.mu
+        at_slip = {v_slip: V + u}
+        mu_now = mu.subs(at_slip)
+        ss = self.steady_state
+        eq_phi = ss if ss is not None else self.phi0
+        mu_0 = mu.subs({v_slip: V, **dict(zip(phis, eq_phi))})
+        rhs = (u, -k * X - sigma * (mu_now - mu_0), *(r.subs(at_slip) for r in self.law.rates))
+        unknowns: tuple = ()
+        eqs: tuple = ()
+        if ss is None:
+            unknowns = self.phi0
+            eqs = tuple(r.subs({v_slip: V, **dict(zip(phis, self.phi0))}) for r in self.law.rates)
+        return DynamicalSystem(
+            name=f"spring-block[{self.law.name}]",
+            states=(X, u, *phis),
+            rhs=rhs,
+            mass=(sp.Integer(1), M, *([sp.Integer(1)] * len(phis))),
+            parameter=k,
+            equilibrium=(sp.Integer(0), sp.Integer(0), *eq_phi),
+            defaults=self.defaults,
+            normalise=0,
+            unknowns=unknowns,
+            unknown_equations=eqs,
+            description="Putelat et al. 2010 eq. (4) in X = x - x0(t), u = dx/dt - V",
+        )
+
+    @cached_property
+    def args(self) -> tuple[sp.Symbol, ...]:
+        """Argument order of every compiled function: (V, law parameters…, M, g, sigma)."""
+        return (V, *(p.symbol for p in self.law.parameters), M, g, sigma)
+
+    def argvals(self, Vs, params: Mapping[str, float]) -> list:
+        return [Vs, *(params[s.name] for s in self.args[1:])]
+
+    def mu_ss(self) -> sp.Expr:
+        """μ_ss(V) (closed form)."""
+        return self.law.mu_ss().subs(v_slip, V)
+
+    def __repr__(self) -> str:
+        return f"SpringBlock({self.law.name!r})"

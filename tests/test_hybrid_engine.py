@@ -1,0 +1,193 @@
+"""Hybrid engine on hand-built systems with known answers (verify/hybrid).
+
+Tolerances: event times are located by Brent's method to xtol = 1e-14 on a DOP853 dense
+output run at rtol 1e-12; for polynomial trajectories (free fall, constant velocity) the
+dense output is exact, so event times agree with the closed forms to ~1e-12 (a few
+hundred ulps after tens of events).
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from landau.errors import IntegratorError
+from verify.hybrid import (DOP853Stepper, EngineOptions, Guard, HybridModel, Jump, Mode, ScipyStepper,
+                           simulate)
+
+G = 9.81
+
+
+def ball(e: float, rest: bool = False) -> HybridModel:
+    def bounce(t, y):
+        return Jump("fly", np.array([y[0], -e * y[1]]), "impact")
+
+    fly = Mode("fly", lambda t, y: np.array([y[1], -G]), (Guard("floor", lambda t, y: y[0], bounce),),
+               on_zeno=(lambda t, y: Jump("rest", np.array([0.0, 0.0]))) if rest else None)
+    still = Mode("rest", lambda t, y: np.zeros(2))
+    return HybridModel.from_modes(fly, still, name="ball")
+
+
+@pytest.mark.parametrize("e", [0.5, 0.8])
+def test_bouncing_ball_zeno_time_closed_form(e):
+    # Dropped from h at rest: first impact at sqrt(2h/g), then flights 2 e^k v1/g, so the
+    # impacts accumulate at T = sqrt(2h/g) + 2 e v1 / (g (1 - e)), v1 = sqrt(2 g h).
+    h = 1.0
+    v1 = math.sqrt(2 * G * h)
+    T = math.sqrt(2 * h / G) + 2 * e * v1 / (G * (1 - e))
+    sol = simulate(ball(e), "fly", [h, 0.0], (0.0, 10.0), DOP853Stepper(1e-12, 1e-14))
+    assert sol.status == "zeno"  # the engine stops and reports instead of hanging
+    assert sol.zeno.t_accumulation == pytest.approx(T, rel=1e-9)
+    assert sol.zeno.ratio == pytest.approx(e, rel=1e-6)
+    # each impact time against the closed form t_k = t1 + 2 v1/g * sum_{j=1..k-1} e^j
+    t = sol.events.times()
+    k = np.arange(len(t))
+    tk = math.sqrt(2 * h / G) + 2 * v1 / G * e * (1 - e ** k) / (1 - e)
+    assert np.max(np.abs(t - tk)) < 1e-11
+    # cost budget: a failing event loop would explode the evaluation count
+    assert sol.nfev < 200 * len(t)
+
+
+def test_bouncing_ball_chattering_ended_and_logged():
+    sol = simulate(ball(0.5, rest=True), "fly", [1.0, 0.0], (0.0, 3.0), DOP853Stepper(1e-12, 1e-14))
+    assert sol.status == "t_end" and sol.mode == "rest"
+    z = sol.events.filter(kind="zeno")
+    assert len(z) == 1 and "chattering ended" in z[0].note
+
+
+def test_switch_state_is_on_the_new_side():
+    sol = simulate(ball(0.7), "fly", [1.0, 0.0], (0.0, 10.0), DOP853Stepper(1e-12, 1e-14))
+    for ev in sol.events:
+        assert ev.y[0] <= 0.0  # the root is accepted on the side where the guard is violated
+
+
+def _dip_model():
+    # y' = 1 from 0; guard (y-5)^2 - 0.01 is negative only on (4.9, 5.1): two roots 0.2 apart
+    a = Mode("a", lambda t, y: np.array([1.0]),
+             (Guard("dip", lambda t, y: (y[0] - 5.0) ** 2 - 0.01, lambda t, y: ("b", y)),))
+    b = Mode("b", lambda t, y: np.array([0.0]))
+    return HybridModel.from_modes(a, b)
+
+
+def test_double_crossing_inside_one_step_is_caught():
+    st = ScipyStepper("RK45", rtol=1e-6, atol=1e-9)  # steps grow to ~10 on this linear field
+    sol = simulate(_dip_model(), "a", [0.0], (0.0, 20.0), st)
+    assert len(sol.events) == 1
+    assert sol.events[0].t == pytest.approx(4.9, abs=1e-12)
+    assert sol.mode == "b"
+    # the baseline takes the same big step and misses both roots (why the engine owns the loop)
+    base = solve_ivp(lambda t, y: [1.0], (0.0, 20.0), [0.0], method="RK45", rtol=1e-6, atol=1e-9,
+                     events=lambda t, y: (y[0] - 5.0) ** 2 - 0.01)
+    assert np.max(np.diff(base.t)) > 1.0 and len(base.t_events[0]) == 0
+
+
+def test_two_guards_at_the_same_instant():
+    # x' = -1 from 1 and y' = -2 from 2 both vanish at t = 1; each guard stops its coordinate.
+    def rhs(sx, sy):
+        return lambda t, u: np.array([-1.0 * sx, -2.0 * sy])
+
+    gx = lambda to: Guard("x=0", lambda t, u: u[0], lambda t, u: (to, u))
+    gy = lambda to: Guard("y=0", lambda t, u: u[1], lambda t, u: (to, u))
+    m = HybridModel.from_modes(
+        Mode("A", rhs(1, 1), (gx("B"), gy("C"))),
+        Mode("B", rhs(0, 1), (gy("D"),)),
+        Mode("C", rhs(1, 0), (gx("D"),)),
+        Mode("D", rhs(0, 0)))
+    sol = simulate(m, "A", [1.0, 2.0], (0.0, 3.0), DOP853Stepper(1e-12, 1e-14))
+    assert sol.mode == "D"
+    assert [e.guard for e in sol.events] == ["x=0", "y=0"]
+    assert all(abs(e.t - 1.0) < 1e-12 for e in sol.events)
+    assert "simultaneous" in sol.events[0].note and sol.events[1].kind == "zero-length"
+    assert np.allclose(sol.y, 0.0, atol=1e-12)
+
+
+def test_section_events_poincare_period():
+    # harmonic oscillator: upward crossings of x = 0 are 2π apart
+    m = HybridModel.from_modes(Mode("o", lambda t, y: np.array([y[1], -y[0]]),
+                                    (Guard("x=0 up", lambda t, y: -y[0]),)))
+    sol = simulate(m, "o", [-1.0, 0.0], (0.0, 40.0), DOP853Stepper(1e-12, 1e-14))
+    t = sol.events.times(kind="section")
+    assert len(t) == 7  # π/2 + 2πk < 40 for k = 0..6
+    assert np.allclose(np.diff(t), 2 * np.pi, atol=1e-9)
+    assert t[0] == pytest.approx(np.pi / 2, abs=1e-10)
+
+
+def test_zero_length_phase_fires_at_once():
+    # the transition lands where the next mode's guard is already violated
+    m = HybridModel.from_modes(
+        Mode("A", lambda t, y: np.array([-1.0]), (Guard("g", lambda t, y: y[0], lambda t, y: ("B", y)),)),
+        Mode("B", lambda t, y: np.array([1.0]), (Guard("h", lambda t, y: 0.5 - y[0], lambda t, y: ("C", y)),)),
+        Mode("C", lambda t, y: np.array([0.0])))
+    sol = simulate(m, "A", [1.0], (0.0, 2.0), DOP853Stepper())
+    assert [e.kind for e in sol.events] == ["switch", "switch"]  # regular phases: A -> B at 1, B -> C at 1.5
+    assert sol.events.times() == pytest.approx([1.0, 1.5], abs=1e-12)
+    sol = simulate(m, "B", [0.75], (0.0, 2.0), DOP853Stepper())
+    assert sol.events[0].kind == "zero-length" and sol.events[0].t == 0.0 and sol.mode == "C"
+
+
+def test_integrator_failure_raises_with_time_and_state():
+    m = HybridModel.from_modes(Mode("blow", lambda t, y: y ** 2))  # y = 1/(1 - t) blows up at t = 1
+    with pytest.raises(IntegratorError) as exc:
+        simulate(m, "blow", [1.0], (0.0, 2.0), DOP853Stepper())
+    assert exc.value.t == pytest.approx(1.0, abs=1e-3)
+    assert exc.value.state is not None
+
+
+def test_transition_loop_is_reported():
+    m = HybridModel.from_modes(
+        Mode("A", lambda t, y: np.array([0.0]), (Guard("g", lambda t, y: -1.0, lambda t, y: ("B", y)),)),
+        Mode("B", lambda t, y: np.array([0.0]), (Guard("h", lambda t, y: -1.0, lambda t, y: ("A", y)),)))
+    with pytest.raises(IntegratorError, match="zero-length"):
+        simulate(m, "A", [0.0], (0.0, 1.0), DOP853Stepper(), EngineOptions(max_zero_length=10))
+
+
+def test_event_log_records_time_state_guard_modes():
+    sol = simulate(ball(0.5), "fly", [1.0, 0.0], (0.0, 1.0), DOP853Stepper(1e-12, 1e-14))
+    ev = sol.events[0]
+    assert (ev.guard, ev.from_mode, ev.to_mode, ev.kind) == ("floor", "fly", "fly", "switch")
+    assert ev.y_after[1] == pytest.approx(-0.5 * ev.y[1])
+    assert "floor" in repr(sol.events)
+
+
+def test_poincare_and_sweep_tools():
+    from verify.hybrid.analysis import event_map_orbit, map_bifurcation_diagram, poincare, sweep
+    m = HybridModel.from_modes(Mode("o", lambda t, y: np.array([y[1], -y[0]]),
+                                    (Guard("x=0 up", lambda t, y: -y[0]),)))
+    sec = poincare(m, "o", [-1.0, 0.0], (0.0, 30.0), "x=0 up", DOP853Stepper(1e-12, 1e-14), t_transient=5.0)
+    assert np.allclose(sec.y[1], 1.0, atol=1e-9) and sec.t[0] > 5.0   # |v| = 1 at x = 0
+    # logistic map: period-2 attractor at r = 3.2 is {(r+1 ± sqrt((r-3)(r+1)))/(2r)} (closed form)
+    res = map_bifurcation_diagram(lambda r: (lambda x: r * x * (1 - x)), [3.2], 0.3, 400, 2)
+    r = 3.2
+    exact = sorted([(r + 1 - math.sqrt((r - 3) * (r + 1))) / (2 * r), (r + 1 + math.sqrt((r - 3) * (r + 1))) / (2 * r)])
+    assert np.allclose(sorted(res.values[0]), exact, atol=1e-12)
+    assert event_map_orbit(lambda x: x / 2, 1.0, 3)[-1] == 0.125
+
+    def fails_at_2(q, warm):
+        if q == 2:
+            from landau.errors import LandauError
+            raise LandauError("boom")
+        return q
+    out = sweep(fails_at_2, [1, 2, 3])
+    assert out.values == [1, None, 3] and 2.0 in out.failures
+
+
+def test_stiff_contact_mode_with_radau_and_jacobian():
+    # A mass at speed v0 hits a linear contact spring of stiffness k (penalty contact, the
+    # shape of issue 8's Hertz contact): inside contact x'' = -k x, so the contact lasts
+    # exactly π/sqrt(k) and the mass leaves with -v0 (closed form).  The contact mode is run
+    # with the implicit Radau stepper and the mode's analytic Jacobian.
+    from verify.hybrid import RadauStepper
+    k, v0 = 1e6, 1.0
+    free = Mode("free", lambda t, y: np.array([y[1], 0.0]),
+                (Guard("touch", lambda t, y: -y[0], lambda t, y: ("contact", y)),))
+    contact = Mode("contact", lambda t, y: np.array([y[1], -k * y[0]]),
+                   (Guard("release", lambda t, y: y[0], lambda t, y: ("free", y)),),
+                   jac=lambda t, y: np.array([[0.0, 1.0], [-k, 0.0]]))
+    m = HybridModel.from_modes(free, contact)
+    sol = simulate(m, "free", [-1.0, v0], (0.0, 3.0), RadauStepper(rtol=1e-10, atol=1e-13))
+    t_in, t_out = sol.events.times()
+    assert t_in == pytest.approx(1.0, abs=1e-10)
+    assert t_out - t_in == pytest.approx(math.pi / math.sqrt(k), rel=1e-6)
+    assert sol.events[1].y[1] == pytest.approx(-v0, rel=1e-6)
+    assert sol.y[0] == pytest.approx(-(3.0 - t_out) * v0, abs=1e-6)

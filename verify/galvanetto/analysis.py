@@ -1,0 +1,59 @@
+"""Poincaré sections, map curves and bifurcation diagrams of the Galvanetto models."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from verify.galvanetto.maps import MapUndefined, default_stepper, f, model_for, two_block_map
+from verify.galvanetto.model import StickSlipParams, two_blocks
+from verify.hybrid import EngineOptions, simulate
+from verify.hybrid.analysis import SweepResult, map_bifurcation_diagram
+
+FIG_STEPPER = default_stepper(1e-9)  # plots need ~1e-9, not the locators' 1e-11
+
+
+def map_curve(p: StickSlipParams, ds, period: int = 1, stepper=FIG_STEPPER) -> np.ndarray:
+    """f^period on a grid of d (nan where the map is undefined)."""
+    out = []
+    for d in ds:
+        try:
+            x = float(d)
+            for _ in range(period):
+                x = f(p, x, stepper)
+            out.append(x)
+        except MapUndefined:
+            out.append(np.nan)
+    return np.array(out)
+
+
+def beta_diagram(betas, d0: float, V: float = 0.25, alpha: float = 1.2, gamma: float = 3.0, delta: float = 0.0,
+                 n_transient: int = 40, n_keep: int = 24, stepper=FIG_STEPPER) -> SweepResult:
+    """Bifurcation diagram of the event map in β (Figs 12, 15): attractor points of d."""
+    return map_bifurcation_diagram(lambda b: (lambda d: f(two_blocks(V, alpha, b, gamma, delta), d, stepper)),
+                                   betas, d0, n_transient, n_keep)
+
+
+def trajectory(p: StickSlipParams, mode: str, y0, t_end: float, stepper=FIG_STEPPER, t_keep: float = 0.0):
+    """Recorded hybrid trajectory (t, y) for phase portraits, samples after ``t_keep``."""
+    sol = simulate(model_for(p), mode, np.asarray(y0, float), (0.0, t_end), stepper,
+                   EngineOptions(record=True, samples=8))
+    t, y, _ = sol.trajectory()
+    keep = t >= t_keep
+    return t[keep], y[:, keep], sol
+
+
+def gsp_orbit_trajectory(p: StickSlipParams, d: float, n_steps: int, stepper=FIG_STEPPER):
+    """Trajectory of ``n_steps`` map steps from the g.s.p. d, including the g.s.p. segments."""
+    from verify.galvanetto.maps import gsp_start
+    ts, ys = [], []
+    for _ in range(n_steps):
+        mode, y0 = gsp_start(p, d)
+        sol = simulate(model_for(p), mode, y0, (0.0, 500.0), stepper, EngineOptions(record=True, samples=8),
+                       stop=lambda ev: ev.to_mode == "ss")
+        t, y, _ = sol.trajectory()
+        ys.append(y)
+        d = float(sol.y[1] - sol.y[0])
+        # the g.s.p. segment: both at V from the landing to the next start
+        mode2, y1 = gsp_start(p, d)
+        ys.append(np.column_stack([sol.y, y1]))
+    return np.concatenate(ys, axis=1)

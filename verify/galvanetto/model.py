@@ -1,0 +1,185 @@
+"""One- and two-block stick–slip models of Galvanetto (2004) on the hybrid engine.
+
+Dimensionless equations (paper eqs 2–8; reading of notes/models.md §2):
+
+* one block: Ẍ + cẊ + X = F_k(Ẋ − V) while slipping (4a); sticking (Ẋ = V) allowed while
+  −F_s − cV ≤ X ≤ F_s − cV, F_s = 1 (3a);
+* two blocks: Ẍᵢ = −Kᵢ + F_si F_k(Ẋᵢ − V), Kᵢ = Xᵢ + α(Xᵢ − Xⱼ) (4b, 8b); sticking allowed
+  while −F_si ≤ Kᵢ ≤ F_si, F_s1 = 1, F_s2 = β (3b).
+
+Written uniformly: Kᵢ = Xᵢ + α(Xᵢ − Xⱼ) + cẊᵢ (the one block has no α term), the slip
+acceleration is −Kᵢ + F_si F_k(rᵢ), rᵢ = Ẋᵢ − V.  State y = (X₁..Xₙ, Ẋ₁..Ẋₙ).
+
+Modes are strings with one letter per block: ``n`` slipping with rᵢ < 0, ``s`` sticking,
+``p`` slipping with rᵢ > 0 (e.g. ``"ns"``: block 1 slower than the belt, block 2 stuck).
+Filippov convention at rᵢ = 0: stick if |Kᵢ| ≤ F_si, otherwise cross to the other slip
+side; a stuck block leaves when Kᵢ reaches ±F_si (to ``n`` at +F_si, to ``p`` at −F_si).
+
+Optional sections (``sections=True``) log, without switching, the extrema that the
+sliding-bifurcation locators need: ``rmax{i}`` (a maximum of rᵢ while slipping with
+rᵢ < 0: grazing of the stick surface), ``rmin{i}`` (a minimum while rᵢ > 0) and
+``Kmin{i}``/``Kmax{i}`` (extrema of Kᵢ while block i sticks: multi-sliding).
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from laws.kinetic import KineticFriction
+from verify.hybrid import Guard, HybridModel, Jump, Mode
+
+
+@dataclass(frozen=True)
+class StickSlipParams:
+    """Parameters of the one-block (n=1) or two-block (n=2) model; paper's symbols."""
+
+    V: float = 0.25
+    gamma: float = 3.0
+    delta: float = 0.0
+    c: float = 0.0
+    alpha: float = 1.2
+    beta: float = 1.3
+    n: int = 1
+
+    @property
+    def law(self) -> KineticFriction:
+        return KineticFriction(self.gamma, self.delta)
+
+    @property
+    def Fs(self) -> tuple[float, ...]:
+        return (1.0,) if self.n == 1 else (1.0, self.beta)
+
+    def with_(self, **kw) -> "StickSlipParams":
+        return replace(self, **kw)
+
+
+def one_block(V: float, gamma: float = 3.0, delta: float = 0.0, c: float = 0.0) -> StickSlipParams:
+    return StickSlipParams(V=V, gamma=gamma, delta=delta, c=c, n=1)
+
+
+def two_blocks(V: float, alpha: float = 1.2, beta: float = 1.3, gamma: float = 3.0,
+               delta: float = 0.0) -> StickSlipParams:
+    return StickSlipParams(V=V, gamma=gamma, delta=delta, alpha=alpha, beta=beta, n=2)
+
+
+def K_of(p: StickSlipParams, y):
+    """Spring(+damper) force Kᵢ on each block; works on y of shape (2n,) or (2n, m)."""
+    if p.n == 1:
+        return (y[0] + p.c * y[1],)
+    a = p.alpha
+    return (y[0] + a * (y[0] - y[1]) + p.c * y[2], y[1] + a * (y[1] - y[0]) + p.c * y[3])
+
+
+def _make_rhs(p: StickSlipParams, code: str):
+    V, n, Fs, law = p.V, p.n, p.Fs, p.law
+    g, dl = law.gamma, law.delta
+    if n == 1:
+        c = p.c
+        if code == "s":
+            return lambda t, y: np.array([V, 0.0])
+        if code == "n":
+            return lambda t, y: np.array([y[1], -(y[0] + c * y[1]) + (1 - dl) / (1 - g * (y[1] - V)) + dl])
+        return lambda t, y: np.array([y[1], -(y[0] + c * y[1]) - (1 - dl) / (1 + g * (y[1] - V)) - dl])
+    a, c = p.alpha, p.c
+    F1, F2 = Fs
+
+    def fr(ch, r, F):
+        if ch == "n":
+            return F * ((1 - dl) / (1 - g * r) + dl)
+        return -F * ((1 - dl) / (1 + g * r) + dl)
+
+    c1, c2 = code
+
+    def rhs(t, y):
+        x1, x2, v1, v2 = y
+        a1 = 0.0 if c1 == "s" else -(x1 + a * (x1 - x2) + c * v1) + fr(c1, v1 - V, F1)
+        a2 = 0.0 if c2 == "s" else -(x2 + a * (x2 - x1) + c * v2) + fr(c2, v2 - V, F2)
+        return np.array([v1, v2, a1, a2])
+
+    return rhs
+
+
+def _accel_fun(p: StickSlipParams, i: int, ch: str):
+    """Slip acceleration of block i on branch ch, vectorised (for the r-extremum sections)."""
+    n, V, Fs, law = p.n, p.V, p.Fs[i], p.law
+    br = law.neg if ch == "n" else law.pos
+    return lambda t, y: -K_of(p, y)[i] + Fs * br(y[n + i] - V)
+
+
+def build_model(p: StickSlipParams, sections: bool = False, transparent: frozenset = frozenset()) -> HybridModel:
+    """The hybrid model (all 3ⁿ modes) for parameters ``p``.
+
+    ``transparent`` removes switching guards to continue a smooth field past its switching
+    surface (a *virtual* orbit, used only to define smooth grazing functions): entries are
+    ``"r{i}=0:n"`` / ``"r{i}=0:p"`` (block i does not stop slipping on that side) or
+    ``"K{i}=+Fs"`` / ``"K{i}=-Fs"`` (a stuck block i does not leave on that side), or
+    ``"stick{i}:n"``, ``"stick{i}:p"`` (block i sticks whenever rᵢ reaches 0 from that side,
+    whatever Kᵢ).
+    """
+    n, V, Fs = p.n, p.V, p.Fs
+    modes = {}
+    for code in map("".join, itertools.product("nsp", repeat=n)):
+        guards = []
+        for i, ch in enumerate(code):
+            if ch in "np":
+                sgn = -1.0 if ch == "n" else 1.0
+
+                def r_guard(t, y, i=i, sgn=sgn):
+                    return sgn * (y[n + i] - V)
+
+                def land(t, y, i=i, code=code, ch=ch):
+                    y = np.array(y, dtype=float)
+                    y[n + i] = V  # exactly on the surface
+                    K = K_of(p, y)[i]
+                    if -Fs[i] <= K <= Fs[i] or f"stick{i + 1}:{ch}" in transparent:
+                        new, note = "s", "slip→stick"
+                    elif K < -Fs[i]:
+                        new, note = "p", "slip→slip (crossing, r>0)"
+                    else:
+                        new, note = "n", "slip→slip (crossing, r<0)"
+                    if new == ch:  # cannot stay on the side it is leaving: stick, let guards decide
+                        new = "s"
+                    return Jump(code[:i] + new + code[i + 1:], y, note)
+
+                if f"r{i + 1}=0:{ch}" not in transparent:
+                    guards.append(Guard(f"r{i + 1}=0", r_guard, land))
+                if sections:
+                    acc = _accel_fun(p, i, ch)
+                    if ch == "n":
+                        guards.append(Guard(f"rmax{i + 1}", acc))
+                    else:
+                        guards.append(Guard(f"rmin{i + 1}", lambda t, y, acc=acc: -acc(t, y)))
+            else:
+                def up(t, y, i=i):
+                    return Fs[i] - K_of(p, y)[i]
+
+                def lo(t, y, i=i):
+                    return K_of(p, y)[i] + Fs[i]
+
+                def leave(side, i=i, code=code):
+                    return lambda t, y: Jump(code[:i] + side + code[i + 1:], y, "stick→slip")
+
+                def kdot(t, y, i=i):
+                    # dKᵢ/dt while block i sticks (its acceleration is 0)
+                    if n == 1:
+                        return V
+                    return (1 + p.alpha) * y[n + i] - p.alpha * y[n + 1 - i]
+
+                if f"K{i + 1}=+Fs" not in transparent:
+                    guards.append(Guard(f"K{i + 1}=+Fs", up, leave("n"), rate=lambda t, y, k=kdot: -k(t, y)))
+                if f"K{i + 1}=-Fs" not in transparent:
+                    guards.append(Guard(f"K{i + 1}=-Fs", lo, leave("p"), rate=kdot))
+                if sections and n == 2:
+                    j = 1 - i
+                    a = p.alpha
+
+                    def kdot(t, y, i=i, j=j):
+                        return (1 + a) * y[n + i] - a * y[n + j]
+
+                    guards.append(Guard(f"Kmin{i + 1}", lambda t, y, f=kdot: -f(t, y)))
+                    guards.append(Guard(f"Kmax{i + 1}", kdot))
+        modes[code] = Mode(code, _make_rhs(p, code), tuple(guards))
+    return HybridModel(modes, name=f"galvanetto2004-{n}block")

@@ -1,0 +1,152 @@
+"""Scenes for Galvanetto (2004), J. Sound Vib. 276, 121–139 (seed 001).
+
+``value`` is the located bifurcation parameter.  Where the paper gives an interval
+instead of a number (Figs 8, 9, 15) the published value is the interval's midpoint and the
+tolerance its relative half-width, so ``agrees`` means "inside the printed interval".
+``lo``/``hi`` bound the search (Brent's method on the scene's test function, see
+:mod:`verify.galvanetto.bifurcations`).
+"""
+
+from __future__ import annotations
+
+from landau.scenes import Scene, register
+from verify.galvanetto import bifurcations as B
+
+SRC = "Galvanetto 2004, J. Sound Vib. 276:121-139"
+
+
+def _half_digit(value: float, decimals: int) -> float:
+    """Relative tolerance of a value printed with ``decimals`` decimals (half a unit)."""
+    return 0.5 * 10.0 ** (-decimals) / value
+
+
+def _interval(lo: float, hi: float) -> tuple[float, float]:
+    mid = 0.5 * (lo + hi)
+    return mid, 0.5 * (hi - lo) / mid
+
+
+def _doc(loc: B.Located, **extra) -> dict:
+    return {"value": loc.value, "residual": loc.residual, "evaluations": loc.evaluations, **loc.details, **extra}
+
+
+def _one_block(kind):
+    def compute(p):
+        loc = B.one_block_sliding(kind, p["gamma"], p["delta"], p["c"], bracket=(p["lo"], p["hi"]))
+        return _doc(loc)
+    return compute
+
+
+register(Scene(
+    name="galvanetto2004/one-block-type-II", parameter="V", units="dimensionless",
+    source=f"{SRC}, Sec. 4.1, Fig. 7 (V≈1.241; reproduced with δ=0.2, the printed δ=0 gives ≈0.642 — notes §2)",
+    compute=_one_block("II"), defaults={"gamma": 3.0, "delta": 0.2, "c": 0.0, "lo": 0.05, "hi": 5.0},
+    published=1.241, tolerance=_half_digit(1.241, 3),
+    description="one block: the slip phase (r<0) ends exactly at the left end of the stick interval"))
+
+register(Scene(
+    name="galvanetto2004/one-block-type-I", parameter="V", units="dimensionless",
+    source=f"{SRC}, Sec. 4.1, Fig. 7(c) (V≈10.801; reproduced with δ=0.2, printed δ=0 gives ≈4.424 — notes §2)",
+    compute=_one_block("I"), defaults={"gamma": 3.0, "delta": 0.2, "c": 0.0, "lo": 1.3, "hi": 40.0},
+    published=10.801, tolerance=_half_digit(10.801, 3),
+    description="one block: the slip phase with r>0 ends exactly at the right end of the stick interval"))
+
+
+def _c1(p):
+    c1 = B.hopf_c1(p["V"], p["gamma"], p["delta"])
+    l1 = B.first_lyapunov_placeholder(p["V"], p["gamma"], p["delta"])
+    return {"value": c1, "first_lyapunov": l1, "criticality": "subcritical" if l1 > 0 else "supercritical",
+            "formula": "c1 = F_k'(-V) = gamma(1-delta)/(1+gamma V)^2",
+            "lyapunov_source": "placeholder (verify.galvanetto.bifurcations.first_lyapunov_placeholder); "
+                               "to be replaced by the landau engine"}
+
+
+register(Scene(
+    name="galvanetto2004/one-block-c1", parameter="c", units="dimensionless",
+    source=f"{SRC}, Sec. 4.2, Fig. 10(b) (subcritical Hopf at c=c1; no number printed)",
+    compute=_c1, defaults={"V": 0.5, "gamma": 3.0, "delta": 0.0},
+    description="damped one block: Hopf point of the slip equilibrium (closed form) and its criticality"))
+
+
+def _c2(p):
+    loc = B.nonsmooth_fold_c2(p["V"], p["gamma"], p["delta"], bracket=(p["lo"], p["hi"]) if p["hi"] > 0 else None)
+    return _doc(loc)
+
+
+register(Scene(
+    name="galvanetto2004/one-block-c2", parameter="c", units="dimensionless",
+    source=f"{SRC}, Sec. 4.2, Fig. 10(c) (non-smooth fold; no number printed)",
+    compute=_c2, defaults={"V": 0.5, "gamma": 3.0, "delta": 0.0, "lo": 0.0, "hi": 0.0},
+    description="damped one block: the unstable slip cycle touches the stick line at the stick end "
+                "(lo=hi=0: bracket (1.0001 c1, 3 c1))"))
+
+
+def _two_block(kind, period):
+    def compute(p):
+        loc = B.two_block_sliding(kind, p["alpha"], p["beta"], p["gamma"], p["delta"],
+                                  bracket=(p["lo"], p["hi"]), period=period)
+        return _doc(loc)
+    return compute
+
+
+_mid, _tol = _interval(0.18, 0.19)
+register(Scene(
+    name="galvanetto2004/two-block-type-II", parameter="V", units="dimensionless",
+    source=f"{SRC}, Sec. 4.1, Fig. 8 (type II between V=0.18 and V=0.19)",
+    compute=_two_block("II", 2), defaults={"alpha": 1.2, "beta": 1.3, "gamma": 3.0, "delta": 0.0, "lo": 0.18, "hi": 0.19},
+    published=_mid, tolerance=_tol, description="two blocks, period-2 orbit of the map; published = interval midpoint"))
+
+_mid, _tol = _interval(0.725, 0.740)
+register(Scene(
+    name="galvanetto2004/two-block-type-I", parameter="V", units="dimensionless",
+    source=f"{SRC}, Sec. 4.1, Fig. 9 (type I for 0.725 < V < 0.740)",
+    compute=_two_block("I", 1), defaults={"alpha": 1.2, "beta": 1.3, "gamma": 3.0, "delta": 0.0, "lo": 0.725, "hi": 0.74},
+    published=_mid, tolerance=_tol, description="two blocks, period-1 orbit of the map; published = interval midpoint"))
+
+
+def _beta_scene(fn):
+    def compute(p):
+        loc = fn(bracket=(p["lo"], p["hi"]), V=p["V"], alpha=p["alpha"], gamma=p["gamma"], delta=p["delta"])
+        return _doc(loc)
+    return compute
+
+
+_fig12 = {"V": 0.25, "alpha": 1.2, "gamma": 3.0, "delta": 0.0}
+register(Scene(
+    name="galvanetto2004/fold", parameter="beta", units="dimensionless",
+    source=f"{SRC}, Sec. 4.2, Figs 12-13 (discontinuous fold, beta≈1.7217)",
+    compute=_beta_scene(B.discontinuous_fold), defaults={**_fig12, "lo": 1.7210, "hi": 1.7225},
+    published=1.7217, tolerance=_half_digit(1.7217, 4),
+    description="a fixed point of the map sits at its slope discontinuity"))
+register(Scene(
+    name="galvanetto2004/period-doubling", parameter="beta", units="dimensionless",
+    source=f"{SRC}, Sec. 4.2, Fig. 12 (period doubling, beta≈1.7231)",
+    compute=_beta_scene(B.period_doubling), defaults={**_fig12, "lo": 1.7225, "hi": 1.7235},
+    published=1.7231, tolerance=_half_digit(1.7231, 4),
+    description="slope of the map at the stable fixed point reaches -1"))
+register(Scene(
+    name="galvanetto2004/border-collision", parameter="beta", units="dimensionless",
+    source=f"{SRC}, Sec. 4.2, Figs 12, 14 (border collision period 2 -> chaos, beta≈1.7236)",
+    compute=_beta_scene(B.border_collision), defaults={**_fig12, "lo": 1.7233, "hi": 1.7239},
+    published=1.7236, tolerance=_half_digit(1.7236, 4),
+    description="the period-2 orbit reaches the slope discontinuity of the map"))
+_mid, _tol = _interval(1.7652, 1.7656)
+register(Scene(
+    name="galvanetto2004/grazing-sliding", parameter="beta", units="dimensionless",
+    source=f"{SRC}, Sec. 4.2, Fig. 15 (1.7652 < beta* < 1.7656)",
+    compute=_beta_scene(B.grazing_sliding), defaults={**_fig12, "lo": 1.7652, "hi": 1.7656},
+    published=_mid, tolerance=_tol,
+    description="period-2 attractor: a slip phase of block 1 grazes its sticking region (the paper's text "
+                "says block 2; the computation shows block 1's short stick phase)"))
+
+
+def _multi(p):
+    loc = B.multi_sliding(bracket=(p["lo"], p["hi"]), V=p["V"], alpha=p["alpha"], beta=p["beta"], delta=p["delta"])
+    return _doc(loc)
+
+
+register(Scene(
+    name="galvanetto2004/multi-sliding", parameter="gamma", units="dimensionless",
+    source=f"{SRC}, Sec. 4.3, Fig. 16 (gamma≈10.75265)",
+    compute=_multi, defaults={"V": 0.05, "alpha": 1.2, "beta": 2.0, "delta": 0.0, "lo": 10.745, "hi": 10.756},
+    published=10.75265, tolerance=1e-4 / 10.75265,
+    description="a stick phase of block 2 touches K2 = -beta: a slip phase with r2>0 is born"))

@@ -1,0 +1,312 @@
+"""The hybrid simulation loop.
+
+``simulate(model, mode, y0, (t0, t_end), stepper)`` integrates one mode at a time with a
+stepper that has dense output (see :mod:`verify.hybrid.steppers`), scans the mode's
+guards on every step (:mod:`verify.hybrid.locate`), applies the earliest switching
+transition at its root (taken on the new side of the guard), logs every event, and
+watches for Zeno accumulation (:mod:`verify.hybrid.zeno`).
+
+Phase starts and zero-length phases
+-----------------------------------
+At the start of a phase each guard is classified by its value g0:
+
+* g0 > ``guard_atol``: armed;
+* g0 < -``guard_atol``: already violated -> its transition fires at once (a zero-length
+  phase, logged with kind ``"zero-length"``);
+* |g0| <= ``guard_atol`` (the state sits on that switching surface, e.g. just after the
+  transition that put it there): *pending*.  A pending guard is armed once a sample is
+  positive; if it goes negative first, the flow leaves the mode at once and the guard
+  fires at the last sample where it was still ~0 (again a zero-length phase).
+
+Simultaneous guards: the earliest root wins; guards whose roots lie within
+``simultaneous_tol`` of it are named in the event's note, and each of them fires in turn
+as a zero-length phase of the next mode if it is still violated there.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from landau.errors import IntegratorError
+from verify.hybrid.locate import first_crossing, guard_on_dense, root_new_side
+from verify.hybrid.log import Event, EventLog
+from verify.hybrid.model import HybridModel, as_jump
+from verify.hybrid.steppers import ScipyStepper
+from verify.hybrid.zeno import ZenoDiagnosis, ZenoMonitor
+
+
+@dataclass(frozen=True)
+class EngineOptions:
+    """Knobs of the hybrid loop (not of the mode integrator).
+
+    samples: interior dense-output samples per step used to scan the guards (0: guards are
+        checked at step ends only — fastest, but a double crossing inside one step can then
+        be missed; the dense output is only built when a root must be located).
+    guard_atol: |g| below this counts as "on the surface" at a phase start.
+    xtol: absolute tolerance of the root (event time) search.
+    zeno_interval: an event spacing below this (relative to max(1, |t|)) with shrinking
+        spacings is Zeno accumulation.
+    max_event_rate, rate_window: cap on events per unit time.
+    max_events: total cap; max_zero_length: cap on consecutive zero-length phases (a
+        transition loop).
+    recover_tol: a guard within this of 0 at a phase start that increases (``Guard.rate``)
+        does not fire.
+    record: keep the sampled trajectory (for plots); off for fast maps.
+    """
+
+    samples: int = 4
+    guard_atol: float = 1e-13
+    xtol: float = 1e-14
+    simultaneous_tol: float = 1e-10
+    zeno_interval: float = 1e-6
+    max_event_rate: float = 1e7
+    rate_window: float = 1e-3
+    max_events: int = 1_000_000
+    max_zero_length: int = 64
+    recover_tol: float = 1e-9
+    record: bool = True
+
+
+@dataclass(frozen=True)
+class Segment:
+    """A sampled piece of trajectory inside one mode (step points + guard samples)."""
+
+    mode: str
+    t: np.ndarray
+    y: np.ndarray  # shape (n, m)
+
+    def __repr__(self) -> str:
+        return f"Segment({self.mode!r}, t=[{self.t[0]:.6g}, {self.t[-1]:.6g}], {len(self.t)} points)"
+
+
+@dataclass(frozen=True)
+class HybridSolution:
+    """Outcome of :func:`simulate`.
+
+    status: ``"t_end"`` (reached the final time), ``"stop"`` (the ``stop`` predicate or a
+    terminal guard), ``"zeno"`` / ``"event-rate"`` (accumulation; see ``zeno``),
+    ``"max_events"``.
+    """
+
+    t: float
+    y: np.ndarray
+    mode: str
+    status: str
+    events: EventLog
+    segments: tuple[Segment, ...] = ()
+    zeno: ZenoDiagnosis | None = None
+    nsteps: int = 0
+    nfev: int = 0
+
+    def __repr__(self) -> str:
+        z = f", zeno={self.zeno!r}" if self.zeno else ""
+        return (f"HybridSolution(status={self.status!r}, t={self.t:.12g}, mode={self.mode!r}, "
+                f"{len(self.events)} events, {self.nsteps} steps, {self.nfev} fev{z})")
+
+    def trajectory(self) -> tuple[np.ndarray, np.ndarray, list[str]]:
+        """Concatenated samples (t, y, mode per point) of the recorded segments."""
+        if not self.segments:
+            return np.empty(0), np.empty((len(self.y), 0)), []
+        t = np.concatenate([s.t for s in self.segments])
+        y = np.concatenate([s.y for s in self.segments], axis=1)
+        modes = [s.mode for s in self.segments for _ in s.t]
+        return t, y, modes
+
+
+ARMED, PENDING, DISARMED = 1, 0, -1
+DEFAULT_STEPPER = ScipyStepper("DOP853", rtol=1e-10, atol=1e-12)
+
+
+def _eval_guards(guards, t, y) -> np.ndarray:
+    return np.array([float(g.fun(t, y)) for g in guards]) if guards else np.empty(0)
+
+
+def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
+             stepper: Callable = DEFAULT_STEPPER, options: EngineOptions = EngineOptions(),
+             stop: Callable[[Event], bool] | None = None) -> HybridSolution:
+    """Integrate a hybrid model from ``(t0, y0)`` in ``mode`` until ``t_end``.
+
+    ``stop(event) -> bool`` ends the run after a logged event (used for event maps).
+    Raises :class:`~landau.errors.IntegratorError` if a mode integrator fails or the state
+    becomes non-finite (never returns a silently truncated result).
+    """
+    t0, t_end = map(float, t_span)
+    t, y, mname = t0, np.array(y0, dtype=float), mode
+    log = EventLog()
+    segs: list[Segment] = []
+    monitor = ZenoMonitor(options.zeno_interval, options.max_event_rate, options.rate_window)
+    nodes = np.arange(1, options.samples + 2) / (options.samples + 1)
+    nsteps = nfev = 0
+    n_zero = 0
+    atol = options.guard_atol
+
+    def finish(status, zeno=None):
+        return HybridSolution(t, y, mname, status, log, tuple(segs), zeno, nsteps, nfev)
+
+    while True:
+        m = model.mode(mname)
+        guards = m.guards
+        g0 = _eval_guards(guards, t, y)
+        # ---- zero-length phase: a guard already violated at the phase start
+        is_switch = np.array([gd.transition is not None for gd in guards], bool)
+        viol = [j for j in np.nonzero((g0 < -atol) & is_switch)[0]
+                if not (guards[j].rate is not None and g0[j] > -options.recover_tol
+                        and guards[j].rate(t, y) > 0)]
+        fire_now = int(viol[0]) if len(viol) else None
+        solver = None
+        if fire_now is None:
+            state = np.where(g0 > atol, ARMED, np.where(is_switch, PENDING, DISARMED))
+            g0 = np.maximum(g0, -atol)  # recovering guards start as pending
+            dec_before = np.zeros(len(guards), bool)
+            g_last = g0.copy()
+            solver = stepper(m.rhs, t, y, t_end, m.jac)
+            seg_t, seg_y = [np.array([t])], [y[:, None]]
+            hit = None  # (t_hit, j, kind)
+            while hit is None:
+                msg = solver.step()
+                nsteps += 1
+                if solver.status == "failed":
+                    raise IntegratorError(f"mode {mname!r}: {msg}", t=solver.t, state=solver.y)
+                if not np.all(np.isfinite(solver.y)):
+                    raise IntegratorError(f"mode {mname!r}: non-finite state", t=solver.t_old, state=y)
+                t_old, t_new = solver.t_old, solver.t
+                dense = _LazyDense(solver)  # built only if a sample or a root needs it
+                ts_int = t_old + (t_new - t_old) * nodes[:-1]
+                Y = np.column_stack([dense(ts_int), solver.y]) if len(ts_int) else solver.y[:, None]
+                ts = np.concatenate([[t_old], ts_int, [t_new]])
+                cands = []
+                for j, g in enumerate(guards):
+                    G = np.concatenate([[g_last[j]], np.atleast_1d(g.fun(ts[1:], Y))])
+                    st = state[j]
+                    g_last[j] = G[-1]
+                    start = 0
+                    if st != ARMED:  # arm at the first positive sample
+                        pos = np.nonzero(G[1:] > atol)[0]
+                        kpos = pos[0] + 1 if len(pos) else len(G)
+                        if st == PENDING and g.transition is None:
+                            st = DISARMED  # a section never fires at a phase start
+                        if st == PENDING:
+                            negs = np.nonzero(G[1:] < -atol)[0]
+                            if len(negs) and negs[0] + 1 < kpos:
+                                kneg = negs[0] + 1
+                                # a short excursion into the mode between samples? (the mirror
+                                # of the double-crossing check): maximise g before the first
+                                # negative sample
+                                gs = guard_on_dense(g.fun, dense)
+                                res = minimize_scalar(lambda s: -gs(s), bounds=(ts[0], ts[kneg]),
+                                                      method="bounded",
+                                                      options={"xatol": 1e-10 * (ts[kneg] - ts[0]) + 1e-15})
+                                if -res.fun > atol:
+                                    cands.append(((float(res.x), ts[kneg]), j, "cross"))
+                                    state[j] = ARMED
+                                else:
+                                    # leaves the mode before ever entering it: zero-length phase
+                                    cands.append((ts[negs[0]], j, "zero"))
+                                continue
+                        if kpos == len(G):
+                            continue
+                        start = kpos
+                        state[j] = ARMED
+                    br = first_crossing(G, ts, start, guard_on_dense(g.fun, dense), bool(dec_before[j]))
+                    if br is not None:
+                        cands.append((br, j, "cross"))
+                    dec_before[j] = G[-1] < G[-2]
+                if cands:
+                    located = []
+                    for c, j, kind in cands:
+                        if kind == "zero":
+                            located.append((c, j, "zero-length"))
+                        else:
+                            a, b = c
+                            located.append((root_new_side(guard_on_dense(guards[j].fun, dense), a, b,
+                                                          options.xtol), j, "switch"))
+                    located.sort(key=lambda x: (x[0], x[1]))
+                    # sections before the first switching guard are logged; the run goes on
+                    t_sw = min((x[0] for x in located if guards[x[1]].transition is not None), default=np.inf)
+                    for th, j, kind in located:
+                        if guards[j].transition is None and th <= t_sw:
+                            yh = dense(th)
+                            ev = Event(th, yh, guards[j].name, mname, mname, "section", yh)
+                            log.append(ev)
+                            if g_last[j] <= atol:
+                                state[j] = DISARMED
+                            if guards[j].terminal or (stop is not None and stop(ev)):
+                                t, y = th, yh
+                                _push_seg(segs, options, mname, seg_t, seg_y, ts, Y, th, yh)
+                                return finish("stop")
+                    sw = [x for x in located if guards[x[1]].transition is not None]
+                    if sw:
+                        hit = sw[0]
+                        simul = [guards[x[1]].name for x in sw[1:] if x[0] - hit[0] <= options.simultaneous_tol]
+                        th = hit[0]
+                        yh = dense(th) if th < t_new else solver.y.copy()
+                        _push_seg(segs, options, mname, seg_t, seg_y, ts, Y, th, yh)
+                        nfev += solver.nfev
+                        t, y = th, yh
+                        j = hit[1]
+                        kind = hit[2]
+                        break
+                if options.record:
+                    seg_t.append(ts[1:])
+                    seg_y.append(Y)
+                if solver.status == "finished":
+                    nfev += solver.nfev
+                    t, y = solver.t, solver.y.copy()
+                    if options.record:
+                        segs.append(Segment(mname, np.concatenate(seg_t), np.concatenate(seg_y, axis=1)))
+                    return finish("t_end")
+        else:
+            j, kind, simul = fire_now, "zero-length", []
+        # ---- apply the transition of guard j at (t, y)
+        g = guards[j]
+        jump = as_jump(g.transition(t, y))
+        n_zero = n_zero + 1 if kind == "zero-length" else 0
+        if n_zero > options.max_zero_length:
+            raise IntegratorError(f"{n_zero} consecutive zero-length phases (transition loop) "
+                                  f"at guard {g.name!r} of mode {mname!r}", t=t, state=y)
+        note = jump.note + (f"; simultaneous with {simul}" if simul else "")
+        ev = Event(t, y, g.name, mname, jump.mode, kind, jump.y, note)
+        log.append(ev)
+        mname, y = jump.mode, np.array(jump.y, dtype=float)
+        if g.terminal or (stop is not None and stop(ev)):
+            return finish("stop")
+        if len(log) >= options.max_events:
+            return finish("max_events")
+        diag = monitor.push(t)
+        if diag is not None:
+            handler = model.mode(ev.from_mode).on_zeno
+            if handler is None or diag.kind != "zeno":
+                return finish(diag.kind, diag)
+            jz = as_jump(handler(t, y))
+            log.append(Event(t, y, "zeno", mname, jz.mode, "zeno", jz.y,
+                             f"chattering ended: event spacing {diag.last_interval:.3g} < tolerance; "
+                             f"accumulation extrapolated at t={diag.t_accumulation:.12g}"))
+            mname, y = jz.mode, np.array(jz.y, dtype=float)
+            monitor.reset()
+
+
+class _LazyDense:
+    """The step's interpolant, constructed on first use (it costs extra stages in DOP853)."""
+
+    __slots__ = ("solver", "sol")
+
+    def __init__(self, solver):
+        self.solver, self.sol = solver, None
+
+    def __call__(self, t):
+        if self.sol is None:
+            self.sol = self.solver.dense_output()
+        return self.sol(t)
+
+
+def _push_seg(segs, options, mname, seg_t, seg_y, ts, Y, th, yh):
+    if not options.record:
+        return
+    keep = ts[1:] < th
+    seg_t.append(np.concatenate([ts[1:][keep], [th]]))
+    seg_y.append(np.column_stack([Y[:, keep], yh]))
+    segs.append(Segment(mname, np.concatenate(seg_t), np.concatenate(seg_y, axis=1)))
