@@ -98,9 +98,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         json.dump(_jsonable(doc), sys.stdout, indent=1, allow_nan=False)
         sys.stdout.write("\n")
     else:
-        sys.stdout.write(mod.render(doc))
-        if not mod.render(doc).endswith("\n"):
-            sys.stdout.write("\n")
+        text = mod.render(doc)
+        sys.stdout.write(text if text.endswith("\n") else text + "\n")
     return int(doc.get("exit_code", 0)) if isinstance(doc, dict) else 0
 
 

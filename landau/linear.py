@@ -164,11 +164,18 @@ class HopfLine:
     def _compiled_phi(self):
         return [compile_expr(e, self.args) for e in self.block.steady_state]
 
-    def evaluate(self, Vs: Sequence[float] | float, params: Mapping[str, float] | None = None) -> tuple[np.ndarray, np.ndarray]:
-        """Vectorised (k_c, ω_c) over velocities; NaN where there is no Hopf point."""
+    def evaluate(self, Vs: Sequence[float] | float, params: Mapping[str, float] | None = None,
+                 method: str = "auto") -> tuple[np.ndarray, np.ndarray]:
+        """Vectorised (k_c, ω_c) over velocities; NaN where there is no Hopf point.
+
+        ``method="polynomial"`` forces the general n-state route (roots of the Hopf
+        polynomial in ω²) even when a closed form exists.
+        """
+        if method not in ("auto", "polynomial"):
+            raise InputError(f"unknown method {method!r}")
         p = self.block.resolve(params)
         Vs = np.atleast_1d(np.asarray(Vs, dtype=float))
-        if self.closed_form is not None:
+        if self.closed_form is not None and method == "auto":
             fk, fW = self._compiled_closed
             vals = self._argvals(Vs, p)
             kc = np.asarray(fk(*vals), dtype=float)

@@ -112,6 +112,7 @@ def run_scene(name: str, overrides: Mapping[str, float] | None = None) -> dict[s
         "published": None if scene.published is None else float(scene.published),
         "source": scene.source,
         "params": {k: float(v) for k, v in params.items()},
+        "at_defaults": all(float(params[k]) == float(v) for k, v in scene.defaults.items()),
     }
     if scene.published is not None:
         rel = abs(value - scene.published) / abs(scene.published)

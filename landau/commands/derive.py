@@ -1,0 +1,124 @@
+"""Amplitude equation of the stick–slip Hopf bifurcation: Γ̄, Ω̄, Λ, χ, C (Putelat et al. 2010, eqs 15–23).
+
+Example: landau derive ruina --V 1e-5,1e-4 --quantities kc,omega_c,Lambda,C --latex ruina.tex
+         landau derive dieterich --V 1e-4 --codim2 1e-7:1e-2
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from landau.commands.common import (add_law_arguments, block_and_params, fmt, parse_range,
+                                    parse_velocities)
+from landau.errors import InputError
+from landau.io import atomic_write_text
+from landau.multiscale import CONVENTION, QUANTITIES, UNITS, Derivation, criticality
+
+
+def configure(p) -> None:
+    add_law_arguments(p)
+    p.add_argument("--V", default=None, help="driving velocities in m/s, comma-separated")
+    p.add_argument("--quantities", default=",".join(QUANTITIES),
+                   help=f"comma-separated subset of {','.join(QUANTITIES)} (default: all)")
+    p.add_argument("--latex", default=None, metavar="FILE", help="write the closed forms as a standalone .tex file")
+    p.add_argument("--codim2", default=None, metavar="LO:HI",
+                   help="find every velocity in [LO, HI] m/s where Lambda changes sign on the Hopf line")
+
+
+def run(args) -> dict:
+    block, params = block_and_params(args)
+    names = [q.strip() for q in args.quantities.split(",") if q.strip()]
+    unknown = [q for q in names if q not in QUANTITIES]
+    if unknown:
+        raise InputError(f"unknown quantity {unknown[0]!r} (known: {', '.join(QUANTITIES)})")
+    if args.V is None and args.codim2 is None and args.latex is None:
+        raise InputError("give --V (velocities), --codim2 LO:HI or --latex FILE")
+    d = Derivation(block)
+    doc: dict = {"law": block.law.name, "source": block.law.source, "convention": CONVENTION,
+                 "units": {k: UNITS[k] for k in ("V", *names)}, "params": params}
+    if args.V is not None:
+        Vs = parse_velocities(args.V)
+        res = d.evaluate(Vs, params, ["kc", "omega_c", *names])
+        pts = []
+        for i, Vi in enumerate(Vs):
+            if res["kc"][i] != res["kc"][i]:  # NaN: no Hopf point here
+                pt = d.hopf.point(Vi, params)
+                pts.append({"V": Vi, "status": "no-hopf", "reason": pt.reason})
+                continue
+            row = {"V": Vi, "status": "ok", **{n: float(res[n][i]) for n in names}}
+            if "Lambda" in res:
+                row["criticality"] = criticality(float(res["Lambda"][i]))
+            pts.append(row)
+        doc["points"] = pts
+    if args.codim2 is not None:
+        lo, hi = parse_range(args.codim2, "--codim2")
+        from landau.transition import codim2_points
+
+        doc["codim2"] = [c.as_dict() for c in codim2_points(d, lo, hi, params)]
+    if args.latex:
+        doc["latex"] = str(atomic_write_text(args.latex, derivation_latex(d, names)))
+    return doc
+
+
+def derivation_latex(d: Derivation, names) -> str:
+    """A compile-ready document: the law, the convention, each coefficient in the law's
+    derivatives at steady sliding ("atoms") and, for rational laws, fully in V."""
+    law = d.block.law
+    L = [r"\documentclass{article}", r"\usepackage{amsmath}", r"\usepackage[margin=2cm]{geometry}",
+         r"\allowdisplaybreaks", r"\begin{document}", rf"\section*{{Amplitude equation: {law.name}}}",
+         rf"Friction law ({law.source}): \[ {law.latex()} \]",
+         r"Convention (Putelat et al.\ 2010, eq.~20): \[ \frac{d|A|}{dT} = \frac{\Gamma |A| + \Lambda |A|^3}{2},"
+         r"\quad \frac{d\theta}{dT} = \frac{\Omega + \chi |A|^2}{2}, \quad \Gamma = -2\bar\Gamma\,\frac{k-k_c}{\varepsilon^2},"
+         r"\quad \Omega = 2\bar\Omega\,\frac{k-k_c}{\varepsilon^2}; \]"
+         r" $\Lambda<0$: supercritical, $\Lambda>0$: subcritical; slip amplitude $\max|x-x_0| \approx C\sqrt{k_c-k}$.",
+         r"\subsection*{Derivatives at steady sliding}", r"\begin{align*}"]
+    rows = []
+    for n in names:
+        d.coefficient(n)
+    for atom, expr in sorted(d.jets.atoms.items(), key=lambda kv: kv[0].name):
+        rows.append(rf"{sp.latex(atom)} &= {sp.latex(expr)}")
+    L.append(r" \\ ".join(rows) if rows else r"\text{(none)}")
+    L += [r"\end{align*}", r"\subsection*{Coefficients}"]
+    for n in names:
+        c = d.coefficient(n)
+        L.append(rf"\paragraph{{{QUANTITIES[n][1]} ({QUANTITIES[n][2]}), units {UNITS[n]}}}")
+        if d.hopf.closed_form is not None and n in ("kc", "omega_c"):
+            kc, W = d.hopf.closed_form
+            body = sp.latex(kc) if n == "kc" else r"\sqrt{" + sp.latex(W) + "}"
+            L.append(rf"\begin{{equation*}} {c.symbol} = {body} \end{{equation*}}")
+            continue
+        if n == "C":
+            L.append(r"\begin{equation*} C = 2\sqrt{2\bar\Gamma/|\Lambda|} \end{equation*}")
+            continue
+        L.append(rf"\begin{{multline*}} {c.symbol} = {sp.latex(c.formula)} \end{{multline*}}")
+        if d.hopf.closed_form is not None and _is_rational(c):
+            L.append(rf"In terms of $V$: \begin{{multline*}} {c.latex()} \end{{multline*}}")
+    L.append(r"with $\omega = \omega_c$ and $k = k_c$ above.")
+    L.append(r"\end{document}")
+    return "\n".join(L) + "\n"
+
+
+def _is_rational(c) -> bool:
+    e = c.expr
+    return all(e.is_rational_function(s) for s in e.free_symbols)
+
+
+def render(doc: dict) -> str:
+    out = [f"Amplitude equation — law {doc['law']} ({doc['source']})", f"Convention: {doc['convention']}"]
+    if "points" in doc:
+        names = [n for n in doc["units"] if n != "V"]
+        out.append(f"{'V [m/s]':>12} " + " ".join(f"{n:>12}" for n in names) + "  criticality")
+        for p in doc["points"]:
+            if p["status"] != "ok":
+                out.append(f"{fmt(p['V'])}  {p['reason']}")
+                continue
+            out.append(f"{fmt(p['V'])} " + " ".join(fmt(p[n]) for n in names) + f"  {p.get('criticality', '')}")
+        out.append("units: " + ", ".join(f"{k} [{v}]" for k, v in doc["units"].items()))
+    for c in doc.get("codim2", []):
+        out.append(f"codimension-two point (Lambda = 0): V = {c['V']:.10g} m/s, k_c = {c['kc']:.8g} N/m, "
+                   f"omega_c = {c['omega_c']:.6g} rad/s, {c['sign_below']} below / {c['sign_above']} above")
+    if "codim2" in doc and not doc["codim2"]:
+        out.append("no change of sign of Lambda on the Hopf line in the requested range")
+    if "latex" in doc:
+        out.append(f"LaTeX written to {doc['latex']}")
+    return "\n".join(out)

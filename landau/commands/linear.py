@@ -1,0 +1,59 @@
+"""Linear stability of steady sliding: critical stiffness k_c (eq. 7) and frequency ω_c (eq. 8).
+
+Example: landau linear dieterich --V 1e-5,1e-4 --param M=2
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from landau.commands.common import add_law_arguments, block_and_params, fmt, parse_velocities
+from landau.io import atomic_write_text
+from landau.linear import HopfLine
+
+
+def configure(p) -> None:
+    add_law_arguments(p)
+    p.add_argument("--V", default=None, help="driving velocities in m/s, comma-separated")
+    p.add_argument("--latex", default=None, metavar="FILE", help="write k_c and omega_c^2 closed forms as LaTeX")
+
+
+def run(args) -> dict:
+    block, params = block_and_params(args)
+    Vs = parse_velocities(args.V)
+    hl = HopfLine(block)
+    pts = hl.points(Vs, params)
+    doc = {"law": block.law.name, "source": block.law.source,
+           "units": {"V": "m/s", "kc": "N/m", "omega_c": "rad/s", "phi_ss": "s (state units)",
+                     "mu_ss": "1", "dmu_ss_dV": "s/m"},
+           "params": params, "points": [pt.as_dict() for pt in pts]}
+    if args.latex:
+        doc["latex"] = str(atomic_write_text(args.latex, linear_latex(hl)))
+    return doc
+
+
+def linear_latex(hl: HopfLine) -> str:
+    lines = [r"\documentclass{article}", r"\usepackage{amsmath}", r"\begin{document}",
+             rf"\section*{{Linear stability: {hl.block.law.name}}}",
+             rf"Friction law ({hl.block.law.source}): \[ {hl.block.law.latex()} \]"]
+    if hl.closed_form is not None:
+        lines += [r"\begin{equation} k_c = " + sp.latex(sp.factor(sp.cancel(hl.kc_expr))) + r"\end{equation}",
+                  r"\begin{equation} \omega_c^2 = " + sp.latex(sp.factor(sp.cancel(hl.omega2_expr))) + r"\end{equation}"]
+    else:
+        lines.append(r"k_c and $\omega_c$ have no closed form (several state variables): computed numerically.")
+    lines.append(r"\end{document}")
+    return "\n".join(lines) + "\n"
+
+
+def render(doc: dict) -> str:
+    out = [f"Linear stability of steady sliding — law {doc['law']} ({doc['source']})",
+           f"{'V [m/s]':>12} {'k_c [N/m]':>12} {'w_c [rad/s]':>12} {'mu_ss':>12} {'dmu_ss/dV':>12}  phi_ss"]
+    for p in doc["points"]:
+        phi = ", ".join(f"{x:.4g}" for x in p["phi_ss"])
+        if p["status"] == "ok":
+            out.append(f"{fmt(p['V'])} {fmt(p['kc'])} {fmt(p['omega_c'])} {fmt(p['mu_ss'])} {fmt(p['dmu_ss_dV'])}  {phi}")
+        else:
+            out.append(f"{fmt(p['V'])}  {p['reason']}  (mu_ss = {p['mu_ss']:.6g}, slope {p['dmu_ss_dV']:.4g})")
+    if "latex" in doc:
+        out.append(f"LaTeX written to {doc['latex']}")
+    return "\n".join(out)
