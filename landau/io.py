@@ -17,6 +17,10 @@ def atomic_write(path: str | os.PathLike, writer: Callable[[Any], None], mode: s
     try:
         with os.fdopen(fd, mode) as fh:
             writer(fh)
+        # mkstemp creates 0600; give the file the permissions a plain open() would
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
         os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):

@@ -31,6 +31,7 @@ equal the engine's C = 2 sqrt(2Γ̄/|Λ|) (Putelat et al. 2010, eq. 23).
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import asdict, dataclass
 from typing import Any, Mapping, Sequence
 
@@ -93,12 +94,10 @@ class _NumericJets:
     def __init__(self, system: DynamicalSystem, jets: Jets, values: Mapping[sp.Symbol, Any]):
         self.n = len(system.states)
         self.p = system.parameter
-        # every atom written out in the model's symbols (atoms may be nested)
-        atoms = dict(jets.atoms)
         orders = {m: jets.order(m) for m in (1, 2, 3)}
-        atoms = dict(jets.atoms)  # building orders may have added atoms
+        atoms = dict(jets.atoms)  # after building the orders: every atom they use is defined
 
-        def expand(e: sp.Expr) -> sp.Expr:
+        def expand(e: sp.Expr) -> sp.Expr:  # atoms written out in the model's symbols (may nest)
             for _ in range(10):
                 if not (e.free_symbols & atoms.keys()):
                     return e
@@ -141,8 +140,6 @@ class _NumericJets:
 
 def _form(tensor: Mapping[tuple, Any], vecs: Sequence[Sequence[Any]], n: int) -> list:
     """Σ_{j₁…j_m} D_{i j₁…j_m} a¹_{j₁}…a^m_{j_m} over a symmetric tensor stored on sorted keys."""
-    import itertools
-
     out = [mpmath.mpc(0)] * n
     for key, val in tensor.items():
         i, idx = key[0], key[1:]

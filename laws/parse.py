@@ -5,7 +5,7 @@ executed: only numbers, declared names, the arithmetic operators and a whitelist
 functions are accepted, each translated to its sympy counterpart.  Anything else —
 attribute access, subscripts, keywords, lambdas, ``__import__``, unknown functions or
 symbols — is rejected with a :class:`~landau.errors.ParseError` that names the token.
-``^`` is read as a power, as in most papers.
+``^`` is read as a power (``**``), as in most papers.
 """
 
 from __future__ import annotations
@@ -34,7 +34,7 @@ CONSTANTS: dict[str, sp.Expr] = {"pi": sp.pi, "E": sp.E}
 _BINOPS = {
     ast.Add: lambda a, b: a + b, ast.Sub: lambda a, b: a - b,
     ast.Mult: lambda a, b: a * b, ast.Div: lambda a, b: a / b,
-    ast.Pow: lambda a, b: a ** b, ast.BitXor: lambda a, b: a ** b,
+    ast.Pow: lambda a, b: a ** b,
 }
 _UNARY = {ast.USub: lambda a: -a, ast.UAdd: lambda a: a}
 
@@ -48,6 +48,8 @@ def parse_expression(text: str, symbols: Mapping[str, sp.Symbol], *, what: str =
         raise ParseError(f"{what} is empty")
     if len(text) > 10_000:
         raise ParseError(f"{what} is too long ({len(text)} characters)")
+    # '^' means power in papers; Python would parse it as a low-precedence XOR
+    text = text.replace("^", "**")
     try:
         tree = ast.parse(text.strip(), mode="eval")
     except SyntaxError as exc:

@@ -25,6 +25,9 @@ from landau.errors import InputError
 SCENE_MODULES: list[str] = [
     "landau.scenes.putelat2010",
     "verify.galvanetto.scenes",
+    "landau.scenes.putelat2010_transitions",
+    "verify.lancioni.scenes",
+    "verify.skurativskyi.scenes",
 ]
 
 _REGISTRY: dict[str, "Scene"] = {}

@@ -55,6 +55,8 @@ class EngineOptions:
         transition loop).
     recover_tol: a guard within this of 0 at a phase start that increases (``Guard.rate``)
         does not fire.
+    zeno_relative: True (default): ``zeno_interval`` is relative to max(1, |t|); False: it is
+        an absolute time (ending chattering when the inter-impact time < a fixed tolerance).
     record: keep the sampled trajectory (for plots); off for fast maps.
     """
 
@@ -69,6 +71,7 @@ class EngineOptions:
     max_zero_length: int = 64
     recover_tol: float = 1e-9
     record: bool = True
+    zeno_relative: bool = True
 
 
 @dataclass(frozen=True)
@@ -138,7 +141,8 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
     t, y, mname = t0, np.array(y0, dtype=float), mode
     log = EventLog()
     segs: list[Segment] = []
-    monitor = ZenoMonitor(options.zeno_interval, options.max_event_rate, options.rate_window)
+    monitor = ZenoMonitor(options.zeno_interval, options.max_event_rate, options.rate_window,
+                          relative=options.zeno_relative)
     nodes = np.arange(1, options.samples + 2) / (options.samples + 1)
     nsteps = nfev = 0
     n_zero = 0

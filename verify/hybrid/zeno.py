@@ -39,8 +39,9 @@ class ZenoMonitor:
     """Feeds on switching-event times; returns a diagnosis when accumulation is seen."""
 
     def __init__(self, min_interval: float = 1e-6, max_rate: float = 1e6, rate_window: float = 1e-3,
-                 history: int = 6) -> None:
+                 history: int = 6, relative: bool = True) -> None:
         self.min_interval = min_interval
+        self.relative = relative  # False: min_interval is an absolute time (the impact papers' rule)
         self.max_rate = max_rate
         self.rate_window = rate_window
         self.times: deque[float] = deque(maxlen=max(history, 3))
@@ -59,7 +60,8 @@ class ZenoMonitor:
         if len(ts) >= self.times.maxlen:  # a run of shrinking spacings, not one short phase
             dt = np.diff(ts)
             last = dt[-1]
-            if last < self.min_interval * max(1.0, abs(t)) and dt[-2] > 0:
+            scale = max(1.0, abs(t)) if self.relative else 1.0
+            if last < self.min_interval * scale and dt[-2] > 0:
                 q = last / dt[-2]
                 shrinking = np.all(np.diff(dt) <= 0)
                 if 0 < q < 1 and shrinking:

@@ -20,7 +20,7 @@ handled by the max(f, 0) in the field (continuous), not by a guard.
 
 The field is, however, only C¹ across x = x_I (δ^{3/2}) and only Hölder in ẋ at ẋ = 0 inside
 contact (|ẋ|^{n₃}, n₃ ≈ 0.187), and the friction slope T/ε makes slip reversal stiff.  The
-compiled integrator (:mod:`verify.skurativskyi.radau`) ends steps exactly on x = x_I.
+compiled integrator (:mod:`verify.skurativskyi.rk`) ends steps exactly on x = x_I.
 """
 
 from __future__ import annotations
@@ -118,9 +118,8 @@ def accel(t, x, v, p):
 @njit(cache=True)
 def accel_grad(t, x, v, p):
     """(∂ẍ/∂x, ∂ẍ/∂ẋ).  The |ẋ|^{n₃−1} slope of the Hertz damping is unbounded at ẋ = 0; it
-    is evaluated with |ẋ| floored at ε (the Jacobian only drives Newton and the error
-    estimate of the implicit method, and the variational equation crosses ẋ = 0 in an
-    integrable way: the slope is O(|ẋ|^{−0.81}))."""
+    is evaluated with |ẋ| floored at ε (in the variational equation the tangent crosses ẋ = 0
+    in an integrable way: the slope is O(|ẋ|^{−0.81}); the floor keeps it finite)."""
     eps = p[IEPS]
     s = v * v + eps * eps
     dfr = p[IC] + p[IT] * eps * eps / (s * np.sqrt(s))
@@ -147,12 +146,13 @@ def rhs2(t, y, p, out):
 
 
 @njit(cache=True)
-def jac2(t, y, p, J):
-    J[0, 0] = 0.0
-    J[0, 1] = 1.0
-    ax, av = accel_grad(t, y[0], y[1], p)
-    J[1, 0] = ax
-    J[1, 1] = av
+def rhs(t, y, p, out):
+    """The field the compiled integrator uses: (x, ẋ) if len(y) == 2, with the variational
+    equation for one tangent vector (δx, δẋ) if len(y) == 4."""
+    if y.shape[0] == 4:
+        rhs4(t, y, p, out)
+    else:
+        rhs2(t, y, p, out)
 
 
 @njit(cache=True)
@@ -163,22 +163,6 @@ def rhs4(t, y, p, out):
     ax, av = accel_grad(t, y[0], y[1], p)
     out[2] = y[3]
     out[3] = ax * y[2] + av * y[3]
-
-
-@njit(cache=True)
-def jac4(t, y, p, J):
-    """Block-diagonal approximation [[J, 0], [0, J]] (drops ∂(J δ)/∂y: it only feeds the
-    simplified Newton iteration and the error estimate)."""
-    for i in range(4):
-        for j in range(4):
-            J[i, j] = 0.0
-    ax, av = accel_grad(t, y[0], y[1], p)
-    J[0, 1] = 1.0
-    J[1, 0] = ax
-    J[1, 1] = av
-    J[2, 3] = 1.0
-    J[3, 2] = ax
-    J[3, 3] = av
 
 
 def field(params: Params, t: float, y) -> np.ndarray:

@@ -1,0 +1,123 @@
+"""The multiple-scales engine against the paper's closed forms (Putelat et al. 2010, eqs 32, 33, 44, 45)
+and its laziness (only the derivative orders a quantity needs are built)."""
+
+import random
+
+import mpmath
+import numpy as np
+import pytest
+import sympy as sp
+
+from landau.multiscale import Derivation, derive
+from landau.system import M, V, SpringBlock, sigma
+from laws import TABLE1, get_law
+
+a, b, L, V_s = (TABLE1[n].symbol for n in ("a", "b", "L", "V_s"))
+c = sp.Symbol("c", positive=True)
+
+
+def agree_at_random_points(e1, e2, symbols, n=20, dps=50, seed=1, rel=1e-30):
+    """Compare two expressions at n random rational points with mpmath at `dps` digits."""
+    rng = random.Random(seed)
+    base = {a: sp.Rational(349, 10000), b: sp.Rational(489, 10000), L: sp.Rational(9, 10 ** 7),
+            V_s: sp.Rational(1, 10 ** 6), sigma: sp.Rational(11772, 1000), M: sp.Rational(6, 5),
+            c: sp.Rational(3, 10 ** 4)}
+    for _ in range(n):
+        pt = {s: base[s] * sp.Rational(rng.randint(500, 1500), 1000) for s in symbols if s in base}
+        pt[V] = sp.Rational(rng.randint(1, 10 ** 4), 10 ** 7)
+        x1 = sp.N(e1.subs(pt), dps)
+        x2 = sp.N(e2.subs(pt), dps)
+        assert abs(x1 - x2) <= rel * max(abs(x1), abs(x2)), (pt, x1, x2)
+
+
+def test_gamma_dieterich_ruina_eq32():
+    for name in ("dieterich", "ruina"):
+        d = Derivation(SpringBlock(get_law(name)))
+        Gb = d.coefficient("Gamma_bar").expr
+        # eq. (32): Γ_DR = −k₂ (σa/V)/((σa/V)² + M[M(b/a)(V/L)² + 2σa/L]); Γ = −2Γ̄k₂
+        eq32 = (sigma * a / V) / ((sigma * a / V) ** 2 + M * (M * (b / a) * (V / L) ** 2 + 2 * sigma * a / L)) / 2
+        agree_at_random_points(Gb, eq32, [a, b, L, sigma, M])
+
+
+def test_landau_dieterich_eq33():
+    d = Derivation(SpringBlock(get_law("dieterich")))
+    lam = d.coefficient("Lambda").expr
+    eq33 = (sigma * M * (b - a) ** 2 * V ** 3 * (-M ** 2 * (4 * b + 3 * a) * V ** 4 - 6 * L * sigma * a ** 2 * M * V ** 2
+                                               + L ** 2 * sigma ** 2 * a ** 3)
+            / (L ** 2 * (M ** 2 * b * V ** 4 + 2 * L * sigma * a ** 2 * M * V ** 2 + L ** 2 * sigma ** 2 * a ** 3)
+               * (M ** 2 * (4 * b - 3 * a) * V ** 4 + 2 * L * sigma * a ** 2 * M * V ** 2 + L ** 2 * sigma ** 2 * a ** 3)))
+    agree_at_random_points(lam, eq33, [a, b, L, sigma, M])
+
+
+def _P(n):
+    P4 = (b * V_s * M ** 2 * V ** 4 + 2 * a ** 2 * c * sigma * L * M * V ** 3 + 2 * a ** 2 * sigma * V_s * L * M * V ** 2
+          + a ** 3 * c * sigma ** 2 * L ** 2 * V + a ** 3 * sigma ** 2 * V_s * L ** 2)
+    P5 = (3 * a * c * L * M ** 2 * V ** 5 + (3 * a - 4 * b) * V_s * L * M ** 2 * V ** 4 - 2 * a ** 2 * c * sigma * L ** 2 * M * V ** 3
+          - 2 * a ** 2 * sigma * V_s * L ** 2 * M * V ** 2 - a ** 3 * c * sigma ** 2 * L ** 3 * V - a ** 3 * sigma ** 2 * V_s * L ** 3)
+    P7 = ((6 * a * b + 6 * a ** 2) * c ** 2 * L ** 2 * M ** 3 * V ** 7
+          + (-4 * b ** 2 + 3 * a * b + 9 * a ** 2) * c * V_s * L ** 2 * M ** 3 * V ** 6
+          + ((-4 * b ** 2 + a * b + 3 * a ** 2) * V_s ** 2 * L ** 2 * M ** 3 + (3 * a ** 2 * b + 7 * a ** 3) * c ** 2 * sigma * L ** 3 * M ** 2) * V ** 5
+          + (13 * a ** 3 - 6 * a ** 2 * b) * c * sigma * V_s * L ** 3 * M ** 2 * V ** 4
+          + ((6 * a ** 3 - 6 * a ** 2 * b) * sigma * V_s ** 2 * L ** 3 * M ** 2 + (a ** 3 * b - 4 * a ** 4) * c ** 2 * sigma ** 2 * L ** 4 * M) * V ** 3
+          + (3 * a ** 3 * b - 5 * a ** 4) * c * sigma ** 2 * V_s * L ** 4 * M * V ** 2
+          + ((a ** 3 * b - a ** 4) * sigma ** 2 * V_s ** 2 * L ** 4 * M - a ** 5 * c ** 2 * sigma ** 3 * L ** 5) * V
+          - a ** 5 * c * sigma ** 3 * V_s * L ** 5)
+    return {4: P4, 5: P5, 7: P7}[n]
+
+
+def test_modified_dieterich_eqs44_45():
+    d = Derivation(SpringBlock(get_law("modified-dieterich")))
+    syms = [a, b, L, V_s, sigma, M, c]
+    # eq. (44): Γ = −k₂ σa²L²V(cV + V_*)/P₄
+    eq44 = sigma * a ** 2 * L ** 2 * V * (c * V + V_s) / _P(4) / 2
+    agree_at_random_points(d.coefficient("Gamma_bar").expr, eq44, syms)
+    # eq. (45) with the denominator L³(cV + V_*)²P₄P₅ (notes §1: the print has L)
+    Vm = (b / a - 1) * V_s / c
+    eq45 = a * c * sigma * V_s * V ** 2 * (V - Vm) * _P(7) / (L ** 3 * (c * V + V_s) ** 2 * _P(4) * _P(5))
+    agree_at_random_points(d.coefficient("Lambda").expr, eq45, syms)
+
+
+def test_dieterich_quasi_static_lambda_is_exactly_zero():
+    # Sec. 3.2: without inertia Λ_D = 0 (Baumberger et al. 1995; Ranjith & Rice 1999)
+    d = Derivation(SpringBlock(get_law("dieterich")))
+    assert sp.simplify(d.coefficient("Lambda").closed_form().subs(M, 0)) == 0
+
+
+def test_only_needed_derivative_orders_are_built():
+    d = derive(SpringBlock(get_law("spinodal")), ["kc", "omega_c"])
+    d.evaluate([1e-5, 1e-4], None, ["kc", "omega_c"])
+    assert d.jets.built == [1]
+    d.evaluate([1e-5], None, ["Gamma_bar"])
+    assert d.jets.built == [1]                       # ∂/∂k of the Jacobian only: no second derivatives
+    d.evaluate([1e-5], None, ["Lambda"])
+    assert sorted(d.jets.built) == [1, 2, 3]
+    # a sweep does not re-derive: formulas and compiled code are cached
+    f = d._compiled_formula("Lambda")
+    d.evaluate(np.logspace(-6, -4, 50), None, ["Lambda"])
+    assert d._compiled_formula("Lambda") is f and sorted(d.jets.built) == [1, 2, 3]
+
+
+def test_vectorised_over_a_parameter():
+    d = derive(SpringBlock(get_law("modified-dieterich")), ["Lambda"])
+    cs = np.array([1e-4, 3e-4, 1e-3])
+    vec = d.evaluate(1e-4, {"c": cs}, ["Lambda"])["Lambda"]
+    one = [d.evaluate([1e-4], {"c": cv}, ["Lambda"])["Lambda"][0] for cv in cs]
+    assert vec == pytest.approx(one, rel=1e-13)
+
+
+def test_general_route_reproduces_the_spring_block():
+    """landau.general (numeric Hopf point + 50-digit Fredholm) against the closed-form route."""
+    from landau.general import hopf_normal_form
+
+    block = SpringBlock(get_law("spinodal"))
+    d = derive(block)
+    V0 = 1e-4
+    r = d.evaluate([V0], None, ["kc", "omega_c", "Gamma_bar", "Omega_bar", "Lambda", "chi", "C"])
+    h = hopf_normal_form(block.system, {**block.resolve(), "V": V0}, (0.9 * r["kc"][0], 1.1 * r["kc"][0]))
+    assert h.p_c == pytest.approx(r["kc"][0], rel=1e-12)
+    assert h.omega_c == pytest.approx(r["omega_c"][0], rel=1e-12)
+    assert -h.dlambda_dp.real == pytest.approx(r["Gamma_bar"][0], rel=1e-10)
+    assert h.dlambda_dp.imag == pytest.approx(r["Omega_bar"][0], rel=1e-10)
+    assert h.Lambda == pytest.approx(r["Lambda"][0], rel=1e-10)
+    assert h.chi == pytest.approx(r["chi"][0], rel=1e-10)
+    assert h.C == pytest.approx(r["C"][0], rel=1e-10)

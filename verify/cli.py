@@ -1,0 +1,117 @@
+"""Check the engine's amplitude-equation predictions by direct simulation of the spring–block.
+
+``landau verify LAW --V v1,v2 [--eps2 e1,e2] [--param K=V ...] [--mu EXPR --state NAME=EXPR ...]``
+integrates eq. (4) of Putelat et al. (2010) near each Hopf point: supercritical points at
+k = k_c(1 − ε²) (limit cycle by shooting, amplitude vs C·sqrt(k_c − k), frequency vs the
+predicted shift); subcritical points at k = k_c(1 + ε²) (unstable cycle by shooting; with
+bistability testing on, bisection between decay and growth to stick–slip).  Exit code 1 when
+a point disagrees beyond the stated tolerance.  ``--work-precision`` writes the Fig. 3
+work–precision table and PNG to ``--out``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from landau.commands.common import add_law_arguments, parse_floats, parse_velocities, resolve_law
+from landau.errors import InputError, LandauError
+from landau.system import SpringBlock
+from verify.springblock.checks import (AMPLITUDE_TOLERANCE, BRACKET_TOLERANCE, predict, subcritical_check,
+                                       supercritical_check)
+
+AMPLITUDE_DEFINITION = ("amplitude_simulated = half peak-to-peak slip (max X - min X)/2 of the cycle, X = x - x0; "
+                        "max|x - x0| (max_abs_slip) carries an extra O(eps) mean shift")
+
+
+def configure(p) -> None:
+    add_law_arguments(p)
+    p.add_argument("--V", default=None, help="driving velocities in m/s, comma-separated")
+    p.add_argument("--eps2", default="1e-3", help="distances eps^2 = |k - kc|/kc, comma-separated (default 1e-3)")
+    p.add_argument("--tol", type=float, default=None,
+                   help=f"relative tolerance (default {AMPLITUDE_TOLERANCE} supercritical, {BRACKET_TOLERANCE} subcritical)")
+    p.add_argument("--no-bistability", action="store_true",
+                   help="subcritical points: only shoot the unstable cycle, skip the (slow) bisection")
+    p.add_argument("--work-precision", action="store_true", help="write the Fig. 3 work-precision table and PNG")
+    p.add_argument("--out", default="verify-out", help="output directory for --work-precision (default verify-out)")
+
+
+def run(args) -> dict:
+    doc: dict = {"amplitude_definition": AMPLITUDE_DEFINITION, "units": {"V": "m/s", "kc": "N/m",
+                 "amplitude": "m", "frequency": "rad/s"}}
+    exit_code = 0
+    if args.tol is not None and not (0 < args.tol < 1):
+        raise InputError(f"--tol must be in (0, 1), got {args.tol!r}")
+    if args.V is None and not args.work_precision:
+        raise InputError("give --V (driving velocities in m/s) or --work-precision")
+    if args.V is not None:
+        law, overrides = resolve_law(args)
+        params = SpringBlock(law).resolve(overrides)
+        eps2s = parse_floats(args.eps2, "--eps2")
+        for e in eps2s:
+            if not (0 < e < 0.5):
+                raise InputError(f"--eps2: values must be in (0, 0.5), got {e!r}")
+        points = []
+        for V in parse_velocities(args.V):
+            pr = predict(law, V, params)
+            for e in eps2s:
+                try:
+                    if pr.criticality == "subcritical":
+                        tol = args.tol if args.tol is not None else BRACKET_TOLERANCE
+                        if args.no_bistability:
+                            pc = subcritical_check(law, V, e, params, tolerance=tol, prediction=pr, bisections=0,
+                                                   test_bistability=False)
+                        else:
+                            pc = subcritical_check(law, V, e, params, tolerance=tol, prediction=pr)
+                    else:
+                        tol = args.tol if args.tol is not None else AMPLITUDE_TOLERANCE
+                        pc = supercritical_check(law, V, e, params, tolerance=tol, prediction=pr)
+                    rec = pc.as_dict()
+                    rec["tolerance"] = tol
+                except LandauError as exc:
+                    rec = {"V": V, "eps2": e, "kc": pr.kc, "criticality_predicted": pr.criticality,
+                           "amplitude_predicted": pr.amplitude(pr.kc * (1 - e)), "amplitude_simulated": None,
+                           "rel_error": None, "bistable": None, "agrees": False,
+                           "error": f"{type(exc).__name__}: {exc}"}
+                points.append(rec)
+                if not rec["agrees"]:
+                    exit_code = 1
+        doc.update(law=law.name, source=law.source, params=params, points=points)
+    if args.work_precision:
+        from verify.springblock.workprecision import plot, run_work_precision
+        from landau.io import atomic_write_json, atomic_write_text
+
+        out = Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        wp = run_work_precision()
+        files = [atomic_write_text(out / "work_precision.md", "```\n" + wp.table() + "```\n"),
+                 atomic_write_json(out / "work_precision.json", wp.as_dict()),
+                 plot(wp, out / "work_precision.png")]
+        doc["work_precision"] = {"files": [str(f) for f in files], "table": wp.table()}
+    doc["exit_code"] = exit_code
+    return doc
+
+
+def _f(x, spec="10.4g"):
+    return "-".rjust(int(spec.split(".")[0])) if x is None else format(x, spec)
+
+
+def render(doc: dict) -> str:
+    lines = []
+    if "points" in doc:
+        lines.append(f"law {doc['law']}  [{doc['source']}]")
+        lines.append(doc["amplitude_definition"])
+        lines.append(f"{'V [m/s]':>10} {'eps2':>8} {'kc [N/m]':>12} {'criticality':>13} {'A_pred [m]':>11} "
+                     f"{'A_sim [m]':>11} {'rel.err':>9} {'freq.err':>9} {'bistable':>8} {'agrees':>6}")
+        for p in doc["points"]:
+            fe = p.get("frequency_rel_error")
+            lines.append(f"{p['V']:10.4g} {p['eps2']:8.2g} {p['kc']:12.6g} {p['criticality_predicted']:>13} "
+                         f"{_f(p['amplitude_predicted'], '11.4g')} {_f(p['amplitude_simulated'], '11.4g')} "
+                         f"{_f(p['rel_error'], '+9.2e')} {_f(fe, '+9.1e')} {str(p['bistable']):>8} "
+                         f"{'yes' if p['agrees'] else 'NO':>6}")
+            if p.get("error"):
+                lines.append(f"    {p['error']}")
+    if "work_precision" in doc:
+        lines.append(doc["work_precision"]["table"])
+        lines.append("wrote " + ", ".join(doc["work_precision"]["files"]))
+    lines.append("all points agree" if doc.get("exit_code", 0) == 0 else "DISAGREEMENT beyond tolerance (exit 1)")
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,249 @@
+"""Analysis of eq. (1) (Skurativskyi et al. 2019): attractors at one ω, impact counting,
+first detachment, continuation sweeps in ω, grazing location, Lyapunov exponent, Tsallis q.
+
+Conventions (as in the paper):
+* Poincaré section: x at t = 2πi/ω (Sec. 4, Fig. 3a);
+* impacts: crossings of x = x_I with increasing x; T_j = inter-impact intervals (Fig. 3b);
+* sweeps: 100 forcing periods of transient at the first ω and 50 after each step of ω, the
+  attractor continued from the previous ω (warm start), for increasing ("up") and
+  decreasing ("down") ω (Sec. 4, caption of Fig. 5);
+* top Lyapunov exponent: one tangent vector of the variational equation, renormalised every
+  forcing period (Sec. 4, Fig. 5); no saltation correction is needed (continuous field at
+  both switching surfaces, see :mod:`verify.skurativskyi.model`);
+* Tsallis index q: maximiser of the redundancy R_T(q) = 1 − S_T/S_T,max of the normalised
+  T_j histogram on (0.05, 0.3) s with bins of 0.001 s, empty bins dropped (Sec. 4, Fig. 6).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from landau.errors import InputError
+from verify.skurativskyi.model import PAPER, Params
+from verify.skurativskyi.simulate import RTOL, ATOL, run
+
+
+@dataclass(frozen=True)
+class Attractor:
+    """The attractor reached at one ω: section points, inter-impact intervals, impacts per
+    forcing period, the state at the last section point (phase ωt ≡ 0: warm start for the
+    next ω) and, if computed, the top Lyapunov exponent [1/s]."""
+
+    omega: float
+    x_section: np.ndarray
+    intervals: np.ndarray
+    impact_times: np.ndarray
+    impacts_per_period: float
+    y_end: np.ndarray
+    lyapunov: float = float("nan")
+    periods: int = 0
+
+    def __repr__(self) -> str:
+        ly = "" if np.isnan(self.lyapunov) else f", λ₁={self.lyapunov:.4g}/s"
+        return (f"Attractor(ω={self.omega:.6g}, {self.impacts_per_period:.4g} impacts/period, "
+                f"{len(np.unique(np.round(self.x_section, 9)))} distinct section points{ly})")
+
+    def to_json(self) -> dict:
+        return {"omega": self.omega, "x_section": self.x_section.tolist(), "intervals": self.intervals.tolist(),
+                "impacts_per_period": self.impacts_per_period, "y_end": self.y_end.tolist(),
+                "lyapunov": None if np.isnan(self.lyapunov) else self.lyapunov, "periods": self.periods}
+
+    @classmethod
+    def from_json(cls, d: dict) -> "Attractor":
+        return cls(d["omega"], np.array(d["x_section"]), np.array(d["intervals"]), np.empty(0),
+                   d["impacts_per_period"], np.array(d["y_end"]),
+                   float("nan") if d.get("lyapunov") is None else d["lyapunov"], d.get("periods", 0))
+
+
+def attractor(omega: float, y0=None, n_transient: int = 100, n_keep: int = 50, params: Params = PAPER,
+              rtol: float = RTOL, atol=ATOL, lyapunov: bool = False) -> Attractor:
+    """Discard ``n_transient`` periods from y0 (phase 0; default rest at X₀), then record
+    ``n_keep`` periods (with the tangent vector if ``lyapunov``)."""
+    if n_keep < 1 or n_transient < 0:
+        raise InputError("need n_keep >= 1 and n_transient >= 0")
+    p = params.with_(omega=omega)
+    y = None if y0 is None else np.asarray(y0, float)[:2]
+    if n_transient:
+        y = run(p, n_transient, y, rtol=rtol, atol=atol, strobe=False).y[:2]
+    r = run(p, n_keep, y, rtol=rtol, atol=atol, lyapunov=lyapunov)
+    xs = r.strobe_y[1:, 0]  # section points after the start point
+    return Attractor(float(omega), xs, r.intervals, r.impacts, len(r.impacts) / n_keep, r.y[:2].copy(),
+                     r.lyapunov if lyapunov else float("nan"), n_keep)
+
+
+# --------------------------------------------------------------------------- first detachment
+def detaches(omega: float, params: Params = PAPER, n_transient: int = 60, n_keep: int = 20,
+             rtol: float = RTOL) -> bool:
+    """True when the attractor reached from rest leaves the obstacle (x < x_I) at ω."""
+    p = params.with_(omega=omega)
+    y = run(p, n_transient, None, rtol=rtol, strobe=False).y[:2]
+    r = run(p, n_keep, y, rtol=rtol, strobe=False)
+    return len(r.detachments) > 0
+
+
+@dataclass(frozen=True)
+class Located:
+    """A located transition: bracket [lo, hi] (the property changes inside), value = midpoint."""
+
+    lo: float
+    hi: float
+    evaluations: int
+    what: str = ""
+
+    @property
+    def value(self) -> float:
+        return 0.5 * (self.lo + self.hi)
+
+    def __repr__(self) -> str:
+        return f"Located({self.what}: ω ∈ [{self.lo:.6f}, {self.hi:.6f}], {self.evaluations} runs)"
+
+
+def bisect(pred, lo: float, hi: float, tol: float, what: str = "") -> Located:
+    """Bisection on a boolean predicate with pred(lo) != pred(hi)."""
+    plo, phi = pred(lo), pred(hi)
+    n = 2
+    if plo == phi:
+        raise InputError(f"{what}: the property does not change on [{lo}, {hi}] (both {plo})")
+    while hi - lo > tol:
+        mid = 0.5 * (lo + hi)
+        pm = pred(mid)
+        n += 1
+        if pm == plo:
+            lo = mid
+        else:
+            hi = mid
+    return Located(lo, hi, n, what)
+
+
+def first_detachment(lo: float = 14.0, hi: float = 14.1, tol: float = 1e-3, params: Params = PAPER,
+                     rtol: float = RTOL) -> Located:
+    """First ω at which the cart leaves the obstacle (impact adding starts; paper: between
+    14.0 and 14.1 rad/s, Sec. 5, Fig. 8)."""
+    return bisect(lambda w: detaches(w, params, rtol=rtol), lo, hi, tol, "first detachment")
+
+
+def impacts_per_period(omega: float, params: Params = PAPER, n_transient: int = 100, n_keep: int = 20,
+                       y0=None, rtol: float = RTOL) -> float:
+    return attractor(omega, y0, n_transient, n_keep, params, rtol).impacts_per_period
+
+
+# --------------------------------------------------------------------------- sweeps
+def continuation(omegas, y0=None, n_first: int = 100, n_step: int = 50, n_keep: int = 50,
+                 params: Params = PAPER, rtol: float = RTOL, lyapunov: bool = False,
+                 on_point=None) -> list[Attractor]:
+    """Attractors along ``omegas`` (in the given order), each warm-started from the previous
+    one: ``n_first`` transient periods at the first ω, ``n_step`` after each change."""
+    out: list[Attractor] = []
+    y = y0
+    for i, w in enumerate(omegas):
+        a = attractor(float(w), y, n_first if i == 0 else n_step, n_keep, params, rtol, lyapunov=lyapunov)
+        y = a.y_end
+        out.append(a)
+        if on_point is not None:
+            on_point(a)
+    return out
+
+
+# --------------------------------------------------------------------------- grazing
+def impact_signature(a: Attractor, tol: float = 1e-4) -> int:
+    """Number of distinct impacts per repetition of the attractor: impacts per period × the
+    period multiplicity of the section (distinct section points, up to ``tol`` m·1e-3)."""
+    xs = np.sort(a.x_section)
+    distinct = 1 + int(np.count_nonzero(np.diff(xs) > tol * 1e-3)) if len(xs) else 0
+    return int(round(a.impacts_per_period * distinct))
+
+
+def locate_grazing(lo: float, hi: float, y_lo, tol: float = 1e-4, params: Params = PAPER, rtol: float = RTOL,
+                   n_transient: int = 150, n_keep: int = 40) -> Located:
+    """A change of the number of impacts per forcing period between lo and hi (a grazing
+    bifurcation adds or removes an impact), by bisection; every run starts from ``y_lo`` (the
+    attractor at lo, phase 0) so the same branch is followed."""
+    cache = {}
+
+    def count(w):
+        if w not in cache:
+            cache[w] = attractor(w, y_lo, n_transient, n_keep, params, rtol).impacts_per_period
+        return cache[w]
+
+    c_lo = count(lo)
+    return bisect(lambda w: abs(count(w) - c_lo) < 1e-9, lo, hi, tol, "impacts/period change")
+
+
+# --------------------------------------------------------------------------- Lyapunov
+def lyapunov_exponent(omega: float, y0=None, n_transient: int = 100, n_periods: int = 1000,
+                      params: Params = PAPER, rtol: float = RTOL) -> float:
+    """Top Lyapunov exponent [1/s] over ``n_periods`` after the transient (paper: 10³)."""
+    return attractor(omega, y0, n_transient, n_periods, params, rtol, lyapunov=True).lyapunov
+
+
+# --------------------------------------------------------------------------- Tsallis q
+@dataclass(frozen=True)
+class TsallisFit:
+    """Entropy index q (maximiser of R_T) with the histogram it came from."""
+
+    q: float
+    redundancy: float
+    probabilities: np.ndarray
+    n_states: int
+    n_samples: int
+
+    def __repr__(self) -> str:
+        return f"TsallisFit(q={self.q:.4g}, R_T={self.redundancy:.4g}, N={self.n_states}, {self.n_samples} T_j)"
+
+
+def redundancy(q: float, p: np.ndarray) -> float:
+    """R_T(q) = 1 − S_T/S_T,max with S_T = (1 − Σ p_i^q)/(q − 1), S_max = (1 − N^{1−q})/(q − 1)."""
+    N = len(p)
+    if abs(q - 1) < 1e-9:  # Shannon limit
+        return 1 - (-np.sum(p * np.log(p))) / np.log(N)
+    return 1 - (1 - np.sum(p ** q)) / (1 - N ** (1 - q))
+
+
+def tsallis_q(intervals, lo: float = 0.05, hi: float = 0.3, width: float = 0.001,
+              q_range=(0.05, 5.0)) -> TsallisFit:
+    """Sec. 4: normalised histogram of T_j on (lo, hi) with bins ``width``; zero bins dropped;
+    q = argmax R_T(q)."""
+    T = np.asarray(intervals, float)
+    T = T[(T > lo) & (T < hi)]
+    if len(T) < 10:
+        raise InputError(f"Tsallis q needs at least 10 inter-impact intervals in ({lo}, {hi}) (got {len(T)})")
+    counts, _ = np.histogram(T, bins=np.arange(lo, hi + width / 2, width))
+    p = counts[counts > 0] / counts.sum()
+    if len(p) < 2:
+        raise InputError("Tsallis q undefined: all intervals fall in one bin (a periodic attractor)")
+    qs = np.linspace(*q_range, 400)
+    r = np.array([redundancy(q, p) for q in qs])
+    i = int(np.argmax(r))
+    a, b = qs[max(i - 1, 0)], qs[min(i + 1, len(qs) - 1)]
+    res = minimize_scalar(lambda q: -redundancy(q, p), bounds=(a, b), method="bounded", options={"xatol": 1e-8})
+    return TsallisFit(float(res.x), float(-res.fun), p, len(p), len(T))
+
+
+# --------------------------------------------------------------------------- period doubling
+def section_period(a: Attractor, tol: float = 1e-8, max_period: int = 16) -> int:
+    """Period of the stroboscopic sequence (smallest p with |x_{i+p} − x_i| < tol for all i),
+    or 0 if none up to ``max_period`` (chaotic or not settled)."""
+    xs = a.x_section
+    for p in range(1, min(max_period, len(xs) // 2) + 1):
+        if np.all(np.abs(xs[p:] - xs[:-p]) < tol):
+            return p
+    return 0
+
+
+def locate_period_doubling(lo: float, hi: float, y_lo, tol: float = 1e-4, params: Params = PAPER,
+                           rtol: float = RTOL, n_transient: int = 400, n_keep: int = 40) -> Located:
+    """ω where the section period changes (e.g. 1 → 2) between lo and hi, by bisection from the
+    attractor ``y_lo`` at lo.  Close to a doubling the transient decays slowly (multiplier → −1),
+    hence the long transient and a section tolerance of 1e-8 m."""
+    cache = {}
+
+    def period(w):
+        if w not in cache:
+            cache[w] = section_period(attractor(w, y_lo, n_transient, n_keep, params, rtol))
+        return cache[w]
+
+    p_lo = period(lo)
+    return bisect(lambda w: period(w) == p_lo, lo, hi, tol, f"section period change from {p_lo}")

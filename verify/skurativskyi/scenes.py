@@ -1,0 +1,83 @@
+"""Scenes for Skurativskyi, Kudra, Witkowski & Awrejcewicz (2019), Nonlinear Dyn. 98:1795 (seed 002).
+
+Published values carry the tolerance of their printed digits (half a unit of the last
+digit); the first detachment is printed as an interval (14.0, 14.1) rad/s: published =
+midpoint, tolerance = relative half-width, so ``agrees`` means "inside the interval".
+"""
+
+from __future__ import annotations
+
+from landau.scenes import Scene, register
+from verify.skurativskyi import approx
+from verify.skurativskyi.model import PAPER, Params
+
+SRC = "Skurativskyi et al. 2019, Nonlinear Dyn. 98:1795-1806"
+
+
+def _half_digit(value: float, decimals: int) -> float:
+    return 0.5 * 10.0 ** (-decimals) / abs(value)
+
+
+def _params(p: dict) -> Params:
+    return PAPER.with_(**{k: v for k, v in p.items() if k in Params.names()})
+
+
+_STATIC = {k: getattr(PAPER, k) for k in ("m", "k", "kI", "xI", "n1")}
+_FORMULA = {k: getattr(PAPER, k) for k in ("m", "m0e", "k", "c", "kI", "xI", "n1")}
+_ALL = {k: getattr(PAPER, k) for k in Params.names() if k != "omega"}
+
+
+def _static(p):
+    return {"value": approx.static_equilibrium(_params(p)),
+            "equation": "k X0 + k_I (X0 - x_I)^n1 = 0 (Sec. 5)"}
+
+
+register(Scene(
+    name="skurativskyi2019/static-equilibrium", parameter="X0", units="m",
+    source=f"{SRC}, Sec. 5 (X0 = -2.0807e-3 m)", compute=_static, defaults=_STATIC,
+    published=-2.0807e-3, tolerance=_half_digit(2.0807, 4) ,
+    description="static equilibrium of the cart pressed on the obstacle (m does not enter; listed as issued)"))
+
+
+def _glin(p):
+    q = _params(p)
+    return {"value": approx.grazing_linear(q), "X0": approx.static_equilibrium(q),
+            "equation": "x_I = X0 - m0e w^2 / sqrt((w c)^2 + Delta^2), Delta = k + 1.5 k_I sqrt(X0 - x_I) - m w^2"}
+
+
+register(Scene(
+    name="skurativskyi2019/grazing-linear", parameter="omega", units="rad/s",
+    source=f"{SRC}, Sec. 5, after eq. (4) (15.657 rad/s)", compute=_glin, defaults=_FORMULA,
+    published=15.657, tolerance=_half_digit(15.657, 3),
+    description="first grazing estimated from the linearised solution (4)"))
+
+
+def _gharm(p):
+    q = _params(p)
+    br = approx.grazing_harmonic_branches(q)
+    return {"value": approx.grazing_harmonic(q), "branches": br,
+            "sign_choice": "x_I = X0 + A with A = x_I - X0 < 0 and cos(alpha) = -sqrt(1 - sin^2 alpha) "
+                           "reproduces the printed value; cos(alpha) > 0 has no root"}
+
+
+register(Scene(
+    name="skurativskyi2019/grazing-harmonic", parameter="omega", units="rad/s",
+    source=f"{SRC}, Sec. 5, eqs (5)-(6) (12.789 rad/s)", compute=_gharm, defaults=_FORMULA,
+    published=12.789, tolerance=_half_digit(12.789, 3),
+    description="first grazing estimated from the harmonic-balance solution (5)"))
+
+
+def _detach(p):
+    from verify.skurativskyi.analysis import first_detachment
+    q = _params(p)
+    loc = first_detachment(p["lo"], p["hi"], p["tol"], q, rtol=p["rtol"])
+    return {"value": loc.value, "lo": loc.lo, "hi": loc.hi, "runs": loc.evaluations}
+
+
+register(Scene(
+    name="skurativskyi2019/first-detachment", parameter="omega", units="rad/s",
+    source=f"{SRC}, Sec. 5, Fig. 8 (permanent contact at 14, one impact per period at 14.1 rad/s)",
+    compute=_detach, defaults={**_ALL, "lo": 14.0, "hi": 14.1, "tol": 1e-3, "rtol": 1e-8},
+    published=14.05, tolerance=0.05 / 14.05,
+    description="first detachment from the obstacle (impact adding starts), located by bisection on "
+                "simulations from rest (60 periods transient, 20 observed)"))

@@ -1,0 +1,127 @@
+"""Runs of eq. (1): the compiled fast path and the hybrid-engine model.
+
+* :func:`run` — the default path: compiled DOPRI5 with exact contact switching,
+  stroboscopic samples t = 2πi/ω and (optionally) one tangent vector for the top Lyapunov
+  exponent.  Returns a :class:`Run` (impact times, inter-impact intervals, section points).
+* :func:`hybrid_model` — the same model as a :class:`verify.hybrid.HybridModel` with the
+  modes ``"free"`` (x < x_I) and ``"contact"`` (x ≥ x_I) and guards ±(x − x_I); run it with ``verify.hybrid.simulate(..., CompiledDOPRI5())`` or any
+  scipy stepper.  Used to cross-check the fast path and to draw trajectories.
+
+Impacts are the crossings of x = x_I with increasing x (the paper's definition, Sec. 5).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from landau.errors import IntegratorError, InputError
+from verify.hybrid import Guard, HybridModel, Jump, Mode
+from verify.skurativskyi import rk as R
+from verify.skurativskyi.model import Params, rhs
+
+#: default tolerances of the fast path: event/bifurcation locations converge at rtol ≲ 1e-8
+#: (notes §4); atol in m and m/s (the cart moves by mm at mm/s–cm/s).
+RTOL = 1e-8
+ATOL = (1e-12, 1e-10)
+
+
+@dataclass(frozen=True)
+class Run:
+    """One simulation: final state, impacts (t, ẋ), detachments, stroboscopic points."""
+
+    params: Params
+    t: float
+    y: np.ndarray
+    impacts: np.ndarray          # times of x ↑ x_I
+    impact_v: np.ndarray         # ẋ at impact
+    detachments: np.ndarray      # times of x ↓ x_I
+    strobe_t: np.ndarray
+    strobe_y: np.ndarray         # (n, 2) or (n, 4)
+    lyap_sum: float
+    lyap_count: int
+    nsteps: int
+    nfev: int
+    nrejected: int
+    max_mismatch: float          # |x − x_I| of a re-taken switching step before projection
+
+    @property
+    def intervals(self) -> np.ndarray:
+        """Inter-impact intervals T_j."""
+        return np.diff(self.impacts)
+
+    def impacts_per_period(self, t_from: float | None = None) -> float:
+        """Mean number of impacts per forcing period after ``t_from`` (default: first strobe)."""
+        t0 = self.strobe_t[0] if t_from is None else t_from
+        n = np.count_nonzero(self.impacts >= t0)
+        return n / ((self.t - t0) / self.params.period)
+
+    @property
+    def lyapunov(self) -> float:
+        """Top Lyapunov exponent [1/s] from the tangent renormalisations (NaN without them)."""
+        if self.lyap_count == 0:
+            return float("nan")
+        return self.lyap_sum / (self.lyap_count * self.params.period)
+
+    def __repr__(self) -> str:
+        return (f"Run(ω={self.params.omega:g}, t={self.t:.6g}, {len(self.impacts)} impacts, "
+                f"{len(self.strobe_t)} strobe points, {self.nsteps} steps, {self.nfev} fev)")
+
+
+def rest_state(params: Params) -> np.ndarray:
+    """Static equilibrium X₀ at rest (Sec. 5) as the default initial state."""
+    from verify.skurativskyi.approx import static_equilibrium
+    return np.array([static_equilibrium(params), 0.0])
+
+
+def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float = RTOL, atol=ATOL,
+        lyapunov: bool = False, strobe: bool = True, max_events: int = 200_000,
+        max_steps: int = 50_000_000, tangent0=(1.0, 0.0)) -> Run:
+    """Integrate eq. (1) over ``n_periods`` forcing periods from (t0, y0) (default: rest at X₀).
+
+    Strobe times are t0 + i·2π/ω.  ``lyapunov=True`` adds the variational equation and
+    renormalises the tangent vector every period.  Raises IntegratorError on failure.
+    """
+    if not (n_periods > 0 and np.isfinite(n_periods)):
+        raise InputError(f"n_periods must be positive (got {n_periods!r})")
+    if not (0 < rtol < 1):
+        raise InputError(f"rtol must be in (0, 1) (got {rtol!r})")
+    y0 = rest_state(params) if y0 is None else np.asarray(y0, float)[:2]
+    P = params.period
+    p = params.packed()
+    at = np.asarray(atol, float)
+    if lyapunov:
+        tv = np.asarray(tangent0, float)
+        y = np.concatenate([y0, tv / np.linalg.norm(tv)])
+        at = np.concatenate([at, [1e-9, 1e-9]])
+    else:
+        y = y0.copy()
+    t_end = t0 + n_periods * P if float(n_periods) != int(n_periods) else t0 + int(n_periods) * P
+    n_st = int(n_periods) + 2 if strobe else 1
+    out = R.integrate(p, float(t0), y, float(t_end), float(rtol), at, 1e-5, P / 20, params.xI, True,
+                      float(t0), P if strobe or lyapunov else 0.0, n_st, lyapunov, max_events, max_steps)
+    t, yend, status, ev_t, ev_k, ev_v, st_t, st_y, ly, nly, nsteps, nfev, nrej, mism = out
+    if status != R.OK:
+        raise IntegratorError(f"compiled DOPRI5 stopped: {R.STATUS[status]} (ω={params.omega})", t=t, state=yend)
+    up = ev_k > 0
+    return Run(params, t, yend, ev_t[up], ev_v[up], ev_t[~up], st_t, st_y, ly, nly, nsteps, nfev, nrej, mism)
+
+
+def hybrid_model(params: Params) -> HybridModel:
+    """Eq. (1) as an engine model: modes ``free``/``contact`` switching at x = x_I (the state is
+    kept, the field is continuous there; the transition only relabels the mode)."""
+    fld = R.CompiledField(rhs, params.packed())
+    xI = params.xI
+
+    def to_contact(t, y):
+        return Jump("contact", np.array([xI, y[1]]), "impact")
+
+    def to_free(t, y):
+        return Jump("free", np.array([xI, y[1]]), "detachment")
+
+    free = Mode("free", fld, (Guard("impact", lambda t, y: xI - y[0], to_contact,
+                                    rate=lambda t, y: -y[1]),))
+    contact = Mode("contact", fld, (Guard("detach", lambda t, y: y[0] - xI, to_free,
+                                          rate=lambda t, y: y[1]),))
+    return HybridModel.from_modes(free, contact, name="skurativskyi2019")

@@ -1,0 +1,18 @@
+"""Direct simulation of the rate-and-state spring–block (Putelat et al. 2010, eq. 4/5) and checks of
+the amplitude-equation engine against it.
+
+* :mod:`.model` — eq. (4) in log variables, right-hand side and exact Jacobian generated from the
+  symbolic law and compiled with numba; dimensional or dimensionless (m, κ) construction.
+* :mod:`.radau` — compiled Radau IIA (order 5) integrator with dense output and section crossings.
+* :mod:`.simulate` — :func:`integrate` (raises ``IntegratorError`` with time and state on failure).
+* :mod:`.orbits` — shooting on the Poincaré section, monodromy, Floquet multipliers, Hopf points.
+* :mod:`.checks` — supercritical / subcritical prediction checks (``landau verify``).
+* :mod:`.continuation` — pseudo-arclength continuation, folds of cycles, codimension-two points.
+* :mod:`.workprecision`, :mod:`.benchmark`, :mod:`.reproductions` — Fig. 3 work–precision, speed,
+  Figs 6/11/12.
+"""
+
+from verify.springblock.model import SpringBlockModel
+from verify.springblock.simulate import Run, integrate
+
+__all__ = ["SpringBlockModel", "Run", "integrate"]

@@ -1,0 +1,427 @@
+"""Pseudo-arclength continuation of spring–block limit cycles (what the paper did with AUTO).
+
+A branch point is u = (z, λ): z a point of the Poincaré section Σ (:mod:`verify.springblock.orbits`)
+and λ the continuation parameter — ``"k"`` (stiffness, as k/k_ref, at fixed V; Figs 6) or
+``"logV"`` (log₁₀ V at fixed k, i.e. fixed κ = kL/σ; Fig. 11).  G(u) = P(z; λ) − z = 0 with
+DG = [DP − I | ∂P/∂λ] (DP from the variational equations, ∂P/∂λ by central differences).
+
+* **Hopf start** — independent of the engine: the Hopf point of the steady state is located by
+  the crossing of the leading eigenvalue pair (Brent on max Re λ(J)); the first cycle is solved
+  with its slip amplitude ξ fixed small and λ free (the branch's amplitude² is linear in λ
+  near the Hopf point, which gives the branch's own Hopf estimate).
+* **Continuation** — predictor along the tangent (null vector of DG, oriented by the previous
+  one), corrector by Newton on [G; τ·(u − u_pred)] = 0, step adapted to Newton's effort.
+* **Folds of cycles** (saddle-nodes) — sign changes of the λ-component of the tangent, refined
+  by quadratic interpolation of λ over the arclength; a Floquet multiplier crosses +1 there.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from landau.errors import IntegratorError, LandauError
+from verify.springblock.model import SpringBlockModel
+from verify.springblock.orbits import (PeriodicOrbit, ShootingError, describe, hopf_stiffness, return_map,
+                                       section_point)
+from verify.springblock.simulate import W_INDEX
+
+
+@dataclass(frozen=True)
+class BranchPoint:
+    parameter: float          # k [N/m] or V [m/s]
+    orbit: PeriodicOrbit
+    tangent_lambda: float
+
+
+@dataclass(frozen=True)
+class Fold:
+    parameter: float
+    amplitude: float          # max|x − x0| at the fold [m]
+    half_peak_to_peak: float
+    z: np.ndarray | None = field(default=None, repr=False)
+
+
+@dataclass(frozen=True)
+class Branch:
+    """A continued branch of limit cycles born at a Hopf point."""
+
+    kind: str                  # "k" or "logV"
+    fixed: dict
+    hopf_equilibrium: float    # Hopf parameter from the steady state's eigenvalues
+    hopf_extrapolated: float   # from the branch (amplitude² → 0)
+    points: tuple[BranchPoint, ...] = field(repr=False)
+    folds: tuple[Fold, ...] = ()
+    stopped: str = ""
+
+    def __repr__(self) -> str:
+        return (f"Branch({self.kind}, Hopf {self.hopf_equilibrium:.10g} (eigenvalues), "
+                f"{self.hopf_extrapolated:.6g} (branch), {len(self.points)} points, folds="
+                f"{[f'{f.parameter:.6g}' for f in self.folds]}, stopped: {self.stopped})")
+
+
+class _Problem:
+    """Maps λ to a model and evaluates G, DG."""
+
+    def __init__(self, make: Callable[[float], SpringBlockModel], rtol: float):
+        self.make = make
+        self.rtol = rtol
+        self._cache: dict = {}
+
+    def model(self, lam: float) -> SpringBlockModel:
+        key = float(lam)
+        if key not in self._cache:
+            if len(self._cache) > 8:
+                self._cache.clear()
+            self._cache[key] = self.make(key)
+        return self._cache[key]
+
+    def G(self, u: np.ndarray, jac: bool = True):
+        z, lam = u[:-1], u[-1]
+        m = self.model(lam)
+        Pz, DP, T, run = return_map(m, z, rtol=self.rtol, monodromy=jac)
+        if not jac:
+            return Pz - z, None, T, DP
+        h = 1e-6 * max(abs(lam), 1e-3)
+        Pp = return_map(self.model(lam + h), z, rtol=self.rtol, monodromy=False)[0]
+        Pm = return_map(self.model(lam - h), z, rtol=self.rtol, monodromy=False)[0]
+        DG = np.hstack([DP - np.eye(len(z)), ((Pp - Pm) / (2 * h))[:, None]])
+        return Pz - z, DG, T, DP
+
+
+def _tangent(DG: np.ndarray, prev: np.ndarray | None) -> np.ndarray:
+    t = np.linalg.svd(DG)[2][-1]
+    if prev is not None and t @ prev < 0:
+        t = -t
+    return t / np.linalg.norm(t)
+
+
+def _correct(prob: _Problem, u_pred: np.ndarray, tau: np.ndarray, tol: float, maxiter: int = 8):
+    u = u_pred.copy()
+    for it in range(1, maxiter + 1):
+        r, DG, T, DP = prob.G(u)
+        A = np.vstack([DG, tau])
+        rhs = -np.r_[r, tau @ (u - u_pred)]
+        du = np.linalg.solve(A, rhs)
+        u = u + du
+        if np.linalg.norm(du) <= tol * max(1.0, np.linalg.norm(u)):
+            r, DG, T, DP = prob.G(u)
+            return u, DG, T, DP, it
+    raise ShootingError("corrector did not converge")
+
+
+def continue_branch(make: Callable[[float], SpringBlockModel], lam_hopf: float, *, direction: float,
+                    xi_start: float = 0.05, ds: float = 0.05, ds_max: float = 2.0, steps: int = 60,
+                    lam_bounds: tuple[float, float] = (-np.inf, np.inf), xi_max: float = np.inf,
+                    rtol: float = 1e-10, tol: float = 1e-9, progress=None):
+    """Continue cycles from the Hopf point at λ = ``lam_hopf`` (``direction`` = ±1 guesses the side).
+
+    Returns (list of (λ, orbit, τ_λ), fold λ list, stop reason)."""
+    prob = _Problem(make, rtol)
+    m0 = prob.model(lam_hopf)
+    z0 = section_point(m0, xi_start * m0.ell)
+    # first cycle: ξ fixed, λ free (τ = e_ξ makes the corrector's extra row the amplitude constraint)
+    u_pred = np.r_[z0, lam_hopf + direction * 1e-6 * max(abs(lam_hopf), 1.0)]
+    e_xi = np.zeros(len(u_pred))
+    e_xi[0] = 1.0
+    u, DG, T, DP, _ = _correct(prob, u_pred, e_xi, tol, maxiter=15)
+    tau = _tangent(DG, None)
+    if tau[0] < 0:  # move away from the Hopf point: growing amplitude
+        tau = -tau
+    out = [(u[-1], describe(prob.model(u[-1]), u[:-1], DP, T, None, 0, 0.0), tau[-1])]
+    if progress:
+        progress(out[-1])
+    folds = []
+    stop = "step limit"
+    for _ in range(steps):
+        try:
+            u_new, DG, T, DP, it = _correct(prob, u + ds * tau, tau, tol)
+        except (ShootingError, IntegratorError, np.linalg.LinAlgError) as exc:
+            ds *= 0.5
+            if ds < 1e-6:
+                stop = f"step size underflow ({exc})"
+                break
+            continue
+        tau_new = _tangent(DG, tau)
+        orb = describe(prob.model(u_new[-1]), u_new[:-1], DP, T, None, it, 0.0)
+        if np.sign(tau_new[-1]) != np.sign(tau[-1]) and tau[-1] != 0:
+            folds.append(_refine_fold(prob, u, tau, ds, tol))
+        u, tau = u_new, tau_new
+        out.append((u[-1], orb, tau[-1]))
+        if progress:
+            progress(out[-1])
+        ds = min(ds * (1.6 if it <= 3 else (1.0 if it <= 5 else 0.5)), ds_max)
+        if not (lam_bounds[0] <= u[-1] <= lam_bounds[1]):
+            stop = "parameter bound"
+            break
+        if abs(u[0]) > xi_max:
+            stop = "amplitude bound"
+            break
+    return out, folds, stop
+
+
+def _refine_fold(prob: _Problem, u: np.ndarray, tau: np.ndarray, ds: float, tol: float, iters: int = 12):
+    """Bisection in the arclength s ∈ (0, ds) from u for the zero of the tangent's λ-component."""
+    lo, hi = 0.0, ds
+    best = None
+    for _ in range(iters):
+        s = 0.5 * (lo + hi)
+        try:
+            us, DG, T, DP, _ = _correct(prob, u + s * tau, tau, tol)
+        except (ShootingError, IntegratorError):
+            break
+        ts = _tangent(DG, tau)
+        best = (us, T, DP)
+        if np.sign(ts[-1]) == np.sign(tau[-1]):
+            lo = s
+        else:
+            hi = s
+    if best is None:
+        orb = describe(prob.model(u[-1]), u[:-1], None, 0.0, None, 0, 0.0)
+        return (u[-1], orb, orb)
+    us, T, DP = best
+    orb = describe(prob.model(us[-1]), us[:-1], DP, T, None, 0, 0.0)
+    return (us[-1], orb, orb)
+
+
+def _vertex(l3: np.ndarray) -> float:
+    """Extremum of the parabola through (s=−1, 0, 1; λ) — the fold's λ between equally spaced points."""
+    a = 0.5 * (l3[0] + l3[2]) - l3[1]
+    b = 0.5 * (l3[2] - l3[0])
+    if a == 0:
+        return float(l3[1])
+    s = np.clip(-b / (2 * a), -1, 1)
+    return float(l3[1] + b * s + a * s * s)
+
+
+def continue_in_k(model: SpringBlockModel, k_lo: float, k_hi: float, **kw) -> Branch:
+    """Fig. 6: cycles vs stiffness at fixed V, from the Hopf point in [k_lo, k_hi]."""
+    k_h = hopf_stiffness(model, k_lo, k_hi)
+    make = lambda lam: model.with_(k=lam * k_h)  # noqa: E731
+    # side: supercritical cycles exist for k < k_c; try that first, else the other side
+    pts = folds = stop = None
+    for direction in (-1.0, 1.0):
+        try:
+            pts, folds, stop = continue_branch(make, 1.0, direction=direction, **kw)
+            break
+        except (ShootingError, IntegratorError):
+            continue
+    if pts is None:
+        raise ShootingError("no cycle branch could be started at the Hopf point")
+    return _branch("k", {"V": model.V}, k_h, [(lam * k_h, o, t) for lam, o, t in pts],
+                   [(lam * k_h, a, b) for lam, a, b in folds], stop)
+
+
+def continue_in_logV(model: SpringBlockModel, V_lo: float, V_hi: float, **kw) -> Branch:
+    """Fig. 11: cycles vs log₁₀ V at fixed k (fixed κ), from the Hopf point in [V_lo, V_hi]."""
+    from scipy.optimize import brentq
+
+    def growth(lv):
+        m = model.with_(V=10 ** lv)
+        return float(np.max(np.linalg.eigvals(m.J(np.zeros(m.n))).real))
+
+    lv_h = brentq(growth, np.log10(V_lo), np.log10(V_hi), xtol=1e-14, rtol=1e-14)
+    make = lambda lam: model.with_(V=10 ** lam)  # noqa: E731
+    pts = None
+    for direction in (-1.0, 1.0):
+        try:
+            pts, folds, stop = continue_branch(make, lv_h, direction=direction, **kw)
+            break
+        except (ShootingError, IntegratorError):
+            continue
+    if pts is None:
+        raise ShootingError("no cycle branch could be started at the Hopf point")
+    return _branch("logV", {"k": model.k, "kappa": model.kappa}, 10 ** lv_h,
+                   [(10 ** lam, o, t) for lam, o, t in pts], [(10 ** lam, a, b) for lam, a, b in folds], stop)
+
+
+def _branch(kind, fixed, hopf, pts, folds, stop) -> Branch:
+    bp = tuple(BranchPoint(p, o, t) for p, o, t in pts)
+    # branch's own Hopf estimate: half peak-to-peak² is linear in the parameter near the Hopf point
+    hp = np.array([0.5 * (b.orbit.x_max - b.orbit.x_min) for b in bp[:3]])
+    par = np.array([b.parameter for b in bp[:3]])
+    if kind == "logV":
+        par = np.log10(par)
+    c = np.polyfit(hp ** 2, par, 1) if len(bp) >= 2 else [0, par[0]]
+    h_ext = float(c[-1]) if kind == "k" else float(10 ** c[-1])
+    fl = tuple(Fold(lam, 0.5 * (a.amplitude + b.amplitude), 0.25 * (a.x_max - a.x_min + b.x_max - b.x_min), a.z)
+               for lam, a, b in folds)
+    return Branch(kind, fixed, hopf, h_ext, bp, fl, stop)
+
+
+def plot_branch(branch: Branch, path, title: str = "") -> "Path":
+    """Fig. 6/11-style panels: spring force, slip rate, slip and stress drop (max/min) along the branch."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from landau.io import atomic_savefig
+
+    par = np.array([b.parameter for b in branch.points])
+    o = [b.orbit for b in branch.points]
+    st = np.array([b.orbit.stable for b in branch.points])
+    k = np.array([x.k for x in o])
+    xmax, xmin = np.array([x.x_max for x in o]), np.array([x.x_min for x in o])
+    vmax, vmin = np.array([x.v_max for x in o]), np.array([x.v_min for x in o])
+    panels = [("spring-force excess -k X [N]", -k * xmin, -k * xmax), ("slip rate v [m/s]", vmax, vmin),
+              ("slip x - x0 [m]", xmax, xmin), ("stress drop k(Xmax - Xmin) [N]", k * (xmax - xmin), None)]
+    fig, axes = plt.subplots(2, 2, figsize=(9, 7))
+    for ax, (lab, hi, lo) in zip(axes.ravel(), panels):
+        for arr in (hi, lo):
+            if arr is None:
+                continue
+            ax.plot(np.where(st, par, np.nan), np.where(st, arr, np.nan), "k-")
+            ax.plot(np.where(~st, par, np.nan), np.where(~st, arr, np.nan), "k:")
+        ax.axvline(branch.hopf_equilibrium, color="r", lw=0.6)
+        for f in branch.folds:
+            ax.axvline(f.parameter, color="b", lw=0.6, ls="--")
+        ax.set_ylabel(lab, fontsize=8)
+        ax.set_xlabel("k [N/m]" if branch.kind == "k" else "V [m/s]", fontsize=8)
+        if branch.kind == "logV":
+            ax.set_xscale("log")
+        if "slip rate" in lab:
+            ax.set_yscale("log")
+    fig.suptitle(title or f"limit cycles, continuation in {branch.kind} (solid stable, dotted unstable; "
+                 "red: Hopf, blue dashed: fold)", fontsize=9)
+    fig.tight_layout()
+    out = atomic_savefig(fig, path)
+    plt.close(fig)
+    return out
+
+
+@dataclass(frozen=True)
+class Codim2Point:
+    """Where the fold-of-cycles curve meets the Hopf line (generalised Hopf / Bautin point)."""
+
+    V: float
+    k: float
+    iterations: int
+    curvatures: tuple[tuple[float, float], ...] = field(repr=False)
+
+
+def branch_curvature(model: SpringBlockModel, k_hopf: float, xis=(0.02, 0.04), rtol: float = 1e-11) -> float:
+    """c₂ in k(ξ) = k_H + c₂ξ² + c₄ξ⁴ along the cycle branch at fixed V (ξ = max slip / ℓ):
+    c₂ < 0 ⇔ cycles for k < k_H (supercritical), c₂ > 0 ⇔ subcritical.  The fold of cycles
+    approaches the Hopf point where c₂ = 0 (its amplitude² ∝ −c₂/c₄)."""
+    make = lambda lam: model.with_(k=lam * k_hopf)  # noqa: E731
+    prob = _Problem(make, rtol)
+    lams = []
+    for xi in xis:
+        m0 = prob.model(1.0)
+        z0 = section_point(m0, xi * m0.ell)
+        u_pred = np.r_[z0, 1.0]
+        e_xi = np.zeros(len(u_pred))
+        e_xi[0] = 1.0
+        u = _correct(prob, u_pred, e_xi, 1e-11, maxiter=15)[0]
+        lams.append(u[-1] - 1.0)
+    x2 = np.array(xis) ** 2
+    # two amplitudes: eliminate the ξ⁴ term (Richardson)
+    A = np.column_stack([x2, x2 ** 2])
+    c2, c4 = np.linalg.solve(A, np.array(lams))
+    return float(c2 * k_hopf)
+
+
+def codim2_velocity(make_model: Callable[[float], SpringBlockModel], hopf_k: Callable[[float], float],
+                    V_lo: float, V_hi: float, tol: float = 1e-4, maxiter: int = 30) -> Codim2Point:
+    """The velocity where the branch curvature c₂ (fold-of-cycles ↔ Hopf) changes sign, by the
+    Illinois (regula falsi) method in log V on c₂(V) computed from periodic orbits alone
+    (Hopf stiffness from the steady state's eigenvalues, cycles by shooting)."""
+    def c2(V):
+        m = make_model(V)
+        kh = hopf_k(V)
+        return branch_curvature(m.with_(k=kh), kh), kh
+
+    a, b = np.log10(V_lo), np.log10(V_hi)
+    fa, _ = c2(V_lo)
+    fb, _ = c2(V_hi)
+    hist = [(V_lo, fa), (V_hi, fb)]
+    if np.sign(fa) == np.sign(fb):
+        raise ShootingError(f"no sign change of the branch curvature on [{V_lo:g}, {V_hi:g}] m/s")
+    side = 0
+    kh = np.nan
+    for it in range(1, maxiter + 1):
+        c = (a * fb - b * fa) / (fb - fa)
+        fc, kh = c2(10 ** c)
+        hist.append((10 ** c, fc))
+        if abs(b - a) < tol / np.log(10) or fc == 0:
+            return Codim2Point(10 ** c, kh, it, tuple(hist))
+        if np.sign(fc) == np.sign(fb):
+            b, fb = c, fc
+            if side == -1:
+                fa /= 2
+            side = -1
+        else:
+            a, fa = c, fc
+            if side == 1:
+                fb /= 2
+            side = 1
+        if abs(b - a) < tol / np.log(10):
+            return Codim2Point(10 ** c, kh, it, tuple(hist))
+    return Codim2Point(10 ** c, kh, maxiter, tuple(hist))
+
+
+@dataclass(frozen=True)
+class FoldPoint:
+    """A fold of cycles in the (V, k) plane (Fig. 12): a cycle with Floquet multiplier +1."""
+
+    V: float
+    k: float
+    kappa: float
+    amplitude: float
+    z: np.ndarray = field(repr=False)
+
+
+def _fold_residual(make_V, lv: float, z: np.ndarray, rtol: float):
+    m = make_V(10 ** lv)
+    Pz, DP, T, _ = return_map(m, z, rtol=rtol)
+    return np.r_[Pz - z, np.linalg.det(DP - np.eye(len(z)))], m
+
+
+def fold_point(make_V: Callable[[float], SpringBlockModel], V_guess: float, z_guess, *, rtol: float = 1e-11,
+               tol: float = 1e-10, maxiter: int = 12) -> FoldPoint:
+    """Solve P(z; V) = z, det(DP − I) = 0 for (z, log V) at fixed k (Newton, finite-difference Jacobian)."""
+    u = np.r_[np.asarray(z_guess, dtype=float), np.log10(V_guess)]
+    for _ in range(maxiter):
+        r, m = _fold_residual(make_V, u[-1], u[:-1], rtol)
+        J = np.empty((len(u), len(u)))
+        for j in range(len(u)):
+            h = 1e-6 * max(abs(u[j]), 1e-2)
+            up, um = u.copy(), u.copy()
+            up[j] += h
+            um[j] -= h
+            J[:, j] = (_fold_residual(make_V, up[-1], up[:-1], rtol)[0]
+                       - _fold_residual(make_V, um[-1], um[:-1], rtol)[0]) / (2 * h)
+        du = np.linalg.solve(J, -r)
+        u = u + du
+        if np.linalg.norm(du) < tol * max(1.0, np.linalg.norm(u)):
+            m = make_V(10 ** u[-1])
+            return FoldPoint(10 ** u[-1], m.k, m.kappa, float(u[0] * m.ell), u[:-1].copy())
+    raise ShootingError(f"fold-of-cycles Newton did not converge (last |du| = {np.linalg.norm(du):.3g})")
+
+
+def fold_curve(base: SpringBlockModel, V_fold: float, z_fold, kappas, **kw) -> list[FoldPoint]:
+    """Two-parameter continuation of the fold of cycles in (V, κ) (Fig. 12): natural continuation in
+    κ (list ``kappas`` ordered away from the starting κ), each point by :func:`fold_point` seeded by the
+    previous one (secant extrapolation in log V and z).  Stops when Newton fails — near the
+    codimension-two point the fold's amplitude → 0 and the condition det(DP − I) = 0 degenerates."""
+    pts: list[FoldPoint] = []
+    V, z = V_fold, np.asarray(z_fold, dtype=float)
+    sigma, L = base.params["sigma"], base.params["L"]
+    for kap in kappas:
+        k = kap * sigma / L
+        make_V = lambda VV, k=k: base.with_(V=VV, k=k)  # noqa: E731
+        if len(pts) >= 2:
+            a, b = pts[-2], pts[-1]
+            w = (np.log(kap) - np.log(b.kappa)) / (np.log(b.kappa) - np.log(a.kappa))
+            V = 10 ** (np.log10(b.V) + w * (np.log10(b.V) - np.log10(a.V)))
+            z = b.z + w * (b.z - a.z)
+        try:
+            fp = fold_point(make_V, V, z, **kw)
+        except (ShootingError, IntegratorError, np.linalg.LinAlgError):
+            break
+        pts.append(fp)
+        V, z = fp.V, fp.z
+    return pts

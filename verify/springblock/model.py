@@ -1,0 +1,306 @@
+"""The spring–block of Putelat et al. (2010), eq. (4)/(5), compiled for direct simulation.
+
+For any :class:`~laws.FrictionLaw` the equations M ẍ = k(Vt − x) − σμ(ẋ, φ),
+dφᵢ/dt = rateᵢ(ẋ, φ) are written in variables that keep the slip rate and the states
+positive and O(1) over stick phases where v falls by tens of decades:
+
+    ξ = X/ℓ  (X = x − x₀(t), ℓ = the law's memory length L, or ``length_scale``),
+    w = ln(v/V),   ψᵢ = ln(φᵢ/φᵢ,₀),   τ = t V/ℓ,
+
+    ξ' = e^w − 1,
+    w' = (ℓ/V) e^{−w} [−kℓξ − σ(μ(v, φ) − μ₀)] / (M V),
+    ψᵢ' = (ℓ/V) rateᵢ(v, φ)/φᵢ,
+
+so that steady sliding is the origin.  The right-hand side and its exact Jacobian are
+generated from the symbolic law (sympy, common-subexpression elimination, logs of
+products expanded so that ln v = ln V + w is never formed from an underflowed v), then
+compiled with numba.  The dimensionless parameters of the paper (eq. 6) are
+m = M V_*²/(σL) and κ = kL/σ (σ = Mg); :meth:`SpringBlockModel.from_dimensionless`
+builds the model from (m, κ, V/V_*).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Mapping
+
+import numba as nb
+import numpy as np
+import sympy as sp
+from sympy.printing.pycode import PythonCodePrinter
+
+from landau.errors import InputError
+from landau.system import SpringBlock
+from laws.law import FrictionLaw, v as v_slip
+from verify.springblock.radau import SIG, SIG_JAC
+
+
+@dataclass(frozen=True)
+class CompiledLaw:
+    """Generated source and compiled f, J of the scaled spring–block for one law (any parameters)."""
+
+    law_name: str
+    n: int
+    param_names: tuple[str, ...]
+    source: str = field(repr=False)
+    rhs: object = field(repr=False)
+    jac: object = field(repr=False)
+    rhs_py: object = field(repr=False)
+    jac_py: object = field(repr=False)
+
+
+class _Printer(PythonCodePrinter):
+    def _print_Symbol(self, expr):
+        return expr.name
+
+
+_CACHE: dict[tuple, CompiledLaw] = {}
+_SYS_NAMES = ("M", "sigma", "k", "V", "ell", "mu0")
+
+
+def _law_key(law: FrictionLaw) -> tuple:
+    return (sp.srepr(law.mu), tuple(sp.srepr(r) for r in law.rates), tuple(s.name for s in law.states),
+            tuple(p.name for p in law.parameters))
+
+
+def compile_law(law: FrictionLaw) -> CompiledLaw:
+    """Generate and compile the scaled right-hand side and analytic Jacobian of eq. (4) for ``law``."""
+    key = _law_key(law)
+    if key in _CACHE:
+        return _CACHE[key]
+    ns = len(law.states)
+    n = 2 + ns
+    ys = sp.symbols(f"y0:{n}", real=True)
+    xi, w, psis = ys[0], ys[1], ys[2:]
+    lp = [sp.Symbol(f"q{i}", positive=True) for i in range(len(law.parameters))]
+    Msym, sig, ksym, Vsym, ell, mu0 = sp.symbols("M_ sigma_ k_ V_ ell_ mu0_", positive=True)
+    phi0 = [sp.Symbol(f"phi0_{i}", positive=True) for i in range(ns)]
+    sub = {p.symbol: s for p, s in zip(law.parameters, lp)}
+    vv = Vsym * sp.exp(w)
+    phis = [p0 * sp.exp(ps) for p0, ps in zip(phi0, psis)]
+    sub.update({v_slip: vv, **dict(zip(law.states, phis))})
+
+    def tidy(e):
+        return sp.expand_log(e.subs(sub), force=True)
+
+    mu = tidy(law.mu)
+    f = [sp.exp(w) - 1,
+         (ell / Vsym) * sp.exp(-w) * (-ksym * ell * xi - sig * (mu - mu0)) / (Msym * Vsym)]
+    for r, ph in zip(law.rates, phis):
+        f.append((ell / Vsym) * sp.expand(tidy(r) / ph))
+    Jm = sp.Matrix(f).jacobian(sp.Matrix(ys))
+    _SYMBOLIC[key] = (ys, f, Jm)
+    pnames = [s.name for s in lp] + [s.name for s in (Msym, sig, ksym, Vsym, ell, mu0)] + [s.name for s in phi0]
+    _PNAMES[key] = pnames
+    src, rhs_py, jac_py, rhs, jac = _emit(ys, f, Jm, pnames, law.name)
+    out = CompiledLaw(law.name, n, tuple(p.name for p in law.parameters), src, rhs, jac, rhs_py, jac_py)
+    _CACHE[key] = out
+    return out
+
+
+def _emit(ys, f, Jm, pnames, label):
+    """Python source for rhs(t, y, p, out) and jac(t, y, p, out) (shared CSE), exec'd and njit-compiled."""
+    n = len(ys)
+    reps, red = sp.cse(list(f) + list(Jm), optimizations="basic")
+    pr = _Printer({"fully_qualified_modules": True})
+    head = [f"    {s.name} = y[{i}]" for i, s in enumerate(ys)]
+    head += [f"    {nm} = p[{i}]" for i, nm in enumerate(pnames)]
+    body_r = [f"    {s} = {pr.doprint(e)}" for s, e in reps]
+    lines_f = ["def rhs(t, y, p, out):", *head, *body_r]
+    lines_f += [f"    out[{i}] = {pr.doprint(red[i])}" for i in range(n)]
+    lines_j = ["def jac(t, y, p, out):", "    out[:, :] = 0.0", *head, *body_r]
+    for i in range(n):
+        for j in range(n):
+            e = red[n + i * n + j]
+            if e != 0:
+                lines_j.append(f"    out[{i}, {j}] = {pr.doprint(e)}")
+    src = "\n".join(lines_f) + "\n\n" + "\n".join(lines_j) + "\n"
+    glb: dict = {"math": math}
+    exec(compile(src, f"<springblock rhs for {label}>", "exec"), glb)
+    rhs_py, jac_py = glb["rhs"], glb["jac"]
+    return src, rhs_py, jac_py, nb.njit(SIG)(rhs_py), nb.njit(SIG_JAC)(jac_py)
+
+
+_SYMBOLIC: dict[tuple, tuple] = {}
+_PNAMES: dict[tuple, list] = {}
+_VAR_CACHE: dict[tuple, CompiledLaw] = {}
+
+
+def compile_variational(law: FrictionLaw) -> CompiledLaw:
+    """The system augmented with its variational equations Φ' = J(y)Φ (n + n² states, Φ row-major),
+    with the exact Jacobian of the augmented system (second derivatives of f included)."""
+    key = _law_key(law)
+    if key in _VAR_CACHE:
+        return _VAR_CACHE[key]
+    compile_law(law)
+    ys, f, Jm = _SYMBOLIC[key]
+    n = len(ys)
+    Phi = sp.Matrix(n, n, sp.symbols(f"y{n}:{n + n * n}", real=True))
+    JP = Jm * Phi
+    faug = list(f) + [JP[i, j] for i in range(n) for j in range(n)]
+    yaug = list(ys) + [Phi[i, j] for i in range(n) for j in range(n)]
+    Jaug = sp.Matrix(faug).jacobian(sp.Matrix(yaug))
+    src, rhs_py, jac_py, rhs, jac = _emit(yaug, faug, Jaug, _PNAMES[key], law.name + " (variational)")
+    out = CompiledLaw(law.name, n + n * n, _CACHE[key].param_names, src, rhs, jac, rhs_py, jac_py)
+    _VAR_CACHE[key] = out
+    return out
+
+
+@dataclass(frozen=True)
+class SpringBlockModel:
+    """Eq. (4) for one law at driving velocity V [m/s] and stiffness k [N/m] (SI units).
+
+    ``params`` is the full parameter dict of :meth:`landau.system.SpringBlock.resolve`
+    (law parameters, M, g, sigma).  ``ell`` is the length unit of ξ (the law's L if it has one).
+    """
+
+    law: FrictionLaw
+    V: float
+    k: float
+    params: Mapping[str, float]
+    ell: float
+    phi0: tuple[float, ...]
+    mu0: float
+
+    @classmethod
+    def build(cls, law: FrictionLaw, V: float, k: float, params: Mapping[str, float] | None = None,
+              length_scale: float | None = None) -> "SpringBlockModel":
+        block = SpringBlock(law)
+        p = block.resolve(params)
+        if not (np.isfinite(V) and V > 0):
+            raise InputError(f"driving velocity V must be > 0, got {V!r}")
+        if not (np.isfinite(k) and k > 0):
+            raise InputError(f"stiffness k must be > 0, got {k!r}")
+        if p["M"] <= 0:
+            raise InputError("direct simulation needs a block mass M > 0 (M = 0 is the quasi-static DAE)")
+        ell = float(length_scale if length_scale is not None else p.get("L", 1e-6))
+        phi0 = _steady_state(law, V, p)
+        vals = {s: p[s.name] for s in (prm.symbol for prm in law.parameters)}
+        mu0 = float(law.mu.subs({v_slip: V, **dict(zip(law.states, phi0)), **vals}))
+        if not np.isfinite(mu0):
+            raise InputError(f"law {law.name!r}: friction coefficient not finite at steady sliding V = {V!r}")
+        return cls(law, float(V), float(k), dict(p), ell, tuple(phi0), mu0)
+
+    @classmethod
+    def from_dimensionless(cls, law: FrictionLaw, m: float, kappa: float, V_over_Vs: float,
+                           params: Mapping[str, float] | None = None) -> "SpringBlockModel":
+        """The paper's eq. (5): m = V_*²/(gL), κ = kL/(Mg), driving velocity V/V_* (σ = Mg).
+
+        Realised dimensionally with the law's L and V_* (Table 1) and M = 1.2 kg:
+        g = V_*²/(mL), σ = Mg, k = κσ/L — every solution of (5) is a rescaling of this one.
+        """
+        p = SpringBlock(law).resolve(params)
+        if "L" not in p or "V_s" not in p:
+            raise InputError(f"law {law.name!r} has no L and V_s: the dimensionless form (5) needs them")
+        if not (m > 0 and kappa > 0 and V_over_Vs > 0):
+            raise InputError("m, kappa and V/V_* must all be > 0")
+        g = p["V_s"] ** 2 / (m * p["L"])
+        sigma = p["M"] * g
+        over = dict(params or {})
+        over.update(g=g, sigma=sigma)
+        return cls.build(law, V_over_Vs * p["V_s"], kappa * sigma / p["L"], over)
+
+    def with_(self, **changes) -> "SpringBlockModel":
+        """Same law and parameters with V and/or k (or parameters, as params=...) changed."""
+        V = changes.pop("V", self.V)
+        k = changes.pop("k", self.k)
+        params = dict(self.params)
+        params.update(changes.pop("params", {}))
+        if changes:
+            raise InputError(f"unknown change(s) {sorted(changes)}")
+        block_keys = set(SpringBlock(self.law).defaults)
+        return SpringBlockModel.build(self.law, V, k, {kk: vv for kk, vv in params.items() if kk in block_keys},
+                                      self.ell)
+
+    # --- compiled pieces ------------------------------------------------------------
+    @property
+    def compiled(self) -> CompiledLaw:
+        return compile_law(self.law)
+
+    @property
+    def n(self) -> int:
+        return 2 + len(self.law.states)
+
+    @cached_property
+    def p(self) -> np.ndarray:
+        vals = [self.params[nm] for nm in self.compiled.param_names]
+        vals += [self.params["M"], self.params["sigma"], self.k, self.V, self.ell, self.mu0, *self.phi0]
+        return np.ascontiguousarray(vals, dtype=float)
+
+    @property
+    def time_unit(self) -> float:
+        """Seconds per unit of the internal time τ = tV/ℓ."""
+        return self.ell / self.V
+
+    @property
+    def m(self) -> float:
+        """Dimensionless mass of eq. (6), m = M V_*²/(σL) (needs V_s, L)."""
+        return self.params["M"] * self.params["V_s"] ** 2 / (self.params["sigma"] * self.params["L"])
+
+    @property
+    def kappa(self) -> float:
+        """Dimensionless stiffness of eq. (6), κ = kL/σ."""
+        return self.k * self.params["L"] / self.params["sigma"]
+
+    def f(self, y) -> np.ndarray:
+        out = np.empty(self.n)
+        self.compiled.rhs(0.0, np.ascontiguousarray(y, dtype=float), self.p, out)
+        return out
+
+    def J(self, y) -> np.ndarray:
+        out = np.empty((self.n, self.n))
+        self.compiled.jac(0.0, np.ascontiguousarray(y, dtype=float), self.p, out)
+        return out
+
+    # --- physical coordinates ---------------------------------------------------------
+    def to_physical(self, y) -> dict[str, np.ndarray]:
+        """X = x − x₀ [m], v [m/s], φᵢ, spring-force excess and μ from scaled states (…, n) arrays."""
+        y = np.asarray(y, dtype=float)
+        out = {"X": y[..., 0] * self.ell, "v": self.V * np.exp(y[..., 1])}
+        for i, s in enumerate(self.law.states):
+            out[s.name] = self.phi0[i] * np.exp(y[..., 2 + i])
+        return out
+
+    def from_physical(self, X: float, v: float, phis) -> np.ndarray:
+        if v <= 0 or any(ph <= 0 for ph in phis):
+            raise InputError("slip rate and states must be > 0 for the log variables")
+        return np.array([X / self.ell, math.log(v / self.V), *(math.log(ph / p0) for ph, p0 in zip(phis, self.phi0))])
+
+    def critical_mode(self) -> tuple[complex, np.ndarray]:
+        """Eigenvalue with the largest real part of J(0) (per unit τ) and its eigenvector with ξ-component 1."""
+        lam, vec = np.linalg.eig(self.J(np.zeros(self.n)))
+        i = int(np.argmax(lam.real + 1e-12 * np.abs(lam.imag)))
+        if abs(vec[0, i]) == 0:
+            raise InputError("the critical mode has no slip component")
+        return complex(lam[i]), vec[:, i] / vec[0, i]
+
+    def perturbed(self, amplitude: float) -> np.ndarray:
+        """Steady sliding displaced along the critical (oscillatory) mode so that X = ``amplitude`` [m].
+
+        The linear mode's real part at phase 0 is used: ξ = a, the other components follow
+        the eigenvector (w, ψ are log-variables: the linear relation holds for small a).
+        """
+        _, vec = self.critical_mode()
+        return (amplitude / self.ell) * vec.real
+
+
+def _steady_state(law: FrictionLaw, V: float, p: Mapping[str, float]) -> list[float]:
+    vals = {prm.symbol: p[prm.name] for prm in law.parameters}
+    ss = law.steady_state_closed_form
+    if ss is not None:
+        out = [float(e.subs({v_slip: V, **vals})) for e in ss]
+    else:
+        from scipy.optimize import root
+
+        fn = sp.lambdify([law.states], [r.subs({v_slip: V, **vals}) for r in law.rates], "math")
+        guess = [p.get("L", 1.0) / V] * len(law.states)
+        sol = root(lambda z: fn(list(z)), guess, tol=1e-14)
+        if not sol.success:
+            raise InputError(f"law {law.name!r}: no steady state found at V = {V!r}")
+        out = [float(z) for z in sol.x]
+    if not all(np.isfinite(x) and x > 0 for x in out):
+        raise InputError(f"law {law.name!r}: steady state {out} at V = {V!r} is not positive "
+                         "(the simulation uses log-states)")
+    return out
