@@ -51,6 +51,11 @@ class CompiledFormula:
         self._atoms = sp.lambdify(list(self.args), atom_exprs, modules=modules, cse=True) if atom_exprs else None
         self._f = sp.lambdify([*self.atom_syms, *self.args], formula, modules=modules, cse=True)
 
+    def call_with_atoms(self, atom_values: Mapping[sp.Symbol, object], *vals):
+        """Evaluate with atom values computed elsewhere (shared between formulas)."""
+        with np.errstate(all="ignore"):
+            return self._f(*(atom_values[s] for s in self.atom_syms), *vals)
+
     def __call__(self, *vals):
         if self.modules == "numpy":
             with np.errstate(all="ignore"):
@@ -60,3 +65,24 @@ class CompiledFormula:
             return np.broadcast_to(np.asarray(out, dtype=float), shape).copy() if shape else float(out)
         avals = self._atoms(*vals) if self._atoms else []
         return self._f(*avals, *vals)
+
+
+class AtomTable:
+    """Evaluates a set of atoms once per call (CSE across all of them), for many formulas."""
+
+    def __init__(self, atoms: Mapping[sp.Symbol, sp.Expr], args: Sequence[sp.Symbol]):
+        self.atoms = atoms
+        self.args = tuple(args)
+        self._fns: dict[frozenset, tuple] = {}
+
+    def evaluate(self, wanted: Sequence[sp.Symbol], *vals) -> dict[sp.Symbol, object]:
+        key = frozenset(wanted)
+        if key not in self._fns:
+            syms = tuple(sorted(key, key=lambda s: s.name))
+            exprs = [self.atoms[s] for s in syms]
+            self._fns[key] = (syms, sp.lambdify(list(self.args), exprs, modules="numpy", cse=True) if syms else None)
+        syms, fn = self._fns[key]
+        if fn is None:
+            return {}
+        with np.errstate(all="ignore"):
+            return dict(zip(syms, fn(*vals)))

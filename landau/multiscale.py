@@ -24,7 +24,7 @@ import mpmath
 import numpy as np
 import sympy as sp
 
-from landau.codegen import CompiledFormula
+from landau.codegen import AtomTable, CompiledFormula
 from landau.cx import Cx
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.fredholm import cubic_coefficient, linear_coefficient, null_vectors
@@ -56,6 +56,8 @@ DERIVED = {"C": ("Gamma_bar", "Lambda")}
 
 #: below this relative size of ω_c² (vs. its terms) float64 loses too many digits: use mpmath
 _RHO_MPMATH = 1e-4
+#: a 1e-9 relative input perturbation moves a smooth coefficient by ~1e-8 at most
+_PERTURB_TOL = 1e-6
 
 
 @dataclass(frozen=True, eq=False)
@@ -182,6 +184,7 @@ class Derivation:
         self.timings: dict[str, float] = {}
         self._coefs: dict[str, Coefficient] = {}
         self._compiled: dict[tuple[str, str], CompiledFormula] = {}
+        self._atom_table = AtomTable(self.jets.atoms, self.args)
 
     # --- symbolic route ---------------------------------------------------------------
     def _structure(self) -> tuple[list, list, int, int]:
@@ -305,10 +308,16 @@ class Derivation:
         vals = self.block.argvals(Vs, full)
         shape = np.broadcast(*[np.asarray(x) for x in vals]).shape
         vals = [np.broadcast_to(np.asarray(x, dtype=float), shape) for x in vals]
-        if self.hopf.closed_form is not None:
+        bases = [n for n in _with_bases(names) if n not in ("kc", "omega_c") and n not in DERIVED]
+        closed = self.hopf.closed_form is not None
+        formulas = [self._compiled_formula(n) for n in bases]
+        if closed:
             fk, fW = self.hopf._compiled_closed
-            kc = fk(*vals)
-            W_c = fW(*vals)
+            formulas += [fk, fW] + ([self._rho] if bases and self._rho is not None else [])
+        atoms = self._atom_table.evaluate(sorted(set().union(*(f.atom_syms for f in formulas)), key=str), *vals)
+        if closed:
+            kc = np.asarray(fk.call_with_atoms(atoms, *vals), dtype=float) * np.ones(shape)
+            W_c = np.asarray(fW.call_with_atoms(atoms, *vals), dtype=float) * np.ones(shape)
             ok = (kc > 0) & (W_c > 0)
             om = np.sqrt(np.where(ok, W_c, np.nan))
             kc = np.where(ok, kc, np.nan)
@@ -318,23 +327,64 @@ class Derivation:
             kc, om = self.hopf.evaluate(Vs.ravel(), p)
             kc, om = kc.reshape(shape), om.reshape(shape)
         out: dict[str, np.ndarray] = {"V": Vs * np.ones(shape), "kc": kc, "omega_c": om}
-        for n in _with_bases(names):
-            if n in out:
-                continue
-            if n == "C":
-                out[n] = 2 * np.sqrt(2 * out["Gamma_bar"] / np.abs(out["Lambda"]))
-            else:
-                out[n] = np.asarray(self._compiled_formula(n)(om, kc, *vals), dtype=float) * np.ones(shape)
+        for n, f in zip(bases, formulas):
+            out[n] = np.asarray(f.call_with_atoms(atoms, om, kc, *vals), dtype=float) * np.ones(shape)
+        if "C" in names:
+            with np.errstate(all="ignore"):
+                out["C"] = 2 * np.sqrt(2 * out["Gamma_bar"] / np.abs(out["Lambda"]))
         extra = [n for n in _with_bases(names) if n not in ("kc", "omega_c")]
-        if extra and self._rho is not None:
-            rho = self._rho(*vals)
-            bad = np.argwhere((rho < _RHO_MPMATH) & np.isfinite(kc))
-            for idx in map(tuple, bad):
+        out["degenerate"] = np.zeros(shape, dtype=bool)
+        if extra:
+            suspect = self._ill_conditioned(vals, out, [n for n in extra if n not in DERIVED], atoms)
+            for idx in map(tuple, np.argwhere(suspect & np.isfinite(kc))):
                 point = {s.name: float(vals[i + 1][idx]) for i, s in enumerate(self.args[1:])}
-                mp = self.evaluate_mp(float(vals[0][idx]), point, extra)
+                mp, degenerate = self._evaluate_mp_checked(float(vals[0][idx]), point, extra)
                 for n in extra:
                     out[n][idx] = float(mp[n])
+                out["degenerate"][idx] = degenerate
         return out
+
+    def _ill_conditioned(self, vals, out, names, atoms) -> np.ndarray:
+        """Points where float64 cannot be trusted: ω_c² nearly cancels (ρ small, near an
+        extremum of μ_ss) or a coefficient moves more under a 1e-9 relative perturbation of
+        the inputs than any smooth function would (round-off dominates, e.g. Λ ≡ 0 at M = 0)."""
+        shape = out["kc"].shape
+        bad = np.zeros(shape, dtype=bool)
+        if self._rho is not None:
+            bad |= np.asarray(self._rho.call_with_atoms(atoms, *vals)) < _RHO_MPMATH
+        if not names or self.hopf.closed_form is None:
+            return bad
+        signs = [1.0 if i % 2 == 0 else -1.0 for i in range(len(vals))]
+        pv = [x * (1.0 + 1e-9 * s) for x, s in zip(vals, signs)]
+        fk, fW = self.hopf._compiled_closed
+        formulas = [self._compiled_formula(n) for n in names]
+        patoms = self._atom_table.evaluate(sorted(set().union(fk.atom_syms, fW.atom_syms,
+                                                              *(f.atom_syms for f in formulas)), key=str), *pv)
+        kp, Wp = fk.call_with_atoms(patoms, *pv), fW.call_with_atoms(patoms, *pv)
+        omp = np.sqrt(np.where(Wp > 0, Wp, np.nan))
+        for n, f in zip(names, formulas):
+            val = out[n]
+            alt = np.asarray(f.call_with_atoms(patoms, omp, kp, *pv), dtype=float) * np.ones(shape)
+            with np.errstate(all="ignore"):
+                bad |= ~(np.abs(alt - val) <= _PERTURB_TOL * np.abs(val))
+        return bad
+
+    def _evaluate_mp_checked(self, V0: float, point: Mapping[str, float], names) -> tuple[dict, bool]:
+        """50-digit values; a coefficient that differs between 50 and 35 digits beyond 1e-20
+        is round-off of an identically vanishing quantity: it is returned as 0 and flagged."""
+        hi = self.evaluate_mp(V0, point, names, dps=50)
+        lo = self.evaluate_mp(V0, point, names, dps=35)
+        degenerate = False
+        res = dict(hi)
+        for n in names:
+            if n in DERIVED:
+                continue
+            if abs(hi[n] - lo[n]) > mpmath.mpf("1e-20") * abs(hi[n]):
+                res[n] = mpmath.mpf(0)
+                degenerate = degenerate or n == "Lambda"
+        if degenerate and "C" in res:
+            res["C"] = mpmath.inf
+        return res, degenerate
 
     def points(self, Vs, params: Mapping[str, float] | None = None,
                names: Sequence[str] = ("Gamma_bar", "Lambda", "C")) -> list[Any]:
@@ -349,7 +399,10 @@ class Derivation:
                 out.append(lin[i])
                 continue
             values = {n: float(res[n][i]) for n in names}
-            crit = criticality(values["Lambda"]) if "Lambda" in values else "unknown"
+            if res["degenerate"][i]:
+                crit = "degenerate"
+            else:
+                crit = criticality(values["Lambda"]) if "Lambda" in values else "unknown"
             out.append(LandauPoint(float(Vi), float(res["kc"][i]), float(res["omega_c"][i]), values, crit))
         return out
 

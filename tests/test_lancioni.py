@@ -161,6 +161,7 @@ def test_just_past_hopf_slip_cycle_and_past_lift_off_jump(hopf1):
     assert np.all(np.abs(late - 1.07) < 0.01)
 
 
+@pytest.mark.slow
 def test_set2_free_flight_onset():
     # Sec. 3, set 2: free flight "for μ > 0.453" (read off Fig. 4).  We find 0.44986 (the stick–slip
     # attractor's min λ_N reaches 0; analysis.py docstring): within 0.004 of the printed value —

@@ -47,7 +47,7 @@ def run(args) -> dict:
                 continue
             row = {"V": Vi, "status": "ok", **{n: float(res[n][i]) for n in names}}
             if "Lambda" in res:
-                row["criticality"] = criticality(float(res["Lambda"][i]))
+                row["criticality"] = "degenerate" if res["degenerate"][i] else criticality(float(res["Lambda"][i]))
             pts.append(row)
         doc["points"] = pts
     if args.codim2 is not None:
