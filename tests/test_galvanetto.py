@@ -148,17 +148,22 @@ def test_hopf_c1_closed_form_and_linearisation():
 def test_hopf_is_subcritical_unstable_cycle_amplitude():
     # Subcritical (Sec. 4.2, Fig. 10b): for c slightly above c1 an unstable cycle surrounds the
     # stable equilibrium.  Averaging ẅ + w = −(c − c1)ẇ + a3 ẇ³ gives its velocity amplitude
-    # A = sqrt(4(c − c1)/(3 a3)) = sqrt((c − c1)/(2 ℓ1)), ℓ1 = 3a3/8 (placeholder ℓ1 > 0).
-    # Independent check: integrate backward in time (the cycle attracts) and measure it.
+    # A = sqrt(4(c − c1)/(3 a3)) = sqrt((c − c1)/(2 ℓ1)), ℓ1 = 3a3/8 (Guckenheimer–Holmes 3.4.11 for
+    # ẍ + x = a2ẋ² + a3ẋ³).  The landau engine (Fredholm route on the slip field) must agree with
+    # that closed form, and both with direct integration backward in time (the cycle attracts).
     from scipy.integrate import solve_ivp
     V, gamma = 0.5, 3.0
     law = KineticFriction(gamma, 0.0)
-    l1 = B.first_lyapunov_placeholder(V, gamma, 0.0)
-    assert l1 > 0
+    h = B.hopf_c1_normal_form(V, gamma, 0.0)
+    l1 = 3.0 * (law.d3neg(-V) / 6.0) / 8.0
+    assert h.criticality == "subcritical" and l1 > 0
+    assert h.p_c == pytest.approx(B.hopf_c1(V, gamma, 0.0), rel=1e-12)
+    assert h.omega_c == pytest.approx(1.0, rel=1e-12)
+    assert h.C == pytest.approx(1.0 / math.sqrt(2 * l1), rel=1e-10)
     dc = 1e-3
     c = B.hopf_c1(V, gamma, 0.0) + dc
     X0 = law.neg(-V)
-    A_pred = math.sqrt(dc / (2 * l1))
+    A_pred = h.amplitude(c)
     rhs = lambda t, y: [-y[1], (y[0] + c * y[1]) - law.neg(y[1] - V)]
     sol = solve_ivp(rhs, (0, 4000), [X0 + 0.9 * A_pred, 0.0], rtol=1e-10, atol=1e-12, dense_output=True)
     tt = np.linspace(3900, 4000, 20001)

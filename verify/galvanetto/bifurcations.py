@@ -355,22 +355,16 @@ def hopf_c1(V: float = 0.5, gamma: float = 3.0, delta: float = 0.0) -> float:
     return gamma * (1 - delta) / (1 + gamma * V) ** 2
 
 
-def first_lyapunov_placeholder(V: float = 0.5, gamma: float = 3.0, delta: float = 0.0) -> float:
-    """PLACEHOLDER (to be replaced by the landau engine): first Lyapunov coefficient ℓ₁ of the
-    smooth slip field at c = c₁.
+def hopf_c1_normal_form(V: float = 0.5, gamma: float = 3.0, delta: float = 0.0):
+    """The damped one block's Hopf point c₁ located by the landau engine (:mod:`landau.general`) on
+    the smooth slip field, with its amplitude equation: Λ > 0 means subcritical (an unstable cycle
+    for c > c₁ whose displacement amplitude is C·sqrt(c − c₁))."""
+    from landau.general import hopf_normal_form
+    from verify.galvanetto.smooth import damped_slip_system
 
-    With u = X − X₀, w = u̇ the slip field is u̇ = w, ẇ = −u − c w + F_k(w − V) − F_k(−V); at
-    c = c₁ the linear part is a rotation (ω = 1) and the nonlinearity is
-    a₂w² + a₃w³ + …, a_k = F_k⁽ᵏ⁾(−V)/k!.  For ẍ + x = a₂ẋ² + a₃ẋ³ the standard planar
-    formula (Guckenheimer–Holmes 3.4.11 with x = u, y = w) gives ℓ₁ = 3a₃/8 — the quadratic
-    term does not contribute because it is even in ẋ (no resonant w²·w cross term).  ℓ₁ > 0:
-    subcritical.  The amplitude equation convention d|A|²/dT = Γ|A|² + Λ|A|⁴ of notes §1 has
-    sign Λ = sign ℓ₁.
-    """
-    from laws.kinetic import KineticFriction
-    law = KineticFriction(gamma, delta)
-    a3 = law.d3neg(-V) / 6.0
-    return 3.0 * a3 / 8.0
+    c1 = hopf_c1(V, gamma, delta)
+    return hopf_normal_form(damped_slip_system(V, gamma, delta), {"V": V, "gamma": gamma, "delta": delta},
+                            (0.5 * c1, 1.5 * c1))
 
 
 def nonsmooth_fold_c2(V: float = 0.5, gamma: float = 3.0, delta: float = 0.0,

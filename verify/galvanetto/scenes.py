@@ -52,12 +52,11 @@ register(Scene(
 
 
 def _c1(p):
-    c1 = B.hopf_c1(p["V"], p["gamma"], p["delta"])
-    l1 = B.first_lyapunov_placeholder(p["V"], p["gamma"], p["delta"])
-    return {"value": c1, "first_lyapunov": l1, "criticality": "subcritical" if l1 > 0 else "supercritical",
-            "formula": "c1 = F_k'(-V) = gamma(1-delta)/(1+gamma V)^2",
-            "lyapunov_source": "placeholder (verify.galvanetto.bifurcations.first_lyapunov_placeholder); "
-                               "to be replaced by the landau engine"}
+    h = B.hopf_c1_normal_form(p["V"], p["gamma"], p["delta"])
+    return {"value": h.p_c, "closed_form": B.hopf_c1(p["V"], p["gamma"], p["delta"]),
+            "formula": "c1 = F_k'(-V) = gamma(1-delta)/(1+gamma V)^2", "omega_c": h.omega_c,
+            "Lambda": h.Lambda, "criticality": h.criticality, "C": h.C,
+            "engine": "landau.general.hopf_normal_form on the smooth slip field"}
 
 
 register(Scene(
