@@ -14,9 +14,37 @@ import numpy as np
 import sympy as sp
 
 
+def _dirac_np(x, *_):
+    return np.where(np.asarray(x) == 0, np.inf, 0.0)
+
+
+def _heaviside_np(x, h0=0.5):
+    return np.heaviside(x, h0)
+
+
+def _dirac_mp(x, *_):
+    import mpmath
+    return mpmath.inf if x == 0 else mpmath.mpf(0)
+
+
+def _heaviside_mp(x, h0=0.5):
+    import mpmath
+    return mpmath.mpf(1) if x > 0 else (mpmath.mpf(0) if x < 0 else mpmath.mpf(h0))
+
+
+def _modules(modules: str):
+    """lambdify modules with the distributions a non-smooth law's derivatives produce
+    (|v − v₀| → sign → DiracDelta): zero away from the kink, infinite on it."""
+    if modules == "numpy":
+        return [{"DiracDelta": _dirac_np, "Heaviside": _heaviside_np}, "numpy"]
+    if modules == "mpmath":
+        return [{"DiracDelta": _dirac_mp, "Heaviside": _heaviside_mp}, "mpmath"]
+    return modules
+
+
 def compile_expr(expr: sp.Expr, args: Sequence[sp.Symbol], modules: str = "numpy") -> Callable:
     """lambdify ``expr`` over ``args`` with CSE; broadcasts over numpy arrays."""
-    fn = sp.lambdify(list(args), expr, modules=modules, cse=True)
+    fn = sp.lambdify(list(args), expr, modules=_modules(modules), cse=True)
     if modules != "numpy":
         return fn
 
@@ -48,8 +76,8 @@ class CompiledFormula:
         self.atom_syms = tuple(sorted(needed, key=lambda s: s.name))
         atom_exprs = [atoms[s].xreplace({t: atoms[t] for t in self.atom_syms}) for s in self.atom_syms]
         self.modules = modules
-        self._atoms = sp.lambdify(list(self.args), atom_exprs, modules=modules, cse=True) if atom_exprs else None
-        self._f = sp.lambdify([*self.atom_syms, *self.args], formula, modules=modules, cse=True)
+        self._atoms = sp.lambdify(list(self.args), atom_exprs, modules=_modules(modules), cse=True) if atom_exprs else None
+        self._f = sp.lambdify([*self.atom_syms, *self.args], formula, modules=_modules(modules), cse=True)
 
     def call_with_atoms(self, atom_values: Mapping[sp.Symbol, object], *vals):
         """Evaluate with atom values computed elsewhere (shared between formulas)."""
@@ -80,7 +108,7 @@ class AtomTable:
         if key not in self._fns:
             syms = tuple(sorted(key, key=lambda s: s.name))
             exprs = [self.atoms[s] for s in syms]
-            self._fns[key] = (syms, sp.lambdify(list(self.args), exprs, modules="numpy", cse=True) if syms else None)
+            self._fns[key] = (syms, sp.lambdify(list(self.args), exprs, modules=_modules("numpy"), cse=True) if syms else None)
         syms, fn = self._fns[key]
         if fn is None:
             return {}

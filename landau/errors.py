@@ -19,7 +19,7 @@ class NoHopfError(LandauError):
     """The requested point has no Hopf bifurcation (e.g. velocity strengthening)."""
 
 
-class SingularPointError(LandauError):
+class SingularPointError(InputError):
     """The law's derivatives are singular (or undefined) at the requested point."""
 
 

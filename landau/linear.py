@@ -19,7 +19,7 @@ import numpy as np
 import sympy as sp
 
 from landau.codegen import CompiledFormula, compile_expr
-from landau.errors import InputError, NoHopfError
+from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.jets import Jets
 from landau.system import V, DynamicalSystem, SpringBlock
 
@@ -214,6 +214,9 @@ class HopfLine:
         out = []
         for i, Vi in enumerate(Vs):
             phi = tuple(float(ph[i]) for ph in phis)
+            if not (np.isfinite(mu[i]) and np.isfinite(dmu[i])):
+                raise SingularPointError(f"law {self.block.law.name!r} is not defined or not differentiable at its "
+                                         f"steady state for V = {Vi:g} m/s (mu_ss = {mu[i]}, slope = {dmu[i]})")
             if np.isfinite(kc[i]):
                 out.append(HopfPoint(float(Vi), "ok", float(kc[i]), float(om[i]), phi, float(mu[i]), float(dmu[i])))
             else:

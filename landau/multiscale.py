@@ -334,6 +334,13 @@ class Derivation:
                 out["C"] = 2 * np.sqrt(2 * out["Gamma_bar"] / np.abs(out["Lambda"]))
         extra = [n for n in _with_bases(names) if n not in ("kc", "omega_c")]
         out["degenerate"] = np.zeros(shape, dtype=bool)
+        for n in extra:
+            singular = np.isfinite(kc) & ~np.isfinite(out[n]) & ~((n == "C") & (out.get("Lambda", 1.0) == 0))
+            if np.any(singular):
+                i = tuple(np.argwhere(singular)[0])
+                raise SingularPointError(
+                    f"{self.block.law.name}: {n} is not finite at V = {float(out['V'][i]):g} m/s although a Hopf "
+                    "point exists there: the law's derivatives are singular at this steady state")
         if extra:
             suspect = self._ill_conditioned(vals, out, [n for n in extra if n not in DERIVED], atoms)
             for idx in map(tuple, np.argwhere(suspect & np.isfinite(kc))):

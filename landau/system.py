@@ -107,8 +107,9 @@ class SpringBlock:
         """Full parameter dict (law + M, g, sigma) with overrides applied and checked."""
         p = dict(self.defaults)
         over = dict(overrides or {})
+        declared = {prm.name for prm in self.law.parameters} | set(p)
         for key, val in over.items():
-            if key not in p:
+            if key not in declared:
                 raise InputError(f"unknown parameter {key!r} for law {self.law.name!r} "
                                  f"(known: {', '.join(sorted(p))})")
             try:
@@ -117,6 +118,10 @@ class SpringBlock:
                 raise InputError(f"parameter {key!r} must be a number, got {val!r}") from None
             if not np.isfinite(p[key]):
                 raise InputError(f"parameter {key!r} must be finite, got {val!r}")
+        missing = [prm.name for prm in self.law.parameters if prm.name not in p]
+        if missing:
+            raise InputError(f"law {self.law.name!r}: parameter(s) {', '.join(missing)} have no default; "
+                             "give them with --param NAME=VALUE")
         if "sigma" not in over and "g" in over:
             p["sigma"] = p["M"] * p["g"] if p["M"] > 0 else M_DEFAULT * p["g"]
         if p["M"] < 0:

@@ -44,7 +44,7 @@ class Attractor:
     def __repr__(self) -> str:
         ly = "" if np.isnan(self.lyapunov) else f", λ₁={self.lyapunov:.4g}/s"
         return (f"Attractor(ω={self.omega:.6g}, {self.impacts_per_period:.4g} impacts/period, "
-                f"{len(np.unique(np.round(self.x_section, 9)))} distinct section points{ly})")
+                f"{len(np.unique(np.round(self.x_section, 7)))} distinct section points (0.1 µm){ly})")
 
     def to_json(self) -> dict:
         return {"omega": self.omega, "x_section": self.x_section.tolist(), "intervals": self.intervals.tolist(),
@@ -148,14 +148,6 @@ def continuation(omegas, y0=None, n_first: int = 100, n_step: int = 50, n_keep: 
 
 
 # --------------------------------------------------------------------------- grazing
-def impact_signature(a: Attractor, tol: float = 1e-4) -> int:
-    """Number of distinct impacts per repetition of the attractor: impacts per period × the
-    period multiplicity of the section (distinct section points, up to ``tol`` m·1e-3)."""
-    xs = np.sort(a.x_section)
-    distinct = 1 + int(np.count_nonzero(np.diff(xs) > tol * 1e-3)) if len(xs) else 0
-    return int(round(a.impacts_per_period * distinct))
-
-
 def locate_grazing(lo: float, hi: float, y_lo, tol: float = 1e-4, params: Params = PAPER, rtol: float = RTOL,
                    n_transient: int = 150, n_keep: int = 40) -> Located:
     """A change of the number of impacts per forcing period between lo and hi (a grazing
