@@ -56,8 +56,10 @@ DERIVED = {"C": ("Gamma_bar", "Lambda")}
 
 #: below this relative size of ω_c² (vs. its terms) float64 loses too many digits: use mpmath
 _RHO_MPMATH = 1e-4
-#: a 1e-9 relative input perturbation moves a smooth coefficient by ~1e-8 at most
-_PERTURB_TOL = 1e-6
+#: a 1e-12 relative input perturbation moves a smooth coefficient by ~1e-11 at most; a larger
+#: move is float64 round-off amplified by cancellation, and the point goes to 50-digit mpmath
+_PERTURB = 1e-12
+_PERTURB_TOL = 2e-10
 
 
 @dataclass(frozen=True, eq=False)
@@ -353,7 +355,7 @@ class Derivation:
 
     def _ill_conditioned(self, vals, out, names, atoms) -> np.ndarray:
         """Points where float64 cannot be trusted: ω_c² nearly cancels (ρ small, near an
-        extremum of μ_ss) or a coefficient moves more under a 1e-9 relative perturbation of
+        extremum of μ_ss) or a coefficient moves more under a 1e-12 relative perturbation of
         the inputs than any smooth function would (round-off dominates, e.g. Λ ≡ 0 at M = 0)."""
         shape = out["kc"].shape
         bad = np.zeros(shape, dtype=bool)
@@ -362,7 +364,7 @@ class Derivation:
         if not names or self.hopf.closed_form is None:
             return bad
         signs = [1.0 if i % 2 == 0 else -1.0 for i in range(len(vals))]
-        pv = [x * (1.0 + 1e-9 * s) for x, s in zip(vals, signs)]
+        pv = [x * (1.0 + _PERTURB * s) for x, s in zip(vals, signs)]
         fk, fW = self.hopf._compiled_closed
         formulas = [self._compiled_formula(n) for n in names]
         patoms = self._atom_table.evaluate(sorted(set().union(fk.atom_syms, fW.atom_syms,

@@ -9,7 +9,8 @@ import sympy as sp
 
 from landau.errors import InputError
 from landau.linear import NO_HOPF_STABLE, HopfLine
-from landau.steady import extrema, velocity_weakening_range
+from landau.multiscale import Derivation
+from landau.transition import extrema, velocity_weakening_ranges
 from landau.system import M, V, SpringBlock, sigma
 from laws import TABLE1, get_law, v
 
@@ -57,12 +58,13 @@ def test_v_hat_eq31():
 
 def test_spinodal_hopf_exactly_between_the_extrema_sec41():
     block = SpringBlock(get_law("spinodal"))
-    ex = extrema(block, None, 1e-12, 1.0)
-    assert [e.kind for e in ex] == ["max", "min"]
+    ex = extrema(Derivation(block), None, 1e-12, 1.0)
+    assert [e.kind for e in ex] == ["maximum", "minimum"]
     V_M, V_m = ex[0].V, ex[1].V
     assert V_M == pytest.approx(2.493e-8, rel=5e-4)     # Sec. 4.1: V_M = 2.493e-8 m/s
     assert V_m == pytest.approx(4.052e-4, rel=5e-4)     # Sec. 4.1: V_m = 4.052e-4 m/s
-    assert velocity_weakening_range(block, None, 1e-12, 1.0) == (V_M, V_m)
+    (rng,) = velocity_weakening_ranges(Derivation(block), None, 1e-12, 1.0)
+    assert (rng.lo, rng.hi) == (V_M, V_m)
     hl = HopfLine(block)
     inside = np.logspace(np.log10(V_M) + 1e-6, np.log10(V_m) - 1e-6, 200)
     kc, _ = hl.evaluate(inside)
@@ -78,7 +80,7 @@ def test_modified_dieterich_vm_eq41():
     block = SpringBlock(get_law("modified-dieterich"))
     for cval in (1e-4, 3e-4, 1e-3):
         p = block.resolve({"c": cval})
-        ex = [e for e in extrema(block, p, 1e-9, 10.0) if e.kind == "min"]
+        ex = [e for e in extrema(Derivation(block), p, 1e-9, 10.0) if e.kind == "minimum"]
         assert ex[0].V == pytest.approx((p["b"] / p["a"] - 1) * p["V_s"] / cval, rel=1e-10)
 
 

@@ -8,8 +8,10 @@ from __future__ import annotations
 
 import math
 
+from landau.errors import InputError
 from landau.scenes import Scene, register
-from landau.steady import extrema
+from landau.multiscale import Derivation
+from landau.transition import extrema
 from landau.system import SpringBlock
 from laws import get_law
 
@@ -24,17 +26,17 @@ def _v_hat(p: dict) -> float:
 
 def _spinodal_extremum(kind: str):
     def compute(p: dict) -> dict:
-        block = SpringBlock(get_law("spinodal"))
-        ex = [e for e in extrema(block, {**p, "sigma": p["M"] * p["g"]}, 1e-12, 1.0) if e.kind == kind]
+        d = Derivation(SpringBlock(get_law("spinodal")))
+        ex = [e for e in extrema(d, {**p, "sigma": p["M"] * p["g"]}, 1e-12, 1.0) if e.kind == kind]
         if not ex:
-            return {"value": float("nan")}
-        return {"value": ex[0].V, "mu_ss": ex[0].mu_ss}
+            raise InputError(f"the spinodal law has no {kind} of mu_ss for these parameters")
+        return {"value": ex[0].V, "mu_ss": ex[0].mu}
     return compute
 
 
 def _modified_dieterich_vm(p: dict) -> dict:
-    block = SpringBlock(get_law("modified-dieterich"))
-    ex = [e for e in extrema(block, {**p, "sigma": p["M"] * p["g"]}, 1e-9, 10.0) if e.kind == "min"]
+    d = Derivation(SpringBlock(get_law("modified-dieterich")))
+    ex = [e for e in extrema(d, {**p, "sigma": p["M"] * p["g"]}, 1e-9, 10.0) if e.kind == "minimum"]
     closed = (p["b"] / p["a"] - 1) * p["V_s"] / p["c"]  # eq. (41)
     return {"value": ex[0].V, "closed_form_eq41": closed}
 
@@ -48,14 +50,14 @@ register(Scene(
 register(Scene(
     name="putelat2010/spinodal-V_M", parameter="V_M", units="m/s",
     source="Putelat et al. 2010, Sec. 4.1 (c = 1e-3): V_M = 2.493e-8 m/s",
-    compute=_spinodal_extremum("max"), defaults={**_T1, **_MECH, "c": 1e-3, "t_ss": 90.0},
+    compute=_spinodal_extremum("maximum"), defaults={**_T1, **_MECH, "c": 1e-3, "t_ss": 90.0},
     published=2.493e-8, tolerance=5e-4,
     description="local maximum of μ_ss of the spinodal law (37)–(38): lower end of the stick–slip domain"))
 
 register(Scene(
     name="putelat2010/spinodal-V_m", parameter="V_m", units="m/s",
     source="Putelat et al. 2010, Sec. 4.1 (c = 1e-3): V_m = 4.052e-4 m/s",
-    compute=_spinodal_extremum("min"), defaults={**_T1, **_MECH, "c": 1e-3, "t_ss": 90.0},
+    compute=_spinodal_extremum("minimum"), defaults={**_T1, **_MECH, "c": 1e-3, "t_ss": 90.0},
     published=4.052e-4, tolerance=5e-4,
     description="local minimum of μ_ss of the spinodal law (37)–(38): upper end of the stick–slip domain"))
 
