@@ -132,9 +132,18 @@ def throughput(name: str, n_points: int, n_base: int) -> tuple[float, float, flo
     lo, hi = (lo * (1 + 1e-3) if lo in ends else lo), (hi * (1 - 1e-3) if hi in ends else hi)
     d = derive(SpringBlock(get_law(name)), ["Lambda"])
     d.evaluate([np.sqrt(lo * hi)], {}, ["Lambda"])          # compile outside the timing
+    # a quick probe first: if the full run would take more than ~30 s (e.g. many points fall
+    # back to mpmath), measure on fewer points and say so
+    probe = np.logspace(np.log10(lo), np.log10(hi), 10_000)
+    t0 = time.perf_counter()
+    d.evaluate(probe, {}, ["Lambda"])
+    est = (time.perf_counter() - t0) / probe.size
+    if est * n_points > 30:
+        n_points = max(10_000, int(30 / est))
+        print(f"   ({name}: {1 / est:.3g} points/s on a probe; timing on {n_points} points only)")
     Vs = np.logspace(np.log10(lo), np.log10(hi), n_points)
     best = np.inf
-    for _ in range(3):
+    for _ in range(3 if est * n_points < 10 else 1):
         t0 = time.perf_counter()
         lam = d.evaluate(Vs, {}, ["Lambda"])["Lambda"]
         best = min(best, time.perf_counter() - t0)
