@@ -54,12 +54,11 @@ _GB, _LA = sp.symbols("Gamma_bar Lambda", real=True)
 #: quantities composed from others (name -> the base quantities they need)
 DERIVED = {"C": ("Gamma_bar", "Lambda")}
 
-#: below this relative size of ω_c² (vs. its terms) float64 loses too many digits: use mpmath
-_RHO_MPMATH = 1e-4
-#: a 1e-12 relative input perturbation moves a smooth coefficient by ~1e-11 at most; a larger
-#: move is float64 round-off amplified by cancellation, and the point goes to 50-digit mpmath
-_PERTURB = 1e-12
-_PERTURB_TOL = 2e-10
+#: accuracy every returned value must have (relative)
+_REL_GOOD = 1e-10
+#: extended precision available (x86 80-bit long double: eps 1.1e-19, ~1000x float64)
+_EXTENDED = np.finfo(np.longdouble).eps < 1e-18
+_EXT_GAIN = float(np.finfo(np.float64).eps / np.finfo(np.longdouble).eps) / 4
 
 
 @dataclass(frozen=True, eq=False)
@@ -258,17 +257,6 @@ class Derivation:
         return self._compiled[key]
 
     @cached_property
-    def _rho(self) -> CompiledFormula | None:
-        """|ω_c²| relative to the size of its terms: small means cancellation (near an extremum of μ_ss)."""
-        cf = self.hopf.closed_form
-        if cf is None:
-            return None
-        num, _ = sp.fraction(sp.together(cf[1]))
-        terms = sp.Add.make_args(sp.expand(num))
-        rho = sp.Abs(num) / sp.Add(*[sp.Abs(t) for t in terms])
-        return CompiledFormula(rho, self.args, self.jets.atoms)
-
-    @cached_property
     def _hopf_mp(self):
         kc, W_c = self.hopf.closed_form
         return (CompiledFormula(kc, self.args, self.jets.atoms, "mpmath"),
@@ -289,7 +277,8 @@ class Derivation:
             for n in _with_bases(names):
                 if n not in out:
                     if n in DERIVED:
-                        out[n] = 2 * mpmath.sqrt(2 * out["Gamma_bar"] / abs(out["Lambda"]))
+                        lam = out["Lambda"]
+                        out[n] = mpmath.inf if lam == 0 else 2 * mpmath.sqrt(2 * out["Gamma_bar"] / abs(lam))
                     else:
                         out[n] = self._compiled_formula(n, "mpmath")(om, kc, *vals)
             return out
@@ -298,97 +287,100 @@ class Derivation:
                  names: Sequence[str] = ("kc", "omega_c", "Gamma_bar", "Lambda")) -> dict[str, np.ndarray]:
         """Vectorised evaluation over velocities (any parameter may also be an array).
 
-        NaN where there is no Hopf point.  Points whose ω_c² is ill-conditioned (within
-        ~1e-4 relative of an extremum of μ_ss) are re-evaluated with 50-digit mpmath.
+        NaN where there is no Hopf point.  Every value carries an error estimate: the same
+        compiled code is run in float64 and in extended precision (80-bit long double); where
+        they differ by more than 1e-10 (cancellation: near an extremum of μ_ss, inertia-free
+        limits, Λ ≡ 0 at M = 0) the extended value is used if it is itself good to 1e-10, and
+        otherwise the point is re-evaluated at 50 and 80 digits with mpmath.  A quantity that
+        vanishes identically there is returned as 0 and the point flagged ``degenerate``.
         """
         p = self.block.resolve({k: v for k, v in (params or {}).items() if np.ndim(v) == 0})
         arr = {k: np.asarray(v, dtype=float) for k, v in (params or {}).items() if np.ndim(v) > 0}
         Vs = np.asarray(Vs, dtype=float)
         if np.any(~np.isfinite(Vs)) or np.any(Vs <= 0):
             raise InputError("driving velocity V must be finite and > 0")
-        full = {**p, **arr}
-        vals = self.block.argvals(Vs, full)
+        vals = self.block.argvals(Vs, {**p, **arr})
         shape = np.broadcast(*[np.asarray(x) for x in vals]).shape
         vals = [np.broadcast_to(np.asarray(x, dtype=float), shape) for x in vals]
         bases = [n for n in _with_bases(names) if n not in ("kc", "omega_c") and n not in DERIVED]
-        closed = self.hopf.closed_form is not None
-        formulas = [self._compiled_formula(n) for n in bases]
-        if closed:
-            fk, fW = self.hopf._compiled_closed
-            formulas += [fk, fW] + ([self._rho] if bases and self._rho is not None else [])
-        atoms = self._atom_table.evaluate(sorted(set().union(*(f.atom_syms for f in formulas)), key=str), *vals)
-        if closed:
-            kc = np.asarray(fk.call_with_atoms(atoms, *vals), dtype=float) * np.ones(shape)
-            W_c = np.asarray(fW.call_with_atoms(atoms, *vals), dtype=float) * np.ones(shape)
-            ok = (kc > 0) & (W_c > 0)
-            om = np.sqrt(np.where(ok, W_c, np.nan))
-            kc = np.where(ok, kc, np.nan)
-        else:
+        if self.hopf.closed_form is None:
             if arr:
                 raise InputError("array-valued parameters need a closed-form Hopf line (one state variable)")
             kc, om = self.hopf.evaluate(Vs.ravel(), p)
-            kc, om = kc.reshape(shape), om.reshape(shape)
-        out: dict[str, np.ndarray] = {"V": Vs * np.ones(shape), "kc": kc, "omega_c": om}
-        for n, f in zip(bases, formulas):
-            out[n] = np.asarray(f.call_with_atoms(atoms, om, kc, *vals), dtype=float) * np.ones(shape)
+            raw = {"kc": kc.reshape(shape), "W": om.reshape(shape) ** 2}
+            raw.update(self._raw(vals, shape, bases, np.float64, raw["kc"], np.sqrt(raw["W"])))
+            need_mp = np.zeros(shape, dtype=bool)
+        else:
+            raw = self._raw(vals, shape, bases, np.float64)
+            need_mp = np.zeros(shape, dtype=bool)
+            if _EXTENDED:
+                ext = self._raw([v.astype(np.longdouble) for v in vals], shape, bases, np.longdouble)
+                for key in raw:
+                    x64, x80 = raw[key], ext[key]
+                    with np.errstate(all="ignore"):
+                        rel = np.abs(x64 - x80) / np.abs(x80)
+                    both_nan = np.isnan(x64) & np.isnan(x80)
+                    suspect = ~(rel <= _REL_GOOD) & ~both_nan
+                    raw[key] = np.where(suspect, x80.astype(float), x64)
+                    need_mp |= suspect & ~(rel <= _REL_GOOD * _EXT_GAIN)
+        kc, W_c = raw["kc"], raw["W"]
+        ok = (kc > 0) & (W_c > 0)
+        out: dict[str, np.ndarray] = {"V": Vs * np.ones(shape), "kc": np.where(ok, kc, np.nan),
+                                      "omega_c": np.sqrt(np.where(ok, W_c, np.nan))}
+        for n in bases:
+            out[n] = raw[n]
+        out["degenerate"] = np.zeros(shape, dtype=bool)
+        extra = [n for n in _with_bases(names) if n not in ("kc", "omega_c")]
+        for idx in map(tuple, np.argwhere(need_mp & ok)):
+            point = {s.name: float(vals[i + 1][idx]) for i, s in enumerate(self.args[1:])}
+            mp, degenerate = self._evaluate_mp_checked(float(vals[0][idx]), point, extra)
+            for n in ("kc", "omega_c", *extra):
+                if n not in DERIVED:
+                    out[n][idx] = float(mp[n])
+            out["degenerate"][idx] = degenerate
         if "C" in names:
             with np.errstate(all="ignore"):
                 out["C"] = 2 * np.sqrt(2 * out["Gamma_bar"] / np.abs(out["Lambda"]))
-        extra = [n for n in _with_bases(names) if n not in ("kc", "omega_c")]
-        out["degenerate"] = np.zeros(shape, dtype=bool)
-        for n in extra:
-            singular = np.isfinite(kc) & ~np.isfinite(out[n]) & ~((n == "C") & (out.get("Lambda", 1.0) == 0))
+        for n in bases:
+            singular = np.isfinite(out["kc"]) & ~np.isfinite(out[n])
             if np.any(singular):
                 i = tuple(np.argwhere(singular)[0])
                 raise SingularPointError(
                     f"{self.block.law.name}: {n} is not finite at V = {float(out['V'][i]):g} m/s although a Hopf "
                     "point exists there: the law's derivatives are singular at this steady state")
-        if extra:
-            suspect = self._ill_conditioned(vals, out, [n for n in extra if n not in DERIVED], atoms)
-            for idx in map(tuple, np.argwhere(suspect & np.isfinite(kc))):
-                point = {s.name: float(vals[i + 1][idx]) for i, s in enumerate(self.args[1:])}
-                mp, degenerate = self._evaluate_mp_checked(float(vals[0][idx]), point, extra)
-                for n in extra:
-                    out[n][idx] = float(mp[n])
-                out["degenerate"][idx] = degenerate
         return out
 
-    def _ill_conditioned(self, vals, out, names, atoms) -> np.ndarray:
-        """Points where float64 cannot be trusted: ω_c² nearly cancels (ρ small, near an
-        extremum of μ_ss) or a coefficient moves more under a 1e-12 relative perturbation of
-        the inputs than any smooth function would (round-off dominates, e.g. Λ ≡ 0 at M = 0)."""
-        shape = out["kc"].shape
-        bad = np.zeros(shape, dtype=bool)
-        if self._rho is not None:
-            bad |= np.asarray(self._rho.call_with_atoms(atoms, *vals)) < _RHO_MPMATH
-        if not names or self.hopf.closed_form is None:
-            return bad
-        signs = [1.0 if i % 2 == 0 else -1.0 for i in range(len(vals))]
-        pv = [x * (1.0 + _PERTURB * s) for x, s in zip(vals, signs)]
-        fk, fW = self.hopf._compiled_closed
-        formulas = [self._compiled_formula(n) for n in names]
-        patoms = self._atom_table.evaluate(sorted(set().union(fk.atom_syms, fW.atom_syms,
-                                                              *(f.atom_syms for f in formulas)), key=str), *pv)
-        kp, Wp = fk.call_with_atoms(patoms, *pv), fW.call_with_atoms(patoms, *pv)
-        omp = np.sqrt(np.where(Wp > 0, Wp, np.nan))
-        for n, f in zip(names, formulas):
-            val = out[n]
-            alt = np.asarray(f.call_with_atoms(patoms, omp, kp, *pv), dtype=float) * np.ones(shape)
+    def _raw(self, vals, shape, bases, dtype, kc=None, om=None) -> dict[str, np.ndarray]:
+        """k_c, ω_c² and the requested coefficients in one precision, atoms shared."""
+        formulas = [self._compiled_formula(n) for n in bases]
+        hopf = self.hopf._compiled_closed if kc is None else ()
+        atoms = self._atom_table.evaluate(
+            sorted(set().union(*(f.atom_syms for f in [*formulas, *hopf])), key=str), *vals)
+        res: dict[str, np.ndarray] = {}
+        if kc is None:
+            fk, fW = hopf
+            res["kc"] = np.asarray(fk.call_with_atoms(atoms, *vals), dtype=dtype) * np.ones(shape, dtype)
+            res["W"] = np.asarray(fW.call_with_atoms(atoms, *vals), dtype=dtype) * np.ones(shape, dtype)
             with np.errstate(all="ignore"):
-                bad |= ~(np.abs(alt - val) <= _PERTURB_TOL * np.abs(val))
-        return bad
+                om = np.sqrt(np.where(res["W"] > 0, res["W"], np.nan))
+            kc = res["kc"]
+        for n, f in zip(bases, formulas):
+            res[n] = np.asarray(f.call_with_atoms(atoms, om, kc, *vals), dtype=dtype) * np.ones(shape, dtype)
+        return res
 
     def _evaluate_mp_checked(self, V0: float, point: Mapping[str, float], names) -> tuple[dict, bool]:
-        """50-digit values; a coefficient that differs between 50 and 35 digits beyond 1e-20
-        is round-off of an identically vanishing quantity: it is returned as 0 and flagged."""
+        """Values at 50 digits.  A coefficient whose 50- and 80-digit values differ by more
+        than 1e-20 relative is round-off of an identically vanishing quantity (a genuine
+        value, even after 30 digits of cancellation, agrees to ~1e-20): it is returned as 0
+        and flagged."""
         hi = self.evaluate_mp(V0, point, names, dps=50)
-        lo = self.evaluate_mp(V0, point, names, dps=35)
+        ref = self.evaluate_mp(V0, point, names, dps=80)
         degenerate = False
         res = dict(hi)
         for n in names:
             if n in DERIVED:
                 continue
-            if abs(hi[n] - lo[n]) > mpmath.mpf("1e-20") * abs(hi[n]):
+            if abs(hi[n] - ref[n]) > mpmath.mpf("1e-20") * abs(ref[n]):
                 res[n] = mpmath.mpf(0)
                 degenerate = degenerate or n == "Lambda"
         if degenerate and "C" in res:

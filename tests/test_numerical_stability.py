@@ -94,36 +94,20 @@ def _report(bad: list[str]) -> str:
     return f"{len(bad)} mismatches, e.g.\n" + "\n".join(bad[:12])
 
 
-# Known engine defects (found by these tests; landau/multiscale.py is not ours to edit — see
-# the issue-3 report).  strict=True: when the engine is fixed these turn into failures
-# ("XPASS(strict)") and the marks must be removed.
-F2 = ("engine defect F2/F3: M -> 0 round-off in Lambda not always detected (M = 1e-12: Dieterich V = 1.88965e-3 "
-      "Lambda 4027.57 vs 4028.15; Ruina V = 3.03677e-5 Lambda -0.04158 vs -0.02342); M = 0: evaluate_mp raises "
-      "ZeroDivisionError, Dieterich Lambda = -3.8e-4 instead of 0 at one V")
-F4 = "engine defect F4: kc/omega_c near the ends of the range come from float64 (rel. error 1e-9 .. 2e-6)"
-_KNOWN_RANGE = {"spinodal": F4, "nanoscale": F4, "micron-scale": F4}
-_KNOWN_QS = {"dieterich": F2, "ruina": F2, "spinodal": F4, "nanoscale": F4, "micron-scale": F4}
-
-
-def _xfail(name, known):
-    marks = [pytest.mark.xfail(strict=True, reason=known[name])] if name in known else []
-    return pytest.param(name, marks=marks)
-
-
-@pytest.mark.parametrize("name", [_xfail(n, _KNOWN_RANGE) for n in LAWS])
+@pytest.mark.parametrize("name", LAWS)
 def test_compiled_matches_mp_in_range(name):
     bad = _mismatches(name, _grid(name), {})
     assert not bad, _report(bad)
 
 
 @pytest.mark.parametrize("mass", [1e-12, 0.0])
-@pytest.mark.parametrize("name", [_xfail(n, _KNOWN_QS) for n in LAWS])
+@pytest.mark.parametrize("name", LAWS)
 def test_compiled_matches_mp_quasi_static(name, mass):
     bad = _mismatches(name, _grid(name), {"M": mass})
     assert not bad, _report(bad)
 
 
-@pytest.mark.parametrize("name", [_xfail(n, {m: F4 for m in LAWS}) for n in LAWS if vw_range(n)[2]])
+@pytest.mark.parametrize("name", [n for n in LAWS if vw_range(n)[2]])
 def test_compiled_near_range_ends(name):
     # V within 1e-6, 1e-7, 1e-9 (relative) of V_M and V_m, on the velocity-weakening side
     lo, hi, ends = vw_range(name)
@@ -152,7 +136,6 @@ def test_dieterich_quasi_static_lambda_vanishes_closed_form():
     assert _derivation("dieterich").evaluate_mp(1e-5, {"M": 1.2}, ["Lambda"])["Lambda"] > 1e8
 
 
-@pytest.mark.xfail(strict=True, reason=F2)
 def test_dieterich_quasi_static_lambda_vanishes_numerically():
     d = _derivation("dieterich")
     Vs = np.logspace(-8, -1, 50)
