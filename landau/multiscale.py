@@ -56,6 +56,8 @@ DERIVED = {"C": ("Gamma_bar", "Lambda")}
 
 #: accuracy every returned value must have (relative)
 _REL_GOOD = 1e-10
+#: float32 vs float64 disagreement above which float64 may miss _REL_GOOD (eps ratio ~5e8)
+_REL_SCREEN = 0.02
 #: extended precision available (x86 80-bit long double: eps 1.1e-19, ~1000x float64)
 _EXTENDED = np.finfo(np.longdouble).eps < 1e-18
 _EXT_GAIN = float(np.finfo(np.float64).eps / np.finfo(np.longdouble).eps) / 4
@@ -152,6 +154,12 @@ class LandauPoint:
         parts = [rf"V = {self.V:.4g}", rf"k_c = {self.kc:.6g}", rf"\omega_c = {self.omega_c:.6g}"]
         parts += [rf"{QUANTITIES[k][0]} = {v:.6g}" for k, v in self.values.items() if k in QUANTITIES]
         return "$" + r",\ ".join(parts) + rf"$ ({self.criticality})"
+
+
+def _agree(x: np.ndarray, y: np.ndarray, rel: float) -> np.ndarray:
+    """|x − y| ≤ rel·|y| elementwise; two NaNs agree (no Hopf point in either precision)."""
+    with np.errstate(all="ignore"):
+        return (np.abs(x - y) <= rel * np.abs(y)) | (np.isnan(x) & np.isnan(y))
 
 
 def _with_bases(names: Iterable[str]) -> list[str]:
@@ -287,11 +295,12 @@ class Derivation:
                  names: Sequence[str] = ("kc", "omega_c", "Gamma_bar", "Lambda")) -> dict[str, np.ndarray]:
         """Vectorised evaluation over velocities (any parameter may also be an array).
 
-        NaN where there is no Hopf point.  Every value carries an error estimate: the same
-        compiled code is run in float64 and in extended precision (80-bit long double); where
-        they differ by more than 1e-10 (cancellation: near an extremum of μ_ss, inertia-free
-        limits, Λ ≡ 0 at M = 0) the extended value is used if it is itself good to 1e-10, and
-        otherwise the point is re-evaluated at 50 and 80 digits with mpmath.  A quantity that
+        NaN where there is no Hopf point.  Every value is checked for round-off: the same
+        compiled code runs in float32 as a screen; where float32 and float64 disagree (the
+        float64 error may exceed 1e-10: cancellation near an extremum of μ_ss, inertia-free
+        limits, Λ ≡ 0 at M = 0) it runs again in extended precision (80-bit long double), whose
+        value is used where it is itself good to 1e-10; the rest is re-evaluated at 50 and 80
+        digits with mpmath.  A quantity that
         vanishes identically there is returned as 0 and the point flagged ``degenerate``.
         """
         p = self.block.resolve({k: v for k, v in (params or {}).items() if np.ndim(v) == 0})
@@ -312,17 +321,28 @@ class Derivation:
             need_mp = np.zeros(shape, dtype=bool)
         else:
             raw = self._raw(vals, shape, bases, np.float64)
-            need_mp = np.zeros(shape, dtype=bool)
-            if _EXTENDED:
-                ext = self._raw([v.astype(np.longdouble) for v in vals], shape, bases, np.longdouble)
+            # cheap screen: the same code in float32; where it disagrees by more than 2 % the
+            # float64 value may be off by more than ~1e-10 (errors scale with the unit round-off)
+            r32 = self._raw([v.astype(np.float32) for v in vals], shape, bases, np.float32)
+            suspect = np.zeros(shape, dtype=bool)
+            for key in raw:
+                suspect |= ~_agree(raw[key], r32[key].astype(float), _REL_SCREEN)
+            need_mp = suspect.copy()
+            if _EXTENDED and suspect.any():
+                # the suspects again in extended precision: keep the value where float64 and it
+                # agree; take the extended value where it is itself good enough; else mpmath
+                sub = [v[suspect].astype(np.longdouble) for v in vals]
+                ext = self._raw(sub, sub[0].shape, bases, np.longdouble)
+                good64 = np.ones(sub[0].shape, dtype=bool)
+                good80 = np.ones(sub[0].shape, dtype=bool)
                 for key in raw:
-                    x64, x80 = raw[key], ext[key]
-                    with np.errstate(all="ignore"):
-                        rel = np.abs(x64 - x80) / np.abs(x80)
-                    both_nan = np.isnan(x64) & np.isnan(x80)
-                    suspect = ~(rel <= _REL_GOOD) & ~both_nan
-                    raw[key] = np.where(suspect, x80.astype(float), x64)
-                    need_mp |= suspect & ~(rel <= _REL_GOOD * _EXT_GAIN)
+                    x64, x80 = raw[key][suspect], ext[key].astype(float)
+                    good64 &= _agree(x64, x80, _REL_GOOD)
+                    good80 &= _agree(x64, x80, _REL_GOOD * _EXT_GAIN)
+                for key in raw:
+                    vals_key = raw[key][suspect]
+                    raw[key][suspect] = np.where(good64, vals_key, ext[key].astype(float))
+                need_mp[suspect] = ~good80
         kc, W_c = raw["kc"], raw["W"]
         ok = (kc > 0) & (W_c > 0)
         out: dict[str, np.ndarray] = {"V": Vs * np.ones(shape), "kc": np.where(ok, kc, np.nan),
