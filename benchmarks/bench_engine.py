@@ -31,7 +31,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
 from laws import get_law  # noqa: E402
 from laws.law import v as v_slip  # noqa: E402
-from landau.multiscale import QUANTITIES, derive  # noqa: E402
+from landau.multiscale import derive  # noqa: E402
 from landau.system import SpringBlock  # noqa: E402
 from vw_ranges import LAWS, vw_range  # noqa: E402
 

@@ -19,7 +19,6 @@ same code gives closed forms (sympy atoms) and 50-digit numbers (mpmath).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from itertools import combinations
 from typing import Any, Callable, Sequence
 
 from landau.cx import Cx, as_cx, cx_is_zero, solve

@@ -17,7 +17,7 @@ the side where Re a·(p − p_c) and Λ have opposite signs.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Mapping, Sequence
+from typing import Any, Mapping
 
 import mpmath
 import numpy as np
@@ -25,7 +25,6 @@ import scipy.linalg
 import scipy.optimize
 import sympy as sp
 
-from landau.cx import Cx
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.fredholm import _pencil, best_drop, cubic_coefficient, linear_coefficient, null_vectors
 from landau.jets import Jets

@@ -29,8 +29,8 @@ from landau.cx import Cx
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.fredholm import cubic_coefficient, linear_coefficient, null_vectors
 from landau.jets import Jets
-from landau.linear import W, HopfLine, w
-from landau.system import V, M, SpringBlock
+from landau.linear import HopfLine, w
+from landau.system import SpringBlock
 
 CONVENTION = ("d|A|/dT = (Gamma |A| + Lambda |A|^3)/2, dtheta/dT = (Omega + chi |A|^2)/2 (Putelat et al. 2010 eq. 20); "
               "Gamma = -2 Gamma_bar (k - kc)/eps^2, Omega = 2 Omega_bar (k - kc)/eps^2; critical mode normalised "
@@ -272,6 +272,9 @@ class Derivation:
 
     def evaluate_mp(self, V0: float, params: Mapping[str, float], names: Iterable[str], dps: int = 50) -> dict[str, Any]:
         """The same formulas evaluated at one point with mpmath at ``dps`` digits."""
+        if self.hopf.closed_form is None:
+            raise InputError(f"{self.block.law.name}: high-precision evaluation needs a closed-form Hopf line "
+                             "(one state variable)")
         p = self.block.resolve(params)
         with mpmath.workdps(dps):
             vals = [mpmath.mpf(x) for x in self.block.argvals(V0, p)]

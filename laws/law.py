@@ -22,13 +22,13 @@ evaluated.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property
-from typing import Mapping, Sequence
+from typing import Mapping
 
 import sympy as sp
 
-from landau.errors import InputError, NoHopfError
+from landau.errors import InputError
 from laws.parse import parse_expression
 
 #: the slip-rate symbol shared by every law

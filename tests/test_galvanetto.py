@@ -13,7 +13,7 @@ import pytest
 
 from laws.kinetic import KineticFriction
 from verify.galvanetto import bifurcations as B
-from verify.galvanetto.maps import d_range, default_stepper, f, iterate, one_block_cycle, two_block_map
+from verify.galvanetto.maps import d_range, default_stepper, one_block_cycle, two_block_map
 from verify.galvanetto.model import K_of, one_block, two_blocks
 
 

@@ -101,7 +101,7 @@ def test_lyapunov_exponent_of_linear_case_is_minus_c_over_2m():
 def test_contact_switching_exact_and_engine_agrees():
     from verify.hybrid import EngineOptions, simulate
     from verify.skurativskyi.rk import CompiledDOPRI5
-    from verify.skurativskyi.simulate import hybrid_model, rest_state
+    from verify.skurativskyi.simulate import hybrid_model
 
     p = PAPER.with_(omega=16.0)
     y0 = run(p, 4, rtol=1e-8).y  # on the 3-impact attractor (phase 0)

@@ -7,13 +7,11 @@ work–precision and extreme regime (Fig. 3).
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
 
 from laws import get_law
 from verify.springblock.checks import (fitted_exponent, predict, subcritical_check, supercritical_check,
                                        bistability_scan)
-from verify.springblock.model import SpringBlockModel
 
 pytestmark = pytest.mark.slow
 

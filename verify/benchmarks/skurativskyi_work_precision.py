@@ -22,7 +22,6 @@ Run: ``python -m verify.benchmarks.skurativskyi_work_precision [out_dir] [--quic
 
 from __future__ import annotations
 
-import math
 import sys
 import time
 from pathlib import Path

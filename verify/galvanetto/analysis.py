@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from verify.galvanetto.maps import MapUndefined, default_stepper, f, model_for, two_block_map
+from verify.galvanetto.maps import MapUndefined, default_stepper, f, model_for
 from verify.galvanetto.model import StickSlipParams, two_blocks
 from verify.hybrid import EngineOptions, simulate
 from verify.hybrid.analysis import SweepResult, map_bifurcation_diagram

@@ -25,7 +25,7 @@ as a zero-length phase of the next mode if it is still violated there.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np

@@ -41,7 +41,7 @@ from typing import Mapping
 import numpy as np
 import sympy as sp
 
-from landau.errors import InputError, NoHopfError
+from landau.errors import InputError
 from landau.general import HopfNormalForm, hopf_normal_form
 from landau.system import DynamicalSystem
 

@@ -30,7 +30,7 @@ import numpy as np
 
 from landau.errors import InputError
 from verify.skurativskyi.analysis import Attractor, attractor
-from verify.skurativskyi.model import PAPER, Params
+from verify.skurativskyi.model import PAPER
 
 
 @dataclass(frozen=True)

@@ -22,11 +22,10 @@ from typing import Callable
 
 import numpy as np
 
-from landau.errors import IntegratorError, LandauError
+from landau.errors import IntegratorError
 from verify.springblock.model import SpringBlockModel
 from verify.springblock.orbits import (PeriodicOrbit, ShootingError, describe, hopf_stiffness, return_map,
                                        section_point)
-from verify.springblock.simulate import W_INDEX
 
 
 @dataclass(frozen=True)
@@ -251,7 +250,7 @@ def _branch(kind, fixed, hopf, pts, folds, stop) -> Branch:
     return Branch(kind, fixed, hopf, h_ext, bp, fl, stop)
 
 
-def plot_branch(branch: Branch, path, title: str = "") -> "Path":
+def plot_branch(branch: Branch, path, title: str = ""):
     """Fig. 6/11-style panels: spring force, slip rate, slip and stress drop (max/min) along the branch."""
     import matplotlib
 

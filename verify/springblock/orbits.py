@@ -73,7 +73,6 @@ def _off_section(y: np.ndarray) -> np.ndarray:
 def return_map(model: SpringBlockModel, z, *, rtol: float = 1e-10, t_max: float | None = None,
                monodromy: bool = True):
     """(P(z), DP or None, period [s], run) for the section w = 0, w decreasing."""
-    n = model.n
     y0 = _on_section(model, z)
     if model.f(y0)[W_INDEX] >= 0:
         raise ShootingError(f"z = {z} is not a downward crossing of the section (dw/dt >= 0)")
@@ -108,7 +107,6 @@ def _period_guess(model: SpringBlockModel) -> float:
 
 def describe(model: SpringBlockModel, z, DP, period: float, run, iterations: int, residual: float) -> PeriodicOrbit:
     """Extremes over one period from a (non-variational) pass with recorded steps and crossings."""
-    n = model.n
     y0 = _on_section(model, z)
     r = integrate(model, y0, (0.0, 1.5 * period), rtol=1e-10, event_index=W_INDEX, event_direction=-1,
                   stop_after=1, record=200_000)
