@@ -37,7 +37,7 @@ CONVENTION = ("d|A|/dT = (Gamma |A| + Lambda |A|^3)/2, dtheta/dT = (Omega + chi 
               "with slip component 1; Lambda < 0: supercritical, Lambda > 0: subcritical; "
               "C = max|x - x0| / sqrt(|kc - k|) = 2 sqrt(2 Gamma_bar/|Lambda|) (eq. 23)")
 UNITS = {"V": "m/s", "kc": "N/m", "omega_c": "rad/s", "Gamma_bar": "1/(N s)", "Omega_bar": "1/(N s)",
-         "Lambda": "1/(m^2 s)", "chi": "1/(m^2 s)", "C": "m/sqrt(N/m)", "A2_per_dk": "m^2/N"}
+         "Lambda": "1/(m^2 s)", "chi": "1/(m^2 s)", "C": "m/sqrt(N/m)"}
 
 #: quantity -> (LaTeX symbol, description, equation)
 QUANTITIES: dict[str, tuple[str, str, str]] = {
