@@ -56,6 +56,8 @@ DERIVED = {"C": ("Gamma_bar", "Lambda")}
 
 #: accuracy every returned value must have (relative)
 _REL_GOOD = 1e-10
+#: doubtful points from which deriving the exactly cancelled form beats mpmath point by point
+_RATIONAL_MIN = 500
 #: float32 vs float64 disagreement above which float64 may miss _REL_GOOD (eps ratio ~5e8)
 _REL_SCREEN = 0.02
 #: extended precision available (x86 80-bit long double: eps 1.1e-19, ~1000x float64)
@@ -194,6 +196,7 @@ class Derivation:
         self._coefs: dict[str, Coefficient] = {}
         self._compiled: dict[tuple[str, str], CompiledFormula] = {}
         self._atom_table = AtomTable(self.jets.atoms, self.args)
+        self._rational_cache: dict = {}
 
     # --- symbolic route ---------------------------------------------------------------
     def _structure(self) -> tuple[list, list, int, int]:
@@ -302,9 +305,11 @@ class Derivation:
         compiled code runs in float32 as a screen; where float32 and float64 disagree (the
         float64 error may exceed 1e-10: cancellation near an extremum of μ_ss, inertia-free
         limits, Λ ≡ 0 at M = 0) it runs again in extended precision (80-bit long double), whose
-        value is used where it is itself good to 1e-10; the rest is re-evaluated at 50 and 80
-        digits with mpmath.  A quantity that
-        vanishes identically there is returned as 0 and the point flagged ``degenerate``.
+        value is used where it is itself good to 1e-10.  What is still doubtful is taken from
+        the exactly cancelled form when the law's derivatives are rational in V
+        (:mod:`landau.rational`: Dieterich, Ruina, modified Dieterich), else re-evaluated at 50
+        and 80 digits with mpmath.  A quantity that vanishes identically is returned as 0 and
+        the point flagged ``degenerate``.
         """
         p = self.block.resolve({k: v for k, v in (params or {}).items() if np.ndim(v) == 0})
         arr = {k: np.asarray(v, dtype=float) for k, v in (params or {}).items() if np.ndim(v) > 0}
@@ -322,6 +327,7 @@ class Derivation:
             raw = {"kc": kc.reshape(shape), "W": om.reshape(shape) ** 2}
             raw.update(self._raw(vals, shape, bases, np.float64, raw["kc"], np.sqrt(raw["W"])))
             need_mp = np.zeros(shape, dtype=bool)
+            exact_zero = np.zeros(shape, dtype=bool)
         else:
             raw = self._raw(vals, shape, bases, np.float64)
             # cheap screen: the same code in float32; where it disagrees by more than 2 % the
@@ -330,29 +336,34 @@ class Derivation:
             suspect = np.zeros(shape, dtype=bool)
             for key in raw:
                 suspect |= ~_agree(raw[key], r32[key].astype(float), _REL_SCREEN)
-            need_mp = suspect.copy()
+            bad = {key: suspect.copy() for key in raw}
             if _EXTENDED and suspect.any():
                 # the suspects again in extended precision: keep the value where float64 and it
                 # agree; take the extended value where it is itself good enough; else mpmath
                 sub = [v[suspect].astype(np.longdouble) for v in vals]
                 ext = self._raw(sub, sub[0].shape, bases, np.longdouble)
-                good64 = np.ones(sub[0].shape, dtype=bool)
-                good80 = np.ones(sub[0].shape, dtype=bool)
                 for key in raw:
                     x64, x80 = raw[key][suspect], ext[key].astype(float)
-                    good64 &= _agree(x64, x80, _REL_GOOD)
-                    good80 &= _agree(x64, x80, _REL_GOOD * _EXT_GAIN)
-                for key in raw:
-                    vals_key = raw[key][suspect]
-                    raw[key][suspect] = np.where(good64, vals_key, ext[key].astype(float))
-                need_mp[suspect] = ~good80
+                    good64 = _agree(x64, x80, _REL_GOOD)
+                    raw[key][suspect] = np.where(good64, x64, x80)
+                    bad[key][suspect] = ~_agree(x64, x80, _REL_GOOD * _EXT_GAIN)
+            need_mp = np.zeros(shape, dtype=bool)
+            for key in raw:
+                need_mp |= bad[key]
+            hopf_ok = ~(bad["kc"] | bad["W"])
+            rest = need_mp & hopf_ok & (raw["kc"] > 0) & (raw["W"] > 0)
+            exact_zero = np.zeros(shape, dtype=bool)
+            # the exact route costs ~1 s to derive per parameter set: worth it for many points
+            if bases and not arr and (rest.sum() >= _RATIONAL_MIN or (rest.any() and self._has_rational(bases, p))):
+                resolved, exact_zero = self._exact_rational(Vs, vals, raw, rest, bases, p)
+                need_mp &= ~resolved
         kc, W_c = raw["kc"], raw["W"]
         ok = (kc > 0) & (W_c > 0)
         out: dict[str, np.ndarray] = {"V": Vs * np.ones(shape), "kc": np.where(ok, kc, np.nan),
                                       "omega_c": np.sqrt(np.where(ok, W_c, np.nan))}
         for n in bases:
             out[n] = raw[n]
-        out["degenerate"] = np.zeros(shape, dtype=bool)
+        out["degenerate"] = exact_zero & ok
         extra = [n for n in _with_bases(names) if n not in ("kc", "omega_c")]
         for idx in map(tuple, np.argwhere(need_mp & ok)):
             point = {s.name: float(vals[i + 1][idx]) for i, s in enumerate(self.args[1:])}
@@ -372,6 +383,37 @@ class Derivation:
                     f"{self.block.law.name}: {n} is not finite at V = {float(out['V'][i]):g} m/s although a Hopf "
                     "point exists there: the law's derivatives are singular at this steady state")
         return out
+
+    def _has_rational(self, bases, params) -> bool:
+        return (tuple(bases), tuple(sorted(params.items()))) in self._rational_cache
+
+    def _exact_rational(self, Vs, vals, raw, where, bases, params) -> tuple[np.ndarray, np.ndarray]:
+        """Points of ``where`` settled by the exactly cancelled form (:mod:`landau.rational`)
+        when every derivative at steady state is rational in V; returns the settled mask and
+        the points where Λ vanishes identically."""
+        from landau.rational import rational_coefficients
+
+        key = (tuple(bases), tuple(sorted(params.items())))
+        if key not in self._rational_cache:
+            self._rational_cache[key] = rational_coefficients(self, bases, params)
+        rc = self._rational_cache[key]
+        settled = np.zeros(where.shape, dtype=bool)
+        if rc is None:
+            return settled, settled
+        V64 = np.broadcast_to(Vs, where.shape)[where].astype(float)
+        om64 = np.sqrt(raw["W"][where])
+        ok = np.ones(V64.shape, dtype=bool)
+        new = {}
+        for n in bases:
+            x64 = rc[n](V64, om64)
+            x80 = rc[n](V64.astype(np.longdouble), np.sqrt(raw["W"][where].astype(np.longdouble))).astype(float)
+            ok &= _agree(x64, x80, _REL_GOOD) | (rc[n].identically_zero & (x64 == 0))
+            new[n] = x64
+        for n in bases:
+            raw[n][where] = np.where(ok, new[n], raw[n][where])
+        settled[where] = ok
+        degenerate = settled & bool("Lambda" in rc and rc["Lambda"].identically_zero)
+        return settled, degenerate
 
     def _raw(self, vals, shape, bases, dtype, kc=None, om=None) -> dict[str, np.ndarray]:
         """k_c, ω_c² and the requested coefficients in one precision, atoms shared."""

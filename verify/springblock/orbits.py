@@ -73,6 +73,7 @@ def _off_section(y: np.ndarray) -> np.ndarray:
 def return_map(model: SpringBlockModel, z, *, rtol: float = 1e-10, t_max: float | None = None,
                monodromy: bool = True):
     """(P(z), DP or None, period [s], run) for the section w = 0, w decreasing."""
+    n = model.n
     y0 = _on_section(model, z)
     if model.f(y0)[W_INDEX] >= 0:
         raise ShootingError(f"z = {z} is not a downward crossing of the section (dw/dt >= 0)")
