@@ -56,6 +56,19 @@ class Cx:
         return Cx(fn(self.re), fn(self.im))
 
 
+def as_expr(x: Any):
+    """A sympy object for an internal number or expression (never a string: no parsing)."""
+    import sympy as sp
+
+    if isinstance(x, sp.Basic):
+        return x
+    if isinstance(x, int):
+        return sp.Integer(x)
+    if isinstance(x, float):
+        return sp.Float(x)
+    raise TypeError(f"expected a sympy expression or a number, got {type(x).__name__}")
+
+
 def as_cx(x: Any) -> Cx:
     return x if isinstance(x, Cx) else Cx(x, 0 * x if hasattr(x, "__mul__") else 0)
 

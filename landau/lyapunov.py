@@ -38,6 +38,7 @@ from typing import Any, Mapping, Sequence
 import mpmath
 import sympy as sp
 
+from landau.cx import as_expr
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.jets import Jets
 from landau.system import DynamicalSystem, SpringBlock
@@ -105,9 +106,9 @@ class _NumericJets:
             raise InputError("jets: atom definitions are circular")
 
         self.keys = {m: list(t) for m, t in orders.items()}
-        exprs = [sp.sympify(e) for e in system.mass]
+        exprs = [as_expr(e) for e in system.mass]
         for m in (1, 2, 3):
-            exprs += [expand(sp.sympify(orders[m][key])) for key in self.keys[m]]
+            exprs += [expand(as_expr(orders[m][key])) for key in self.keys[m]]
         free = set().union(*(e.free_symbols for e in exprs)) - {self.p}
         missing = sorted(s.name for s in free if s not in values)
         if missing:

@@ -25,7 +25,7 @@ import numpy as np
 import sympy as sp
 
 from landau.codegen import AtomTable, CompiledFormula
-from landau.cx import Cx
+from landau.cx import Cx, as_expr
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.fredholm import cubic_coefficient, linear_coefficient, null_vectors
 from landau.jets import Jets
@@ -203,8 +203,8 @@ class Derivation:
         J = self.jets.jacobian()
         E = list(self.system.mass)
         p = self.k
-        rows = [i for i in range(len(E)) if any(p in sp.sympify(J[i][j]).free_symbols for j in range(len(E)))]
-        cols = [j for j in range(len(E)) if any(p in sp.sympify(J[i][j]).free_symbols for i in range(len(E)))]
+        rows = [i for i in range(len(E)) if any(p in as_expr(J[i][j]).free_symbols for j in range(len(E)))]
+        cols = [j for j in range(len(E)) if any(p in as_expr(J[i][j]).free_symbols for i in range(len(E)))]
         if len(rows) != 1 or len(cols) != 1:
             raise InputError("symbolic route needs the Hopf parameter in exactly one Jacobian entry")
         return J, E, rows[0], cols[0]

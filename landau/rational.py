@@ -20,7 +20,7 @@ import sympy as sp
 from sympy import QQ
 from sympy.polys.fields import field
 
-from landau.cx import Cx
+from landau.cx import Cx, as_expr
 from landau.fredholm import cubic_coefficient, linear_coefficient, null_vectors
 from landau.linear import w
 from landau.system import V
@@ -68,7 +68,7 @@ def rational_coefficients(derivation, names: Sequence[str], params: Mapping[str,
     local = {V: sp.Symbol("V"), w: sp.Symbol("omega")}
 
     def conv(e):
-        e = sp.sympify(e).xreplace({d.k: kc}).xreplace(atoms).xreplace(sub).xreplace(local)
+        e = as_expr(e).xreplace({d.k: kc}).xreplace(atoms).xreplace(sub).xreplace(local)
         return K.from_expr(e) if e.free_symbols else K(sp.Rational(e))
 
     Jk = [[conv(x) for x in row] for row in J]
@@ -105,6 +105,6 @@ def rational_coefficients(derivation, names: Sequence[str], params: Mapping[str,
         den = dA * dA - Wk * dB * dB
         P = (nA * dA - Wk * nB * dB) / den
         Q = (nB * dA - nA * dB) / den
-        Pe, Qe = sp.sympify(P.as_expr()), sp.sympify(Q.as_expr())
+        Pe, Qe = P.as_expr(), Q.as_expr()
         out[n] = RationalCoefficient(n, Pe, Qe, sp.lambdify(Vsym, Pe, "numpy"), sp.lambdify(Vsym, Qe, "numpy"))
     return out

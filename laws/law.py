@@ -35,6 +35,15 @@ from laws.parse import parse_expression
 v = sp.Symbol("v", positive=True)
 
 
+def _check_name(name: str, what: str) -> None:
+    """Names become sympy symbols and, in generated code, variable names: plain identifiers only."""
+    import keyword
+    import re
+
+    if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", name) or keyword.iskeyword(name):
+        raise InputError(f"{what} name {name!r} must be a plain identifier (a letter, then letters, digits, _)")
+
+
 @dataclass(frozen=True)
 class Parameter:
     """A named constant of a law with its default value, units and provenance."""
@@ -145,8 +154,7 @@ class FrictionLaw:
                 raise InputError(f"{s!r} is a {'slip rate' if s == 'v' else 'state'} and cannot also be a parameter")
         plist: list[Parameter] = []
         for pname, val in params.items():
-            if not pname.isidentifier():
-                raise InputError(f"parameter name {pname!r} is not an identifier")
+            _check_name(pname, "parameter")
             plist.append(val if isinstance(val, Parameter) else Parameter(pname, float(val), source="user"))
         given = {p.name for p in plist}
         from laws.parse import CONSTANTS, FUNCTIONS
@@ -157,8 +165,7 @@ class FrictionLaw:
         symbols = {"v": v}
         state_syms = []
         for sname in state:
-            if not sname.isidentifier():
-                raise InputError(f"state name {sname!r} is not an identifier")
+            _check_name(sname, "state")
             sym = sp.Symbol(sname, positive=True)
             symbols[sname] = sym
             state_syms.append(sym)

@@ -70,3 +70,9 @@ def test_two_state_steady_state_solved_by_sympy_when_not_declared():
                                    state={"p": "1 - v*p/L", "q": "-(v*q/L)*log(v*q/L)"})
     L = TABLE1["L"].symbol
     assert law.steady_state_closed_form == (L / v, L / v)
+
+
+@pytest.mark.parametrize("name", ["__import__", "_x", "lambda", "a-b"])
+def test_declared_names_must_be_plain_identifiers(name):
+    with pytest.raises(InputError, match="plain identifier"):
+        FrictionLaw.from_strings("x", mu="a*log(v/V_s)", state={"phi": "1 - v*phi/L"}, params={name: 1.0})
