@@ -54,11 +54,15 @@ def _jsonable(obj: Any) -> Any:
     return x if math.isfinite(x) else None
 
 
-def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Any]]:
+def build_parser(only: str | None = None) -> tuple[argparse.ArgumentParser, dict[str, Any]]:
+    """The argument parser; with ``only``, just that sub-command's module is imported (fast start)."""
     parser = _Parser(prog="landau", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", parser_class=_Parser)
     modules: dict[str, Any] = {}
     for name, modname in COMMANDS.items():
+        if only is not None and name != only:
+            sub.add_parser(name)
+            continue
         if importlib.util.find_spec(modname.rsplit(".", 1)[0]) is None:
             continue
         try:
@@ -79,9 +83,9 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Any]]:
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     try:
-        parser, modules = build_parser()
         if not argv:
             argv = ["derive", "dieterich", "--V", "1e-5,2.6e-5,1e-4,1e-3"]
+        parser, modules = build_parser(argv[0] if argv[0] in COMMANDS else None)
         args = parser.parse_args(argv)
         if args.command is None:
             parser.print_help()
