@@ -334,6 +334,14 @@ def _grid(lo: float, hi: float, n: int) -> np.ndarray:
     return np.linspace(lo, hi, n)
 
 
+def _sweep(d: Derivation, name: str, lo: float, hi: float, params, n: int) -> tuple[dict, np.ndarray]:
+    """Checked arguments of a sweep in the law parameter ``name``: the fixed parameters and the grid."""
+    _check_param(d, name)
+    if not (lo < hi):
+        raise InputError(f"--vary {name}: need LO < HI, got {lo!r}:{hi!r}")
+    return dict(params or {}), _grid(lo, hi, n)
+
+
 def critical_parameter(derivation: Derivation, name: str, lo: float, hi: float,
                        params: Mapping[str, float] | None = None, *, n: int = 24,
                        V_range: tuple[float, float] = (1e-12, 1e2)) -> list[CriticalValue]:
@@ -342,11 +350,7 @@ def critical_parameter(derivation: Derivation, name: str, lo: float, hi: float,
     Generic: the roots in p of the edge slope of Λ at each extremum end (see
     :func:`edge_sign_function`), bracketed on an ``n``-point grid and refined with brentq."""
     d = derivation
-    _check_param(d, name)
-    if not (lo < hi):
-        raise InputError(f"--vary {name}: need LO < HI, got {lo!r}:{hi!r}")
-    base = dict(params or {})
-    ps = _grid(lo, hi, n)
+    base, ps = _sweep(d, name, lo, hi, params, n)
     table = []
     for pv in ps:
         prm = d.block.resolve({**base, name: float(pv)})
@@ -379,11 +383,7 @@ def transition_curve(derivation: Derivation, name: str, lo: float, hi: float,
     plus the critical values p* where a branch ends on an extremum of μ_ss (there V* = V_m(p*),
     k_c = 0; that end point closes the curve)."""
     d = derivation
-    _check_param(d, name)
-    if not (lo < hi):
-        raise InputError(f"--vary {name}: need LO < HI, got {lo!r}:{hi!r}")
-    base = dict(params or {})
-    ps = _grid(lo, hi, n)
+    base, ps = _sweep(d, name, lo, hi, params, n)
     crit = critical_parameter(d, name, lo, hi, base, n=max(n // 2, 8), V_range=V_range)
     rows: list[TransitionRow] = []
     for pv in sorted({*map(float, ps), *(c.value for c in crit)}):

@@ -218,3 +218,14 @@ def test_codim2_point_from_orbits_matches_engine_vstar():
     pt, v_engine = codim2("modified-dieterich", {"c": 3e-4}, 1e-3, 1.25e-3)
     assert v_engine == pytest.approx(1.109e-3, rel=2e-3)
     assert pt.V == pytest.approx(v_engine, rel=1e-2)
+
+
+@pytest.mark.parametrize("src", ['def rhs(t, y, p, out):\n    out[0] = __import__("os")',
+                                 "def rhs(t, y, p, out):\n    out[0] = y.__class__",
+                                 "import os"])
+def test_generated_code_is_whitelisted_before_exec(src):
+    from landau.errors import InputError
+    from verify.springblock.model import _check_generated
+
+    with pytest.raises(InputError, match="refusing to compile"):
+        _check_generated(src)

@@ -21,6 +21,7 @@ builds the model from (m, κ, V/V_*).
 
 from __future__ import annotations
 
+import ast
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -100,6 +101,32 @@ def compile_law(law: FrictionLaw) -> CompiledLaw:
     return out
 
 
+_ALLOWED_NODES = (ast.Module, ast.FunctionDef, ast.arguments, ast.arg, ast.Assign, ast.Name, ast.Load, ast.Store,
+                  ast.Subscript, ast.Slice, ast.Tuple, ast.Constant, ast.BinOp, ast.UnaryOp, ast.Call,
+                  ast.Attribute, ast.operator, ast.unaryop, ast.IfExp, ast.Compare, ast.cmpop, ast.BoolOp,
+                  ast.boolop)
+
+
+_BUILTINS = {"abs", "min", "max", "float"}
+
+
+def _check_generated(src: str) -> None:
+    """Whitelist the generated right-hand side before it is compiled: assignments of arithmetic on
+    names and subscripts, and calls of ``math.<function>`` only.  The expressions come from the safe
+    law parser and sympy's printer; this keeps that guarantee local to the one ``exec`` below."""
+    for node in ast.walk(ast.parse(src)):
+        if not isinstance(node, _ALLOWED_NODES):
+            raise InputError(f"generated code contains a {type(node).__name__} node: refusing to compile it")
+        if isinstance(node, ast.Attribute) and not (isinstance(node.value, ast.Name) and node.value.id == "math"
+                                                    and not node.attr.startswith("_")):
+            raise InputError(f"generated code accesses attribute {ast.unparse(node)!r}: refusing to compile it")
+        if isinstance(node, ast.Call) and not (isinstance(node.func, ast.Attribute)
+                                               or (isinstance(node.func, ast.Name) and node.func.id in _BUILTINS)):
+            raise InputError(f"generated code calls {ast.unparse(node.func)!r}: refusing to compile it")
+        if isinstance(node, ast.Name) and node.id.startswith("__"):
+            raise InputError(f"generated code uses the name {node.id!r}: refusing to compile it")
+
+
 def _emit(ys, f, Jm, pnames, label):
     """Python source for rhs(t, y, p, out) and jac(t, y, p, out) (shared CSE), exec'd and njit-compiled."""
     n = len(ys)
@@ -117,6 +144,7 @@ def _emit(ys, f, Jm, pnames, label):
             if e != 0:
                 lines_j.append(f"    out[{i}, {j}] = {pr.doprint(e)}")
     src = "\n".join(lines_f) + "\n\n" + "\n".join(lines_j) + "\n"
+    _check_generated(src)
     glb: dict = {"math": math}
     exec(compile(src, f"<springblock rhs for {label}>", "exec"), glb)
     rhs_py, jac_py = glb["rhs"], glb["jac"]
