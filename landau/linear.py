@@ -156,6 +156,33 @@ class HopfLine:
         return coeffs, CompiledFormula(re, (W, *self.args), atoms), CompiledFormula(q2, (W, *self.args), atoms)
 
     @cached_property
+    def _compiled_poly_mp(self):
+        H, re, q2 = self._hopf_polys
+        atoms = self.jets.atoms
+        return ([CompiledFormula(c, self.args, atoms, "mpmath") for c in H.all_coeffs()],
+                CompiledFormula(re, (W, *self.args), atoms, "mpmath"), CompiledFormula(q2, (W, *self.args), atoms, "mpmath"))
+
+    def numeric_point_mp(self, vals: Sequence[Any]) -> tuple[Any, Any]:
+        """(k_c, ω_c²) of the n-state route at the working mpmath precision (``vals``: mpf
+        arguments); (nan, nan) when there is no Hopf point."""
+        import mpmath
+
+        coeffs, fre, fq2 = self._compiled_poly_mp
+        cs = [c(*vals) for c in coeffs]
+        while cs and cs[0] == 0:
+            cs = cs[1:]
+        roots = mpmath.polyroots(cs, maxsteps=200, extraprec=2 * mpmath.mp.prec) if len(cs) > 1 else []
+        best = (mpmath.nan, mpmath.nan)
+        for r in roots:
+            r = mpmath.mpc(r)
+            if abs(r.imag) > mpmath.mpf(10) ** (-mpmath.mp.dps // 2) * abs(r) or r.real <= 0:
+                continue
+            kk = -fre(r.real, *vals) / fq2(r.real, *vals)
+            if kk > 0 and not (kk <= best[0]):
+                best = (kk, r.real)
+        return best
+
+    @cached_property
     def _compiled_mu(self):
         mu = self.block.mu_ss()
         return compile_expr(mu, self.args), compile_expr(sp.diff(mu, V), self.args)

@@ -58,6 +58,9 @@ DERIVED = {"C": ("Gamma_bar", "Lambda")}
 _REL_GOOD = 1e-10
 #: doubtful points from which deriving the exactly cancelled form beats mpmath point by point
 _RATIONAL_MIN = 500
+#: points from which the exactly cancelled form (~0.2 s to derive per parameter set) beats the
+#: general formula for all of them (float64 + float32 screen + extended pass, ~1e6 points/s)
+_RATIONAL_DIRECT = 100_000
 #: float32 vs float64 disagreement above which float64 may miss _REL_GOOD (eps ratio ~5e8)
 _REL_SCREEN = 0.02
 #: extended precision available (x86 80-bit long double: eps 1.1e-19, ~1000x float64)
@@ -104,11 +107,25 @@ class Coefficient:
         return self._cache["expr"]
 
     def closed_form(self) -> sp.Expr:
-        """A simplified closed form: rational laws are cancelled to one fraction (e.g. eqs 32–35, 44–45)."""
+        """A simplified closed form (e.g. eqs 32–35, 44–45).
+
+        An expression rational after ω_c = sqrt(ω_c²) is cancelled and factored; a law whose
+        derivatives at steady sliding are rational in V and the parameters (Dieterich, Ruina)
+        is re-derived in the field ℚ(V, parameters)(ω_c) (:func:`landau.rational.closed_form`,
+        seconds); otherwise the unsimplified :attr:`expr` is returned."""
         if "closed" not in self._cache:
-            e = self.expr
-            if all(e.is_rational_function(s) for s in e.free_symbols):
-                e = sp.factor(sp.cancel(sp.together(e)))
+            d = self.derivation
+            if self.name in DERIVED:
+                e = self.formula.xreplace({_GB: d.coefficient("Gamma_bar").closed_form(),
+                                           _LA: d.coefficient("Lambda").closed_form()})
+            else:
+                e = self.expr
+                if all(e.is_rational_function(s) for s in e.free_symbols):
+                    e = sp.factor(sp.cancel(sp.together(e)))
+                elif self.name not in ("kc", "omega_c"):
+                    from landau.rational import closed_form
+
+                    e = closed_form(d, self.name) or e
             self._cache["closed"] = e
         return self._cache["closed"]
 
@@ -275,16 +292,16 @@ class Derivation:
 
     def evaluate_mp(self, V0: float, params: Mapping[str, float], names: Iterable[str], dps: int = 50) -> dict[str, Any]:
         """The same formulas evaluated at one point with mpmath at ``dps`` digits."""
-        if self.hopf.closed_form is None:
-            raise InputError(f"{self.block.law.name}: high-precision evaluation needs a closed-form Hopf line "
-                             "(one state variable)")
         p = self.block.resolve(params)
         with mpmath.workdps(dps):
             vals = [mpmath.mpf(x) for x in self.block.argvals(V0, p)]
-            fk, fW = self._hopf_mp
-            kc = fk(*vals)
-            W_c = fW(*vals)
-            if W_c <= 0 or kc <= 0:
+            if self.hopf.closed_form is None:
+                kc, W_c = self.hopf.numeric_point_mp(vals)
+            else:
+                fk, fW = self._hopf_mp
+                kc = fk(*vals)
+                W_c = fW(*vals)
+            if not (W_c > 0 and kc > 0):
                 raise NoHopfError(f"V = {V0:g} m/s: no Hopf bifurcation")
             om = mpmath.sqrt(W_c)
             out = {"kc": kc, "omega_c": om}
@@ -298,7 +315,8 @@ class Derivation:
             return out
 
     def evaluate(self, Vs, params: Mapping[str, float] | None = None,
-                 names: Sequence[str] = ("kc", "omega_c", "Gamma_bar", "Lambda")) -> dict[str, np.ndarray]:
+                 names: Sequence[str] = ("kc", "omega_c", "Gamma_bar", "Lambda"),
+                 method: str = "auto") -> dict[str, np.ndarray]:
         """Vectorised evaluation over velocities (any parameter may also be an array).
 
         NaN where there is no Hopf point.  Every value is checked for round-off: the same
@@ -310,7 +328,14 @@ class Derivation:
         (:mod:`landau.rational`: Dieterich, Ruina, modified Dieterich), else re-evaluated at 50
         and 80 digits with mpmath.  A quantity that vanishes identically is returned as 0 and
         the point flagged ``degenerate``.
+
+        ``method``: "general" (the route above), "rational" (every point from the exactly
+        cancelled form, with error bounds and exact fallback; laws rational in V only) or
+        "auto": "rational" for large batches (≥ 1e5 points) and once the cancelled form for
+        these parameters exists, else "general".
         """
+        if method not in ("auto", "general", "rational"):
+            raise InputError(f"unknown evaluation method {method!r} (auto, general, rational)")
         p = self.block.resolve({k: v for k, v in (params or {}).items() if np.ndim(v) == 0})
         arr = {k: np.asarray(v, dtype=float) for k, v in (params or {}).items() if np.ndim(v) > 0}
         Vs = np.asarray(Vs, dtype=float)
@@ -320,13 +345,34 @@ class Derivation:
         shape = np.broadcast(*[np.asarray(x) for x in vals]).shape
         vals = [np.broadcast_to(np.asarray(x, dtype=float), shape) for x in vals]
         bases = [n for n in _with_bases(names) if n not in ("kc", "omega_c") and n not in DERIVED]
-        if self.hopf.closed_form is None:
+        forms = None
+        if self.hopf.closed_form is not None and not arr and method != "general" and (
+                method == "rational" or Vs.size >= _RATIONAL_DIRECT or self._has_rational(bases, p)):
+            forms = self._rational_forms(bases, p)
+            if forms is None and method == "rational":
+                raise InputError(f"{self.block.law.name}: the derivatives at steady sliding are not rational in V")
+        if forms is not None:
+            raw = forms.evaluate(np.broadcast_to(Vs, shape), bases, _REL_GOOD)
+            need_mp = np.zeros(shape, dtype=bool)
+            exact_zero = np.full(shape, "Lambda" in forms and forms["Lambda"].identically_zero)
+        elif self.hopf.closed_form is None:
             if arr:
                 raise InputError("array-valued parameters need a closed-form Hopf line (one state variable)")
             kc, om = self.hopf.evaluate(Vs.ravel(), p)
             raw = {"kc": kc.reshape(shape), "W": om.reshape(shape) ** 2}
             raw.update(self._raw(vals, shape, bases, np.float64, raw["kc"], np.sqrt(raw["W"])))
+            # screen: the same formulas in extended precision at the same (k_c, ω_c); where
+            # float64 loses more than _REL_GOOD to round-off, the point goes to mpmath
             need_mp = np.zeros(shape, dtype=bool)
+            if _EXTENDED and bases:
+                ld = np.longdouble
+                ext = self._raw([v.astype(ld) for v in vals], shape, bases, ld, raw["kc"].astype(ld),
+                                np.sqrt(raw["W"]).astype(ld))
+                for n in bases:
+                    need_mp |= ~_agree(raw[n], ext[n].astype(float), _REL_GOOD)
+            elif bases:
+                need_mp[...] = True
+            need_mp &= np.isfinite(raw["kc"])
             exact_zero = np.zeros(shape, dtype=bool)
         else:
             raw = self._raw(vals, shape, bases, np.float64)
@@ -387,32 +433,29 @@ class Derivation:
     def _has_rational(self, bases, params) -> bool:
         return (tuple(bases), tuple(sorted(params.items()))) in self._rational_cache
 
-    def _exact_rational(self, Vs, vals, raw, where, bases, params) -> tuple[np.ndarray, np.ndarray]:
-        """Points of ``where`` settled by the exactly cancelled form (:mod:`landau.rational`)
-        when every derivative at steady state is rational in V; returns the settled mask and
-        the points where Λ vanishes identically."""
-        from landau.rational import rational_coefficients
+    def _rational_forms(self, bases, params):
+        """The exactly cancelled forms (:mod:`landau.rational`) for these parameters, cached;
+        None when the law's derivatives at steady state are not rational in V."""
+        from landau.rational import rational_forms
 
         key = (tuple(bases), tuple(sorted(params.items())))
         if key not in self._rational_cache:
-            self._rational_cache[key] = rational_coefficients(self, bases, params)
-        rc = self._rational_cache[key]
+            self._rational_cache[key] = rational_forms(self, bases, params)
+        return self._rational_cache[key]
+
+    def _exact_rational(self, Vs, vals, raw, where, bases, params) -> tuple[np.ndarray, np.ndarray]:
+        """Points of ``where`` settled by the exactly cancelled form when every derivative at
+        steady state is rational in V; returns the settled mask and the points where Λ
+        vanishes identically."""
         settled = np.zeros(where.shape, dtype=bool)
-        if rc is None:
+        forms = self._rational_forms(bases, params)
+        if forms is None:
             return settled, settled
-        V64 = np.broadcast_to(Vs, where.shape)[where].astype(float)
-        om64 = np.sqrt(raw["W"][where])
-        ok = np.ones(V64.shape, dtype=bool)
-        new = {}
+        sub = forms.evaluate(np.broadcast_to(Vs, where.shape)[where], bases, _REL_GOOD)
         for n in bases:
-            x64 = rc[n](V64, om64)
-            x80 = rc[n](V64.astype(np.longdouble), np.sqrt(raw["W"][where].astype(np.longdouble))).astype(float)
-            ok &= _agree(x64, x80, _REL_GOOD) | (rc[n].identically_zero & (x64 == 0))
-            new[n] = x64
-        for n in bases:
-            raw[n][where] = np.where(ok, new[n], raw[n][where])
-        settled[where] = ok
-        degenerate = settled & bool("Lambda" in rc and rc["Lambda"].identically_zero)
+            raw[n][where] = sub[n]
+        settled[where] = True
+        degenerate = settled & bool("Lambda" in forms and forms["Lambda"].identically_zero)
         return settled, degenerate
 
     def _raw(self, vals, shape, bases, dtype, kc=None, om=None) -> dict[str, np.ndarray]:

@@ -1,29 +1,141 @@
 """Exact cancellation for laws whose steady-state derivatives are rational in V.
 
 For the Dieterich, Ruina and modified Dieterich laws every derivative at steady sliding is a
-rational function of V (the logarithms vanish there).  With the parameters fixed (as exact
-decimal rationals) the Fredholm code of :mod:`landau.fredholm` runs in the field ℚ(V, ω), where
+rational function of V (the logarithms vanish there).  With the parameters fixed (as the exact
+binary rationals of the floats given) the Fredholm code of :mod:`landau.fredholm` runs in the field ℚ(V, ω), where
 every operation is cancelled as it is made; ω² = ω_c²(V) then removes ω.  The result is each
-coefficient as P(V) + ω·Q(V) with P, Q single cancelled fractions — e.g. Λ_D ∝ M V³(…)/(…) with
-the factor V³ explicit — which float64 evaluates to full precision where the general formula
-cancels ten or more digits (low V, M → 0).  A coefficient that vanishes identically (Λ_D at M = 0)
-comes out as exactly 0.
+coefficient as P(V) + ω·Q(V) with P, Q single cancelled fractions of polynomials with exact
+coefficients — e.g. Λ_D ∝ M V³(…)/(…) with the factor V³ explicit.  A coefficient that vanishes
+identically (Λ_D at M = 0) comes out as exactly 0.
+
+Evaluation (:meth:`RationalCoefficient.evaluate`) is Horner's rule in float64 with a running
+error bound (Higham, *Accuracy and Stability of Numerical Algorithms*, eq. 5.3:
+|p̂ − p| ≤ γ₂ₙ Σ|cᵢ||V|ⁱ); a point whose bound exceeds the requested accuracy is evaluated
+exactly in ℚ (the float V is an exact dyadic rational) and rounded once, ω = sqrt(ω_c²)
+taken at 40 digits.  No value is returned without either a proof of its accuracy or an
+exact computation.
 """
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Callable, Mapping, Sequence
+from dataclasses import field as dc_field
+from fractions import Fraction
 
+import mpmath
 import numpy as np
 import sympy as sp
 from sympy import QQ
 from sympy.polys.fields import field
 
-from landau.cx import Cx, as_expr
+from landau.cx import as_expr
 from landau.fredholm import cubic_coefficient, linear_coefficient, null_vectors
-from landau.linear import w
 from landau.system import V
+
+_U = float(np.finfo(np.float64).eps) / 2
+_DPS = 40
+
+
+def _fraction(c) -> Fraction:
+    return Fraction(int(c.numerator), int(c.denominator))
+
+
+def _log2(c: Fraction) -> int:
+    return abs(c.numerator).bit_length() - c.denominator.bit_length()
+
+
+@dataclass(frozen=True)
+class Polynomial:
+    """Σ cᵢ Vⁱ with exact rational coefficients (ascending powers).
+
+    Evaluated in float64 as 2^e Σ c'ᵢ sⁱ with s = V/2^k: the powers of two k, e (chosen by a
+    least-squares balance of log₂|cᵢ| + k·i) keep the coefficients inside the float range —
+    a cancelled Λ has coefficients beyond 1e300 for some laws — and are exact, so the error
+    bound is unchanged."""
+
+    coeffs: tuple[Fraction, ...]
+    _desc: np.ndarray = dc_field(init=False, repr=False, compare=False)
+    _abs: np.ndarray = dc_field(init=False, repr=False, compare=False)
+    _k: int = dc_field(init=False, repr=False, compare=False)
+    _e: int = dc_field(init=False, repr=False, compare=False)
+    _safe: bool = dc_field(init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        nz = [(i, _log2(c)) for i, c in enumerate(self.coeffs) if c]
+        k = 0
+        if len(nz) > 1:
+            i_, l_ = np.array(nz, dtype=float).T
+            k = -round(float(np.polyfit(i_, l_, 1)[0]))
+        scaled = [c * Fraction(2) ** (k * i) for i, c in enumerate(self.coeffs)]
+        e = max((_log2(c) for c in scaled if c), default=0)
+        scaled = [c / Fraction(2) ** e for c in scaled]
+        desc = np.array([float(c) for c in reversed(scaled)] or [0.0])
+        safe = all(np.isfinite(x) and (x != 0 or c == 0) for x, c in zip(desc, reversed(scaled)))
+        for name, val in (("_desc", desc), ("_abs", np.abs(desc)), ("_k", k), ("_e", e), ("_safe", safe)):
+            object.__setattr__(self, name, val)
+
+    @classmethod
+    def from_ring(cls, p) -> Polynomial:
+        """From a univariate sympy PolyElement in V."""
+        coeffs: dict[int, Fraction] = {}
+        for (i,), c in p.terms():
+            coeffs[i] = _fraction(c)
+        n = max(coeffs, default=-1) + 1
+        return cls(tuple(coeffs.get(i, Fraction(0)) for i in range(n)))
+
+    @property
+    def is_zero(self) -> bool:
+        return all(c == 0 for c in self.coeffs)
+
+    def evaluate(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
+        """(p(x)/2^e, relative error bound, e) in float64; x > 0."""
+        s = np.ldexp(x, -self._k)
+        with np.errstate(all="ignore"):
+            val = np.polyval(self._desc, s)
+            mag = np.polyval(self._abs, s)
+            rel = (2 * len(self._desc) + 1) * _U * mag / np.abs(val)
+        ok = np.isfinite(rel) & self._safe
+        return val, np.where(ok, rel, np.inf), self._e
+
+    def exact(self, x: Fraction) -> Fraction:
+        out = Fraction(0)
+        for c in reversed(self.coeffs):
+            out = out * x + c
+        return out
+
+    def as_expr(self, x: sp.Symbol) -> sp.Expr:
+        return sp.Add(*[sp.Rational(c.numerator, c.denominator) * x ** i for i, c in enumerate(self.coeffs) if c])
+
+
+@dataclass(frozen=True)
+class RationalFunction:
+    """N(V)/D(V), cancelled."""
+
+    num: Polynomial
+    den: Polynomial
+
+    @classmethod
+    def from_field(cls, f) -> RationalFunction:
+        return cls(Polynomial.from_ring(f.numer), Polynomial.from_ring(f.denom))
+
+    @property
+    def is_zero(self) -> bool:
+        return self.num.is_zero
+
+    def evaluate(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        n, rn, en = self.num.evaluate(x)
+        d, rd, ed = self.den.evaluate(x)
+        with np.errstate(all="ignore"):
+            val = np.ldexp(n / d, en - ed)
+        return val, np.where(np.isfinite(val), rn + rd + _U, np.inf)
+
+    def exact(self, x: Fraction) -> Fraction | None:
+        d = self.den.exact(x)
+        return None if d == 0 else self.num.exact(x) / d
+
+    def as_expr(self, x: sp.Symbol) -> sp.Expr:
+        return self.num.as_expr(x) / self.den.as_expr(x)
 
 
 @dataclass(frozen=True)
@@ -31,80 +143,226 @@ class RationalCoefficient:
     """value(V) = P(V) + ω_c(V)·Q(V), P and Q cancelled fractions in V (parameters fixed)."""
 
     name: str
-    P: sp.Expr
-    Q: sp.Expr
-    fP: Callable
-    fQ: Callable
+    P: RationalFunction
+    Q: RationalFunction
 
     @property
     def identically_zero(self) -> bool:
-        return self.P == 0 and self.Q == 0
+        return self.P.is_zero and self.Q.is_zero
+
+    def expr(self) -> sp.Expr:
+        x = sp.Symbol("V", positive=True)
+        return self.P.as_expr(x) + sp.Symbol("omega_c", positive=True) * self.Q.as_expr(x)
+
+    def evaluate(self, Vs: np.ndarray, omega: np.ndarray, omega_rel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(value, relative error bound) in float64; ``omega_rel`` bounds the error of ``omega``."""
+        p, rp = self.P.evaluate(Vs)
+        if self.Q.is_zero:
+            return p, rp
+        q, rq = self.Q.evaluate(Vs)
+        if self.P.is_zero:
+            return omega * q, rq + omega_rel + _U
+        with np.errstate(all="ignore"):
+            wq = omega * q
+            val = p + wq
+            err = np.abs(p) * (rp + _U) + np.abs(wq) * (rq + omega_rel + 2 * _U)
+            rel = err / np.abs(val)
+        return val, np.where(np.isfinite(rel), rel, np.inf)
 
     def __call__(self, Vs: np.ndarray, omega: np.ndarray) -> np.ndarray:
+        return self.evaluate(np.asarray(Vs, dtype=float), np.asarray(omega, dtype=float), 0.0)[0]
+
+    def exact(self, V0: float, W: RationalFunction) -> float:
+        """The value at V0 computed exactly in ℚ (ω = sqrt(ω_c²) at 40 digits), rounded once."""
+        x = Fraction(V0)
+        p, q = self.P.exact(x), self.Q.exact(x)
+        if p is None or q is None:
+            return float("nan")
+        if q == 0:
+            return float(p)
+        w2 = W.exact(x)
+        if w2 is None or w2 <= 0:
+            return float("nan")
+        with mpmath.workdps(_DPS):
+            om = mpmath.sqrt(mpmath.mpf(w2.numerator) / w2.denominator)
+            return float(mpmath.mpf(p.numerator) / p.denominator + om * mpmath.mpf(q.numerator) / q.denominator)
+
+
+@dataclass(frozen=True)
+class RationalForms:
+    """k_c, ω_c² and the requested coefficients of one law at one parameter set."""
+
+    kc: RationalFunction
+    W: RationalFunction
+    coefficients: dict[str, RationalCoefficient]
+
+    def __getitem__(self, name: str) -> RationalCoefficient:
+        return self.coefficients[name]
+
+    def __contains__(self, name: str) -> bool:
+        return name in self.coefficients
+
+    def evaluate(self, Vs: np.ndarray, names: Sequence[str], rel: float) -> dict[str, np.ndarray]:
+        """{"kc", "W", *names}: float64 where the error bound is ≤ ``rel``, else exact."""
+        Vs = np.asarray(Vs, dtype=float)
+        kc, rk = self.kc.evaluate(Vs)
+        self._fix(Vs, kc, rk, rel, self.kc.exact)
+        W, rW = self.W.evaluate(Vs)
+        fixed = self._fix(Vs, W, rW, rel, self.W.exact)
         with np.errstate(all="ignore"):
-            return np.asarray(self.fP(Vs), dtype=Vs.dtype) + omega * np.asarray(self.fQ(Vs), dtype=Vs.dtype)
+            om = np.sqrt(np.where(W > 0, W, np.nan))
+        rom = np.where(fixed, _U, rW / 2 + _U)
+        out = {"kc": kc, "W": W}
+        for n in names:
+            c = self.coefficients[n]
+            if c.identically_zero:
+                out[n] = np.zeros_like(Vs)
+                continue
+            val, r = c.evaluate(Vs, om, rom)
+            for i in np.flatnonzero((r > rel) & (W > 0)):
+                val.flat[i] = c.exact(float(Vs.flat[i]), self.W)
+            out[n] = val
+        return out
+
+    @staticmethod
+    def _fix(Vs, val, r, rel, exact) -> np.ndarray:
+        """Replace the values whose bound exceeds ``rel`` by the exact ones; return where."""
+        bad = r > rel
+        for i in np.flatnonzero(bad):
+            e = exact(Fraction(float(Vs.flat[i])))
+            val.flat[i] = float("nan") if e is None else float(e)
+        return bad
 
 
 def _exact(x: float) -> sp.Rational:
-    return sp.Rational(repr(float(x)))
+    """The exact binary value of the float the caller passed (not its decimal reading): near a
+    zero of Λ the coefficient is so sensitive to the parameters that 0.0349 and
+    float(0.0349) give values differing in the 8th digit."""
+    f = Fraction(float(x))
+    return sp.Rational(f.numerator, f.denominator)
 
 
-def rational_coefficients(derivation, names: Sequence[str], params: Mapping[str, float]
-                          ) -> dict[str, RationalCoefficient] | None:
-    """The requested base coefficients in cancelled form at fixed ``params``, or None when some
-    derivative at steady state is not rational in V (then the general route is used)."""
-    d = derivation
+class QuadraticElement:
+    """a + b·ω in ℚ(V)(ω), ω² = W ∈ ℚ(V): the onset frequency adjoined to the field of
+    rational functions.  Keeping ω out of the polynomial ring (instead of a second
+    generator reduced at the end) keeps every gcd univariate — several times faster."""
+
+    __slots__ = ("W", "a", "b")
+
+    def __init__(self, a, b, W):
+        self.a, self.b, self.W = a, b, W
+
+    def _lift(self, o) -> QuadraticElement:
+        return o if isinstance(o, QuadraticElement) else QuadraticElement(self.W.field(o), self.W.field(0), self.W)
+
+    def __add__(self, o):
+        o = self._lift(o)
+        return QuadraticElement(self.a + o.a, self.b + o.b, self.W)
+
+    __radd__ = __add__
+
+    def __sub__(self, o):
+        o = self._lift(o)
+        return QuadraticElement(self.a - o.a, self.b - o.b, self.W)
+
+    def __rsub__(self, o):
+        return self._lift(o) - self
+
+    def __neg__(self):
+        return QuadraticElement(-self.a, -self.b, self.W)
+
+    def __mul__(self, o):
+        if not isinstance(o, QuadraticElement):
+            return QuadraticElement(self.a * o, self.b * o, self.W)
+        return QuadraticElement(self.a * o.a + self.b * o.b * self.W, self.a * o.b + self.b * o.a, self.W)
+
+    __rmul__ = __mul__
+
+    def __truediv__(self, o):
+        if not isinstance(o, QuadraticElement):
+            return QuadraticElement(self.a / o, self.b / o, self.W)
+        norm = o.a * o.a - o.b * o.b * self.W
+        return self * QuadraticElement(o.a / norm, -o.b / norm, self.W)
+
+    def __eq__(self, o):
+        o = self._lift(o)
+        return self.a == o.a and self.b == o.b
+
+    __hash__ = None
+
+
+def _fredholm_in_field(d, names: Sequence[str], sub: Mapping[sp.Symbol, sp.Expr], gens: Sequence[sp.Symbol]):
+    """The Fredholm code of :mod:`landau.fredholm` in ℚ(gens)(ω), ω² = ω_c²: returns
+    (k_c, ω_c², {name: a + b·ω}) as field elements, or None when a derivative at steady
+    state is not rational in ``gens`` (after ``sub``)."""
     J, E, r, c = d._structure()
-    fp, Jp = d.jets.parameter_derivatives()
+    kc, W_c = d.hopf.closed_form
     need_cubic = any(n in ("Lambda", "chi") for n in names)
+    need_linear = any(n in ("Gamma_bar", "Omega_bar") for n in names)
+    fp, Jp = d.jets.parameter_derivatives() if need_linear else ([], [])
     B2 = d.jets.order(2) if need_cubic or any(f != 0 for f in fp) else {}
     C3 = d.jets.order(3) if need_cubic else {}
-    kc, W_c = d.hopf.closed_form
-    sub = {s: _exact(params[s.name]) for s in d.args[1:]}
-    atoms = {a: e.xreplace(sub) for a, e in d.jets.atoms.items()}
-    if not all(e.is_rational_function(V) for e in atoms.values()):
+    atoms = {a: e.xreplace(sub) for a, e in d.jets.atoms.items()}   # after the jets are built
+    if not all(e.is_rational_function(*gens) for e in atoms.values()):
         return None
-    K, KV, Kw = field("V,omega", QQ)
-    local = {V: sp.Symbol("V"), w: sp.Symbol("omega")}
+    plain = [sp.Symbol(g.name) for g in gens]
+    K, *_ = field(plain, QQ)
+    local = dict(zip(gens, plain))
 
-    def conv(e):
+    def conv_field(e):
         e = as_expr(e).xreplace({d.k: kc}).xreplace(atoms).xreplace(sub).xreplace(local)
         return K.from_expr(e) if e.free_symbols else K(sp.Rational(e))
 
-    Jk = [[conv(x) for x in row] for row in J]
-    Ek = [conv(x) for x in E]
-    Wk = conv(W_c)
-    vec = null_vectors(Jk, Ek, Kw, d.system.normalise, r, c)
-    values: dict[str, Cx] = {}
-    if any(n in ("Gamma_bar", "Omega_bar") for n in names):
-        a = linear_coefficient(vec, Jk, [[conv(x) for x in row] for row in Jp], [conv(x) for x in fp],
-                               {k: conv(v) for k, v in B2.items()})
+    Wf = conv_field(W_c)
+    zero = K(0)
+
+    def conv(e):
+        return QuadraticElement(conv_field(e), zero, Wf)
+
+    om = QuadraticElement(zero, K(1), Wf)
+    values: dict[str, QuadraticElement] = {}
+    if need_linear or need_cubic:
+        Jk = [[conv(x) for x in row] for row in J]
+        Ek = [conv(x) for x in E]
+        vec = null_vectors(Jk, Ek, om, d.system.normalise, r, c)
+        B2k = {k: conv(v) for k, v in B2.items()}
+    if need_linear:
+        a = linear_coefficient(vec, Jk, [[conv(x) for x in row] for row in Jp], [conv(x) for x in fp], B2k)
         values["Gamma_bar"], values["Omega_bar"] = -a.re, a.im
     if need_cubic:
-        b = cubic_coefficient(vec, Jk, Ek, Kw, {k: conv(v) for k, v in B2.items()},
-                              {k: conv(v) for k, v in C3.items()}, K(1) / 2)
+        b = cubic_coefficient(vec, Jk, Ek, om, B2k, {k: conv(v) for k, v in C3.items()}, conv(sp.Rational(1, 2)))
         values["Lambda"], values["chi"] = 2 * b.re, 2 * b.im
+    return conv_field(kc), Wf, {n: values[n] for n in names}
 
-    def split(poly):
-        """poly(V, ω) = A(V) + ω B(V) modulo ω² = ω_c²(V)."""
-        A, B = K(0), K(0)
-        for (i, j), coef in poly.terms():
-            term = K(coef) * KV ** i * Wk ** (j // 2)
-            if j % 2:
-                B += term
-            else:
-                A += term
-        return A, B
 
-    out = {}
-    Vsym = sp.Symbol("V")
-    for n in names:
-        q = values[n]
-        nA, nB = split(q.numer)
-        dA, dB = split(q.denom)
-        den = dA * dA - Wk * dB * dB
-        P = (nA * dA - Wk * nB * dB) / den
-        Q = (nB * dA - nA * dB) / den
-        Pe, Qe = P.as_expr(), Q.as_expr()
-        out[n] = RationalCoefficient(n, Pe, Qe, sp.lambdify(Vsym, Pe, "numpy"), sp.lambdify(Vsym, Qe, "numpy"))
-    return out
+def rational_forms(derivation, names: Sequence[str], params: Mapping[str, float]) -> RationalForms | None:
+    """k_c, ω_c² and the requested base coefficients in cancelled form at fixed ``params``, or
+    None when some derivative at steady state is not rational in V (then the general route is
+    used)."""
+    d = derivation
+    sub = {s: _exact(params[s.name]) for s in d.args[1:]}
+    res = _fredholm_in_field(d, names, sub, [V])
+    if res is None:
+        return None
+    kc, W, values = res
+    out = {n: RationalCoefficient(n, RationalFunction.from_field(q.a), RationalFunction.from_field(q.b))
+           for n, q in values.items()}
+    return RationalForms(RationalFunction.from_field(kc), RationalFunction.from_field(W), out)
+
+
+def closed_form(derivation, name: str) -> sp.Expr | None:
+    """Base coefficient ``name`` as one factored expression in V and the parameters (ω_c
+    written as the square root of its cancelled square), or None when the law's derivatives
+    at steady state are not rational in V and the parameters.  Seconds to tens of seconds:
+    the gcds are multivariate (e.g. Dieterich Λ ~5 s, Ruina Λ ~20 s)."""
+    d = derivation
+    res = _fredholm_in_field(d, [name], {}, list(d.args))
+    if res is None:
+        return None
+    _, W, values = res
+    back = {sp.Symbol(g.name): g for g in d.args}
+    q = values[name]
+    P, Q = (sp.factor(x.as_expr()).xreplace(back) for x in (q.a, q.b))
+    if Q == 0:
+        return P
+    return P + sp.sqrt(sp.factor(W.as_expr()).xreplace(back)) * Q

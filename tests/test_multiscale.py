@@ -142,17 +142,17 @@ def test_general_route_reproduces_the_spring_block():
 def test_exactly_cancelled_route_matches_50_digits_and_finds_the_zero():
     """landau.rational (field ℚ(V, ω)) against the general formula at 50 digits: Dieterich at
     Table 1, where float64 loses ~10 digits below 1e-6 m/s, and Λ ≡ 0 at M = 0 (Sec. 3.2)."""
-    from landau.rational import rational_coefficients
+    from landau.rational import rational_forms
 
     d = Derivation(SpringBlock(get_law("dieterich")))
     params = d.block.resolve()
-    rc = rational_coefficients(d, ["Gamma_bar", "Lambda", "chi"], params)
+    rc = rational_forms(d, ["Gamma_bar", "Lambda", "chi"], params)
     Vs = np.array([1e-8, 3e-7, 1e-5, 2e-4, 1e-2])
     om = d.evaluate(Vs, None, ["kc"])["omega_c"]
     for n in ("Gamma_bar", "Lambda", "chi"):
         got = rc[n](Vs, om)
         want = [float(d.evaluate_mp(float(V0), {}, [n])[n]) for V0 in Vs]
         assert got == pytest.approx(want, rel=1e-12)
-    assert rational_coefficients(d, ["Lambda"], d.block.resolve({"M": 0.0}))["Lambda"].identically_zero
-    assert rational_coefficients(Derivation(SpringBlock(get_law("spinodal"))), ["Lambda"],
+    assert rational_forms(d, ["Lambda"], d.block.resolve({"M": 0.0}))["Lambda"].identically_zero
+    assert rational_forms(Derivation(SpringBlock(get_law("spinodal"))), ["Lambda"],
                                  SpringBlock(get_law("spinodal")).resolve()) is None   # not rational in V

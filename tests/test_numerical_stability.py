@@ -47,10 +47,10 @@ def _derivation(name: str):
     return _derivations[name]
 
 
-def _mismatches(name: str, Vs, params) -> list[str]:
+def _mismatches(name: str, Vs, params, method: str = "auto") -> list[str]:
     """Every (V, quantity) where the compiled value is neither the 50-digit value nor the limit."""
     d = _derivation(name)
-    comp = d.evaluate(np.asarray(Vs, dtype=float), params, NAMES)
+    comp = d.evaluate(np.asarray(Vs, dtype=float), params, NAMES, method=method)
     flagged = np.asarray(comp.get("degenerate", np.zeros(len(Vs), dtype=bool)))
     bad: list[str] = []
     for i, V0 in enumerate(Vs):
@@ -119,6 +119,26 @@ def test_compiled_near_range_ends(name):
     assert not bad, _report(bad)
 
 
+RATIONAL_LAWS = ["dieterich", "ruina", "modified-dieterich"]
+
+
+@pytest.mark.parametrize("mass", [1.2, 1e-12, 0.0])
+@pytest.mark.parametrize("name", RATIONAL_LAWS)
+def test_exactly_cancelled_route_matches_mp(name, mass):
+    """The route large batches take (landau.rational: Horner with error bounds, exact ℚ
+    fallback) against 50 digits on the same grid, plus V within 1e-6…1e-9 of the range ends
+    and of the codimension-two point, where the bound sends points to the exact fallback."""
+    from landau.transition import codim2_points
+
+    d = _derivation(name)
+    lo, hi, ends = vw_range(name)
+    extra = [e * (1 + s * r) for e in ends for r in (1e-6, 1e-9) for s in ((1,) if e == lo else (-1,))]
+    if mass > 0:
+        extra += [c.V * (1 + r) for c in codim2_points(d, lo * 1.001, hi * 0.999, {"M": mass}) for r in (1e-7, -1e-9)]
+    bad = _mismatches(name, np.concatenate([_grid(name), extra]), {"M": mass}, method="rational")
+    assert not bad, _report(bad)
+
+
 def _rationalised(expr: sp.Expr) -> sp.Expr:
     """Cancel an expression with square roots of V, a, σ and b − a (Dieterich–Ruina closed forms):
     V = s_V², a = s_a², σ = s_σ², b = a + s_d² make every radical a symbol, so ``cancel`` is exact."""
@@ -130,8 +150,11 @@ def _rationalised(expr: sp.Expr) -> sp.Expr:
 
 def test_dieterich_quasi_static_lambda_vanishes_closed_form():
     # Putelat et al. 2010, text below eq. (33): "neglecting inertia implies A_D(V) = 0"
-    closed = _derivation("dieterich").coefficient("Lambda").closed_form()
-    assert _rationalised(closed.subs(M, 0)) == 0
+    coef = _derivation("dieterich").coefficient("Lambda")
+    assert _rationalised(coef.expr.subs(M, 0)) == 0          # the engine's formula, cancelled exactly
+    closed = coef.closed_form()                              # re-derived in Q(V, a, b, L, σ, M)(ω_c)
+    m = next(x for x in closed.free_symbols if x.name == "M")
+    assert closed.subs(m, 0) == 0 and sp.cancel(closed / m).subs(m, 0) != 0   # Λ_D = M·(…), exactly
     # and it is not zero for M > 0 (eq. 33 is O(M); subcritical, Λ_D > 0, at V = 1e-5)
     assert _derivation("dieterich").evaluate_mp(1e-5, {"M": 1.2}, ["Lambda"])["Lambda"] > 1e8
 

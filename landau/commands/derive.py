@@ -91,11 +91,17 @@ def derivation_latex(d: Derivation, names) -> str:
             L.append(r"\begin{equation*} C = 2\sqrt{2\bar\Gamma/|\Lambda|} \end{equation*}")
             continue
         L.append(rf"\begin{{multline*}} {c.symbol} = {sp.latex(c.formula)} \end{{multline*}}")
-        if d.hopf.closed_form is not None and _is_rational(c):
+        if d.hopf.closed_form is not None and (_is_rational(c) or rational_in_parameters(d)):
             L.append(rf"In terms of $V$: \begin{{multline*}} {c.latex()} \end{{multline*}}")
     L.append(r"with $\omega = \omega_c$ and $k = k_c$ above.")
     L.append(r"\end{document}")
     return "\n".join(L) + "\n"
+
+
+def rational_in_parameters(d: Derivation) -> bool:
+    """Every derivative at steady sliding is rational in V and the parameters (Dieterich,
+    Ruina): the closed forms come from landau.rational in seconds."""
+    return all(e.is_rational_function(*d.args) for e in d.jets.atoms.values())
 
 
 def _is_rational(c) -> bool:

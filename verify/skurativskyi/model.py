@@ -184,3 +184,31 @@ def saltation_matrix(params: Params, t: float, y, side_eps: float = 1e-13) -> np
     if den == 0:
         raise InputError("saltation matrix undefined at a grazing point (ẋ = 0 on x = x_I)")
     return np.eye(2) + np.outer(fp - fm, n) / den
+
+
+@njit(cache=True)
+def accel_partials(t, x, v, p):
+    """ẍ and its partials split for the stiff stepper (:mod:`verify.skurativskyi.sdirk`):
+    returns (a, ∂a/∂x, ∂a/∂ẋ without the Hertz damping, κ) with κ = k_I b (x − x_I)^{n₂}/m
+    when the contact force is active (else 0), so that the Hertz damping contributes
+    −κ sgn(ẋ)|ẋ|^{n₃} to ẍ — exactly linear in w = sgn(ẋ)|ẋ|^{n₃}.  Nothing is floored here."""
+    eps = p[IEPS]
+    s = v * v + eps * eps
+    rs = np.sqrt(s)
+    om = p[IOM]
+    m = p[IM]
+    a = p[IM0E] * om * om * np.sin(om * t) - p[IK] * x - p[IC] * v - p[IT] * v / rs
+    av = -(p[IC] + p[IT] * eps * eps / (s * rs)) / m
+    ax = -p[IK]
+    kap = 0.0
+    d = x - p[IXI]
+    if d > 0.0:
+        sv = 1.0 if v > 0 else (-1.0 if v < 0 else 0.0)
+        pw = abs(v) ** p[IN3]
+        dn2 = d ** p[IN2]
+        f = d ** p[IN1] + p[IB] * dn2 * sv * pw
+        if f > 0.0:
+            a -= p[IKI] * f
+            ax -= p[IKI] * (p[IN1] * d ** (p[IN1] - 1.0) + p[IB] * p[IN2] * d ** (p[IN2] - 1.0) * sv * pw)
+            kap = p[IKI] * p[IB] * dn2 / m
+    return a / m, ax / m, av, kap

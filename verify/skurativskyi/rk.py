@@ -1,6 +1,14 @@
-"""A compiled (numba) explicit Dormand–Prince 5(4) integrator with exact contact switching.
+"""A compiled (numba) Dormand–Prince 5(4) integrator with exact contact switching, and a
+stiff SDIRK4 for the stick phases.
 
-Why explicit (measured, see ``verify/benchmarks/skurativskyi_work_precision.py``): the
+:func:`integrate_mixed` (the default path of :func:`verify.skurativskyi.simulate.run`) takes
+every step that starts with |ẋ| below a threshold (stick: the cart rests on the obstacle or
+on the track, |ẋ| ~ 1e-9…1e-6 m/s) with the L-stable SDIRK4 of :mod:`verify.skurativskyi.sdirk`
+(stage equations solved as scalar monotone equations, robust on the |ẋ|^{n₃} cusp) and all
+other steps with DOPRI5; :func:`integrate` is the explicit path alone.  Event location,
+stroboscopic clipping and tangent renormalisation below are the same for both steppers.
+
+Why explicit outside stick (measured, see ``verify/benchmarks/skurativskyi_work_precision.py``): the
 Hertz damping term sgn(ẋ)|ẋ|^{n₃} (n₃ ≈ 0.187) is not Lipschitz at ẋ = 0 inside contact:
 its slope grows like |ẋ|^{−0.81}, so the Newton iteration of an implicit method (Radau,
 BDF) diverges whenever a stage velocity is near zero — the classic failure of Newton on a
@@ -8,7 +16,9 @@ cusp-type root (a first version of this module was a compiled Radau IIA and dive
 very first step from rest).  The stiffness of the regularised friction is moderate
 (T/(εm) ≈ 7.2e4 1/s), so an error-controlled explicit method runs at its stability bound
 (h ≈ 3e-5 s) through stick phases and takes long steps elsewhere.  Compiled, a step costs
-~1 µs, which is what makes the method fast — not its stability.
+~1 µs, which is what makes the method fast — not its stability.  (In stick phases on the
+obstacle the explicit steps are in fact ~1e-6 s, chattering across ẋ = 0 on the cusp: >95 %
+of all steps at ω = 15; that is what the SDIRK4 of the mixed path removes.)
 
 Method (Dormand & Prince 1980; Hairer, Nørsett & Wanner, *Solving ODEs I*, II.5): 7 stages
 with FSAL, 5th-order solution, embedded 4th-order error estimate, step factor
@@ -38,6 +48,7 @@ from numba import njit
 
 from landau.errors import InputError
 from verify.skurativskyi.model import rhs as _rhs
+from verify.skurativskyi.sdirk import sdirk_step as _sdirk_step
 
 OK, MAX_STEPS, STEP_TOO_SMALL, MAX_EVENTS = 0, 1, 2, 3
 STATUS = {OK: "t_end", MAX_STEPS: "max_steps", STEP_TOO_SMALL: "step-size-underflow", MAX_EVENTS: "max_events"}
@@ -143,12 +154,33 @@ def _first_crossing(g0, q0, q1, q2, outside_sign):
 
 
 @njit(cache=True)
+def _any_step(stiff, p, t, y, k1, h, rtol, atol, ynew, k7, err):
+    """One step of the chosen method; returns (ok, f evaluations)."""
+    if stiff:
+        return _sdirk_step(p, t, y, h, rtol, atol, ynew, k7, err)
+    _dp_step(p, t, y, k1, h, ynew, k7, err)
+    return True, 6
+
+
+@njit(cache=True)
 def integrate(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, strobe_dt,
               n_strobe_max, renorm, max_events, max_steps):
+    """The explicit path: :func:`integrate_mixed` with the stiff stepper disabled (the
+    returned tuple has the stiff-step count as its last entry, always 0 here)."""
+    return integrate_mixed(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, strobe_dt,
+                           n_strobe_max, renorm, max_events, max_steps, 0.0, 0.0)
+
+
+@njit(cache=True)
+def integrate_mixed(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, strobe_dt,
+                    n_strobe_max, renorm, max_events, max_steps, v_stiff, a_stiff):
     """Integrate with contact switching at x = xI (``guard``), stroboscopic samples every
     ``strobe_dt`` from ``strobe_t0`` (if > 0) and tangent renormalisation there
-    (``renorm``, 4-D systems).  See the module docstring.  Returns a tuple (see
-    :func:`verify.skurativskyi.simulate.run`)."""
+    (``renorm``, 4-D systems).  A step that starts in stick — |ẋ| < ``v_stiff`` and
+    |ẍ| < ``a_stiff`` (a velocity reversal crosses the band |ẋ| < v_stiff in ~2 v_stiff/|ẍ|,
+    a few explicit steps; a stick stays in it) — is taken by the L-stable SDIRK4 of
+    :mod:`verify.skurativskyi.sdirk`, any other by DOPRI5 (``v_stiff`` ≤ 0: DOPRI5 only).
+    See the module docstring.  Returns a tuple (see :func:`verify.skurativskyi.simulate.run`)."""
     n = y0.shape[0]
     y = y0.copy()
     t = t0
@@ -177,6 +209,7 @@ def integrate(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, stro
         ts = strobe_t0 + ist * strobe_dt
     nsteps = 0
     nrej = 0
+    nstiff = 0
     status = OK
     max_mismatch = 0.0
     while True:
@@ -212,17 +245,19 @@ def integrate(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, stro
         if h <= 1e-15 * max(1.0, abs(t)):
             status = STEP_TOO_SMALL
             break
-        _dp_step(p, t, y, k1, h, ynew, k7, err)
-        nfev += 6
-        en = _err_norm(err, y, ynew, rtol, atol)
+        stiff = abs(y[1]) < v_stiff and abs(k1[1]) < a_stiff
+        expo = 0.25 if stiff else 0.2  # embedded orders 3 (SDIRK4) and 4 (DOPRI5)
+        ok, nf = _any_step(stiff, p, t, y, k1, h, rtol, atol, ynew, k7, err)
+        nfev += nf
+        en = _err_norm(err, y, ynew, rtol, atol) if ok else np.nan
         if not (en <= 1.0):
             nrej += 1
-            if en != en:  # NaN
+            if en != en:  # NaN or a failed stage solve
                 h *= 0.2
             else:
-                h *= max(0.2, 0.9 * en ** -0.2)
+                h *= max(0.2, 0.9 * en ** -expo)
             continue
-        fac = 10.0 if en == 0 else min(10.0, 0.9 * en ** -0.2)
+        fac = 10.0 if en == 0 else min(10.0, 0.9 * en ** -expo)
         h_next = h * fac
         if clipped:
             h_next = max(h_next, min(h_free, h_free * fac))
@@ -242,8 +277,11 @@ def integrate(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, stro
                 # re-take the step onto the root; Newton on the step length (slope ẋ)
                 hs = s_star * h
                 for it in range(8):
-                    _dp_step(p, t, y, k1, hs, ynew, k7, err)
-                    nfev += 6
+                    ok, nf = _any_step(stiff, p, t, y, k1, hs, rtol, atol, ynew, k7, err)
+                    nfev += nf
+                    if not ok:
+                        hs *= 0.5
+                        continue
                     gr = ynew[0] - xI
                     if abs(gr) <= 4e-16 * abs(xI) or ynew[1] == 0.0:
                         break
@@ -262,6 +300,8 @@ def integrate(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, stro
                 switched = True
                 clipped = False
         nsteps += 1
+        if stiff:
+            nstiff += 1
         t = ts if clipped and t_target == ts else (t_end if clipped else t + h)
         for a in range(n):
             y[a] = ynew[a]
@@ -279,7 +319,7 @@ def integrate(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, stro
             h_next = max(h_next, h_free)
         h = h_next
     return (t, y, status, ev_t[:nev].copy(), ev_k[:nev].copy(), ev_v[:nev].copy(), st_t[:nst].copy(),
-            st_y[:nst].copy(), lyap, nly, nsteps, nfev, nrej, max_mismatch)
+            st_y[:nst].copy(), lyap, nly, nsteps, nfev, nrej, max_mismatch, nstiff)
 
 
 # ---------------------------------------------------------------------------------------
