@@ -66,6 +66,15 @@ q̇ ← q̇ − M⁻¹w_N γ_N/G_NN) and decides the contact mode; the engine lo
 below ``v_tol`` (1e-10 m/s) is treated as plastic as well (logged as an impact "→ stick/slip"):
 with e_N = 0.2 this velocity rule, not the time rule, ends the chattering once the chatter
 tolerance is ≤ 1e-6 s (see verify/benchmarks/results/lancioni_chatter.md).
+Stick tolerance (off by default).  ``ContactModel(stick_tol=η)`` imitates simulation codes
+that treat |γ_T| < η as stick: a slip phase ends when it enters the band |γ_T| ≤ η while
+stick is admissible (|λ_T| ≤ μλ_N, λ_N > 0 for the stick forces at that state), not only at
+γ_T = 0.  ``stick_tol_reset="project"`` then sets γ_T = 0 (a velocity jump ≤ η);
+``"hold"`` keeps the entry value during the stick phase (stick forces keep γ̇_T = 0, a
+Karnopp-like band) and into the following slip phase.  Impacts and the contact problem
+after them are unchanged.  The exact model (η = 0) is the reference; the tolerance exists
+to explain differences from published tolerance-based simulations
+(verify/lancioni/period_adding.py), never to tune results.
 The slip guard ``stop`` carries its rate s·γ̇_T so that a slip phase that starts a rounding
 error behind γ_T = 0 (the engine takes roots on the new side) is entered, not re-fired.
 """
@@ -77,7 +86,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from landau.errors import IntegratorError
+from landau.errors import InputError, IntegratorError
 from verify.hybrid import EngineOptions, Guard, HybridModel, Jump, Mode
 
 
@@ -256,10 +265,44 @@ class ContactModel:
     mech: ContactMechanics
     sections: Sequence[Section] = ()
     v_tol: float = 1e-10
+    #: numerical stick tolerance η (velocity units; 0 = exact, the default).  See
+    #: "Stick tolerance" in the module docstring: a slip phase with |γ_T| ≤ η where
+    #: stick is admissible is treated as stick.  Only for reproducing tolerance-based codes.
+    stick_tol: float = 0.0
+    #: what happens to γ_T at a tolerance stick: "project" (set to 0, a jump ≤ η) or
+    #: "hold" (kept, Karnopp-like band: the stick phase keeps the entry value of γ_T)
+    stick_tol_reset: str = "project"
     model: HybridModel = field(init=False)
 
     def __post_init__(self):
+        if not (self.stick_tol >= 0 and np.isfinite(self.stick_tol)):
+            raise InputError(f"stick_tol must be a finite number >= 0, got {self.stick_tol!r}")
+        if self.stick_tol_reset not in ("project", "hold"):
+            raise InputError(f"stick_tol_reset must be 'project' or 'hold', got {self.stick_tol_reset!r}")
         self.model = self._build()
+
+    def _hold(self) -> bool:
+        return self.stick_tol > 0 and self.stick_tol_reset == "hold"
+
+    def _to_stick(self, t, y):
+        """State put into stick: γ_T = 0 exactly, or (tolerance "hold") only γ_N = 0."""
+        if self._hold():
+            return self.mech.project(t, y, normal_velocity=True)
+        return self.mech.project_stick(t, y)
+
+    def _leave_stick(self, t, y, s: int):
+        """State leaving stick into slip s: as :meth:`_to_stick`; a held γ_T of the wrong sign is zeroed."""
+        if self._hold():
+            n = self.mech.n
+            gT = float(self.mech.gammas(t, y[:n], y[n:])[1])
+            if s * gT >= 0:
+                return self.mech.project(t, y, normal_velocity=True)
+        return self.mech.project_stick(t, y)
+
+    def stick_margin(self, t, y):
+        """min(μλ_N − |λ_T|, λ_N) of the stick forces at y: ≥ 0 where stick is admissible (vectorised)."""
+        _, lamN, lamT, _ = self.forces("stick", t, y)
+        return np.minimum(self.mech.mu * lamN - np.abs(lamT), lamN)
 
     # ---- dynamics of each mode (vectorised over sample axes)
     def forces(self, mode: str, t, y):
@@ -346,9 +389,9 @@ class ContactModel:
                     # rounding (~1e-13), which would put the new slip phase behind its own
                     # stop guard with zero rate (stick and slip coincide at the onset)
                     gs.append(Guard("slip+ onset", onset(1), lambda t, y: Jump(
-                        "slip+", mech.project_stick(t, y), "stick→slip+ (λ_T = −μλ_N)")))
+                        "slip+", self._leave_stick(t, y, 1), "stick→slip+ (λ_T = −μλ_N)")))
                     gs.append(Guard("slip- onset", onset(-1), lambda t, y: Jump(
-                        "slip-", mech.project_stick(t, y), "stick→slip- (λ_T = +μλ_N)")))
+                        "slip-", self._leave_stick(t, y, -1), "stick→slip- (λ_T = +μλ_N)")))
                 else:
                     s = 1 if mode == "slip+" else -1
 
@@ -360,7 +403,10 @@ class ContactModel:
                         # behind γ_T = 0 but moving away from it run (engine's recover_tol)
                         _, lamN, lamT, (G, b) = self.forces(mode, t, y)
                         return s * (b[1] + G[1, 0] * lamN + G[1, 1] * lamT)
-                    gs.append(Guard("stop", stop, self._stop_transition(s), rate=stop_rate))
+                    if self.stick_tol > 0:
+                        gs.append(self._tolerant_stop(mode, s))
+                    else:
+                        gs.append(Guard("stop", stop, self._stop_transition(s), rate=stop_rate))
 
                     def painleve(t, y, s=s):
                         _, _, G, _ = mech.terms(t, y[:n], y[n:])
@@ -375,10 +421,30 @@ class ContactModel:
                                on_zeno=self.end_chattering if mode == "flight" else None)
         return HybridModel(modes, name=getattr(mech, "name", "single-contact"))
 
+    def _tolerant_stop(self, mode: str, s: int) -> Guard:
+        """Slip guard with the stick tolerance η: g = min(max(sγ_T − η, −margin), sγ_T).
+
+        g ≤ 0 iff (sγ_T ≤ η and stick is admissible) or sγ_T ≤ 0, so a slip phase ends when it
+        enters the band |γ_T| ≤ η inside the stick region (or leaves it into the stick region),
+        and otherwise at a true reversal as in the exact model.  Its rate is a forward
+        difference along the slip flow (used only for the engine's start-of-phase recovery).
+        """
+        mech, n, eta = self.mech, self.mech.n, self.stick_tol
+
+        def g(t, y):
+            gt = s * mech.gammas(t, y[:n], y[n:])[1]
+            return np.minimum(np.maximum(gt - eta, -self.stick_margin(t, y)), gt)
+
+        f = self.rhs(mode)
+
+        def rate(t, y, h=1e-7):
+            return (g(t + h, y + h * f(t, y)) - g(t, y)) / h
+        return Guard("stop", g, self._stop_transition(s), rate=rate)
+
     def _stop_transition(self, s: int):
         def tr(t, y):
             n = self.mech.n
-            y = self.mech.project_stick(t, y)  # exactly on γ_T = 0 (a rounding-size correction)
+            y = self._to_stick(t, y)  # exactly on γ_T = 0 (a rounding-size correction); "hold": γ_T kept
             a0, MiW, G, b = self.mech.terms(t, y[:n], y[n:])
             sol = contact_problem(G, b, self.mech.mu, 0.0, self.v_tol, flight_allowed=False, t=t, state=y)
             return Jump(sol.mode, y, f"slip{'+' if s > 0 else '-'} end (γ_T = 0) → {sol.mode}")

@@ -132,10 +132,14 @@ PHI_ZERO_UP = Section("phi=0 up", lambda t, y, acc: -y[0])
 
 
 def build(mu: float, eN: float = 0.0, params: Mapping[str, float] | None = None, belt=None,
-          sections=(PHIDOT_MAX,)) -> ContactModel:
-    """The hybrid model of eq. (1) (set 1 by default, g = 10) at friction coefficient μ."""
+          sections=(PHIDOT_MAX,), stick_tol: float = 0.0, stick_tol_reset: str = "project") -> ContactModel:
+    """The hybrid model of eq. (1) (set 1 by default, g = 10) at friction coefficient μ.
+
+    ``stick_tol`` > 0 switches on the numerical stick tolerance of
+    :class:`verify.lancioni.contact.ContactModel` (default 0: the exact model).
+    """
     mech = Lancioni(params=dict(params or SET1), mu=float(mu), eN=float(eN), belt=belt or ConstantBelt())
-    return ContactModel(mech, sections=sections)
+    return ContactModel(mech, sections=sections, stick_tol=float(stick_tol), stick_tol_reset=stick_tol_reset)
 
 
 def slip_state(mech: Lancioni, phi: float, phidot: float = 0.0) -> np.ndarray:
