@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from verify.skurativskyi.analysis import (attractor, continuation, first_detachment, locate_grazing,
-                                          locate_period_doubling, tsallis_q)
+                                          locate_period_doubling, section_period, tsallis_q)
 from verify.skurativskyi.sweep import SweepSpec, run_sweep
 
 pytestmark = pytest.mark.slow
@@ -55,6 +55,11 @@ def test_period_doubling_cascade_inside_20_20_5(sweeps):
     assert _n_section(_at(up, 20.0)) == 1
     assert _n_section(_at(up, 20.3)) == 2
     assert _n_section(_at(up, 20.45)) > 8
+    # the second doubling: continued from the period-2 attractor at 20.3 the section has period 4
+    # at 20.38 (ours: period 2 on 20.28-20.36, period 4 on 20.37-20.39, aperiodic from 20.40)
+    a = attractor(20.34, _at(up, 20.3).y_end, 150, 64)
+    a = attractor(20.38, a.y_end, 150, 64)
+    assert section_period(a, tol=1e-8, max_period=32) == 4
 
 
 def test_grazing_cascade_and_ratio(sweeps):
