@@ -61,6 +61,8 @@ _RATIONAL_MIN = 500
 #: points from which the exactly cancelled form (~0.2 s to derive per parameter set) beats the
 #: general formula for all of them (float64 + float32 screen + extended pass, ~1e6 points/s)
 _RATIONAL_DIRECT = 100_000
+#: points per block of the vectorised evaluation (working set of a formula stays in cache)
+_BLOCK = 16_384
 #: float32 vs float64 disagreement above which float64 may miss _REL_GOOD (eps ratio ~5e8)
 _REL_SCREEN = 0.02
 #: extended precision available (x86 80-bit long double: eps 1.1e-19, ~1000x float64)
@@ -459,7 +461,26 @@ class Derivation:
         return settled, degenerate
 
     def _raw(self, vals, shape, bases, dtype, kc=None, om=None) -> dict[str, np.ndarray]:
-        """k_c, ω_c² and the requested coefficients in one precision, atoms shared."""
+        """k_c, ω_c² and the requested coefficients in one precision, atoms shared.
+
+        Large batches go through in blocks of _BLOCK points: the formulas are long chains of
+        elementwise operations, and blocks that fit in cache run them ~1.5–2× faster."""
+        size = int(np.prod(shape))
+        if size <= _BLOCK:
+            return self._raw_block(vals, shape, bases, dtype, kc, om)
+        flat = [np.ravel(v) for v in vals]
+        kcf = None if kc is None else np.ravel(kc)
+        omf = None if om is None else np.ravel(om)
+        out: dict[str, np.ndarray] = {}
+        for i in range(0, size, _BLOCK):
+            sl = slice(i, min(i + _BLOCK, size))
+            part = self._raw_block([v[sl] for v in flat], (sl.stop - sl.start,), bases, dtype,
+                                   None if kcf is None else kcf[sl], None if omf is None else omf[sl])
+            for key, val in part.items():
+                out.setdefault(key, np.empty(size, dtype=val.dtype))[sl] = val
+        return {key: val.reshape(shape) for key, val in out.items()}
+
+    def _raw_block(self, vals, shape, bases, dtype, kc=None, om=None) -> dict[str, np.ndarray]:
         formulas = [self._compiled_formula(n) for n in bases]
         hopf = self.hopf._compiled_closed if kc is None else ()
         atoms = self._atom_table.evaluate(

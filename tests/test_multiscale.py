@@ -156,3 +156,17 @@ def test_exactly_cancelled_route_matches_50_digits_and_finds_the_zero():
     assert rational_forms(d, ["Lambda"], d.block.resolve({"M": 0.0}))["Lambda"].identically_zero
     assert rational_forms(Derivation(SpringBlock(get_law("spinodal"))), ["Lambda"],
                                  SpringBlock(get_law("spinodal")).resolve()) is None   # not rational in V
+
+
+def test_blocked_evaluation_equals_pointwise_pieces():
+    """Large batches run in cache-sized blocks (multiscale._BLOCK): the result must be the same
+    numbers as small pieces (elementwise arithmetic, per-point screening: bitwise identical)."""
+    from landau import multiscale
+
+    d = derive(SpringBlock(get_law("spinodal")), ["Lambda", "Gamma_bar"])
+    Vs = np.logspace(-7.5, -3.4, 3 * multiscale._BLOCK + 17)
+    names = ["kc", "omega_c", "Gamma_bar", "Lambda"]
+    whole = d.evaluate(Vs, None, names)
+    pieces = [d.evaluate(Vs[i:i + 1000], None, names) for i in range(0, Vs.size, 1000)]
+    for n in names:
+        assert np.array_equal(whole[n], np.concatenate([p[n] for p in pieces]), equal_nan=True), n

@@ -8,7 +8,8 @@
   Hopf point through :func:`landau.general.hopf_normal_form`;
 * :mod:`verify.lancioni.analysis` — slip cycles, lift-off, stick onset, free-flight onset,
   Painlevé onset, simulated Hopf point;
-* :mod:`verify.lancioni.period_adding` — the e_N = 0 detached branch near μ = 0.38957;
+* :mod:`verify.lancioni.period_adding` — the e_N = 0 detached branch near μ = 0.38957 (why
+  eq. (1) has no period-adding cascade);
 * :mod:`verify.lancioni.diagrams` — bifurcation diagrams in μ and the sinusoidal belt runs.
 
 Results against the paper (g = 10 m/s², belt v = −1 m/s — the direction with the Hopf point)
@@ -20,8 +21,9 @@ set 1 Hopf μ_c (engine)                0.40977         0.4097782 (supercritical
                                                        ω_c = 33.68 rad/s); 5th digit: see scenes
 set 1 Hopf by hybrid simulation        —               0.40976 (growth-rate zero, ±0.002)
 set 1 lift-off (end of slip cycle)     0.40983         0.4098280
-set 1 detached branch end (e_N = 0)    0.38957 (acc.)  0.3895691 (period-adding steps not found,
-                                                       see period_adding)
+set 1 detached branch end (e_N = 0)    0.38957 (acc.)  0.3895691098 (no period-adding cascade in
+                                                       eq. (1), nor with a stick tolerance; see
+                                                       period_adding)
 set 1 e_N = 0.2 detached orbit         bouncing        pure bouncing (flight + impacts), μ ≤ 0.4099
 set 1 Painlevé / motion change         ≈ 0.6450        0.64681 (slip reaches D₊ = 0: PainleveError)
 set 2 Hopf μ_c                         0.353           0.3530929 (supercritical)

@@ -9,7 +9,8 @@ Tolerances.  ``lancioni/hopf``: the acceptance asks for 4 significant digits (re
 half-unit 1.2e-4).  The engine gives μ_c = 0.4097782, whose 5-digit rounding is 0.40978,
 one unit above the printed 0.40977 (printed value = truncation; the paper located it from
 simulations, its Fig. 2(b) resolves ~1e-5).  ``lancioni/lift-off``: half a unit of the
-printed 5th digit.  ``lancioni/period-adding``: the printed accumulation point 0.38957.
+printed 5th digit.  ``lancioni/period-adding``: the printed accumulation point 0.38957, half a unit
+of its 5th digit (the model has no cascade steps; see verify/lancioni/period_adding.py).
 """
 
 from __future__ import annotations
@@ -76,15 +77,21 @@ register(Scene(
 def _period_adding(p):
     from verify.lancioni.period_adding import period_adding_steps
     res = period_adding_steps(_params(p), n_steps=int(p["n_steps"]))
-    return {"value": res.accumulation, "steps": list(res.steps), "periods": list(res.periods),
-            "method": res.method}
+    return {"value": res.accumulation, "steps": list(res.steps),
+            "periods_seen": sorted({per for _, per in res.periods}),
+            "stick_free_multiplier": res.multiplier, "first_miss_slope": res.first_miss_slope,
+            "method": res.method,
+            "note": "value = end of the detached stick orbit (every stick phase ends at the same point P, "
+                    "so this is where a cascade would accumulate); eq. (1) has no period-adding steps "
+                    "(border collision with an unstable stick-free orbit; a stick tolerance only shifts "
+                    "the end linearly) - see verify/lancioni/period_adding.py"}
 
 
 register(Scene(
     name="lancioni/period-adding", parameter="mu", units="dimensionless",
     source=f"{SRC}: e_N = 0 period-adding cascade accumulating at mu = 0.38957; first step at 0.38965 (Fig. 2(c))",
     compute=_period_adding, defaults={**SET1, "n_steps": 3}, published=0.38957, tolerance=_half_digit(0.38957, 5),
-    description="mu of the first period-adding steps (stick phase lost in one more 'period'), geometric extrapolation"))
+    description="end of the e_N = 0 detached stick orbit (the cascade's accumulation point); steps: none in eq. (1)"))
 
 
 def _flight(p):
