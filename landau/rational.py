@@ -2,11 +2,13 @@
 
 For the Dieterich, Ruina and modified Dieterich laws every derivative at steady sliding is a
 rational function of V (the logarithms vanish there).  With the parameters fixed (as the exact
-binary rationals of the floats given) the Fredholm code of :mod:`landau.fredholm` runs in the field ℚ(V, ω), where
-every operation is cancelled as it is made; ω² = ω_c²(V) then removes ω.  The result is each
-coefficient as P(V) + ω·Q(V) with P, Q single cancelled fractions of polynomials with exact
-coefficients — e.g. Λ_D ∝ M V³(…)/(…) with the factor V³ explicit.  A coefficient that vanishes
-identically (Λ_D at M = 0) comes out as exactly 0.
+binary rationals of the floats given) the Fredholm code of :mod:`landau.fredholm` runs in
+ℚ(V)(ω): rational functions of V, cancelled as they are made, with the onset frequency adjoined
+by ω² = ω_c²(V) (:class:`QuadraticElement`).  Each coefficient comes out as P(V) + ω·Q(V), P
+and Q single cancelled fractions of polynomials with exact coefficients — e.g. Λ_D ∝ M V³(…)/(…)
+with the factor V³ explicit.  A coefficient that vanishes identically (Λ_D at M = 0) comes out
+as exactly 0.  With the parameters left symbolic the same code gives the closed forms of
+:func:`closed_form` (multivariate gcds: seconds).
 
 Evaluation (:meth:`RationalCoefficient.evaluate`) is Horner's rule in float64 with a running
 error bound (Higham, *Accuracy and Stability of Numerical Algorithms*, eq. 5.3:
