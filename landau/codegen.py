@@ -82,8 +82,13 @@ class CompiledFormula:
         self.modules = modules
         self._atoms = sp.lambdify(list(self.args), atom_exprs, modules=_modules(modules), cse=True) if atom_exprs else None
         inputs = [*self.atom_syms, *self.args]
+        tape = None
         if tree_size(formula) > _TAPE_FROM:
-            tape = Tape(formula, inputs)
+            try:
+                tape = Tape(formula, inputs)
+            except ValueError:      # an operation the tape does not know: lambdify handles it
+                tape = None
+        if tape is not None:
             self._f = lambda *vals: tape(*vals, modules=modules)
         else:
             self._f = sp.lambdify(inputs, formula, modules=_modules(modules), cse=True)
@@ -169,7 +174,8 @@ class Tape:
     """A straight-line program for ``expr``: each distinct subexpression is evaluated once.
 
     The engine's formulas come out of Gaussian elimination as DAGs whose tree form is huge
-    (two-state laws: ~5e7 nodes for Λ), so lambdify's tree traversals take tens of seconds;
+    (two-state Dieterich: Λ has 8.9e5 tree nodes but 225 distinct operations), and lambdify's
+    and cse's tree traversals took ~6 s per law;
     the tape is built in one pass over the distinct nodes and interpreted over numpy arrays
     (any float dtype, the per-operation overhead is negligible for vectors) or mpmath numbers.
     """
