@@ -14,6 +14,7 @@ import importlib
 import importlib.util
 import json
 import math
+import os
 import sys
 from typing import Any, Sequence
 
@@ -98,12 +99,18 @@ def main(argv: Sequence[str] | None = None) -> int:
     except LandauError as exc:
         print(f"landau: {type(exc).__name__}: {str(exc).splitlines()[0]}", file=sys.stderr)
         return 1
-    if getattr(args, "json", False):
-        json.dump(_jsonable(doc), sys.stdout, indent=1, allow_nan=False)
-        sys.stdout.write("\n")
-    else:
-        text = mod.render(doc)
-        sys.stdout.write(text if text.endswith("\n") else text + "\n")
+    try:
+        if getattr(args, "json", False):
+            json.dump(_jsonable(doc), sys.stdout, indent=1, allow_nan=False)
+            sys.stdout.write("\n")
+        else:
+            text = mod.render(doc)
+            sys.stdout.write(text if text.endswith("\n") else text + "\n")
+        sys.stdout.flush()
+    except BrokenPipeError:
+        # the reader (e.g. `| head`) closed the pipe: stop quietly, as Unix tools do
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 1
     return int(doc.get("exit_code", 0)) if isinstance(doc, dict) else 0
 
 
