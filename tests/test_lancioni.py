@@ -154,7 +154,8 @@ def test_just_past_hopf_slip_cycle_and_past_lift_off_jump(hopf1):
 def test_set2_free_flight_onset():
     # Sec. 3, set 2: free flight "for μ > 0.453" (read off Fig. 4).  We find 0.44986 (the stick–slip
     # attractor's min λ_N reaches 0; analysis.py docstring): within 0.004 of the printed value —
-    # a documented 0.7 % difference, not a tolerance to tune.  Bracket width 1e-5.
+    # a documented 0.7 % difference, not a tolerance to tune: the paper does not print its belt
+    # speed, and |v| = 0.991 gives all three set-2 values (verify/lancioni/flight_onset.py).  Bracket width 1e-5.
     r = A.flight_onset_mu(S.SET2)
     assert r.bracket[1] - r.bracket[0] <= 1e-5 and 0 < r.lamN_min_below < 0.5
     assert abs(r.mu - 0.453) < 0.004

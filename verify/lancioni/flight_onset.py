@@ -1,0 +1,136 @@
+"""Why the set-2 free-flight onset is μ = 0.44986 here and ≈ 0.453 in the paper (Fig. 4).
+
+Lancioni, Lenci & Galvanetto, Sec. 3 (second set m₁ = 0.4 kg, k_φ = 25 N·m): "for μ > 0.453
+a more complex free flight–slip–stick–slip motion takes place"; the bifurcation diagram
+(Fig. 4) plots φ̇_max on the Poincaré section.  What eq. (1) does (belt v = −1 m/s, g = 10):
+
+* :func:`flight_cycle` — the attractor just past lift-off: the flight starts 14 ms *after*
+  the φ̇ maximum of the slip phase, ends in an impact, then slip → stick → slip.  Stick is a
+  reset (its state is a function of φ alone and it always ends at the same point P(μ), see
+  :mod:`verify.lancioni.period_adding`), so the section value φ̇_max — reached on the slip
+  flow from P before any flight — is *exactly* that of the continued contact (no lift-off)
+  branch, for e_N = 0 and 0.2 alike.  The diagram cannot show the onset.
+* :func:`continued_phidot_max` — that contact-branch value computed independently: the
+  reduced slip ODE (:mod:`verify.lancioni.slip`) from P to its first maximum of φ̇.
+* The belt speed |v| is not printed; the printed stick onset (≈ 0.360, i.e. [0.3595, 0.3605])
+  pins it only to |v| ∈ [0.9542, 1.0156], across which the flight onset runs from 0.4663 to
+  0.4444 (d μ_flight/d|v| ≈ −0.36, d μ_stick/d|v| ≈ +0.017).  |v| ≈ 0.991 reproduces all
+  three published values (Hopf 0.3531, stick 0.3601, flight 0.4530); :func:`flies` lets a
+  test check that at μ = 0.453 without a bisection.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from landau.errors import IntegratorError
+from verify.hybrid import DOP853Stepper, simulate
+from verify.lancioni import slip as S
+from verify.lancioni.analysis import _flow
+from verify.lancioni.contact import default_options
+from verify.lancioni.model import (
+    PHI_ZERO_UP,
+    PHIDOT_MAX,
+    ConstantBelt,
+    build,
+    slip_state,
+)
+from verify.lancioni.period_adding import stick_exit
+
+STEPPER = DOP853Stepper(1e-10, 1e-12)
+
+
+@dataclass(frozen=True)
+class FlightCycle:
+    """Per-period measurements on the attractor at μ (after a transient)."""
+
+    mu: float
+    eN: float
+    v: float
+    flights_per_period: float
+    flight_time: float            # longest free-flight phase (s)
+    gap_max: float                # max g_N = y − l cos φ during flight (m)
+    impact_speed: float           # largest |γ_N⁻| at an impact (m/s)
+    phidot_max: tuple[float, ...]  # distinct section values (φ̇ maxima, φ̇ > 0; rounded to 1e-9)
+    lift_off_after_max: bool      # every lift-off follows a φ̇ maximum within the same slip phase
+    phi_min: float                # smallest φ: > 0 means the literal section φ = 0 is never crossed
+    phi_zero_crossings: int
+
+    def __repr__(self) -> str:
+        return (f"FlightCycle(mu={self.mu:g}, eN={self.eN:g}, {self.flights_per_period:.3g} flights/period, "
+                f"flight {self.flight_time:.4g} s, gap_max={self.gap_max:.3g} m, |γ_N⁻|={self.impact_speed:.3g} m/s, "
+                f"phidot_max={self.phidot_max}, phi_min={self.phi_min:.4g})")
+
+
+def _start(mu: float, p, v: float):
+    cm = build(mu, 0.0, p, ConstantBelt(v))
+    return slip_state(cm.mech, S.equilibrium_phi(p, mu, 1) + 0.05)
+
+
+def flight_cycle(mu: float, eN: float = 0.0, v: float = -1.0, params: Mapping[str, float] | None = None,
+                 t_transient: float = 14.0, t_keep: float = 6.0) -> FlightCycle:
+    """Run from the slip equilibrium + 0.05 rad (set 2 by default) and measure the last ``t_keep`` s."""
+    p = S.resolve(params or S.SET2)
+    cm = build(mu, eN, p, ConstantBelt(v), sections=(PHIDOT_MAX, PHI_ZERO_UP))
+    y0 = _start(mu, p, v)
+    T = t_transient + t_keep
+    sol = simulate(cm.model, cm.initial_mode(0.0, y0), y0, (0.0, T), STEPPER, default_options(1e-6, record=True))
+    if sol.status != "t_end":
+        raise IntegratorError(f"set-2 attractor run stopped early ({sol.status}) at mu={mu}", t=sol.t, state=sol.y)
+    ev = [e for e in sol.events if e.t >= t_transient]
+    maxima = [e for e in ev if e.guard == "phidot-max" and e.y[2] > 0]
+    lifts = [e for e in ev if e.guard == "lift-off"]
+    fl = [s for s in sol.segments if s.mode == "flight" and s.t[0] >= t_transient and len(s.t) > 1]
+    gaps = [float(np.max(s.y[1] - p["l"] * np.cos(s.y[0]))) for s in fl]
+    imp = [abs(float(e.y[3] + p["l"] * np.sin(e.y[0]) * e.y[2])) for e in ev if e.guard == "impact"]
+    # a lift-off "follows a maximum" if the previous non-section event before it is older than the last maximum
+    after = True
+    for e in lifts:
+        prev_max = max((m.t for m in maxima if m.t < e.t), default=-np.inf)
+        prev_switch = max((s.t for s in sol.events if s.kind != "section" and s.t < e.t), default=-np.inf)
+        after &= prev_max > prev_switch
+    t, y, _ = sol.trajectory()
+    k = t >= t_transient
+    n_per = max(len(maxima), 1)
+    return FlightCycle(mu, eN, v, len(lifts) / n_per, max((s.t[-1] - s.t[0] for s in fl), default=0.0),
+                       max(gaps, default=0.0), max(imp, default=0.0),
+                       tuple(sorted({round(float(m.y[2]), 9) for m in maxima})), bool(after and lifts),
+                       float(np.min(y[0, k])), sum(e.guard == "phi=0 up" for e in ev))
+
+
+def continued_phidot_max(mu: float, v: float = -1.0, params: Mapping[str, float] | None = None) -> float:
+    """φ̇_max of the stick–slip branch with the contact kept closed (λ_N < 0 allowed).
+
+    Independent of the hybrid engine: the stick exit P(μ) (lower end of the admissible stick
+    interval, :func:`verify.lancioni.period_adding.stick_exit`), then the reduced slip+ ODE
+    φ̈ = F(φ, φ̇; μ) (g_N ≡ 0) to the first maximum of φ̇ with φ̇ > 0.
+    """
+    p = S.resolve(params or S.SET2)
+    P = stick_exit(build(mu, 0.0, p, ConstantBelt(v)))
+    rhs, _ = _flow(p, mu, 1)
+
+    def top(t, y):  # φ̈ = 0 going down, only once φ̇ > 0
+        return rhs(t, y)[1] if y[1] > 0 else 1.0
+    top.direction, top.terminal = -1, True
+    sol = solve_ivp(rhs, (0.0, 5.0), [P.state[0], P.state[2]], method="DOP853", rtol=1e-12, atol=1e-14,
+                    events=top)
+    if not sol.t_events[0].size:
+        raise IntegratorError(f"no φ̇ maximum on the slip flow from the stick exit at mu={mu}")
+    return float(sol.y_events[0][0][1])
+
+
+def flies(mu: float, v: float = -1.0, params: Mapping[str, float] | None = None, t_end: float = 16.0,
+          t_keep: float = 4.0) -> bool:
+    """Does the set-2 attractor at (μ, v) lift off in the last ``t_keep`` s (e_N = 0)?"""
+    p = S.resolve(params or S.SET2)
+    cm = build(mu, 0.0, p, ConstantBelt(v))
+    y0 = _start(mu, p, v)
+    sol = simulate(cm.model, cm.initial_mode(0.0, y0), y0, (0.0, t_end), STEPPER, default_options(1e-6))
+    return any(e.guard == "lift-off" and e.t > t_end - t_keep for e in sol.events)
+
+
+__all__ = ["FlightCycle", "continued_phidot_max", "flies", "flight_cycle"]
