@@ -22,6 +22,7 @@ builds the model from (m, κ, V/V_*).
 from __future__ import annotations
 
 import ast
+import builtins
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -145,7 +146,9 @@ def _emit(ys, f, Jm, pnames, label):
                 lines_j.append(f"    out[{i}, {j}] = {pr.doprint(e)}")
     src = "\n".join(lines_f) + "\n\n" + "\n".join(lines_j) + "\n"
     _check_generated(src)
-    glb: dict = {"math": math}
+    # only the whitelisted names exist in the namespace (the AST check above is the filter; this is
+    # the second wall: no other builtins are reachable from the generated code)
+    glb: dict = {"math": math, "__builtins__": {name: getattr(builtins, name) for name in _BUILTINS}}
     exec(compile(src, f"<springblock rhs for {label}>", "exec"), glb)
     rhs_py, jac_py = glb["rhs"], glb["jac"]
     return src, rhs_py, jac_py, nb.njit(SIG)(rhs_py), nb.njit(SIG_JAC)(jac_py)
