@@ -102,12 +102,13 @@ class Located:
 
 
 def bisect(pred, lo: float, hi: float, tol: float, what: str = "") -> Located:
-    """Bisection on a boolean predicate with pred(lo) != pred(hi)."""
+    """Bisection on a boolean predicate with pred(lo) != pred(hi); ``lo`` > ``hi`` is allowed
+    (the bracket keeps ``lo`` on the side where the predicate has its ``lo`` value)."""
     plo, phi = pred(lo), pred(hi)
     n = 2
     if plo == phi:
         raise InputError(f"{what}: the property does not change on [{lo}, {hi}] (both {plo})")
-    while hi - lo > tol:
+    while abs(hi - lo) > tol:
         mid = 0.5 * (lo + hi)
         pm = pred(mid)
         n += 1

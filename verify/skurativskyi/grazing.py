@@ -223,7 +223,7 @@ def locate_grazing_margin(omega_orbit: float, omega_gone: float, y_orbit, tol: f
     orbit side (close, so that the extreme maximum stays the same one: s is kinked where
     another maximum takes over).  ``n_keep`` = 84 observed periods is a multiple of the
     periods 1–4, 6, 7 met here."""
-    from verify.skurativskyi.analysis import attractor, section_period
+    from verify.skurativskyi.analysis import attractor, bisect, section_period
     if omega_orbit == omega_gone or not tol > 0:
         raise InputError("need omega_orbit != omega_gone and tol > 0")
     ref = attractor(omega_orbit, y_orbit, n_transient, n_keep, params, rtol)
@@ -232,22 +232,14 @@ def locate_grazing_margin(omega_orbit: float, omega_gone: float, y_orbit, tol: f
         raise InputError(f"the attractor at ω = {omega_orbit} is not periodic (section period > 24 or chaotic)")
     y_ref = ref.y_end
     p_ref, n_ref, _ = _orbit_signature(omega_orbit, y_ref, n_transient, n_keep, params, rtol)
-    runs = [2]
 
     def same(w):
-        runs[0] += 1
         p, n, _ = _orbit_signature(w, y_ref, n_transient, n_keep, params, rtol)
         return p == p_ref and n == n_ref
 
-    a, b = omega_orbit, omega_gone        # same(a) holds
-    if same(b):
-        raise InputError(f"the period-{p_ref} orbit of ω = {omega_orbit} keeps its impacts at ω = {b}")
-    while abs(b - a) > tol:
-        mid = 0.5 * (a + b)
-        if same(mid):
-            a = mid
-        else:
-            b = mid
+    loc = bisect(same, omega_orbit, omega_gone, tol, f"grazing of the period-{p_ref} orbit of ω = {omega_orbit}")
+    a, b = loc.lo, loc.hi                 # a: orbit side
+    runs = [loc.evaluations + 2]
     step = np.sign(omega_orbit - omega_gone) * (min(tol, 1e-4) if fit_step is None else fit_step)
     free, pen = [], []
     for i in range(1, n_fit + 1):
