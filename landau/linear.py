@@ -172,15 +172,8 @@ class HopfLine:
         while cs and cs[0] == 0:
             cs = cs[1:]
         roots = mpmath.polyroots(cs, maxsteps=200, extraprec=2 * mpmath.mp.prec) if len(cs) > 1 else []
-        best = (mpmath.nan, mpmath.nan)
-        for r in roots:
-            r = mpmath.mpc(r)
-            if abs(r.imag) > mpmath.mpf(10) ** (-mpmath.mp.dps // 2) * abs(r) or r.real <= 0:
-                continue
-            kk = -fre(r.real, *vals) / fq2(r.real, *vals)
-            if kk > 0 and not (kk <= best[0]):
-                best = (kk, r.real)
-        return best
+        return _stiffest_hopf_root([mpmath.mpc(r) for r in roots], lambda Wr: -fre(Wr, *vals) / fq2(Wr, *vals),
+                                   mpmath.mpf(10) ** (-mpmath.mp.dps // 2), mpmath.nan)
 
     @cached_property
     def _compiled_mu(self):
@@ -214,15 +207,9 @@ class HopfLine:
         for n, Vn in enumerate(Vs):
             vals = self._argvals(np.float64(Vn), p)
             cs = [float(c(*vals)) for c in coeffs]
-            best = (np.nan, np.nan)
-            for r in np.roots(cs):
-                if abs(r.imag) > 1e-9 * abs(r) or r.real <= 0:
-                    continue
-                Wr = r.real
-                kk = -float(fre(Wr, *vals)) / float(fq2(Wr, *vals))
-                if kk > 0 and not (kk <= best[0]):
-                    best = (kk, np.sqrt(Wr))
-            kcs[n], oms[n] = best
+            kk, Wr = _stiffest_hopf_root(np.roots(cs), lambda Wr: -float(fre(Wr, *vals)) / float(fq2(Wr, *vals)),
+                                         1e-9, np.nan)
+            kcs[n], oms[n] = kk, np.sqrt(Wr)
         return kcs, oms
 
     def points(self, Vs: Sequence[float] | float, params: Mapping[str, float] | None = None) -> list[HopfPoint]:
@@ -260,6 +247,20 @@ class HopfLine:
         if pt.status != "ok":
             raise NoHopfError(f"V = {V0:g} m/s: {pt.reason}")
         return pt
+
+
+def _stiffest_hopf_root(roots, stiffness, real_tol, nan) -> tuple[Any, Any]:
+    """(k_c, ω_c²) from the roots W of the Hopf polynomial: among the real positive roots
+    (|Im| ≤ real_tol·|W|), the one with the largest positive stiffness — steady sliding is
+    unstable below the stiffest Hopf point; (nan, nan) when there is none."""
+    best = (nan, nan)
+    for r in roots:
+        if abs(r.imag) > real_tol * abs(r) or r.real <= 0:
+            continue
+        kk = stiffness(r.real)
+        if kk > 0 and not (kk <= best[0]):
+            best = (kk, r.real)
+    return best
 
 
 def critical_stiffness(block: SpringBlock, V0, params: Mapping[str, float] | None = None):
