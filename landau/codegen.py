@@ -216,7 +216,6 @@ class Tape:
                 raise ValueError(f"no tape operation for {type(node).__name__}")
             slot[node] = len(inputs) + len(ops)
             ops.append(op)
-        self.n_inputs = len(inputs)
         self.ops = ops
         self.out = slot[expr]
         self._consts: dict[str, list] = {}

@@ -106,9 +106,6 @@ class Polynomial:
             out = out * x + c
         return out
 
-    def as_expr(self, x: sp.Symbol) -> sp.Expr:
-        return sp.Add(*[sp.Rational(c.numerator, c.denominator) * x ** i for i, c in enumerate(self.coeffs) if c])
-
 
 @dataclass(frozen=True)
 class RationalFunction:
@@ -136,9 +133,6 @@ class RationalFunction:
         d = self.den.exact(x)
         return None if d == 0 else self.num.exact(x) / d
 
-    def as_expr(self, x: sp.Symbol) -> sp.Expr:
-        return self.num.as_expr(x) / self.den.as_expr(x)
-
 
 @dataclass(frozen=True)
 class RationalCoefficient:
@@ -151,10 +145,6 @@ class RationalCoefficient:
     @property
     def identically_zero(self) -> bool:
         return self.P.is_zero and self.Q.is_zero
-
-    def expr(self) -> sp.Expr:
-        x = sp.Symbol("V", positive=True)
-        return self.P.as_expr(x) + sp.Symbol("omega_c", positive=True) * self.Q.as_expr(x)
 
     def evaluate(self, Vs: np.ndarray, omega: np.ndarray, omega_rel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(value, relative error bound) in float64; ``omega_rel`` bounds the error of ``omega``."""

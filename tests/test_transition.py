@@ -85,7 +85,7 @@ def test_modified_dieterich_V_star_and_V_m():
     lam = d.evaluate(np.array([pt.V * (1 - 1e-12), pt.V * (1 + 1e-12)]), {"c": 3e-4}, ["Lambda"])["Lambda"]
     assert lam[0] < 0 < lam[1]
     # k_c(V*) of eq. (42)
-    a, b, L, Vs, Mm, s, c = T1["a"], T1["b"], T1["L"], T1["V_s"], T1["M"], T1["sigma"], 3e-4
+    a, L, Vs, Mm, s, c = T1["a"], T1["L"], T1["V_s"], T1["M"], T1["sigma"], 3e-4
     kc42 = (a * c * s / L) * (ext.V - pt.V) * (1 + Mm * pt.V ** 2 / (a * s * L)) / (Vs + c * pt.V)
     assert rel(pt.kc, kc42) < 1e-9
 

@@ -21,7 +21,7 @@ import numpy as np  # noqa: E402
 from landau.io import atomic_savefig  # noqa: E402
 from verify.galvanetto import bifurcations as B  # noqa: E402
 from verify.galvanetto.analysis import FIG_STEPPER, beta_diagram, gsp_orbit_trajectory, map_curve, trajectory  # noqa: E402
-from verify.galvanetto.maps import f, iterate, model_for, one_block_cycle  # noqa: E402
+from verify.galvanetto.maps import iterate, model_for, one_block_cycle  # noqa: E402
 from verify.galvanetto.model import one_block, two_blocks  # noqa: E402
 from verify.hybrid import EngineOptions, Guard, HybridModel, simulate  # noqa: E402
 

@@ -19,7 +19,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from landau.io import atomic_savefig  # noqa: E402
-from verify.hybrid import EngineOptions, simulate  # noqa: E402
+from verify.hybrid import simulate  # noqa: E402
 from verify.lancioni import analysis as A  # noqa: E402
 from verify.lancioni import diagrams as D  # noqa: E402
 from verify.lancioni.contact import default_options  # noqa: E402

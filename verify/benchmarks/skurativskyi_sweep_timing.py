@@ -29,7 +29,7 @@ def main(out_dir: str = "benchmarks_out") -> str:
     om = np.linspace(17.5, 25.0, 500)
     spec = SweepSpec(n_first=100, n_step=50, n_keep=150, rtol=1e-8)
     t0 = time.perf_counter()
-    res = run_sweep(om, "up", out=out, spec=spec, progress=True)
+    run_sweep(om, "up", out=out, spec=spec, progress=True)
     wall = time.perf_counter() - t0
     periods = 500 * 200 + (len(list(out.glob("chunk_*.jsonl")))) * 50
     # baseline: scipy DOP853 with events on 3 periods at ω = 20 from the toolkit's attractor

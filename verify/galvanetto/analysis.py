@@ -45,7 +45,7 @@ def trajectory(p: StickSlipParams, mode: str, y0, t_end: float, stepper=FIG_STEP
 def gsp_orbit_trajectory(p: StickSlipParams, d: float, n_steps: int, stepper=FIG_STEPPER):
     """Trajectory of ``n_steps`` map steps from the g.s.p. d, including the g.s.p. segments."""
     from verify.galvanetto.maps import gsp_start
-    ts, ys = [], []
+    ys = []
     for _ in range(n_steps):
         mode, y0 = gsp_start(p, d)
         sol = simulate(model_for(p), mode, y0, (0.0, 500.0), stepper, EngineOptions(record=True, samples=8),

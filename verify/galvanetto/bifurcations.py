@@ -108,7 +108,7 @@ def orbit_events(p: StickSlipParams, d: float, period: int, stepper=None, sectio
 
 def _margins(p: StickSlipParams, events, side: str) -> list[float]:
     """K + F_s at r = 0 events leaving r < 0 (side 'n'), F_s − K at those leaving r > 0 ('p')."""
-    n, Fs = p.n, p.Fs
+    Fs = p.Fs
     out = []
     for e in events:
         if e.kind == "section" or not e.guard.startswith("r"):

@@ -145,7 +145,7 @@ def maxima(omega: float, y0, n_periods: int = 40, samples_per_period: int = 200,
     p = params.with_(omega=omega)
     ts, ys, n_imp = _samples(p, y0, n_periods, samples_per_period, t0, rtol)
     y = ys[-1].copy()
-    x, v = ys[:, 0], ys[:, 1]
+    v = ys[:, 1]
     idx = np.nonzero((v[:-1] > 0) & (v[1:] <= 0))[0]
     tm = np.empty(len(idx))
     xm = np.empty(len(idx))
