@@ -31,8 +31,8 @@ import sympy as sp
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
-from laws import get_law  # noqa: E402
-from laws.law import v as v_slip  # noqa: E402
+from landau.laws import get_law  # noqa: E402
+from landau.laws.law import v as v_slip  # noqa: E402
 from landau.multiscale import derive  # noqa: E402
 from landau.system import SpringBlock  # noqa: E402
 from vw_ranges import LAWS, vw_range  # noqa: E402
@@ -43,7 +43,7 @@ GOAL_DERIVE_S, GOAL_THROUGHPUT, GOAL_RATIO = 2.0, 1e6, 100.0
 _DERIVE_SNIPPET = """
 import time
 t0 = time.perf_counter()
-from laws import get_law
+from landau.laws import get_law
 from landau.system import SpringBlock
 from landau.multiscale import QUANTITIES, derive
 t1 = time.perf_counter()

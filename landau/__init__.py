@@ -5,6 +5,14 @@ Data flows one way: a friction law (:mod:`laws`) → a mechanical system
 :func:`hopf_normal_form`) → numbers, LaTeX and compiled code.
 """
 
+from importlib.metadata import PackageNotFoundError as _PackageNotFoundError
+from importlib.metadata import version as _version
+
+try:
+    __version__: str = _version("landau-friction")
+except _PackageNotFoundError:  # running from a source tree that was never installed
+    __version__ = "0+unknown"
+
 from landau.errors import InputError, IntegratorError, LandauError, NoHopfError, SingularPointError
 from landau.general import HopfNormalForm, hopf_normal_form
 from landau.linear import HopfLine, HopfPoint, critical_stiffness
@@ -12,6 +20,7 @@ from landau.multiscale import CONVENTION, Coefficient, Derivation, LandauPoint, 
 from landau.system import DynamicalSystem, SpringBlock
 
 __all__ = [
+    "__version__",
     "CONVENTION", "Coefficient", "Derivation", "DynamicalSystem", "HopfLine", "HopfNormalForm", "HopfPoint",
     "InputError", "IntegratorError", "LandauError", "LandauPoint", "NoHopfError", "SingularPointError",
     "SpringBlock", "critical_stiffness", "derive", "hopf_normal_form",

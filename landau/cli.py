@@ -27,8 +27,8 @@ COMMANDS: dict[str, str] = {
     "scene": "landau.commands.scene",
     "laws": "landau.commands.laws",
     "transition": "landau.commands.transition",
-    "figures": "paper_figures.cli",
-    "verify": "verify.cli",
+    "figures": "landau.paper_figures.cli",
+    "verify": "landau.verify.cli",
 }
 
 
@@ -55,9 +55,19 @@ def _jsonable(obj: Any) -> Any:
     return x if math.isfinite(x) else None
 
 
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("landau-friction")
+    except PackageNotFoundError:
+        return "0+unknown"
+
+
 def build_parser(only: str | None = None) -> tuple[argparse.ArgumentParser, dict[str, Any]]:
     """The argument parser; with ``only``, just that sub-command's module is imported (fast start)."""
     parser = _Parser(prog="landau", description=__doc__.splitlines()[0])
+    parser.add_argument("--version", action="version", version=f"landau {_version()}")
     sub = parser.add_subparsers(dest="command", parser_class=_Parser)
     modules: dict[str, Any] = {}
     for name, modname in COMMANDS.items():
@@ -84,6 +94,9 @@ def build_parser(only: str | None = None) -> tuple[argparse.ArgumentParser, dict
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     try:
+        if argv in (["--version"], ["-V"]):
+            print(f"landau {_version()}")
+            return 0
         if not argv:
             argv = ["derive", "dieterich", "--V", "1e-5,2.6e-5,1e-4,1e-3"]
         parser, modules = build_parser(argv[0] if argv[0] in COMMANDS else None)

@@ -11,8 +11,8 @@ from __future__ import annotations
 from typing import Callable
 
 from landau.errors import InputError
-from laws.law import TABLE1, FrictionLaw, Parameter, v
-from laws import putelat2010 as _p
+from landau.laws.law import TABLE1, FrictionLaw, Parameter, v
+from landau.laws import putelat2010 as _p
 
 BUILTIN: dict[str, Callable[[], FrictionLaw]] = {
     "dieterich": _p.dieterich,

@@ -11,12 +11,12 @@ system, never to the law.  Velocities in m/s, lengths in m, times in s.
 
 Writing a new law takes a few lines::
 
-    from laws import FrictionLaw
+    from landau.laws import FrictionLaw
     law = FrictionLaw.from_strings(
         "my-law", mu="a_v + a*log(v/V_s) + b*log(V_s*phi/L)",
         state={"phi": "1 - v*phi/L"})          # Table 1 values for a_v, a, b, L, V_s
 
-Strings are parsed by :mod:`laws.parse` (a whitelist walk of the syntax tree), never
+Strings are parsed by :mod:`landau.laws.parse` (a whitelist walk of the syntax tree), never
 evaluated.
 """
 
@@ -29,7 +29,7 @@ from typing import Mapping
 import sympy as sp
 
 from landau.errors import InputError
-from laws.parse import parse_expression
+from landau.laws.parse import parse_expression
 
 #: the slip-rate symbol shared by every law
 v = sp.Symbol("v", positive=True)
@@ -157,7 +157,7 @@ class FrictionLaw:
             _check_name(pname, "parameter")
             plist.append(val if isinstance(val, Parameter) else Parameter(pname, float(val), source="user"))
         given = {p.name for p in plist}
-        from laws.parse import CONSTANTS, FUNCTIONS
+        from landau.laws.parse import CONSTANTS, FUNCTIONS
 
         for n in sorted(names - reserved - given - set(FUNCTIONS) - set(CONSTANTS)):
             if n in TABLE1:

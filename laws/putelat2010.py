@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from laws.law import TABLE1, FrictionLaw, Parameter, v
+from landau.laws.law import TABLE1, FrictionLaw, Parameter, v
 
 phi = sp.Symbol("phi", positive=True)
 a_v, a, b, L, V_s = (TABLE1[n].symbol for n in ("a_v", "a", "b", "L", "V_s"))

@@ -16,7 +16,7 @@ from landau.errors import InputError
 from landau.lyapunov import spring_block_lyapunov
 from landau.multiscale import Derivation
 from landau.system import SpringBlock
-from laws import get_law
+from landau.laws import get_law
 
 a, b, L, Vs_, M, s = 0.0349, 0.0489, 0.9e-6, 1e-6, 1.2, 11.772
 VHAT = math.sqrt(a * s * L / M)  # eq. (31)

@@ -11,10 +11,10 @@ import math
 import numpy as np
 import pytest
 
-from laws.kinetic import KineticFriction
-from verify.galvanetto import bifurcations as B
-from verify.galvanetto.maps import d_range, default_stepper, one_block_cycle, two_block_map
-from verify.galvanetto.model import K_of, one_block, two_blocks
+from landau.laws.kinetic import KineticFriction
+from landau.verify.galvanetto import bifurcations as B
+from landau.verify.galvanetto.maps import d_range, default_stepper, one_block_cycle, two_block_map
+from landau.verify.galvanetto.model import K_of, one_block, two_blocks
 
 
 # ------------------------------------------------------------------ friction law (eq. 7)
@@ -79,7 +79,7 @@ def test_event_map_domain_and_switching_rule():
     for d, leaver in [(-0.3, "K1=+Fs"), (0.3, "K2=+Fs")]:
         ms = two_block_map(p, d)
         assert ms.events[-1].to_mode == "ss"
-        from verify.galvanetto.maps import gsp_start
+        from landau.verify.galvanetto.maps import gsp_start
         mode, y0 = gsp_start(p, d)
         assert mode == ("ns" if leaver == "K1=+Fs" else "sn")
 
@@ -210,7 +210,7 @@ def test_two_block_points_converged(name):
 
 def test_scenes_registered_and_run(monkeypatch):
     import landau.scenes as S
-    import verify.galvanetto.scenes  # noqa: F401  (registers)
+    import landau.verify.galvanetto.scenes  # noqa: F401  (registers)
     monkeypatch.setattr(S, "_loaded", True)  # do not import the other papers' scene modules
     names = {s.name for s in S.all_scenes()}
     for n in ["one-block-type-II", "one-block-type-I", "one-block-c1", "one-block-c2", "two-block-type-II",
@@ -229,7 +229,7 @@ def test_damped_slip_system_for_landau_engine():
     # the smooth slip field handed to the landau engine: equilibrium at the origin and the
     # trace of its Jacobian vanishes exactly at c1 = γ/(1+γV)² (closed form)
     import sympy as sp
-    from verify.galvanetto.smooth import damped_slip_system
+    from landau.verify.galvanetto.smooth import damped_slip_system
     sysm = damped_slip_system()
     subs = {s: sysm.defaults[s.name] for s in sysm.parameters}
     J = sp.Matrix(sysm.rhs).jacobian(sysm.states).subs({**subs, sysm.states[0]: 0, sysm.states[1]: 0})

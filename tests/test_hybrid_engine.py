@@ -13,7 +13,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from landau.errors import IntegratorError
-from verify.hybrid import (DOP853Stepper, EngineOptions, Guard, HybridModel, Jump, Mode, ScipyStepper,
+from landau.verify.hybrid import (DOP853Stepper, EngineOptions, Guard, HybridModel, Jump, Mode, ScipyStepper,
                            simulate)
 
 G = 9.81
@@ -151,7 +151,7 @@ def test_event_log_records_time_state_guard_modes():
 
 
 def test_poincare_and_sweep_tools():
-    from verify.hybrid.analysis import event_map_orbit, map_bifurcation_diagram, poincare, sweep
+    from landau.verify.hybrid.analysis import event_map_orbit, map_bifurcation_diagram, poincare, sweep
     m = HybridModel.from_modes(Mode("o", lambda t, y: np.array([y[1], -y[0]]),
                                     (Guard("x=0 up", lambda t, y: -y[0]),)))
     sec = poincare(m, "o", [-1.0, 0.0], (0.0, 30.0), "x=0 up", DOP853Stepper(1e-12, 1e-14), t_transient=5.0)
@@ -177,7 +177,7 @@ def test_stiff_contact_mode_with_radau_and_jacobian():
     # shape of issue 8's Hertz contact): inside contact x'' = -k x, so the contact lasts
     # exactly π/sqrt(k) and the mass leaves with -v0 (closed form).  The contact mode is run
     # with the implicit Radau stepper and the mode's analytic Jacobian.
-    from verify.hybrid import RadauStepper
+    from landau.verify.hybrid import RadauStepper
     k, v0 = 1e6, 1.0
     free = Mode("free", lambda t, y: np.array([y[1], 0.0]),
                 (Guard("touch", lambda t, y: -y[0], lambda t, y: ("contact", y)),))

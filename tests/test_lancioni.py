@@ -11,8 +11,8 @@ import pytest
 from scipy.optimize import brentq
 
 from landau.errors import NoHopfError
-from verify.lancioni import analysis as A
-from verify.lancioni import slip as S
+from landau.verify.lancioni import analysis as A
+from landau.verify.lancioni import slip as S
 
 
 @pytest.fixture(scope="module")
@@ -95,7 +95,7 @@ def test_hopf_confirmed_by_hybrid_simulation(hopf1):
 def test_sinusoidal_belt_hopping_fig6(mu, hops):
     # Sec. 3 / Fig. 6: v = sin(πt/2); "the hopping occurs only for μ = 0.5" (free flight while φ̇ and
     # v have opposite signs), none for μ = 0.3.  Four belt periods from rest.
-    from verify.lancioni.diagrams import sine_belt_run
+    from landau.verify.lancioni.diagrams import sine_belt_run
     run = sine_belt_run(mu)
     assert run.hopping is hops
     if hops:  # recurring every belt period, in the half period with v < 0 (the Hopf direction)
@@ -109,7 +109,7 @@ def test_sinusoidal_belt_hopping_fig6(mu, hops):
 def test_en02_detached_bouncing_orbit_in_hysteresis_window():
     # Sec. 3: "In the case e_N = 0.2, the detached motion consists of a sequence of periodic bounces"
     # (Fig. 3(a) 'bouncing'), coexisting with the stable slip equilibrium for μ < μ_c (hysteresis).
-    from verify.lancioni.diagrams import diagram, diagram_point, equilibrium_state
+    from landau.verify.lancioni.diagrams import diagram, diagram_point, equilibrium_state
     y = np.array([0.38, 0.929, 0.0, 0.0])  # dropped just above the belt at μ = 0.4099 (equilibrium unstable)
     pts = diagram([0.4099, 0.400], y, None, eN=0.2)
     det = pts[-1]
@@ -130,9 +130,9 @@ def test_just_past_hopf_slip_cycle_and_past_lift_off_jump(hopf1):
     # the shooting's 4001-point grid resolves φ̇_max to ~1e-7).  Past lift-off (μ = 0.40984) the
     # same start lifts off at once and settles on the detached flight–impact branch (φ̇_max ≈ 1.07,
     # Fig. 2(a)).
-    from verify.hybrid import DOP853Stepper, simulate
-    from verify.lancioni.contact import default_options
-    from verify.lancioni.model import build, slip_state
+    from landau.verify.hybrid import DOP853Stepper, simulate
+    from landau.verify.lancioni.contact import default_options
+    from landau.verify.lancioni.model import build, slip_state
     st = DOP853Stepper(1e-11, 1e-13)
     c = A.slip_cycle(0.4098, hopf=hopf1)
     cm = build(0.4098)
@@ -167,7 +167,7 @@ def test_painleve_situation_reported_at_large_mu():
     # Set 1, e_N = 0: the detached attractor's slip phase reaches D₊ = G_NN − μG_NT = 0 (no / two
     # contact solutions) from μ ≈ 0.6468 on; the engine stops with a named PainleveError instead of
     # resolving it.  The paper's motion type changes at μ ≈ 0.6450 (Sec. 3, OCR ".6450"): 0.3 %.
-    from verify.lancioni.contact import PainleveError
+    from landau.verify.lancioni.contact import PainleveError
     r = A.painleve_onset_mu()
     assert r.bracket[1] - r.bracket[0] <= 1e-5
     assert abs(r.mu - 0.645) < 0.003

@@ -11,10 +11,10 @@ import math
 import numpy as np
 import pytest
 
-from verify.hybrid import DOP853Stepper, simulate
-from verify.lancioni.contact import (ContactModel, PainleveError, PointMassOnPlane, contact_problem, default_options,
+from landau.verify.hybrid import DOP853Stepper, simulate
+from landau.verify.lancioni.contact import (ContactModel, PainleveError, PointMassOnPlane, contact_problem, default_options,
                                      poisson_impact)
-from verify.lancioni.model import build, slip_state
+from landau.verify.lancioni.model import build, slip_state
 
 G = 9.81
 STEP = DOP853Stepper(1e-12, 1e-14)

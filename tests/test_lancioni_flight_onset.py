@@ -1,14 +1,14 @@
 """Set-2 free-flight onset: 0.44986 here vs ≈ 0.453 in Lancioni, Lenci & Galvanetto (Sec. 3, Fig. 4).
 
-See :mod:`verify.lancioni.flight_onset` and the docstring of
-:func:`verify.lancioni.analysis.flight_onset_mu` for the numbers these tests pin.
+See :mod:`landau.verify.lancioni.flight_onset` and the docstring of
+:func:`landau.verify.lancioni.analysis.flight_onset_mu` for the numbers these tests pin.
 """
 
 import pytest
 
-from verify.lancioni import slip as S
-from verify.lancioni.analysis import stick_onset_mu
-from verify.lancioni.flight_onset import continued_phidot_max, flies, flight_cycle
+from landau.verify.lancioni import slip as S
+from landau.verify.lancioni.analysis import stick_onset_mu
+from landau.verify.lancioni.flight_onset import continued_phidot_max, flies, flight_cycle
 
 
 @pytest.mark.parametrize("eN", [0.0, 0.2])

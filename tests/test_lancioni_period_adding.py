@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 
 from landau.errors import InputError
-from verify.lancioni import period_adding as PA
-from verify.lancioni.model import build
-from verify.lancioni.slip import resolve
+from landau.verify.lancioni import period_adding as PA
+from landau.verify.lancioni.model import build
+from landau.verify.lancioni.slip import resolve
 
 MU_STAR = 0.3895691098   # end of the stick orbit (bisection, see test_end_of_stick_orbit...)
 
@@ -129,8 +129,8 @@ def test_stick_tolerance_on_a_decelerating_block(reset):
     # With the band |γ_T| ≤ η it sticks when the speed reaches η: t = (v0 − η)/|a|; "project" then
     # rests (v = 0), "hold" creeps at η (stick forces keep γ̇_T = 0).  Slip is a polynomial in t
     # and the event is located to 1e-14, so 1e-10 is round-off.
-    from verify.hybrid import DOP853Stepper, simulate
-    from verify.lancioni.contact import ContactModel, PointMassOnPlane, default_options
+    from landau.verify.hybrid import DOP853Stepper, simulate
+    from landau.verify.lancioni.contact import ContactModel, PointMassOnPlane, default_options
     g, th, mu, v0, eta = 9.81, 0.2, 0.5, 1.0, 1e-3
     a = g * (np.sin(th) - mu * np.cos(th))
     cm = ContactModel(PointMassOnPlane(g=g, theta=th, mu=mu), stick_tol=eta, stick_tol_reset=reset)

@@ -4,8 +4,8 @@ import pytest
 import sympy as sp
 
 from landau.errors import InputError, ParseError
-from laws import BUILTIN, TABLE1, FrictionLaw, get_law, v
-from laws.parse import parse_expression
+from landau.laws import BUILTIN, TABLE1, FrictionLaw, get_law, v
+from landau.laws.parse import parse_expression
 
 X = sp.Symbol("x")
 

@@ -12,7 +12,7 @@ from landau.linear import NO_HOPF_STABLE, HopfLine
 from landau.multiscale import Derivation
 from landau.transition import extrema, velocity_weakening_ranges
 from landau.system import M, V, SpringBlock, sigma
-from laws import TABLE1, get_law, v
+from landau.laws import TABLE1, get_law, v
 
 a, b, L, V_s = (TABLE1[n].symbol for n in ("a", "b", "L", "V_s"))
 c = sp.Symbol("c", positive=True)

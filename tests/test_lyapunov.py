@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from laws import get_law
+from landau.laws import get_law
 from landau.errors import InputError
 from landau.lyapunov import LyapunovResult, first_lyapunov, spring_block_lyapunov
 from landau.multiscale import derive

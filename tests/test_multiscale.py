@@ -11,7 +11,7 @@ import sympy as sp
 from landau.errors import NoHopfError
 from landau.multiscale import Derivation, derive
 from landau.system import M, V, SpringBlock, sigma
-from laws import TABLE1, get_law
+from landau.laws import TABLE1, get_law
 
 a, b, L, V_s = (TABLE1[n].symbol for n in ("a", "b", "L", "V_s"))
 c = sp.Symbol("c", positive=True)

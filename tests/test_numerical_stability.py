@@ -24,7 +24,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from laws import get_law
+from landau.laws import get_law
 from landau.multiscale import derive
 from landau.system import M, SpringBlock
 from vw_ranges import LAWS, vw_range

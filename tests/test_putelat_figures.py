@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from landau.transition import transition_curve
-from paper_figures.putelat2010 import FIGURES, fig4, fig5, fig8, fig9, fig10, fig13, fig14, fig15, fig17
-from paper_figures.putelat2010._common import derivation, fresh
+from landau.paper_figures.putelat2010 import FIGURES, fig4, fig5, fig8, fig9, fig10, fig13, fig14, fig15, fig17
+from landau.paper_figures.putelat2010._common import derivation, fresh
 
 a, b, L, M, s = 0.0349, 0.0489, 0.9e-6, 1.2, 11.772
 

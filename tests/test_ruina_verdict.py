@@ -20,7 +20,7 @@ import mpmath
 import pytest
 import sympy as sp
 
-from laws import get_law
+from landau.laws import get_law
 from landau.lyapunov import first_lyapunov, spring_block_lyapunov
 from landau.multiscale import derive
 from landau.system import DynamicalSystem, SpringBlock

@@ -14,11 +14,11 @@ from scipy.linalg import expm
 
 from landau.errors import InputError
 from landau.scenes import run_scene
-from laws.regularised import RegularisedFriction
-from verify.skurativskyi import approx
-from verify.skurativskyi.analysis import attractor, redundancy, tsallis_q
-from verify.skurativskyi.model import PAPER, Params, saltation_matrix
-from verify.skurativskyi.simulate import run
+from landau.laws.regularised import RegularisedFriction
+from landau.verify.skurativskyi import approx
+from landau.verify.skurativskyi.analysis import attractor, redundancy, tsallis_q
+from landau.verify.skurativskyi.model import PAPER, Params, saltation_matrix
+from landau.verify.skurativskyi.simulate import run
 
 
 # ------------------------------------------------------------------ friction law
@@ -99,9 +99,9 @@ def test_lyapunov_exponent_of_linear_case_is_minus_c_over_2m():
 
 
 def test_contact_switching_exact_and_engine_agrees():
-    from verify.hybrid import EngineOptions, simulate
-    from verify.skurativskyi.rk import CompiledDOPRI5
-    from verify.skurativskyi.simulate import hybrid_model
+    from landau.verify.hybrid import EngineOptions, simulate
+    from landau.verify.skurativskyi.rk import CompiledDOPRI5
+    from landau.verify.skurativskyi.simulate import hybrid_model
 
     p = PAPER.with_(omega=16.0)
     y0 = run(p, 4, rtol=1e-8).y  # on the 3-impact attractor (phase 0)
@@ -160,7 +160,7 @@ def test_tsallis_redundancy_limits():
 def test_sweep_dask_matches_local_and_streams(tmp_path):
     from distributed import Client, LocalCluster
 
-    from verify.skurativskyi.sweep import SweepSpec, run_sweep
+    from landau.verify.skurativskyi.sweep import SweepSpec, run_sweep
 
     om = [21.7, 21.75, 21.8]
     spec = SweepSpec(n_first=30, n_step=10, n_keep=6, rtol=1e-7, overlap=1)

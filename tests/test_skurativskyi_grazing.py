@@ -8,9 +8,9 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from landau.errors import InputError
-from verify.skurativskyi.analysis import continuation
-from verify.skurativskyi.grazing import locate_grazing_margin, maxima, velocity_stops
-from verify.skurativskyi.model import PAPER, field
+from landau.verify.skurativskyi.analysis import continuation
+from landau.verify.skurativskyi.grazing import locate_grazing_margin, maxima, velocity_stops
+from landau.verify.skurativskyi.model import PAPER, field
 
 
 @pytest.fixture(scope="module")

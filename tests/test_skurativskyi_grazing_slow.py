@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 
 from landau.scenes import run_scene
-from verify.skurativskyi.analysis import continuation, section_period
-from verify.skurativskyi.grazing import locate_friction_grazing, locate_grazing_margin
+from landau.verify.skurativskyi.analysis import continuation, section_period
+from landau.verify.skurativskyi.grazing import locate_friction_grazing, locate_grazing_margin
 
 pytestmark = pytest.mark.slow
 

@@ -9,9 +9,9 @@ rtol 1e-7 and 1e-9, see the report).
 import numpy as np
 import pytest
 
-from verify.skurativskyi.analysis import (attractor, continuation, first_detachment, locate_grazing,
+from landau.verify.skurativskyi.analysis import (attractor, continuation, first_detachment, locate_grazing,
                                           locate_period_doubling, section_period, tsallis_q)
-from verify.skurativskyi.sweep import SweepSpec, run_sweep
+from landau.verify.skurativskyi.sweep import SweepSpec, run_sweep
 
 pytestmark = pytest.mark.slow
 

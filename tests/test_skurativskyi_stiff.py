@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 
 from landau.errors import InputError
-from verify.skurativskyi import sdirk
-from verify.skurativskyi.model import PAPER, Params, accel_partials
-from verify.skurativskyi.simulate import run
+from landau.verify.skurativskyi import sdirk
+from landau.verify.skurativskyi.model import PAPER, Params, accel_partials
+from landau.verify.skurativskyi.simulate import run
 
 SCALE = np.array([1e-3, 1e-2])  # m, m/s: the error scale of the work-precision benchmark
 

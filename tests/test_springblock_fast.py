@@ -15,12 +15,12 @@ import pytest
 import sympy as sp
 
 from landau.errors import InputError, IntegratorError, NoHopfError
-from laws import get_law
-from laws.law import v as v_slip
-from verify.springblock.checks import fitted_exponent, predict, supercritical_check
-from verify.springblock.model import SpringBlockModel
-from verify.springblock.orbits import hopf_stiffness, return_map, section_point
-from verify.springblock.simulate import W_INDEX, integrate
+from landau.laws import get_law
+from landau.laws.law import v as v_slip
+from landau.verify.springblock.checks import fitted_exponent, predict, supercritical_check
+from landau.verify.springblock.model import SpringBlockModel
+from landau.verify.springblock.orbits import hopf_stiffness, return_map, section_point
+from landau.verify.springblock.simulate import W_INDEX, integrate
 
 M_PAPER = 1.1326e-7  # m = V_*²/(gL) with Table 1 (notes §1: m ≈ 1.13e-7)
 
@@ -166,7 +166,7 @@ def test_default_integrator_agrees_with_scipy_radau_on_fig3_cycle():
     """Fig. 3 stick–slip cycle (Dieterich, V/V_* = 100, κ = 1e-3): one period with the default
     integrator (rtol 1e-11) and scipy's Radau with the analytic Jacobian (rtol 1e-11) agree to 1e-8
     (both converge at ~1e-10 against the rtol 1e-13 reference, see the work–precision table)."""
-    from verify.springblock.workprecision import error, fig3_cycle, fig3_model, scipy_run
+    from landau.verify.springblock.workprecision import error, fig3_cycle, fig3_model, scipy_run
 
     model = fig3_model()
     orbit = fig3_cycle(model)
@@ -200,7 +200,7 @@ def test_continuation_starts_at_engine_hopf_point_and_ruina_bends_supercriticall
     """Fig. 6(a–d) start: the branch of cycles born at the Hopf point (Ruina, V/V_* = 100) has its Hopf
     point (steady-state eigenvalues, and the branch's own amplitude² → 0 extrapolation) at the engine's
     k_c within 1e-6, and bends to k < k_c with stable cycles (supercritical, Λ < 0)."""
-    from verify.springblock.reproductions import fig6_branch
+    from landau.verify.springblock.reproductions import fig6_branch
 
     br = fig6_branch("ruina", steps=4)
     kc = predict(get_law("ruina"), 1e-4).kc
@@ -213,7 +213,7 @@ def test_codim2_point_from_orbits_matches_engine_vstar():
     """Fig. 12/14: law (39), c = 3e-4 — the velocity where the cycle branch's curvature (fold of cycles
     ↔ Hopf line) changes sign, computed from periodic orbits only, equals the engine's V*
     (Λ = 0, ≈ 1.109e-3 m/s, Putelat Sec. 4.2) within 1 % (issue 5 acceptance; measured ~1e-6)."""
-    from verify.springblock.reproductions import codim2
+    from landau.verify.springblock.reproductions import codim2
 
     pt, v_engine = codim2("modified-dieterich", {"c": 3e-4}, 1e-3, 1.25e-3)
     assert v_engine == pytest.approx(1.109e-3, rel=2e-3)
@@ -225,7 +225,7 @@ def test_codim2_point_from_orbits_matches_engine_vstar():
                                  "import os"])
 def test_generated_code_is_whitelisted_before_exec(src):
     from landau.errors import InputError
-    from verify.springblock.model import _check_generated
+    from landau.verify.springblock.model import _check_generated
 
     with pytest.raises(InputError, match="refusing to compile"):
         _check_generated(src)

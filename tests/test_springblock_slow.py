@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import pytest
 
-from laws import get_law
-from verify.springblock.checks import (fitted_exponent, predict, subcritical_check, supercritical_check,
+from landau.laws import get_law
+from landau.verify.springblock.checks import (fitted_exponent, predict, subcritical_check, supercritical_check,
                                        bistability_scan)
 
 pytestmark = pytest.mark.slow
@@ -94,7 +94,7 @@ def test_supercritical_control_no_bistability():
 def test_fig6_dieterich_subcritical_with_fold():
     """Fig. 6(e–h): Dieterich at V/V_* = 100 — unstable cycles for k > k_c up to a fold of cycles, then
     stable stick–slip cycles for k < k_c; Hopf point = engine k_c within 1e-6."""
-    from verify.springblock.reproductions import fig6_branch
+    from landau.verify.springblock.reproductions import fig6_branch
 
     br = fig6_branch("dieterich", steps=12)
     kc = predict(get_law("dieterich"), 1e-4).kc
@@ -107,7 +107,7 @@ def test_fig6_dieterich_subcritical_with_fold():
 def test_fig11_spinodal_continuation_in_V(c, n_folds):
     """Fig. 11: spinodal law, κ = 1e-3, continuation in log V from the Hopf point near V_m — a fold of
     cycles for c = 3e-4 (subcritical Hopf), none for c = 1e-3 (supercritical)."""
-    from verify.springblock.reproductions import fig11_branch
+    from landau.verify.springblock.reproductions import fig11_branch
 
     br = fig11_branch(c, steps=45)
     assert len(br.folds) == n_folds
@@ -119,7 +119,7 @@ def test_fig11_spinodal_continuation_in_V(c, n_folds):
 def test_codim2_points(name, params, lo, hi):
     """Figs 5b/12/14: codimension-two velocities from periodic orbits vs the engine's V* within 1 %;
     Dieterich: k there ≈ 2.08e5 N/m (Fig. 5b caption)."""
-    from verify.springblock.reproductions import codim2
+    from landau.verify.springblock.reproductions import codim2
 
     pt, ve = codim2(name, params, lo, hi)
     assert pt.V == pytest.approx(ve, rel=1e-2)
@@ -130,7 +130,7 @@ def test_codim2_points(name, params, lo, hi):
 def test_work_precision_reference_and_speed():
     """Fig. 3 cycle: the rtol 1e-13 reference agrees with scipy Radau (rtol 1e-13, analytic J) to 1e-9,
     and the default integrator's error falls with tolerance (≤ 1e-7 at rtol 1e-9)."""
-    from verify.springblock.workprecision import run_work_precision
+    from landau.verify.springblock.workprecision import run_work_precision
 
     wp = run_work_precision(tolerances=(1e-6, 1e-9), methods=("Radau",))
     assert wp.reference_check["scipy Radau+J rtol 1e-13 vs ref"] < 1e-9
@@ -144,7 +144,7 @@ def test_fig12_fold_curve_ends_at_codim2_point():
     engine's V* (Λ = 0)."""
     from scipy.optimize import brentq
 
-    from verify.springblock.reproductions import fig12_fold_curve
+    from landau.verify.springblock.reproductions import fig12_fold_curve
 
     folds = fig12_fold_curve(3e-4)
     law = get_law("spinodal")

@@ -14,7 +14,7 @@ import mpmath
 import numpy as np
 import sympy as sp
 
-from laws import get_law
+from landau.laws import get_law
 from landau.system import V, SpringBlock
 
 #: window used when the law is velocity weakening on all of (0, ∞) [m/s]

@@ -16,7 +16,7 @@ from pathlib import Path
 from landau.commands.common import add_law_arguments, parse_floats, parse_velocities, resolve_law
 from landau.errors import InputError, LandauError
 from landau.system import SpringBlock
-from verify.springblock.checks import (AMPLITUDE_TOLERANCE, BRACKET_TOLERANCE, fitted_exponent, predict,
+from landau.verify.springblock.checks import (AMPLITUDE_TOLERANCE, BRACKET_TOLERANCE, fitted_exponent, predict,
                                        subcritical_check, supercritical_check)
 
 AMPLITUDE_DEFINITION = ("amplitude_simulated = half peak-to-peak slip (max X - min X)/2 of the cycle, X = x - x0; "
@@ -86,7 +86,7 @@ def run(args) -> dict:
                     fits[f"{V:g}"] = fitted_exponent([p["eps2"] for p in pts], [p["rel_error"] for p in pts])
             doc["fitted_exponent"] = fits
     if args.work_precision:
-        from verify.springblock.workprecision import plot, run_work_precision
+        from landau.verify.springblock.workprecision import plot, run_work_precision
         from landau.io import atomic_write_json, atomic_write_text
 
         out = Path(args.out)

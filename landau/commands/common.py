@@ -8,7 +8,7 @@ from typing import Sequence
 
 from landau.errors import InputError
 from landau.system import SpringBlock
-from laws import BUILTIN, FrictionLaw, get_law
+from landau.laws import BUILTIN, FrictionLaw, get_law
 
 SYSTEM_PARAMS = ("M", "g", "sigma")
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 
-from laws import BUILTIN, get_law
+from landau.laws import BUILTIN, get_law
 
 
 def configure(p) -> None:

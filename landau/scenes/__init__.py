@@ -24,10 +24,10 @@ from landau.errors import InputError
 #: Modules that register scenes (imported on first use of the registry).
 SCENE_MODULES: list[str] = [
     "landau.scenes.putelat2010",
-    "verify.galvanetto.scenes",
+    "landau.verify.galvanetto.scenes",
     "landau.scenes.putelat2010_transitions",
-    "verify.lancioni.scenes",
-    "verify.skurativskyi.scenes",
+    "landau.verify.lancioni.scenes",
+    "landau.verify.skurativskyi.scenes",
 ]
 
 _REGISTRY: dict[str, "Scene"] = {}

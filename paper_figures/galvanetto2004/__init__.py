@@ -2,8 +2,8 @@
 
 ``landau figures galvanetto2004 [--only fig12]``.  Phase portraits (Figs 7-10, 16) come
 from the hybrid engine, the maps (11, 13, 14) and bifurcation diagrams (12, 15) from the
-event maps of :mod:`verify.galvanetto.maps`; bifurcation points are the located values of
-:mod:`verify.galvanetto.bifurcations`.
+event maps of :mod:`landau.verify.galvanetto.maps`; bifurcation points are the located values of
+:mod:`landau.verify.galvanetto.bifurcations`.
 """
 
 from __future__ import annotations
@@ -19,11 +19,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from landau.io import atomic_savefig  # noqa: E402
-from verify.galvanetto import bifurcations as B  # noqa: E402
-from verify.galvanetto.analysis import FIG_STEPPER, beta_diagram, gsp_orbit_trajectory, map_curve, trajectory  # noqa: E402
-from verify.galvanetto.maps import iterate, model_for, one_block_cycle  # noqa: E402
-from verify.galvanetto.model import one_block, two_blocks  # noqa: E402
-from verify.hybrid import EngineOptions, Guard, HybridModel, simulate  # noqa: E402
+from landau.verify.galvanetto import bifurcations as B  # noqa: E402
+from landau.verify.galvanetto.analysis import FIG_STEPPER, beta_diagram, gsp_orbit_trajectory, map_curve, trajectory  # noqa: E402
+from landau.verify.galvanetto.maps import iterate, model_for, one_block_cycle  # noqa: E402
+from landau.verify.galvanetto.model import one_block, two_blocks  # noqa: E402
+from landau.verify.hybrid import EngineOptions, Guard, HybridModel, simulate  # noqa: E402
 
 
 def _save(fig, out_dir: Path, name: str) -> list[Path]:
@@ -163,7 +163,7 @@ def fig11(out_dir: Path) -> list[Path]:
 
 
 def fig12(out_dir: Path) -> list[Path]:
-    from verify.galvanetto.maps import f_n
+    from landau.verify.galvanetto.maps import f_n
     fold, pd, bc = B.discontinuous_fold().value, B.period_doubling().value, B.border_collision().value
     crisis = B.boundary_crisis().value
     fig, ax = plt.subplots(figsize=(9, 5.5))

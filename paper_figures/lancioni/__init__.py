@@ -2,8 +2,8 @@
 
 ``landau figures lancioni [--only fig2]``.  Slip branches come from the engine (Hopf point,
 :mod:`landau.general`) and shooting on the slip ODE; detached branches and orbits from the
-hybrid engine (:mod:`verify.lancioni`).  The φ̇_max section is φ̈ = 0, φ̇ > 0 (see
-:mod:`verify.lancioni.diagrams` for why not the OCR's "φ = 0").  Belt v = −1 m/s (the
+hybrid engine (:mod:`landau.verify.lancioni`).  The φ̇_max section is φ̈ = 0, φ̇ > 0 (see
+:mod:`landau.verify.lancioni.diagrams` for why not the OCR's "φ = 0").  Belt v = −1 m/s (the
 direction with the Hopf point); Fig. 6: v = sin(πt/2).
 """
 
@@ -19,12 +19,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from landau.io import atomic_savefig  # noqa: E402
-from verify.hybrid import simulate  # noqa: E402
-from verify.lancioni import analysis as A  # noqa: E402
-from verify.lancioni import diagrams as D  # noqa: E402
-from verify.lancioni.contact import default_options  # noqa: E402
-from verify.lancioni.model import build, slip_state  # noqa: E402
-from verify.lancioni.slip import SET1, SET2, equilibrium_phi, slip_hopf  # noqa: E402
+from landau.verify.hybrid import simulate  # noqa: E402
+from landau.verify.lancioni import analysis as A  # noqa: E402
+from landau.verify.lancioni import diagrams as D  # noqa: E402
+from landau.verify.lancioni.contact import default_options  # noqa: E402
+from landau.verify.lancioni.model import build, slip_state  # noqa: E402
+from landau.verify.lancioni.slip import SET1, SET2, equilibrium_phi, slip_hopf  # noqa: E402
 
 
 def _save(fig, out_dir: Path, name: str) -> list[Path]:

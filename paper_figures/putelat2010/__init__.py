@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections import OrderedDict
 
-from paper_figures.putelat2010 import fig4, fig5, fig8, fig9, fig10, fig13, fig14, fig15, fig17
+from landau.paper_figures.putelat2010 import fig4, fig5, fig8, fig9, fig10, fig13, fig14, fig15, fig17
 
 FIGURES = OrderedDict([
     ("fig4", fig4.make), ("fig5", fig5.make), ("fig8", fig8.make), ("fig9", fig9.make),

@@ -16,7 +16,7 @@ from landau.io import atomic_savefig  # noqa: E402
 from landau.multiscale import Derivation  # noqa: E402
 from landau.system import SpringBlock  # noqa: E402
 from landau.transition import velocity_weakening_ranges  # noqa: E402
-from laws import get_law  # noqa: E402
+from landau.laws import get_law  # noqa: E402
 
 #: the paper's Table 1 values used in labels
 L = 0.9e-6

@@ -12,7 +12,7 @@ import numpy as np
 
 from landau.amplitude import growth_rate
 from landau.transition import codim2_points
-from paper_figures.putelat2010._common import derivation, mu_ss, panel_title, save, symlog_y, vlabel, vw_grid
+from landau.paper_figures.putelat2010._common import derivation, mu_ss, panel_title, save, symlog_y, vlabel, vw_grid
 
 C = 3e-4
 

@@ -9,7 +9,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from landau.transition import codim2_points, transition_curve
-from paper_figures.putelat2010._common import V_S, derivation, panel_title, save, symlog_y, vlabel, vw_grid
+from landau.paper_figures.putelat2010._common import V_S, derivation, panel_title, save, symlog_y, vlabel, vw_grid
 
 C = 3e-4
 A, B = 0.0349, 0.0489

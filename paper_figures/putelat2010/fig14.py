@@ -12,7 +12,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from landau.regimes import naive_crossover, regime_diagram, transition_line
-from paper_figures.putelat2010._common import L, derivation, panel_title, save, vlabel, vw_grid
+from landau.paper_figures.putelat2010._common import L, derivation, panel_title, save, vlabel, vw_grid
 
 CS = (1e-3, 7e-4, 5e-4, 3e-4)
 M = 1.2

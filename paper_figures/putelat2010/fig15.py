@@ -10,7 +10,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from landau.transition import codim2_points
-from paper_figures.putelat2010._common import derivation, mu_ss, panel_title, save, symlog_y, vlabel, vw_grid
+from landau.paper_figures.putelat2010._common import derivation, mu_ss, panel_title, save, symlog_y, vlabel, vw_grid
 
 LAW, PARAMS, REF = "nanoscale", {}, ("spinodal", {"c": 1e-3})
 

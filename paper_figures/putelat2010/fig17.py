@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from paper_figures.putelat2010.fig15 import kc_panel, lambda_panel, make_law_figure  # noqa: F401
+from landau.paper_figures.putelat2010.fig15 import kc_panel, lambda_panel, make_law_figure  # noqa: F401
 
 LAW = "micron-scale"
 CASES = {"c = 2.5e-2": {"c": 2.5e-2}, "c = 1.4e-2": {"c": 1.4e-2}}

@@ -12,7 +12,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from landau.amplitude import apparent_stiffness, growth_rate, slip_amplitude, slip_rate_amplitude
-from paper_figures.putelat2010._common import derivation, mu_ss, panel_title, save, symlog_y, vlabel, vw_grid
+from landau.paper_figures.putelat2010._common import derivation, mu_ss, panel_title, save, symlog_y, vlabel, vw_grid
 
 C = 1e-3
 DX = 5.7e-6

@@ -9,7 +9,7 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
-from paper_figures.putelat2010._common import derivation, panel_title, save, symlog_y, vlabel, vw_grid
+from landau.paper_figures.putelat2010._common import derivation, panel_title, save, symlog_y, vlabel, vw_grid
 
 CS = (1e-3, 7e-4, 5e-4, 3e-4)
 STYLES = ("-", "--", "-.", ":")

@@ -1,8 +1,8 @@
 """Figures of Skurativskyi et al. (2019), Nonlinear Dyn. 98:1795, regenerated from the toolkit.
 
 ``landau figures skurativskyi2019 [--only fig3]``.  Bifurcation diagrams come from the
-continuation sweeps of :mod:`verify.skurativskyi.sweep` (local processes), phase portraits
-and profiles from :func:`verify.skurativskyi.simulate.run`.  Default resolutions are
+continuation sweeps of :mod:`landau.verify.skurativskyi.sweep` (local processes), phase portraits
+and profiles from :func:`landau.verify.skurativskyi.simulate.run`.  Default resolutions are
 modest (ω steps 0.05 rad/s, 30–150 recorded periods, rtol 1e-7) so that every figure runs
 in under a minute on two cores; the paper uses steps of 0.005 rad/s.
 """
@@ -19,9 +19,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from landau.io import atomic_savefig  # noqa: E402
-from verify.skurativskyi.model import PAPER  # noqa: E402
-from verify.skurativskyi.simulate import run  # noqa: E402
-from verify.skurativskyi.sweep import SweepSpec, run_sweep  # noqa: E402
+from landau.verify.skurativskyi.model import PAPER  # noqa: E402
+from landau.verify.skurativskyi.simulate import run  # noqa: E402
+from landau.verify.skurativskyi.sweep import SweepSpec, run_sweep  # noqa: E402
 
 RTOL_FIG = 1e-7
 

@@ -1,1 +1,1 @@
-"""Work-precision scripts (not tests): ``python -m verify.benchmarks.<name> [out_dir]``."""
+"""Work-precision scripts (not tests): ``python -m landau.verify.benchmarks.<name> [out_dir]``."""

@@ -6,13 +6,13 @@ end of the stick interval (X = 1, Ẋ = V) the block slips with r < 0 until r = 
 event maps and the type-II locator use).
 
 Methods, each over rtol = 1e-4 … 1e-12 (atol = rtol/100):
-* the hybrid engine (``verify.hybrid.simulate``) with DOP853 (default guard scan: 4 dense
+* the hybrid engine (``landau.verify.hybrid.simulate``) with DOP853 (default guard scan: 4 dense
   samples per step, which is what catches double crossings; and ``samples=0``: step ends
   only, the same information solve_ivp uses) and with RK45;
 * ``scipy.integrate.solve_ivp`` with a terminal event (direction +1), DOP853 and RK45.
 Reference: the engine at rtol 1e-13, cross-checked against solve_ivp/DOP853 at 1e-13.
 
-Run: ``python -m verify.benchmarks.event_location_galvanetto [out_dir]`` → writes
+Run: ``python -m landau.verify.benchmarks.event_location_galvanetto [out_dir]`` → writes
 ``event_location_galvanetto.md`` (table) and ``.png`` (error vs time) into out_dir
 (default ./benchmarks_out).
 """
@@ -26,9 +26,9 @@ from pathlib import Path
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from verify.galvanetto.maps import model_for
-from verify.galvanetto.model import one_block
-from verify.hybrid import EngineOptions, ScipyStepper, simulate
+from landau.verify.galvanetto.maps import model_for
+from landau.verify.galvanetto.model import one_block
+from landau.verify.hybrid import EngineOptions, ScipyStepper, simulate
 
 P = one_block(1.0, gamma=3.0, delta=0.2, c=0.0)
 Y0 = np.array([1.0, P.V])

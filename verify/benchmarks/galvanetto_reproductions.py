@@ -1,6 +1,6 @@
 """Run every Galvanetto (2004) reproduction once and report value, published value, time.
 
-``python -m verify.benchmarks.galvanetto_reproductions`` (one core, default tolerances:
+``python -m landau.verify.benchmarks.galvanetto_reproductions`` (one core, default tolerances:
 DOP853 rtol 1e-11).  Acceptance: all together under 60 s.
 """
 
@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import time
 
-from verify.galvanetto import bifurcations as B
+from landau.verify.galvanetto import bifurcations as B
 
 CASES = [
     ("one-block type II (δ=0.2)", lambda: B.one_block_sliding("II", delta=0.2), "1.241 (Sec. 4.1)"),

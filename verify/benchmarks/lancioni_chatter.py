@@ -7,7 +7,7 @@ and the mode integrator's rtol.  Error: |φ̇_max − reference| on the Poincar�
 (φ̈ = 0, φ̇ > 0) after a 12 s transient, reference = tolerance 1e-10 with rtol 1e-12.
 Run time: ratio to the cheapest setting in the same run.
 
-    /work/venv/bin/python -m verify.benchmarks.lancioni_chatter
+    /work/venv/bin/python -m landau.verify.benchmarks.lancioni_chatter
 """
 
 from __future__ import annotations
@@ -22,10 +22,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from landau.io import atomic_savefig, atomic_write_text  # noqa: E402
-from verify.hybrid import DOP853Stepper, simulate  # noqa: E402
-from verify.lancioni.contact import default_options  # noqa: E402
-from verify.lancioni.model import build, slip_state  # noqa: E402
-from verify.lancioni.slip import SET2, equilibrium_phi  # noqa: E402
+from landau.verify.hybrid import DOP853Stepper, simulate  # noqa: E402
+from landau.verify.lancioni.contact import default_options  # noqa: E402
+from landau.verify.lancioni.model import build, slip_state  # noqa: E402
+from landau.verify.lancioni.slip import SET2, equilibrium_phi  # noqa: E402
 
 OUT = Path(__file__).parent / "results"
 MU, EN, T_TR, T_END = 0.47, 0.2, 12.0, 15.0

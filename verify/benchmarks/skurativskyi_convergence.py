@@ -7,7 +7,7 @@ paper 20.8586, 21.5085, 23.0702; bisection to 1e-4), each run started from the a
 up-sweep (step 0.05, 100/50 transient periods) at the lower bracket end.  Notes §4: with the
 authors' integrator such points move by ~0.01 rad/s at rtol 1e-6.
 
-Run: ``python -m verify.benchmarks.skurativskyi_convergence [out_dir]`` → ``skurativskyi_convergence.md``.
+Run: ``python -m landau.verify.benchmarks.skurativskyi_convergence [out_dir]`` → ``skurativskyi_convergence.md``.
 """
 
 from __future__ import annotations
@@ -19,8 +19,8 @@ from pathlib import Path
 import numpy as np
 
 from landau.io import atomic_write_text
-from verify.skurativskyi.analysis import first_detachment, locate_grazing, locate_period_doubling
-from verify.skurativskyi.sweep import SweepSpec, run_sweep
+from landau.verify.skurativskyi.analysis import first_detachment, locate_grazing, locate_period_doubling
+from landau.verify.skurativskyi.sweep import SweepSpec, run_sweep
 
 PAPER_GRAZING = (20.8586, 21.5085, 23.0702)
 BRACKETS = ((20.85, 20.9), (21.5, 21.55), (23.05, 23.1))

@@ -7,7 +7,7 @@ Baseline measured in the same run: the same protocol on the first 5 points with 
 DOP853 and an event function (the fastest solve_ivp method in the work-precision
 benchmark), extrapolated per period.
 
-Run: ``python -m verify.benchmarks.skurativskyi_sweep_timing [out_dir]``.
+Run: ``python -m landau.verify.benchmarks.skurativskyi_sweep_timing [out_dir]``.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from verify.skurativskyi.sweep import SweepSpec, run_sweep
+from landau.verify.skurativskyi.sweep import SweepSpec, run_sweep
 
 
 def main(out_dir: str = "benchmarks_out") -> str:
@@ -33,8 +33,8 @@ def main(out_dir: str = "benchmarks_out") -> str:
     wall = time.perf_counter() - t0
     periods = 500 * 200 + (len(list(out.glob("chunk_*.jsonl")))) * 50
     # baseline: scipy DOP853 with events on 3 periods at ω = 20 from the toolkit's attractor
-    from verify.benchmarks.skurativskyi_work_precision import scipy_run
-    from verify.skurativskyi.model import Params
+    from landau.verify.benchmarks.skurativskyi_work_precision import scipy_run
+    from landau.verify.skurativskyi.model import Params
     t1 = time.process_time()
     scipy_run(Params(omega=20.0), 3, "DOP853", 1e-8, budget=120)
     per_period = (time.process_time() - t1) / 3

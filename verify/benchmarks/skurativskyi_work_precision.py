@@ -15,9 +15,9 @@ is the minimum of these ratios over the scipy runs on the Pareto front of all sc
 run at least as accurate) is listed as well.
 
 Methods over tolerances rtol (atol = (rtol·1e-4 m, rtol·1e-2 m/s)):
-* ``toolkit``: :func:`verify.skurativskyi.simulate.run`, the default path — compiled DOPRI5
+* ``toolkit``: :func:`landau.verify.skurativskyi.simulate.run`, the default path — compiled DOPRI5
   with exact contact switching (step re-taken onto x = x_I), stick phases (|ẋ| < 1e-5 m/s,
-  |ẍ| < 0.05 m/s²) by the L-stable SDIRK4 of :mod:`verify.skurativskyi.sdirk`;
+  |ẍ| < 0.05 m/s²) by the L-stable SDIRK4 of :mod:`landau.verify.skurativskyi.sdirk`;
 * ``toolkit-dopri5``: the same with the explicit DOPRI5 alone (``method="dopri5"``);
 * ``scipy-<M>``: ``solve_ivp(method=M, events=x − x_I)`` with a Python right-hand side
   (and the analytic Jacobian for Radau/LSODA/BDF), M ∈ {DOP853, Radau, LSODA}.
@@ -25,7 +25,7 @@ A scipy run that exceeds ``BUDGET`` seconds of CPU is stopped and reported as su
 and BDF stall at the velocity reversals inside contact: the Hertz damping |ẋ|^{n₃} is not
 Lipschitz at ẋ = 0 and Newton's iteration diverges there, so the step size collapses).
 
-Run: ``python -m verify.benchmarks.skurativskyi_work_precision [out_dir] [--quick]`` →
+Run: ``python -m landau.verify.benchmarks.skurativskyi_work_precision [out_dir] [--quick]`` →
 ``skurativskyi_work_precision.md`` (table) and ``.png``.
 """
 
@@ -40,8 +40,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from landau.io import atomic_savefig, atomic_write_text
-from verify.skurativskyi.model import Params, accel, accel_grad
-from verify.skurativskyi.simulate import rest_state, run
+from landau.verify.skurativskyi.model import Params, accel, accel_grad
+from landau.verify.skurativskyi.simulate import rest_state, run
 
 BUDGET = 30.0
 SCALE = np.array([1e-3, 1e-2])
@@ -143,8 +143,8 @@ def radau_on_stick(t_span: float = 0.05) -> list[str]:
     t ≈ 0.15 s (ω = 15), over ``t_span`` s at rtol 1e-8."""
     import numba as nb
 
-    from verify.skurativskyi.model import rhs2
-    from verify.springblock import radau as RD
+    from landau.verify.skurativskyi.model import rhs2
+    from landau.verify.springblock import radau as RD
 
     fun = nb.njit(RD.SIG)(rhs2.py_func)
 
@@ -185,7 +185,7 @@ def main(out_dir: str = "benchmarks_out", quick: bool = False) -> str:
     run(Params(), 1)  # compile
     run(Params(), 1, method="dopri5")
     lines = ["# Work–precision: Skurativskyi et al. (2019) eq. (1)", "",
-             ("`toolkit` = the default path of `verify.skurativskyi.simulate.run` (compiled DOPRI5 + SDIRK4 in "
+             ("`toolkit` = the default path of `landau.verify.skurativskyi.simulate.run` (compiled DOPRI5 + SDIRK4 in "
               "stick phases, |ẋ| < 1e-5 m/s and |ẍ| < 0.05 m/s²); `toolkit-dopri5` = the explicit path alone "
               "(`method=\"dopri5\"`)."),
              f"CPU seconds (process time, best of 5 for the toolkit); scipy runs stopped after {BUDGET:g} s.",

@@ -1,12 +1,12 @@
 """Galvanetto (2004) one- and two-block stick–slip models on the hybrid engine.
 
-* :mod:`verify.galvanetto.model` — the models (modes, guards, Filippov transitions);
-* :mod:`verify.galvanetto.maps` — the event map d_{k+1} = f(d_k) (Sec. 2.2), one-block cycle;
-* :mod:`verify.galvanetto.bifurcations` — locators of the sliding bifurcations (Sec. 4);
-* :mod:`verify.galvanetto.analysis` — map curves, bifurcation diagrams, trajectories;
-* :mod:`verify.galvanetto.smooth` — the damped one block's smooth slip field for the
+* :mod:`landau.verify.galvanetto.model` — the models (modes, guards, Filippov transitions);
+* :mod:`landau.verify.galvanetto.maps` — the event map d_{k+1} = f(d_k) (Sec. 2.2), one-block cycle;
+* :mod:`landau.verify.galvanetto.bifurcations` — locators of the sliding bifurcations (Sec. 4);
+* :mod:`landau.verify.galvanetto.analysis` — map curves, bifurcation diagrams, trajectories;
+* :mod:`landau.verify.galvanetto.smooth` — the damped one block's smooth slip field for the
   landau (Hopf) engine;
-* :mod:`verify.galvanetto.scenes` — the published points as scenes.
+* :mod:`landau.verify.galvanetto.scenes` — the published points as scenes.
 
 Findings (located values; DOP853 rtol 1e-11, converged to < 1e-8 against rtol 1e-12)
 -------------------------------------------------------------------------------------

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from verify.galvanetto.maps import MapUndefined, default_stepper, f, model_for
-from verify.galvanetto.model import StickSlipParams, two_blocks
-from verify.hybrid import EngineOptions, simulate
-from verify.hybrid.analysis import SweepResult, map_bifurcation_diagram
+from landau.verify.galvanetto.maps import MapUndefined, default_stepper, f, model_for
+from landau.verify.galvanetto.model import StickSlipParams, two_blocks
+from landau.verify.hybrid import EngineOptions, simulate
+from landau.verify.hybrid.analysis import SweepResult, map_bifurcation_diagram
 
 FIG_STEPPER = default_stepper(1e-9)  # plots need ~1e-9, not the locators' 1e-11
 
@@ -44,7 +44,7 @@ def trajectory(p: StickSlipParams, mode: str, y0, t_end: float, stepper=FIG_STEP
 
 def gsp_orbit_trajectory(p: StickSlipParams, d: float, n_steps: int, stepper=FIG_STEPPER):
     """Trajectory of ``n_steps`` map steps from the g.s.p. d, including the g.s.p. segments."""
-    from verify.galvanetto.maps import gsp_start
+    from landau.verify.galvanetto.maps import gsp_start
     ys = []
     for _ in range(n_steps):
         mode, y0 = gsp_start(p, d)

@@ -32,8 +32,8 @@ import numpy as np
 from scipy.optimize import brentq
 
 from landau.errors import InputError, LandauError
-from verify.galvanetto.maps import (MapUndefined, default_stepper, f_n, one_block_cycle, two_block_map)
-from verify.galvanetto.model import K_of, StickSlipParams, one_block, two_blocks
+from landau.verify.galvanetto.maps import (MapUndefined, default_stepper, f_n, one_block_cycle, two_block_map)
+from landau.verify.galvanetto.model import K_of, StickSlipParams, one_block, two_blocks
 
 XTOL = 1e-12
 
@@ -360,7 +360,7 @@ def hopf_c1_normal_form(V: float = 0.5, gamma: float = 3.0, delta: float = 0.0):
     the smooth slip field, with its amplitude equation: Λ > 0 means subcritical (an unstable cycle
     for c > c₁ whose displacement amplitude is C·sqrt(c − c₁))."""
     from landau.general import hopf_normal_form
-    from verify.galvanetto.smooth import damped_slip_system
+    from landau.verify.galvanetto.smooth import damped_slip_system
 
     c1 = hopf_c1(V, gamma, delta)
     return hopf_normal_form(damped_slip_system(V, gamma, delta), {"V": V, "gamma": gamma, "delta": delta},
@@ -378,8 +378,8 @@ def nonsmooth_fold_c2(V: float = 0.5, gamma: float = 3.0, delta: float = 0.0,
     cycle, the backward orbit shrinks onto it, H < 0; c > c₂: inside, H > 0.  H is smooth
     and bounded (the backward orbit never leaves the cycle's neighbourhood).
     """
-    from verify.hybrid import Guard, HybridModel, Mode, simulate
-    from verify.hybrid.simulate import EngineOptions
+    from landau.verify.hybrid import Guard, HybridModel, Mode, simulate
+    from landau.verify.hybrid.simulate import EngineOptions
     c1 = hopf_c1(V, gamma, delta)
     st = stepper or default_stepper()
 

@@ -19,8 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from landau.errors import LandauError
-from verify.galvanetto.model import StickSlipParams, build_model
-from verify.hybrid import EngineOptions, EventLog, ScipyStepper, simulate
+from landau.verify.galvanetto.model import StickSlipParams, build_model
+from landau.verify.hybrid import EngineOptions, EventLog, ScipyStepper, simulate
 
 FAST = EngineOptions(record=False)
 

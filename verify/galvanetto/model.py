@@ -28,8 +28,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from laws.kinetic import KineticFriction
-from verify.hybrid import Guard, HybridModel, Jump, Mode
+from landau.laws.kinetic import KineticFriction
+from landau.verify.hybrid import Guard, HybridModel, Jump, Mode
 
 
 @dataclass(frozen=True)

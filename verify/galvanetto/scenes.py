@@ -4,13 +4,13 @@
 instead of a number (Figs 8, 9, 15) the published value is the interval's midpoint and the
 tolerance its relative half-width, so ``agrees`` means "inside the printed interval".
 ``lo``/``hi`` bound the search (Brent's method on the scene's test function, see
-:mod:`verify.galvanetto.bifurcations`).
+:mod:`landau.verify.galvanetto.bifurcations`).
 """
 
 from __future__ import annotations
 
 from landau.scenes import Scene, register
-from verify.galvanetto import bifurcations as B
+from landau.verify.galvanetto import bifurcations as B
 
 SRC = "Galvanetto 2004, J. Sound Vib. 276:121-139"
 

@@ -9,7 +9,7 @@ w = Ẋ the equilibrium (steady sliding, block at rest, r = −V) is the origin:
 The Hopf parameter is the damping c; the Hopf point is c₁ = F_k⁻'(−V) = γ(1 − δ)/(1 + γV)²
 with ω = 1.  :func:`damped_slip_system` returns it as a :class:`landau.system.DynamicalSystem`
 so that the landau engine computes the criticality (Λ) — see
-:func:`verify.galvanetto.bifurcations.hopf_c1_normal_form`.
+:func:`landau.verify.galvanetto.bifurcations.hopf_c1_normal_form`.
 """
 
 from __future__ import annotations

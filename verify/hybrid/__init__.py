@@ -5,14 +5,14 @@ integrator (a stepper factory, :class:`ScipyStepper` or any object with scipy's
 ``OdeSolver`` members) and engine options, then call :func:`simulate`.  The result
 (:class:`HybridSolution`) carries the event log (:class:`EventLog`) and, if events
 accumulate, a :class:`ZenoDiagnosis`.  Analysis tools (event maps, Poincaré sections)
-are in :mod:`verify.hybrid.analysis`.
+are in :mod:`landau.verify.hybrid.analysis`.
 """
 
-from verify.hybrid.log import Event, EventLog
-from verify.hybrid.model import Guard, HybridModel, Jump, Mode
-from verify.hybrid.simulate import EngineOptions, HybridSolution, Segment, simulate
-from verify.hybrid.steppers import DOP853Stepper, RadauStepper, ScipyStepper
-from verify.hybrid.zeno import ZenoDiagnosis, ZenoMonitor
+from landau.verify.hybrid.log import Event, EventLog
+from landau.verify.hybrid.model import Guard, HybridModel, Jump, Mode
+from landau.verify.hybrid.simulate import EngineOptions, HybridSolution, Segment, simulate
+from landau.verify.hybrid.steppers import DOP853Stepper, RadauStepper, ScipyStepper
+from landau.verify.hybrid.zeno import ZenoDiagnosis, ZenoMonitor
 
 __all__ = ["Event", "EventLog", "Guard", "HybridModel", "Jump", "Mode", "EngineOptions",
            "HybridSolution", "Segment", "simulate", "DOP853Stepper", "RadauStepper",

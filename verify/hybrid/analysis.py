@@ -18,8 +18,8 @@ from typing import Any, Callable, Sequence
 import numpy as np
 
 from landau.errors import LandauError
-from verify.hybrid.model import HybridModel
-from verify.hybrid.simulate import EngineOptions, simulate
+from landau.verify.hybrid.model import HybridModel
+from landau.verify.hybrid.simulate import EngineOptions, simulate
 
 
 @dataclass(frozen=True)

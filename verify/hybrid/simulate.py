@@ -1,10 +1,10 @@
 """The hybrid simulation loop.
 
 ``simulate(model, mode, y0, (t0, t_end), stepper)`` integrates one mode at a time with a
-stepper that has dense output (see :mod:`verify.hybrid.steppers`), scans the mode's
-guards on every step (:mod:`verify.hybrid.locate`), applies the earliest switching
+stepper that has dense output (see :mod:`landau.verify.hybrid.steppers`), scans the mode's
+guards on every step (:mod:`landau.verify.hybrid.locate`), applies the earliest switching
 transition at its root (taken on the new side of the guard), logs every event, and
-watches for Zeno accumulation (:mod:`verify.hybrid.zeno`).
+watches for Zeno accumulation (:mod:`landau.verify.hybrid.zeno`).
 
 Phase starts and zero-length phases
 -----------------------------------
@@ -32,11 +32,11 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from landau.errors import IntegratorError
-from verify.hybrid.locate import first_crossing, guard_on_dense, root_new_side
-from verify.hybrid.log import Event, EventLog
-from verify.hybrid.model import HybridModel, as_jump
-from verify.hybrid.steppers import ScipyStepper
-from verify.hybrid.zeno import ZenoDiagnosis, ZenoMonitor
+from landau.verify.hybrid.locate import first_crossing, guard_on_dense, root_new_side
+from landau.verify.hybrid.log import Event, EventLog
+from landau.verify.hybrid.model import HybridModel, as_jump
+from landau.verify.hybrid.steppers import ScipyStepper
+from landau.verify.hybrid.zeno import ZenoDiagnosis, ZenoMonitor
 
 
 @dataclass(frozen=True)

@@ -15,7 +15,7 @@ and the stepper has
 * ``nfev``: number of right-hand-side evaluations so far.
 
 A compiled stepper (e.g. a numba-jitted stiff method for a Hertz contact) only has to
-expose these members to be used by :func:`verify.hybrid.simulate` without change.
+expose these members to be used by :func:`landau.verify.hybrid.simulate` without change.
 """
 
 from __future__ import annotations

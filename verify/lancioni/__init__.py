@@ -1,16 +1,16 @@
 """Frictional impact oscillator of Lancioni, Lenci & Galvanetto (seed 000) — issue 7.
 
-* :mod:`verify.lancioni.contact` — one frictional unilateral contact on the hybrid engine
+* :mod:`landau.verify.lancioni.contact` — one frictional unilateral contact on the hybrid engine
   (free flight / slip± / stick, Poisson impact law with Coulomb friction — impulse equations
   derived in its docstring —, chattering, Painlevé detection);
-* :mod:`verify.lancioni.model` — eq. (1): the two-mass bar on a moving belt;
-* :mod:`verify.lancioni.slip` — the smooth slip mode as a ``DynamicalSystem`` and its
+* :mod:`landau.verify.lancioni.model` — eq. (1): the two-mass bar on a moving belt;
+* :mod:`landau.verify.lancioni.slip` — the smooth slip mode as a ``DynamicalSystem`` and its
   Hopf point through :func:`landau.general.hopf_normal_form`;
-* :mod:`verify.lancioni.analysis` — slip cycles, lift-off, stick onset, free-flight onset,
+* :mod:`landau.verify.lancioni.analysis` — slip cycles, lift-off, stick onset, free-flight onset,
   Painlevé onset, simulated Hopf point;
-* :mod:`verify.lancioni.period_adding` — the e_N = 0 detached branch near μ = 0.38957 (why
+* :mod:`landau.verify.lancioni.period_adding` — the e_N = 0 detached branch near μ = 0.38957 (why
   eq. (1) has no period-adding cascade);
-* :mod:`verify.lancioni.diagrams` — bifurcation diagrams in μ and the sinusoidal belt runs.
+* :mod:`landau.verify.lancioni.diagrams` — bifurcation diagrams in μ and the sinusoidal belt runs.
 
 Results against the paper (g = 10 m/s², belt v = −1 m/s — the direction with the Hopf point)
 --------------------------------------------------------------------------------------------

@@ -1,6 +1,6 @@
 """Slip cycles, lift-off, stick onset and the simulation check of the Hopf point.
 
-* :func:`slip_cycle` — the periodic orbit of the smooth slip ODE (:mod:`verify.lancioni.slip`)
+* :func:`slip_cycle` — the periodic orbit of the smooth slip ODE (:mod:`landau.verify.lancioni.slip`)
   by shooting on its return map to φ-maxima (ω = 0, ω decreasing), started from the
   normal-form amplitude; returns the extrema of λ_N and g_T along it;
 * :func:`lift_off_mu` — μ where the slip cycle's minimum normal force reaches 0 (the paper's
@@ -10,7 +10,7 @@
   get 0.44986 (bracket 1e-5; min λ_N on the attractor falls linearly to 0 there: 0.333 at
   0.44, 0.068 at 0.448, 0.0052 at 0.4498); the paper prints ≈ 0.453.  Not g (9.81 gives
   0.4418), not hysteresis; the gap is the unprinted belt speed |v| (see the function and
-  :mod:`verify.lancioni.flight_onset`) — we report it and do not tune;
+  :mod:`landau.verify.lancioni.flight_onset`) — we report it and do not tune;
 * :func:`growth_rate` / :func:`hopf_by_simulation` — the growth rate of a small slip
   oscillation measured by the *hybrid* simulation (all modes armed) on both sides of the
   Hopf point; its zero (linear interpolation) is the simulated Hopf point.
@@ -28,10 +28,10 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from landau.errors import IntegratorError, NoHopfError
-from verify.hybrid import DOP853Stepper, simulate
-from verify.lancioni import slip as S
-from verify.lancioni.contact import default_options
-from verify.lancioni.model import ConstantBelt, build, slip_state
+from landau.verify.hybrid import DOP853Stepper, simulate
+from landau.verify.lancioni import slip as S
+from landau.verify.lancioni.contact import default_options
+from landau.verify.lancioni.model import ConstantBelt, build, slip_state
 
 
 @lru_cache(maxsize=4)
@@ -219,7 +219,7 @@ def flight_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[fl
 
     Bisection on "a lift-off happens in the last ``t_keep`` s", each run started from the
     attractor at the lower end (found from the slip equilibrium + 0.05 rad).  Belt v = −1,
-    g = 10: 0.44986.  Why not 0.453 (numbers from :mod:`verify.lancioni.flight_onset`):
+    g = 10: 0.44986.  Why not 0.453 (numbers from :mod:`landau.verify.lancioni.flight_onset`):
 
     * Not g: g = 9.81 gives 0.4418 (and moves the Hopf point to 0.3541).
     * Not visibility in Fig. 4: the flight starts 14 ms *after* the φ̇ maximum and stick
@@ -284,7 +284,7 @@ def painleve_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[
     μ ≈ 0.6450 (free flight–stick–slip below, free flight–stick above) — where our model stops
     with a Painlevé situation instead of choosing a continuation silently.
     """
-    from verify.lancioni.contact import PainleveError
+    from landau.verify.lancioni.contact import PainleveError
     p = S.resolve(params)
     lo, hi = map(float, bracket)
     y = np.array([0.38, 0.929, 0.0, 0.0])

@@ -87,7 +87,7 @@ from typing import Callable, Sequence
 import numpy as np
 
 from landau.errors import InputError, IntegratorError
-from verify.hybrid import EngineOptions, Guard, HybridModel, Jump, Mode
+from landau.verify.hybrid import EngineOptions, Guard, HybridModel, Jump, Mode
 
 
 class PainleveError(IntegratorError):

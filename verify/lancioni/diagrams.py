@@ -5,7 +5,7 @@ printed (OCR) as "φ = 0 when φ̇ > 0".  The slip oscillations born at the Hopf
 within ~0.01 rad of φ_e ≈ 0.389 and never reach φ = 0, so that section would be empty on
 the branch the paper plots; we read it as φ̈ = 0 with φ̇ > 0 — the local maxima of φ̇, which
 is what "φ̇_max" says — and log them with the section guard ``phidot-max`` of
-:mod:`verify.lancioni.model` (``PHI_ZERO_UP`` is available for the literal reading).
+:mod:`landau.verify.lancioni.model` (``PHI_ZERO_UP`` is available for the literal reading).
 
 Continuation: each μ starts from the final state (and mode) of the previous one, so
 sweeping up and down exposes the hysteresis between the slip and the detached branches.
@@ -18,10 +18,10 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from verify.hybrid import DOP853Stepper, simulate
-from verify.lancioni.contact import default_options
-from verify.lancioni.model import ConstantBelt, SineBelt, build, slip_state
-from verify.lancioni.slip import SET1, equilibrium_phi, resolve
+from landau.verify.hybrid import DOP853Stepper, simulate
+from landau.verify.lancioni.contact import default_options
+from landau.verify.lancioni.model import ConstantBelt, SineBelt, build, slip_state
+from landau.verify.lancioni.slip import SET1, equilibrium_phi, resolve
 
 STEPPER = DOP853Stepper(1e-10, 1e-12)
 

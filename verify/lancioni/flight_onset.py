@@ -7,11 +7,11 @@ a more complex free flight–slip–stick–slip motion takes place"; the bifurc
 * :func:`flight_cycle` — the attractor just past lift-off: the flight starts 14 ms *after*
   the φ̇ maximum of the slip phase, ends in an impact, then slip → stick → slip.  Stick is a
   reset (its state is a function of φ alone and it always ends at the same point P(μ), see
-  :mod:`verify.lancioni.period_adding`), so the section value φ̇_max — reached on the slip
+  :mod:`landau.verify.lancioni.period_adding`), so the section value φ̇_max — reached on the slip
   flow from P before any flight — is *exactly* that of the continued contact (no lift-off)
   branch, for e_N = 0 and 0.2 alike.  The diagram cannot show the onset.
 * :func:`continued_phidot_max` — that contact-branch value computed independently: the
-  reduced slip ODE (:mod:`verify.lancioni.slip`) from P to its first maximum of φ̇.
+  reduced slip ODE (:mod:`landau.verify.lancioni.slip`) from P to its first maximum of φ̇.
 * The belt speed |v| is not printed; the printed stick onset (≈ 0.360, i.e. [0.3595, 0.3605])
   pins it only to |v| ∈ [0.9542, 1.0156], across which the flight onset runs from 0.4663 to
   0.4444 (d μ_flight/d|v| ≈ −0.36, d μ_stick/d|v| ≈ +0.017).  |v| ≈ 0.991 reproduces all
@@ -28,18 +28,18 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from landau.errors import IntegratorError
-from verify.hybrid import DOP853Stepper, simulate
-from verify.lancioni import slip as S
-from verify.lancioni.analysis import _flow
-from verify.lancioni.contact import default_options
-from verify.lancioni.model import (
+from landau.verify.hybrid import DOP853Stepper, simulate
+from landau.verify.lancioni import slip as S
+from landau.verify.lancioni.analysis import _flow
+from landau.verify.lancioni.contact import default_options
+from landau.verify.lancioni.model import (
     PHI_ZERO_UP,
     PHIDOT_MAX,
     ConstantBelt,
     build,
     slip_state,
 )
-from verify.lancioni.period_adding import stick_exit
+from landau.verify.lancioni.period_adding import stick_exit
 
 STEPPER = DOP853Stepper(1e-10, 1e-12)
 
@@ -106,7 +106,7 @@ def continued_phidot_max(mu: float, v: float = -1.0, params: Mapping[str, float]
     """φ̇_max of the stick–slip branch with the contact kept closed (λ_N < 0 allowed).
 
     Independent of the hybrid engine: the stick exit P(μ) (lower end of the admissible stick
-    interval, :func:`verify.lancioni.period_adding.stick_exit`), then the reduced slip+ ODE
+    interval, :func:`landau.verify.lancioni.period_adding.stick_exit`), then the reduced slip+ ODE
     φ̈ = F(φ, φ̇; μ) (g_N ≡ 0) to the first maximum of φ̇ with φ̇ > 0.
     """
     p = S.resolve(params or S.SET2)

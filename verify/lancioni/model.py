@@ -9,12 +9,12 @@ every mode.  Eq. (1), M(q) q̈ = W λ − h (notes/models.md §3):
 gap g_N = y − l cos φ (γ_N = ẏ + lφ̇ sin φ, ŵ_N = lφ̇² cos φ), relative tangential
 velocity g_T = lφ̇ cos φ − v(t) (ŵ_T = −lφ̇² sin φ − v̇).  The regimes (free flight,
 slip±, stick), transitions, Poisson impact law and Painlevé checks are the generic ones
-of :mod:`verify.lancioni.contact`; this module only supplies the mechanics.
+of :mod:`landau.verify.lancioni.contact`; this module only supplies the mechanics.
 
 Belt.  The paper's constant belt speed is not printed; |v| = 1 m/s (the amplitude of the
 sinusoidal belt v = sin(πt/2) of Fig. 6) is used, in the direction that has the Hopf
 point: v = −1 (g_T > 0 on the slip equilibrium, *positive slip*; see
-:mod:`verify.lancioni.slip`).
+:mod:`landau.verify.lancioni.slip`).
 """
 
 from __future__ import annotations
@@ -25,8 +25,8 @@ from typing import Mapping
 import numpy as np
 
 from landau.errors import InputError
-from verify.lancioni.contact import ContactMechanics, ContactModel, Section
-from verify.lancioni.slip import SET1, SET2, resolve
+from landau.verify.lancioni.contact import ContactMechanics, ContactModel, Section
+from landau.verify.lancioni.slip import SET1, SET2, resolve
 
 
 @dataclass(frozen=True)
@@ -136,7 +136,7 @@ def build(mu: float, eN: float = 0.0, params: Mapping[str, float] | None = None,
     """The hybrid model of eq. (1) (set 1 by default, g = 10) at friction coefficient μ.
 
     ``stick_tol`` > 0 switches on the numerical stick tolerance of
-    :class:`verify.lancioni.contact.ContactModel` (default 0: the exact model).
+    :class:`landau.verify.lancioni.contact.ContactModel` (default 0: the exact model).
     """
     mech = Lancioni(params=dict(params or SET1), mu=float(mu), eN=float(eN), belt=belt or ConstantBelt())
     return ContactModel(mech, sections=sections, stick_tol=float(stick_tol), stick_tol_reset=stick_tol_reset)

@@ -37,7 +37,7 @@ What eq. (1) with exact Coulomb/Poisson contact does (hybrid engine, DOP853 rtol
    accumulation point 0.38957 within half a unit of its 5th digit.  There is no
    period-adding cascade: in the paper's window (0.38957, 0.38965) our attractor is the
    period-1 stick orbit; the first three steps do not exist in this model.
-3. *Stick tolerance* (``stick_tol=η`` of :class:`verify.lancioni.contact.ContactModel`, off by
+3. *Stick tolerance* (``stick_tol=η`` of :class:`landau.verify.lancioni.contact.ContactModel`, off by
    default): codes of the paper's era detected stick as |γ_T| < η.  With ``"project"``
    (γ_T set to 0 at the tolerance stick) the reset stays P and the first miss must exceed
    η: μ_end = μ* − η/6.88 = μ* − 0.1453 η.  With ``"hold"`` (Karnopp-like band, γ_T kept at
@@ -64,10 +64,10 @@ from typing import Mapping
 import numpy as np
 from scipy.optimize import brentq
 
-from verify.hybrid import DOP853Stepper, simulate
-from verify.lancioni.contact import Section, default_options
-from verify.lancioni.model import ConstantBelt, build, slip_state
-from verify.lancioni.slip import resolve
+from landau.verify.hybrid import DOP853Stepper, simulate
+from landau.verify.lancioni.contact import Section, default_options
+from landau.verify.lancioni.model import ConstantBelt, build, slip_state
+from landau.verify.lancioni.slip import resolve
 
 STEPPER = DOP853Stepper(1e-11, 1e-13)
 #: μ inside the paper's cascade window (0.38957, 0.38965) and the window itself

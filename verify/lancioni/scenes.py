@@ -16,7 +16,7 @@ of its 5th digit (the model has no cascade steps; see verify/lancioni/period_add
 from __future__ import annotations
 
 from landau.scenes import Scene, register
-from verify.lancioni.slip import SET1, SET2
+from landau.verify.lancioni.slip import SET1, SET2
 
 SRC = "Lancioni, Lenci & Galvanetto, frictional impact oscillator (seed 000), Sec. 3"
 
@@ -30,7 +30,7 @@ def _params(p):
 
 
 def _hopf(p):
-    from verify.lancioni.slip import slip_hopf
+    from landau.verify.lancioni.slip import slip_hopf
     h = slip_hopf(_params(p), bracket=(p["lo"], p["hi"]), s=1)
     return {"value": h.p_c, "omega_c": h.omega_c, "Lambda": h.Lambda, "chi": h.chi, "C": h.C,
             "criticality": h.criticality, "phi_e": h.equilibrium[0], "dRe_lambda_dmu": h.dlambda_dp.real,
@@ -48,7 +48,7 @@ register(Scene(
 
 
 def _lift_off(p):
-    from verify.lancioni.analysis import lift_off_mu
+    from landau.verify.lancioni.analysis import lift_off_mu
     m, cyc = lift_off_mu(_params(p))
     return {"value": m, "amplitude_phi": cyc.amplitude, "period": cyc.period, "phidot_max": cyc.phidot_max,
             "method": "shooting on the slip ODE's cycle; min lambda_N along it = 0"}
@@ -62,7 +62,7 @@ register(Scene(
 
 
 def _stick(p):
-    from verify.lancioni.analysis import stick_onset_mu
+    from landau.verify.lancioni.analysis import stick_onset_mu
     m, cyc = stick_onset_mu(_params(p), v=p["v"])
     return {"value": m, "phidot_max": cyc.phidot_max, "amplitude_phi": cyc.amplitude}
 
@@ -75,7 +75,7 @@ register(Scene(
 
 
 def _period_adding(p):
-    from verify.lancioni.period_adding import period_adding_steps
+    from landau.verify.lancioni.period_adding import period_adding_steps
     res = period_adding_steps(_params(p), n_steps=int(p["n_steps"]))
     return {"value": res.accumulation, "steps": list(res.steps),
             "periods_seen": sorted({per for _, per in res.periods}),
@@ -95,7 +95,7 @@ register(Scene(
 
 
 def _flight(p):
-    from verify.lancioni.analysis import flight_onset_mu
+    from landau.verify.lancioni.analysis import flight_onset_mu
     r = flight_onset_mu(_params(p), bracket=(p["lo"], p["hi"]))
     return {"value": r.mu, "bracket": list(r.bracket), "lamN_min_at_lo": r.lamN_min_below,
             "note": "bisection on lift-off along the stick-slip attractor; differs from the printed "

@@ -20,7 +20,7 @@ c_y-damping of the reduced ODE is c_y l² sin φ (sin φ − sμ cos φ), which 
 changes sign at μ ≈ tan φ_e (≈ tan π/8 = 0.414) — the Hopf point near μ ≈ 0.41; for
 s = −1 it stays positive and the equilibrium stays stable for all μ in [0, 1].  The
 denominator of F, l²(m₁cos²φ + m₂ sin φ (sin φ − sμ cos φ)) (the Painlevé coefficient
-of :mod:`verify.lancioni.contact`), stays positive on the slip branch for s = +1 only
+of :mod:`landau.verify.lancioni.contact`), stays positive on the slip branch for s = +1 only
 while μ < (m₁ cot φ + m₂ tan φ)/m₂.
 
 Equilibrium.  ω = 0, and φ_e solves the transcendental

@@ -9,7 +9,7 @@ Conventions (as in the paper):
   decreasing ("down") ω (Sec. 4, caption of Fig. 5);
 * top Lyapunov exponent: one tangent vector of the variational equation, renormalised every
   forcing period (Sec. 4, Fig. 5); no saltation correction is needed (continuous field at
-  both switching surfaces, see :mod:`verify.skurativskyi.model`);
+  both switching surfaces, see :mod:`landau.verify.skurativskyi.model`);
 * Tsallis index q: maximiser of the redundancy R_T(q) = 1 − S_T/S_T,max of the normalised
   T_j histogram on (0.05, 0.3) s with bins of 0.001 s, empty bins dropped (Sec. 4, Fig. 6).
 """
@@ -22,8 +22,8 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from landau.errors import InputError
-from verify.skurativskyi.model import PAPER, Params
-from verify.skurativskyi.simulate import RTOL, ATOL, run
+from landau.verify.skurativskyi.model import PAPER, Params
+from landau.verify.skurativskyi.simulate import RTOL, ATOL, run
 
 
 @dataclass(frozen=True)

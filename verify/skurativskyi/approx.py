@@ -28,7 +28,7 @@ from dataclasses import dataclass
 from scipy.optimize import brentq
 
 from landau.errors import InputError
-from verify.skurativskyi.model import Params
+from landau.verify.skurativskyi.model import Params
 
 
 def static_equilibrium(p: Params) -> float:

@@ -22,7 +22,7 @@ m/s).  :func:`velocity_stops` gives the near-stops of an orbit (extrema of ẋ t
 reach 0); :func:`locate_friction_grazing` extrapolates their margin min|ẋ| to 0 — the point
 where a stick phase is born (it ends the period-3, 4-impact window at ω ≈ 23.0637).
 
-Sampling: the fast path :func:`verify.skurativskyi.simulate.run` advanced in chunks of
+Sampling: the fast path :func:`landau.verify.skurativskyi.simulate.run` advanced in chunks of
 P/N (P = 2π/ω) — every chunk integrated with the exact contact switching —; each interval
 where ẋ changes sign from + to − is re-integrated in finer chunks and the maximum taken on
 the cubic Hermite interpolant of (x, ẋ) there (error ~ h⁴ x⁗/384).
@@ -35,8 +35,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from landau.errors import InputError
-from verify.skurativskyi.model import PAPER, Params
-from verify.skurativskyi.simulate import RTOL, run
+from landau.verify.skurativskyi.model import PAPER, Params
+from landau.verify.skurativskyi.simulate import RTOL, run
 
 
 @dataclass(frozen=True)
@@ -203,7 +203,7 @@ _SECTION_TOL = 1e-6
 
 def _orbit_signature(omega, y, n_transient, n_keep, params, rtol):
     """(section period, impacts in n_keep periods, the maxima) of the attractor from y."""
-    from verify.skurativskyi.analysis import attractor, section_period
+    from landau.verify.skurativskyi.analysis import attractor, section_period
     a = attractor(omega, y, n_transient, n_keep, params, rtol)
     m = maxima(omega, a.y_end, n_keep, 200, 0.0, params, rtol)
     return section_period(a, _SECTION_TOL, 24), int(round(m.impacts_per_period * n_keep)), m
@@ -223,7 +223,7 @@ def locate_grazing_margin(omega_orbit: float, omega_gone: float, y_orbit, tol: f
     orbit side (close, so that the extreme maximum stays the same one: s is kinked where
     another maximum takes over).  ``n_keep`` = 84 observed periods is a multiple of the
     periods 1–4, 6, 7 met here."""
-    from verify.skurativskyi.analysis import attractor, bisect, section_period
+    from landau.verify.skurativskyi.analysis import attractor, bisect, section_period
     if omega_orbit == omega_gone or not tol > 0:
         raise InputError("need omega_orbit != omega_gone and tol > 0")
     ref = attractor(omega_orbit, y_orbit, n_transient, n_keep, params, rtol)
@@ -327,7 +327,7 @@ def locate_friction_grazing(omegas, y0, n_transient: int = 250, n_fit: int = 4, 
     """Continue the orbit through ``omegas`` (warm starts, ``n_transient`` periods each) and
     extrapolate min|ẋ| over its near-stops linearly to 0 from the last ``n_fit`` points.
     Raises InputError if the impact count changes along the way (the orbit was lost)."""
-    from verify.skurativskyi.analysis import attractor
+    from landau.verify.skurativskyi.analysis import attractor
     if len(omegas) < n_fit or n_fit < 2:
         raise InputError("need at least n_fit >= 2 frequencies")
     y, ipp, smp = y0, None, []

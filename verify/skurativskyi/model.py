@@ -20,7 +20,7 @@ handled by the max(f, 0) in the field (continuous), not by a guard.
 
 The field is, however, only C¹ across x = x_I (δ^{3/2}) and only Hölder in ẋ at ẋ = 0 inside
 contact (|ẋ|^{n₃}, n₃ ≈ 0.187), and the friction slope T/ε makes slip reversal stiff.  The
-compiled integrator (:mod:`verify.skurativskyi.rk`) ends steps exactly on x = x_I.
+compiled integrator (:mod:`landau.verify.skurativskyi.rk`) ends steps exactly on x = x_I.
 """
 
 from __future__ import annotations
@@ -188,7 +188,7 @@ def saltation_matrix(params: Params, t: float, y, side_eps: float = 1e-13) -> np
 
 @njit(cache=True)
 def accel_partials(t, x, v, p):
-    """ẍ and its partials split for the stiff stepper (:mod:`verify.skurativskyi.sdirk`):
+    """ẍ and its partials split for the stiff stepper (:mod:`landau.verify.skurativskyi.sdirk`):
     returns (a, ∂a/∂x, ∂a/∂ẋ without the Hertz damping, κ) with κ = k_I b (x − x_I)^{n₂}/m
     when the contact force is active (else 0), so that the Hertz damping contributes
     −κ sgn(ẋ)|ẋ|^{n₃} to ẍ — exactly linear in w = sgn(ẋ)|ẋ|^{n₃}.  Nothing is floored here."""

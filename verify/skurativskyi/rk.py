@@ -1,9 +1,9 @@
 """A compiled (numba) Dormand–Prince 5(4) integrator with exact contact switching, and a
 stiff SDIRK4 for the stick phases.
 
-:func:`integrate_mixed` (the default path of :func:`verify.skurativskyi.simulate.run`) takes
+:func:`integrate_mixed` (the default path of :func:`landau.verify.skurativskyi.simulate.run`) takes
 every step that starts with |ẋ| below a threshold (stick: the cart rests on the obstacle or
-on the track, |ẋ| ~ 1e-9…1e-6 m/s) with the L-stable SDIRK4 of :mod:`verify.skurativskyi.sdirk`
+on the track, |ẋ| ~ 1e-9…1e-6 m/s) with the L-stable SDIRK4 of :mod:`landau.verify.skurativskyi.sdirk`
 (stage equations solved as scalar monotone equations, robust on the |ẋ|^{n₃} cusp) and all
 other steps with DOPRI5; :func:`integrate` is the explicit path alone.  Event location,
 stroboscopic clipping and tangent renormalisation below are the same for both steppers.
@@ -47,8 +47,8 @@ import numpy as np
 from numba import njit
 
 from landau.errors import InputError
-from verify.skurativskyi.model import rhs as _rhs
-from verify.skurativskyi.sdirk import sdirk_step as _sdirk_step
+from landau.verify.skurativskyi.model import rhs as _rhs
+from landau.verify.skurativskyi.sdirk import sdirk_step as _sdirk_step
 
 OK, MAX_STEPS, STEP_TOO_SMALL, MAX_EVENTS = 0, 1, 2, 3
 STATUS = {OK: "t_end", MAX_STEPS: "max_steps", STEP_TOO_SMALL: "step-size-underflow", MAX_EVENTS: "max_events"}
@@ -179,8 +179,8 @@ def integrate_mixed(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0
     (``renorm``, 4-D systems).  A step that starts in stick — |ẋ| < ``v_stiff`` and
     |ẍ| < ``a_stiff`` (a velocity reversal crosses the band |ẋ| < v_stiff in ~2 v_stiff/|ẍ|,
     a few explicit steps; a stick stays in it) — is taken by the L-stable SDIRK4 of
-    :mod:`verify.skurativskyi.sdirk`, any other by DOPRI5 (``v_stiff`` ≤ 0: DOPRI5 only).
-    See the module docstring.  Returns a tuple (see :func:`verify.skurativskyi.simulate.run`)."""
+    :mod:`landau.verify.skurativskyi.sdirk`, any other by DOPRI5 (``v_stiff`` ≤ 0: DOPRI5 only).
+    See the module docstring.  Returns a tuple (see :func:`landau.verify.skurativskyi.simulate.run`)."""
     n = y0.shape[0]
     y = y0.copy()
     t = t0
@@ -416,7 +416,7 @@ class _EngineStepper:
 
 @dataclass(frozen=True)
 class CompiledDOPRI5:
-    """Stepper factory for :func:`verify.hybrid.simulate` (the engine's stepper contract):
+    """Stepper factory for :func:`landau.verify.hybrid.simulate` (the engine's stepper contract):
     modes whose ``rhs`` is a :class:`CompiledField` are advanced by the compiled DOPRI5
     with a cubic Hermite dense output."""
 

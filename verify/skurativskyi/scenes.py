@@ -8,8 +8,8 @@ midpoint, tolerance = relative half-width, so ``agrees`` means "inside the inter
 from __future__ import annotations
 
 from landau.scenes import Scene, register
-from verify.skurativskyi import approx
-from verify.skurativskyi.model import PAPER, Params
+from landau.verify.skurativskyi import approx
+from landau.verify.skurativskyi.model import PAPER, Params
 
 SRC = "Skurativskyi et al. 2019, Nonlinear Dyn. 98:1795-1806"
 
@@ -68,7 +68,7 @@ register(Scene(
 
 
 def _detach(p):
-    from verify.skurativskyi.analysis import first_detachment
+    from landau.verify.skurativskyi.analysis import first_detachment
     q = _params(p)
     loc = first_detachment(p["lo"], p["hi"], p["tol"], q, rtol=p["rtol"])
     return {"value": loc.value, "lo": loc.lo, "hi": loc.hi, "runs": loc.evaluations}
@@ -84,8 +84,8 @@ register(Scene(
 
 
 def _first_cascade_grazing(p):
-    from verify.skurativskyi.analysis import continuation
-    from verify.skurativskyi.grazing import locate_grazing_margin
+    from landau.verify.skurativskyi.analysis import continuation
+    from landau.verify.skurativskyi.grazing import locate_grazing_margin
     q = _params(p)
     hi, lo = p["orbit_omega"], p["gone_omega"]
     y = continuation([hi + 0.003, hi], None, 300, 60, 7, q, p["rtol"])[-1].y_end

@@ -1,6 +1,6 @@
 """A compiled L-stable SDIRK step for the stick phases of eq. (1) (stiff, non-Lipschitz).
 
-Where the explicit DOPRI5 of :mod:`verify.skurativskyi.rk` is slow (measured at ω = 15,
+Where the explicit DOPRI5 of :mod:`landau.verify.skurativskyi.rk` is slow (measured at ω = 15,
 ``verify/benchmarks/skurativskyi_work_precision.py``): while the cart rests *on the
 obstacle* (contact, x − x_I ≈ 9 µm) its velocity sits at |ẋ| ~ 1e-9…1e-7 m/s.  There the
 damping D(ẋ) = cẋ + Tẋ/sqrt(ẋ² + ε²) + k_I b (x − x_I)^{n₂} sgn(ẋ)|ẋ|^{n₃} is stiff (T/(εm)
@@ -8,7 +8,7 @@ damping D(ẋ) = cẋ + Tẋ/sqrt(ẋ² + ε²) + k_I b (x − x_I)^{n₂} sgn(�
 explicit method chatters around ẋ = 0 with steps ~1e-6 s, >95 % of all its steps.  The true
 motion there is slow (ẋ follows the quasi-static balance D(ẋ) = residual force).  Off the
 obstacle (e.g. ω = 24.5) the cart also sticks on the track, stiff through T/(εm) only.
-Which steps this stepper takes is decided in :func:`verify.skurativskyi.rk.integrate_mixed`.
+Which steps this stepper takes is decided in :func:`landau.verify.skurativskyi.rk.integrate_mixed`.
 
 Method: the 5-stage, order-4, stiffly accurate, L-stable SDIRK4 of Hairer & Wanner (*Solving
 ODEs II*, IV.6, eq. (6.16), γ = 1/4) with its embedded order-3 solution; the error estimate
@@ -45,7 +45,7 @@ import math
 import numpy as np
 from numba import njit
 
-from verify.skurativskyi.model import IN3, accel_grad, accel_partials
+from landau.verify.skurativskyi.model import IN3, accel_grad, accel_partials
 
 GAMMA = 0.25
 #: Hairer–Wanner SDIRK4 (6.16): lower-triangular A (diagonal γ), c, b = last row of A,

@@ -2,10 +2,10 @@
 
 * :func:`run` — the default path: compiled DOPRI5 with exact contact switching, stick
   phases (|ẋ| < :data:`V_STIFF`, |ẍ| < :data:`A_STICK`) by the L-stable SDIRK4 of
-  :mod:`verify.skurativskyi.sdirk`, stroboscopic samples t = 2πi/ω and (optionally) one tangent vector for the top Lyapunov
+  :mod:`landau.verify.skurativskyi.sdirk`, stroboscopic samples t = 2πi/ω and (optionally) one tangent vector for the top Lyapunov
   exponent.  Returns a :class:`Run` (impact times, inter-impact intervals, section points).
-* :func:`hybrid_model` — the same model as a :class:`verify.hybrid.HybridModel` with the
-  modes ``"free"`` (x < x_I) and ``"contact"`` (x ≥ x_I) and guards ±(x − x_I); run it with ``verify.hybrid.simulate(..., CompiledDOPRI5())`` or any
+* :func:`hybrid_model` — the same model as a :class:`landau.verify.hybrid.HybridModel` with the
+  modes ``"free"`` (x < x_I) and ``"contact"`` (x ≥ x_I) and guards ±(x − x_I); run it with ``landau.verify.hybrid.simulate(..., CompiledDOPRI5())`` or any
   scipy stepper.  Used to cross-check the fast path and to draw trajectories.
 
 Impacts are the crossings of x = x_I with increasing x (the paper's definition, Sec. 5).
@@ -18,9 +18,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from landau.errors import IntegratorError, InputError
-from verify.hybrid import Guard, HybridModel, Jump, Mode
-from verify.skurativskyi import rk as R
-from verify.skurativskyi.model import Params, rhs
+from landau.verify.hybrid import Guard, HybridModel, Jump, Mode
+from landau.verify.skurativskyi import rk as R
+from landau.verify.skurativskyi.model import Params, rhs
 
 #: default tolerances of the fast path: event/bifurcation locations converge at rtol ≲ 1e-8
 #: (notes §4); atol in m and m/s (the cart moves by mm at mm/s–cm/s): by default
@@ -88,7 +88,7 @@ class Run:
 
 def rest_state(params: Params) -> np.ndarray:
     """Static equilibrium X₀ at rest (Sec. 5) as the default initial state."""
-    from verify.skurativskyi.approx import static_equilibrium
+    from landau.verify.skurativskyi.approx import static_equilibrium
     return np.array([static_equilibrium(params), 0.0])
 
 
@@ -100,7 +100,7 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
     Strobe times are t0 + i·2π/ω.  ``lyapunov=True`` adds the variational equation and
     renormalises the tangent vector every period.  ``method``: ``"mixed"`` (default) takes
     steps that start in stick (|ẋ| < :data:`V_STIFF`, |ẍ| < :data:`A_STICK`) with the
-    L-stable SDIRK4 (:mod:`verify.skurativskyi.sdirk`) and all others with DOPRI5;
+    L-stable SDIRK4 (:mod:`landau.verify.skurativskyi.sdirk`) and all others with DOPRI5;
     ``"dopri5"`` is the explicit path alone.  Raises IntegratorError on failure.
     """
     if method not in METHODS:

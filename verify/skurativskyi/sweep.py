@@ -1,7 +1,7 @@
 """Parallel ω-sweeps (bifurcation diagrams) streamed to disk and resumable.
 
 A diagram is a continuation: the attractor at ω_i is started from the one at ω_{i−1}
-(:func:`verify.skurativskyi.analysis.continuation`).  To run it on many cores the ω list is
+(:func:`landau.verify.skurativskyi.analysis.continuation`).  To run it on many cores the ω list is
 cut into chunks that run independently; each chunk starts its continuation ``overlap``
 points *before* its first ω (those warm-up points are computed, not recorded), so near a
 hysteresis the chunk has already settled on the branch the serial sweep would follow.
@@ -29,8 +29,8 @@ from pathlib import Path
 import numpy as np
 
 from landau.errors import InputError
-from verify.skurativskyi.analysis import Attractor, attractor
-from verify.skurativskyi.model import PAPER
+from landau.verify.skurativskyi.analysis import Attractor, attractor
+from landau.verify.skurativskyi.model import PAPER
 
 
 @dataclass(frozen=True)

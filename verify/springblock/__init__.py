@@ -12,7 +12,7 @@ the amplitude-equation engine against it.
   Figs 6/11/12.
 """
 
-from verify.springblock.model import SpringBlockModel
-from verify.springblock.simulate import Run, integrate
+from landau.verify.springblock.model import SpringBlockModel
+from landau.verify.springblock.simulate import Run, integrate
 
 __all__ = ["SpringBlockModel", "Run", "integrate"]

@@ -1,12 +1,12 @@
 """Benchmark: default integrator vs ``solve_ivp(Radau)`` with a plain Python right-hand side.
 
 Problem: one period of the Fig. 3 stick–slip cycle (Dieterich, V/V_* = 100, κ = 1e-3,
-m ≈ 1.13e-7; :mod:`verify.springblock.workprecision`).  Both integrators run over a
+m ≈ 1.13e-7; :mod:`landau.verify.springblock.workprecision`).  Both integrators run over a
 tolerance ladder in the same process; the CPU time at equal error 1e-8 (error at the end of
 the period vs the rtol = 1e-13 reference) is interpolated log–log from the two bracketing
 runs, and the ratio is printed.  Goal (issue 5): ≥ 20×.
 
-    /work/venv/bin/python -m verify.springblock.benchmark
+    /work/venv/bin/python -m landau.verify.springblock.benchmark
 """
 
 from __future__ import annotations
@@ -16,8 +16,8 @@ import time
 
 import numpy as np
 
-from verify.springblock.simulate import W_INDEX, integrate
-from verify.springblock.workprecision import _timed, error, fig3_cycle, fig3_model, scipy_run
+from landau.verify.springblock.simulate import W_INDEX, integrate
+from landau.verify.springblock.workprecision import _timed, error, fig3_cycle, fig3_model, scipy_run
 
 TARGET_ERROR = 1e-8
 

@@ -27,10 +27,10 @@ import numpy as np
 from landau.errors import InputError, NoHopfError
 from landau.multiscale import derive
 from landau.system import SpringBlock
-from laws.law import FrictionLaw
-from verify.springblock.model import SpringBlockModel
-from verify.springblock.orbits import PeriodicOrbit, ShootingError, section_point, shoot
-from verify.springblock.simulate import W_INDEX, integrate
+from landau.laws.law import FrictionLaw
+from landau.verify.springblock.model import SpringBlockModel
+from landau.verify.springblock.orbits import PeriodicOrbit, ShootingError, section_point, shoot
+from landau.verify.springblock.simulate import W_INDEX, integrate
 
 #: stated tolerances (issue 5): supercritical amplitude at ε² = 1e-3, subcritical bracket
 AMPLITUDE_TOLERANCE = 0.02

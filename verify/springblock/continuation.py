@@ -1,6 +1,6 @@
 """Pseudo-arclength continuation of spring–block limit cycles (what the paper did with AUTO).
 
-A branch point is u = (z, λ): z a point of the Poincaré section Σ (:mod:`verify.springblock.orbits`)
+A branch point is u = (z, λ): z a point of the Poincaré section Σ (:mod:`landau.verify.springblock.orbits`)
 and λ the continuation parameter — ``"k"`` (stiffness, as k/k_ref, at fixed V; Figs 6) or
 ``"logV"`` (log₁₀ V at fixed k, i.e. fixed κ = kL/σ; Fig. 11).  G(u) = P(z; λ) − z = 0 with
 DG = [DP − I | ∂P/∂λ] (DP from the variational equations, ∂P/∂λ by central differences).
@@ -23,8 +23,8 @@ from typing import Callable
 import numpy as np
 
 from landau.errors import IntegratorError
-from verify.springblock.model import SpringBlockModel
-from verify.springblock.orbits import (PeriodicOrbit, ShootingError, describe, hopf_stiffness, return_map,
+from landau.verify.springblock.model import SpringBlockModel
+from landau.verify.springblock.orbits import (PeriodicOrbit, ShootingError, describe, hopf_stiffness, return_map,
                                        section_point)
 
 

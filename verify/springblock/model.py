@@ -35,8 +35,8 @@ from sympy.printing.pycode import PythonCodePrinter
 
 from landau.errors import InputError
 from landau.system import SpringBlock
-from laws.law import FrictionLaw, v as v_slip
-from verify.springblock.radau import SIG, SIG_JAC
+from landau.laws.law import FrictionLaw, v as v_slip
+from landau.verify.springblock.radau import SIG, SIG_JAC
 
 
 @dataclass(frozen=True)

@@ -4,7 +4,7 @@ Section Σ = {w = ln(v/V) = 0, w decreasing}: there ẋ = V and X = x − x₀ i
 maximum, so every limit cycle (small Hopf cycles and stick–slip cycles alike) crosses it
 once per period.  A point of Σ is z = (ξ, ψ…) (the scaled state without w).  The return
 map P(z) and its derivative come from one integration of the state together with the
-variational equations Φ' = J(y)Φ (:func:`verify.springblock.model.compile_variational`);
+variational equations Φ' = J(y)Φ (:func:`landau.verify.springblock.model.compile_variational`);
 the derivative of the map on Σ is the monodromy Φ(T) corrected for the change of return
 time, DP = (I − f(y_T) e_wᵀ / f_w(y_T)) Φ(T) restricted to Σ.  Its eigenvalues are the
 non-trivial Floquet multipliers.  Newton on P(z) − z = 0 (:func:`shoot`) converges to
@@ -18,8 +18,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from landau.errors import IntegratorError, LandauError
-from verify.springblock.model import SpringBlockModel
-from verify.springblock.simulate import W_INDEX, integrate
+from landau.verify.springblock.model import SpringBlockModel
+from landau.verify.springblock.simulate import W_INDEX, integrate
 
 
 class ShootingError(LandauError):

@@ -1,7 +1,7 @@
 """Reproductions of Putelat et al. (2010) Figs 6, 11 and the codimension-two points (Figs 5b, 12, 14)
-from periodic orbits alone (shooting + continuation, :mod:`verify.springblock.continuation`).
+from periodic orbits alone (shooting + continuation, :mod:`landau.verify.springblock.continuation`).
 
-    /work/venv/bin/python -m verify.springblock.reproductions [OUT_DIR]
+    /work/venv/bin/python -m landau.verify.springblock.reproductions [OUT_DIR]
 
 writes fig6_ruina.png, fig6_dieterich.png, fig11_c1e-3.png, fig11_c3e-4.png and reproductions.json
 (Hopf points vs the engine's k_c, folds, codimension-two velocities vs the engine's V*).
@@ -18,12 +18,12 @@ from scipy.optimize import brentq
 
 from landau.errors import NoHopfError
 from landau.io import atomic_write_json
-from laws import get_law
-from verify.springblock.checks import predict
-from verify.springblock.continuation import (Branch, FoldPoint, codim2_velocity, continue_in_k, continue_in_logV,
+from landau.laws import get_law
+from landau.verify.springblock.checks import predict
+from landau.verify.springblock.continuation import (Branch, FoldPoint, codim2_velocity, continue_in_k, continue_in_logV,
                                              fold_curve, plot_branch)
-from verify.springblock.model import SpringBlockModel
-from verify.springblock.orbits import hopf_stiffness
+from landau.verify.springblock.model import SpringBlockModel
+from landau.verify.springblock.orbits import hopf_stiffness
 
 KAPPA_FIG11 = 1e-3
 V_FIG6 = 1e-4  # V/V_* = 100

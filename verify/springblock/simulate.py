@@ -1,4 +1,4 @@
-"""Integrate the compiled spring–block (:mod:`verify.springblock.model`) with the numba Radau IIA.
+"""Integrate the compiled spring–block (:mod:`landau.verify.springblock.model`) with the numba Radau IIA.
 
 :func:`integrate` runs the default integrator between physical times (seconds), optionally
 locating crossings of one component (e.g. w = ln(v/V) = 0, where X = x − x₀ is extremal)
@@ -14,8 +14,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from landau.errors import InputError, IntegratorError
-from verify.springblock.model import SpringBlockModel, compile_variational
-from verify.springblock.radau import A_RADAU, STATUS, VINV, radau_core
+from landau.verify.springblock.model import SpringBlockModel, compile_variational
+from landau.verify.springblock.radau import A_RADAU, STATUS, VINV, radau_core
 
 #: index of w = ln(v/V) in the scaled state; w = 0 ⇔ ẋ = V ⇔ X = x − x₀ extremal
 W_INDEX = 1

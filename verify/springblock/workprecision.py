@@ -26,10 +26,10 @@ from pathlib import Path
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from laws import get_law
-from verify.springblock.model import SpringBlockModel
-from verify.springblock.orbits import PeriodicOrbit, section_point, shoot
-from verify.springblock.simulate import W_INDEX, integrate
+from landau.laws import get_law
+from landau.verify.springblock.model import SpringBlockModel
+from landau.verify.springblock.orbits import PeriodicOrbit, section_point, shoot
+from landau.verify.springblock.simulate import W_INDEX, integrate
 
 TOLERANCES = tuple(10.0 ** -e for e in range(4, 13))
 SCIPY_METHODS = ("Radau", "BDF", "LSODA")

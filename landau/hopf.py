@@ -1,0 +1,251 @@
+"""One result type for a Hopf point and its amplitude equation, for any system.
+
+Every route of the toolkit — the spring–block closed forms (Putelat et al. 2010), the general
+Fredholm engine for E·ẏ = f(y; p), Kuznetsov's projection formula — returns a
+:class:`HopfResult`.  The result carries its :class:`Convention` (the amplitude equation it
+refers to, the normalisation of the critical mode, the source), so numbers from different
+routes and tools can be compared without guessing factors of 2 or ω.
+
+Amplitude equation (landau's convention, Putelat et al. 2010 eq. 20 written for a general
+parameter p)::
+
+    dA/dT = a (p − p_c) A + b A|A|² (+ c A|A|⁴),     a = dλ/dp,  Λ = 2 Re b,  χ = 2 Im b,
+    Λ₅ = 2 Re c,
+
+with the critical mode's ``normalise`` component equal to 1.  Λ < 0: supercritical, Λ > 0:
+subcritical.  The normalisation-free number to compare with a simulation is
+C = 2 sqrt(2|Re a|/|Λ|): the cycle's amplitude in the normalised coordinate is
+max|y − y₀| ≈ C sqrt|p − p_c|.
+
+Kuznetsov's normalisation (MatCont, BifurcationKit): ⟨q, q⟩ = 1, ⟨p, q⟩ = 1, normal form
+ż = iω z + c₁ z|z|² + c₂ z|z|⁴; the first Lyapunov coefficient ``l1`` = Re c₁ / ω (as MatCont
+prints it; BifurcationKit prints Re c₁ as ``l1``) and the second ``l2`` = Re c₂ / ω.
+
+References
+----------
+Putelat, T., Dawes, J. H. P., Willis, J. R. (2010). Regimes of frictional sliding of a
+spring–block system. J. Mech. Phys. Solids 58, 27–53.
+Kuznetsov, Yu. A. (2004). Elements of Applied Bifurcation Theory, 3rd ed., Springer, §3.5, §8.3.
+"""
+
+from __future__ import annotations
+
+import enum
+import html
+import math
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+
+class Criticality(enum.Enum):
+    """Type of a Hopf bifurcation, from the sign of the Landau coefficient Λ (or l₁)."""
+
+    SUPERCRITICAL = "supercritical"
+    SUBCRITICAL = "subcritical"
+    DEGENERATE = "degenerate"
+
+    @classmethod
+    def from_sign(cls, value: float | None, scale: float = 0.0) -> "Criticality":
+        """Λ < 0 → supercritical, Λ > 0 → subcritical; |Λ| ≤ scale, NaN or None → degenerate."""
+        if value is None or not math.isfinite(value) or abs(value) <= scale:
+            return cls.DEGENERATE
+        return cls.SUPERCRITICAL if value < 0 else cls.SUBCRITICAL
+
+    def __str__(self) -> str:
+        return self.value
+
+
+@dataclass(frozen=True)
+class Convention:
+    """How the coefficients of a :class:`HopfResult` are normalised.
+
+    Parameters
+    ----------
+    name : str
+        Short identifier (``"putelat2010"``, ``"general"``).
+    equation : str
+        The amplitude equation in plain text.
+    latex : str
+        The same in LaTeX.
+    normalisation : str
+        How the critical mode is normalised.
+    source : str
+        Where the convention comes from (paper and equation).
+    """
+
+    name: str
+    equation: str
+    latex: str
+    normalisation: str
+    source: str
+
+    def __str__(self) -> str:
+        return f"{self.equation}; {self.normalisation} ({self.source})"
+
+
+#: the general convention (any parameter p, the ``normalise`` component of the mode is 1)
+GENERAL = Convention(
+    name="general",
+    equation="dA/dT = a (p - p_c) A + b A|A|^2 + c A|A|^4; Lambda = 2 Re b, chi = 2 Im b, Lambda5 = 2 Re c",
+    latex=r"\frac{dA}{dT} = a\,(p-p_c)\,A + b\,A|A|^2 + c\,A|A|^4,\quad \Lambda = 2\,\mathrm{Re}\,b,"
+          r"\ \chi = 2\,\mathrm{Im}\,b,\ \Lambda_5 = 2\,\mathrm{Re}\,c",
+    normalisation="critical mode with its normalised component equal to 1",
+    source="Putelat et al. (2010) eq. (20), written for a general parameter p",
+)
+
+#: the spring–block convention of Putelat et al. (2010): p = k, a = −Γ̄ + iΩ̄
+SPRING_BLOCK = Convention(
+    name="putelat2010",
+    equation="d|A|/dT = (Gamma |A| + Lambda |A|^3)/2, dtheta/dT = (Omega + chi |A|^2)/2, "
+             "Gamma = -2 Gamma_bar (k - kc)/eps^2, Omega = 2 Omega_bar (k - kc)/eps^2",
+    latex=r"\frac{d|A|}{dT} = \tfrac12\left(\Gamma|A| + \Lambda|A|^3\right),\ "
+          r"\frac{d\theta}{dT} = \tfrac12\left(\Omega + \chi|A|^2\right)",
+    normalisation="critical mode with slip component X equal to 1 (u0 = (1, z))",
+    source="Putelat et al. (2010) eqs (15)-(23)",
+)
+
+
+def _fmt(x: Any, digits: int = 6) -> str:
+    if x is None:
+        return "—"
+    if isinstance(x, complex):
+        return f"{x.real:.{digits}g}{x.imag:+.{digits}g}i"
+    try:
+        return f"{float(x):.{digits}g}"
+    except (TypeError, ValueError):
+        return str(x)
+
+
+@dataclass(frozen=True)
+class HopfResult:
+    """A located Hopf point with its amplitude-equation coefficients (SI units of the system).
+
+    Parameters
+    ----------
+    system : str
+        Name of the system (or law, for the spring–block).
+    parameter : str
+        Name of the bifurcation parameter p (``"k"`` for the spring–block).
+    p_c : float
+        Critical value of p.
+    omega_c : float
+        Angular frequency at onset (rad/s).
+    equilibrium : tuple of float
+        The equilibrium y₀ at p_c.
+    dlambda_dp : complex
+        a = dλ/dp, the speed of the critical eigenvalue across the imaginary axis
+        (spring–block: a = −Γ̄ + iΩ̄).
+    Lambda : float
+        Landau coefficient Λ = 2 Re b (Λ < 0: supercritical).
+    chi : float
+        Nonlinear frequency coefficient χ = 2 Im b.
+    convention : Convention
+        Normalisation of a, b, c.
+    normalise : str
+        The state component of the critical mode that is normalised to 1.
+    l1 : float, optional
+        First Lyapunov coefficient in Kuznetsov's normalisation, Re c₁/ω.
+    c1 : complex, optional
+        Kuznetsov's c₁(0) (⟨q, q⟩ = 1, ⟨p, q⟩ = 1).
+    Lambda5 : float, optional
+        Quintic coefficient Λ₅ = 2 Re c in landau's convention.
+    l2 : float, optional
+        Second Lyapunov coefficient in Kuznetsov's normalisation, Re c₂/ω.
+    params : mapping
+        The other parameters' values.
+    extra : mapping
+        Route-specific numbers (e.g. the driving velocity V, Γ̄, Ω̄ of the spring–block).
+    """
+
+    system: str
+    parameter: str
+    p_c: float
+    omega_c: float
+    equilibrium: tuple[float, ...]
+    dlambda_dp: complex
+    Lambda: float
+    chi: float
+    convention: Convention = GENERAL
+    normalise: str = ""
+    l1: float | None = None
+    c1: complex | None = None
+    Lambda5: float | None = None
+    l2: float | None = None
+    params: Mapping[str, float] = field(default_factory=dict)
+    extra: Mapping[str, float] = field(default_factory=dict)
+
+    # --- derived quantities -------------------------------------------------------------
+    @property
+    def criticality(self) -> Criticality:
+        """Super/subcritical from the sign of Λ (degenerate where Λ is zero or not finite)."""
+        return Criticality.from_sign(self.Lambda)
+
+    @property
+    def C(self) -> float:
+        """Amplitude per sqrt|p − p_c| of the normalised component, 2 sqrt(2|Re a|/|Λ|) (inf at Λ = 0)."""
+        if self.Lambda == 0 or not math.isfinite(self.Lambda):
+            return math.inf
+        return 2.0 * math.sqrt(2.0 * abs(self.dlambda_dp.real) / abs(self.Lambda))
+
+    @property
+    def cycle_side(self) -> int:
+        """+1 if the (stable or unstable) cycle exists for p > p_c, −1 for p < p_c, 0 if Λ = 0."""
+        s = self.dlambda_dp.real * self.Lambda
+        return 0 if s == 0 or not math.isfinite(s) else (-1 if s > 0 else 1)
+
+    def amplitude(self, p: float) -> float:
+        """Predicted cycle amplitude max|y_n − y₀,n| at parameter p (NaN on the side without a cycle)."""
+        d = p - self.p_c
+        if self.cycle_side == 0 or d == 0 or (d > 0) != (self.cycle_side > 0):
+            return math.nan
+        return self.C * math.sqrt(abs(d))
+
+    def frequency(self, p: float) -> float:
+        """Predicted cycle angular frequency ω_c + (Im a − χ Re a/Λ)(p − p_c)."""
+        a = self.dlambda_dp
+        if self.Lambda == 0:
+            return math.nan
+        return self.omega_c + (a.imag - self.chi * a.real / self.Lambda) * (p - self.p_c)
+
+    # --- rendering ----------------------------------------------------------------------
+    def amplitude_equation(self) -> str:
+        """The amplitude equation with this result's numbers, its criticality and convention."""
+        a, b = self.dlambda_dp, complex(self.Lambda / 2, self.chi / 2)
+        eq = f"dA/dT = ({_fmt(a)})({self.parameter} - {_fmt(self.p_c, 10)}) A + ({_fmt(b)}) A|A|^2"
+        if self.Lambda5 is not None:
+            eq += f" + c A|A|^4 (Re c = {_fmt(self.Lambda5 / 2)})"
+        return f"{eq}   [{self.criticality}; {self.convention.normalisation}]"
+
+    def as_dict(self) -> dict[str, Any]:
+        """JSON-ready fields (complex numbers split into real and imaginary parts)."""
+        out: dict[str, Any] = {
+            "system": self.system, "parameter": self.parameter, "p_c": self.p_c, "omega_c": self.omega_c,
+            "equilibrium": list(self.equilibrium), "dRe_lambda_dp": self.dlambda_dp.real,
+            "dIm_lambda_dp": self.dlambda_dp.imag, "Lambda": self.Lambda, "chi": self.chi, "C": self.C,
+            "criticality": self.criticality.value, "normalise": self.normalise, "convention": self.convention.name,
+        }
+        for name in ("l1", "Lambda5", "l2"):
+            if getattr(self, name) is not None:
+                out[name] = getattr(self, name)
+        if self.c1 is not None:
+            out["c1"] = [self.c1.real, self.c1.imag]
+        out.update(self.extra)
+        return out
+
+    def __repr__(self) -> str:
+        parts = [f"{self.parameter}_c = {_fmt(self.p_c, 10)}", f"ω_c = {_fmt(self.omega_c)}",
+                 f"Λ = {_fmt(self.Lambda)} ({self.criticality})", f"C = {_fmt(self.C)}"]
+        for name in ("l1", "Lambda5", "l2"):
+            if getattr(self, name) is not None:
+                parts.append(f"{name} = {_fmt(getattr(self, name))}")
+        return f"HopfResult({self.system}: " + ", ".join(parts) + ")"
+
+    def _repr_latex_(self) -> str:
+        return (rf"${self.parameter}_c = {_fmt(self.p_c, 10)},\ \omega_c = {_fmt(self.omega_c)},\ "
+                rf"\Lambda = {_fmt(self.Lambda)}$ ({self.criticality})")
+
+    def _repr_html_(self) -> str:
+        rows = "".join(f"<tr><th style='text-align:left'>{html.escape(str(k))}</th><td>{html.escape(_fmt(v, 10))}</td></tr>"
+                       for k, v in self.as_dict().items() if not isinstance(v, (list, dict)))
+        return (f"<div><b>Hopf point of {html.escape(self.system)}</b> — {self.criticality}"
+                f"<table>{rows}</table><small>{html.escape(str(self.convention))}</small></div>")
