@@ -1,8 +1,8 @@
 """Velocity-weakening kinetic friction of Galvanetto (2004), eq. (7), and its Coulomb limit.
 
 Source: U. Galvanetto, *Sliding bifurcations in the dynamics of mechanical systems with
-dry friction*, J. Sound Vib. 276 (2004) 121–139, eq. (7) (OCR-garbled in the seed; the
-reading below is the one of ``notes/models.md`` §2, confirmed there by reproducing the
+dry friction*, J. Sound Vib. 276 (2004) 121–139, eq. (7) (garbled in the scanned print; the
+reading below is the one confirmed by reproducing the paper's
 two-block results).  With the relative velocity r = Ẋ − V (block minus belt):
 
     F_k(r) = (1 − δ)/(1 − γ r) + δ        for r < 0   (block slower than the belt)

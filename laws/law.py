@@ -64,7 +64,7 @@ class Parameter:
 
 
 #: Table 1 of Putelat, Dawes & Willis (2010), the parameter set that reproduces their numbers
-#: (see shared/notes/models.md: L = 0.9e-6 m and V_* = 1e-6 m/s, not the values of Sec. 3.1).
+#: (L = 0.9e-6 m and V_* = 1e-6 m/s; the values of Sec. 3.1 and of the Fig. 15/17 captions do not).
 TABLE1: dict[str, Parameter] = {
     p.name: p
     for p in (

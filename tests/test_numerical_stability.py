@@ -1,6 +1,6 @@
 """Compiled (float64, vectorised) coefficients vs the same formulas at 50 digits.
 
-Issue 3, acceptance "Numerical stability": every compiled coefficient (k_c, ω_c, Γ̄, Ω̄,
+Numerical stability: every compiled coefficient (k_c, ω_c, Γ̄, Ω̄,
 Λ, χ, C via ``Derivation.evaluate``) agrees with ``Derivation.evaluate_mp`` (mpmath, 50
 digits) to ≤ 1e-9 relative on 200 log-spaced V in each law's velocity-weakening range,
 in the quasi-static limit (M = 1e-12 and M = 0), and within 1e-6 (relative) of the
@@ -55,8 +55,8 @@ def _mismatches(name: str, Vs, params, method: str = "auto") -> list[str]:
     bad: list[str] = []
     for i, V0 in enumerate(Vs):
         V0 = float(V0)
-        # a point the engine flags as degenerate may return the limits Λ, χ → 0, C → ∞ (issue 3:
-        # "return the limit, or flag the point as degenerate"); everything else must still agree
+        # a point the engine flags as degenerate may return the limits Λ, χ → 0, C → ∞ (a
+        # degenerate point may return the limit instead of a value); everything else must still agree
         limits_ok = set(DEGENERATE_LIMIT) if flagged[i] else set()
         try:
             ref = d.evaluate_mp(V0, params, NAMES, dps=50)

@@ -1,4 +1,4 @@
-"""Scenes for Skurativskyi, Kudra, Witkowski & Awrejcewicz (2019), Nonlinear Dyn. 98:1795 (seed 002).
+"""Scenes for Skurativskyi, Kudra, Witkowski & Awrejcewicz (2019), Nonlinear Dyn. 98:1795–1806.
 
 Published values carry the tolerance of their printed digits (half a unit of the last
 digit); the first detachment is printed as an interval (14.0, 14.1) rad/s: published =

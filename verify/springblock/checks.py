@@ -32,7 +32,7 @@ from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.orbits import PeriodicOrbit, ShootingError, section_point, shoot
 from landau.verify.springblock.simulate import W_INDEX, integrate
 
-#: stated tolerances (issue 5): supercritical amplitude at ε² = 1e-3, subcritical bracket
+#: tolerances of the checks: supercritical amplitude at ε² = 1e-3, subcritical bracket
 AMPLITUDE_TOLERANCE = 0.02
 BRACKET_TOLERANCE = 0.05
 
@@ -287,7 +287,7 @@ def fitted_exponent(eps2s, rel_errors) -> float:
 def bistability_scan(law: FrictionLaw, V: float, eps2: float, params: Mapping[str, float] | None = None, *,
                      multiples=(0.5, 2.0, 8.0, 16.0), prediction: Prediction | None = None) -> dict[float, str]:
     """Fate ('decays'/'grows'/'undecided') of perturbations of a·C·sqrt(|k − k_c|) along the critical
-    mode at k = k_c(1 + ε²) — the supercritical control of issue 5 (all should decay)."""
+    mode at k = k_c(1 + ε²) — the supercritical control (all should decay)."""
     pr = prediction or predict(law, V, params)
     k = pr.kc * (1 + eps2)
     model = SpringBlockModel.build(law, V, k, params)
