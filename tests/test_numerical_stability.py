@@ -11,7 +11,7 @@ Reference value.  The 50-digit value is trusted where it is converged: if it dif
 the compiled value, it is recomputed at 70 digits; when the two mpmath values disagree
 by more than 1e-9 the quantity is below the rounding noise of the formula, i.e. its true
 value is its limit (0 for Λ, ∞ for C), and the compiled value must be that limit or NaN.
-1e-9 is the issue's tolerance: float64 evaluation of a well-conditioned formula is good
+1e-9 is the required tolerance: float64 evaluation of a well-conditioned formula is good
 to ~1e-13 here, so 1e-9 only fails where cancellation destroys ≥ 7 digits.
 """
 

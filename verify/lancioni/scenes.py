@@ -5,7 +5,7 @@ with g = 10 m/s² (the printed Hopf values need g = 10; g = 9.81 gives
 μ_c ≈ 0.40986).  The Hopf and lift-off scenes use the direction with the Hopf point
 (positive slip, belt v = −1 m/s; see verify.lancioni.slip).
 
-Tolerances.  ``lancioni/hopf``: the acceptance asks for 4 significant digits (relative
+Tolerances.  ``lancioni/hopf``: 4 significant digits (relative
 half-unit 1.2e-4).  The engine gives μ_c = 0.4097782, whose 5-digit rounding is 0.40978,
 one unit above the printed 0.40977 (printed value = truncation; the paper located it from
 simulations, its Fig. 2(b) resolves ~1e-5).  ``lancioni/lift-off``: half a unit of the
