@@ -2,7 +2,8 @@
 
 Some docstrings use reStructuredText roles (``:class:`SpringBlock```, ``:func:`~a.b.c```),
 which Markdown would print literally.  This extension rewrites them to code spans
-(``SpringBlock``, ``c``) before mkdocstrings renders the docstring.
+(``SpringBlock``, ``c``) before mkdocstrings renders the docstring, and ends a paragraph
+that introduces a literal block with one colon instead of two.
 """
 
 from __future__ import annotations
@@ -24,8 +25,15 @@ def _plain(match: re.Match) -> str:
     return f"`{target}`"
 
 
+#: reStructuredText "paragraph::" introducing a literal block (Markdown: the indented block alone)
+_LITERAL = re.compile(r"(\S)::\n\n")
+_LITERAL_ALONE = re.compile(r"(^|\n)\s*::\n\n")
+
+
 def to_markdown(text: str) -> str:
-    """Replace every Sphinx role in ``text`` by a Markdown code span."""
+    """Replace every Sphinx role in ``text`` by a Markdown code span, and ``text::`` by ``text:``."""
+    text = _LITERAL_ALONE.sub(r"\1\n", text)
+    text = _LITERAL.sub(r"\1:\n\n", text)
     return _ROLE.sub(_plain, text)
 
 

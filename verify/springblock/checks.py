@@ -65,6 +65,28 @@ class Prediction:
 
 
 def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = None) -> Prediction:
+    """The engine's amplitude-equation values at one driving velocity.
+
+    Parameters
+    ----------
+    law : FrictionLaw
+        The friction law of the spring–block.
+    V : float
+        Driving velocity (m/s).
+    params : mapping, optional
+        Parameter values overriding the defaults (law parameters, M, g, sigma).
+
+    Returns
+    -------
+    Prediction
+        k_c, ω_c, Γ̄, Ω̄, Λ, χ and C at V (SI units), with the predicted amplitude and
+        frequency at any stiffness k.
+
+    Raises
+    ------
+    NoHopfError
+        If steady sliding at V has no Hopf point (e.g. velocity strengthening).
+    """
     block = SpringBlock(law)
     key = id(law)
     if key not in _DERIVATIONS:
