@@ -12,7 +12,7 @@ so |F_k(0±)| = 1 = F_s (the static level) and |F_k| decays to δ for |r| → �
 the velocity weakening, 0 ≤ δ ≤ 1 the residual level.  γ = 0 gives Coulomb friction with
 equal static and kinetic levels (F_k = −sign r); the force is scaled by F_si for block i
 (eq. 8b).  Defaults are those of the paper's examples: γ = 3 (Figs 7–15), δ = 0 (as
-printed; Sec. 4.1's one-block values need δ = 0.2, see the notes).
+printed; Sec. 4.1's one-block values are reproduced only with δ = 0.2).
 """
 
 from __future__ import annotations
