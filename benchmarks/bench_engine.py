@@ -1,6 +1,6 @@
-"""Benchmark of the multiple-scales engine (issue 3).  A script, not a test:
+"""Benchmark of the multiple-scales engine.  A script, not a test:
 
-    /work/venv/bin/python benchmarks/bench_engine.py [--points 1000000] [--baseline-points 300]
+    python benchmarks/bench_engine.py [--points 1000000] [--baseline-points 300]
 
 Prints, in one run:
 1. derivation + compile seconds per built-in law (fresh interpreter per law, so no law

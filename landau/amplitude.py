@@ -9,7 +9,7 @@ Putelat et al. (2010), eqs (22)–(25) and Sec. 3.2.  With the engine's coeffici
 * apparent critical stiffness, eq. (25), for a noise/measurement level Δx:
       k̂ = k_c + |δ|²Λ(Δx)²/(16ω_c²F_V) = k_c + Λ(Δx)²/(8Γ̄)
   (16ω_c²F_V/|δ|² = 8Γ̄ by eq. 21).  Eq. (25) has (Δx)²; the M = 0 formula printed at the
-  end of Sec. 3.2 has (Δx)³ (a slip, notes §1).
+  end of Sec. 3.2 has (Δx)³ (a misprint: eq. (25) gives (Δx)²).
 
 Where Λ ≥ 0 there is no small stable cycle below threshold: the amplitudes are NaN there
 (the same C with |Λ| is the unstable cycle for k > k_c).  The figures of the paper plot

@@ -150,6 +150,36 @@ def hopf_normal_form(system: DynamicalSystem, params: Mapping[str, float], brack
     ``bracket`` must contain exactly one crossing of the critical complex pair; the
     equilibrium is ``system.equilibrium`` (closed form in p and the parameters, refined
     by Newton if it is only approximate).
+
+    Parameters
+    ----------
+    system : DynamicalSystem
+        E·ẏ = f(y; p, q) with its Hopf parameter p.
+    params : mapping of str to float
+        Values of the other parameters q, by name.
+    bracket : (float, float)
+        An interval of p containing exactly one crossing of the critical pair.
+    dps : int, optional
+        Decimal digits of the refinement and of the coefficients (default 50).
+
+    Returns
+    -------
+    HopfNormalForm
+        p_c, ω_c, the equilibrium, a = dλ/dp, Λ and χ in landau's convention (the
+        ``normalise`` component of the critical mode is 1), with the cycle amplitude C.
+
+    Raises
+    ------
+    NoHopfError
+        If the critical real part does not change sign over ``bracket``.
+    SingularPointError
+        If the Newton refinement of the Hopf point fails.
+
+    References
+    ----------
+    Kuznetsov, Yu. A. (2004). Elements of Applied Bifurcation Theory, 3rd ed., Springer, §3.5.
+    Putelat, T., Dawes, J. H. P., Willis, J. R. (2010). J. Mech. Phys. Solids 58, 27–53,
+    Sec. 2.2 (the Fredholm route, written here for a general parameter).
     """
     num = _Numeric(system, params)
     lo, hi = map(float, bracket)

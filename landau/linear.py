@@ -264,5 +264,24 @@ def _stiffest_hopf_root(roots, stiffness, real_tol, nan) -> tuple[Any, Any]:
 
 
 def critical_stiffness(block: SpringBlock, V0, params: Mapping[str, float] | None = None):
-    """k_c(V) of eq. (7) (vectorised; NaN where steady sliding is stable for all k)."""
+    """k_c(V) of eq. (7) (vectorised; NaN where steady sliding is stable for all k).
+
+    Parameters
+    ----------
+    block : SpringBlock
+        The spring–block with its friction law.
+    V0 : float or array_like
+        Driving velocities (m/s).
+    params : mapping, optional
+        Parameter values overriding the defaults (law parameters, M, g, sigma).
+
+    Returns
+    -------
+    numpy.ndarray
+        The critical stiffness (N/m) at each velocity.
+
+    References
+    ----------
+    Putelat, T., Dawes, J. H. P., Willis, J. R. (2010). J. Mech. Phys. Solids 58, 27–53, eq. (7).
+    """
     return HopfLine(block).evaluate(V0, params)[0]

@@ -554,6 +554,25 @@ def derive(block: SpringBlock, quantities: Sequence[str] | None = None) -> Deriv
 
     Only the derivative orders the requested quantities need are built; the rest are
     derived on first use.
+
+    Parameters
+    ----------
+    block : SpringBlock
+        The spring–block with its friction law.
+    quantities : sequence of str, optional
+        Any of ``"kc"``, ``"omega_c"``, ``"Gamma_bar"``, ``"Omega_bar"``, ``"Lambda"``,
+        ``"chi"``, ``"C"`` (default: all).
+
+    Returns
+    -------
+    Derivation
+        Evaluate it with :meth:`Derivation.evaluate` or :meth:`Derivation.points`; get one
+        coefficient's formula, closed form and LaTeX with :meth:`Derivation.coefficient`.
+
+    References
+    ----------
+    Putelat, T., Dawes, J. H. P., Willis, J. R. (2010). Regimes of frictional sliding of a
+    spring–block system. J. Mech. Phys. Solids 58, 27–53, Sec. 2.2, eqs (7)–(23).
     """
     d = Derivation(block)
     for q in quantities or QUANTITIES:

@@ -31,7 +31,7 @@ M = sp.Symbol("M", nonnegative=True)       # block mass [kg]
 sigma = sp.Symbol("sigma", positive=True)  # normal load σ = Mg [N]
 g = sp.Symbol("g", positive=True)          # gravity [m/s²]
 
-#: Default mechanical parameters (Putelat et al. 2010, Sec. 3: M = 1.2 kg; notes §1: g = 9.81)
+#: Default mechanical parameters (Putelat et al. 2010, Sec. 3: M = 1.2 kg; g = 9.81 m/s²)
 M_DEFAULT = 1.2
 G_DEFAULT = 9.81
 SYSTEM_UNITS = {"M": "kg", "g": "m/s^2", "sigma": "N", "V": "m/s", "k": "N/m"}

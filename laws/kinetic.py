@@ -1,8 +1,8 @@
 """Velocity-weakening kinetic friction of Galvanetto (2004), eq. (7), and its Coulomb limit.
 
 Source: U. Galvanetto, *Sliding bifurcations in the dynamics of mechanical systems with
-dry friction*, J. Sound Vib. 276 (2004) 121–139, eq. (7) (OCR-garbled in the seed; the
-reading below is the one of ``notes/models.md`` §2, confirmed there by reproducing the
+dry friction*, J. Sound Vib. 276 (2004) 121–139, eq. (7) (garbled in the scanned print; the
+reading below is the one confirmed by reproducing the paper's
 two-block results).  With the relative velocity r = Ẋ − V (block minus belt):
 
     F_k(r) = (1 − δ)/(1 − γ r) + δ        for r < 0   (block slower than the belt)
@@ -12,7 +12,7 @@ so |F_k(0±)| = 1 = F_s (the static level) and |F_k| decays to δ for |r| → �
 the velocity weakening, 0 ≤ δ ≤ 1 the residual level.  γ = 0 gives Coulomb friction with
 equal static and kinetic levels (F_k = −sign r); the force is scaled by F_si for block i
 (eq. 8b).  Defaults are those of the paper's examples: γ = 3 (Figs 7–15), δ = 0 (as
-printed; Sec. 4.1's one-block values need δ = 0.2, see the notes).
+printed; Sec. 4.1's one-block values are reproduced only with δ = 0.2).
 """
 
 from __future__ import annotations

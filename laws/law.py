@@ -64,7 +64,7 @@ class Parameter:
 
 
 #: Table 1 of Putelat, Dawes & Willis (2010), the parameter set that reproduces their numbers
-#: (see shared/notes/models.md: L = 0.9e-6 m and V_* = 1e-6 m/s, not the values of Sec. 3.1).
+#: (L = 0.9e-6 m and V_* = 1e-6 m/s; the values of Sec. 3.1 and of the Fig. 15/17 captions do not).
 TABLE1: dict[str, Parameter] = {
     p.name: p
     for p in (
@@ -133,6 +133,30 @@ class FrictionLaw:
         parameter: given in ``params`` (a value or a :class:`Parameter`) or one of the
         Table 1 names (a_v, a, b, L, V_s), which then take their Table 1 values.
         Unknown names are errors naming the symbol.
+
+        Parameters
+        ----------
+        name : str
+            Name of the law.
+        mu : str
+            Friction coefficient μ in the slip rate ``v``, the states and the parameters,
+            e.g. ``"a_v + a*log(v/V_s) + b*log(V_s*phi/L)"`` (``^`` means power).
+        state : mapping of str to str
+            Each state variable's name and its rate dφ/dt, e.g. ``{"phi": "1 - v*phi/L"}``.
+        params : mapping, optional
+            Parameter values (floats) or :class:`Parameter` objects.
+        source, description : str, optional
+            Provenance and a one-line description, shown by ``landau laws``.
+
+        Returns
+        -------
+        FrictionLaw
+
+        Raises
+        ------
+        InputError
+            For an empty state, a reserved name used as a parameter, or an unknown symbol;
+            a :class:`~landau.errors.ParseError` names the offending token.
         """
         if not state:
             raise InputError("a law needs at least one state variable (state={'phi': 'rate'})")

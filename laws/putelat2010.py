@@ -1,7 +1,7 @@
 """The rate-and-state laws of Putelat, Dawes & Willis, J. Mech. Phys. Solids (2010).
 
 Parameter values: Table 1 (a_v, a, b, L, V_*), with L = 0.9e-6 m and V_* = 1e-6 m/s
-— the set that reproduces the paper's numbers (see shared/notes/models.md §1).  States
+— the set that reproduces the paper's numbers (Sec. 3.1 prints V_* = 0.9e-6, which does not).  States
 are dimensional (seconds) as in the paper; G = −dφ/dt.
 """
 
@@ -46,7 +46,7 @@ def spinodal() -> FrictionLaw:
     """Spinodal law: μ = a asinh[(e^{a_v/a}/2)(v/V_*)(c + φ/φ_*)^{b/a}] (eq. 37),
     dφ/dt = −(φ − 1)/t_** − vφ/L (eq. 38), φ_* = (1 + t_** V_*/L)^{-1}.
 
-    t_** = 90 s, i.e. R = t_** V_*/L = 100 (notes §1); c = 1e-3 as in Sec. 4.1/Fig. 8.
+    t_** = 90 s, i.e. R = t_** V_*/L = 100 with Table 1; c = 1e-3 as in Sec. 4.1/Fig. 8.
     """
     c = sp.Symbol("c", positive=True)
     t = sp.Symbol("t_ss", positive=True)

@@ -2,7 +2,7 @@
 
 Source: S. Skurativskyi, G. Kudra, K. Witkowski, J. Awrejcewicz, *Bifurcation phenomena and
 statistical regularities in dynamics of forced impacting oscillator*, Nonlinear Dyn. 98
-(2019) 1795–1806, eq. (1) and the identified parameters of Sec. 2 (shared notes §4):
+(2019) 1795–1806, eq. (1) and the identified parameters of Sec. 2:
 
     F_R(ẋ) = c ẋ + T ẋ / sqrt(ẋ² + ε²)
 

@@ -1,6 +1,6 @@
 """Amplitudes (eqs 23-24), growth rate, apparent stiffness k̂ (eq. 25), Γ_DR^max (Sec. 3.2).
 
-Putelat et al. (2010); Table 1 parameter set of shared/notes/models.md §1.
+Putelat et al. (2010); Table 1 parameter set (L = 0.9e-6 m, V_* = 1e-6 m/s).
 """
 
 from __future__ import annotations

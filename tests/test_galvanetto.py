@@ -33,13 +33,13 @@ def test_kinetic_law_eq7_levels_and_derivative():
 
 @pytest.mark.parametrize("kind,published", [("II", 1.241), ("I", 10.801)])
 def test_one_block_sliding_points_round_to_published(kind, published):
-    # Sec. 4.1 / Fig. 7 with δ = 0.2 (the printed δ = 0 is a misprint, notes §2)
+    # Sec. 4.1 / Fig. 7 with δ = 0.2 (the printed δ = 0 does not reproduce these values: a misprint)
     loc = B.one_block_sliding(kind, gamma=3.0, delta=0.2)
     assert round(loc.value, 3) == published
 
 
 def test_one_block_with_printed_delta_zero():
-    # With the printed δ = 0 the toolkit gives other values (notes §2: ≈0.642 and ≈4.424)
+    # With the printed δ = 0 the toolkit gives other values (≈0.642 and ≈4.424)
     assert round(B.one_block_sliding("II", delta=0.0).value, 3) == 0.642
     assert round(B.one_block_sliding("I", delta=0.0).value, 3) == 4.424
 

@@ -174,7 +174,7 @@ def test_poincare_and_sweep_tools():
 
 def test_stiff_contact_mode_with_radau_and_jacobian():
     # A mass at speed v0 hits a linear contact spring of stiffness k (penalty contact, the
-    # shape of issue 8's Hertz contact): inside contact x'' = -k x, so the contact lasts
+    # shape of the Hertz contact of Skurativskyi et al. 2019): inside contact x'' = -k x, so the contact lasts
     # exactly π/sqrt(k) and the mass leaves with -v0 (closed form).  The contact mode is run
     # with the implicit Radau stepper and the mode's analytic Jacobian.
     from landau.verify.hybrid import RadauStepper

@@ -1,7 +1,7 @@
-"""Frictional impact oscillator (Lancioni, Lenci & Galvanetto, seed 000): slip-mode Hopf, lift-off, stick onset.
+"""Frictional impact oscillator (Lancioni, Lenci & Galvanetto): slip-mode Hopf, lift-off, stick onset.
 
 Published values: Sec. 3 of the paper (Hopf μ = 0.40977, lift-off 0.40983 for set 1, Fig. 2;
-Hopf 0.353 and stick from ≈ 0.360 for set 2, Fig. 4), reproduced with g = 10 (notes §3).
+Hopf 0.353 and stick from ≈ 0.360 for set 2, Fig. 4), reproduced with g = 10 m/s².
 """
 
 import math
@@ -42,7 +42,7 @@ def test_hopf_set2_and_g_dependence():
     # Sec. 3, set 2 (m₁ = 0.4, k_φ = 25): Hopf at μ = 0.353 (3 digits printed)
     h2 = S.slip_hopf(S.SET2)
     assert round(h2.p_c, 3) == 0.353 and h2.criticality == "supercritical"
-    # notes §3: g = 9.81 moves set 1 to ≈ 0.40986 (why the paper's values need g = 10)
+    # g = 9.81 moves set 1 to ≈ 0.40986 (why the paper's values need g = 10)
     assert S.slip_hopf({"g": 9.81}).p_c == pytest.approx(0.40986, abs=1e-5)
 
 

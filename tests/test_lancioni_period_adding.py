@@ -1,4 +1,4 @@
-"""Lancioni, Lenci & Galvanetto (seed 000), Sec. 3 / Fig. 2(c): the e_N = 0 detached orbit near μ = 0.38957.
+"""Lancioni, Lenci & Galvanetto, Sec. 3 / Fig. 2(c): the e_N = 0 detached orbit near μ = 0.38957.
 
 Paper: free flight–slip–stick–slip down to μ = 0.38965, then a period-adding cascade (S n, S n n,
 …) accumulating at 0.38957 where the attractor disappears.  What eq. (1) does instead (stick

@@ -44,7 +44,7 @@ def test_modified_dieterich_kc_and_omega2_equal_eqs_42_43():
     hl = HopfLine(SpringBlock(get_law("modified-dieterich")))
     Vm = (b / a - 1) * V_s / c                                                # eq. (41)
     eq42 = (a * c * sigma / L) * (Vm - V) * (1 + M * V ** 2 / (a * sigma * L)) / (V_s + c * V)
-    # eq. (43) read as ω_c² with the last term carrying a factor V (notes §1)
+    # eq. (43) read as ω_c² with the last term carrying a factor V (the print drops both)
     eq43 = (V / L) ** 2 * (b / a - 1 - (b * c / a) * V / (V_s + c * V))
     assert sp.simplify(hl.kc_expr - eq42) == 0
     assert sp.simplify(hl.omega2_expr - eq43) == 0

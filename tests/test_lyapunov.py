@@ -1,6 +1,6 @@
 """Fredholm route (landau.multiscale) vs Kuznetsov's projection formula (landau.lyapunov).
 
-Issue 3, acceptance "Fredholm route vs Kuznetsov route": sign(l₁) = sign(Λ) and the
+Two independent routes must agree: sign(l₁) = sign(Λ) and the
 normalisation-free slip amplitude C (Putelat et al. 2010, eq. 23: max|x − x₀| ≈
 C sqrt|k_c − k|) equal to 1e-8 relative, for every built-in law at ≥ 5 velocities inside
 its velocity-weakening range, and for a two-state law.

@@ -78,7 +78,7 @@ def test_modified_dieterich_eqs44_45():
     # eq. (44): Γ = −k₂ σa²L²V(cV + V_*)/P₄
     eq44 = sigma * a ** 2 * L ** 2 * V * (c * V + V_s) / _P(4) / 2
     agree_at_random_points(d, "Gamma_bar", eq44, syms)
-    # eq. (45) with the denominator L³(cV + V_*)²P₄P₅ (notes §1: the print has L)
+    # eq. (45) with the denominator L³(cV + V_*)²P₄P₅ (the print has L; zeros and sign unaffected)
     Vm = (b / a - 1) * V_s / c
     eq45 = a * c * sigma * V_s * V ** 2 * (V - Vm) * _P(7) / (L ** 3 * (c * V + V_s) ** 2 * _P(4) * _P(5))
     agree_at_random_points(d, "Lambda", eq45, syms)

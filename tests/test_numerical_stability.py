@@ -1,6 +1,6 @@
 """Compiled (float64, vectorised) coefficients vs the same formulas at 50 digits.
 
-Issue 3, acceptance "Numerical stability": every compiled coefficient (k_c, ω_c, Γ̄, Ω̄,
+Numerical stability: every compiled coefficient (k_c, ω_c, Γ̄, Ω̄,
 Λ, χ, C via ``Derivation.evaluate``) agrees with ``Derivation.evaluate_mp`` (mpmath, 50
 digits) to ≤ 1e-9 relative on 200 log-spaced V in each law's velocity-weakening range,
 in the quasi-static limit (M = 1e-12 and M = 0), and within 1e-6 (relative) of the
@@ -11,7 +11,7 @@ Reference value.  The 50-digit value is trusted where it is converged: if it dif
 the compiled value, it is recomputed at 70 digits; when the two mpmath values disagree
 by more than 1e-9 the quantity is below the rounding noise of the formula, i.e. its true
 value is its limit (0 for Λ, ∞ for C), and the compiled value must be that limit or NaN.
-1e-9 is the issue's tolerance: float64 evaluation of a well-conditioned formula is good
+1e-9 is the required tolerance: float64 evaluation of a well-conditioned formula is good
 to ~1e-13 here, so 1e-9 only fails where cancellation destroys ≥ 7 digits.
 """
 
@@ -55,8 +55,8 @@ def _mismatches(name: str, Vs, params, method: str = "auto") -> list[str]:
     bad: list[str] = []
     for i, V0 in enumerate(Vs):
         V0 = float(V0)
-        # a point the engine flags as degenerate may return the limits Λ, χ → 0, C → ∞ (issue 3:
-        # "return the limit, or flag the point as degenerate"); everything else must still agree
+        # a point the engine flags as degenerate may return the limits Λ, χ → 0, C → ∞ (a
+        # degenerate point may return the limit instead of a value); everything else must still agree
         limits_ok = set(DEGENERATE_LIMIT) if flagged[i] else set()
         try:
             ref = d.evaluate_mp(V0, params, NAMES, dps=50)

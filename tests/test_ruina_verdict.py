@@ -82,7 +82,7 @@ def test_engine_closed_form_is_exactly_the_correct_form(ruina):
     assert all(p.exp.is_integer for p in engine.atoms(sp.Pow))   # no radicals left: Λ_R is rational
 
 
-#: Table 1 (notes §1), M = 1.2 kg, σ = 11.772 N
+#: Table 1 (L = 0.9e-6 m), M = 1.2 kg, σ = 11.772 N
 TABLE1 = {"a": 0.0349, "b": 0.0489, "L": 0.9e-6, "sigma": 11.772, "M": 1.2}
 #: (V, Λ correct, Λ printed) at Table 1 — the numbers of docs/verdicts.md, recomputed below
 VELOCITIES = (1e-6, 1e-5, 1e-4, 5.6e-4, 1e-3, 1e-2)

@@ -26,8 +26,8 @@ pytestmark = pytest.mark.slow
 
 PAPER_F = np.array([20.59, 20.8586, 21.5085, 23.0702])
 # Tolerance per point: 0.015 rad/s — the paper's 20.59 is printed to ±0.005, and a point
-# located at the paper's (unknown) integration tolerance moves by ~0.01 rad/s (notes §4,
-# measured here: the period-7 edge moves by 5e-4 between rtol 1e-7 and 1e-8); our other three
+# located at the paper's (unknown) integration tolerance moves by ~0.01 rad/s (located
+# at rtol 1e-6; the period-7 edge moves by 5e-4 between rtol 1e-7 and 1e-8); our other three
 # points sit 0.0009–0.0065 from the paper's.
 TOL = 0.015
 

@@ -69,7 +69,7 @@ def test_grazing_cascade_and_ratio(sweeps):
     # warm start —, 21.513, 23.063; converged to 1e-4 over rtol 1e-7..1e-9)
     # 2 → 5/3 → 3/2 → 4/3 → 1 along the up sweep; located by bisection to 1e-4 from the attractor
     # at the lower end.  Tolerance 0.015 rad/s: the paper's own integration moves such points by
-    # ~0.01 (notes §4); ours are converged to 1e-4 between rtol 1e-7 and 1e-9.
+    # ~0.01 at rtol 1e-6; ours are converged to 1e-4 between rtol 1e-7 and 1e-9.
     found = []
     for lo, hi, paper in ((20.85, 20.9, 20.8586), (21.5, 21.55, 21.5085), (23.05, 23.1, 23.0702)):
         L = locate_grazing(lo, hi, _at(up, lo).y_end, tol=1e-4)

@@ -1,4 +1,4 @@
-"""Fast checks of the direct spring–block simulation (issue 5) — Putelat et al. (2010), eq. (4)/(5).
+"""Fast checks of the direct spring–block simulation — Putelat et al. (2010), eq. (4)/(5).
 
 Each test compares against an independent computation (finite differences, a separate physical-
 variable right-hand side, scipy's Radau, the steady state's eigenvalues) or against the engine's
@@ -22,7 +22,7 @@ from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.orbits import hopf_stiffness, return_map, section_point
 from landau.verify.springblock.simulate import W_INDEX, integrate
 
-M_PAPER = 1.1326e-7  # m = V_*²/(gL) with Table 1 (notes §1: m ≈ 1.13e-7)
+M_PAPER = 1.1326e-7  # m = V_*²/(gL) with Table 1 (m ≈ 1.13e-7)
 
 
 @pytest.mark.parametrize("name", ["dieterich", "ruina", "spinodal", "nanoscale", "two-state-dieterich"])
@@ -60,7 +60,7 @@ def test_rhs_matches_eq4_in_physical_variables(name):
 
 
 def test_dimensionless_form_eq5():
-    """from_dimensionless reproduces m and κ of eq. (6) and κ = 1e-3 ↔ k ≈ 1.308e4 N/m (notes §1)."""
+    """from_dimensionless reproduces m and κ of eq. (6) and κ = 1e-3 ↔ k ≈ 1.308e4 N/m (paper: 1.31e4)."""
     m = SpringBlockModel.from_dimensionless(get_law("dieterich"), M_PAPER, 1e-3, 100.0)
     assert m.m == pytest.approx(M_PAPER, rel=1e-12)
     assert m.kappa == pytest.approx(1e-3, rel=1e-12)
@@ -72,7 +72,7 @@ def test_dimensionless_form_eq5():
                                            ("modified-dieterich", 1.2e-3, {"c": 3e-4})])
 def test_hopf_from_eigenvalues_matches_engine_kc(name, V, params):
     """The steady state's eigenvalue pair crosses the axis at the engine's k_c (eq. 7) to 1e-6
-    (acceptance of issue 5; here the two routes agree to ~1e-13)."""
+    (here the two routes agree to ~1e-13)."""
     law = get_law(name)
     pr = predict(law, V, params)
     m = SpringBlockModel.build(law, V, pr.kc, params)
@@ -97,7 +97,7 @@ def test_monodromy_matches_finite_differences():
 
 def test_supercritical_ruina_amplitude_and_exponent():
     """Ruina law, V = 1e-4 m/s (Putelat Fig. 4e regime): the limit cycle at k = k_c(1 − ε²) has the
-    engine's amplitude C·sqrt(k_c − k) (eq. 23) within 2 % at ε² = 1e-3 (issue 5 acceptance); the
+    engine's amplitude C·sqrt(k_c − k) (eq. 23) within 2 % at ε² = 1e-3; the
     error is the O(ε²) correction, so its log–log slope in ε² is 1 (±0.1); the frequency error
     against ω_c − (Ω̄ + χΓ̄/Λ)(k_c − k) is O(ε⁴) (slope 2 ± 0.2)."""
     law = get_law("ruina")
@@ -111,7 +111,7 @@ def test_supercritical_ruina_amplitude_and_exponent():
 
 
 def test_ruina_landau_coefficient_evidence():
-    """Evidence for the eq. (35) question (issue 3): for the Ruina law, M = 1.2 kg, at V = 1e-4 and
+    """Evidence on the printed eq. (35): for the Ruina law, M = 1.2 kg, at V = 1e-4 and
     1e-3 m/s the simulated cycle at k = k_c(1 − 1e-3) has the amplitude of the engine's
     C·sqrt(k_c − k) within 2 % (the O(ε²) remainder: −1.9 % and +0.06 % measured).  A Landau
     coefficient off by a factor q would shift the amplitude by q^{-1/2} − 1 (e.g. −29 % for q = 2)."""
@@ -212,7 +212,7 @@ def test_continuation_starts_at_engine_hopf_point_and_ruina_bends_supercriticall
 def test_codim2_point_from_orbits_matches_engine_vstar():
     """Fig. 12/14: law (39), c = 3e-4 — the velocity where the cycle branch's curvature (fold of cycles
     ↔ Hopf line) changes sign, computed from periodic orbits only, equals the engine's V*
-    (Λ = 0, ≈ 1.109e-3 m/s, Putelat Sec. 4.2) within 1 % (issue 5 acceptance; measured ~1e-6)."""
+    (Λ = 0, ≈ 1.109e-3 m/s, Putelat Sec. 4.2) within 1 % (measured ~1e-6)."""
     from landau.verify.springblock.reproductions import codim2
 
     pt, v_engine = codim2("modified-dieterich", {"c": 3e-4}, 1e-3, 1.25e-3)

@@ -1,4 +1,4 @@
-"""Full direct-simulation verification of the engine (issue 5) — opt in with ``pytest -m slow``.
+"""Full direct-simulation verification of the engine — opt in with ``pytest -m slow``.
 
 Putelat et al. (2010): supercritical amplitudes (eq. 23) for the Ruina, modified-Dieterich (39)
 and spinodal (37)–(38) laws; subcritical bistability (Secs 3.2, 4.2); continuation (Figs 6, 11);
@@ -26,7 +26,7 @@ EPS2 = [4e-3, 1e-3, 2.5e-4]
     ("spinodal", 1e-5, {"c": 1e-3}),
 ])
 def test_supercritical_amplitude(name, V, params):
-    """Issue 5 acceptance: |rel. error| of the half peak-to-peak slip vs C·sqrt(k_c − k) ≤ 2 % at
+    """|rel. error| of the half peak-to-peak slip vs C·sqrt(k_c − k) ≤ 2 % at
     ε² = 1e-3, fitted exponent of |error| vs ε² within 0.85…1.15 (the O(ε²) remainder)."""
     law = get_law(name)
     pr = predict(law, V, params)

@@ -1,8 +1,8 @@
 """Transition velocity V*, codimension-two points, critical residual strength c* (Putelat et al. 2010).
 
-Parameter set: Table 1 as in shared/notes/models.md §1 (L = 0.9e-6 m, V_* = 1e-6 m/s,
+Parameter set: Table 1 (L = 0.9e-6 m, V_* = 1e-6 m/s,
 M = 1.2 kg, σ = 11.772 N).  Published numbers are printed with 3–4 digits: 0.5 %
-tolerance unless stated (the issue's acceptance tolerance).
+tolerance unless stated (half a unit of the last printed digit or better).
 """
 
 from __future__ import annotations
@@ -46,7 +46,7 @@ def test_dieterich_codim2_point_fig5b_and_eq34():
     pt = pts[0]
     # Fig. 5(b): the saddle-node line meets the Hopf line at k ≈ 2.08e5 N/m
     assert rel(pt.kc, 2.08e5) < PRINTED
-    # eq. (34) read with V̂ (not √V̂, notes §1): V_D* = sqrt((−3a + 2 sqrt(a(3a+b)))/(3a+4b)) V̂,
+    # eq. (34) read with V̂ (not the printed √V̂): V_D* = sqrt((−3a + 2 sqrt(a(3a+b)))/(3a+4b)) V̂,
     # V̂ = sqrt(aσL/M) (eq. 31).  Both are exact, so they agree to the root-finder's precision.
     a, b, L, Mm, s = T1["a"], T1["b"], T1["L"], T1["M"], T1["sigma"]
     Vhat = math.sqrt(a * s * L / Mm)
@@ -54,7 +54,7 @@ def test_dieterich_codim2_point_fig5b_and_eq34():
     assert rel(pt.V, VD) < 1e-9
     # (33): Λ_D > 0 as V → 0 (subcritical), < 0 as V → ∞
     assert (pt.sign_below, pt.sign_above) == (1, -1)
-    # the published velocity 2.31e-5 m/s (Fig. 5 caption) is NOT reproduced (notes §1): V* ≈ 2.07e-4
+    # the published velocity 2.31e-5 m/s (Fig. 5 caption) is NOT reproduced (it depends only on gL): V* ≈ 2.07e-4
     assert rel(pt.V, 2.31e-5) > 1.0
 
 

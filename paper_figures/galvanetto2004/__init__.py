@@ -53,7 +53,7 @@ def fig7(out_dir: Path) -> list[Path]:
         ax.set_xlabel("X")
     axs[0].set_ylabel("dX/dt")
     axs[0].legend(fontsize=7)
-    fig.suptitle("Fig. 7: one block, γ=3, δ=0.2 (see notes), c=0: type II at V=1.2409, type I at V=10.8011")
+    fig.suptitle("Fig. 7: one block, γ=3, δ=0.2 (the printed δ=0 is a misprint here), c=0: type II at V=1.2409, type I at V=10.8011")
     return _save(fig, out_dir, "fig7")
 
 

@@ -1,4 +1,4 @@
-"""Figures of Lancioni, Lenci & Galvanetto (frictional impact oscillator, seed 000), from the toolkit.
+"""Figures of Lancioni, Lenci & Galvanetto (frictional impact oscillator), from the toolkit.
 
 ``landau figures lancioni [--only fig2]``.  Slip branches come from the engine (Hopf point,
 :mod:`landau.general`) and shooting on the slip ODE; detached branches and orbits from the

@@ -13,8 +13,8 @@ from landau.verify.galvanetto import bifurcations as B
 CASES = [
     ("one-block type II (δ=0.2)", lambda: B.one_block_sliding("II", delta=0.2), "1.241 (Sec. 4.1)"),
     ("one-block type I (δ=0.2)", lambda: B.one_block_sliding("I", delta=0.2), "10.801 (Sec. 4.1)"),
-    ("one-block type II (δ=0)", lambda: B.one_block_sliding("II", delta=0.0), "printed δ; notes ≈0.642"),
-    ("one-block type I (δ=0)", lambda: B.one_block_sliding("I", delta=0.0), "printed δ; notes ≈4.424"),
+    ("one-block type II (δ=0)", lambda: B.one_block_sliding("II", delta=0.0), "printed δ; gives ≈0.642"),
+    ("one-block type I (δ=0)", lambda: B.one_block_sliding("I", delta=0.0), "printed δ; gives ≈4.424"),
     ("two-block type II", lambda: B.two_block_sliding("II", bracket=(0.18, 0.19), period=2), "(0.18, 0.19) Fig. 8"),
     ("two-block type I", lambda: B.two_block_sliding("I", bracket=(0.725, 0.74), period=1), "(0.725, 0.740) Fig. 9"),
     ("discontinuous fold", B.discontinuous_fold, "1.7217 Fig. 12"),

@@ -7,7 +7,7 @@ and the mode integrator's rtol.  Error: |φ̇_max − reference| on the Poincar�
 (φ̈ = 0, φ̇ > 0) after a 12 s transient, reference = tolerance 1e-10 with rtol 1e-12.
 Run time: ratio to the cheapest setting in the same run.
 
-    /work/venv/bin/python -m landau.verify.benchmarks.lancioni_chatter
+    python -m landau.verify.benchmarks.lancioni_chatter
 """
 
 from __future__ import annotations

@@ -4,8 +4,8 @@ For rtol ∈ {1e-7, 1e-8, 1e-9} (atol = (rtol·1e-4 m, rtol·1e-2 m/s)): first d
 bisection to 1e-3 from rest), first period doubling (Fig. 4, bisection to 1e-4), and the
 grazing bifurcations where the impacts per period change 2 → 5/3 → 3/2 → 4/3 → 1 (Fig. 3b,
 paper 20.8586, 21.5085, 23.0702; bisection to 1e-4), each run started from the attractor of an
-up-sweep (step 0.05, 100/50 transient periods) at the lower bracket end.  Notes §4: with the
-authors' integrator such points move by ~0.01 rad/s at rtol 1e-6.
+up-sweep (step 0.05, 100/50 transient periods) at the lower bracket end.  A point located
+with a loose integrator such points move by ~0.01 rad/s at rtol 1e-6.
 
 Run: ``python -m landau.verify.benchmarks.skurativskyi_convergence [out_dir]`` → ``skurativskyi_convergence.md``.
 """

@@ -149,7 +149,7 @@ def one_block_sliding(kind: str, gamma: float = 3.0, delta: float = 0.2, c: floa
 
     The cycle starts at the end of the stick interval (X = F_s − cV, Ẋ = V).  Type II:
     the first return to r = 0 (from r < 0) happens at K = X + cV = −F_s.  Type I: the
-    return from r > 0 happens at K = +F_s.  Paper (δ misprinted as 0, see notes): 1.241, 10.801.
+    return from r > 0 happens at K = +F_s.  Paper (δ misprinted as 0; δ = 0.2 reproduces them): 1.241, 10.801.
     """
     side = "n" if kind == "II" else "p"
 

@@ -1,6 +1,6 @@
 """One- and two-block stick–slip models of Galvanetto (2004) on the hybrid engine.
 
-Dimensionless equations (paper eqs 2–8; reading of notes/models.md §2):
+Dimensionless equations (paper eqs 2–8; eq. 7 read as below, which reproduces the two-block results):
 
 * one block: Ẍ + cẊ + X = F_k(Ẋ − V) while slipping (4a); sticking (Ẋ = V) allowed while
   −F_s − cV ≤ X ≤ F_s − cV, F_s = 1 (3a);

@@ -1,4 +1,4 @@
-"""Scenes for Galvanetto (2004), J. Sound Vib. 276, 121–139 (seed 001).
+"""Scenes for Galvanetto (2004), J. Sound Vib. 276, 121–139.
 
 ``value`` is the located bifurcation parameter.  Where the paper gives an interval
 instead of a number (Figs 8, 9, 15) the published value is the interval's midpoint and the
@@ -38,14 +38,14 @@ def _one_block(kind):
 
 register(Scene(
     name="galvanetto2004/one-block-type-II", parameter="V", units="dimensionless",
-    source=f"{SRC}, Sec. 4.1, Fig. 7 (V≈1.241; reproduced with δ=0.2, the printed δ=0 gives ≈0.642 — notes §2)",
+    source=f"{SRC}, Sec. 4.1, Fig. 7 (V≈1.241; reproduced with δ=0.2, the printed δ=0 gives ≈0.642)",
     compute=_one_block("II"), defaults={"gamma": 3.0, "delta": 0.2, "c": 0.0, "lo": 0.05, "hi": 5.0},
     published=1.241, tolerance=_half_digit(1.241, 3),
     description="one block: the slip phase (r<0) ends exactly at the left end of the stick interval"))
 
 register(Scene(
     name="galvanetto2004/one-block-type-I", parameter="V", units="dimensionless",
-    source=f"{SRC}, Sec. 4.1, Fig. 7(c) (V≈10.801; reproduced with δ=0.2, printed δ=0 gives ≈4.424 — notes §2)",
+    source=f"{SRC}, Sec. 4.1, Fig. 7(c) (V≈10.801; reproduced with δ=0.2, printed δ=0 gives ≈4.424)",
     compute=_one_block("I"), defaults={"gamma": 3.0, "delta": 0.2, "c": 0.0, "lo": 1.3, "hi": 40.0},
     published=10.801, tolerance=_half_digit(10.801, 3),
     description="one block: the slip phase with r>0 ends exactly at the right end of the stick interval"))

@@ -1,4 +1,4 @@
-"""Frictional impact oscillator of Lancioni, Lenci & Galvanetto (seed 000) — issue 7.
+"""Frictional impact oscillator of Lancioni, Lenci & Galvanetto (windscreen-wiper hopping).
 
 * :mod:`landau.verify.lancioni.contact` — one frictional unilateral contact on the hybrid engine
   (free flight / slip± / stick, Poisson impact law with Coulomb friction — impulse equations

@@ -1,7 +1,7 @@
-"""The frictional impact oscillator of Lancioni, Lenci & Galvanetto (seed 000), eq. (1).
+"""The frictional impact oscillator of Lancioni, Lenci & Galvanetto, eq. (1).
 
 Coordinates q = (φ, y): the bar angle and the height of m₂; state y = (φ, y, φ̇, ẏ) in
-every mode.  Eq. (1), M(q) q̈ = W λ − h (notes/models.md §3):
+every mode.  Eq. (1), M(q) q̈ = W λ − h (re-derived from the energies and virtual work):
 
     M = [[m₁l², m₁l sin φ], [m₁l sin φ, m₁ + m₂]],   W = [w_N w_T] = [[l sin φ, l cos φ], [1, 0]],
     h = (c_φφ̇ + k_φ(φ − φ₀) + m₁gl sin φ,  c_yẏ + k_y(y − y₀) + m₁lφ̇² cos φ + (m₁+m₂)g),

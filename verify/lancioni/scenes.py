@@ -1,11 +1,11 @@
-"""Scenes for Lancioni, Lenci & Galvanetto, the frictional impact oscillator (seed 000, Sec. 3).
+"""Scenes for Lancioni, Lenci & Galvanetto, the frictional impact oscillator (Sec. 3).
 
 Parameters (all scenes): m1, m2, l, k_y, k_phi, c_y, c_phi, phi0, y0, g — the paper's set 1
-with g = 10 m/s² (the printed Hopf values need g = 10, notes/models.md §3; g = 9.81 gives
+with g = 10 m/s² (the printed Hopf values need g = 10; g = 9.81 gives
 μ_c ≈ 0.40986).  The Hopf and lift-off scenes use the direction with the Hopf point
 (positive slip, belt v = −1 m/s; see verify.lancioni.slip).
 
-Tolerances.  ``lancioni/hopf``: the acceptance asks for 4 significant digits (relative
+Tolerances.  ``lancioni/hopf``: 4 significant digits (relative
 half-unit 1.2e-4).  The engine gives μ_c = 0.4097782, whose 5-digit rounding is 0.40978,
 one unit above the printed 0.40977 (printed value = truncation; the paper located it from
 simulations, its Fig. 2(b) resolves ~1e-5).  ``lancioni/lift-off``: half a unit of the
@@ -18,7 +18,7 @@ from __future__ import annotations
 from landau.scenes import Scene, register
 from landau.verify.lancioni.slip import SET1, SET2
 
-SRC = "Lancioni, Lenci & Galvanetto, frictional impact oscillator (seed 000), Sec. 3"
+SRC = "Lancioni, Lenci & Galvanetto, frictional impact oscillator, Sec. 3"
 
 
 def _half_digit(value: float, decimals: int) -> float:
@@ -42,7 +42,7 @@ def _hopf(p):
 register(Scene(
     name="lancioni/hopf", parameter="mu", units="dimensionless",
     source=f"{SRC}: Hopf bifurcation of the slip equilibrium at mu = 0.40977 (set 1, Fig. 2(b)); "
-           "set 2 (m1=0.4, k_phi=25): 0.353 (Fig. 4(b)); reproduced with g = 10 (notes §3)",
+           "set 2 (m1=0.4, k_phi=25): 0.353 (Fig. 4(b)); reproduced with g = 10 m/s^2",
     compute=_hopf, defaults={**SET1, "lo": 0.0, "hi": 0.0}, published=0.40977, tolerance=_half_digit(0.4098, 4),
     description="slip-mode ODE (eq. 1 with g_N = 0) through landau.general.hopf_normal_form "
                 "(lo = hi = 0: the mu interval is found by scanning the model)"))

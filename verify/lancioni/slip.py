@@ -1,6 +1,6 @@
 """The smooth slip mode of the frictional impact oscillator as a :class:`DynamicalSystem`.
 
-Lancioni, Lenci & Galvanetto, eq. (1) (reconstructed in notes/models.md §3):
+Lancioni, Lenci & Galvanetto, eq. (1) (re-derived from the energies and virtual work):
 
     [m₁l²       m₁l sin φ] [φ̈]   [l sin φ  l cos φ] [λ_N]   [c_φφ̇ + k_φ(φ − φ₀) + m₁gl sin φ             ]
     [m₁l sin φ  m₁ + m₂  ] [ÿ] = [1        0      ] [λ_T] − [c_yẏ + k_y(y − y₀) + m₁lφ̇² cos φ + (m₁+m₂)g]
@@ -29,7 +29,7 @@ which has no closed form; the system declares one Newton step from φ₀ as its
 (approximate) equilibrium expression and the engine refines it by Newton at 50 digits.
 
 g.  The published Hopf values (μ = 0.40977, set 1; 0.353, set 2) are reproduced with
-g = 10 m/s² (notes §3); g = 9.81 moves them to ≈ 0.40986 and ≈ 0.3541.  g stays a parameter.
+g = 10 m/s²; g = 9.81 moves them to ≈ 0.40986 and ≈ 0.3541.  g stays a parameter.
 """
 
 from __future__ import annotations
@@ -50,7 +50,7 @@ mu = sp.Symbol("mu", nonnegative=True)
 m1, m2, l, k_y, k_phi, c_y, c_phi, phi0, y0, g = sp.symbols(
     "m1 m2 l k_y k_phi c_y c_phi phi0 y0 g", real=True)
 
-#: paper's first parameter set (Sec. 3; Leine, Brogliato & Nijmeijer 2002) with g = 10 (notes §3)
+#: paper's first parameter set (Sec. 3; Leine, Brogliato & Nijmeijer 2002) with g = 10 m/s²
 SET1: dict[str, float] = {"m1": 0.1, "m2": 1.0, "l": 1.0, "k_y": 100.0, "k_phi": 100.0, "c_y": 10.0,
                           "c_phi": 0.0, "phi0": float(np.pi / 8), "y0": 1.0, "g": 10.0}
 #: second set (Sec. 3, Figs 4–5): m₁ = 0.4 kg, k_φ = 25 N·m

@@ -1,6 +1,6 @@
 """Verifier IV: the harmonically forced impacting oscillator with regularised dry friction
 and Hertz contact of Skurativskyi, Kudra, Witkowski & Awrejcewicz (2019), Nonlinear Dyn.
-98:1795–1806 (seed 002; notes §4).
+98:1795–1806.
 
 Modules: :mod:`.model` (eq. 1, parameters of Sec. 2), :mod:`.rk` (compiled Dormand–Prince
 5(4) with exact contact switching; the mixed path hands stick steps to :mod:`.sdirk`, an

@@ -5,7 +5,7 @@
     F_I = k_I f   if x − x_I ≥ 0 and f ≥ 0, else 0,
     f   = (x − x_I)^{n₁} + b (x − x_I)^{n₂} sgn(ẋ) |ẋ|^{n₃}.
 
-Parameters: Sec. 2 of the paper (notes §4).  Contact is the side x ≥ x_I (the obstacle is
+Parameters: Sec. 2 of the paper.  Contact is the side x ≥ x_I (the obstacle is
 above the cart; at rest the springs press the cart on it by ≈ 5 µm).
 
 Structure used by the integrator (why the contact switching needs no saltation)

@@ -1,4 +1,4 @@
-"""Scenes for Skurativskyi, Kudra, Witkowski & Awrejcewicz (2019), Nonlinear Dyn. 98:1795 (seed 002).
+"""Scenes for Skurativskyi, Kudra, Witkowski & Awrejcewicz (2019), Nonlinear Dyn. 98:1795–1806.
 
 Published values carry the tolerance of their printed digits (half a unit of the last
 digit); the first detachment is printed as an interval (14.0, 14.1) rad/s: published =
@@ -104,4 +104,4 @@ register(Scene(
                 "edge of the period-7 window (14 impacts), where a free-flight maximum of x touches x_I; "
                 "bisection on the impact count of the continued orbit, cross-checked by the zero of the "
                 "grazing margin (verify.skurativskyi.grazing).  Tolerance 0.015 rad/s: 20.59 is printed "
-                "to +-0.005 and located points move by ~0.01 rad/s with the integration tolerance (notes 4)"))
+                "to +-0.005 and located points move by ~0.01 rad/s with the integration tolerance (at rtol 1e-6)"))

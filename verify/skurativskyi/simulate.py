@@ -23,7 +23,7 @@ from landau.verify.skurativskyi import rk as R
 from landau.verify.skurativskyi.model import Params, rhs
 
 #: default tolerances of the fast path: event/bifurcation locations converge at rtol ≲ 1e-8
-#: (notes §4); atol in m and m/s (the cart moves by mm at mm/s–cm/s): by default
+#: (at rtol 1e-6 they move by ~0.01 rad/s); atol in m and m/s (the cart moves by mm at mm/s–cm/s): by default
 #: atol = (rtol·1e-4 m, rtol·1e-2 m/s), i.e. (1e-12, 1e-10) at the default rtol.
 RTOL = 1e-8
 ATOL = None

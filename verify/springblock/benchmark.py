@@ -4,9 +4,9 @@ Problem: one period of the Fig. 3 stick–slip cycle (Dieterich, V/V_* = 100, κ
 m ≈ 1.13e-7; :mod:`landau.verify.springblock.workprecision`).  Both integrators run over a
 tolerance ladder in the same process; the CPU time at equal error 1e-8 (error at the end of
 the period vs the rtol = 1e-13 reference) is interpolated log–log from the two bracketing
-runs, and the ratio is printed.  Goal (issue 5): ≥ 20×.
+runs, and the ratio is printed.  Goal: ≥ 20×.
 
-    /work/venv/bin/python -m landau.verify.springblock.benchmark
+    python -m landau.verify.springblock.benchmark
 """
 
 from __future__ import annotations

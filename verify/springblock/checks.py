@@ -45,7 +45,28 @@ def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = Non
 
     Spring–block convention (Putelat et al. 2010, eq. 20): p = k, dλ/dk = −Γ̄ + iΩ̄, Λ = 2 Re b, so the
     amplitude is C·sqrt|k − k_c| on the side where the cycle exists and the frequency
-    ω_c − (Ω̄ + χΓ̄/Λ)(k_c − k).  ``extra`` carries V, k_c, Γ̄ and Ω̄ (readable as attributes)."""
+    ω_c − (Ω̄ + χΓ̄/Λ)(k_c − k).
+
+    Parameters
+    ----------
+    law : FrictionLaw
+        The friction law of the spring–block.
+    V : float
+        Driving velocity (m/s).
+    params : mapping, optional
+        Parameter values overriding the defaults (law parameters, M, g, sigma).
+
+    Returns
+    -------
+    HopfResult
+        k_c (``p_c``), ω_c, Λ, χ and C at V (SI units), with the predicted amplitude and frequency at
+        any stiffness k; ``extra`` carries V, k_c, Γ̄ and Ω̄ (readable as attributes).
+
+    Raises
+    ------
+    NoHopfError
+        If steady sliding at V has no Hopf point (e.g. velocity strengthening).
+    """
     block = SpringBlock(law)
     key = id(law)
     if key not in _DERIVATIONS:
@@ -289,7 +310,7 @@ def fitted_exponent(eps2s, rel_errors) -> float:
 def bistability_scan(law: FrictionLaw, V: float, eps2: float, params: Mapping[str, float] | None = None, *,
                      multiples=(0.5, 2.0, 8.0, 16.0), prediction: HopfResult | None = None) -> dict[float, str]:
     """Fate ('decays'/'grows'/'undecided') of perturbations of a·C·sqrt(|k − k_c|) along the critical
-    mode at k = k_c(1 + ε²) — the supercritical control of issue 5 (all should decay)."""
+    mode at k = k_c(1 + ε²) — the supercritical control (all should decay)."""
     pr = prediction or predict(law, V, params)
     k = pr.kc * (1 + eps2)
     model = SpringBlockModel.build(law, V, k, params)

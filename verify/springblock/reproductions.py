@@ -1,7 +1,7 @@
 """Reproductions of Putelat et al. (2010) Figs 6, 11 and the codimension-two points (Figs 5b, 12, 14)
 from periodic orbits alone (shooting + continuation, :mod:`landau.verify.springblock.continuation`).
 
-    /work/venv/bin/python -m landau.verify.springblock.reproductions [OUT_DIR]
+    python -m landau.verify.springblock.reproductions [OUT_DIR]
 
 writes fig6_ruina.png, fig6_dieterich.png, fig11_c1e-3.png, fig11_c3e-4.png and reproductions.json
 (Hopf points vs the engine's k_c, folds, codimension-two velocities vs the engine's V*).
