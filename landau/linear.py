@@ -176,13 +176,36 @@ class HopfLine:
                                    mpmath.mpf(10) ** (-mpmath.mp.dps // 2), mpmath.nan)
 
     @cached_property
+    def _mu_ss_exprs(self) -> tuple[sp.Expr, sp.Expr, tuple[sp.Expr, ...]]:
+        """(μ_ss, dμ_ss/dV, φ_ss) in V, the parameters and — where the steady state has no closed
+        form — the numeric steady-state symbols φᵢ,₀; then dφ_ss/dV = −(∂R/∂φ)⁻¹ ∂R/∂v (implicit
+        function theorem on the rates R)."""
+        from landau.laws.law import v as v_slip
+
+        law = self.block.law
+        ss = self.block.steady_state
+        if ss is not None:
+            mu = self.block.mu_ss()
+            return mu, sp.diff(mu, V), tuple(ss)
+        phi0 = self.block.phi0
+        at = {v_slip: V, **dict(zip(law.states, phi0))}
+        R = sp.Matrix(law.rates)
+        Rphi = R.jacobian(list(law.states)).xreplace(at)
+        Rv = R.diff(v_slip).xreplace(at)
+        dphi = -Rphi.LUsolve(Rv)
+        mu = law.mu.xreplace(at)
+        dmu = law.mu.diff(v_slip).xreplace(at) + sum(law.mu.diff(s).xreplace(at) * dphi[i]
+                                                     for i, s in enumerate(law.states))
+        return mu, dmu, tuple(phi0)
+
+    @cached_property
     def _compiled_mu(self):
-        mu = self.block.mu_ss()
-        return compile_expr(mu, self.args), compile_expr(sp.diff(mu, V), self.args)
+        mu, dmu, _ = self._mu_ss_exprs
+        return compile_expr(mu, self.args), compile_expr(dmu, self.args)
 
     @cached_property
     def _compiled_phi(self):
-        return [compile_expr(e, self.args) for e in self.block.steady_state]
+        return [compile_expr(e, self.args) for e in self._mu_ss_exprs[2]]
 
     def evaluate(self, Vs: Sequence[float] | float, params: Mapping[str, float] | None = None,
                  method: str = "auto") -> tuple[np.ndarray, np.ndarray]:
