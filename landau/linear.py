@@ -259,8 +259,43 @@ class HopfLine:
             else:
                 reason = NO_HOPF_STABLE if dmu[i] >= 0 else \
                     "no Hopf bifurcation: velocity weakening but no oscillatory instability (check the direct effect mu_v > 0)"
+                reason += f"; {self.weakening_range(p)}"
                 out.append(HopfPoint(float(Vi), "no-hopf", phi_ss=phi, mu_ss=float(mu[i]), dmu_ss=float(dmu[i]), reason=reason))
         return out
+
+    def weakening_range(self, params: Mapping[str, float] | None = None) -> str:
+        """Where the law is velocity weakening (dμ_ss/dV < 0, the necessary condition for a Hopf
+        point), read on a log grid of 301 velocities from 1e-12 to 1e3 m/s, as a sentence."""
+        from landau.errors import LandauError
+
+        p = self.block.resolve(params)
+        key = tuple(sorted(p.items()))
+        cache = self.__dict__.setdefault("_weakening", {})
+        if key in cache:
+            return cache[key]
+        grid = np.logspace(-12, 3, 301)
+        try:
+            _, fdmu = self._compiled_mu
+            with np.errstate(all="ignore"):
+                dmu = np.broadcast_to(np.asarray(fdmu(*self._argvals(grid, p)), dtype=float), grid.shape)
+        except LandauError:
+            cache[key] = "the velocity-weakening range could not be scanned"
+            return cache[key]
+        neg = np.isfinite(dmu) & (dmu < 0)
+        if not neg.any():
+            text = "the law is velocity strengthening (dmu_ss/dV >= 0) at every V from 1e-12 to 1e3 m/s"
+        else:
+            runs, start = [], None
+            for i, flag in enumerate(neg):
+                if flag and start is None:
+                    start = i
+                if start is not None and (not flag or i == grid.size - 1):
+                    end = i if flag else i - 1
+                    runs.append(f"{grid[start]:.3g} to {grid[end]:.3g}")
+                    start = None
+            text = "velocity weakening (dmu_ss/dV < 0) for V from " + " and from ".join(runs) + " m/s"
+        cache[key] = text
+        return text
 
     def point(self, V0: float, params: Mapping[str, float] | None = None) -> HopfPoint:
         return self.points([V0], params)[0]

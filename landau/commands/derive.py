@@ -11,7 +11,7 @@ import sympy as sp
 from landau.commands.common import (add_law_arguments, block_and_params, fmt, parse_range,
                                     parse_velocities)
 from landau.errors import InputError
-from landau.io import atomic_write_text
+from landau.io import atomic_write_text, latex_escape
 from landau.multiscale import CONVENTION, QUANTITIES, UNITS, Derivation, criticality
 
 
@@ -65,8 +65,8 @@ def derivation_latex(d: Derivation, names) -> str:
     derivatives at steady sliding ("atoms") and, for rational laws, fully in V."""
     law = d.block.law
     L = [r"\documentclass{article}", r"\usepackage{amsmath}", r"\usepackage[margin=2cm]{geometry}",
-         r"\allowdisplaybreaks", r"\begin{document}", rf"\section*{{Amplitude equation: {law.name}}}",
-         rf"Friction law ({law.source}): \[ {law.latex()} \]",
+         r"\allowdisplaybreaks", r"\begin{document}", rf"\section*{{Amplitude equation: {latex_escape(law.name)}}}",
+         rf"Friction law ({latex_escape(law.source)}): \[ {law.latex()} \]",
          r"Convention (Putelat et al.\ 2010, eq.~20): \[ \frac{d|A|}{dT} = \frac{\Gamma |A| + \Lambda |A|^3}{2},"
          r"\quad \frac{d\theta}{dT} = \frac{\Omega + \chi |A|^2}{2}, \quad \Gamma = -2\bar\Gamma\,\frac{k-k_c}{\varepsilon^2},"
          r"\quad \Omega = 2\bar\Omega\,\frac{k-k_c}{\varepsilon^2}; \]"
