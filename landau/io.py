@@ -38,6 +38,13 @@ def _target(path: Path) -> Path:
     return path
 
 
+def check_output(path: str | os.PathLike) -> Path:
+    """Refuse early (:class:`OutputError`) an output path that :func:`atomic_write` would refuse:
+    empty, a folder, not a regular file, a name over NAME_MAX bytes.  Returns the path."""
+    _target(Path(path))
+    return Path(path)
+
+
 def _temporary_name(path: Path) -> Path:
     """A hidden name next to ``path`` that never exceeds NAME_MAX when ``path``'s name does not."""
     token = secrets.token_hex(4)

@@ -56,6 +56,8 @@ class HopfPoint:
     mu_ss: float = float("nan")
     dmu_ss: float = float("nan")
     reason: str = ""
+    #: where the law is velocity weakening (given with every "no Hopf point" answer)
+    weakening: str = ""
 
     def as_dict(self) -> dict[str, Any]:
         d: dict[str, Any] = {"V": self.V, "status": self.status}
@@ -63,6 +65,7 @@ class HopfPoint:
             d.update(kc=self.kc, omega_c=self.omega_c)
         else:
             d["reason"] = self.reason
+            d["velocity_weakening"] = self.weakening
         d.update(phi_ss=list(self.phi_ss), mu_ss=self.mu_ss, dmu_ss_dV=self.dmu_ss)
         return d
 
@@ -259,8 +262,8 @@ class HopfLine:
             else:
                 reason = NO_HOPF_STABLE if dmu[i] >= 0 else \
                     "no Hopf bifurcation: velocity weakening but no oscillatory instability (check the direct effect mu_v > 0)"
-                reason += f"; {self.weakening_range(p)}"
-                out.append(HopfPoint(float(Vi), "no-hopf", phi_ss=phi, mu_ss=float(mu[i]), dmu_ss=float(dmu[i]), reason=reason))
+                out.append(HopfPoint(float(Vi), "no-hopf", phi_ss=phi, mu_ss=float(mu[i]), dmu_ss=float(dmu[i]),
+                                     reason=reason, weakening=self.weakening_range(p)))
         return out
 
     def weakening_range(self, params: Mapping[str, float] | None = None) -> str:
@@ -303,7 +306,7 @@ class HopfLine:
     def require(self, V0: float, params: Mapping[str, float] | None = None) -> HopfPoint:
         pt = self.point(V0, params)
         if pt.status != "ok":
-            raise NoHopfError(f"V = {V0:g} m/s: {pt.reason}")
+            raise NoHopfError(f"V = {V0:g} m/s: {pt.reason}; {pt.weakening}")
         return pt
 
 

@@ -366,6 +366,8 @@ class FrictionLaw:
             fn = self._closed_steady_state
             with np.errstate(all="ignore"):
                 out = np.array([np.broadcast_to(np.asarray(x, dtype=float), vs.shape) for x in fn(vs, *values)])
+            if np.all(np.isfinite(out)) and np.all(out > 0):
+                self._check_stable(vs, out, params)
         else:
             flat = vs.ravel()
             pars = [np.broadcast_to(np.asarray(x, dtype=float), vs.shape).ravel() for x in values]
@@ -384,6 +386,28 @@ class FrictionLaw:
     def _closed_steady_state(self):
         return sp.lambdify([v, *(p.symbol for p in self.parameters)], list(self.steady_state_closed_form),
                            modules="numpy")
+
+    def _check_stable(self, vs: np.ndarray, phis: np.ndarray, params: Mapping[str, float]) -> None:
+        """Refuse a closed-form steady state that is unstable at fixed slip rate (the state runs
+        away from it, so the block never slides steadily there)."""
+        _, J = self._numeric_rates
+        n = len(self.states)
+        values = [np.broadcast_to(np.asarray(params[p.name], dtype=float), vs.shape) for p in self.parameters]
+        with np.errstate(all="ignore"):
+            rows = J(vs, *phis, *values)
+            jac = np.empty((*vs.shape, n, n))
+            for i in range(n):
+                for j in range(n):
+                    jac[..., i, j] = np.broadcast_to(np.asarray(rows[i][j], dtype=float), vs.shape)
+        ok = np.all(np.isfinite(jac), axis=(-2, -1))
+        growth = np.full(vs.shape, -1.0)
+        if np.any(ok):
+            growth[ok] = np.linalg.eigvals(jac[ok]).real.max(axis=-1)
+        bad = ok & (growth >= 0)
+        if np.any(bad):
+            i = tuple(np.argwhere(np.atleast_1d(bad))[0]) if vs.ndim else ()
+            raise DomainError(f"law {self.name!r}: the steady state at v = {float(vs[i]):g} m/s is not stable at "
+                              "fixed slip rate (an eigenvalue of d(rates)/d(states) has a non-negative real part)")
 
     def _numeric_steady_state(self, vi: float, values: list[float]) -> list[float]:
         from scipy.optimize import brentq, root
@@ -408,10 +432,14 @@ class FrictionLaw:
                 fun = lambda z: np.asarray(f(vi, *np.exp(z), *values), dtype=float)
                 for start in np.linspace(-25, 25, 51):
                     sol = root(fun, np.full(n, start), method="hybr", tol=1e-14)
-                    if sol.success and np.all(np.isfinite(sol.x)):
+                    if np.all(np.isfinite(sol.x)):
                         x = np.exp(sol.x)
                         res = fun(sol.x)
-                        if np.all(np.isfinite(res)) and not any(np.allclose(x, y, rtol=1e-8) for y in roots):
+                        # a root, not a stall: the residual is round-off of the rate's own terms
+                        jac = np.asarray(J(vi, *x, *values), dtype=float).reshape(n, n)
+                        scale = np.abs(jac) @ np.abs(x) + 1e-300
+                        if (np.all(np.isfinite(res)) and np.all(np.abs(res) <= 1e-9 * np.maximum(scale, 1.0))
+                                and not any(np.allclose(x, y, rtol=1e-8) for y in roots)):
                             roots.append(x)
             stable = []
             for x in roots:

@@ -234,7 +234,7 @@ def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
             if isinstance(node.op, ast.Pow):
                 return bounded(power(left, right, token), token)
             if isinstance(node.op, ast.Div) and right == 0:
-                raise ParseError(f"{what}: division by zero in {token!r}")
+                raise ParseError(f"{what}: {token!r} divides by zero (not finite)")
             return bounded(op(left, right), token)
         if isinstance(node, ast.UnaryOp):
             op = _UNARY.get(type(node.op))

@@ -8,7 +8,7 @@ from __future__ import annotations
 import sympy as sp
 
 from landau.commands.common import add_law_arguments, block_and_params, fmt, parse_velocities
-from landau.io import atomic_write_text, latex_escape
+from landau.io import atomic_write_text, check_output, latex_escape
 from landau.linear import HopfLine
 
 
@@ -21,13 +21,15 @@ def configure(p) -> None:
 def run(args) -> dict:
     block, params = block_and_params(args)
     Vs = parse_velocities(args.V)
+    if args.latex is not None:
+        check_output(args.latex)
     hl = HopfLine(block)
     pts = hl.points(Vs, params)
     doc = {"law": block.law.name, "source": block.law.source,
            "units": {"V": "m/s", "kc": "N/m", "omega_c": "rad/s", "phi_ss": "s (state units)",
                      "mu_ss": "1", "dmu_ss_dV": "s/m"},
            "params": params, "points": [pt.as_dict() for pt in pts]}
-    if args.latex:
+    if args.latex is not None:
         doc["latex"] = str(atomic_write_text(args.latex, linear_latex(hl)))
     return doc
 
@@ -53,7 +55,8 @@ def render(doc: dict) -> str:
         if p["status"] == "ok":
             out.append(f"{fmt(p['V'])} {fmt(p['kc'])} {fmt(p['omega_c'])} {fmt(p['mu_ss'])} {fmt(p['dmu_ss_dV'])}  {phi}")
         else:
-            out.append(f"{fmt(p['V'])}  {p['reason']}  (mu_ss = {p['mu_ss']:.6g}, slope {p['dmu_ss_dV']:.4g})")
+            out.append(f"{fmt(p['V'])}  {p['reason']}  (mu_ss = {p['mu_ss']:.6g}, slope {p['dmu_ss_dV']:.4g}); "
+                       f"{p['velocity_weakening']}")
     if "latex" in doc:
         out.append(f"LaTeX written to {doc['latex']}")
     return "\n".join(out)
