@@ -10,11 +10,13 @@ stderr naming what is wrong.
 from __future__ import annotations
 
 import argparse
+import difflib
 import importlib
 import importlib.util
 import json
 import math
 import os
+import re
 import sys
 from typing import Any, Sequence
 
@@ -37,6 +39,11 @@ class _Parser(argparse.ArgumentParser):
 
     def error(self, message: str) -> None:  # type: ignore[override]
         raise InputError(f"{self.prog}: {message}")
+
+
+def _first_line(exc: BaseException) -> str:
+    text = str(exc).strip()
+    return (text.splitlines()[0] if text else type(exc).__name__)[:500]
 
 
 def _jsonable(obj: Any) -> Any:
@@ -91,9 +98,50 @@ def build_parser(only: str | None = None) -> tuple[argparse.ArgumentParser, dict
     return parser, modules
 
 
+#: a negative number in exponent notation ("-1e-3"), which argparse would read as an option
+_NEGATIVE_NUMBER = re.compile(r"-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?(,.*)?")
+
+
+def _join_negative_values(argv: list[str]) -> list[str]:
+    """``--eps2 -1e-3`` → ``--eps2=-1e-3``: a value that looks like a negative number is the
+    option's value (it is then checked, and refused, as a value), never a new option."""
+    out: list[str] = []
+    i = 0
+    while i < len(argv):
+        tok = argv[i]
+        if (tok.startswith("--") and "=" not in tok and i + 1 < len(argv)
+                and _NEGATIVE_NUMBER.fullmatch(argv[i + 1])):
+            out.append(f"{tok}={argv[i + 1]}")
+            i += 2
+            continue
+        out.append(tok)
+        i += 1
+    return out
+
+
+def _did_you_mean(word: str, choices) -> str:
+    close = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        print("landau: interrupted", file=sys.stderr)
+        return 130
+
+
+def _main(argv: list[str]) -> int:
+    if any(not isinstance(a, str) for a in argv):
+        print("landau: error: every argument must be a string", file=sys.stderr)
+        return 2
+    argv = _join_negative_values(argv)
+    try:
+        if argv and not argv[0].startswith("-") and argv[0] not in COMMANDS:
+            raise InputError(f"unknown command {argv[0]!r}{_did_you_mean(argv[0], COMMANDS)} "
+                             f"(commands: {', '.join(COMMANDS)})")
         if argv in (["--version"], ["-V"]):
             print(f"landau {_version()}")
             return 0
@@ -107,10 +155,24 @@ def main(argv: Sequence[str] | None = None) -> int:
         mod = modules[args.command]
         doc = mod.run(args)
     except InputError as exc:
-        print(f"landau: error: {str(exc).splitlines()[0]}", file=sys.stderr)
+        print(f"landau: error: {_first_line(exc)}", file=sys.stderr)
         return 2
     except LandauError as exc:
-        print(f"landau: {type(exc).__name__}: {str(exc).splitlines()[0]}", file=sys.stderr)
+        print(f"landau: {type(exc).__name__}: {_first_line(exc)}", file=sys.stderr)
+        return 1
+    except OSError as exc:
+        # an output that cannot be written (a folder, a missing or read-only place, a full disk)
+        where = f" {exc.filename}" if getattr(exc, "filename", None) else ""
+        print(f"landau: error: cannot write{where}: {exc.strerror or exc}", file=sys.stderr)
+        return 2
+    except (RecursionError, MemoryError) as exc:
+        print(f"landau: error: the input is too large or too deeply nested ({type(exc).__name__})", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        raise
+    except Exception as exc:  # noqa: BLE001 - the CLI promises one line, never a traceback
+        print(f"landau: internal error: {type(exc).__name__}: {_first_line(exc)} (please report this with the "
+              "command line)", file=sys.stderr)
         return 1
     try:
         if getattr(args, "json", False):
@@ -122,7 +184,14 @@ def main(argv: Sequence[str] | None = None) -> int:
         sys.stdout.flush()
     except BrokenPipeError:
         # the reader (e.g. `| head`) closed the pipe: stop quietly, as Unix tools do
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        try:
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        except (OSError, ValueError, AttributeError):  # stdout without a file descriptor (captured)
+            pass
+        return 1
+    except (ValueError, TypeError) as exc:  # a result the renderer cannot print: one line, never a traceback
+        print(f"landau: internal error: {type(exc).__name__}: {_first_line(exc)} (please report this with the "
+              "command line)", file=sys.stderr)
         return 1
     return int(doc.get("exit_code", 0)) if isinstance(doc, dict) else 0
 

@@ -15,6 +15,19 @@ class ParseError(InputError):
     """A friction-law string contains a token outside the whitelist."""
 
 
+class DomainError(InputError):
+    """A law is not real, finite or positive where it must be: μ and the rates on v > 0,
+    states > 0, and the steady state (which must exist, be positive and be stable)."""
+
+
+class OutputError(InputError):
+    """A result cannot be written where asked (a folder, a missing or read-only place, a full disk)."""
+
+
+class BudgetError(LandauError):
+    """A symbolic computation exceeded its time budget; the message says what to do instead."""
+
+
 class NoHopfError(LandauError):
     """The requested point has no Hopf bifurcation (e.g. velocity strengthening)."""
 

@@ -56,6 +56,8 @@ class HopfPoint:
     mu_ss: float = float("nan")
     dmu_ss: float = float("nan")
     reason: str = ""
+    #: where the law is velocity weakening (given with every "no Hopf point" answer)
+    weakening: str = ""
 
     def as_dict(self) -> dict[str, Any]:
         d: dict[str, Any] = {"V": self.V, "status": self.status}
@@ -63,6 +65,7 @@ class HopfPoint:
             d.update(kc=self.kc, omega_c=self.omega_c)
         else:
             d["reason"] = self.reason
+            d["velocity_weakening"] = self.weakening
         d.update(phi_ss=list(self.phi_ss), mu_ss=self.mu_ss, dmu_ss_dV=self.dmu_ss)
         return d
 
@@ -176,13 +179,36 @@ class HopfLine:
                                    mpmath.mpf(10) ** (-mpmath.mp.dps // 2), mpmath.nan)
 
     @cached_property
+    def _mu_ss_exprs(self) -> tuple[sp.Expr, sp.Expr, tuple[sp.Expr, ...]]:
+        """(μ_ss, dμ_ss/dV, φ_ss) in V, the parameters and — where the steady state has no closed
+        form — the numeric steady-state symbols φᵢ,₀; then dφ_ss/dV = −(∂R/∂φ)⁻¹ ∂R/∂v (implicit
+        function theorem on the rates R)."""
+        from landau.laws.law import v as v_slip
+
+        law = self.block.law
+        ss = self.block.steady_state
+        if ss is not None:
+            mu = self.block.mu_ss()
+            return mu, sp.diff(mu, V), tuple(ss)
+        phi0 = self.block.phi0
+        at = {v_slip: V, **dict(zip(law.states, phi0))}
+        R = sp.Matrix(law.rates)
+        Rphi = R.jacobian(list(law.states)).xreplace(at)
+        Rv = R.diff(v_slip).xreplace(at)
+        dphi = -Rphi.LUsolve(Rv)
+        mu = law.mu.xreplace(at)
+        dmu = law.mu.diff(v_slip).xreplace(at) + sum(law.mu.diff(s).xreplace(at) * dphi[i]
+                                                     for i, s in enumerate(law.states))
+        return mu, dmu, tuple(phi0)
+
+    @cached_property
     def _compiled_mu(self):
-        mu = self.block.mu_ss()
-        return compile_expr(mu, self.args), compile_expr(sp.diff(mu, V), self.args)
+        mu, dmu, _ = self._mu_ss_exprs
+        return compile_expr(mu, self.args), compile_expr(dmu, self.args)
 
     @cached_property
     def _compiled_phi(self):
-        return [compile_expr(e, self.args) for e in self.block.steady_state]
+        return [compile_expr(e, self.args) for e in self._mu_ss_exprs[2]]
 
     def evaluate(self, Vs: Sequence[float] | float, params: Mapping[str, float] | None = None,
                  method: str = "auto") -> tuple[np.ndarray, np.ndarray]:
@@ -236,8 +262,43 @@ class HopfLine:
             else:
                 reason = NO_HOPF_STABLE if dmu[i] >= 0 else \
                     "no Hopf bifurcation: velocity weakening but no oscillatory instability (check the direct effect mu_v > 0)"
-                out.append(HopfPoint(float(Vi), "no-hopf", phi_ss=phi, mu_ss=float(mu[i]), dmu_ss=float(dmu[i]), reason=reason))
+                out.append(HopfPoint(float(Vi), "no-hopf", phi_ss=phi, mu_ss=float(mu[i]), dmu_ss=float(dmu[i]),
+                                     reason=reason, weakening=self.weakening_range(p)))
         return out
+
+    def weakening_range(self, params: Mapping[str, float] | None = None) -> str:
+        """Where the law is velocity weakening (dμ_ss/dV < 0, the necessary condition for a Hopf
+        point), read on a log grid of 301 velocities from 1e-12 to 1e3 m/s, as a sentence."""
+        from landau.errors import LandauError
+
+        p = self.block.resolve(params)
+        key = tuple(sorted(p.items()))
+        cache = self.__dict__.setdefault("_weakening", {})
+        if key in cache:
+            return cache[key]
+        grid = np.logspace(-12, 3, 301)
+        try:
+            _, fdmu = self._compiled_mu
+            with np.errstate(all="ignore"):
+                dmu = np.broadcast_to(np.asarray(fdmu(*self._argvals(grid, p)), dtype=float), grid.shape)
+        except LandauError:
+            cache[key] = "the velocity-weakening range could not be scanned"
+            return cache[key]
+        neg = np.isfinite(dmu) & (dmu < 0)
+        if not neg.any():
+            text = "the law is velocity strengthening (dmu_ss/dV >= 0) at every V from 1e-12 to 1e3 m/s"
+        else:
+            runs, start = [], None
+            for i, flag in enumerate(neg):
+                if flag and start is None:
+                    start = i
+                if start is not None and (not flag or i == grid.size - 1):
+                    end = i if flag else i - 1
+                    runs.append(f"{grid[start]:.3g} to {grid[end]:.3g}")
+                    start = None
+            text = "velocity weakening (dmu_ss/dV < 0) for V from " + " and from ".join(runs) + " m/s"
+        cache[key] = text
+        return text
 
     def point(self, V0: float, params: Mapping[str, float] | None = None) -> HopfPoint:
         return self.points([V0], params)[0]
@@ -245,7 +306,7 @@ class HopfLine:
     def require(self, V0: float, params: Mapping[str, float] | None = None) -> HopfPoint:
         pt = self.point(V0, params)
         if pt.status != "ok":
-            raise NoHopfError(f"V = {V0:g} m/s: {pt.reason}")
+            raise NoHopfError(f"V = {V0:g} m/s: {pt.reason}; {pt.weakening}")
         return pt
 
 

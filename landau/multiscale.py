@@ -209,6 +209,7 @@ class Derivation:
     """Lazy multiple-scales derivation for a :class:`SpringBlock` (see module docstring)."""
 
     def __init__(self, block: SpringBlock):
+        block = _as_block(block)
         self.block = block
         self.system = block.system
         self.jets = Jets(self.system)
@@ -342,6 +343,8 @@ class Derivation:
         """
         if method not in ("auto", "general", "rational"):
             raise InputError(f"unknown evaluation method {method!r} (auto, general, rational)")
+        if isinstance(names, str):  # evaluate(Vs, None, "Lambda"): one quantity, not its letters
+            names = [names]
         p = self.block.resolve({k: v for k, v in (params or {}).items() if np.ndim(v) == 0})
         arr = {k: np.asarray(v, dtype=float) for k, v in (params or {}).items() if np.ndim(v) > 0}
         Vs = np.asarray(Vs, dtype=float)
@@ -549,6 +552,17 @@ class Derivation:
         return out
 
 
+def _as_block(block) -> SpringBlock:
+    """A :class:`SpringBlock` from a block, a :class:`FrictionLaw` or a built-in law's name."""
+    if isinstance(block, SpringBlock):
+        return block
+    from landau.laws import FrictionLaw
+
+    if isinstance(block, (FrictionLaw, str)):
+        return SpringBlock(block)
+    raise InputError(f"derive needs a SpringBlock, a FrictionLaw or a built-in law's name, got {type(block).__name__}")
+
+
 def derive(block: SpringBlock, quantities: Sequence[str] | None = None) -> Derivation:
     """Derive the requested amplitude-equation coefficients (default: all) — lazily.
 
@@ -575,6 +589,8 @@ def derive(block: SpringBlock, quantities: Sequence[str] | None = None) -> Deriv
     spring–block system. J. Mech. Phys. Solids 58, 27–53, Sec. 2.2, eqs (7)–(23).
     """
     d = Derivation(block)
+    if isinstance(quantities, str):
+        quantities = [quantities]
     for q in quantities or QUANTITIES:
         d.coefficient(q)
     return d

@@ -37,6 +37,19 @@ G_DEFAULT = 9.81
 SYSTEM_UNITS = {"M": "kg", "g": "m/s^2", "sigma": "N", "V": "m/s", "k": "N/m"}
 
 
+def _as_sympy(x, what: str) -> sp.Expr:
+    """A sympy expression from a sympy object or a plain int/float (never from a string)."""
+    if isinstance(x, sp.Basic):
+        return x
+    if isinstance(x, bool) or not isinstance(x, (int, float, np.integer, np.floating)):
+        raise InputError(f"{what}: expected a sympy expression or a number, got {type(x).__name__} {x!r}")
+    if isinstance(x, (int, np.integer)):
+        return sp.Integer(int(x))
+    if not np.isfinite(x):
+        raise InputError(f"{what}: {x!r} is not finite")
+    return sp.Float(float(x))
+
+
 @dataclass(frozen=True, eq=False)
 class DynamicalSystem:
     """E·ẏ = f(y; p, q) with Hopf parameter p and other parameters q (all sympy).
@@ -70,6 +83,9 @@ class DynamicalSystem:
     description: str = ""
 
     def __post_init__(self) -> None:
+        # plain Python numbers (mass=(1, 1), equilibrium=(0, 0)) are accepted as sympy numbers
+        for name in ("rhs", "mass", "equilibrium", "unknown_equations", "unknown_guess"):
+            object.__setattr__(self, name, tuple(_as_sympy(x, name) for x in getattr(self, name)))
         n = len(self.states)
         if not (len(self.rhs) == len(self.mass) == len(self.equilibrium) == n):
             raise InputError(f"system {self.name!r}: states, rhs, mass and equilibrium must have equal length")
@@ -96,6 +112,14 @@ class SpringBlock:
     """
 
     law: FrictionLaw
+
+    def __post_init__(self) -> None:
+        if isinstance(self.law, str):  # SpringBlock("dieterich"): a built-in law by name
+            from landau.laws import get_law
+
+            object.__setattr__(self, "law", get_law(self.law))
+        if not isinstance(self.law, FrictionLaw):
+            raise InputError(f"SpringBlock needs a FrictionLaw or a built-in law's name, got {type(self.law).__name__}")
 
     @cached_property
     def defaults(self) -> dict[str, float]:
@@ -177,11 +201,24 @@ class SpringBlock:
 
     @cached_property
     def args(self) -> tuple[sp.Symbol, ...]:
-        """Argument order of every compiled function: (V, law parameters…, M, g, sigma)."""
-        return (V, *(p.symbol for p in self.law.parameters), M, g, sigma)
+        """Argument order of every compiled function: (V, law parameters…, M, g, sigma), then
+        the steady states φᵢ,₀ where they have no closed form (solved numerically by
+        :meth:`argvals`)."""
+        unknowns = self.phi0 if self.steady_state is None else ()
+        return (V, *(p.symbol for p in self.law.parameters), M, g, sigma, *unknowns)
 
     def argvals(self, Vs, params: Mapping[str, float]) -> list:
-        return [Vs, *(params[s.name] for s in self.args[1:])]
+        """Values for :attr:`args`; checks that the law is real and finite at steady sliding."""
+        n = len(self.law.parameters) + 3
+        vals = [Vs, *(params[s.name] for s in self.args[1:n + 1])]
+        shape = np.broadcast(*[np.asarray(x, dtype=float) for x in vals]).shape
+        Vb = np.broadcast_to(np.asarray(Vs, dtype=float), shape)
+        lp = {p.name: np.broadcast_to(np.asarray(params[p.name], dtype=float), shape) for p in self.law.parameters}
+        phis = self.law.steady_state_values(Vb, lp)
+        self.law.check_real(Vb, phis, lp)
+        if self.steady_state is None:
+            vals += [phi if np.ndim(Vs) or shape else phi.item() for phi in phis]
+        return vals
 
     def mu_ss(self) -> sp.Expr:
         """μ_ss(V) (closed form)."""

@@ -27,10 +27,13 @@ BUILTIN: dict[str, Callable[[], FrictionLaw]] = {
 
 def get_law(name: str) -> FrictionLaw:
     """A built-in law by its CLI name."""
-    try:
-        return BUILTIN[name]()
-    except KeyError:
-        raise InputError(f"unknown law {name!r} (built-in: {', '.join(BUILTIN)})") from None
+    if not isinstance(name, str) or name not in BUILTIN:
+        import difflib
+
+        close = difflib.get_close_matches(str(name), list(BUILTIN), n=1, cutoff=0.6)
+        hint = f" (did you mean {close[0]!r}?)" if close else ""
+        raise InputError(f"unknown law {name!r}{hint}; built-in: {', '.join(BUILTIN)}")
+    return BUILTIN[name]()
 
 
 __all__ = ["FrictionLaw", "Parameter", "TABLE1", "BUILTIN", "get_law", "v"]

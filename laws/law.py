@@ -22,26 +22,89 @@ evaluated.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Mapping
 
+import numpy as np
 import sympy as sp
 
-from landau.errors import InputError
+from landau.errors import DomainError, InputError
 from landau.laws.parse import parse_expression
 
 #: the slip-rate symbol shared by every law
 v = sp.Symbol("v", positive=True)
 
 
+#: names a law may not declare, with what they already mean: the mechanical system's symbols,
+#: the engine's internal symbols and the names of the expression language and generated code
+RESERVED: dict[str, str] = {
+    "v": "the slip rate of every law",
+    "V": "the driving velocity (give it with --V, or as the first argument of evaluate)",
+    "k": "the spring stiffness, the bifurcation parameter: its critical value k_c is what is computed",
+    "M": "the block mass, a system parameter (--param M=...)",
+    "g": "the gravitational acceleration, a system parameter (--param g=...)",
+    "sigma": "the normal load, a system parameter (--param sigma=...)",
+    "X": "the slip coordinate of the spring-block",
+    "u": "the slip-rate perturbation of the spring-block",
+    "omega": "the onset frequency", "W": "the squared onset frequency",
+    "Gamma_bar": "an amplitude-equation coefficient", "Omega_bar": "an amplitude-equation coefficient",
+    "Lambda": "the Landau coefficient", "chi": "an amplitude-equation coefficient",
+    "pi": "the constant pi", "E": "the constant e", "I": "the imaginary unit",
+    "nan": "not-a-number", "inf": "infinity", "oo": "infinity", "zoo": "complex infinity",
+    "numpy": "a module name in generated code", "mpmath": "a module name in generated code",
+    "math": "a module name in generated code", "builtins": "a module name in generated code",
+    "DiracDelta": "a function in generated code", "Heaviside": "a function in generated code",
+}
+#: patterns of internal names (derivative atoms of the engine, e.g. d2_u_phi_phi, dp_u)
+_RESERVED_PATTERNS = (r"d\d+_\w*", r"dp_\w*")
+
+
 def _check_name(name: str, what: str) -> None:
-    """Names become sympy symbols and, in generated code, variable names: plain identifiers only."""
+    """Names become sympy symbols and, in generated code, variable names: plain identifiers
+    only, and none that already means something to the mechanical system or the engine
+    (:data:`RESERVED`) — a law declaring ``V`` or ``k`` would otherwise be merged with the
+    driving velocity or the stiffness and give a wrong answer."""
     import keyword
     import re
 
-    if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", name) or keyword.iskeyword(name):
+    from landau.laws.parse import FUNCTIONS
+
+    if not isinstance(name, str) or not re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", name) or keyword.iskeyword(name):
         raise InputError(f"{what} name {name!r} must be a plain identifier (a letter, then letters, digits, _)")
+    if name in RESERVED and name != "v":
+        raise InputError(f"{what} name {name!r} is reserved: it is {RESERVED[name]}; choose another name")
+    if name in FUNCTIONS:
+        raise InputError(f"{what} name {name!r} is reserved: it is a function of the expression language")
+    if any(re.fullmatch(pat, name) for pat in _RESERVED_PATTERNS):
+        raise InputError(f"{what} name {name!r} is reserved for the engine's derivative symbols; choose another name")
+
+
+#: sympy function classes a law may contain (those the string parser produces)
+def _allowed_functions() -> tuple[type, ...]:
+    return (sp.log, sp.exp, sp.sin, sp.cos, sp.tan, sp.sinh, sp.cosh, sp.tanh, sp.asinh, sp.acosh, sp.atanh,
+            sp.atan, sp.Abs, sp.sign)
+
+
+#: time budget of the symbolic steady-state solve (s); beyond it the steady state is solved numerically
+SOLVE_SECONDS = 10.0
+
+
+def _solve_steady_state(rates, states):
+    """The unique positive closed-form solution of rates = 0, or None (runs in a bounded child)."""
+    try:
+        sols = sp.solve(list(rates), list(states), dict=True)
+    except (NotImplementedError, ValueError, TypeError):
+        return None
+    good = []
+    for sol in sols:
+        if all(s in sol for s in states):
+            vals = tuple(sp.simplify(sol[s]) for s in states)
+            if all(val.is_positive is not False and not val.has(sp.I) and val.is_extended_real is not False
+                   for val in vals):
+                good.append(vals)
+    return good[0] if len(good) == 1 else None
 
 
 @dataclass(frozen=True)
@@ -106,14 +169,47 @@ class FrictionLaw:
             raise InputError(f"law {self.name!r}: at least one state variable is needed")
         if len(self.states) != len(self.rates):
             raise InputError(f"law {self.name!r}: {len(self.states)} states but {len(self.rates)} rates")
+        if not isinstance(self.name, str) or not self.name.strip() or len(self.name) > 200:
+            raise InputError(f"a law needs a name (a non-empty string of at most 200 characters), got {self.name!r}")
+        for what, expr in [("mu", self.mu), *(("a rate", r) for r in self.rates)]:
+            if not isinstance(expr, sp.Expr):
+                raise InputError(f"law {self.name!r}: {what} must be a sympy expression, got {type(expr).__name__} "
+                                 "(use FrictionLaw.from_strings for strings)")
+        for s in self.states:
+            if not isinstance(s, sp.Symbol):
+                raise InputError(f"law {self.name!r}: states must be sympy symbols, got {s!r}")
+            if s == v:
+                raise InputError(f"law {self.name!r}: 'v' is the slip rate and cannot be a state")
+            _check_name(s.name, "state")
+        for p in self.parameters:
+            _check_name(p.name, "parameter")
+        names = [s.name for s in self.states] + [p.name for p in self.parameters]
+        dup = sorted({n for n in names if names.count(n) > 1})
+        if dup:
+            raise InputError(f"law {self.name!r}: name {dup[0]!r} is declared twice")
+        for s in self.states:
+            if f"{s.name}_0" in names:
+                raise InputError(f"law {self.name!r}: name '{s.name}_0' is reserved for the steady state of {s.name}")
         known = {v, *self.states, *(p.symbol for p in self.parameters)}
+        allowed = _allowed_functions()
         for what, expr in [("mu", self.mu), *((f"d{s}/dt", r) for s, r in zip(self.states, self.rates))]:
             extra = expr.free_symbols - known
             if extra:
                 raise InputError(f"law {self.name!r}: {what} uses undeclared symbol(s) "
                                  + ", ".join(sorted(map(str, extra))))
+            bad = [f for f in expr.atoms(sp.Function) if not isinstance(f, allowed)]
+            if bad:
+                raise InputError(f"law {self.name!r}: {what} uses the function {type(bad[0]).__name__!r}, which is "
+                                 "not one the toolkit can differentiate and compile (allowed: "
+                                 + ", ".join(sorted({c.__name__ for c in allowed})) + ")")
+            if expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
+                raise InputError(f"law {self.name!r}: {what} is not finite")
+            if expr.has(sp.I) or expr.is_extended_real is False:
+                raise DomainError(f"law {self.name!r}: {what} = {str(expr)[:80]} is not real for v > 0, states > 0")
         if v not in self.mu.free_symbols:
             raise InputError(f"law {self.name!r}: mu does not depend on the slip rate v")
+        if self.steady_state is not None and len(self.steady_state) != len(self.states):
+            raise InputError(f"law {self.name!r}: {len(self.states)} states but {len(self.steady_state)} steady states")
 
     # --- construction -------------------------------------------------------------
     @classmethod
@@ -161,25 +257,35 @@ class FrictionLaw:
         if not state:
             raise InputError("a law needs at least one state variable (state={'phi': 'rate'})")
         params = dict(params or {})
-        names = set()
-        import ast
+        if not isinstance(state, Mapping):
+            raise InputError("state must map each state name to its rate, e.g. {'phi': '1 - v*phi/L'}")
+        from landau.laws.parse import referenced_names
 
-        for text in [mu, *state.values()]:
-            try:
-                tree = ast.parse(str(text).strip(), mode="eval")
-            except SyntaxError:
-                continue  # parse_expression reports it with context
-            for node in ast.walk(tree):
-                if isinstance(node, ast.Name):
-                    names.add(node.id)
+        names: set[str] = set()
+        names |= referenced_names(mu, what="mu")
+        for sname, text in state.items():
+            names |= referenced_names(text, what=f"d{sname}/dt")
         reserved = {"v", *state}
         for s in reserved:
             if s in params:
                 raise InputError(f"{s!r} is a {'slip rate' if s == 'v' else 'state'} and cannot also be a parameter")
+        for sname in state:
+            _check_name(sname, "state")
+        for pname in params:
+            _check_name(pname, "parameter")
         plist: list[Parameter] = []
         for pname, val in params.items():
             _check_name(pname, "parameter")
-            plist.append(val if isinstance(val, Parameter) else Parameter(pname, float(val), source="user"))
+            if isinstance(val, Parameter):
+                plist.append(val)
+                continue
+            try:
+                x = float(val)
+            except (TypeError, ValueError, OverflowError):
+                raise InputError(f"parameter {pname!r} must be a number, got {val!r}") from None
+            if not math.isfinite(x):
+                raise InputError(f"parameter {pname!r} must be finite, got {val!r}")
+            plist.append(Parameter(pname, x, source="user"))
         given = {p.name for p in plist}
         from landau.laws.parse import CONSTANTS, FUNCTIONS
 
@@ -240,22 +346,167 @@ class FrictionLaw:
     # --- steady state -------------------------------------------------------------
     @cached_property
     def steady_state_closed_form(self) -> tuple[sp.Expr, ...] | None:
-        """φᵢ,ss(v) solving dφᵢ/dt = 0 at slip rate v, or None if sympy finds no closed form."""
+        """φᵢ,ss(v) solving dφᵢ/dt = 0 at slip rate v, or None if sympy finds no single
+        positive closed form within :data:`SOLVE_SECONDS` (then :meth:`steady_state_values`
+        solves numerically)."""
         if self.steady_state is not None:
             return tuple(self.steady_state)
+        from landau.budget import run_bounded
+        from landau.errors import BudgetError
+
         try:
-            sols = sp.solve(list(self.rates), list(self.states), dict=True)
-        except (NotImplementedError, ValueError):
+            return run_bounded(_solve_steady_state, (self.rates, self.states), seconds=SOLVE_SECONDS,
+                               what=f"closed-form steady state of law {self.name!r}")
+        except (BudgetError, RecursionError, MemoryError):
             return None
-        good = []
-        for sol in sols:
-            if all(s in sol for s in self.states):
-                vals = tuple(sp.simplify(sol[s]) for s in self.states)
-                if all(val.is_positive is not False for val in vals):
-                    good.append(vals)
-        if len(good) == 1:
-            return good[0]
-        return None
+
+    @cached_property
+    def _numeric_rates(self):
+        """Compiled (rates, ∂rates/∂φ) over (v, φ…, parameters…)."""
+        args = [v, *self.states, *(p.symbol for p in self.parameters)]
+        jac = sp.Matrix(self.rates).jacobian(list(self.states))
+        f = sp.lambdify(args, list(self.rates), modules="numpy", cse=True)
+        J = sp.lambdify(args, jac.tolist(), modules="numpy", cse=True)
+        return f, J
+
+    def steady_state_values(self, vs, params: Mapping[str, float]) -> np.ndarray:
+        """φᵢ,ss at slip rates ``vs`` (any shape), shape (number of states, *vs.shape).
+
+        The closed form where there is one; otherwise every positive root of dφ/dt = 0 is
+        found numerically at each point, and the one that is *stable* at fixed slip rate
+        (every eigenvalue of ∂(dφ/dt)/∂φ has a negative real part — the state relaxes to it,
+        so it is the steady sliding the spring–block settles on) is chosen.
+
+        Raises
+        ------
+        DomainError
+            No positive stable steady state, or more than one (the law is then ambiguous:
+            declare ``steady_state`` explicitly), or a steady state that is not finite.
+        """
+        vs = np.asarray(vs, dtype=float)
+        values = [params[p.name] for p in self.parameters]
+        ss = self.steady_state_closed_form
+        if ss is not None:
+            fn = self._closed_steady_state
+            with np.errstate(all="ignore"):
+                out = np.array([np.broadcast_to(np.asarray(x, dtype=float), vs.shape) for x in fn(vs, *values)])
+            if np.all(np.isfinite(out)) and np.all(out > 0):
+                self._check_stable(vs, out, params)
+        else:
+            flat = vs.ravel()
+            pars = [np.broadcast_to(np.asarray(x, dtype=float), vs.shape).ravel() for x in values]
+            out = np.empty((len(self.states), flat.size))
+            for i, vi in enumerate(flat):
+                out[:, i] = self._numeric_steady_state(float(vi), [float(x[i]) for x in pars])
+            out = out.reshape((len(self.states), *vs.shape))
+        if not np.all(np.isfinite(out)) or np.any(out <= 0):
+            idx = np.argwhere(~(np.isfinite(out) & (out > 0)))[0]
+            raise DomainError(f"law {self.name!r}: steady state {self.states[idx[0]]} = {out[tuple(idx)]:g} at "
+                              f"v = {float(vs.ravel()[0] if vs.ndim == 0 else vs[tuple(idx[1:])]):g} m/s "
+                              "is not finite and positive")
+        return out
+
+    @cached_property
+    def _closed_steady_state(self):
+        return sp.lambdify([v, *(p.symbol for p in self.parameters)], list(self.steady_state_closed_form),
+                           modules="numpy")
+
+    def _check_stable(self, vs: np.ndarray, phis: np.ndarray, params: Mapping[str, float]) -> None:
+        """Refuse a closed-form steady state that is unstable at fixed slip rate (the state runs
+        away from it, so the block never slides steadily there)."""
+        _, J = self._numeric_rates
+        n = len(self.states)
+        values = [np.broadcast_to(np.asarray(params[p.name], dtype=float), vs.shape) for p in self.parameters]
+        with np.errstate(all="ignore"):
+            rows = J(vs, *phis, *values)
+            jac = np.empty((*vs.shape, n, n))
+            for i in range(n):
+                for j in range(n):
+                    jac[..., i, j] = np.broadcast_to(np.asarray(rows[i][j], dtype=float), vs.shape)
+        ok = np.all(np.isfinite(jac), axis=(-2, -1))
+        growth = np.full(vs.shape, -1.0)
+        if np.any(ok):
+            growth[ok] = np.linalg.eigvals(jac[ok]).real.max(axis=-1)
+        bad = ok & (growth >= 0)
+        if np.any(bad):
+            i = tuple(np.argwhere(np.atleast_1d(bad))[0]) if vs.ndim else ()
+            raise DomainError(f"law {self.name!r}: the steady state at v = {float(vs[i]):g} m/s is not stable at "
+                              "fixed slip rate (an eigenvalue of d(rates)/d(states) has a non-negative real part)")
+
+    def _numeric_steady_state(self, vi: float, values: list[float]) -> list[float]:
+        from scipy.optimize import brentq, root
+
+        f, J = self._numeric_rates
+        n = len(self.states)
+        roots: list[np.ndarray] = []
+        with np.errstate(all="ignore"):
+            if n == 1:
+                # every sign change of the rate on a log grid of φ over 60 decades, then Brent in log φ
+                grid = np.logspace(-30, 30, 1201)
+                r = np.asarray(f(vi, grid, *values)[0], dtype=float) * np.ones_like(grid)
+                g = lambda lp: float(np.asarray(f(vi, math.exp(lp), *values)[0], dtype=float))
+                for j in range(grid.size - 1):
+                    if np.isfinite(r[j]) and np.isfinite(r[j + 1]):
+                        if r[j] == 0:
+                            roots.append(np.array([grid[j]]))
+                        elif r[j] * r[j + 1] < 0:
+                            lp = brentq(g, math.log(grid[j]), math.log(grid[j + 1]), xtol=1e-15)
+                            roots.append(np.array([math.exp(lp)]))
+            else:
+                fun = lambda z: np.asarray(f(vi, *np.exp(z), *values), dtype=float)
+                for start in np.linspace(-25, 25, 51):
+                    sol = root(fun, np.full(n, start), method="hybr", tol=1e-14)
+                    if np.all(np.isfinite(sol.x)):
+                        x = np.exp(sol.x)
+                        res = fun(sol.x)
+                        # a root, not a stall: the residual is round-off of the rate's own terms
+                        jac = np.asarray(J(vi, *x, *values), dtype=float).reshape(n, n)
+                        scale = np.abs(jac) @ np.abs(x) + 1e-300
+                        if (np.all(np.isfinite(res)) and np.all(np.abs(res) <= 1e-9 * np.maximum(scale, 1.0))
+                                and not any(np.allclose(x, y, rtol=1e-8) for y in roots)):
+                            roots.append(x)
+            stable = []
+            for x in roots:
+                jac = np.asarray(J(vi, *x, *values), dtype=float).reshape(n, n)
+                if np.all(np.isfinite(jac)) and np.all(np.linalg.eigvals(jac).real < 0):
+                    stable.append(x)
+        if len(stable) == 1:
+            return [float(z) for z in stable[0]]
+        what = ", ".join("(" + ", ".join(f"{z:.6g}" for z in x) + ")" for x in (stable or roots)) or "none"
+        if not stable:
+            raise DomainError(f"law {self.name!r}: no stable positive steady state at v = {vi:g} m/s "
+                              f"(positive roots of the rates: {what})")
+        raise DomainError(f"law {self.name!r}: {len(stable)} stable positive steady states at v = {vi:g} m/s: "
+                          f"{what}; declare the one you mean with FrictionLaw(..., steady_state=...)")
+
+    def check_real(self, vs, phis, params: Mapping[str, float]) -> None:
+        """Refuse (:class:`DomainError`) a law whose μ, rates or their first derivatives are not
+        real and finite at slip rates ``vs`` and states ``phis`` (the numeric half of the
+        reality check; the symbolic half runs when the law is built)."""
+        exprs = self._reality_exprs
+        with np.errstate(all="ignore"):
+            args = [np.asarray(vs, dtype=complex), *(np.asarray(p, dtype=complex) for p in phis),
+                    *(np.asarray(params[p.name], dtype=complex) for p in self.parameters)]
+            for label, fn in exprs:
+                val = np.asarray(fn(*args), dtype=complex)
+                bad = ~np.isfinite(val) | (np.abs(val.imag) > 1e-9 * np.maximum(np.abs(val.real), 1e-300))
+                if np.any(bad):
+                    vb = np.broadcast_to(np.asarray(vs, dtype=float), np.shape(bad))
+                    i = tuple(np.argwhere(np.atleast_1d(bad))[0]) if np.ndim(bad) else ()
+                    x = complex(np.broadcast_to(val, np.shape(bad))[i])
+                    raise DomainError(f"law {self.name!r}: {label} = {x:.6g} at steady sliding, v = {float(vb[i]):g} "
+                                      "m/s: the law must be real and finite for v > 0, states > 0")
+
+    @cached_property
+    def _reality_exprs(self):
+        args = [v, *self.states, *(p.symbol for p in self.parameters)]
+        out = []
+        for label, e in [("mu", self.mu), *((f"d{s}/dt", r) for s, r in zip(self.states, self.rates))]:
+            out.append((label, sp.lambdify(args, e, modules="numpy")))
+            for x in (v, *self.states):
+                if x in e.free_symbols:
+                    out.append((f"d({label})/d{x}", sp.lambdify(args, sp.diff(e, x), modules="numpy")))
+        return out
 
     def mu_ss(self) -> sp.Expr:
         """Steady-state friction coefficient μ_ss(v) (closed form)."""

@@ -39,29 +39,185 @@ _BINOPS = {
 _UNARY = {ast.USub: lambda a: -a, ast.UAdd: lambda a: a}
 
 
+#: longest accepted expression (characters); checked before anything parses the text
+MAX_LENGTH = 2_000
+#: deepest accepted syntax tree (a 300-term sum written a+b+... is 300 deep)
+MAX_DEPTH = 60
+#: most accepted syntax-tree nodes
+MAX_NODES = 600
+#: largest |numeric exponent| of a power whose base contains a symbol (v**e, (1+phi)**e)
+MAX_EXPONENT = 100
+#: largest decimal exponent of any number built while parsing (|x| <= 1e300, or 0)
+MAX_DECADES = 300.0
+#: largest argument of exp/sinh/cosh of a pure number (exp(700) ~ 1e304)
+MAX_EXP_ARG = 690.0
+
+
+def _number_decades(x: sp.Expr) -> float | None:
+    """log10|x| of a sympy number computed without evaluating it (None for 0 or a non-number)."""
+    import math
+
+    if not x.is_Number or x == 0:
+        return None
+    if x.is_Integer:
+        return (abs(int(x)).bit_length() - 1) * math.log10(2)
+    if x.is_Rational:
+        return (abs(int(x.p)).bit_length() - abs(int(x.q)).bit_length()) * math.log10(2)
+    if x.is_Float:
+        sign, man, exp, bc = x._mpf_
+        if man == 0:
+            return None
+        return (exp + bc) * math.log10(2)
+    return None
+
+
+def _finite_real(x: sp.Expr) -> float | None:
+    """float(x) for a symbol-free bounded expression; None when it is not a finite real number."""
+    import math
+
+    try:
+        z = complex(x.evalf(20))
+    except (TypeError, ValueError, OverflowError, ArithmeticError):
+        return None
+    if z.imag != 0 or not math.isfinite(z.real):
+        return None
+    return z.real
+
+
+def _checked_text(text, what: str) -> str:
+    """The text after the checks that come before any parsing: type, encoding, length."""
+    if isinstance(text, bytes):
+        try:
+            text = text.decode("utf-8")
+        except UnicodeDecodeError:
+            raise ParseError(f"{what} is not valid UTF-8 text") from None
+    if not isinstance(text, str) or not text.strip():
+        raise ParseError(f"{what} is empty")
+    if len(text) > MAX_LENGTH:
+        raise ParseError(f"{what} is too long ({len(text)} characters, at most {MAX_LENGTH})")
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError:
+        raise ParseError(f"{what} contains bytes that are not valid UTF-8 text") from None
+    if not text.isprintable():
+        raise ParseError(f"{what} contains control characters")
+    return text
+
+
+def referenced_names(text: str, *, what: str = "expression") -> set[str]:
+    """Every name an expression mentions (symbols and functions), after the same bounds as
+    :func:`parse_expression`; an unparsable text gives the empty set (the parse reports it)."""
+    text = _checked_text(text, what)
+    try:
+        tree = ast.parse(text.replace("^", "**").strip(), mode="eval")
+    except (SyntaxError, RecursionError, MemoryError, ValueError, OverflowError):
+        return set()
+    return {node.id for node in ast.walk(tree) if isinstance(node, ast.Name)}
+
+
 def parse_expression(text: str, symbols: Mapping[str, sp.Symbol], *, what: str = "expression") -> sp.Expr:
     """Translate ``text`` into a sympy expression over ``symbols`` (name -> Symbol).
 
-    Raises :class:`ParseError` naming the first offending token.
+    Every cost is bounded before sympy sees the text: its length (:data:`MAX_LENGTH`,
+    checked first), the depth and size of the syntax tree, the size of every number built
+    (|x| <= 1e300), numeric exponents of symbolic bases (|e| <= :data:`MAX_EXPONENT`) and
+    arguments of exp of pure numbers.  The result must be real where the symbols are (v > 0,
+    states > 0): an expression that sympy shows complex (``sqrt(-v)``, ``log(-1)``) or not
+    finite (``0/0``, ``log(0)``) is refused.
+
+    Parameters
+    ----------
+    text : the expression, Python syntax, ``^`` read as a power.
+    symbols : the names that may appear, mapped to their sympy symbols.
+    what : how the expression is named in error messages (e.g. "mu").
+
+    Returns
+    -------
+    sympy.Expr
+
+    Raises
+    ------
+    ParseError
+        Naming the first offending token or the bound that was exceeded; every failure of
+        the parser (including recursion, memory and overflow errors) is reported as this.
     """
-    if not isinstance(text, str) or not text.strip():
-        raise ParseError(f"{what} is empty")
-    if len(text) > 10_000:
-        raise ParseError(f"{what} is too long ({len(text)} characters)")
+    text = _checked_text(text, what)
+    try:
+        return _parse(text, symbols, what)
+    except ParseError:
+        raise
+    except (RecursionError, MemoryError):
+        raise ParseError(f"{what} is too deeply nested or too large") from None
+    except (ValueError, OverflowError, TypeError, ArithmeticError, AttributeError) as exc:
+        raise ParseError(f"{what} cannot be parsed: {type(exc).__name__}: {str(exc).splitlines()[0][:120] if str(exc) else ''}") from None
+
+
+def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
     # '^' means power in papers; Python would parse it as a low-precedence XOR
     text = text.replace("^", "**")
     try:
         tree = ast.parse(text.strip(), mode="eval")
     except SyntaxError as exc:
         raise ParseError(f"{what} {text!r} is not a valid expression: {exc.msg} at column {exc.offset}") from None
+    # bound the tree before any sympy object is built
+    nodes = 0
+    stack: list[tuple[ast.AST, int]] = [(tree, 0)]
+    while stack:
+        node, depth = stack.pop()
+        nodes += 1
+        if nodes > MAX_NODES:
+            raise ParseError(f"{what} is too large (more than {MAX_NODES} syntax nodes)")
+        if depth > MAX_DEPTH:
+            raise ParseError(f"{what} is too deeply nested (more than {MAX_DEPTH} levels)")
+        stack.extend((child, depth + 1) for child in ast.iter_child_nodes(node))
+
+    def bounded(result: sp.Expr, token: str) -> sp.Expr:
+        if result.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
+            raise ParseError(f"{what}: {token!r} is not finite")
+        if result.is_Number:
+            dec = _number_decades(result)
+            if dec is not None and abs(dec) > MAX_DECADES:
+                raise ParseError(f"{what}: {token!r} is out of range (|x| must lie between 1e-300 and 1e300)")
+        return result
+
+    def power(base: sp.Expr, ex: sp.Expr, token: str) -> sp.Expr:
+        import math
+
+        if ex.is_Number:
+            if not base.free_symbols:
+                b = _finite_real(base)
+                e = float(ex)
+                if b is not None and b != 0:
+                    if abs(e) * abs(math.log10(abs(b))) > MAX_DECADES:
+                        raise ParseError(f"{what}: {token!r} is out of range (|x| must lie between 1e-300 and 1e300)")
+            elif abs(float(ex)) > MAX_EXPONENT:
+                raise ParseError(f"{what}: exponent in {token!r} exceeds {MAX_EXPONENT} in magnitude")
+        elif not ex.free_symbols:
+            e = _finite_real(ex)
+            if e is None:
+                raise ParseError(f"{what}: exponent in {token!r} is not a finite real number")
+            if abs(e) > MAX_EXPONENT:
+                raise ParseError(f"{what}: exponent in {token!r} exceeds {MAX_EXPONENT} in magnitude")
+        return base ** ex
+
+    def call(name: str, arg: sp.Expr, token: str) -> sp.Expr:
+        if name in ("exp", "sinh", "cosh") and not arg.free_symbols:
+            x = _finite_real(arg)
+            if x is not None and abs(x) > MAX_EXP_ARG:
+                raise ParseError(f"{what}: {token!r} is out of range (argument above {MAX_EXP_ARG:g})")
+        return FUNCTIONS[name](arg)
 
     def walk(node: ast.AST) -> sp.Expr:
+        token = ast.unparse(node)[:60] if not isinstance(node, ast.Expression) else ""
         if isinstance(node, ast.Expression):
             return walk(node.body)
         if isinstance(node, ast.Constant):
             if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
                 raise ParseError(f"{what}: literal {node.value!r} is not a number")
-            return sp.Integer(node.value) if isinstance(node.value, int) else sp.Float(repr(node.value))
+            if isinstance(node.value, float) and node.value != node.value or node.value in (float("inf"), float("-inf")):
+                raise ParseError(f"{what}: literal {token!r} is not a finite number")
+            val = sp.Integer(node.value) if isinstance(node.value, int) else sp.Float(repr(node.value))
+            return bounded(val, token)
         if isinstance(node, ast.Name):
             if node.id in symbols:
                 return symbols[node.id]
@@ -74,7 +230,12 @@ def parse_expression(text: str, symbols: Mapping[str, sp.Symbol], *, what: str =
             op = _BINOPS.get(type(node.op))
             if op is None:
                 raise ParseError(f"{what}: operator {type(node.op).__name__!r} is not allowed")
-            return op(walk(node.left), walk(node.right))
+            left, right = walk(node.left), walk(node.right)
+            if isinstance(node.op, ast.Pow):
+                return bounded(power(left, right, token), token)
+            if isinstance(node.op, ast.Div) and right == 0:
+                raise ParseError(f"{what}: {token!r} divides by zero (not finite)")
+            return bounded(op(left, right), token)
         if isinstance(node, ast.UnaryOp):
             op = _UNARY.get(type(node.op))
             if op is None:
@@ -90,12 +251,14 @@ def parse_expression(text: str, symbols: Mapping[str, sp.Symbol], *, what: str =
                 raise ParseError(f"{what}: keyword arguments are not allowed in {name}()")
             if len(node.args) != 1:
                 raise ParseError(f"{what}: {name}() takes exactly one argument")
-            return FUNCTIONS[name](walk(node.args[0]))
+            return bounded(call(name, walk(node.args[0]), token), token)
         if isinstance(node, ast.Attribute):
             raise ParseError(f"{what}: attribute access {ast.unparse(node)!r} is not allowed")
         if isinstance(node, ast.Subscript):
             raise ParseError(f"{what}: subscript {ast.unparse(node)!r} is not allowed")
-        token = ast.unparse(node) if hasattr(ast, "unparse") else type(node).__name__
         raise ParseError(f"{what}: {type(node).__name__} {token!r} is not allowed")
 
-    return walk(tree)
+    expr = walk(tree)
+    if expr.has(sp.I) or expr.is_extended_real is False:
+        raise ParseError(f"{what} = {str(expr)[:80]} is not real for positive slip rate, states and parameters")
+    return expr

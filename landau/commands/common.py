@@ -23,6 +23,14 @@ def add_law_arguments(p: argparse.ArgumentParser) -> None:
                    help="law or system parameter (M, g, sigma, a, b, L, ...); repeatable")
 
 
+#: --param names that are not parameters, and what to do instead
+NOT_PARAMS = {
+    "V": "V is the driving velocity: give it with --V (comma-separated values in m/s)",
+    "k": "k is the bifurcation parameter: its critical value k_c is computed, not given",
+    "v": "v is the slip rate, the variable of the friction law, not a parameter",
+}
+
+
 def parse_params(items: Sequence[str]) -> dict[str, float]:
     out: dict[str, float] = {}
     for item in items:
@@ -30,6 +38,10 @@ def parse_params(items: Sequence[str]) -> dict[str, float]:
             raise InputError(f"--param {item!r}: expected NAME=VALUE")
         name, val = item.split("=", 1)
         name = name.strip()
+        if name in NOT_PARAMS:
+            raise InputError(f"--param {name}: {NOT_PARAMS[name]}")
+        if name in out:
+            raise InputError(f"--param {name} is given twice")
         try:
             x = float(val)
         except ValueError:
@@ -56,6 +68,10 @@ def parse_floats(text: str, what: str = "--V") -> list[float]:
     return vals
 
 
+#: the widest LO:HI range accepted (beyond it powers of the values overflow or underflow float64)
+RANGE_BOUNDS = (1e-20, 1e20)
+
+
 def parse_velocities(text: str | None) -> list[float]:
     if text is None:
         raise InputError("--V is required (driving velocity in m/s, comma-separated)")
@@ -69,9 +85,15 @@ def parse_velocities(text: str | None) -> list[float]:
 def parse_range(text: str, what: str) -> tuple[float, float]:
     if ":" not in text:
         raise InputError(f"{what}: expected LO:HI, got {text!r}")
-    lo, hi = (parse_floats(s, what)[0] for s in text.split(":", 1))
-    if not (0 < lo < hi):
-        raise InputError(f"{what}: need 0 < LO < HI, got {lo!r}:{hi!r}")
+    parts = [parse_floats(s, what) for s in text.split(":", 1)]
+    if any(len(p) != 1 for p in parts):
+        raise InputError(f"{what}: expected LO:HI with one number on each side, got {text!r}")
+    lo, hi = parts[0][0], parts[1][0]
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
+        raise InputError(f"{what}: need 0 < LO < HI, both finite, got {lo!r}:{hi!r}")
+    if lo < RANGE_BOUNDS[0] or hi > RANGE_BOUNDS[1]:
+        raise InputError(f"{what}: {lo:g}:{hi:g} leaves the range {RANGE_BOUNDS[0]:g}:{RANGE_BOUNDS[1]:g} where "
+                         "the computation stays within floating-point range")
     return lo, hi
 
 
@@ -86,8 +108,13 @@ def resolve_law(args) -> tuple[FrictionLaw, dict[str, float]]:
             if "=" not in item:
                 raise InputError(f"--state {item!r}: expected NAME=RATE")
             name, rate = item.split("=", 1)
-            states[name.strip()] = rate
+            name = name.strip()
+            if name in states:
+                raise InputError(f"--state {name} is given twice")
+            states[name] = rate
         law_params = {k: v for k, v in params.items() if k not in SYSTEM_PARAMS}
+        if args.law is not None and (not args.law.strip() or len(args.law) > 100):
+            raise InputError("the inline law's name must be 1 to 100 characters")
         law = FrictionLaw.from_strings(args.law or "inline", args.mu, states, law_params)
         return law, {k: v for k, v in params.items() if k in SYSTEM_PARAMS}
     if args.law is None:

@@ -11,8 +11,12 @@ import sympy as sp
 from landau.commands.common import (add_law_arguments, block_and_params, fmt, parse_range,
                                     parse_velocities)
 from landau.errors import InputError
-from landau.io import atomic_write_text
+from landau.io import atomic_write_text, check_output, latex_escape
 from landau.multiscale import CONVENTION, QUANTITIES, UNITS, Derivation, criticality
+
+
+#: time budget of the symbolic work behind --latex (s)
+LATEX_SECONDS = 600.0
 
 
 def configure(p) -> None:
@@ -28,11 +32,15 @@ def configure(p) -> None:
 def run(args) -> dict:
     block, params = block_and_params(args)
     names = [q.strip() for q in args.quantities.split(",") if q.strip()]
+    if not names:
+        raise InputError(f"--quantities: no quantity given (choose from {', '.join(QUANTITIES)})")
     unknown = [q for q in names if q not in QUANTITIES]
     if unknown:
         raise InputError(f"unknown quantity {unknown[0]!r} (known: {', '.join(QUANTITIES)})")
     if args.V is None and args.codim2 is None and args.latex is None:
         raise InputError("give --V (velocities), --codim2 LO:HI or --latex FILE")
+    if args.latex is not None:
+        check_output(args.latex)
     d = Derivation(block)
     doc: dict = {"law": block.law.name, "source": block.law.source, "convention": CONVENTION,
                  "units": {k: UNITS[k] for k in ("V", *names)}, "params": params}
@@ -43,7 +51,7 @@ def run(args) -> dict:
         for i, Vi in enumerate(Vs):
             if res["kc"][i] != res["kc"][i]:  # NaN: no Hopf point here
                 pt = d.hopf.point(Vi, params)
-                pts.append({"V": Vi, "status": "no-hopf", "reason": pt.reason})
+                pts.append({"V": Vi, "status": "no-hopf", "reason": pt.reason, "velocity_weakening": pt.weakening})
                 continue
             row = {"V": Vi, "status": "ok", **{n: float(res[n][i]) for n in names}}
             if "Lambda" in res:
@@ -55,8 +63,14 @@ def run(args) -> dict:
         from landau.transition import codim2_points
 
         doc["codim2"] = [c.as_dict() for c in codim2_points(d, lo, hi, params)]
-    if args.latex:
-        doc["latex"] = str(atomic_write_text(args.latex, derivation_latex(d, names)))
+    if args.latex is not None:
+        from landau.budget import run_bounded
+
+        text = run_bounded(derivation_latex, (d, names), seconds=LATEX_SECONDS,
+                           what=f"the closed forms of {', '.join(names)} for --latex",
+                           hint="ask for fewer quantities (e.g. --quantities kc,omega_c,Gamma_bar) or evaluate "
+                                "numerically with --V instead")
+        doc["latex"] = str(atomic_write_text(args.latex, text))
     return doc
 
 
@@ -65,8 +79,8 @@ def derivation_latex(d: Derivation, names) -> str:
     derivatives at steady sliding ("atoms") and, for rational laws, fully in V."""
     law = d.block.law
     L = [r"\documentclass{article}", r"\usepackage{amsmath}", r"\usepackage[margin=2cm]{geometry}",
-         r"\allowdisplaybreaks", r"\begin{document}", rf"\section*{{Amplitude equation: {law.name}}}",
-         rf"Friction law ({law.source}): \[ {law.latex()} \]",
+         r"\allowdisplaybreaks", r"\begin{document}", rf"\section*{{Amplitude equation: {latex_escape(law.name)}}}",
+         rf"Friction law ({latex_escape(law.source)}): \[ {law.latex()} \]",
          r"Convention (Putelat et al.\ 2010, eq.~20): \[ \frac{d|A|}{dT} = \frac{\Gamma |A| + \Lambda |A|^3}{2},"
          r"\quad \frac{d\theta}{dT} = \frac{\Omega + \chi |A|^2}{2}, \quad \Gamma = -2\bar\Gamma\,\frac{k-k_c}{\varepsilon^2},"
          r"\quad \Omega = 2\bar\Omega\,\frac{k-k_c}{\varepsilon^2}; \]"
@@ -116,7 +130,7 @@ def render(doc: dict) -> str:
         out.append(f"{'V [m/s]':>12} " + " ".join(f"{n:>12}" for n in names) + "  criticality")
         for p in doc["points"]:
             if p["status"] != "ok":
-                out.append(f"{fmt(p['V'])}  {p['reason']}")
+                out.append(f"{fmt(p['V'])}  {p['reason']}; {p.get('velocity_weakening', '')}")
                 continue
             out.append(f"{fmt(p['V'])} " + " ".join(fmt(p[n]) for n in names) + f"  {p.get('criticality', '')}")
         out.append("units: " + ", ".join(f"{k} [{v}]" for k, v in doc["units"].items()))

@@ -8,7 +8,7 @@ from __future__ import annotations
 import sympy as sp
 
 from landau.commands.common import add_law_arguments, block_and_params, fmt, parse_velocities
-from landau.io import atomic_write_text
+from landau.io import atomic_write_text, check_output, latex_escape
 from landau.linear import HopfLine
 
 
@@ -21,26 +21,28 @@ def configure(p) -> None:
 def run(args) -> dict:
     block, params = block_and_params(args)
     Vs = parse_velocities(args.V)
+    if args.latex is not None:
+        check_output(args.latex)
     hl = HopfLine(block)
     pts = hl.points(Vs, params)
     doc = {"law": block.law.name, "source": block.law.source,
            "units": {"V": "m/s", "kc": "N/m", "omega_c": "rad/s", "phi_ss": "s (state units)",
                      "mu_ss": "1", "dmu_ss_dV": "s/m"},
            "params": params, "points": [pt.as_dict() for pt in pts]}
-    if args.latex:
+    if args.latex is not None:
         doc["latex"] = str(atomic_write_text(args.latex, linear_latex(hl)))
     return doc
 
 
 def linear_latex(hl: HopfLine) -> str:
     lines = [r"\documentclass{article}", r"\usepackage{amsmath}", r"\begin{document}",
-             rf"\section*{{Linear stability: {hl.block.law.name}}}",
-             rf"Friction law ({hl.block.law.source}): \[ {hl.block.law.latex()} \]"]
+             rf"\section*{{Linear stability: {latex_escape(hl.block.law.name)}}}",
+             rf"Friction law ({latex_escape(hl.block.law.source)}): \[ {hl.block.law.latex()} \]"]
     if hl.closed_form is not None:
         lines += [r"\begin{equation} k_c = " + sp.latex(sp.factor(sp.cancel(hl.kc_expr))) + r"\end{equation}",
                   r"\begin{equation} \omega_c^2 = " + sp.latex(sp.factor(sp.cancel(hl.omega2_expr))) + r"\end{equation}"]
     else:
-        lines.append(r"k_c and $\omega_c$ have no closed form (several state variables): computed numerically.")
+        lines.append(r"k_c and $\omega_c$ have no closed form (several state variables, or a steady state without one): computed numerically.")
     lines.append(r"\end{document}")
     return "\n".join(lines) + "\n"
 
@@ -53,7 +55,8 @@ def render(doc: dict) -> str:
         if p["status"] == "ok":
             out.append(f"{fmt(p['V'])} {fmt(p['kc'])} {fmt(p['omega_c'])} {fmt(p['mu_ss'])} {fmt(p['dmu_ss_dV'])}  {phi}")
         else:
-            out.append(f"{fmt(p['V'])}  {p['reason']}  (mu_ss = {p['mu_ss']:.6g}, slope {p['dmu_ss_dV']:.4g})")
+            out.append(f"{fmt(p['V'])}  {p['reason']}  (mu_ss = {p['mu_ss']:.6g}, slope {p['dmu_ss_dV']:.4g}); "
+                       f"{p['velocity_weakening']}")
     if "latex" in doc:
         out.append(f"LaTeX written to {doc['latex']}")
     return "\n".join(out)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 
-from landau.commands.common import add_law_arguments, block_and_params, fmt, parse_floats
+from landau.commands.common import parse_range, add_law_arguments, block_and_params, fmt, parse_floats
 from landau.errors import InputError
 from landau.multiscale import Derivation
 from landau.transition import transition_curve
@@ -50,10 +50,7 @@ def run(args) -> dict:
         raise InputError(f"--vary {name}: {name} must be > 0, got LO = {lo!r}")
     if args.points < 3:
         raise InputError("--points must be >= 3")
-    vlo, vhi = (parse_floats(s, "--V-range")[0] for s in args.V_range.split(":", 1)) if ":" in args.V_range \
-        else (None, None)
-    if vlo is None or not (0 < vlo < vhi):
-        raise InputError(f"--V-range: expected 0 < LO < HI, got {args.V_range!r}")
+    vlo, vhi = parse_range(args.V_range, "--V-range")
     params = {k: v for k, v in params.items() if k != name}
     d = Derivation(block)
     curve = transition_curve(d, name, lo, hi, params, n=args.points, V_range=(vlo, vhi))
