@@ -492,6 +492,24 @@ def rational_forms(derivation, names: Sequence[str], params: Mapping[str, float]
     return RationalForms(RationalFunction.from_field(kc), RationalFunction.from_field(W), out)
 
 
+def closed_form_parts(derivation, names: Sequence[str]) -> dict | None:
+    """Factored closed forms in V and the parameters, for display: {"kc": k_c, "W": ω_c²,
+    name: (P, Q)} with each base coefficient = P + ω_c·Q (P, Q factored rational functions);
+    None when the law's derivatives at steady state are not rational in V and the parameters.
+    One pass of the Fredholm code in ℚ(V, parameters)(ω_c) for all ``names``."""
+    d = derivation
+    res = _fredholm_in_field(d, list(names), {}, list(d.args))
+    if res is None:
+        return None
+    kc, W, values = res
+    back = {sp.Symbol(g.name): g for g in d.args}
+    factor = (lambda x: x.factored()) if isinstance(W, _FlintFraction) else (lambda x: sp.factor(x.as_expr()))
+    out: dict = {"kc": factor(kc).xreplace(back), "W": factor(W).xreplace(back)}
+    for n, q in values.items():
+        out[n] = (factor(q.a).xreplace(back), factor(q.b).xreplace(back))
+    return out
+
+
 def closed_form(derivation, name: str) -> sp.Expr | None:
     """Base coefficient ``name`` as one factored expression in V and the parameters (ω_c
     written as the square root of its cancelled square), or None when the law's derivatives
