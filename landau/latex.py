@@ -226,9 +226,9 @@ def _shorten(e: sp.Basic, names, width: int, namer: _Namer) -> str:
             if sub.is_Pow and (sub.exp.is_Integer and sub.exp < 0 or sub.base.is_Atom):
                 continue                                    # name the base, keep the fraction
             (sums if isinstance(sub, sp.Add) else others)[sub] = None
-        pool = sums or others
+        pool = sums or {o: None for o in others if len(to_latex(o, names)) >= 25}
         if not pool:
-            return text
+            return text                                     # a product of short factors: one line
         best = max(pool, key=lambda x: len(to_latex(x, names)))
         namer.name(best)
         names.setdefault(namer.defined[best], namer.label(namer.defined[best]))
@@ -296,11 +296,26 @@ def derivation_latex(d, quantities: Sequence[str], fragment: bool = False, progr
     str
         The LaTeX source.
     """
+    from landau import cache
+
+    law = d.block.law
+    key = cache.make_key("derivation-latex", cache.system_key(d.system), law.name, law.source,
+                         sp.srepr((law.mu, law.states, law.rates)), list(quantities), fragment)
+    return cache.cached("derivation-latex", key, lambda: _derivation_latex(d, quantities, fragment, progress))
+
+
+def _derivation_latex(d, quantities: Sequence[str], fragment: bool, progress) -> str:
     from landau.linear import w as omega
     from landau.multiscale import QUANTITIES, UNITS
+    from landau.progress import progress as bar
 
-    step = progress or (lambda _msg: None)
     law = d.block.law
+    pbar = bar(total=len(quantities) + 1, desc=f"LaTeX {law.name}", unit="step")
+
+    def step(msg: str) -> None:
+        pbar.set_description_str(f"LaTeX {law.name}: {msg}")
+        if progress:
+            progress(msg)
     kc_sym, om_sym = sp.Symbol("k_c", positive=True), sp.Symbol("omega_c", positive=True)
     names: dict = {kc_sym: "k_c", om_sym: r"\omega_c"}
     body: list[str] = []
@@ -349,6 +364,7 @@ def derivation_latex(d, quantities: Sequence[str], fragment: bool = False, progr
         text(align_block(equation_lines("0", H.as_expr().xreplace({d.hopf._hopf_polys[0].gen: Wsym}), names,
                                         letter="H")))
     for q in quantities:
+        pbar.update(1)
         sym = QUANTITIES[q][0]
         label = rf"{_DESCRIPTIONS[q]} (Putelat et al.\ 2010, {_EQUATIONS[q]}), units ${_units(UNITS[q])}$"
         if q in ("kc", "omega_c"):
@@ -387,6 +403,7 @@ def derivation_latex(d, quantities: Sequence[str], fragment: bool = False, progr
             eqs += equation_lines(loc[s], e, loc, namer=namer)
         eqs += equation_lines(sym, red, loc, namer=namer)
         text(align_block(eqs))
+    pbar.close()
     return document(f"Amplitude equation: {law.name}", body, fragment)
 
 
@@ -396,6 +413,74 @@ _DESCRIPTIONS = {"kc": "Critical stiffness", "omega_c": "Angular frequency at on
                  "chi": "Nonlinear frequency coefficient", "C": r"Slip amplitude per $\sqrt{|k_c - k|}$"}
 _EQUATIONS = {"kc": "eq.~7", "omega_c": "eq.~8", "Gamma_bar": "eqs 18, 21", "Omega_bar": "eqs 18, 21",
               "Lambda": "eqs 15--21", "chi": "eqs 15--21", "C": "eq.~23"}
+
+
+def _coefficient_rows(d, q: str, names: dict, parts: dict | None) -> tuple[list[Equation], str]:
+    """The equations of one coefficient and what they are ("closed form" or "derivatives")."""
+    from landau.linear import w as omega
+    from landau.multiscale import QUANTITIES
+
+    sym = QUANTITIES[q][0]
+    kc_sym, om_sym = sp.Symbol("k_c", positive=True), sp.Symbol("omega_c", positive=True)
+    names.setdefault(kc_sym, "k_c")
+    names.setdefault(om_sym, r"\omega_c")
+    if parts is not None and q in parts:
+        P, Q = parts[q]
+        return equation_lines(sym, P + om_sym * Q if Q != 0 else P, names, letter=_letter(q)), "closed form"
+    form = d.coefficient(q).formula.xreplace({omega: om_sym, d.k: kc_sym})
+    reps, (red,) = sp.cse(form, symbols=sp.numbered_symbols("q", cls=sp.Dummy, start=1))
+    loc = dict(names)
+    for s, _ in reps:
+        loc[s] = rf"q_{{{s.name[1:]}}}"
+    namer = _Namer(_letter(q))
+    eqs = equation_lines(sym, red, loc, namer=namer)
+    for s, e in reps:
+        eqs += equation_lines(loc[s], e, loc, namer=namer)
+    return eqs, "derivatives"
+
+
+def coefficient_latex(coefficient) -> str:
+    """One coefficient as an ``aligned`` block: the closed form in V and the parameters
+    (with ω_c²) where the law's derivatives at steady sliding are rational, else the form in
+    those derivatives followed by their definitions.  Cached on disk (:mod:`landau.cache`)."""
+    from landau import cache
+
+    d, q = coefficient.derivation, coefficient.name
+    key = cache.make_key("coefficient-latex", cache.system_key(d.system), q)
+    return cache.cached("coefficient-latex", key, lambda: _coefficient_latex(d, q))
+
+
+def _coefficient_latex(d, q: str) -> str:
+    from landau.multiscale import DERIVED
+
+    names: dict = {}
+    if q in DERIVED:
+        return r"C = 2\sqrt{2\bar\Gamma/|\Lambda|}"
+    numeric_hopf = d.hopf.closed_form is None
+    rational = not numeric_hopf and _rational_in_parameters(d)
+    if q in ("kc", "omega_c"):
+        if numeric_hopf:
+            return (r"k_c,\ \omega_c:\ \text{numerical (largest-stiffness root of the Hopf polynomial;"
+                    r" several state variables)}")
+        kc, W = d.hopf.closed_form
+        if rational:
+            parts = _cached_parts(d, [])
+            kc, W = parts["kc"], parts["W"]
+        eqs = equation_lines("k_c", kc, names, letter="K") if q == "kc" else \
+            equation_lines(r"\omega_c^2", W, names, letter="W")
+    else:
+        parts = _cached_parts(d, [q]) if rational else None
+        eqs, kind = _coefficient_rows(d, q, names, parts)
+        if parts is not None:
+            eqs += equation_lines(r"\omega_c^2", parts["W"], names, letter="W")
+    if not rational:
+        # the derivatives at steady sliding the formula uses, each in V and the parameters
+        text = " ".join(line for eq in eqs for line in eq.lines)
+        used = [a for a in d.jets.atoms if symbol_latex(a.name) in text]
+        for a in sorted(used, key=lambda s: s.name):
+            eqs += equation_lines(symbol_latex(a.name), d.jets.atoms[a], names, letter="A")
+    rows = [r for eq in eqs for r in eq.align_rows()]
+    return "\\begin{aligned}\n" + " \\\\\n".join(rows) + "\n\\end{aligned}"
 
 
 def _letter(q: str) -> str:

@@ -497,7 +497,14 @@ def closed_form_parts(derivation, names: Sequence[str]) -> dict | None:
     name: (P, Q)} with each base coefficient = P + ω_c·Q (P, Q factored rational functions);
     None when the law's derivatives at steady state are not rational in V and the parameters.
     One pass of the Fredholm code in ℚ(V, parameters)(ω_c) for all ``names``."""
+    from landau import cache
+
     d = derivation
+    key = cache.make_key("closed-form-parts", cache.system_key(d.system), sorted(names))
+    return cache.cached("closed-form-parts", key, lambda: _closed_form_parts(d, names))
+
+
+def _closed_form_parts(d, names: Sequence[str]) -> dict | None:
     res = _fredholm_in_field(d, list(names), {}, list(d.args))
     if res is None:
         return None
@@ -517,15 +524,11 @@ def closed_form(derivation, name: str) -> sp.Expr | None:
     FLINT's multivariate polynomials (python-flint): about a second per coefficient (Ruina Λ
     ~1 s, Dieterich law with residual strength c ~2 s; sympy's own fields took 20 s and
     ~6 minutes)."""
-    d = derivation
-    res = _fredholm_in_field(d, [name], {}, list(d.args))
-    if res is None:
+    parts = closed_form_parts(derivation, [name])
+    if parts is None:
         return None
-    _, W, values = res
-    back = {sp.Symbol(g.name): g for g in d.args}
-    q = values[name]
-    factor = (lambda x: x.factored()) if isinstance(W, _FlintFraction) else (lambda x: sp.factor(x.as_expr()))
-    P, Q = (factor(x).xreplace(back) for x in (q.a, q.b))
+    P, Q = parts[name]
     if Q == 0:
         return P
-    return P + sp.sqrt(factor(W).xreplace(back)) * Q
+    return P + sp.sqrt(parts["W"]) * Q
+

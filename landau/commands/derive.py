@@ -61,6 +61,9 @@ def run(args) -> dict:
         raise InputError("--fragment needs --latex FILE")
     if args.latex:
         from landau.latex import derivation_latex
+        from landau.progress import set_quiet
+
+        set_quiet(getattr(args, "json", False))
 
         doc["latex"] = str(atomic_write_text(args.latex, derivation_latex(d, names, fragment=args.fragment)))
     return doc
