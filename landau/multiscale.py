@@ -15,6 +15,7 @@ unstable cycle for k > k_c).
 
 from __future__ import annotations
 
+import logging
 import os
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -33,6 +34,8 @@ from landau.fredholm import cubic_coefficient, linear_coefficient, null_vectors
 from landau.jets import Jets
 from landau.linear import HopfLine, w
 from landau.system import SpringBlock
+
+logger = logging.getLogger(__name__)
 
 CONVENTION = ("d|A|/dT = (Gamma |A| + Lambda |A|^3)/2, dtheta/dT = (Omega + chi |A|^2)/2 (Putelat et al. 2010 eq. 20); "
               "Gamma = -2 Gamma_bar (k - kc)/eps^2, Omega = 2 Omega_bar (k - kc)/eps^2; critical mode normalised "
@@ -136,10 +139,23 @@ class Coefficient:
         return self._cache["closed"]
 
     def latex(self) -> str:
-        return f"{self.symbol} = {sp.latex(self.closed_form())}"
+        """The coefficient as LaTeX (an ``aligned`` block, long lines split, paper symbols):
+        the factored closed form in V and the parameters when the law's derivatives at steady
+        sliding are rational (computed once, cached on disk), else the form in those
+        derivatives (:func:`landau.latex.coefficient_latex`)."""
+        if "latex" not in self._cache:
+            from landau.latex import coefficient_latex
+
+            self._cache["latex"] = coefficient_latex(self)
+        return self._cache["latex"]
 
     def _repr_latex_(self) -> str:
-        return f"${self.latex()}$"
+        # display never computes: the LaTeX already made by latex(), else a one-line summary
+        if "latex" in self._cache:
+            return f"$\\displaystyle {self._cache['latex']}$"
+        desc = QUANTITIES[self.name][1].replace("_", r"\_")
+        return (f"${self.symbol}$: {desc} (Putelat et al. 2010, {QUANTITIES[self.name][2]}), "
+                f"units {self.units.replace('^', '')}; .latex() gives the formula")
 
     def __repr__(self) -> str:
         return f"Coefficient({self.name}: {QUANTITIES[self.name][1]}, {QUANTITIES[self.name][2]}, [{self.units}])"
@@ -279,9 +295,27 @@ class Derivation:
             raise InputError(f"unknown quantity {name!r} (known: {', '.join(QUANTITIES)})")
         if name not in self._coefs:
             t0 = time.perf_counter()
-            self._coefs[name] = Coefficient(name, self.formula(name), self)
+            self._coefs[name] = Coefficient(name, self._cached_formula(name), self)
             self.timings[name] = time.perf_counter() - t0
         return self._coefs[name]
+
+    def _cached_formula(self, name: str) -> sp.Expr:
+        """formula(name), from the disk cache (:mod:`landau.cache`) when this system was
+        derived before; the atoms the formula uses are restored with it."""
+        if name in ("kc", "omega_c") or name in DERIVED:
+            return self.formula(name)
+        from landau import cache
+
+        key = cache.make_key("formula", cache.system_key(self.system), name)
+        hit = cache.get("formula", key)
+        if hit is not None:
+            formula, atoms = hit
+            for sym, value in atoms.items():
+                self.jets.atoms.setdefault(sym, value)
+            return formula
+        formula = self.formula(name)
+        cache.put("formula", key, (formula, dict(self.jets.atoms)))
+        return formula
 
     # --- numerics ---------------------------------------------------------------------
     def _compiled_formula(self, name: str, modules: str = "numpy") -> CompiledFormula:
@@ -420,6 +454,8 @@ class Derivation:
             out[n] = raw[n]
         out["degenerate"] = exact_zero & ok
         extra = [n for n in _with_bases(names) if n not in ("kc", "omega_c")]
+        if np.any(need_mp & ok):
+            logger.info("%s: 50-digit fallback at %d points", self.block.law.name, int(np.sum(need_mp & ok)))
         for idx in map(tuple, np.argwhere(need_mp & ok)):
             point = {s.name: float(vals[i + 1][idx]) for i, s in enumerate(self.args[1:])}
             mp, degenerate = self._evaluate_mp_checked(float(vals[0][idx]), point, extra)

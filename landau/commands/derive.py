@@ -6,12 +6,12 @@ Example: landau derive ruina --V 1e-5,1e-4 --quantities kc,omega_c,Lambda,C --la
 
 from __future__ import annotations
 
-import sympy as sp
+from functools import partial
 
 from landau.commands.common import (add_law_arguments, block_and_params, fmt, parse_range,
                                     parse_velocities)
 from landau.errors import InputError
-from landau.io import atomic_write_text, check_output, latex_escape
+from landau.io import atomic_write_text, check_output
 from landau.multiscale import CONVENTION, QUANTITIES, UNITS, Derivation, criticality
 
 
@@ -24,7 +24,11 @@ def configure(p) -> None:
     p.add_argument("--V", default=None, help="driving velocities in m/s, comma-separated")
     p.add_argument("--quantities", default=",".join(QUANTITIES),
                    help=f"comma-separated subset of {','.join(QUANTITIES)} (default: all)")
-    p.add_argument("--latex", default=None, metavar="FILE", help="write the closed forms as a standalone .tex file")
+    p.add_argument("--latex", default=None, metavar="FILE",
+                   help="write the coefficients as a .tex file that compiles with pdflatex (closed forms in V and "
+                        "the parameters where they exist, else in the law's derivatives at steady sliding)")
+    p.add_argument("--fragment", action="store_true",
+                   help="with --latex: write only the equations (for \\input into a paper that loads amsmath)")
     p.add_argument("--codim2", default=None, metavar="LO:HI",
                    help="find every velocity in [LO, HI] m/s where Lambda changes sign on the Hopf line")
 
@@ -63,64 +67,20 @@ def run(args) -> dict:
         from landau.transition import codim2_points
 
         doc["codim2"] = [c.as_dict() for c in codim2_points(d, lo, hi, params)]
+    if args.fragment and args.latex is None:
+        raise InputError("--fragment needs --latex FILE")
     if args.latex is not None:
         from landau.budget import run_bounded
+        from landau.latex import derivation_latex
+        from landau.progress import set_quiet
 
-        text = run_bounded(derivation_latex, (d, names), seconds=LATEX_SECONDS,
+        set_quiet(getattr(args, "json", False))
+        text = run_bounded(partial(derivation_latex, fragment=args.fragment), (d, names), seconds=LATEX_SECONDS,
                            what=f"the closed forms of {', '.join(names)} for --latex",
                            hint="ask for fewer quantities (e.g. --quantities kc,omega_c,Gamma_bar) or evaluate "
                                 "numerically with --V instead")
         doc["latex"] = str(atomic_write_text(args.latex, text))
     return doc
-
-
-def derivation_latex(d: Derivation, names) -> str:
-    """A compile-ready document: the law, the convention, each coefficient in the law's
-    derivatives at steady sliding ("atoms") and, for rational laws, fully in V."""
-    law = d.block.law
-    L = [r"\documentclass{article}", r"\usepackage{amsmath}", r"\usepackage[margin=2cm]{geometry}",
-         r"\allowdisplaybreaks", r"\begin{document}", rf"\section*{{Amplitude equation: {latex_escape(law.name)}}}",
-         rf"Friction law ({latex_escape(law.source)}): \[ {law.latex()} \]",
-         r"Convention (Putelat et al.\ 2010, eq.~20): \[ \frac{d|A|}{dT} = \frac{\Gamma |A| + \Lambda |A|^3}{2},"
-         r"\quad \frac{d\theta}{dT} = \frac{\Omega + \chi |A|^2}{2}, \quad \Gamma = -2\bar\Gamma\,\frac{k-k_c}{\varepsilon^2},"
-         r"\quad \Omega = 2\bar\Omega\,\frac{k-k_c}{\varepsilon^2}; \]"
-         r" $\Lambda<0$: supercritical, $\Lambda>0$: subcritical; slip amplitude $\max|x-x_0| \approx C\sqrt{k_c-k}$.",
-         r"\subsection*{Derivatives at steady sliding}", r"\begin{align*}"]
-    rows = []
-    for n in names:
-        d.coefficient(n)
-    for atom, expr in sorted(d.jets.atoms.items(), key=lambda kv: kv[0].name):
-        rows.append(rf"{sp.latex(atom)} &= {sp.latex(expr)}")
-    L.append(r" \\ ".join(rows) if rows else r"\text{(none)}")
-    L += [r"\end{align*}", r"\subsection*{Coefficients}"]
-    for n in names:
-        c = d.coefficient(n)
-        L.append(rf"\paragraph{{{QUANTITIES[n][1]} ({QUANTITIES[n][2]}), units {UNITS[n]}}}")
-        if d.hopf.closed_form is not None and n in ("kc", "omega_c"):
-            kc, W = d.hopf.closed_form
-            body = sp.latex(kc) if n == "kc" else r"\sqrt{" + sp.latex(W) + "}"
-            L.append(rf"\begin{{equation*}} {c.symbol} = {body} \end{{equation*}}")
-            continue
-        if n == "C":
-            L.append(r"\begin{equation*} C = 2\sqrt{2\bar\Gamma/|\Lambda|} \end{equation*}")
-            continue
-        L.append(rf"\begin{{multline*}} {c.symbol} = {sp.latex(c.formula)} \end{{multline*}}")
-        if d.hopf.closed_form is not None and (_is_rational(c) or rational_in_parameters(d)):
-            L.append(rf"In terms of $V$: \begin{{multline*}} {c.latex()} \end{{multline*}}")
-    L.append(r"with $\omega = \omega_c$ and $k = k_c$ above.")
-    L.append(r"\end{document}")
-    return "\n".join(L) + "\n"
-
-
-def rational_in_parameters(d: Derivation) -> bool:
-    """Every derivative at steady sliding is rational in V and the parameters (Dieterich,
-    Ruina): the closed forms come from landau.rational in seconds."""
-    return all(e.is_rational_function(*d.args) for e in d.jets.atoms.values())
-
-
-def _is_rational(c) -> bool:
-    e = c.expr
-    return all(e.is_rational_function(s) for s in e.free_symbols)
 
 
 def render(doc: dict) -> str:

@@ -5,10 +5,8 @@ Example: landau linear dieterich --V 1e-5,1e-4 --param M=2
 
 from __future__ import annotations
 
-import sympy as sp
-
 from landau.commands.common import add_law_arguments, block_and_params, fmt, parse_velocities
-from landau.io import atomic_write_text, check_output, latex_escape
+from landau.io import atomic_write_text, check_output
 from landau.linear import HopfLine
 
 
@@ -35,16 +33,9 @@ def run(args) -> dict:
 
 
 def linear_latex(hl: HopfLine) -> str:
-    lines = [r"\documentclass{article}", r"\usepackage{amsmath}", r"\begin{document}",
-             rf"\section*{{Linear stability: {latex_escape(hl.block.law.name)}}}",
-             rf"Friction law ({latex_escape(hl.block.law.source)}): \[ {hl.block.law.latex()} \]"]
-    if hl.closed_form is not None:
-        lines += [r"\begin{equation} k_c = " + sp.latex(sp.factor(sp.cancel(hl.kc_expr))) + r"\end{equation}",
-                  r"\begin{equation} \omega_c^2 = " + sp.latex(sp.factor(sp.cancel(hl.omega2_expr))) + r"\end{equation}"]
-    else:
-        lines.append(r"k_c and $\omega_c$ have no closed form (several state variables, or a steady state without one): computed numerically.")
-    lines.append(r"\end{document}")
-    return "\n".join(lines) + "\n"
+    from landau.latex import hopf_line_latex
+
+    return hopf_line_latex(hl)
 
 
 def render(doc: dict) -> str:

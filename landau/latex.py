@@ -1,0 +1,515 @@
+"""LaTeX output that compiles: symbols as a paper writes them, safe text, broken long lines.
+
+Everything the toolkit writes as ``.tex`` goes through this module:
+
+* :func:`symbol_latex` — ``phi1`` → ``\\phi_{1}``, ``V_s`` → ``V_{*}``, ``t_ss`` → ``t_{**}``,
+  a derivative of the right-hand side at steady sliding ``d2_u_u_phi`` → ``f_{u,u\\phi}``;
+* :func:`escape_text` — user text (a law's name, its source) can never inject LaTeX
+  (``}``, ``\\input``, ``$`` are escaped; non-ASCII characters are transliterated);
+* :func:`equation_lines` — a long expression becomes several aligned lines: a sum is split
+  between its terms; a product, power or function whose argument is too long has that
+  argument named (``P_{1}``, ``q_{3}``…) and defined in its own (split) equation, the way a
+  paper names the polynomials of a long closed form;
+* :func:`derivation_latex` / :func:`hopf_line_latex` — the documents of ``landau derive
+  --latex`` and ``landau linear --latex``, or with ``fragment=True`` only the equations
+  (for ``\\input`` into a paper that loads amsmath).
+
+No line of output exceeds a few hundred characters, whatever the size of the formula.
+"""
+
+from __future__ import annotations
+
+import logging
+import re
+import unicodedata
+from dataclasses import dataclass
+from typing import Iterable, Mapping, Sequence
+
+import sympy as sp
+
+logger = logging.getLogger(__name__)
+
+#: source characters per displayed line (10pt, 2 cm margins: ~110 characters of formula source
+#: stay inside the text width for the typical mix of symbols, sub- and superscripts)
+WIDTH = 110
+
+_GREEK = {"alpha", "beta", "gamma", "delta", "epsilon", "varepsilon", "zeta", "eta", "theta", "vartheta", "iota",
+          "kappa", "lambda", "mu", "nu", "xi", "pi", "rho", "sigma", "tau", "upsilon", "phi", "varphi", "chi",
+          "psi", "omega", "Gamma", "Delta", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Upsilon", "Phi", "Psi",
+          "Omega"}
+#: subscripts a paper writes differently from the identifier
+_SUBSCRIPTS = {"s": "*", "ss": "**"}
+_STATE_SUFFIX = re.compile(r"^([A-Za-z]+?)(\d+)$")
+
+_UNICODE_TEXT = {"–": "--", "—": "---", "−": "-", "’": "'", "‘": "`", "“": "``", "”": "''", "×": r"$\times$",
+                 "≈": r"$\approx$", "≤": r"$\le$", "≥": r"$\ge$", "·": r"$\cdot$", "°": r"$^\circ$",
+                 "²": r"$^2$", "³": r"$^3$", "µ": r"$\mu$", "…": r"\dots{}",
+                 **{chr(0x2080 + i): f"$_{i}$" for i in range(10)}}
+_GREEK_UNICODE = {unicodedata.lookup(f"GREEK SMALL LETTER {n.upper().replace('LAMBDA', 'LAMDA')}"): rf"$\{n}$" for n in
+                  ("alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa", "lambda",
+                   "mu", "nu", "xi", "pi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi", "omega")}
+_TEXT_SPECIAL = {"\\": r"\textbackslash{}", "{": r"\{", "}": r"\}", "$": r"\$", "&": r"\&", "#": r"\#",
+                 "_": r"\_", "%": r"\%", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}",
+                 "<": r"\textless{}", ">": r"\textgreater{}", "|": r"\textbar{}"}
+
+#: the units of the amplitude-equation quantities, typeset
+UNITS_LATEX = {"m/s": r"\mathrm{m\,s^{-1}}", "N/m": r"\mathrm{N\,m^{-1}}", "rad/s": r"\mathrm{rad\,s^{-1}}",
+               "1/(N s)": r"\mathrm{N^{-1}\,s^{-1}}", "1/(m^2 s)": r"\mathrm{m^{-2}\,s^{-1}}",
+               "m/sqrt(N/m)": r"\mathrm{m^{3/2}\,N^{-1/2}}"}
+
+
+def escape_text(text: str) -> str:
+    """Plain text safe for LaTeX's text mode: every special character escaped, common
+    non-ASCII characters transliterated, any other one written as its code point."""
+    out = []
+    for ch in str(text):
+        if ch in _TEXT_SPECIAL:
+            out.append(_TEXT_SPECIAL[ch])
+        elif ord(ch) < 128:
+            out.append(ch if ch.isprintable() else " ")
+        elif ch in _UNICODE_TEXT:
+            out.append(_UNICODE_TEXT[ch])
+        elif ch in _GREEK_UNICODE:
+            out.append(_GREEK_UNICODE[ch])
+        else:
+            out.append(f"U+{ord(ch):04X}")
+    return "".join(out)
+
+
+def _name_part(part: str) -> str:
+    if part in _GREEK:
+        return "\\" + part
+    m = _STATE_SUFFIX.match(part)
+    if m and m.group(1) in _GREEK:
+        return rf"\{m.group(1)}_{{{m.group(2)}}}"
+    if len(part) == 1 or part.isdigit():
+        return part
+    if part.isalnum():
+        return rf"\mathrm{{{part}}}"
+    return r"\mathrm{" + escape_text(part) + "}"
+
+
+def symbol_latex(name: str) -> str:
+    """How a paper writes the identifier ``name``: ``phi1`` → ``\\phi_{1}``, ``V_s`` → ``V_{*}``,
+    ``t_ss`` → ``t_{**}``, ``a_v`` → ``a_{v}``, ``omega_c`` → ``\\omega_{c}``, ``b2`` → ``b_{2}``;
+    the derivative atoms of :mod:`landau.jets` (``d2_u_u_phi``: ∂²f_u/∂u∂φ at steady sliding) →
+    ``f_{u,u\\phi}``, ``dp_u_X`` (∂²f_u/∂k∂X) → ``f_{u,kX}``."""
+    m = re.fullmatch(r"d(\d+|p)_([A-Za-z0-9]+)((?:_[A-Za-z0-9]+)*)", name)
+    if m:
+        comp = _name_part(m.group(2))
+        idx = [p for p in m.group(3).split("_") if p]
+        wrt = ("k" if m.group(1) == "p" else "") + "".join(
+            _name_part(p) + (" " if _name_part(p).startswith("\\") else "") for p in idx)
+        return rf"f_{{{comp},{wrt.strip()}}}"
+    head, _, tail = name.partition("_")
+    if not tail:
+        m = _STATE_SUFFIX.match(name)
+        if m and not name.isdigit():
+            return rf"{_name_part(m.group(1))}_{{{m.group(2)}}}"
+        return _name_part(name)
+    sub = _SUBSCRIPTS.get(tail, ",".join(_name_part(p) for p in tail.split("_") if p))
+    return rf"{_name_part(head)}_{{{sub}}}"
+
+
+def symbol_names(symbols: Iterable[sp.Symbol]) -> dict[sp.Symbol, str]:
+    """``symbol_names=`` mapping for :func:`sympy.latex` over the given symbols."""
+    return {s: symbol_latex(s.name) for s in symbols if isinstance(s, sp.Symbol)}
+
+
+def to_latex(expr: sp.Basic, names: Mapping[sp.Symbol, str] | None = None) -> str:
+    """sympy's LaTeX with the paper's symbols, on one line."""
+    names = dict(names or {})
+    names.update({s: symbol_latex(s.name) for s in expr.free_symbols if isinstance(s, sp.Symbol) and s not in names})
+    return sp.latex(expr, symbol_names=names, mul_symbol=None).replace("\n", " ")
+
+
+@dataclass(frozen=True)
+class Equation:
+    """One displayed equation: ``lhs = lines[0]``, continued by ``lines[1:]``."""
+
+    lhs: str
+    lines: tuple[str, ...]
+    relation: str = "="
+
+    def align_rows(self) -> list[str]:
+        rows = [rf"{self.lhs} &{self.relation} {self.lines[0]}"]
+        rows += [rf"&\quad {line}" for line in self.lines[1:]]
+        return rows
+
+
+class _Namer:
+    """Fresh names P_{1}, P_{2}, … for sub-expressions split off a long formula."""
+
+    def __init__(self, letter: str = "P"):
+        self.letter = letter
+        self.count = 0
+        self.defined: dict[sp.Basic, sp.Symbol] = {}
+
+    def label(self, sym: sp.Symbol) -> str:
+        return rf"\mathcal{{{self.letter}}}_{{{sym.name[len(self.letter):]}}}"
+
+    def name(self, expr: sp.Basic) -> sp.Symbol:
+        if expr not in self.defined:
+            self.count += 1
+            self.defined[expr] = sp.Dummy(f"{self.letter}{self.count}")
+        return self.defined[expr]
+
+
+def _signed_terms(expr: sp.Add, names) -> list[str]:
+    out = []
+    for i, t in enumerate(expr.as_ordered_terms()):
+        if t.could_extract_minus_sign():
+            out.append("- " + to_latex(-t, names))
+        else:
+            out.append(("+ " if i else "") + to_latex(t, names))
+    return out
+
+
+def equation_lines(lhs: str, expr: sp.Basic, names: Mapping | None = None, width: int = WIDTH,
+                   letter: str = "P", namer: _Namer | None = None) -> list[Equation]:
+    """``lhs = expr`` as one or more :class:`Equation`: lines of at most ~``width`` source
+    characters.  A sum is split between terms; an over-long product, power or function
+    argument is named (``letter`` with an index) and defined in a following equation."""
+    names = dict(names or {})
+    namer = namer or _Namer(letter)
+    out: list[Equation] = []
+    pending: list[tuple[str, sp.Basic]] = [(lhs, expr)]
+    while pending:
+        left, e = pending.pop(0)
+        before = dict(namer.defined)
+        lines = _split(e, names, width, namer)
+        out.append(Equation(left, tuple(lines)))
+        for sub, sym in namer.defined.items():
+            if sub not in before:
+                names[sym] = namer.label(sym)
+                pending.append((names[sym], sub))
+    return out
+
+
+def _split(e: sp.Basic, names, width: int, namer: _Namer) -> list[str]:
+    text = to_latex(e, names)
+    if len(text) <= width:
+        return [text]
+    if isinstance(e, sp.Add):
+        lines: list[str] = []
+        cur = ""
+        for term in e.as_ordered_terms():
+            neg = term.could_extract_minus_sign()
+            body = -term if neg else term
+            t = to_latex(body, names)
+            if len(t) > width:
+                t = _shorten(body, names, width, namer)
+            piece = ("- " if neg else ("+ " if (lines or cur) else "")) + t
+            if cur and len(cur) + len(piece) + 1 > width:
+                lines.append(cur)
+                cur = piece
+            else:
+                cur = f"{cur} {piece}" if cur else piece
+        if cur:
+            lines.append(cur)
+        return lines
+    return [_shorten(e, names, width, namer)]
+
+
+def _shorten(e: sp.Basic, names, width: int, namer: _Namer) -> str:
+    """``e`` on one line of about ``width`` characters: its longest sums (then its longest
+    other arguments) are named, as a paper names the polynomials of a long fraction."""
+    work = e
+    for _ in range(256):
+        text = to_latex(work, names)
+        if len(text) <= width or not work.args:
+            return text
+        sums, others = {}, {}
+        for sub in sp.preorder_traversal(work):
+            if sub is work or sub.is_Atom or sub in names:
+                continue
+            if sub.is_Pow and (sub.exp.is_Integer and sub.exp < 0 or sub.base.is_Atom):
+                continue                                    # name the base, keep the fraction
+            (sums if isinstance(sub, sp.Add) else others)[sub] = None
+        pool = sums or {o: None for o in others if len(to_latex(o, names)) >= 25}
+        if not pool:
+            return text                                     # a product of short factors: one line
+        best = max(pool, key=lambda x: len(to_latex(x, names)))
+        namer.name(best)
+        names.setdefault(namer.defined[best], namer.label(namer.defined[best]))
+        work = work.xreplace({best: namer.defined[best]})
+    return to_latex(work, names)
+
+
+def align_block(equations: Sequence[Equation]) -> str:
+    """One ``align*`` environment, one row per line."""
+    rows = [r for eq in equations for r in eq.align_rows()]
+    return "\\begin{align*}\n" + " \\\\\n".join(rows) + "\n\\end{align*}"
+
+
+PREAMBLE = (r"\documentclass[10pt]{article}", r"\usepackage{amsmath}", r"\usepackage{amssymb}",
+            r"\usepackage[margin=2cm]{geometry}", r"\allowdisplaybreaks", r"\begin{document}")
+
+
+def document(title: str, body: Sequence[str], fragment: bool = False) -> str:
+    """A complete document (or, ``fragment=True``, only ``body`` with a comment header)."""
+    if fragment:
+        head = [f"% {title.replace(chr(10), ' ')}", "% generated by landau; needs \\usepackage{amsmath}"]
+        return "\n".join([*head, *body]) + "\n"
+    return "\n".join([*PREAMBLE, rf"\section*{{{escape_text(title)}}}", *body, r"\end{document}"]) + "\n"
+
+
+def law_equations(law, names: Mapping | None = None) -> list[Equation]:
+    """μ and the state rates of a friction law, split to fit."""
+    names = dict(names or {})
+    eqs = equation_lines(r"\mu", law.mu, names, letter="M")
+    for s, r in zip(law.states, law.rates):
+        eqs += equation_lines(rf"\frac{{d{symbol_latex(s.name)}}}{{dt}}", r, names, letter="R")
+    return eqs
+
+
+# --- the documents ------------------------------------------------------------------------
+_CONVENTION = (r"\frac{d|A|}{dT} &= \frac{\Gamma |A| + \Lambda |A|^3}{2}, \qquad "
+               r"\frac{d\theta}{dT} = \frac{\Omega + \chi |A|^2}{2}, \\ "
+               r"\Gamma &= -2\bar\Gamma\,\frac{k-k_c}{\varepsilon^2}, \qquad "
+               r"\Omega = 2\bar\Omega\,\frac{k-k_c}{\varepsilon^2}")
+
+
+def _units(u: str) -> str:
+    return UNITS_LATEX.get(u, r"\text{" + escape_text(u) + "}")
+
+
+def derivation_latex(d, quantities: Sequence[str], fragment: bool = False, progress=None) -> str:
+    """The amplitude equation of a :class:`~landau.multiscale.Derivation` as LaTeX.
+
+    Per coefficient: the closed form in V and the law's parameters where the law's
+    derivatives at steady sliding are rational (the factored fraction, ω_c kept as a symbol
+    with ω_c² given); otherwise the form in those derivatives (defined in a table of their
+    own closed forms), labelled as such.  When the Hopf line has no closed form (several
+    state variables) k_c and ω_c are said to be numerical, with the Hopf polynomial they
+    solve.
+
+    Parameters
+    ----------
+    d : landau.multiscale.Derivation
+    quantities : names from :data:`landau.multiscale.QUANTITIES`.
+    fragment : only the equations (for ``\\input``), no preamble.
+    progress : callable(str) or None, called before each expensive step.
+
+    Returns
+    -------
+    str
+        The LaTeX source.
+    """
+    from landau import cache
+
+    law = d.block.law
+    key = cache.make_key("derivation-latex", cache.system_key(d.system), law.name, law.source,
+                         sp.srepr((law.mu, law.states, law.rates)), list(quantities), fragment)
+    return cache.cached("derivation-latex", key, lambda: _derivation_latex(d, quantities, fragment, progress))
+
+
+def _derivation_latex(d, quantities: Sequence[str], fragment: bool, progress) -> str:
+    from landau.linear import w as omega
+    from landau.multiscale import QUANTITIES, UNITS
+    from landau.progress import progress as bar
+
+    law = d.block.law
+    pbar = bar(total=len(quantities) + 1, desc=f"LaTeX {law.name}", unit="step")
+
+    def step(msg: str) -> None:
+        pbar.set_description_str(f"LaTeX {law.name}: {msg}")
+        if progress:
+            progress(msg)
+    kc_sym, om_sym = sp.Symbol("k_c", positive=True), sp.Symbol("omega_c", positive=True)
+    names: dict = {kc_sym: "k_c", om_sym: r"\omega_c"}
+    body: list[str] = []
+    text = lambda s: body.append(s)
+    src = f" ({escape_text(law.source)})" if law.source else ""
+    text(rf"Friction law{src}, slip rate $v$, state variables "
+         + ", ".join(f"${symbol_latex(s.name)}$" for s in law.states) + ":")
+    text(align_block(law_equations(law)))
+    text(r"Spring--block (Putelat et al.\ 2010, eq.~4) driven at velocity $V$, stiffness $k$, mass $M$, "
+         r"normal load $\sigma$. Amplitude equation (Putelat et al.\ 2010, eq.~20):")
+    text(r"\begin{align*}" + "\n" + _CONVENTION + "\n" + r"\end{align*}")
+    text(r"$\Lambda<0$: supercritical, $\Lambda>0$: subcritical; slip amplitude "
+         r"$\max|x-x_0| \approx C\sqrt{|k_c-k|}$, $C = 2\sqrt{2\bar\Gamma/|\Lambda|}$ (eq.~23).")
+
+    for q in quantities:
+        d.coefficient(q)
+    numeric_hopf = d.hopf.closed_form is None
+    rational = not numeric_hopf and _rational_in_parameters(d)
+    parts = None
+    if rational:
+        from landau.rational import closed_form_parts
+
+        step("closed forms in V and the parameters")
+        parts = _cached_parts(d, [q for q in quantities if q not in ("kc", "omega_c", "C")])
+
+    atoms = d.jets.atoms
+    ys = ", ".join(symbol_latex(s.name) for s in d.system.states)
+    if not rational or numeric_hopf or any(q not in ("kc", "omega_c", "C") for q in quantities) and parts is None:
+        text(r"\subsection*{Derivatives at steady sliding}")
+        text(rf"$f_{{i,jk\dots}} = \partial^n f_i/\partial y_j\partial y_k\cdots$ at steady sliding, where "
+             rf"$E\dot y = f(y)$ is the spring--block in $y = ({ys})$ (slip $X = x - x_0(t)$, $u = \dot x - V$) "
+             r"and $f_{i,k}$ is the derivative with respect to $k$:")
+        eqs = []
+        for a in sorted(atoms, key=lambda s: s.name):
+            eqs += equation_lines(symbol_latex(a.name), atoms[a], names, letter="A")
+        text(align_block(eqs) if eqs else r"(none)")
+
+    text(r"\subsection*{Coefficients}")
+    if numeric_hopf:
+        H, re_pq, q2 = d.hopf._hopf_polys
+        Wsym = sp.Symbol("W")
+        text(r"The Hopf line has no closed form ($n>1$ state variables): $k_c$ and $\omega_c$ are computed "
+             r"numerically. $\omega_c^2$ is the positive root $W$ of the Hopf polynomial below at which the "
+             r"stiffness $k = -\mathrm{Re}(P\bar Q)/|Q|^2$ is largest ($\det(\lambda E - J) = P(\lambda) + k Q(\lambda)$, "
+             r"$\lambda = i\omega$):")
+        text(align_block(equation_lines("0", H.as_expr().xreplace({d.hopf._hopf_polys[0].gen: Wsym}), names,
+                                        letter="H")))
+    for q in quantities:
+        pbar.update(1)
+        sym = QUANTITIES[q][0]
+        label = rf"{_DESCRIPTIONS[q]} (Putelat et al.\ 2010, {_EQUATIONS[q]}), units ${_units(UNITS[q])}$"
+        if q in ("kc", "omega_c"):
+            if numeric_hopf:
+                continue
+            text(rf"\paragraph{{}}{label}:")
+            kc, W = (parts["kc"], parts["W"]) if parts else d.hopf.closed_form
+            if q == "kc":
+                text(align_block(equation_lines("k_c", kc, names, letter="K")))
+            else:
+                text(align_block(equation_lines(r"\omega_c^2", W, names, letter="W")))
+            continue
+        if q == "C":
+            text(rf"\paragraph{{}}{label}: $C = 2\sqrt{{2\bar\Gamma/|\Lambda|}}$.")
+            continue
+        if parts is not None and q in parts:
+            P, Q = parts[q]
+            e = P + om_sym * Q if Q != 0 else P
+            text(rf"\paragraph{{}}{label}, closed form in $V$ and the law's parameters:")
+            step(f"typesetting {q}")
+            text(align_block(equation_lines(sym, e, names, letter=_letter(q))))
+            continue
+        form = d.coefficient(q).formula.xreplace({omega: om_sym, d.k: kc_sym})
+        where = (r"with $k_c$, $\omega_c$ from the Hopf polynomial" if numeric_hopf else
+                 r"with $k_c$, $\omega_c$ above")
+        text(rf"\paragraph{{}}{label}, in terms of the derivatives at steady sliding ({where}); "
+             r"intermediate quantities $q_j$ first:")
+        step(f"common subexpressions of {q}")
+        reps, (red,) = sp.cse(form, symbols=sp.numbered_symbols("q", cls=sp.Dummy, start=1))
+        loc = dict(names)
+        eqs = []
+        for s, e in reps:
+            loc[s] = rf"q_{{{s.name[1:]}}}"
+        namer = _Namer(_letter(q))
+        for s, e in reps:
+            eqs += equation_lines(loc[s], e, loc, namer=namer)
+        eqs += equation_lines(sym, red, loc, namer=namer)
+        text(align_block(eqs))
+    pbar.close()
+    return document(f"Amplitude equation: {law.name}", body, fragment)
+
+
+_DESCRIPTIONS = {"kc": "Critical stiffness", "omega_c": "Angular frequency at onset",
+                 "Gamma_bar": r"Linear growth rate per unit $k_c - k$",
+                 "Omega_bar": r"Linear frequency shift per unit $k - k_c$", "Lambda": "Landau coefficient",
+                 "chi": "Nonlinear frequency coefficient", "C": r"Slip amplitude per $\sqrt{|k_c - k|}$"}
+_EQUATIONS = {"kc": "eq.~7", "omega_c": "eq.~8", "Gamma_bar": "eqs 18, 21", "Omega_bar": "eqs 18, 21",
+              "Lambda": "eqs 15--21", "chi": "eqs 15--21", "C": "eq.~23"}
+
+
+def _coefficient_rows(d, q: str, names: dict, parts: dict | None) -> tuple[list[Equation], str]:
+    """The equations of one coefficient and what they are ("closed form" or "derivatives")."""
+    from landau.linear import w as omega
+    from landau.multiscale import QUANTITIES
+
+    sym = QUANTITIES[q][0]
+    kc_sym, om_sym = sp.Symbol("k_c", positive=True), sp.Symbol("omega_c", positive=True)
+    names.setdefault(kc_sym, "k_c")
+    names.setdefault(om_sym, r"\omega_c")
+    if parts is not None and q in parts:
+        P, Q = parts[q]
+        return equation_lines(sym, P + om_sym * Q if Q != 0 else P, names, letter=_letter(q)), "closed form"
+    form = d.coefficient(q).formula.xreplace({omega: om_sym, d.k: kc_sym})
+    reps, (red,) = sp.cse(form, symbols=sp.numbered_symbols("q", cls=sp.Dummy, start=1))
+    loc = dict(names)
+    for s, _ in reps:
+        loc[s] = rf"q_{{{s.name[1:]}}}"
+    namer = _Namer(_letter(q))
+    eqs = equation_lines(sym, red, loc, namer=namer)
+    for s, e in reps:
+        eqs += equation_lines(loc[s], e, loc, namer=namer)
+    return eqs, "derivatives"
+
+
+def coefficient_latex(coefficient) -> str:
+    """One coefficient as an ``aligned`` block: the closed form in V and the parameters
+    (with ω_c²) where the law's derivatives at steady sliding are rational, else the form in
+    those derivatives followed by their definitions.  Cached on disk (:mod:`landau.cache`)."""
+    from landau import cache
+
+    d, q = coefficient.derivation, coefficient.name
+    key = cache.make_key("coefficient-latex", cache.system_key(d.system), q)
+    return cache.cached("coefficient-latex", key, lambda: _coefficient_latex(d, q))
+
+
+def _coefficient_latex(d, q: str) -> str:
+    from landau.multiscale import DERIVED
+
+    names: dict = {}
+    if q in DERIVED:
+        return r"C = 2\sqrt{2\bar\Gamma/|\Lambda|}"
+    numeric_hopf = d.hopf.closed_form is None
+    rational = not numeric_hopf and _rational_in_parameters(d)
+    if q in ("kc", "omega_c"):
+        if numeric_hopf:
+            return (r"k_c,\ \omega_c:\ \text{numerical (largest-stiffness root of the Hopf polynomial;"
+                    r" several state variables)}")
+        kc, W = d.hopf.closed_form
+        if rational:
+            parts = _cached_parts(d, [])
+            kc, W = parts["kc"], parts["W"]
+        eqs = equation_lines("k_c", kc, names, letter="K") if q == "kc" else \
+            equation_lines(r"\omega_c^2", W, names, letter="W")
+    else:
+        parts = _cached_parts(d, [q]) if rational else None
+        eqs, kind = _coefficient_rows(d, q, names, parts)
+        if parts is not None:
+            eqs += equation_lines(r"\omega_c^2", parts["W"], names, letter="W")
+    if not rational:
+        # the derivatives at steady sliding the formula uses, each in V and the parameters
+        text = " ".join(line for eq in eqs for line in eq.lines)
+        used = [a for a in d.jets.atoms if symbol_latex(a.name) in text]
+        for a in sorted(used, key=lambda s: s.name):
+            eqs += equation_lines(symbol_latex(a.name), d.jets.atoms[a], names, letter="A")
+    rows = [r for eq in eqs for r in eq.align_rows()]
+    return "\\begin{aligned}\n" + " \\\\\n".join(rows) + "\n\\end{aligned}"
+
+
+def _letter(q: str) -> str:
+    return {"Gamma_bar": "G", "Omega_bar": "O", "Lambda": "L", "chi": "X"}.get(q, "P")
+
+
+def _rational_in_parameters(d) -> bool:
+    return all(e.is_rational_function(*d.args) for e in d.jets.atoms.values())
+
+
+def _cached_parts(d, quantities):
+    from landau.rational import closed_form_parts
+
+    return closed_form_parts(d, quantities)
+
+
+def hopf_line_latex(hl, fragment: bool = False) -> str:
+    """k_c(V) and ω_c²(V) of a :class:`~landau.linear.HopfLine` (Putelat et al. 2010, eqs 7–8)."""
+    law = hl.block.law
+    body = [rf"Friction law ({escape_text(law.source)}):" if law.source else "Friction law:",
+            align_block(law_equations(law))]
+    if hl.closed_form is not None:
+        names: dict = {}
+        eqs = []
+        for lhs, e, letter in (("k_c", hl.kc_expr, "K"), (r"\omega_c^2", hl.omega2_expr, "W")):
+            if e.is_rational_function(*e.free_symbols):
+                e = sp.factor(sp.cancel(e))
+            eqs += equation_lines(lhs, e, names, letter=letter)
+        body.append(align_block(eqs))
+    else:
+        body.append(r"$k_c$ and $\omega_c$ have no closed form (several state variables): computed numerically.")
+    return document(f"Linear stability: {law.name}", body, fragment)

@@ -1,0 +1,65 @@
+"""Progress bars that appear only where someone is watching.
+
+:func:`progress` wraps an iterable (or counts steps) with tqdm: a text bar on a terminal, a
+notebook widget in Jupyter (``tqdm.auto``), nothing when stderr is not a terminal (pipes, CI
+logs), in ``--json`` mode (:func:`set_quiet`) or with ``LANDAU_PROGRESS=off``.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from typing import Iterable, TypeVar
+
+T = TypeVar("T")
+_quiet = False
+
+
+def set_quiet(flag: bool) -> None:
+    """Silence every progress bar of this process (the CLI does this for ``--json``)."""
+    global _quiet
+    _quiet = bool(flag)
+
+
+def _in_notebook() -> bool:
+    try:
+        from IPython import get_ipython
+
+        shell = get_ipython()
+    except Exception:
+        return False
+    return shell is not None and type(shell).__name__ == "ZMQInteractiveShell"
+
+
+def shown() -> bool:
+    """Whether a bar would be shown now."""
+    if _quiet or os.environ.get("LANDAU_PROGRESS", "on").strip().lower() in ("0", "off", "false", "no"):
+        return False
+    if _in_notebook():
+        return True
+    return bool(getattr(sys.stderr, "isatty", lambda: False)())
+
+
+def progress(iterable: Iterable[T] | None = None, *, total: int | None = None, desc: str = "",
+             unit: str = "it", leave: bool = False):
+    """A tqdm bar over ``iterable`` (or a manual one with ``total``), disabled where nobody watches.
+
+    Parameters
+    ----------
+    iterable : the items to iterate over, or None for a bar advanced with ``.update()``.
+    total : number of steps (default: ``len(iterable)`` where defined).
+    desc : the label.
+    unit : what one step is.
+    leave : keep the finished bar on screen.
+
+    Returns
+    -------
+    tqdm.tqdm
+        Iterate over it, or call ``update()``/``set_description()``; a context manager.
+    """
+    if _in_notebook():
+        from tqdm.auto import tqdm
+    else:
+        from tqdm import tqdm
+    return tqdm(iterable, total=total, desc=desc, unit=unit, leave=leave, disable=not shown(),
+                dynamic_ncols=True)
