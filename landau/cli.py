@@ -15,6 +15,7 @@ import importlib
 import importlib.util
 import json
 import math
+import numbers
 import os
 import re
 import sys
@@ -29,6 +30,7 @@ COMMANDS: dict[str, str] = {
     "scene": "landau.commands.scene",
     "laws": "landau.commands.laws",
     "transition": "landau.commands.transition",
+    "plot": "landau.commands.plot",
     "figures": "landau.paper_figures.cli",
     "verify": "landau.verify.cli",
 }
@@ -53,8 +55,8 @@ def _jsonable(obj: Any) -> Any:
         return [_jsonable(v) for v in obj]
     if isinstance(obj, bool) or obj is None or isinstance(obj, str):
         return obj
-    if isinstance(obj, int):
-        return float(obj)
+    if isinstance(obj, numbers.Integral):
+        return int(obj)
     try:
         x = float(obj)
     except (TypeError, ValueError):
