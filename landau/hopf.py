@@ -37,8 +37,11 @@ from dataclasses import dataclass, field
 from typing import Any, Mapping
 
 
-class Criticality(enum.Enum):
-    """Type of a Hopf bifurcation, from the sign of the Landau coefficient Λ (or l₁)."""
+class Criticality(str, enum.Enum):
+    """Type of a Hopf bifurcation, from the sign of the Landau coefficient Λ (or l₁).
+
+    A ``str`` enum: compares equal to its value (``"supercritical"``) and serialises to JSON as it.
+    """
 
     SUPERCRITICAL = "supercritical"
     SUBCRITICAL = "subcritical"
