@@ -265,7 +265,8 @@ def scan_hopf(num: NumericSystem, lo: float, hi: float, samples: int = SCAN_SAMP
               y_start=None) -> list[tuple[float, np.ndarray, complex]]:
     """Every Hopf crossing in [lo, hi] (float64): (p, y₀, critical eigenvalue), in order of p.
 
-    The equilibrium is followed from ``lo`` by Newton's method from the previous sample.
+    The equilibrium is followed from ``lo`` (which may be the larger end) by Newton's method
+    from the previous sample.
     """
     ps = np.linspace(lo, hi, samples + 1)
     y = num.equilibrium_float(ps[0], y_start)
@@ -275,7 +276,7 @@ def scan_hopf(num: NumericSystem, lo: float, hi: float, samples: int = SCAN_SAMP
         yb = num.equilibrium_float(pb, y)
         tfb = hopf_test_function(num.eigenvalues(yb, pb))
         if tf == 0 or tf * tfb < 0:
-            hit = locate_crossing(num, pa, pb, y)
+            hit = locate_crossing(num, min(pa, pb), max(pa, pb), y)
             if hit is not None:
                 found.append(hit)
         y, tf = yb, tfb
@@ -446,7 +447,8 @@ def hopf_normal_form(system: DynamicalSystem, params: Mapping[str, float] | None
         Values of every other parameter, by name (None or {} if the Hopf parameter is the only one).
     bracket : (float, float)
         Interval of the Hopf parameter holding exactly one Hopf point (other eigenvalue pairs may
-        be unstable anywhere in it: the crossing pair is followed).
+        be unstable anywhere in it: the crossing pair is followed).  The equilibrium is followed
+        from ``bracket[0]`` to ``bracket[1]`` (either order).
     dps : int
         Working precision (decimal digits) of the located point and its coefficients.
     equilibrium_guess : sequence of float, optional
@@ -475,10 +477,14 @@ def hopf_normal_form(system: DynamicalSystem, params: Mapping[str, float] | None
     Kuznetsov, Yu. A. (2004). Elements of Applied Bifurcation Theory, 3rd ed., §3.5.
     """
     num = NumericSystem(system, params or {}, equilibrium_guess)
-    lo, hi = sorted(map(float, bracket))
+    try:
+        first, last = map(float, bracket)
+    except (TypeError, ValueError):
+        raise InputError(f"{system.name}: bracket must be two numbers, got {bracket!r}") from None
+    lo, hi = sorted((first, last))
     if not (math.isfinite(lo) and math.isfinite(hi)) or lo == hi:
         raise InputError(f"{system.name}: bracket must be two different finite numbers, got {bracket!r}")
-    hits = scan_hopf(num, lo, hi, samples)
+    hits = scan_hopf(num, first, last, samples)
     if not hits:
         raise NoHopfError(f"{system.name}: no Hopf crossing of {system.parameter.name} in [{lo:g}, {hi:g}]")
     if len(hits) > 1:
