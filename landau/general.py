@@ -407,7 +407,10 @@ def normal_form_at(num: NumericSystem, pc, wc, y0, *, jets: str = "taylor", jets
         if not rows:
             return 1.0
         m = mpmath.matrix([[mpmath.mpc(z.re, z.im) for z in r] for r in rows])
-        return float(abs(mpmath.det(m)))
+        try:
+            return float(abs(mpmath.det(m)))
+        except (ZeroDivisionError, TypeError):  # mpmath's LU fails on an exactly zero column
+            return 0.0
 
     normalise = num.sys.normalise
     r, c = best_drop(A, normalise, absdet)
