@@ -58,7 +58,9 @@ class DynamicalSystem:
     --------------------------
     states : state symbols y.
     rhs : f(y), one expression per state.
-    mass : diagonal of E (expressions; 1 for an ODE row, 0 for an algebraic row).
+    mass : E, either its diagonal (n expressions; 1 for an ODE row, 0 for an algebraic row) or
+        the full n×n matrix (n rows of n expressions, or a sympy Matrix); entries may depend on
+        the parameters and on the Hopf parameter p (E(p)), not on the states.
     parameter : the Hopf (bifurcation) parameter p.
     equilibrium : y₀ as expressions of the other parameters (and of ``unknowns``); it
         must not depend on p — or, if it does, the engine accounts for it.
@@ -87,13 +89,35 @@ class DynamicalSystem:
         for name in ("rhs", "mass", "equilibrium", "unknown_equations", "unknown_guess"):
             object.__setattr__(self, name, tuple(_as_sympy(x, name) for x in getattr(self, name)))
         n = len(self.states)
+        mass = self.mass
+        if isinstance(mass, sp.MatrixBase) or (len(mass) and isinstance(mass[0], (tuple, list, sp.MatrixBase))):
+            rows = tuple(tuple(sp.sympify(x) for x in row) for row in (mass.tolist() if isinstance(mass, sp.MatrixBase)
+                                                                        else mass))
+            if len(rows) != n or any(len(r) != n for r in rows):
+                raise InputError(f"system {self.name!r}: a full mass matrix must be {n}x{n}")
+            if any(rows[i][j] != 0 for i in range(n) for j in range(n) if i != j):
+                object.__setattr__(self, "mass", rows)
+            else:  # a diagonal matrix is stored as its diagonal, as every route expects
+                object.__setattr__(self, "mass", tuple(rows[i][i] for i in range(n)))
         if not (len(self.rhs) == len(self.mass) == len(self.equilibrium) == n):
             raise InputError(f"system {self.name!r}: states, rhs, mass and equilibrium must have equal length")
+        if set().union(*(sp.sympify(e).free_symbols for e in self.mass_matrix)) & set(self.states):
+            raise InputError(f"system {self.name!r}: the mass matrix must not depend on the states")
+
+    @property
+    def mass_is_diagonal(self) -> bool:
+        """True if E is stored as its diagonal (every route supports this form)."""
+        return not (len(self.mass) and isinstance(self.mass[0], tuple))
+
+    @property
+    def mass_matrix(self) -> sp.Matrix:
+        """E as an n×n sympy matrix."""
+        return sp.diag(*self.mass) if self.mass_is_diagonal else sp.Matrix(self.mass)
 
     @cached_property
     def parameters(self) -> tuple[sp.Symbol, ...]:
         """Every free symbol except the states, the Hopf parameter and the unknowns, sorted by name."""
-        syms = set().union(*(e.free_symbols for e in (*self.rhs, *self.mass, *self.equilibrium)))
+        syms = set().union(*(sp.sympify(e).free_symbols for e in (*self.rhs, *self.mass_matrix, *self.equilibrium)))
         syms -= set(self.states) | {self.parameter} | set(self.unknowns)
         return tuple(sorted(syms, key=lambda s: s.name))
 

@@ -1,0 +1,501 @@
+"""Continuation of equilibria and of Hopf points — the MatCont / BifurcationKit workflow with landau's coefficients.
+
+* :func:`equilibrium_branch` follows the equilibria of E(p)·ẏ = f(y; p) in the Hopf parameter p by
+  pseudo-arclength continuation (so it passes folds), detects every Hopf point on the branch by
+  the sign of the bialternate-product test function (:func:`landau.general.hopf_test_function`,
+  which sees a crossing also when another pair is already unstable), locates each at ``dps``
+  digits and attaches its amplitude equation and first Lyapunov coefficient l₁
+  (:class:`landau.hopf.HopfResult`); folds are reported where the branch turns back in p.
+* :func:`hopf_curve` follows a Hopf point in two parameters (the system's parameter p₁ and a second
+  one p₂), with l₁ along the curve, and :func:`generalised_hopf` locates the generalised-Hopf
+  (Bautin) points where l₁ = 0, with the second Lyapunov coefficient l₂ where
+  :func:`landau.lyapunov.lyapunov_coefficients` is available.
+
+Pseudo-arclength continuation (Keller 1977) in float64; each located point is refined at the
+working precision by :func:`landau.general.refine_hopf`.
+
+References
+----------
+Kuznetsov, Yu. A. (2004). Elements of Applied Bifurcation Theory, 3rd ed., Springer, ch. 10.
+Dhooge, A., Govaerts, W., Kuznetsov, Yu. A. (2003). MATCONT: a MATLAB package for numerical
+bifurcation analysis of ODEs. ACM Trans. Math. Softw. 29, 141–164.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Mapping, Sequence
+
+import mpmath
+import numpy as np
+import scipy.optimize
+
+from landau.errors import InputError, NoHopfError, SingularPointError
+from landau.general import (DEFAULT_DPS, NumericSystem, critical_pair, hopf_test_function, locate_crossing,
+                            normal_form_at, refine_hopf)
+from landau.hopf import HopfResult
+from landau.system import DynamicalSystem
+
+
+@dataclass(frozen=True)
+class EquilibriumBranch:
+    """A continued branch of equilibria with its Hopf points and folds.
+
+    Parameters
+    ----------
+    system, parameter : str
+        Names of the system and of the continuation parameter.
+    p : ndarray
+        Parameter values along the branch (in arclength order).
+    y : ndarray, shape (m, n)
+        The equilibria.
+    n_unstable : ndarray of int
+        Number of eigenvalues with positive real part at each point.
+    hopf : tuple of HopfResult
+        Every Hopf point on the branch, located at the working precision, with Λ and l₁.
+    folds : tuple of float
+        Parameter values of the folds (where the branch turns back in p), to the step accuracy
+        refined by a quadratic fit.
+    """
+
+    system: str
+    parameter: str
+    p: np.ndarray
+    y: np.ndarray
+    n_unstable: np.ndarray
+    hopf: tuple[HopfResult, ...] = ()
+    folds: tuple[float, ...] = ()
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"system": self.system, "parameter": self.parameter, "p": self.p.tolist(), "y": self.y.tolist(),
+                "n_unstable": self.n_unstable.tolist(), "hopf": [h.as_dict() for h in self.hopf],
+                "folds": list(self.folds)}
+
+    def __repr__(self) -> str:
+        hs = ", ".join(f"{h.p_c:.8g} (l1 = {h.l1:.4g})" for h in self.hopf) or "none"
+        fs = ", ".join(f"{f:.6g}" for f in self.folds) or "none"
+        return (f"EquilibriumBranch({self.system}: {len(self.p)} points, {self.parameter} in "
+                f"[{self.p.min():.6g}, {self.p.max():.6g}]; Hopf at {hs}; folds at {fs})")
+
+
+def _n_unstable(lam: np.ndarray) -> int:
+    return int(np.sum(lam.real > 0))
+
+
+def _tangent(J: np.ndarray, fp: np.ndarray, t_old: np.ndarray | None) -> np.ndarray:
+    n = len(fp)
+    if t_old is None:
+        # dy/dp = −J⁻¹ f_p, oriented towards increasing p
+        try:
+            dy = np.linalg.solve(J, -fp)
+        except np.linalg.LinAlgError:
+            raise SingularPointError("continuation cannot start at a singular point") from None
+        t = np.append(dy, 1.0)
+    else:
+        A = np.zeros((n + 1, n + 1))
+        A[:n, :n] = J
+        A[:n, n] = fp
+        A[n] = t_old
+        rhs = np.zeros(n + 1)
+        rhs[n] = 1.0
+        t = np.linalg.solve(A, rhs)
+    t /= np.linalg.norm(t)
+    if t_old is not None and t @ t_old < 0:
+        t = -t
+    return t
+
+
+def _corrector(num: NumericSystem, x_pred: np.ndarray, t: np.ndarray, tol: float, maxit: int = 8):
+    n = num.n
+    x = x_pred.copy()
+    for it in range(1, maxit + 1):
+        F, J, fp = num.first(x[:n], x[n], True)
+        if not np.all(np.isfinite(F)):
+            return None, it
+        A = np.zeros((n + 1, n + 1))
+        A[:n, :n] = J
+        A[:n, n] = fp
+        A[n] = t
+        r = np.append(F, t @ (x - x_pred))
+        try:
+            dx = np.linalg.solve(A, -r)
+        except np.linalg.LinAlgError:
+            return None, it
+        x = x + dx
+        if np.max(np.abs(dx)) <= tol * (1 + np.max(np.abs(x))):
+            return x, it
+    return None, maxit
+
+
+def equilibrium_branch(system: DynamicalSystem, params: Mapping[str, float] | None, p_range: tuple[float, float], *,
+                       start: float | None = None, equilibrium_guess: Sequence[float] | None = None,
+                       step: float | None = None, max_step: float | None = None, max_points: int = 5000,
+                       direction: int = 1, dps: int = DEFAULT_DPS, jets: str = "taylor",
+                       locate_hopf: bool = True) -> EquilibriumBranch:
+    """Continue equilibria in the system's parameter and locate every Hopf point (with l₁) on the branch.
+
+    Parameters
+    ----------
+    system : DynamicalSystem
+    params : mapping or None
+        Values of the other parameters, by name.
+    p_range : (float, float)
+        The continuation stops when the parameter leaves this interval.
+    start : float, optional
+        Starting parameter value (default: the end of ``p_range`` the direction starts from).
+    equilibrium_guess : sequence of float, optional
+        Guess of the equilibrium at ``start`` (default: ``system.equilibrium``).
+    step, max_step : float, optional
+        Initial and largest pseudo-arclength step (default 1 % and 5 % of the range).
+    max_points : int
+        Safety bound on the number of points.
+    direction : {1, −1}
+        Start towards increasing (1) or decreasing (−1) parameter.
+    dps : int
+        Working precision of the located Hopf points.
+    jets : {"taylor", "symbolic"}
+        Derivative route of the normal forms.
+    locate_hopf : bool
+        Locate and analyse the Hopf points (else only the branch and its stability).
+
+    Returns
+    -------
+    EquilibriumBranch
+    """
+    lo, hi = sorted(map(float, p_range))
+    if not (math.isfinite(lo) and math.isfinite(hi)) or lo == hi:
+        raise InputError(f"p_range must be two different finite numbers, got {p_range!r}")
+    if direction not in (1, -1):
+        raise InputError("direction must be 1 or -1")
+    num = NumericSystem(system, params or {}, equilibrium_guess)
+    n = num.n
+    width = hi - lo
+    h = step or 0.01 * width
+    hmax = max_step or 0.05 * width
+    hmin = 1e-9 * width
+    p0 = (lo if direction == 1 else hi) if start is None else float(start)
+    y0 = num.equilibrium_float(p0)
+    x = np.append(y0, p0)
+    _, J, fp = num.first(y0, p0, True)
+    t = direction * _tangent(J, fp, None)
+    ps, ys, nus, tfs, tps = [p0], [y0], [], [], [t[n]]
+    lam = num.eigenvalues(y0, p0)
+    nus.append(_n_unstable(lam))
+    tfs.append(hopf_test_function(lam))
+    while len(ps) < max_points:
+        x_new, its = _corrector(num, x + h * t, t, 1e-11)
+        if x_new is None:
+            h *= 0.5
+            if h < hmin:
+                raise SingularPointError(f"{system.name}: continuation stalled at {num.p.name} = {x[n]:.8g}")
+            continue
+        _, J, fp = num.first(x_new[:n], x_new[n], True)
+        try:
+            t_new = _tangent(J, fp, t)
+        except np.linalg.LinAlgError:
+            h *= 0.5
+            continue
+        x, t = x_new, t_new
+        lam = num.eigenvalues(x[:n], x[n])
+        ps.append(x[n])
+        ys.append(x[:n].copy())
+        nus.append(_n_unstable(lam))
+        tfs.append(hopf_test_function(lam))
+        tps.append(t[n])
+        if its <= 3:
+            h = min(1.3 * h, hmax)
+        if not (lo <= x[n] <= hi):
+            break
+    P, Y = np.array(ps), np.array(ys)
+    folds = []
+    for k in range(1, len(P)):
+        if tps[k - 1] * tps[k] < 0:
+            folds.append(_refine_fold(num, Y[k - 1], P[k - 1], Y[k], P[k]))
+    hopfs: list[HopfResult] = []
+    if locate_hopf:
+        cache: dict = {}
+        for k in range(1, len(P)):
+            if tfs[k - 1] * tfs[k] >= 0 or not (lo <= P[k] <= hi or lo <= P[k - 1] <= hi):
+                continue
+            if tps[k - 1] * tps[k] < 0:
+                continue  # a fold in between: the branch is not a graph over p there
+            pa, pb = sorted((P[k - 1], P[k]))
+            ya = Y[k - 1] if P[k - 1] == pa else Y[k]
+            hit = locate_crossing(num, pa, pb, ya)
+            if hit is None:
+                continue  # neutral saddle
+            pc0, yc0, lamc = hit
+            with mpmath.workdps(dps):
+                pc, wc, yc = refine_hopf(num, pc0, abs(lamc.imag), yc0)
+                hopfs.append(normal_form_at(num, pc, wc, yc, jets=jets, jets_cache=cache, params=params))
+    return EquilibriumBranch(system=system.name, parameter=num.p.name, p=P, y=Y, n_unstable=np.array(nus),
+                             hopf=tuple(hopfs), folds=tuple(folds))
+
+
+def _refine_fold(num: NumericSystem, ya, pa, yb, pb) -> float:
+    """The extremal parameter of the branch between two points on either side of a fold.
+
+    Near a fold p is a smooth function of the state component that changes most between the
+    two points; p(s) comes from Newton's method with that component fixed and its extremum from
+    Brent's method (p at a quadratic extremum is accurate to round-off).
+    """
+    n = num.n
+    k = int(np.argmax(np.abs(np.asarray(yb) - np.asarray(ya))))
+    guess = {"y": np.asarray(ya, float).copy(), "p": float(pa)}
+
+    def p_of(s):
+        y, p = guess["y"].copy(), guess["p"]
+        y[k] = s
+        for _ in range(30):
+            F, J, fp = num.first(y, p, True)
+            A = np.column_stack([np.delete(J, k, axis=1), fp])
+            d = np.linalg.lstsq(A, -F, rcond=None)[0]
+            y[np.arange(n) != k] += d[:-1]
+            p += d[-1]
+            if np.max(np.abs(d)) <= 1e-14 * (1 + np.max(np.abs(y)) + abs(p)):
+                break
+        guess["y"], guess["p"] = y, p
+        return p
+
+    sign = 1.0 if (pa + pb) / 2 >= min(pa, pb) and p_of((ya[k] + yb[k]) / 2) > max(pa, pb) else -1.0
+    lo, hi = sorted((float(ya[k]), float(yb[k])))
+    res = scipy.optimize.minimize_scalar(lambda s: -sign * p_of(s), bounds=(lo, hi), method="bounded",
+                                         options={"xatol": 1e-10 * (1 + abs(hi))})
+    return float(p_of(res.x))
+
+
+# --- two-parameter continuation of a Hopf point -------------------------------------------------------
+
+@dataclass(frozen=True)
+class GeneralisedHopfPoint:
+    """A generalised-Hopf (Bautin) point: a Hopf point with l₁ = 0.
+
+    Parameters
+    ----------
+    system : str
+    parameters : (str, str)
+        Names of p₁ (the system's Hopf parameter) and p₂.
+    p1, p2 : float
+        The point.
+    omega : float
+        Angular frequency.
+    equilibrium : tuple of float
+    l2 : float or None
+        Second Lyapunov coefficient in Kuznetsov's normalisation (None where not computed).
+    hopf : HopfResult
+        The Hopf analysis at the point (its l₁ is zero to the located accuracy).
+    """
+
+    system: str
+    parameters: tuple[str, str]
+    p1: float
+    p2: float
+    omega: float
+    equilibrium: tuple[float, ...]
+    l2: float | None
+    hopf: HopfResult
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"system": self.system, "parameters": list(self.parameters), "p1": self.p1, "p2": self.p2,
+                "omega": self.omega, "equilibrium": list(self.equilibrium), "l2": self.l2,
+                "l1": self.hopf.l1}
+
+    def __repr__(self) -> str:
+        l2 = "not computed" if self.l2 is None else f"{self.l2:.6g}"
+        return (f"GeneralisedHopfPoint({self.system}: {self.parameters[0]} = {self.p1:.10g}, "
+                f"{self.parameters[1]} = {self.p2:.10g}, ω = {self.omega:.8g}, l2 = {l2})")
+
+
+@dataclass(frozen=True)
+class HopfCurve:
+    """A curve of Hopf points in (p₁, p₂) with l₁ along it and its generalised-Hopf points."""
+
+    system: str
+    parameters: tuple[str, str]
+    p1: np.ndarray
+    p2: np.ndarray
+    omega: np.ndarray
+    l1: np.ndarray
+    generalised_hopf: tuple[GeneralisedHopfPoint, ...] = ()
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"system": self.system, "parameters": list(self.parameters), "p1": self.p1.tolist(),
+                "p2": self.p2.tolist(), "omega": self.omega.tolist(), "l1": self.l1.tolist(),
+                "generalised_hopf": [g.as_dict() for g in self.generalised_hopf]}
+
+    def __repr__(self) -> str:
+        gh = ", ".join(f"({g.p1:.8g}, {g.p2:.8g})" for g in self.generalised_hopf) or "none"
+        return (f"HopfCurve({self.system}: {len(self.p1)} points, {self.parameters[1]} in "
+                f"[{self.p2.min():.6g}, {self.p2.max():.6g}]; GH at {gh})")
+
+
+class _HopfTracker:
+    """Locates the Hopf point at a given p₂ by Newton from the last one found (natural continuation)."""
+
+    def __init__(self, system: DynamicalSystem, params: Mapping[str, float], second: str, start: HopfResult,
+                 dps: int, jets: str):
+        if second not in {s.name for s in system.parameters}:
+            raise InputError(f"{system.name}: {second!r} is not a parameter of the system "
+                             f"(known: {', '.join(s.name for s in system.parameters)})")
+        self.params = dict(params)
+        self.second = second
+        self.num = NumericSystem(system, self.params, start.equilibrium)
+        self.sym2 = next(s for s in system.parameters if s.name == second)
+        self.last = (start.p_c, start.omega_c, start.equilibrium)
+        self.dps = dps
+        self.jets = jets
+        self.cache: dict = {}
+
+    def set_p2(self, v: float) -> None:
+        self.num.params[self.sym2] = float(v)
+        self.num._pv = list(self.num.params.values())
+        self.params[self.second] = float(v)
+
+    def at(self, p2: float, dps: int | None = None) -> HopfResult:
+        self.set_p2(p2)
+        p1, om, y = self.last
+        with mpmath.workdps(dps or self.dps):
+            pc, wc, yc = refine_hopf(self.num, p1, om, y)
+            res = normal_form_at(self.num, pc, wc, yc, jets=self.jets, jets_cache=self.cache, params=self.params)
+        self.last = (res.p_c, res.omega_c, res.equilibrium)
+        return res
+
+
+def _l2_at(system: DynamicalSystem, params: Mapping[str, float], res: HopfResult, dps: int) -> float | None:
+    """l₂ by :func:`landau.lyapunov.lyapunov_coefficients` where that route exists (else None)."""
+    try:
+        from landau.lyapunov import lyapunov_coefficients
+    except ImportError:
+        return None
+    out = lyapunov_coefficients(system, dict(params), res.p_c, dps=dps)
+    l2 = getattr(out, "l2", None)
+    if l2 is None and isinstance(out, Mapping):
+        l2 = out.get("l2")
+    if l2 is None and isinstance(out, tuple) and len(out) >= 2:
+        l2 = out[1]
+    return None if l2 is None else float(l2)
+
+
+def hopf_curve(system: DynamicalSystem, params: Mapping[str, float], second: str, p2_range: tuple[float, float],
+               start: HopfResult, *, steps: int = 40, dps: int = 30, jets: str = "taylor",
+               locate_gh: bool = True, l2: bool = True) -> HopfCurve:
+    """Follow a Hopf point in (p₁, p₂) across ``p2_range`` and locate the generalised-Hopf points on the way.
+
+    Parameters
+    ----------
+    system : DynamicalSystem
+        Its ``parameter`` is p₁.
+    params : mapping
+        Values of the other parameters, including p₂'s value at ``start``.
+    second : str
+        Name of p₂.
+    p2_range : (float, float)
+        p₂ runs from ``params[second]`` to each end of this interval (natural continuation in
+        p₂: the curve must be a graph over p₂ in the range).
+    start : HopfResult
+        A Hopf point at ``params`` (from :func:`landau.general.hopf_normal_form` or
+        :func:`equilibrium_branch`).
+    steps : int
+        Number of p₂ steps across the range.
+    dps : int
+        Working precision along the curve.
+    locate_gh, l2 : bool
+        Locate the points where l₁ changes sign, and compute l₂ there.
+
+    Returns
+    -------
+    HopfCurve
+    """
+    if second not in params:
+        raise InputError(f"params must give the starting value of {second!r}")
+    p20 = float(params[second])
+    lo, hi = sorted(map(float, p2_range))
+    if not (lo <= p20 <= hi):
+        raise InputError(f"the starting {second} = {p20:g} is outside {p2_range!r}")
+    tracker = _HopfTracker(system, params, second, start, dps, jets)
+    pts: list[tuple[float, HopfResult]] = [(p20, start)]
+    dp = (hi - lo) / steps
+    for end, sgn in ((hi, 1), (lo, -1)):
+        tracker.last = (start.p_c, start.omega_c, start.equilibrium)
+        v = p20
+        while sgn * (end - v) > 1e-12 * max(1.0, abs(end)):
+            v = v + sgn * dp if sgn * (end - v - sgn * dp) > 0 else end
+            try:
+                pts.append((v, tracker.at(v)))
+            except (SingularPointError, NoHopfError):
+                break
+    pts.sort(key=lambda z: z[0])
+    P2 = np.array([z[0] for z in pts])
+    res = [z[1] for z in pts]
+    L1 = np.array([r.l1 for r in res])
+    ghs: list[GeneralisedHopfPoint] = []
+    if locate_gh:
+        for k in range(1, len(pts)):
+            if L1[k - 1] * L1[k] < 0:
+                tracker.last = (res[k - 1].p_c, res[k - 1].omega_c, res[k - 1].equilibrium)
+                ghs.append(_locate_gh(system, tracker, P2[k - 1], P2[k], l2))
+    return HopfCurve(system=system.name, parameters=(system.parameter.name, second), p1=np.array([r.p_c for r in res]),
+                     p2=P2, omega=np.array([r.omega_c for r in res]), l1=L1, generalised_hopf=tuple(ghs))
+
+
+def _locate_gh(system: DynamicalSystem, tracker: _HopfTracker, a: float, b: float, with_l2: bool) -> GeneralisedHopfPoint:
+    last = {}
+
+    def l1(v):
+        r = tracker.at(v)
+        last["r"] = r
+        return r.l1
+
+    p2 = scipy.optimize.brentq(l1, a, b, xtol=1e-14 * max(1.0, abs(a), abs(b)), rtol=1e-13)
+    r = tracker.at(p2, dps=max(tracker.dps, 40))
+    l2v = _l2_at(system, tracker.params, r, max(tracker.dps, 40)) if with_l2 else None
+    return GeneralisedHopfPoint(system=system.name, parameters=(system.parameter.name, tracker.second), p1=r.p_c,
+                                p2=float(p2), omega=r.omega_c, equilibrium=r.equilibrium, l2=l2v, hopf=r)
+
+
+def generalised_hopf(system: DynamicalSystem, params: Mapping[str, float], second: str,
+                     p2_bracket: tuple[float, float], p1_bracket: tuple[float, float], *, dps: int = 40,
+                     jets: str = "taylor", l2: bool = True) -> GeneralisedHopfPoint:
+    """Locate the generalised-Hopf (Bautin) point — l₁ = 0 on the Hopf curve — with p₂ inside ``p2_bracket``.
+
+    Parameters
+    ----------
+    system : DynamicalSystem
+        Its ``parameter`` is p₁.
+    params : mapping
+        Values of the other parameters (the value of p₂ in it is ignored).
+    second : str
+        Name of p₂.
+    p2_bracket : (float, float)
+        Values of p₂ at which l₁ has opposite signs.
+    p1_bracket : (float, float)
+        A bracket of p₁ holding exactly one Hopf point at p₂ = p2_bracket[0].
+    dps : int
+        Working precision.
+    jets : {"taylor", "symbolic"}
+    l2 : bool
+        Compute the second Lyapunov coefficient at the point by
+        :func:`landau.lyapunov.lyapunov_coefficients` (``None`` if that route is unavailable).
+
+    Returns
+    -------
+    GeneralisedHopfPoint
+
+    Raises
+    ------
+    NoHopfError
+        l₁ has the same sign at both ends of ``p2_bracket``.
+    """
+    from landau.general import hopf_normal_form
+
+    a, b = map(float, p2_bracket)
+    prm = {**params, second: a}
+    start = hopf_normal_form(system, prm, p1_bracket, dps=dps, jets=jets)
+    tracker = _HopfTracker(system, prm, second, start, dps, jets)
+    end = tracker.at(b)
+    if start.l1 * end.l1 > 0:
+        raise NoHopfError(f"{system.name}: l1 has the same sign at {second} = {a:g} and {b:g} "
+                          f"({start.l1:.3g}, {end.l1:.3g}); no generalised-Hopf point bracketed")
+    tracker.last = (start.p_c, start.omega_c, start.equilibrium)
+    return _locate_gh(system, tracker, a, b, l2)
