@@ -22,13 +22,11 @@ builds the model from (m, κ, V/V_*).
 from __future__ import annotations
 
 import ast
-import builtins
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Mapping
 
-import numba as nb
 import numpy as np
 import sympy as sp
 from sympy.printing.pycode import PythonCodePrinter
@@ -36,6 +34,7 @@ from sympy.printing.pycode import PythonCodePrinter
 from landau.errors import InputError
 from landau.system import SpringBlock
 from landau.laws.law import FrictionLaw, v as v_slip
+from landau.verify.jitcache import load_generated, njit_cached
 from landau.verify.springblock.radau import SIG, SIG_JAC
 
 
@@ -148,10 +147,11 @@ def _emit(ys, f, Jm, pnames, label):
     _check_generated(src)
     # only the whitelisted names exist in the namespace (the AST check above is the filter; this is
     # the second wall: no other builtins are reachable from the generated code)
-    glb: dict = {"math": math, "__builtins__": {name: getattr(builtins, name) for name in _BUILTINS}}
-    exec(compile(src, f"<springblock rhs for {label}>", "exec"), glb)
+    # the source is kept in a per-user cache file named by its hash, so numba's disk cache
+    # serves the compiled kernels to later processes
+    glb = load_generated(src, {"math": math}, _BUILTINS)
     rhs_py, jac_py = glb["rhs"], glb["jac"]
-    return src, rhs_py, jac_py, nb.njit(SIG)(rhs_py), nb.njit(SIG_JAC)(jac_py)
+    return src, rhs_py, jac_py, njit_cached(rhs_py, SIG), njit_cached(jac_py, SIG_JAC)
 
 
 _SYMBOLIC: dict[tuple, tuple] = {}
