@@ -138,13 +138,13 @@ def cpu_at_error(front, err):
 
 def radau_on_stick(t_span: float = 0.05) -> list[str]:
     """Why the stick stepper is an SDIRK and not the springblock Radau IIA
-    (``verify/springblock/radau.py``, simplified Newton on the coupled stage system with a
+    (``verify/hybrid/radau.py``, simplified Newton on the coupled stage system with a
     full-Newton fallback): both from rest at X₀ and from the stick on the obstacle at
     t ≈ 0.15 s (ω = 15), over ``t_span`` s at rtol 1e-8."""
     import numba as nb
 
     from landau.verify.skurativskyi.model import rhs2
-    from landau.verify.springblock import radau as RD
+    from landau.verify.hybrid import radau as RD
 
     fun = nb.njit(RD.SIG)(rhs2.py_func)
 

@@ -21,6 +21,11 @@ from landau.errors import IntegratorError, InputError
 from landau.verify.hybrid import Guard, HybridModel, Jump, Mode
 from landau.verify.skurativskyi import rk as R
 from landau.verify.skurativskyi.model import Params, rhs
+from landau.verify.skurativskyi.sdirk import sdirk_step
+
+#: the compiled event-driven loop built for eq. (1): DOPRI5 over the field ``rhs``, stick phases by
+#: the SDIRK4 built for the same field (:func:`landau.verify.skurativskyi.rk.switching_integrator`)
+_integrate, _integrate_mixed = R.switching_integrator(rhs, sdirk_step)
 
 #: default tolerances of the fast path: event/bifurcation locations converge at rtol ≲ 1e-8
 #: (at rtol 1e-6 they move by ~0.01 rad/s); atol in m and m/s (the cart moves by mm at mm/s–cm/s): by default
@@ -121,7 +126,7 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
         y = y0.copy()
     t_end = t0 + n_periods * P if float(n_periods) != int(n_periods) else t0 + int(n_periods) * P
     n_st = int(n_periods) + 2 if strobe else 1
-    out = R.integrate_mixed(p, float(t0), y, float(t_end), float(rtol), at, 1e-5, P / 20, params.xI, True,
+    out = _integrate_mixed(p, float(t0), y, float(t_end), float(rtol), at, 1e-5, P / 20, params.xI, True,
                             float(t0), P if strobe or lyapunov else 0.0, n_st, lyapunov, max_events, max_steps,
                             *METHODS[method])
     t, yend, status, ev_t, ev_k, ev_v, st_t, st_y, ly, nly, nsteps, nfev, nrej, mism, nstiff = out

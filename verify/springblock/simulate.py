@@ -15,7 +15,7 @@ import numpy as np
 
 from landau.errors import InputError, IntegratorError
 from landau.verify.springblock.model import SpringBlockModel, compile_variational
-from landau.verify.springblock.radau import A_RADAU, STATUS, VINV, radau_core
+from landau.verify.hybrid.radau import A_RADAU, STATUS, VINV, radau_core
 
 #: index of w = ln(v/V) in the scaled state; w = 0 ⇔ ẋ = V ⇔ X = x − x₀ extremal
 W_INDEX = 1
@@ -78,7 +78,7 @@ def integrate(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol:
     evbuf = np.empty((max_events if event_index >= 0 else 1, nn + 1))
     evdir = np.empty(evbuf.shape[0])
     tic = time.process_time()
-    st, t, y, cnt, et, ey, rt, ry = radau_core(c.rhs, c.jac, t0, y0, t1, model.p, float(rtol), at, float(h0),
+    st, t, y, cnt, et, ey, rt, ry, _, _ = radau_core(c.rhs, c.jac, t0, y0, t1, model.p, float(rtol), at, float(h0),
                                                float(ms), int(max_steps), int(event_index), float(event_value),
                                                int(event_direction), int(stop_after), int(record), A_RADAU,
                                                VINV, evbuf, evdir)

@@ -1,0 +1,186 @@
+"""Compiled vector-field kernels generated from a symbolic declaration.
+
+A model declares its field as sympy expressions f(t, y; p); :func:`generate_kernel` prints
+them (with common-subexpression elimination) as Python source for
+
+    fun(t, y, p, out)      out[i] = f_i(t, y; p)
+    jac(t, y, p, out)      out[i, j] = ∂f_i/∂y_j        (exact, differentiated by sympy)
+
+checks that source against a whitelist of syntax (assignments of arithmetic on names and
+subscripts, ``math.<function>`` calls and a few builtins), executes it in a namespace that
+holds nothing else, and compiles both functions with numba.  The result (:class:`Kernel`)
+is what the compiled steppers of :mod:`landau.verify.hybrid.compiled` take: the
+simulation layer itself never imports sympy — kernels are made here, on the derivation
+side, and handed over as numba callables.
+
+Only expressions built by sympy (from a law parsed by :mod:`landau.laws.parse` or written
+in code) reach this module; user strings never reach ``exec``.
+"""
+
+from __future__ import annotations
+
+import ast
+import builtins
+import math
+from typing import Mapping, Sequence
+
+import numba as nb
+import numpy as np
+import sympy as sp
+from numba import types
+from sympy.printing.pycode import PythonCodePrinter
+
+from landau.errors import InputError
+from landau.verify.hybrid.kernel import Kernel
+
+#: numba signatures of the generated functions (the ones the compiled steppers call)
+FUN_SIG = types.void(types.float64, types.float64[::1], types.float64[::1], types.float64[::1])
+JAC_SIG = types.void(types.float64, types.float64[::1], types.float64[::1], types.float64[:, ::1])
+
+_ALLOWED_NODES = (ast.Module, ast.FunctionDef, ast.arguments, ast.arg, ast.Assign, ast.Name, ast.Load,
+                  ast.Store, ast.Subscript, ast.Slice, ast.Tuple, ast.Constant, ast.BinOp, ast.UnaryOp,
+                  ast.Call, ast.Attribute, ast.operator, ast.unaryop, ast.IfExp, ast.Compare, ast.cmpop,
+                  ast.BoolOp, ast.boolop)
+_BUILTINS = ("abs", "min", "max", "float")
+
+
+class _Printer(PythonCodePrinter):
+    def _print_Symbol(self, expr):
+        return expr.name
+
+
+def check_source(src: str) -> None:
+    """Refuse generated source that is anything but arithmetic on names and subscripts,
+    ``math.<function>`` calls and the builtins ``abs``, ``min``, ``max``, ``float``.
+
+    Raises
+    ------
+    InputError
+        Naming the first node outside the whitelist.
+    """
+    for node in ast.walk(ast.parse(src)):
+        if not isinstance(node, _ALLOWED_NODES):
+            raise InputError(f"generated code contains a {type(node).__name__} node: refusing to compile it")
+        if isinstance(node, ast.Attribute) and not (isinstance(node.value, ast.Name) and node.value.id == "math"
+                                                    and not node.attr.startswith("_")):
+            raise InputError(f"generated code accesses attribute {ast.unparse(node)!r}: refusing to compile it")
+        if isinstance(node, ast.Call) and not (isinstance(node.func, ast.Attribute)
+                                               or (isinstance(node.func, ast.Name) and node.func.id in _BUILTINS)):
+            raise InputError(f"generated code calls {ast.unparse(node.func)!r}: refusing to compile it")
+        if isinstance(node, ast.Name) and node.id.startswith("__"):
+            raise InputError(f"generated code uses the name {node.id!r}: refusing to compile it")
+
+
+def kernel_source(states: Sequence[sp.Symbol], field: Sequence[sp.Expr], params: Sequence[sp.Symbol],
+                  time: sp.Symbol | None = None, jacobian: bool = True) -> str:
+    """Python source of ``fun(t, y, p, out)`` (and ``jac(t, y, p, out)``) for ``field``.
+
+    Parameters
+    ----------
+    states : sequence of sympy Symbol
+        y_0 … y_{n-1}, in order.
+    field : sequence of sympy expressions
+        f_i(t, y; p), one per state.
+    params : sequence of sympy Symbol
+        The entries of the parameter vector ``p``, in order.
+    time : sympy Symbol, optional
+        The time symbol of a non-autonomous field.
+    jacobian : bool
+        Also emit ``jac`` (∂f/∂y by sympy).
+
+    Returns
+    -------
+    str
+        The source, already checked by :func:`check_source`.
+    """
+    n = len(states)
+    if len(field) != n:
+        raise InputError(f"field has {len(field)} components for {n} states")
+    names = [s.name for s in states] + [s.name for s in params] + ([time.name] if time is not None else [])
+    if len(set(names)) != len(names):
+        raise InputError(f"state, parameter and time symbols must be distinct (got {names})")
+    known = set(states) | set(params) | ({time} if time is not None else set())
+    exprs = [sp.sympify(e) for e in field]
+    free = set().union(*(e.free_symbols for e in exprs)) - known
+    if free:
+        raise InputError(f"field uses undeclared symbol(s) {sorted(s.name for s in free)}")
+    # the generated code names its variables itself (s_i states, q_i parameters, t, c_k
+    # subexpressions): a user's symbol names never reach the source
+    ren = {s: sp.Symbol(f"s{i}", **s.assumptions0) for i, s in enumerate(states)}
+    ren.update({s: sp.Symbol(f"q{i}", **s.assumptions0) for i, s in enumerate(params)})
+    if time is not None:
+        ren[time] = sp.Symbol("t", **time.assumptions0)
+    exprs = [e.xreplace(ren) for e in exprs]
+    svars = [ren[s] for s in states]
+    jm = sp.Matrix(exprs).jacobian(sp.Matrix(svars)) if jacobian else sp.zeros(0, 0)
+    reps, red = sp.cse(exprs + list(jm), symbols=sp.numbered_symbols("c"), optimizations="basic")
+    pr = _Printer({"fully_qualified_modules": True})
+    head = [f"    s{i} = y[{i}]" for i in range(n)]
+    head += [f"    q{i} = p[{i}]" for i in range(len(params))]
+    body = [f"    {s} = {pr.doprint(e)}" for s, e in reps]
+    lines = ["def fun(t, y, p, out):", *head, *body]
+    lines += [f"    out[{i}] = {pr.doprint(red[i])}" for i in range(n)]
+    src = "\n".join(lines) + "\n"
+    if jacobian:
+        lj = ["def jac(t, y, p, out):", "    out[:, :] = 0.0", *head, *body]
+        for i in range(n):
+            for j in range(n):
+                e = red[n + i * n + j]
+                if e != 0:
+                    lj.append(f"    out[{i}, {j}] = {pr.doprint(e)}")
+        src += "\n" + "\n".join(lj) + "\n"
+    check_source(src)
+    return src
+
+
+def generate_kernel(states: Sequence[sp.Symbol], field: Sequence[sp.Expr], params: Sequence[sp.Symbol] = (),
+                    values: Mapping[sp.Symbol, float] | Sequence[float] | None = None,
+                    time: sp.Symbol | None = None, jacobian: bool = True, name: str = "kernel") -> Kernel:
+    """Compile the field f(t, y; p) declared by sympy expressions into a :class:`Kernel`.
+
+    Parameters
+    ----------
+    states, field, params, time, jacobian
+        As in :func:`kernel_source`.
+    values : mapping or sequence of float, optional
+        Parameter values (by symbol, or in the order of ``params``); required when
+        ``params`` is not empty.
+    name : str
+        A label for error messages and the kernel's repr.
+
+    Returns
+    -------
+    Kernel
+        ``fun`` and ``jac`` compiled by numba (signature ``(float64, float64[::1],
+        float64[::1], out)``) and the packed parameter vector.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> y, lam = sp.symbols("y lam")
+    >>> k = generate_kernel([y], [-lam * y], [lam], [2.0])
+    >>> k(0.0, [1.0])
+    array([-2.])
+    """
+    src = kernel_source(states, field, params, time, jacobian)
+    if params:
+        if values is None:
+            raise InputError(f"kernel {name!r}: values for the parameters {[s.name for s in params]} are needed")
+        if isinstance(values, Mapping):
+            missing = [s.name for s in params if s not in values]
+            if missing:
+                raise InputError(f"kernel {name!r}: no value for parameter(s) {missing}")
+            pv = [float(values[s]) for s in params]
+        else:
+            pv = [float(v) for v in values]
+            if len(pv) != len(params):
+                raise InputError(f"kernel {name!r}: {len(pv)} values for {len(params)} parameters")
+    else:
+        pv = [0.0]  # numba needs a non-empty float64[::1]
+    # only whitelisted names exist in the namespace (check_source is the filter; this is the
+    # second wall: no other builtins are reachable from the generated code)
+    glb: dict = {"math": math, "__builtins__": {nm: getattr(builtins, nm) for nm in _BUILTINS}}
+    exec(compile(src, f"<kernel {name}>", "exec"), glb)
+    fun = nb.njit(FUN_SIG)(glb["fun"])
+    jac = nb.njit(JAC_SIG)(glb["jac"]) if jacobian else None
+    return Kernel(fun, np.asarray(pv, float), jac, name=name, n=len(states), source=src)

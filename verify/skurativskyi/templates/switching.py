@@ -1,0 +1,184 @@
+"""Template: the event-driven DOPRI5/stick-stepper loop of landau.verify.skurativskyi.rk over a
+second-order field (see landau.verify.hybrid.specialise for how templates are bound).
+
+Free names: ``fun(t, y, p, out)`` (the field), ``dp_step`` (the DOPRI5 step specialised to the
+same field), ``stiff_step`` (the stick-phase step), ``jit`` (the numba decorator).
+"""
+
+import math
+
+import numpy as np
+
+from landau.verify.hybrid.compiled import err_norm as _err_norm
+from landau.verify.skurativskyi.rk import MAX_EVENTS, MAX_STEPS, OK, STEP_TOO_SMALL, _first_crossing
+
+
+@jit
+def any_step(stiff, p, t, y, k1, h, rtol, atol, ynew, k7, err):
+    """One step of the chosen method; returns (ok, f evaluations)."""
+    if stiff:
+        return stiff_step(p, t, y, h, rtol, atol, ynew, k7, err)
+    dp_step(p, t, y, k1, h, ynew, k7, err)
+    return True, 6
+
+
+@jit
+def integrate_mixed(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, strobe_dt,
+                    n_strobe_max, renorm, max_events, max_steps, v_stiff, a_stiff):
+    """Integrate with contact switching at x = xI (``guard``), stroboscopic samples every
+    ``strobe_dt`` from ``strobe_t0`` (if > 0) and tangent renormalisation there
+    (``renorm``, 4-D systems).  A step that starts in stick — |ẋ| < ``v_stiff`` and
+    |ẍ| < ``a_stiff`` (a velocity reversal crosses the band |ẋ| < v_stiff in ~2 v_stiff/|ẍ|,
+    a few explicit steps; a stick stays in it) — is taken by the L-stable SDIRK4 of
+    :mod:`landau.verify.skurativskyi.sdirk`, any other by DOPRI5 (``v_stiff`` ≤ 0: DOPRI5 only).
+    See the module docstring.  Returns a tuple (see :func:`landau.verify.skurativskyi.simulate.run`)."""
+    n = y0.shape[0]
+    y = y0.copy()
+    t = t0
+    k1 = np.empty(n)
+    fun(t, y, p, k1)
+    nfev = 1
+    ynew = np.empty(n)
+    k7 = np.empty(n)
+    err = np.empty(n)
+    ev_t = np.empty(max_events)
+    ev_k = np.empty(max_events, np.int64)
+    ev_v = np.empty(max_events)
+    nev = 0
+    st_t = np.empty(n_strobe_max)
+    st_y = np.empty((n_strobe_max, n))
+    nst = 0
+    lyap = 0.0
+    nly = 0
+    g = y[0] - xI
+    contact = g > 0.0 or (g == 0.0 and y[1] > 0.0)
+    h = h0
+    ist = 0
+    ts = strobe_t0 if strobe_dt > 0 else np.inf
+    while ts < t - 1e-12 * max(1.0, abs(t)):
+        ist += 1
+        ts = strobe_t0 + ist * strobe_dt
+    nsteps = 0
+    nrej = 0
+    nstiff = 0
+    status = OK
+    max_mismatch = 0.0
+    while True:
+        # stroboscopic sample at the current time?
+        if ts <= t_end and abs(t - ts) <= 1e-13 * max(1.0, abs(ts)):
+            if nst < n_strobe_max:
+                st_t[nst] = t
+                st_y[nst, :] = y
+                nst += 1
+            if renorm:
+                nv = math.sqrt(y[2] * y[2] + y[3] * y[3])
+                if nv > 0:
+                    lyap += math.log(nv)
+                    nly += 1
+                    y[2] /= nv
+                    y[3] /= nv
+                    fun(t, y, p, k1)
+                    nfev += 1
+            ist += 1
+            ts = strobe_t0 + ist * strobe_dt
+        if t >= t_end:
+            break
+        if nsteps >= max_steps:
+            status = MAX_STEPS
+            break
+        h = min(h, hmax)
+        clipped = False
+        h_free = h
+        t_target = min(t_end, ts)
+        if t + h >= t_target - 1e-13 * max(1.0, abs(t_target)):
+            h = t_target - t
+            clipped = True
+        if h <= 1e-15 * max(1.0, abs(t)):
+            status = STEP_TOO_SMALL
+            break
+        stiff = abs(y[1]) < v_stiff and abs(k1[1]) < a_stiff
+        expo = 0.25 if stiff else 0.2  # embedded orders 3 (SDIRK4) and 4 (DOPRI5)
+        ok, nf = any_step(stiff, p, t, y, k1, h, rtol, atol, ynew, k7, err)
+        nfev += nf
+        en = _err_norm(err, y, ynew, rtol, atol) if ok else np.nan
+        if not (en <= 1.0):
+            nrej += 1
+            if en != en:  # NaN or a failed stage solve
+                h *= 0.2
+            else:
+                h *= max(0.2, 0.9 * en ** -expo)
+            continue
+        fac = 10.0 if en == 0 else min(10.0, 0.9 * en ** -expo)
+        h_next = h * fac
+        if clipped:
+            h_next = max(h_next, min(h_free, h_free * fac))
+        switched = False
+        if guard:
+            g0 = y[0] - xI
+            dx = ynew[0] - y[0]
+            m0 = h * y[1]
+            m1 = h * ynew[1]
+            q1 = 3 * dx - 2 * m0 - m1
+            q2 = -2 * dx + m0 + m1
+            sgn = -1.0 if contact else 1.0
+            s_star = _first_crossing(g0, m0, q1, q2, sgn)
+            if s_star <= 0.0 and (ynew[0] - xI) * sgn > 0.0:
+                s_star = 1.0  # defensive: the end state is outside
+            if s_star > 0.0:
+                # re-take the step onto the root; Newton on the step length (slope ẋ)
+                hs = s_star * h
+                for it in range(8):
+                    ok, nf = any_step(stiff, p, t, y, k1, hs, rtol, atol, ynew, k7, err)
+                    nfev += nf
+                    if not ok:
+                        hs *= 0.5
+                        continue
+                    gr = ynew[0] - xI
+                    if abs(gr) <= 4e-16 * abs(xI) or ynew[1] == 0.0:
+                        break
+                    dh = -gr / ynew[1]
+                    hn = hs + dh
+                    if hn <= 0.0:
+                        hn = 0.5 * hs
+                    elif hn > h:
+                        hn = 0.5 * (hs + h)
+                    hs = hn
+                h = hs
+                max_mismatch = max(max_mismatch, abs(ynew[0] - xI))
+                ynew[0] = xI
+                fun(t + h, ynew, p, k7)
+                nfev += 1
+                switched = True
+                clipped = False
+        nsteps += 1
+        if stiff:
+            nstiff += 1
+        t = ts if clipped and t_target == ts else (t_end if clipped else t + h)
+        for a in range(n):
+            y[a] = ynew[a]
+            k1[a] = k7[a]
+        if switched:
+            if nev < max_events:
+                ev_t[nev] = t
+                ev_k[nev] = -1 if contact else 1
+                ev_v[nev] = y[1]
+                nev += 1
+            else:
+                status = MAX_EVENTS
+                break
+            contact = not contact
+            h_next = max(h_next, h_free)
+        h = h_next
+    return (t, y, status, ev_t[:nev].copy(), ev_k[:nev].copy(), ev_v[:nev].copy(), st_t[:nst].copy(),
+            st_y[:nst].copy(), lyap, nly, nsteps, nfev, nrej, max_mismatch, nstiff)
+
+
+@jit
+def integrate(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, strobe_dt,
+              n_strobe_max, renorm, max_events, max_steps):
+    """The explicit path: :func:`integrate_mixed` with the stiff stepper disabled (the
+    returned tuple has the stiff-step count as its last entry, always 0 here)."""
+    return integrate_mixed(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, strobe_dt,
+                           n_strobe_max, renorm, max_events, max_steps, 0.0, 0.0)
+
+
