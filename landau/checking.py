@@ -340,7 +340,6 @@ def _check_system(system, params: Mapping[str, float], bracket, eps2: float, tol
                            frequency_simulated=None, frequency_rel_error=None, verdict=Verdict.OUTSIDE_VALIDITY,
                            reason=f"the predicted frequency {w:.3g} rad/s is not positive at eps2 = {eps2:g}", **common)
     f, J, E, vals = _numeric_field(system, params)
-    n = len(system.states)
 
     def rhs(t, y):
         return np.asarray(f(*y, p, *vals), dtype=float) / E

@@ -16,7 +16,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from landau.commands.common import add_law_arguments, parse_floats, parse_velocities, resolve_law
-from landau.errors import InputError, LandauError
+from landau.errors import InputError
 from landau.system import SpringBlock
 from landau.checking import MAX_TOLERANCE, SUBCRITICAL_TOLERANCE, SUPERCRITICAL_TOLERANCE, check
 from landau.verify.springblock.checks import fitted_exponent
