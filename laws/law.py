@@ -241,8 +241,10 @@ class FrictionLaw:
             Each state variable's name and its rate dφ/dt, e.g. ``{"phi": "1 - v*phi/L"}``.
         params : mapping, optional
             Parameter values (floats) or :class:`Parameter` objects.
-        source, description : str, optional
-            Provenance and a one-line description, shown by ``landau laws``.
+        source : str, optional
+            Provenance (paper and equation), shown by ``landau laws``.
+        description : str, optional
+            A one-line description.
 
         Returns
         -------

@@ -56,6 +56,46 @@ def integrate(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol:
     maximum number of accepted steps kept for plotting.  ``variational=True`` integrates the
     state augmented with Φ' = J(y)Φ (``y0`` of length n + n², Φ row-major) for monodromy matrices.
     Raises IntegratorError on failure.
+
+    Parameters
+    ----------
+    model : SpringBlockModel
+        Eq. (4) of Putelat et al. (2010) for one law, V and k.
+    y0 : array_like
+        Initial scaled state (ξ = X/ℓ, ln(v/V), ln(φᵢ/φᵢ₀)); ``model.perturbed(a)`` gives one
+        displaced by X = a [m] along the critical mode.
+    t_span : (float, float)
+        Start and end times (s).
+    rtol : float, optional
+        Relative tolerance of the Radau IIA step-size control.
+    atol : float or array_like, optional
+        Absolute tolerance (default: ``rtol``; the scaled variables are O(1)).
+    event_index : int, optional
+        Component whose crossings of ``event_value`` are located (−1: none).
+    event_value : float, optional
+        The value crossed.
+    event_direction : int, optional
+        +1 upward, −1 downward, 0 both.
+    stop_after : int, optional
+        End the run after that many located crossings (0: run to the end of ``t_span``).
+    record : int, optional
+        Number of accepted steps kept in ``rec_t``, ``rec_y`` (from the start; 0: none).
+
+    Returns
+    -------
+    Run
+        Final time and state, the located events and the recorded steps (convert states
+        with ``model.to_physical``), step counts and CPU time.
+
+    Raises
+    ------
+    IntegratorError
+        With the time and the physical state at failure.
+
+    References
+    ----------
+    Hairer, E., Wanner, G. (1996). Solving Ordinary Differential Equations II, 2nd ed.,
+    Springer, Sec. IV.8 (Radau IIA).
     """
     c = compile_variational(model.law) if variational else model.compiled
     nn = c.n
