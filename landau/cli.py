@@ -14,6 +14,7 @@ import importlib
 import importlib.util
 import json
 import math
+import numbers
 import os
 import sys
 from typing import Any, Sequence
@@ -46,8 +47,8 @@ def _jsonable(obj: Any) -> Any:
         return [_jsonable(v) for v in obj]
     if isinstance(obj, bool) or obj is None or isinstance(obj, str):
         return obj
-    if isinstance(obj, int):
-        return float(obj)
+    if isinstance(obj, numbers.Integral):
+        return int(obj)
     try:
         x = float(obj)
     except (TypeError, ValueError):

@@ -31,7 +31,6 @@ Kuznetsov, Yu. A. (2004). Elements of Applied Bifurcation Theory, 3rd ed., Sprin
 from __future__ import annotations
 
 import enum
-import html
 import math
 from dataclasses import dataclass, field
 from typing import Any, Mapping
@@ -261,7 +260,8 @@ class HopfResult:
                 rf"\Lambda = {_fmt(self.Lambda)}$ ({self.criticality})")
 
     def _repr_html_(self) -> str:
-        rows = "".join(f"<tr><th style='text-align:left'>{html.escape(str(k))}</th><td>{html.escape(_fmt(v, 10))}</td></tr>"
-                       for k, v in self.as_dict().items() if not isinstance(v, (list, dict)))
-        return (f"<div><b>Hopf point of {html.escape(self.system)}</b> — {self.criticality}"
-                f"<table>{rows}</table><small>{html.escape(str(self.convention))}</small></div>")
+        from landau.display import html_record
+
+        fields = {k: v for k, v in self.as_dict().items() if k not in ("system", "convention")}
+        return html_record(f"Hopf point of {self.system}: {self.criticality}", fields,
+                           note=f"Convention: {self.convention}")

@@ -175,10 +175,107 @@ class LandauPoint:
         vals = ", ".join(f"{k}={v:.6g}" for k, v in self.values.items())
         return f"LandauPoint(V={self.V:.4g} m/s, kc={self.kc:.6g} N/m, omega_c={self.omega_c:.6g} rad/s, {vals}; {self.criticality})"
 
+    def _repr_html_(self) -> str:
+        from landau.display import html_record
+
+        return html_record(f"Hopf point at V = {self.V:.4g} m/s: {self.criticality}", self.as_dict(), units=UNITS,
+                           note=f"Convention: {CONVENTION}")
+
     def _repr_latex_(self) -> str:
         parts = [rf"V = {self.V:.4g}", rf"k_c = {self.kc:.6g}", rf"\omega_c = {self.omega_c:.6g}"]
         parts += [rf"{QUANTITIES[k][0]} = {v:.6g}" for k, v in self.values.items() if k in QUANTITIES]
         return "$" + r",\ ".join(parts) + rf"$ ({self.criticality})"
+
+
+class CoefficientTable(dict):
+    """Evaluated amplitude-equation coefficients: a dict of arrays (name -> values over V).
+
+    What :meth:`Derivation.evaluate` returns.  It is a plain ``dict`` for every existing use
+    (``table["Lambda"]``), and adds what a notebook user expects: :attr:`units`,
+    :meth:`to_dataframe` (pandas, units in the column names and in ``df.attrs``),
+    :meth:`plot` (the coefficients against V with the criticality bands) and an HTML table.
+
+    Parameters
+    ----------
+    data : mapping
+        Quantity name -> array (``"V"``, ``"kc"``, ``"omega_c"``, …, ``"degenerate"``).
+    law : str
+        Name of the friction law.
+    params : mapping
+        The parameter values the table was evaluated at.
+    """
+
+    def __init__(self, data: Mapping[str, Any] = (), law: str = "", params: Mapping[str, Any] | None = None):
+        super().__init__(data)
+        self.law = law
+        self.params = dict(params or {})
+
+    @property
+    def units(self) -> dict[str, str]:
+        """Quantity -> SI unit for the quantities in the table."""
+        return {k: UNITS[k] for k in self if k in UNITS}
+
+    def rows(self) -> list[dict[str, Any]]:
+        """One mapping per point (arrays flattened in C order), with its criticality."""
+        if not self:
+            return []
+        shape = np.broadcast(*[np.asarray(v) for v in self.values()]).shape
+        flat = {k: np.ravel(np.broadcast_to(np.asarray(v), shape)) for k, v in self.items()}
+        n = int(np.prod(shape))
+        degenerate = flat.get("degenerate", np.zeros(n, dtype=bool))
+        out = []
+        for i in range(n):
+            row: dict[str, Any] = {k: flat[k][i].item() for k in flat if k != "degenerate"}
+            if "Lambda" in flat:
+                row["criticality"] = ("no Hopf point" if not np.isfinite(flat["kc"][i]) else
+                                      "degenerate" if bool(degenerate[i]) else criticality(float(flat["Lambda"][i])))
+            out.append(row)
+        return out
+
+    def to_dataframe(self):
+        """The table as a pandas DataFrame.
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per point; units in the column names (``"kc [N/m]"``) and in
+            ``df.attrs["units"]``; ``df.attrs`` also holds the law and the parameters.
+
+        Raises
+        ------
+        ImportError
+            When pandas is missing (``pip install 'landau-friction[notebook]'``).
+        """
+        from landau.display import require_pandas
+
+        pd = require_pandas("CoefficientTable.to_dataframe()")
+        units = self.units
+        df = pd.DataFrame(self.rows())
+        df.columns = [f"{c} [{units[c]}]" if c in units else c for c in df.columns]
+        df.attrs.update(units=units, law=self.law, params=dict(self.params))
+        return df
+
+    def plot(self, names: Sequence[str] | None = None, *, fig=None):
+        """k_c, Λ, C, … against V with the super/subcritical bands shaded; returns the Figure
+        (see :func:`landau.plotting.plot_coefficients`)."""
+        from landau.plotting import plot_coefficients
+
+        return plot_coefficients(self, names, fig=fig)
+
+    def _repr_html_(self) -> str:
+        from landau.display import html_table
+
+        n = int(np.size(self.get("V", ())))
+        title = f"Amplitude-equation coefficients, law {self.law}" if self.law else "Amplitude-equation coefficients"
+        return html_table(self.rows(), units=self.units, title=title, note=f"{n} point(s). Convention: {CONVENTION}")
+
+    def __repr__(self) -> str:
+        from landau.display import text_table
+
+        n = int(np.size(self.get("V", ())))
+        names = ", ".join(k for k in self if k != "degenerate")
+        return (f"CoefficientTable(law {self.law!r}, {n} point(s): {names})\n"
+                + text_table(self.rows(), units=self.units, max_rows=20))
 
 
 def _agree(x: np.ndarray, y: np.ndarray, rel: float) -> np.ndarray:
@@ -281,6 +378,83 @@ class Derivation:
             self._coefs[name] = Coefficient(name, self.formula(name), self)
             self.timings[name] = time.perf_counter() - t0
         return self._coefs[name]
+
+    # --- display (never derives, never simplifies: only reports what exists) -------------
+    def _status(self) -> dict[str, str]:
+        """quantity -> "closed form cached" / "derived" / "not built" (reads caches only)."""
+        out = {}
+        for n in QUANTITIES:
+            c = self._coefs.get(n)
+            if c is None:
+                out[n] = "not built"
+            elif "closed" in c._cache:
+                out[n] = "derived, closed form cached"
+            else:
+                out[n] = "derived"
+        return out
+
+    def _hopf_status(self) -> str:
+        if "closed_form" not in vars(self.hopf):
+            return "not derived yet"
+        return "closed form in V" if self.hopf.closed_form is not None else "numeric (no closed form)"
+
+    def __repr__(self) -> str:
+        law = self.block.law
+        built = [n for n in QUANTITIES if n in self._coefs]
+        states = ", ".join(s.name for s in self.system.states)
+        return (f"Derivation(law {law.name!r} [{law.source}], system {self.system.name} with states ({states}), "
+                f"Hopf parameter {self.k}; built: {', '.join(built) or 'nothing yet'}; "
+                f"Hopf line: {self._hopf_status()})")
+
+    def _repr_html_(self) -> str:
+        import html
+
+        from landau.display import html_table
+
+        law = self.block.law
+        esc = html.escape
+        status = self._status()
+        rows = [{"quantity": n, "symbol": QUANTITIES[n][0], "meaning": QUANTITIES[n][1], "source": QUANTITIES[n][2],
+                 "units": UNITS[n], "status": status[n],
+                 "derived in [s]": self.timings.get(n)} for n in QUANTITIES]
+        states = ", ".join(s.name for s in self.system.states)
+        params = ", ".join(f"{k} = {v:g}" for k, v in self.block.defaults.items())
+        head = (f"<div class='landau-result'><b>Amplitude-equation derivation: law {esc(law.name)}</b>"
+                f"<br><small>{esc(law.source)}</small>"
+                f"<br>system: {esc(self.system.name)}, states ({esc(states)}), Hopf parameter {esc(str(self.k))}; "
+                f"Hopf line: {esc(self._hopf_status())}<br>default parameters: {esc(params)}</div>")
+        return head + html_table(rows, note=f"Convention: {CONVENTION}")
+
+    def plot(self, V=(1e-6, 1e-2), params: Mapping[str, float] | None = None,
+             names: Sequence[str] = ("kc", "Lambda", "C"), n: int = 200, *, fig=None):
+        """Plot coefficients against the driving velocity with the criticality bands.
+
+        Parameters
+        ----------
+        V : (float, float) or array_like
+            A velocity range (lo, hi) in m/s, sampled at ``n`` log-spaced points, or the
+            velocities themselves.
+        params : mapping, optional
+            Parameter overrides.
+        names : sequence of str
+            Quantities to plot, one panel each (default k_c, Λ, C).
+        n : int
+            Points of a (lo, hi) range.
+        fig : matplotlib Figure, optional
+            Draw into this figure.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+        """
+        Vs = np.asarray(V, dtype=float)
+        if Vs.shape == (2,) and n > 2:
+            lo, hi = Vs
+            if not (0 < lo < hi):
+                raise InputError(f"velocity range needs 0 < lo < hi, got {lo!r}:{hi!r}")
+            Vs = np.logspace(np.log10(lo), np.log10(hi), int(n))
+        table = self.evaluate(Vs, params, list(_with_bases(["kc", "omega_c", "Lambda", *names])))
+        return table.plot(names, fig=fig)
 
     # --- numerics ---------------------------------------------------------------------
     def _compiled_formula(self, name: str, modules: str = "numpy") -> CompiledFormula:
@@ -434,7 +608,7 @@ class Derivation:
                 raise SingularPointError(
                     f"{self.block.law.name}: {n} is not finite at V = {float(out['V'][i]):g} m/s although a Hopf "
                     "point exists there: the law's derivatives are singular at this steady state")
-        return out
+        return CoefficientTable(out, law=self.block.law.name, params={**p, **arr})
 
     def _has_rational(self, bases, params) -> bool:
         return (tuple(bases), tuple(sorted(params.items()))) in self._rational_cache
@@ -546,7 +720,9 @@ class Derivation:
             else:
                 crit = criticality(values["Lambda"]) if "Lambda" in values else "unknown"
             out.append(LandauPoint(float(Vi), float(res["kc"][i]), float(res["omega_c"][i]), values, crit))
-        return out
+        from landau.display import ResultList
+
+        return ResultList(out, title=f"Hopf points of law {self.block.law.name}", units=UNITS)
 
 
 def derive(block: SpringBlock, quantities: Sequence[str] | None = None) -> Derivation:

@@ -43,6 +43,12 @@ class RegimeDiagram:
         """k_c where Λ > 0, NaN elsewhere."""
         return np.where(self.Lambda > 0, self.kc, np.nan)
 
+    def plot(self, ax=None):
+        """The diagram on matplotlib axes (see :func:`landau.plotting.plot_regime_diagram`); returns the Axes."""
+        from landau.plotting import plot_regime_diagram
+
+        return plot_regime_diagram(self, ax)
+
     def __repr__(self) -> str:
         n = int(np.sum(np.isfinite(self.kc)))
         return (f"RegimeDiagram({n} Hopf points on [{self.V[0]:.3g}, {self.V[-1]:.3g}] m/s, "
