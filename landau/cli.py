@@ -28,6 +28,7 @@ COMMANDS: dict[str, str] = {
     "scene": "landau.commands.scene",
     "laws": "landau.commands.laws",
     "transition": "landau.commands.transition",
+    "plot": "landau.commands.plot",
     "figures": "landau.paper_figures.cli",
     "verify": "landau.verify.cli",
 }

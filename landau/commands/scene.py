@@ -1,31 +1,69 @@
-"""Named, reproducible computations: landau scene list | landau scene run NAME [--param K=V ...]."""
+"""Named, reproducible computations: landau scene list | landau scene run NAME|GLOB... [--all] [--param K=V ...].
+
+Example: landau scene run putelat2010/V-hat
+         landau scene run 'skurativskyi2019/grazing-*'      # one summary table
+         landau scene run --all --json
+"""
 
 from __future__ import annotations
 
 from landau.commands.common import parse_params
-from landau.errors import InputError
-from landau.scenes import all_scenes, run_scene
+from landau.display import text_table
+from landau.errors import InputError, LandauError
+from landau.scenes import all_scenes, run_scene, select_scenes, verdict
 
 
 def configure(p) -> None:
-    p.add_argument("action", choices=["list", "run"], help="list the scenes or run one")
-    p.add_argument("name", nargs="?", default=None, help="scene name (for run)")
-    p.add_argument("--param", action="append", default=[], metavar="NAME=VALUE", help="override a scene parameter")
+    p.add_argument("action", choices=["list", "run"], help="list the scenes or run them")
+    p.add_argument("names", nargs="*", default=[], metavar="NAME",
+                   help="scene names or shell-style patterns, e.g. 'putelat2010/*' (for run)")
+    p.add_argument("--all", action="store_true", help="run every scene and print one summary table")
+    p.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
+                   help="override a scene parameter (with several scenes: those that have it)")
+
+
+def _is_pattern(name: str) -> bool:
+    return any(ch in name for ch in "*?[")
 
 
 def run(args) -> dict:
     if args.action == "list":
-        if args.name:
+        if args.names or args.all:
             raise InputError("'scene list' takes no name")
-        return {"scenes": [{"scene": s.name, "parameter": s.parameter, "units": s.units,
-                            "published": s.published, "source": s.source, "params": dict(s.defaults),
-                            "description": s.description} for s in all_scenes()]}
-    if not args.name:
-        raise InputError("'scene run' needs a scene name (see 'landau scene list')")
-    doc = run_scene(args.name, parse_params(args.param))
-    if doc.get("agrees") is False and doc.get("at_defaults"):
-        doc["exit_code"] = 1
-    return doc
+        return {"scenes": [s.as_dict() for s in all_scenes()]}
+    if args.all and args.names:
+        raise InputError("'scene run --all' takes no name")
+    if not args.all and not args.names:
+        raise InputError("'scene run' needs a scene name, a pattern or --all (see 'landau scene list')")
+    overrides = parse_params(args.param)
+    if not args.all and len(args.names) == 1 and not _is_pattern(args.names[0]):
+        doc = run_scene(args.names[0], overrides)
+        if doc.get("agrees") is False and doc.get("at_defaults"):
+            doc["exit_code"] = 1
+        return doc
+    scenes = all_scenes() if args.all else select_scenes(args.names)
+    for key in overrides:
+        if not any(key in s.defaults for s in scenes):
+            raise InputError(f"--param {key}: none of the selected scenes has this parameter")
+    results = []
+    for s in scenes:
+        mine = {k: v for k, v in overrides.items() if k in s.defaults}
+        try:
+            results.append(dict(run_scene(s.name, mine)))
+        except LandauError as exc:
+            results.append({"scene": s.name, "parameter": s.parameter, "units": s.units, "published": s.published,
+                            "source": s.source, "error": f"{type(exc).__name__}: {str(exc).splitlines()[0]}"})
+    counts: dict[str, int] = {}
+    for r in results:
+        counts[verdict(r)] = counts.get(verdict(r), 0) + 1
+    failed = any(r.get("error") or (r.get("agrees") is False and r.get("at_defaults")) for r in results)
+    return {"results": results, "summary": counts, "exit_code": 1 if failed else 0}
+
+
+def _summary_rows(results) -> list[dict]:
+    return [{"scene": r["scene"], "parameter": r["parameter"], "value": r.get("value"), "units": r["units"],
+             "published": r.get("published"), "rel. diff.": r.get("rel_diff"), "verdict": verdict(r),
+             "s": r.get("seconds")} for r in results]
 
 
 def render(doc: dict) -> str:
@@ -35,15 +73,25 @@ def render(doc: dict) -> str:
             pub = "" if s["published"] is None else f"  published {s['published']:.6g}"
             lines.append(f"  {s['scene']:<42} {s['parameter']} [{s['units']}]{pub}  — {s['source']}")
         return "\n".join(lines)
+    if "results" in doc:
+        lines = [text_table(_summary_rows(doc["results"]), max_rows=10_000)]
+        for r in doc["results"]:
+            if r.get("error"):
+                lines.append(f"{r['scene']}: {r['error']}")
+            elif r.get("note"):
+                lines.append(f"{r['scene']}: {r['note']}")
+        lines.append(", ".join(f"{n} {k}" for k, n in sorted(doc["summary"].items())))
+        return "\n".join(lines)
     lines = [f"{doc['scene']}: {doc['parameter']} = {doc['value']:.10g} {doc['units']}"]
     if doc.get("published") is not None:
+        tag = verdict(doc)
         lines.append(f"  published {doc['published']:.10g} ({doc['source']}); relative difference {doc['rel_diff']:.2e}"
-                     + ("" if "agrees" not in doc else ("  [agrees]" if doc["agrees"] else "  [DISAGREES]")))
+                     + (f"  [{tag}]" if tag in ("agrees", "DISAGREES", "not comparable") else ""))
     else:
         lines.append(f"  source: {doc['source']}")
     for k, v in doc.items():
         if k not in {"scene", "parameter", "value", "units", "published", "source", "rel_diff", "agrees",
-                     "tolerance", "params", "seconds", "exit_code", "at_defaults"}:
+                     "tolerance", "params", "seconds", "exit_code", "at_defaults", "comparable"}:
             lines.append(f"  {k}: {v}")
     lines.append(f"  ({doc['seconds']:.2f} s)")
     return "\n".join(lines)

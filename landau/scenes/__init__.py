@@ -13,11 +13,12 @@ until asked.
 
 from __future__ import annotations
 
+import fnmatch
 import importlib
 import math
 import time
 from dataclasses import dataclass, field
-from typing import Any, Callable, Mapping
+from typing import Any, Callable, Mapping, Sequence
 
 from landau.errors import InputError
 
@@ -51,10 +52,72 @@ class Scene:
     published: float | None = None
     tolerance: float | None = None
     description: str = ""
+    #: parameters that steer the computation (brackets, tolerances, step counts) without changing
+    #: the model: overriding them keeps the comparison with the published value (None: the
+    #: names in NUMERICAL_SETTINGS)
+    settings: frozenset[str] | None = None
+
+    @property
+    def numerical_settings(self) -> frozenset[str]:
+        """The defaults that are numerical settings rather than model parameters."""
+        names = NUMERICAL_SETTINGS if self.settings is None else self.settings
+        return frozenset(k for k in self.defaults if k in names)
+
+    def run(self, **overrides: float) -> "SceneResult":
+        """Compute the scene (see :func:`run_scene`)."""
+        return run_scene(self.name, overrides)
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"scene": self.name, "parameter": self.parameter, "units": self.units, "published": self.published,
+                "source": self.source, "params": dict(self.defaults), "description": self.description}
+
+    def _display_row(self) -> dict[str, Any]:
+        return {"scene": self.name, "parameter": self.parameter, "units": self.units,
+                "published": self.published, "source": self.source}
 
     def __repr__(self) -> str:
         pub = "" if self.published is None else f", published={self.published:g}"
         return f"Scene({self.name!r}, {self.parameter} [{self.units}]{pub}, source={self.source!r})"
+
+    def _repr_html_(self) -> str:
+        from landau.display import html_record
+
+        return html_record(f"Scene {self.name}", {**self._display_row(), "description": self.description,
+                                                  **{f"param {k}": v for k, v in self.defaults.items()}})
+
+
+#: default names of numerical settings (search brackets, tolerances, step counts)
+NUMERICAL_SETTINGS = frozenset({"lo", "hi", "tol", "rtol", "atol", "n_steps", "orbit_omega", "gone_omega"})
+
+
+def verdict(doc: Mapping[str, Any]) -> str:
+    """One word for a scene result: "agrees", "DISAGREES", "not comparable" (parameters moved
+    off those of the published value), "no tolerance" or "no published value"."""
+    if doc.get("error"):
+        return "ERROR"
+    if doc.get("published") is None:
+        return "no published value"
+    if not doc.get("comparable", True):
+        return "not comparable"
+    if doc.get("agrees") is None:
+        return "no tolerance"
+    return "agrees" if doc["agrees"] else "DISAGREES"
+
+
+class SceneResult(dict):
+    """The JSON-ready document of one scene run (a ``dict``) with a readable display."""
+
+    def __repr__(self) -> str:
+        pub = "" if self.get("published") is None else f", published {self['published']:.10g}"
+        return (f"SceneResult({self['scene']}: {self['parameter']} = {self['value']:.10g} {self['units']}"
+                f"{pub}; {verdict(self)})")
+
+    def _repr_html_(self) -> str:
+        from landau.display import html_record
+
+        return html_record(f"Scene {self['scene']}: {verdict(self)}",
+                           {k: v for k, v in self.items() if k not in ("scene", "params")},
+                           note="parameters: " + ", ".join(f"{k} = {v:g}" for k, v in self.get("params", {}).items()))
 
 
 def register(scene: Scene) -> Scene:
@@ -86,8 +149,26 @@ def get_scene(name: str) -> Scene:
         raise InputError(f"unknown scene {name!r} (see 'landau scene list')") from None
 
 
-def run_scene(name: str, overrides: Mapping[str, float] | None = None) -> dict[str, Any]:
-    """Run one scene; returns the JSON-ready document."""
+def select_scenes(patterns: Sequence[str]) -> list[Scene]:
+    """The scenes whose names match any of the shell-style ``patterns`` (``putelat2010/*``),
+    in name order; an :class:`InputError` names a pattern that matches nothing."""
+    scenes = all_scenes()
+    chosen: list[Scene] = []
+    for pat in patterns:
+        hits = [s for s in scenes if fnmatch.fnmatchcase(s.name, pat)]
+        if not hits:
+            raise InputError(f"no scene matches {pat!r} (see 'landau scene list')")
+        chosen += [s for s in hits if s not in chosen]
+    return sorted(chosen, key=lambda s: s.name)
+
+
+def run_scene(name: str, overrides: Mapping[str, float] | None = None) -> SceneResult:
+    """Run one scene; returns the JSON-ready document.
+
+    The published value belongs to the scene's default model parameters.  When an override
+    moves a model parameter (anything but a numerical setting such as a search bracket or a
+    tolerance), the document says ``comparable: false`` and ``agrees`` is None: the relative
+    difference to a value published for other parameters is reported, not judged."""
     scene = get_scene(name)
     params = dict(scene.defaults)
     for key, val in (overrides or {}).items():
@@ -117,12 +198,19 @@ def run_scene(name: str, overrides: Mapping[str, float] | None = None) -> dict[s
         "params": {k: float(v) for k, v in params.items()},
         "at_defaults": all(float(params[k]) == float(v) for k, v in scene.defaults.items()),
     }
+    moved = sorted(k for k, v in scene.defaults.items()
+                   if k not in scene.numerical_settings and float(params[k]) != float(v))
     if scene.published is not None:
         rel = abs(value - scene.published) / abs(scene.published)
         doc["rel_diff"] = rel
-        if scene.tolerance is not None:
+        doc["comparable"] = not moved
+        if moved:
+            doc["agrees"] = None
+            doc["note"] = ("published value is for " + ", ".join(f"{k} = {scene.defaults[k]:g}" for k in moved)
+                           + "; these parameters differ, so it is shown for reference only")
+        elif scene.tolerance is not None:
             doc["agrees"] = bool(rel <= scene.tolerance)
             doc["tolerance"] = scene.tolerance
     doc.update(extra)
     doc["seconds"] = elapsed
-    return doc
+    return SceneResult(doc)
