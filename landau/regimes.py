@@ -43,6 +43,17 @@ class RegimeDiagram:
         """k_c where Λ > 0, NaN elsewhere."""
         return np.where(self.Lambda > 0, self.kc, np.nan)
 
+    def _repr_html_(self) -> str:
+        from landau.display import html_record
+
+        n = int(np.sum(np.isfinite(self.kc)))
+        fields = {"velocities": f"{self.V[0]:.4g} .. {self.V[-1]:.4g} m/s ({len(self.V)} points)",
+                  "Hopf points": n, "subcritical": int(np.sum(self.Lambda > 0)),
+                  "supercritical": int(np.sum(self.Lambda < 0))}
+        for i, c in enumerate(self.codim2):
+            fields[f"codimension-two point {i + 1}"] = f"V = {c.V:.8g} m/s, k_c = {c.kc:.6g} N/m"
+        return html_record("Regime diagram (V, k)", fields, note="Λ < 0: supercritical, Λ > 0: subcritical")
+
     def plot(self, ax=None):
         """The diagram on matplotlib axes (see :func:`landau.plotting.plot_regime_diagram`); returns the Axes."""
         from landau.plotting import plot_regime_diagram
