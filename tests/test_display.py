@@ -88,6 +88,18 @@ def test_every_result_displays_fast_without_symbolic_work(dieterich, monkeypatch
             assert "text/html" in shown, name
 
 
+def test_large_tables_display_fast():
+    n = 1_000_000
+    big = CoefficientTable({"V": np.logspace(-7, -2, n), "kc": np.full(n, 2e5), "Lambda": np.linspace(-1, 1, n),
+                            "degenerate": np.zeros(n, dtype=bool)}, law="synthetic")
+    many = ResultList([{"i": i} for i in range(100_000)])
+    for obj in (big, many):
+        t0 = time.perf_counter()
+        shown = _display(obj)
+        assert time.perf_counter() - t0 < DISPLAY_BOUND_S
+        assert "more" in shown["text/plain"] and "shown" in shown["text/html"]
+
+
 def test_derivation_repr_reports_without_deriving():
     d = Derivation(SpringBlock(get_law("ruina")))
     text, page = repr(d), d._repr_html_()
