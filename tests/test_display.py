@@ -84,7 +84,7 @@ def test_every_result_displays_fast_without_symbolic_work(dieterich, monkeypatch
         elapsed = time.perf_counter() - t0
         assert elapsed < DISPLAY_BOUND_S, (name, elapsed)
         assert "0x" not in shown["text/plain"], (name, shown["text/plain"])   # no <object at 0x...>
-        if name not in ("scene", "hopf point", "hopf normal form"):      # these show as text / LaTeX
+        if name != "hopf normal form":      # shows as text and LaTeX
             assert "text/html" in shown, name
 
 
