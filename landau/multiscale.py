@@ -444,9 +444,9 @@ class Derivation:
 
         Parameters
         ----------
-        V : (float, float) or array_like
-            A velocity range (lo, hi) in m/s, sampled at ``n`` log-spaced points, or the
-            velocities themselves.
+        V : tuple (lo, hi) or array_like
+            A velocity range given as a tuple (lo, hi) in m/s, sampled at ``n`` log-spaced
+            points; a list or array gives the velocities themselves.
         params : mapping, optional
             Parameter overrides.
         names : sequence of str
@@ -460,12 +460,13 @@ class Derivation:
         -------
         matplotlib.figure.Figure
         """
-        Vs = np.asarray(V, dtype=float)
-        if Vs.shape == (2,) and n > 2:
-            lo, hi = Vs
-            if not (0 < lo < hi):
-                raise InputError(f"velocity range needs 0 < lo < hi, got {lo!r}:{hi!r}")
+        if isinstance(V, tuple) and len(V) == 2:
+            lo, hi = map(float, V)
+            if not (0 < lo < hi) or int(n) < 2:
+                raise InputError(f"velocity range needs 0 < lo < hi and n >= 2, got {lo!r}:{hi!r}, n = {n!r}")
             Vs = np.logspace(np.log10(lo), np.log10(hi), int(n))
+        else:
+            Vs = np.asarray(V, dtype=float)
         table = self.evaluate(Vs, params, list(_with_bases(["kc", "omega_c", "Lambda", *names])))
         return table.plot(names, fig=fig)
 
