@@ -76,21 +76,30 @@ print(d.coefficient("kc").latex())
 # correct leading-order prediction falls like ε².
 
 # %%
-from landau.verify.springblock.checks import supercritical_check
+import landau
 
 V = 1e-4
-eps2s = np.array([1e-3, 4e-4, 1.6e-4])
-checks = [supercritical_check(law, V, e) for e in eps2s]
-predicted = np.array([c.amplitude_predicted for c in checks])
-simulated = np.array([c.amplitude_simulated for c in checks])
-rel = np.abs(simulated / predicted - 1)
-rel
+checks = [landau.check(law, V, eps2) for eps2 in (1e-3, 4e-4, 1.6e-4)]
+checks[0]
 
 # %%
+from landau.display import ResultList
+
+# a list of results shows as one table
+ResultList(checks, columns=["eps2", "amplitude_predicted", "amplitude_simulated", "rel_error", "verdict"])
+
+# %%
+eps2s = np.array([c.eps2 for c in checks])
+rel = np.abs([c.rel_error for c in checks])
 exponent = np.polyfit(np.log(eps2s), np.log(rel), 1)[0]
-# within 2 % at ε² = 1e-3 (Putelat et al. 2010 eq. 23 is a leading-order prediction) and the
-# error shrinks like ε² (a fitted exponent near 1)
-assert rel[0] < 0.02 and 0.8 < exponent < 1.2, (rel, exponent)
+# every check agrees (within 2 % at ε² = 1e-3: eq. 23 of Putelat et al. 2010 is a
+# leading-order prediction), and the error shrinks like ε² (a fitted exponent near 1)
+assert all(c.agrees for c in checks) and 0.8 < exponent < 1.2, (rel, exponent)
+exponent
+
+# %% [markdown]
+# In your own CI, one line does the same: `landau.testing.assert_prediction(law, V=1e-4,
+# eps2=1e-3)` raises a readable assertion error when the prediction fails.
 
 # %% [markdown]
 # ## 5. Plot
@@ -98,7 +107,7 @@ assert rel[0] < 0.02 and 0.8 < exponent < 1.2, (rel, exponent)
 # %%
 from landau.plotting import plot_check
 
-plot_check(eps2s, predicted, simulated, title=f"{law.name}, V = {V:g} m/s")
+plot_check(checks, title=f"{law.name}, V = {V:g} m/s")
 
 # %%
 fig = d.plot((1e-7, 1e-2), n=120)

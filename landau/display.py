@@ -210,9 +210,9 @@ class ResultList(list):
         self.columns = None if columns is None else list(columns)
         self.units = dict(units or {})
 
-    def rows(self) -> list[dict[str, Any]]:
-        """One flat mapping per result (see :func:`display_row`)."""
-        return [display_row(r) for r in self]
+    def rows(self, limit: int | None = None) -> list[dict[str, Any]]:
+        """One flat mapping per result (the first ``limit`` if given; see :func:`display_row`)."""
+        return [display_row(r) for r in (self if limit is None else self[:limit])]
 
     def to_dataframe(self):
         """The rows as a pandas DataFrame (units in the column names; needs pandas)."""
@@ -224,9 +224,12 @@ class ResultList(list):
         return df
 
     def _repr_html_(self) -> str:
-        return html_table(self.rows(), self.columns, units=self.units, title=self.title,
-                          note=f"{len(self)} result(s)")
+        shown = "" if len(self) <= MAX_ROWS else f", the first {MAX_ROWS} shown"
+        return html_table(self.rows(MAX_ROWS), self.columns, units=self.units, title=self.title,
+                          note=f"{len(self)} result(s){shown}")
 
     def __repr__(self) -> str:
         head = f"{self.title} — " if self.title else ""
-        return f"{head}{len(self)} result(s)\n" + text_table(self.rows(), self.columns, units=self.units)
+        more = f"\n… {len(self) - MAX_ROWS} more" if len(self) > MAX_ROWS else ""
+        return (f"{head}{len(self)} result(s)\n" + text_table(self.rows(MAX_ROWS), self.columns, units=self.units)
+                + more)

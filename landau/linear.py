@@ -74,6 +74,12 @@ class HopfPoint:
             return f"HopfPoint(V={self.V:.4g} m/s: {self.reason})"
         return f"HopfPoint(V={self.V:.4g} m/s, k_c={self.kc:.6g} N/m, ω_c={self.omega_c:.6g} rad/s)"
 
+    def _repr_html_(self) -> str:
+        from landau.display import html_record
+
+        title = f"Linear stability at V = {self.V:.4g} m/s: " + ("Hopf point" if self.status == "ok" else self.reason)
+        return html_record(title, self.as_dict(), units={"V": "m/s", "kc": "N/m", "omega_c": "rad/s"})
+
     def _repr_latex_(self) -> str:
         if self.status != "ok":
             return rf"$V = {self.V:.4g}$: \text{{{self.reason}}}"

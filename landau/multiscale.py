@@ -231,22 +231,30 @@ class CoefficientTable(dict):
         """Quantity -> SI unit for the quantities in the table."""
         return {k: UNITS[k] for k in self if k in UNITS}
 
-    def rows(self) -> list[dict[str, Any]]:
-        """One mapping per point (arrays flattened in C order), with its criticality."""
+    def columns(self, limit: int | None = None) -> dict[str, np.ndarray]:
+        """Flat columns (arrays broadcast together and flattened in C order; the first
+        ``limit`` points if given), with the criticality of each point as a string column
+        when Λ is in the table."""
         if not self:
-            return []
+            return {}
         shape = np.broadcast(*[np.asarray(v) for v in self.values()]).shape
-        flat = {k: np.ravel(np.broadcast_to(np.asarray(v), shape)) for k, v in self.items()}
-        n = int(np.prod(shape))
-        degenerate = flat.get("degenerate", np.zeros(n, dtype=bool))
-        out = []
-        for i in range(n):
-            row: dict[str, Any] = {k: flat[k][i].item() for k in flat if k != "degenerate"}
-            if "Lambda" in flat:
-                row["criticality"] = ("no Hopf point" if not np.isfinite(flat["kc"][i]) else
-                                      "degenerate" if bool(degenerate[i]) else criticality(float(flat["Lambda"][i])))
-            out.append(row)
-        return out
+        if limit is None:
+            flat = {k: np.ravel(np.broadcast_to(np.asarray(v), shape)) for k, v in self.items()}
+        else:
+            flat = {k: np.broadcast_to(np.asarray(v), shape).flat[:limit] for k, v in self.items()}
+        degenerate = flat.pop("degenerate", np.zeros(flat[next(iter(flat))].shape, dtype=bool))
+        if "Lambda" in flat and "kc" in flat:
+            lam = flat["Lambda"]
+            flat["criticality"] = np.where(~np.isfinite(flat["kc"]), "no Hopf point",
+                                           np.where(degenerate | ~np.isfinite(lam) | (lam == 0), "degenerate",
+                                                    np.where(lam < 0, "supercritical", "subcritical")))
+        return flat
+
+    def rows(self, limit: int | None = None) -> list[dict[str, Any]]:
+        """One mapping per point (the first ``limit`` points if given), see :meth:`columns`."""
+        cols = self.columns(limit)
+        n = len(next(iter(cols.values()))) if cols else 0
+        return [{k: c[i].item() for k, c in cols.items()} for i in range(n)]
 
     def to_dataframe(self):
         """The table as a pandas DataFrame.
@@ -266,8 +274,7 @@ class CoefficientTable(dict):
 
         pd = require_pandas("CoefficientTable.to_dataframe()")
         units = self.units
-        df = pd.DataFrame(self.rows())
-        df.columns = [f"{c} [{units[c]}]" if c in units else c for c in df.columns]
+        df = pd.DataFrame({(f"{c} [{units[c]}]" if c in units else c): v for c, v in self.columns().items()})
         df.attrs.update(units=units, law=self.law, params=dict(self.params))
         return df
 
@@ -278,20 +285,26 @@ class CoefficientTable(dict):
 
         return plot_coefficients(self, names, fig=fig)
 
-    def _repr_html_(self) -> str:
-        from landau.display import html_table
+    def _size(self) -> int:
+        return int(np.prod(np.broadcast(*[np.asarray(v) for v in self.values()]).shape)) if self else 0
 
-        n = int(np.size(self.get("V", ())))
+    def _repr_html_(self) -> str:
+        from landau.display import MAX_ROWS, html_table
+
+        n = self._size()
+        shown = "" if n <= MAX_ROWS else f", the first {MAX_ROWS} shown"
         title = f"Amplitude-equation coefficients, law {self.law}" if self.law else "Amplitude-equation coefficients"
-        return html_table(self.rows(), units=self.units, title=title, note=f"{n} point(s). Convention: {CONVENTION}")
+        return html_table(self.rows(MAX_ROWS), units=self.units, title=title,
+                          note=f"{n} point(s){shown}. Convention: {CONVENTION}")
 
     def __repr__(self) -> str:
         from landau.display import text_table
 
-        n = int(np.size(self.get("V", ())))
+        n = self._size()
         names = ", ".join(k for k in self if k != "degenerate")
+        more = f"\n… {n - 20} more points" if n > 20 else ""
         return (f"CoefficientTable(law {self.law!r}, {n} point(s): {names})\n"
-                + text_table(self.rows(), units=self.units, max_rows=20))
+                + text_table(self.rows(20), units=self.units) + more)
 
 
 def _agree(x: np.ndarray, y: np.ndarray, rel: float) -> np.ndarray:
@@ -466,9 +479,9 @@ class Derivation:
 
         Parameters
         ----------
-        V : (float, float) or array_like
-            A velocity range (lo, hi) in m/s, sampled at ``n`` log-spaced points, or the
-            velocities themselves.
+        V : tuple (lo, hi) or array_like
+            A velocity range given as a tuple (lo, hi) in m/s, sampled at ``n`` log-spaced
+            points; a list or array gives the velocities themselves.
         params : mapping, optional
             Parameter overrides.
         names : sequence of str
@@ -482,12 +495,13 @@ class Derivation:
         -------
         matplotlib.figure.Figure
         """
-        Vs = np.asarray(V, dtype=float)
-        if Vs.shape == (2,) and n > 2:
-            lo, hi = Vs
-            if not (0 < lo < hi):
-                raise InputError(f"velocity range needs 0 < lo < hi, got {lo!r}:{hi!r}")
+        if isinstance(V, tuple) and len(V) == 2:
+            lo, hi = map(float, V)
+            if not (0 < lo < hi) or int(n) < 2:
+                raise InputError(f"velocity range needs 0 < lo < hi and n >= 2, got {lo!r}:{hi!r}, n = {n!r}")
             Vs = np.logspace(np.log10(lo), np.log10(hi), int(n))
+        else:
+            Vs = np.asarray(V, dtype=float)
         table = self.evaluate(Vs, params, list(_with_bases(["kc", "omega_c", "Lambda", *names])))
         return table.plot(names, fig=fig)
 

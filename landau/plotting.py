@@ -204,14 +204,16 @@ def plot_regime_diagram(diagram, ax=None):
     return ax
 
 
-def plot_check(eps2s, predicted, simulated, *, exponent: float | None = None, fig=None, title: str | None = None,
-               units: str = "m"):
+def plot_check(eps2s, predicted=None, simulated=None, *, exponent: float | None = None, fig=None,
+               title: str | None = None, units: str = "m"):
     """Simulated against predicted cycle amplitude over ε², with the fitted error exponent.
 
     Parameters
     ----------
-    eps2s : array_like
-        Distances to threshold ε² = |k − k_c|/k_c (or |p − p_c|/p_c), all > 0.
+    eps2s : array_like, or a sequence of check results
+        Distances to threshold ε² = |k − k_c|/k_c (or |p − p_c|/p_c), all > 0.  Or, with
+        ``predicted`` and ``simulated`` omitted, the results of :func:`landau.check` at
+        several ε² (anything with ``eps2``, ``amplitude_predicted`` and ``amplitude_simulated``).
     predicted, simulated : array_like
         The amplitude predicted by the amplitude equation and the one measured on the
         simulated cycle at each ε² (NaN where no cycle was found).
@@ -232,6 +234,16 @@ def plot_check(eps2s, predicted, simulated, *, exponent: float | None = None, fi
         Left: both amplitudes against ε² (log–log; the prediction scales as ε).  Right: the
         relative error against ε² with the fitted power law.
     """
+    if predicted is None and simulated is None:
+        results = list(eps2s)
+        if not results or not all(hasattr(r, "amplitude_simulated") for r in results):
+            raise InputError("plot_check needs (eps2, predicted, simulated) arrays or a list of check results")
+        nan = float("nan")
+        eps2s = [r.eps2 for r in results]
+        predicted = [nan if r.amplitude_predicted is None else r.amplitude_predicted for r in results]
+        simulated = [nan if r.amplitude_simulated is None else r.amplitude_simulated for r in results]
+        if title is None:
+            title = f"{results[0].system}: amplitude equation against simulation"
     e = np.asarray(eps2s, dtype=float)
     pr = np.asarray(predicted, dtype=float)
     sim = np.asarray(simulated, dtype=float)

@@ -57,7 +57,13 @@ def _results(d, table):
     x, y, mu, beta = *sp.symbols("x y mu", real=True), sp.Symbol("beta", positive=True)
     vdp = DynamicalSystem("van-der-Pol", (x, y), (y, (mu - beta * x ** 2) * y - x), (sp.Integer(1), sp.Integer(1)),
                           mu, (sp.Integer(0), sp.Integer(0)), {"beta": 1.0}, 0)
+    from landau.checking import CheckResult, Verdict
+
     mixed = Derivation(SpringBlock(get_law("spinodal"))).points([1e-4, 1e-2])     # a Hopf point and none
+    hopf = HopfResult("toy", "p", 1.0, 2.0, (0.0, 0.0), complex(1.0, 0.5), -3.0, 0.25)
+    checked = CheckResult(system="toy", parameter="p", p=1.1, eps2=0.1, prediction=hopf, amplitude_predicted=0.5,
+                          amplitude_simulated=0.49, rel_error=-0.02, frequency_predicted=2.0,
+                          frequency_simulated=2.01, frequency_rel_error=0.005, tolerance=0.05, verdict=Verdict.AGREES)
     return {
         "derivation (built)": d,
         "derivation (fresh)": Derivation(SpringBlock(get_law("ruina"))),
@@ -67,7 +73,9 @@ def _results(d, table):
         "mixed points": mixed,
         "hopf point": d.hopf.point(1e-4),
         "hopf normal form": hopf_normal_form(vdp, {"beta": 1.0}, (-0.5, 0.5)),
-        "hopf result": HopfResult("toy", "p", 1.0, 2.0, (0.0, 0.0), complex(1.0, 0.5), -3.0, 0.25),
+        "hopf result": hopf,
+        "check result": checked,
+        "list of checks": ResultList([checked, checked]),
         "regime diagram": regime_diagram(d, np.logspace(-6, -3, 20)),
         "scene": get_scene("skurativskyi2019/static-equilibrium"),
         "scene result": run_scene("skurativskyi2019/static-equilibrium"),
@@ -84,8 +92,20 @@ def test_every_result_displays_fast_without_symbolic_work(dieterich, monkeypatch
         elapsed = time.perf_counter() - t0
         assert elapsed < DISPLAY_BOUND_S, (name, elapsed)
         assert "0x" not in shown["text/plain"], (name, shown["text/plain"])   # no <object at 0x...>
-        if name not in ("scene", "hopf point", "hopf normal form"):      # these show as text / LaTeX
+        if name != "hopf normal form":      # shows as text and LaTeX
             assert "text/html" in shown, name
+
+
+def test_large_tables_display_fast():
+    n = 1_000_000
+    big = CoefficientTable({"V": np.logspace(-7, -2, n), "kc": np.full(n, 2e5), "Lambda": np.linspace(-1, 1, n),
+                            "degenerate": np.zeros(n, dtype=bool)}, law="synthetic")
+    many = ResultList([{"i": i} for i in range(100_000)])
+    for obj in (big, many):
+        t0 = time.perf_counter()
+        shown = _display(obj)
+        assert time.perf_counter() - t0 < DISPLAY_BOUND_S
+        assert "more" in shown["text/plain"] and "shown" in shown["text/html"]
 
 
 def test_derivation_repr_reports_without_deriving():

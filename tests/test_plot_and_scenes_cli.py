@@ -99,6 +99,14 @@ def test_criticality_bands_and_check_plot():
     assert "1.50" in label                                 # the fitted exponent
     with pytest.raises(Exception, match="same length"):
         plot_check(e, predicted, simulated[:2])
+    # the same from check results (anything with eps2 and the two amplitudes)
+    from types import SimpleNamespace
+
+    results = [SimpleNamespace(system="toy", eps2=a, amplitude_predicted=b, amplitude_simulated=c)
+               for a, b, c in zip(e, predicted, simulated)]
+    fig = plot_check(results)
+    assert "1.50" in [t.get_text() for t in fig.axes[1].get_legend().get_texts()][1]
+    np.testing.assert_allclose(fig.axes[0].lines[1].get_ydata(), simulated)
 
 
 def test_coefficient_plot_has_one_panel_per_quantity():

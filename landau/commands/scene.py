@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from landau.commands.common import parse_params
 from landau.display import text_table
-from landau.errors import InputError, LandauError
-from landau.scenes import all_scenes, run_scene, select_scenes, verdict
+from landau.errors import InputError
+from landau.scenes import SceneResult, all_scenes, run_scene, run_scenes, verdict
 
 
 def configure(p) -> None:
@@ -41,29 +41,12 @@ def run(args) -> dict:
         if doc.get("agrees") is False and doc.get("at_defaults"):
             doc["exit_code"] = 1
         return doc
-    scenes = all_scenes() if args.all else select_scenes(args.names)
-    for key in overrides:
-        if not any(key in s.defaults for s in scenes):
-            raise InputError(f"--param {key}: none of the selected scenes has this parameter")
-    results = []
-    for s in scenes:
-        mine = {k: v for k, v in overrides.items() if k in s.defaults}
-        try:
-            results.append(dict(run_scene(s.name, mine)))
-        except LandauError as exc:
-            results.append({"scene": s.name, "parameter": s.parameter, "units": s.units, "published": s.published,
-                            "source": s.source, "error": f"{type(exc).__name__}: {str(exc).splitlines()[0]}"})
+    results = run_scenes(None if args.all else args.names, overrides)
     counts: dict[str, int] = {}
     for r in results:
         counts[verdict(r)] = counts.get(verdict(r), 0) + 1
     failed = any(r.get("error") or (r.get("agrees") is False and r.get("at_defaults")) for r in results)
-    return {"results": results, "summary": counts, "exit_code": 1 if failed else 0}
-
-
-def _summary_rows(results) -> list[dict]:
-    return [{"scene": r["scene"], "parameter": r["parameter"], "value": r.get("value"), "units": r["units"],
-             "published": r.get("published"), "rel. diff.": r.get("rel_diff"), "verdict": verdict(r),
-             "s": r.get("seconds")} for r in results]
+    return {"results": [dict(r) for r in results], "summary": counts, "exit_code": 1 if failed else 0}
 
 
 def render(doc: dict) -> str:
@@ -74,7 +57,7 @@ def render(doc: dict) -> str:
             lines.append(f"  {s['scene']:<42} {s['parameter']} [{s['units']}]{pub}  — {s['source']}")
         return "\n".join(lines)
     if "results" in doc:
-        lines = [text_table(_summary_rows(doc["results"]), max_rows=10_000)]
+        lines = [text_table([SceneResult(r)._display_row() for r in doc["results"]], max_rows=10_000)]
         for r in doc["results"]:
             if r.get("error"):
                 lines.append(f"{r['scene']}: {r['error']}")

@@ -107,7 +107,15 @@ def verdict(doc: Mapping[str, Any]) -> str:
 class SceneResult(dict):
     """The JSON-ready document of one scene run (a ``dict``) with a readable display."""
 
+    def _display_row(self) -> dict[str, Any]:
+        """The row of a summary table (:func:`run_scenes`, ``landau scene run --all``)."""
+        return {"scene": self["scene"], "parameter": self["parameter"], "value": self.get("value"),
+                "units": self["units"], "published": self.get("published"), "rel. diff.": self.get("rel_diff"),
+                "verdict": verdict(self), "s": self.get("seconds")}
+
     def __repr__(self) -> str:
+        if self.get("error"):
+            return f"SceneResult({self['scene']}: {self['error']})"
         pub = "" if self.get("published") is None else f", published {self['published']:.10g}"
         return (f"SceneResult({self['scene']}: {self['parameter']} = {self['value']:.10g} {self['units']}"
                 f"{pub}; {verdict(self)})")
@@ -137,8 +145,11 @@ def _load() -> None:
 
 
 def all_scenes() -> list[Scene]:
+    """Every registered scene in name order (a list that displays as one table)."""
+    from landau.display import ResultList
+
     _load()
-    return [ _REGISTRY[k] for k in sorted(_REGISTRY) ]
+    return ResultList([_REGISTRY[k] for k in sorted(_REGISTRY)], title="Scenes")
 
 
 def get_scene(name: str) -> Scene:
@@ -160,6 +171,41 @@ def select_scenes(patterns: Sequence[str]) -> list[Scene]:
             raise InputError(f"no scene matches {pat!r} (see 'landau scene list')")
         chosen += [s for s in hits if s not in chosen]
     return sorted(chosen, key=lambda s: s.name)
+
+
+def run_scenes(patterns: Sequence[str] | None = None, overrides: Mapping[str, float] | None = None):
+    """Run several scenes; returns a list of :class:`SceneResult` that displays as one table.
+
+    Parameters
+    ----------
+    patterns : sequence of str, optional
+        Scene names or shell-style patterns (``"putelat2010/*"``); None runs every scene.
+    overrides : mapping, optional
+        Parameter overrides, applied to each scene that has the parameter (an
+        :class:`InputError` if none has it).
+
+    Returns
+    -------
+    landau.display.ResultList
+        One :class:`SceneResult` per scene, in name order; a scene whose computation fails
+        with a toolkit error is reported with an ``"error"`` field instead of stopping the run.
+    """
+    from landau.display import ResultList
+    from landau.errors import LandauError
+
+    scenes = all_scenes() if patterns is None else select_scenes(patterns)
+    overrides = dict(overrides or {})
+    for key in overrides:
+        if not any(key in s.defaults for s in scenes):
+            raise InputError(f"--param {key}: none of the selected scenes has this parameter")
+    results = ResultList(title="Scenes")
+    for s in scenes:
+        try:
+            results.append(run_scene(s.name, {k: v for k, v in overrides.items() if k in s.defaults}))
+        except LandauError as exc:
+            results.append(SceneResult(scene=s.name, parameter=s.parameter, units=s.units, published=s.published,
+                                       source=s.source, error=f"{type(exc).__name__}: {str(exc).splitlines()[0]}"))
+    return results
 
 
 def run_scene(name: str, overrides: Mapping[str, float] | None = None) -> SceneResult:
