@@ -393,7 +393,7 @@ def _derivation_latex(d, quantities: Sequence[str], fragment: bool, progress) ->
         text(rf"\paragraph{{}}{label}, in terms of the derivatives at steady sliding ({where}); "
              r"intermediate quantities $q_j$ first:")
         step(f"common subexpressions of {q}")
-        reps, (red,) = sp.cse(form, symbols=sp.numbered_symbols("q", cls=sp.Dummy, start=1))
+        reps, (red,) = sp.cse(form, symbols=sp.numbered_symbols("q", cls=sp.Dummy, start=1), order="none")
         loc = dict(names)
         eqs = []
         for s, e in reps:
@@ -428,7 +428,7 @@ def _coefficient_rows(d, q: str, names: dict, parts: dict | None) -> tuple[list[
         P, Q = parts[q]
         return equation_lines(sym, P + om_sym * Q if Q != 0 else P, names, letter=_letter(q)), "closed form"
     form = d.coefficient(q).formula.xreplace({omega: om_sym, d.k: kc_sym})
-    reps, (red,) = sp.cse(form, symbols=sp.numbered_symbols("q", cls=sp.Dummy, start=1))
+    reps, (red,) = sp.cse(form, symbols=sp.numbered_symbols("q", cls=sp.Dummy, start=1), order="none")
     loc = dict(names)
     for s, _ in reps:
         loc[s] = rf"q_{{{s.name[1:]}}}"
