@@ -193,3 +193,17 @@ def test_flint_field_agrees_with_sympy_cancel():
     assert sp.cancel((a / b).as_expr() - (x - y) ** 2 / (3 * z + sp.Rational(1, 2))) == 0
     assert (a - a) == 0 and (a * b / b) == a
     assert sp.cancel(a.factored() - a.as_expr()) == 0
+
+
+def test_progress_bars_are_silent_where_nobody_watches(capsys):
+    from landau.progress import progress, set_quiet, shown
+
+    # under pytest stderr is captured (not a terminal): no bar, and the iterable is unchanged
+    assert not shown()
+    assert list(progress(range(3), desc="x")) == [0, 1, 2]
+    set_quiet(True)
+    try:
+        assert progress(total=2).disable
+    finally:
+        set_quiet(False)
+    assert capsys.readouterr().err == ""
