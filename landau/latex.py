@@ -393,11 +393,11 @@ def _derivation_latex(d, quantities: Sequence[str], fragment: bool, progress) ->
         text(rf"\paragraph{{}}{label}, in terms of the derivatives at steady sliding ({where}); "
              r"intermediate quantities $q_j$ first:")
         step(f"common subexpressions of {q}")
-        reps, (red,) = sp.cse(form, symbols=sp.numbered_symbols("q", cls=sp.Dummy, start=1), order="none")
+        reps, red = straight_line(form)
         loc = dict(names)
         eqs = []
-        for s, e in reps:
-            loc[s] = rf"q_{{{s.name[1:]}}}"
+        for i, (s, e) in enumerate(reps, 1):
+            loc[s] = rf"q_{{{i}}}"
         namer = _Namer(_letter(q))
         for s, e in reps:
             eqs += equation_lines(loc[s], e, loc, namer=namer)
@@ -428,10 +428,10 @@ def _coefficient_rows(d, q: str, names: dict, parts: dict | None) -> tuple[list[
         P, Q = parts[q]
         return equation_lines(sym, P + om_sym * Q if Q != 0 else P, names, letter=_letter(q)), "closed form"
     form = d.coefficient(q).formula.xreplace({omega: om_sym, d.k: kc_sym})
-    reps, (red,) = sp.cse(form, symbols=sp.numbered_symbols("q", cls=sp.Dummy, start=1), order="none")
+    reps, red = straight_line(form)
     loc = dict(names)
-    for s, _ in reps:
-        loc[s] = rf"q_{{{s.name[1:]}}}"
+    for i, (s, _) in enumerate(reps, 1):
+        loc[s] = rf"q_{{{i}}}"
     namer = _Namer(_letter(q))
     eqs = equation_lines(sym, red, loc, namer=namer)
     for s, e in reps:
@@ -481,6 +481,22 @@ def _coefficient_latex(d, q: str) -> str:
             eqs += equation_lines(symbol_latex(a.name), d.jets.atoms[a], names, letter="A")
     rows = [r for eq in eqs for r in eq.align_rows()]
     return "\\begin{aligned}\n" + " \\\\\n".join(rows) + "\n\\end{aligned}"
+
+
+def straight_line(expr: sp.Expr) -> tuple[list[tuple[sp.Symbol, sp.Expr]], sp.Expr]:
+    """``expr`` as intermediate quantities and a final expression (common subexpressions in
+    the order of the expression; one-operation intermediates such as 2x, x², 1/x are put
+    back where they are used, so each remaining one is worth its name)."""
+    reps, (red,) = sp.cse(expr, symbols=sp.numbered_symbols("q", cls=sp.Dummy), order="none")
+    inline: dict = {}
+    kept = []
+    for sym, e in reps:
+        e = e.xreplace(inline)
+        if sp.count_ops(e) <= 1 and len(to_latex(e)) < 40:
+            inline[sym] = e
+        else:
+            kept.append((sym, e))
+    return kept, red.xreplace(inline)
 
 
 def _letter(q: str) -> str:
