@@ -207,3 +207,22 @@ def test_progress_bars_are_silent_where_nobody_watches(capsys):
     finally:
         set_quiet(False)
     assert capsys.readouterr().err == ""
+
+
+def test_concurrent_writers_leave_a_whole_entry(tmp_path):
+    # eight writers of the same entry at once (two CLI runs on one law): every read in between and
+    # after sees a complete value from one of them, never a torn file
+    from concurrent.futures import ThreadPoolExecutor
+
+    key = cache.make_key("test", "concurrent")
+    values = [{"n": i, "payload": list(range(20_000))} for i in range(8)]
+
+    def write_then_read(v):
+        cache.put("test", key, v)
+        return cache.get("test", key)
+
+    with ThreadPoolExecutor(max_workers=8) as pool:
+        seen = list(pool.map(write_then_read, values))
+    assert all(s is not None and s["payload"] == values[0]["payload"] for s in seen)
+    assert cache.get("test", key)["n"] in range(8)
+    assert not [p for p in (tmp_path / "cache" / "test").iterdir() if p.name.startswith(".")]   # no temp files left
