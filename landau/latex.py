@@ -19,15 +19,12 @@ No line of output exceeds a few hundred characters, whatever the size of the for
 
 from __future__ import annotations
 
-import logging
 import re
 import unicodedata
 from dataclasses import dataclass
 from typing import Iterable, Mapping, Sequence
 
 import sympy as sp
-
-logger = logging.getLogger(__name__)
 
 #: source characters per displayed line (10pt, 2 cm margins: ~110 characters of formula source
 #: stay inside the text width for the typical mix of symbols, sub- and superscripts)
@@ -153,16 +150,6 @@ class _Namer:
             self.count += 1
             self.defined[expr] = sp.Dummy(f"{self.letter}{self.count}")
         return self.defined[expr]
-
-
-def _signed_terms(expr: sp.Add, names) -> list[str]:
-    out = []
-    for i, t in enumerate(expr.as_ordered_terms()):
-        if t.could_extract_minus_sign():
-            out.append("- " + to_latex(-t, names))
-        else:
-            out.append(("+ " if i else "") + to_latex(t, names))
-    return out
 
 
 def equation_lines(lhs: str, expr: sp.Basic, names: Mapping | None = None, width: int = WIDTH,
@@ -336,14 +323,12 @@ def _derivation_latex(d, quantities: Sequence[str], fragment: bool, progress) ->
     rational = not numeric_hopf and _rational_in_parameters(d)
     parts = None
     if rational:
-        from landau.rational import closed_form_parts
-
         step("closed forms in V and the parameters")
         parts = _cached_parts(d, [q for q in quantities if q not in ("kc", "omega_c", "C")])
 
     atoms = d.jets.atoms
     ys = ", ".join(symbol_latex(s.name) for s in d.system.states)
-    if not rational or numeric_hopf or any(q not in ("kc", "omega_c", "C") for q in quantities) and parts is None:
+    if parts is None:
         text(r"\subsection*{Derivatives at steady sliding}")
         text(rf"$f_{{i,jk\dots}} = \partial^n f_i/\partial y_j\partial y_k\cdots$ at steady sliding, where "
              rf"$E\dot y = f(y)$ is the spring--block in $y = ({ys})$ (slip $X = x - x_0(t)$, $u = \dot x - V$) "
@@ -352,6 +337,9 @@ def _derivation_latex(d, quantities: Sequence[str], fragment: bool, progress) ->
         for a in sorted(atoms, key=lambda s: s.name):
             eqs += equation_lines(symbol_latex(a.name), atoms[a], names, letter="A")
         text(align_block(eqs) if eqs else r"(none)")
+        if d.system.unknowns:
+            text("The steady state " + ", ".join(f"${symbol_latex(u.name)}$" for u in d.system.unknowns)
+                 + " has no closed form: it is solved numerically.")
 
     text(r"\subsection*{Coefficients}")
     if numeric_hopf:
