@@ -226,3 +226,14 @@ def test_concurrent_writers_leave_a_whole_entry(tmp_path):
     assert all(s is not None and s["payload"] == values[0]["payload"] for s in seen)
     assert cache.get("test", key)["n"] in range(8)
     assert not [p for p in (tmp_path / "cache" / "test").iterdir() if p.name.startswith(".")]   # no temp files left
+
+
+def test_linear_latex_compiles_for_every_law(tmp_path, capsys):
+    _pdflatex()
+    for law in LAWS:
+        f = tmp_path / f"linear-{law}.tex"
+        code = main(["linear", law, *INLINE.get(law, []), "--V", "1e-4", "--latex", str(f), "--json"])
+        capsys.readouterr()
+        assert code == 0, law
+        res = _compile(f, tmp_path)
+        assert res.returncode == 0, (law, res.stdout[-2000:])
