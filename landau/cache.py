@@ -4,7 +4,8 @@ Entries live in a per-user cache directory (``platformdirs.user_cache_dir("landa
 ``~/.cache/landau`` on Linux), or in ``$LANDAU_CACHE_DIR`` when that is set.  Set
 ``LANDAU_CACHE=off`` (or call :func:`set_enabled` with ``False``) to neither read nor write.
 
-An entry is keyed by a SHA-256 of the library version, the kind of result and the canonical
+An entry is keyed by a SHA-256 of the library version (with a fingerprint of the deriving
+modules' source), the kind of result and the canonical
 form of what it was computed from (:func:`system_key`: ``sympy.srepr`` of the mechanical
 system's equations, never its name), so a changed law, a changed system or a new release
 never sees an old entry.  Writes are atomic (a temporary file renamed into place): concurrent
@@ -34,10 +35,27 @@ _MAGIC = "landau-cache/1"
 _enabled: bool | None = None
 
 
-def _version() -> str:
-    from landau import __version__
+_FINGERPRINT: str | None = None
+#: the modules whose code decides what a cached formula, closed form or LaTeX text is
+_DERIVING_MODULES = ("cx", "fredholm", "jets", "linear", "multiscale", "rational", "latex", "system")
 
-    return __version__
+
+def _version() -> str:
+    """The library version and a fingerprint of the deriving code: a development tree that
+    changes a formula never reads an entry written before the change."""
+    global _FINGERPRINT
+    if _FINGERPRINT is None:
+        from landau import __version__
+
+        h = hashlib.sha256(__version__.encode())
+        here = Path(__file__).parent
+        for name in _DERIVING_MODULES:
+            try:
+                h.update((here / f"{name}.py").read_bytes())
+            except OSError:
+                h.update(name.encode())
+        _FINGERPRINT = f"{__version__}+{h.hexdigest()[:16]}"
+    return _FINGERPRINT
 
 
 def enabled() -> bool:

@@ -19,15 +19,12 @@ No line of output exceeds a few hundred characters, whatever the size of the for
 
 from __future__ import annotations
 
-import logging
 import re
 import unicodedata
 from dataclasses import dataclass
 from typing import Iterable, Mapping, Sequence
 
 import sympy as sp
-
-logger = logging.getLogger(__name__)
 
 #: source characters per displayed line (10pt, 2 cm margins: ~110 characters of formula source
 #: stay inside the text width for the typical mix of symbols, sub- and superscripts)
@@ -153,16 +150,6 @@ class _Namer:
             self.count += 1
             self.defined[expr] = sp.Dummy(f"{self.letter}{self.count}")
         return self.defined[expr]
-
-
-def _signed_terms(expr: sp.Add, names) -> list[str]:
-    out = []
-    for i, t in enumerate(expr.as_ordered_terms()):
-        if t.could_extract_minus_sign():
-            out.append("- " + to_latex(-t, names))
-        else:
-            out.append(("+ " if i else "") + to_latex(t, names))
-    return out
 
 
 def equation_lines(lhs: str, expr: sp.Basic, names: Mapping | None = None, width: int = WIDTH,
@@ -336,14 +323,12 @@ def _derivation_latex(d, quantities: Sequence[str], fragment: bool, progress) ->
     rational = not numeric_hopf and _rational_in_parameters(d)
     parts = None
     if rational:
-        from landau.rational import closed_form_parts
-
         step("closed forms in V and the parameters")
         parts = _cached_parts(d, [q for q in quantities if q not in ("kc", "omega_c", "C")])
 
     atoms = d.jets.atoms
     ys = ", ".join(symbol_latex(s.name) for s in d.system.states)
-    if not rational or numeric_hopf or any(q not in ("kc", "omega_c", "C") for q in quantities) and parts is None:
+    if parts is None:
         text(r"\subsection*{Derivatives at steady sliding}")
         text(rf"$f_{{i,jk\dots}} = \partial^n f_i/\partial y_j\partial y_k\cdots$ at steady sliding, where "
              rf"$E\dot y = f(y)$ is the spring--block in $y = ({ys})$ (slip $X = x - x_0(t)$, $u = \dot x - V$) "
@@ -352,6 +337,9 @@ def _derivation_latex(d, quantities: Sequence[str], fragment: bool, progress) ->
         for a in sorted(atoms, key=lambda s: s.name):
             eqs += equation_lines(symbol_latex(a.name), atoms[a], names, letter="A")
         text(align_block(eqs) if eqs else r"(none)")
+        if d.system.unknowns:
+            text("The steady state " + ", ".join(f"${symbol_latex(u.name)}$" for u in d.system.unknowns)
+                 + " has no closed form: it is solved numerically.")
 
     text(r"\subsection*{Coefficients}")
     if numeric_hopf:
@@ -393,11 +381,11 @@ def _derivation_latex(d, quantities: Sequence[str], fragment: bool, progress) ->
         text(rf"\paragraph{{}}{label}, in terms of the derivatives at steady sliding ({where}); "
              r"intermediate quantities $q_j$ first:")
         step(f"common subexpressions of {q}")
-        reps, (red,) = sp.cse(form, symbols=sp.numbered_symbols("q", cls=sp.Dummy, start=1))
+        reps, red = straight_line(form)
         loc = dict(names)
         eqs = []
-        for s, e in reps:
-            loc[s] = rf"q_{{{s.name[1:]}}}"
+        for i, (s, e) in enumerate(reps, 1):
+            loc[s] = rf"q_{{{i}}}"
         namer = _Namer(_letter(q))
         for s, e in reps:
             eqs += equation_lines(loc[s], e, loc, namer=namer)
@@ -428,10 +416,10 @@ def _coefficient_rows(d, q: str, names: dict, parts: dict | None) -> tuple[list[
         P, Q = parts[q]
         return equation_lines(sym, P + om_sym * Q if Q != 0 else P, names, letter=_letter(q)), "closed form"
     form = d.coefficient(q).formula.xreplace({omega: om_sym, d.k: kc_sym})
-    reps, (red,) = sp.cse(form, symbols=sp.numbered_symbols("q", cls=sp.Dummy, start=1))
+    reps, red = straight_line(form)
     loc = dict(names)
-    for s, _ in reps:
-        loc[s] = rf"q_{{{s.name[1:]}}}"
+    for i, (s, _) in enumerate(reps, 1):
+        loc[s] = rf"q_{{{i}}}"
     namer = _Namer(_letter(q))
     eqs = equation_lines(sym, red, loc, namer=namer)
     for s, e in reps:
@@ -481,6 +469,22 @@ def _coefficient_latex(d, q: str) -> str:
             eqs += equation_lines(symbol_latex(a.name), d.jets.atoms[a], names, letter="A")
     rows = [r for eq in eqs for r in eq.align_rows()]
     return "\\begin{aligned}\n" + " \\\\\n".join(rows) + "\n\\end{aligned}"
+
+
+def straight_line(expr: sp.Expr) -> tuple[list[tuple[sp.Symbol, sp.Expr]], sp.Expr]:
+    """``expr`` as intermediate quantities and a final expression (common subexpressions in
+    the order of the expression; one-operation intermediates such as 2x, x², 1/x are put
+    back where they are used, so each remaining one is worth its name)."""
+    reps, (red,) = sp.cse(expr, symbols=sp.numbered_symbols("q", cls=sp.Dummy), order="none")
+    inline: dict = {}
+    kept = []
+    for sym, e in reps:
+        e = e.xreplace(inline)
+        if sp.count_ops(e) <= 1 and len(to_latex(e)) < 40:
+            inline[sym] = e
+        else:
+            kept.append((sym, e))
+    return kept, red.xreplace(inline)
 
 
 def _letter(q: str) -> str:

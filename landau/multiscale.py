@@ -120,8 +120,9 @@ class Coefficient:
 
         An expression rational after ω_c = sqrt(ω_c²) is cancelled and factored; a law whose
         derivatives at steady sliding are rational in V and the parameters (Dieterich, Ruina)
-        is re-derived in the field ℚ(V, parameters)(ω_c) (:func:`landau.rational.closed_form`,
-        seconds); otherwise the unsimplified :attr:`expr` is returned."""
+        is re-derived in the field ℚ(V, parameters)(ω_c) (:func:`landau.rational.closed_form`:
+        FLINT polynomials, well under a second; cached on disk); otherwise the unsimplified
+        :attr:`expr` is returned."""
         if "closed" not in self._cache:
             d = self.derivation
             if self.name in DERIVED:

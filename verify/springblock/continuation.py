@@ -23,6 +23,7 @@ from typing import Callable
 import numpy as np
 
 from landau.errors import IntegratorError
+from landau.progress import progress as bar
 from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.orbits import (PeriodicOrbit, ShootingError, describe, hopf_stiffness, return_map,
                                        section_point)
@@ -134,7 +135,7 @@ def continue_branch(make: Callable[[float], SpringBlockModel], lam_hopf: float, 
         progress(out[-1])
     folds = []
     stop = "step limit"
-    for _ in range(steps):
+    for _ in bar(range(steps), desc="continuation", unit="step"):
         try:
             u_new, DG, T, DP, it = _correct(prob, u + ds * tau, tau, tol)
         except (ShootingError, IntegratorError, np.linalg.LinAlgError) as exc:
