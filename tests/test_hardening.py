@@ -364,3 +364,11 @@ def test_ctrl_c_is_one_line(capsys, monkeypatch):
     monkeypatch.setattr(cmd, "run", interrupted)
     code, out, err = run(capsys, "laws")
     assert code == 130 and err == "landau: interrupted\n"
+
+
+@pytest.mark.parametrize("L", ["1e-300", "1e300"])
+def test_overflow_at_extreme_parameters_is_not_reported_as_no_hopf(capsys, L):
+    # before: k_c = nan (overflow) or omega_c^2 = -0 (underflow) read as "no Hopf bifurcation", exit 0;
+    # Dieterich is velocity weakening at every V, so a Hopf point exists in exact arithmetic
+    code, out, err = run(capsys, "linear", "dieterich", "--V", "1e-4", "--param", f"L={L}")
+    assert code == 2 and "floating-point range" in err and err.count("\n") == 1
