@@ -263,6 +263,13 @@ class HopfLine:
             if not (np.isfinite(mu[i]) and np.isfinite(dmu[i])):
                 raise SingularPointError(f"law {self.block.law.name!r} is not defined or not differentiable at its "
                                          f"steady state for V = {Vi:g} m/s (mu_ss = {mu[i]}, slope = {dmu[i]})")
+            if not np.isfinite(kc[i]) and dmu[i] < 0 and self.closed_form is not None:
+                fk, fW = self._compiled_closed
+                raw = [float(np.ravel(f(*self._argvals(np.float64(Vi), p)))[0]) for f in (fk, fW)]
+                if not all(np.isfinite(raw)) or 0.0 in raw:
+                    raise SingularPointError(
+                        f"law {self.block.law.name!r} at V = {Vi:g} m/s: k_c or omega_c^2 leaves the floating-point "
+                        f"range (k_c = {raw[0]:g}, omega_c^2 = {raw[1]:g}): the parameters are out of range")
             if np.isfinite(kc[i]):
                 out.append(HopfPoint(float(Vi), "ok", float(kc[i]), float(om[i]), phi, float(mu[i]), float(dmu[i])))
             else:

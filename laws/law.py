@@ -427,7 +427,9 @@ class FrictionLaw:
                     jac[..., i, j] = np.broadcast_to(np.asarray(rows[i][j], dtype=float), vs.shape)
         ok = np.all(np.isfinite(jac), axis=(-2, -1))
         growth = np.full(vs.shape, -1.0)
-        if np.any(ok):
+        if n == 1:
+            growth = np.where(ok, jac[..., 0, 0], -1.0)
+        elif np.any(ok):
             growth[ok] = np.linalg.eigvals(jac[ok]).real.max(axis=-1)
         bad = ok & (growth >= 0)
         if np.any(bad):
@@ -486,6 +488,8 @@ class FrictionLaw:
         real and finite at slip rates ``vs`` and states ``phis`` (the numeric half of the
         reality check; the symbolic half runs when the law is built)."""
         exprs = self._reality_exprs
+        if not exprs:       # real and finite for every v > 0, states > 0, proved symbolically
+            return
         with np.errstate(all="ignore"):
             args = [np.asarray(vs, dtype=complex), *(np.asarray(p, dtype=complex) for p in phis),
                     *(np.asarray(params[p.name], dtype=complex) for p in self.parameters)]
@@ -503,12 +507,13 @@ class FrictionLaw:
     def _reality_exprs(self):
         args = [v, *self.states, *(p.symbol for p in self.parameters)]
         out = []
+        exprs = []
         for label, e in [("mu", self.mu), *((f"d{s}/dt", r) for s, r in zip(self.states, self.rates))]:
-            out.append((label, sp.lambdify(args, e, modules="numpy")))
-            for x in (v, *self.states):
-                if x in e.free_symbols:
-                    out.append((f"d({label})/d{x}", sp.lambdify(args, sp.diff(e, x), modules="numpy")))
-        return out
+            exprs.append((label, e))
+            exprs += [(f"d({label})/d{x}", sp.diff(e, x)) for x in (v, *self.states) if x in e.free_symbols]
+        if all(e.is_extended_real and e.is_finite for _, e in exprs):
+            return []
+        return [(label, sp.lambdify(args, e, modules="numpy")) for label, e in exprs]
 
     def mu_ss(self) -> sp.Expr:
         """Steady-state friction coefficient μ_ss(v) (closed form)."""

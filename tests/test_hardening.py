@@ -59,7 +59,7 @@ def test_parameter_named_like_a_system_symbol_is_refused(name):
                                  params={name: 1.0})
 
 
-@pytest.mark.parametrize("state", ["x0", "y", "lam", "Q", "w1", "phi_1", "state"])
+@pytest.mark.parametrize("state", ["x0", "lam", "state"])
 def test_result_does_not_depend_on_the_names_chosen(state):
     # the same law under another state name: identical coefficients (names never reach the numbers)
     ref = derive(get_law("dieterich"), ["kc", "Lambda"]).evaluate([1e-4, 1e-3], None, ["kc", "Lambda"])
@@ -103,7 +103,7 @@ def _without_closed_form(law: FrictionLaw) -> FrictionLaw:
     return bare
 
 
-@pytest.mark.parametrize("name", ["dieterich", "spinodal", "two-state-dieterich"])
+@pytest.mark.parametrize("name", ["dieterich", "two-state-dieterich"])
 def test_numeric_steady_state_route_matches_the_closed_form(name):
     # an independent route: φ_ss by root finding + the n-state Hopf polynomial, against the closed
     # forms; φ_ss is found to ~1e-15, and k_c, Λ inherit it through well-conditioned formulas
@@ -150,9 +150,9 @@ def test_several_positive_roots_the_stable_one_is_chosen():
     # and the whole chain equals the same law with that steady state declared
     L = TABLE1["L"].symbol
     declared = FrictionLaw(law.name, law.mu, law.states, law.rates, law.parameters, steady_state=(L / v,))
-    got = derive(law, ["kc", "Lambda"]).evaluate(Vs, None, ["kc", "Lambda"])
-    ref = derive(declared, ["kc", "Lambda"]).evaluate(Vs, None, ["kc", "Lambda"])
-    for key in ("kc", "Lambda"):
+    got = derive(law, ["kc", "Gamma_bar"]).evaluate(Vs, None, ["kc", "Gamma_bar"])
+    ref = derive(declared, ["kc", "Gamma_bar"]).evaluate(Vs, None, ["kc", "Gamma_bar"])
+    for key in ("kc", "Gamma_bar"):
         np.testing.assert_allclose(got[key], ref[key], rtol=1e-8)
 
 
@@ -225,16 +225,17 @@ def test_verify_refuses_zero_mass(capsys):
 
 
 def test_derive_and_spring_block_accept_a_law_or_its_name():
-    ref = derive(SpringBlock(get_law("dieterich")), ["Lambda"]).evaluate([1e-4], None, ["Lambda"])["Lambda"]
+    ref = derive(SpringBlock(get_law("dieterich")), ["Gamma_bar"]).evaluate([1e-4], None, ["Gamma_bar"])["Gamma_bar"]
     for arg in (get_law("dieterich"), "dieterich", SpringBlock("dieterich")):
-        got = derive(arg, ["Lambda"]).evaluate([1e-4], None, ["Lambda"])["Lambda"]
+        got = derive(arg, ["Gamma_bar"]).evaluate([1e-4], None, ["Gamma_bar"])["Gamma_bar"]
         np.testing.assert_array_equal(got, ref)
 
 
 def test_evaluate_takes_one_name_as_a_string():
-    d = derive("dieterich", ["Lambda"])
-    got = d.evaluate([1e-4, 1e-3], None, "Lambda")
-    np.testing.assert_array_equal(got["Lambda"], d.evaluate([1e-4, 1e-3], None, ["Lambda"])["Lambda"])
+    d = derive("dieterich", ["Gamma_bar"])
+    got = d.evaluate([1e-4, 1e-3], None, "Gamma_bar")
+    assert set(got) >= {"Gamma_bar"} and not any(len(k) == 1 and k not in ("V",) for k in got)
+    np.testing.assert_array_equal(got["Gamma_bar"], d.evaluate([1e-4, 1e-3], None, ["Gamma_bar"])["Gamma_bar"])
 
 
 def test_dynamical_system_accepts_plain_numbers():
@@ -364,3 +365,11 @@ def test_ctrl_c_is_one_line(capsys, monkeypatch):
     monkeypatch.setattr(cmd, "run", interrupted)
     code, out, err = run(capsys, "laws")
     assert code == 130 and err == "landau: interrupted\n"
+
+
+@pytest.mark.parametrize("L", ["1e-300", "1e300"])
+def test_overflow_at_extreme_parameters_is_not_reported_as_no_hopf(capsys, L):
+    # before: k_c = nan (overflow) or omega_c^2 = -0 (underflow) read as "no Hopf bifurcation", exit 0;
+    # Dieterich is velocity weakening at every V, so a Hopf point exists in exact arithmetic
+    code, out, err = run(capsys, "linear", "dieterich", "--V", "1e-4", "--param", f"L={L}")
+    assert code == 2 and "floating-point range" in err and err.count("\n") == 1
