@@ -24,7 +24,7 @@ bifurcation analysis of ODEs. ACM Trans. Math. Softw. 29, 141–164.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, replace
 from typing import Any, Mapping, Sequence
 
 import mpmath
@@ -32,8 +32,8 @@ import numpy as np
 import scipy.optimize
 
 from landau.errors import InputError, NoHopfError, SingularPointError
-from landau.general import (DEFAULT_DPS, NumericSystem, critical_pair, hopf_test_function, locate_crossing,
-                            normal_form_at, refine_hopf)
+from landau.general import (DEFAULT_DPS, NumericSystem, hopf_test_function, locate_crossing, normal_form_at,
+                            refine_hopf, second_lyapunov)
 from landau.hopf import HopfResult
 from landau.system import DynamicalSystem
 
@@ -362,21 +362,6 @@ class _HopfTracker:
         return res
 
 
-def _l2_at(system: DynamicalSystem, params: Mapping[str, float], res: HopfResult, dps: int) -> float | None:
-    """l₂ by :func:`landau.lyapunov.lyapunov_coefficients` where that route exists (else None)."""
-    try:
-        from landau.lyapunov import lyapunov_coefficients
-    except ImportError:
-        return None
-    out = lyapunov_coefficients(system, dict(params), res.p_c, dps=dps)
-    l2 = getattr(out, "l2", None)
-    if l2 is None and isinstance(out, Mapping):
-        l2 = out.get("l2")
-    if l2 is None and isinstance(out, tuple) and len(out) >= 2:
-        l2 = out[1]
-    return None if l2 is None else float(l2)
-
-
 def hopf_curve(system: DynamicalSystem, params: Mapping[str, float], second: str, p2_range: tuple[float, float],
                start: HopfResult, *, steps: int = 40, dps: int = 30, jets: str = "taylor",
                locate_gh: bool = True, l2: bool = True) -> HopfCurve:
@@ -449,7 +434,9 @@ def _locate_gh(system: DynamicalSystem, tracker: _HopfTracker, a: float, b: floa
 
     p2 = scipy.optimize.brentq(l1, a, b, xtol=1e-14 * max(1.0, abs(a), abs(b)), rtol=1e-13)
     r = tracker.at(p2, dps=max(tracker.dps, 40))
-    l2v = _l2_at(system, tracker.params, r, max(tracker.dps, 40)) if with_l2 else None
+    l2v = second_lyapunov(system, tracker.params, r, max(tracker.dps, 40)) if with_l2 else None
+    if l2v is not None:
+        r = replace(r, l2=l2v)
     return GeneralisedHopfPoint(system=system.name, parameters=(system.parameter.name, tracker.second), p1=r.p_c,
                                 p2=float(p2), omega=r.omega_c, equilibrium=r.equilibrium, l2=l2v, hopf=r)
 
