@@ -150,8 +150,9 @@ def equilibrium_branch(system: DynamicalSystem, params: Mapping[str, float] | No
         Initial and largest pseudo-arclength step (default 1 % and 5 % of the range).
     max_points : int
         Safety bound on the number of points.
-    direction : {1, −1}
-        Start towards increasing (1) or decreasing (−1) parameter.
+    direction : {1, −1, 0}
+        Start towards increasing (1) or decreasing (−1) parameter; 0 continues both ways from
+        ``start`` and joins the two halves.
     dps : int
         Working precision of the located Hopf points.
     jets : {"taylor", "symbolic"}
@@ -166,8 +167,19 @@ def equilibrium_branch(system: DynamicalSystem, params: Mapping[str, float] | No
     lo, hi = sorted(map(float, p_range))
     if not (math.isfinite(lo) and math.isfinite(hi)) or lo == hi:
         raise InputError(f"p_range must be two different finite numbers, got {p_range!r}")
-    if direction not in (1, -1):
-        raise InputError("direction must be 1 or -1")
+    if direction not in (1, -1, 0):
+        raise InputError("direction must be 1, -1 or 0 (both ways)")
+    if direction == 0:
+        if start is None:
+            raise InputError("direction=0 (both ways) needs a start value")
+        kw = dict(start=start, equilibrium_guess=equilibrium_guess, step=step, max_step=max_step,
+                  max_points=max_points, dps=dps, jets=jets, locate_hopf=locate_hopf)
+        down = equilibrium_branch(system, params, p_range, direction=-1, **kw)
+        up = equilibrium_branch(system, params, p_range, direction=1, **kw)
+        return EquilibriumBranch(system=up.system, parameter=up.parameter, p=np.concatenate([down.p[::-1], up.p[1:]]),
+                                 y=np.concatenate([down.y[::-1], up.y[1:]]),
+                                 n_unstable=np.concatenate([down.n_unstable[::-1], up.n_unstable[1:]]),
+                                 hopf=tuple(down.hopf[::-1]) + up.hopf, folds=tuple(down.folds[::-1]) + up.folds)
     num = NumericSystem(system, params or {}, equilibrium_guess)
     n = num.n
     width = hi - lo
