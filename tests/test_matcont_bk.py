@@ -105,6 +105,10 @@ def test_lorenz84_generalised_hopf_frequency(lorenz_branch):
     h = min(lorenz_branch.hopf, key=lambda r: abs(r.p_c - 2.4672))
     curve = hopf_curve(LORENZ84, LORENZ84_PARAMS, "T", (0.03, 0.07), h, steps=8, l2=False)
     assert len(curve.generalised_hopf) == 1
+    # the curve turns back in T (at T ≈ 0.058) inside the range: pseudo-arclength passes the turn
+    import numpy as np
+
+    assert curve.p2.max() < 0.065 and np.any(np.diff(curve.p2) > 0) and np.any(np.diff(curve.p2) < 0)
     gh = curve.generalised_hopf[0]
     assert gh.omega == pytest.approx(0.6903636672622595, abs=1e-5)
     assert abs(gh.hopf.l1) < 1e-10
