@@ -14,14 +14,17 @@ except _PackageNotFoundError:  # running from a source tree that was never insta
     __version__ = "0+unknown"
 
 from landau.errors import InputError, IntegratorError, LandauError, NoHopfError, SingularPointError
+from landau.checking import CheckResult, Verdict, check
 from landau.general import HopfNormalForm, hopf_normal_form
+from landau.hopf import Convention, Criticality, HopfResult
 from landau.linear import HopfLine, HopfPoint, critical_stiffness
 from landau.multiscale import CONVENTION, Coefficient, Derivation, LandauPoint, derive
 from landau.system import DynamicalSystem, SpringBlock
 
 __all__ = [
     "__version__",
-    "CONVENTION", "Coefficient", "Derivation", "DynamicalSystem", "HopfLine", "HopfNormalForm", "HopfPoint",
-    "InputError", "IntegratorError", "LandauError", "LandauPoint", "NoHopfError", "SingularPointError",
-    "SpringBlock", "critical_stiffness", "derive", "hopf_normal_form",
+    "CONVENTION", "CheckResult", "Coefficient", "Convention", "Criticality", "Derivation", "DynamicalSystem",
+    "HopfLine", "HopfNormalForm", "HopfPoint", "HopfResult", "InputError", "IntegratorError", "LandauError",
+    "LandauPoint", "NoHopfError", "SingularPointError", "SpringBlock", "Verdict", "check", "critical_stiffness",
+    "derive", "hopf_normal_form",
 ]

@@ -40,7 +40,7 @@ from typing import Any, Mapping
 class Criticality(str, enum.Enum):
     """Type of a Hopf bifurcation, from the sign of the Landau coefficient Λ (or l₁).
 
-    A ``str`` enum: compares equal to its value (``"supercritical"``) and serialises to JSON as it.
+    A ``str`` enum: ``Criticality.SUBCRITICAL == "subcritical"`` and it serialises to JSON as its value.
     """
 
     SUPERCRITICAL = "supercritical"
@@ -56,6 +56,9 @@ class Criticality(str, enum.Enum):
 
     def __str__(self) -> str:
         return self.value
+
+    def __format__(self, spec: str) -> str:
+        return format(self.value, spec)
 
 
 @dataclass(frozen=True)
@@ -176,6 +179,16 @@ class HopfResult:
     l2: float | None = None
     params: Mapping[str, float] = field(default_factory=dict)
     extra: Mapping[str, float] = field(default_factory=dict)
+
+    def __getattr__(self, name: str) -> Any:
+        # route-specific numbers (e.g. ``kc``, ``V``, ``Gamma_bar`` of the spring–block) read as attributes
+        try:
+            extra = object.__getattribute__(self, "extra")
+        except AttributeError:
+            raise AttributeError(name) from None
+        if name in extra:
+            return extra[name]
+        raise AttributeError(f"{type(self).__name__} has no attribute {name!r}")
 
     # --- derived quantities -------------------------------------------------------------
     @property

@@ -31,7 +31,7 @@ def _params(p):
 
 def _hopf(p):
     from landau.verify.lancioni.slip import slip_hopf
-    h = slip_hopf(_params(p), bracket=(p["lo"], p["hi"]), s=1)
+    h = slip_hopf(_params(p), bracket=(p["lo"], p["hi"]) if p["hi"] > p["lo"] else None, s=1)
     return {"value": h.p_c, "omega_c": h.omega_c, "Lambda": h.Lambda, "chi": h.chi, "C": h.C,
             "criticality": h.criticality, "phi_e": h.equilibrium[0], "dRe_lambda_dmu": h.dlambda_dp.real,
             "belt_direction": "v < 0 (positive slip, g_T > 0); v > 0 has no Hopf point",
@@ -43,8 +43,9 @@ register(Scene(
     name="lancioni/hopf", parameter="mu", units="dimensionless",
     source=f"{SRC}: Hopf bifurcation of the slip equilibrium at mu = 0.40977 (set 1, Fig. 2(b)); "
            "set 2 (m1=0.4, k_phi=25): 0.353 (Fig. 4(b)); reproduced with g = 10 (notes §3)",
-    compute=_hopf, defaults={**SET1, "lo": 0.2, "hi": 0.6}, published=0.40977, tolerance=_half_digit(0.4098, 4),
-    description="slip-mode ODE (eq. 1 with g_N = 0) through landau.general.hopf_normal_form"))
+    compute=_hopf, defaults={**SET1, "lo": 0.0, "hi": 0.0}, published=0.40977, tolerance=_half_digit(0.4098, 4),
+    description="slip-mode ODE (eq. 1 with g_N = 0) through landau.general.hopf_normal_form "
+                "(lo = hi = 0: the mu interval is found by scanning the model)"))
 
 
 def _lift_off(p):

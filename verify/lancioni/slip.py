@@ -41,7 +41,7 @@ from typing import Mapping
 import numpy as np
 import sympy as sp
 
-from landau.errors import InputError
+from landau.errors import InputError, NoHopfError
 from landau.general import HopfNormalForm, hopf_normal_form
 from landau.system import DynamicalSystem
 
@@ -129,9 +129,43 @@ def resolve(params: Mapping[str, float] | None = None) -> dict[str, float]:
     return p
 
 
-def slip_hopf(params: Mapping[str, float] | None = None, bracket: tuple[float, float] = (0.2, 0.6),
+#: the scan for the Hopf point covers friction coefficients 0 < μ ≤ MU_SCAN_MAX (dry friction of
+#: engineering materials stays below ~1.5; the slip mode is checked, not assumed, to be well posed)
+MU_SCAN_MAX = 2.0
+
+
+def hopf_bracket(params: Mapping[str, float] | None = None, s: int = 1, n: int = 201) -> tuple[float, float]:
+    """A μ interval containing the first crossing of the slip equilibrium's complex pair.
+
+    Scans max Re λ of the complex eigenvalue pair of the slip equilibrium over (0, MU_SCAN_MAX]
+    (the physical range of a friction coefficient) and returns the first grid cell where it
+    changes sign — derived from the model, not from a published value."""
+    p = resolve(params)
+    _, J = _numeric_slip(s)
+    mus = np.linspace(MU_SCAN_MAX / n, MU_SCAN_MAX, n)
+    prev = None
+    for m_ in mus:
+        try:
+            pe = equilibrium_phi(p, m_, s)
+            lam = np.linalg.eigvals(np.array(J(pe, 0.0, m_, *[p[k_] for k_ in PARAM_NAMES]), float))
+        except (ValueError, RuntimeError, ZeroDivisionError):
+            prev = None
+            continue
+        cplx = lam[np.abs(lam.imag) > 1e-12 * (1 + np.abs(lam.real))]
+        r = float(np.max(cplx.real)) if cplx.size else None
+        if r is not None and np.isfinite(r) and prev is not None and prev[1] * r < 0:
+            return float(prev[0]), float(m_)
+        prev = (m_, r) if r is not None and np.isfinite(r) else None
+    raise NoHopfError(f"no Hopf point of the slip equilibrium (slip sign {s:+d}) for 0 < mu <= {MU_SCAN_MAX:g}")
+
+
+def slip_hopf(params: Mapping[str, float] | None = None, bracket: tuple[float, float] | None = None,
               s: int = 1) -> HopfNormalForm:
-    """Hopf point of the slip equilibrium in μ through the landau engine."""
+    """Hopf point of the slip equilibrium in μ through the landau engine.
+
+    Without ``bracket`` the interval comes from :func:`hopf_bracket` (a scan of the model)."""
+    if bracket is None:
+        bracket = hopf_bracket(params, s)
     return hopf_normal_form(slip_system(s), resolve(params), bracket=bracket)
 
 

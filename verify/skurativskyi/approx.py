@@ -60,23 +60,39 @@ class LinearSolution:
                 f"{self.A1:+.5g} sin ωt)  # eq. (4)")
 
 
+def contact_stiffness(p: Params) -> float:
+    """Linearised stiffness at the static equilibrium, k + n₁ k_I (X₀ − x_I)^{n₁−1} [N/m]."""
+    X0 = static_equilibrium(p)
+    return p.k + p.n1 * p.kI * (X0 - p.xI) ** (p.n1 - 1)
+
+
+def contact_resonance(p: Params) -> float:
+    """Undamped resonance of the oscillator linearised about X₀, sqrt(k_lin/m) [rad/s] (Δ = 0 in eq. 4)."""
+    return math.sqrt(contact_stiffness(p) / p.m)
+
+
 def linear_solution(p: Params, omega: float | None = None) -> LinearSolution:
     om = p.omega if omega is None else float(omega)
     X0 = static_equilibrium(p)
-    D = p.k + 1.5 * p.kI * math.sqrt(X0 - p.xI) - p.m * om ** 2
+    D = contact_stiffness(p) - p.m * om ** 2
     den = (om * p.c) ** 2 + D ** 2
     return LinearSolution(om, X0, p.m0e * om ** 2 * D / den, -p.c * p.m0e * om ** 3 / den, D)
 
 
-def grazing_linear(p: Params, bracket=(1.0, 17.0)) -> float:
+def grazing_linear(p: Params, bracket: tuple[float, float] | None = None) -> float:
     """ω with x_I = X₀ − m₀eω²/sqrt((ωc)² + Δ²) (Sec. 5, after eq. 4): 15.657 rad/s.
-    The root below the contact resonance (Δ > 0) is returned."""
+
+    The root below the contact resonance (Δ > 0) is returned: the linear response amplitude grows
+    monotonically from 0 at ω = 0 up to the resonance :func:`contact_resonance`, so (0, ω_r) brackets
+    exactly one root when the trough reaches the obstacle there at all.  ``bracket`` overrides the
+    interval."""
     X0 = static_equilibrium(p)
     g = lambda om: X0 - linear_solution(p, om).amplitude - p.xI
-    try:
-        return brentq(g, *bracket, xtol=1e-13)
-    except ValueError:
-        raise InputError(f"no linearised grazing frequency in {bracket} for these parameters") from None
+    lo, hi = bracket if bracket is not None else (1e-9 * contact_resonance(p), contact_resonance(p))
+    if not g(hi) < 0 < g(lo):
+        raise InputError(f"no linearised grazing frequency in ({lo:.6g}, {hi:.6g}) rad/s for these parameters: "
+                         "the linear trough does not reach the obstacle below the contact resonance")
+    return brentq(g, lo, hi, xtol=1e-13)
 
 
 def _harmonic_residual(p: Params, om: float, sign: float, trough: bool = False) -> float:
@@ -93,9 +109,11 @@ def _harmonic_residual(p: Params, om: float, sign: float, trough: bool = False) 
 
 def grazing_harmonic_branches(p: Params, omegas=None) -> dict[str, float | None]:
     """Roots of the harmonic-balance grazing condition for the three readings of the module
-    docstring (None where there is no root)."""
+    docstring (None where there is no root).  The scan runs up to the contact resonance
+    (:func:`contact_resonance`), above which the harmonic solution of eq. (5) is not the
+    small-forcing branch; ``omegas`` overrides it."""
     import numpy as np
-    omegas = np.linspace(0.5, 60.0, 2000) if omegas is None else omegas
+    omegas = np.linspace(1e-3, 1.0, 4000) * contact_resonance(p) if omegas is None else omegas
     out: dict[str, float | None] = {}
     for name, sgn, tr in (("cos_alpha_negative", -1.0, False), ("cos_alpha_positive", 1.0, False),
                           ("trough", 1.0, True)):
