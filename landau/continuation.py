@@ -24,16 +24,17 @@ bifurcation analysis of ODEs. ACM Trans. Math. Softw. 29, 141–164.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, replace
 from typing import Any, Mapping, Sequence
 
 import mpmath
 import numpy as np
+import scipy.linalg
 import scipy.optimize
 
 from landau.errors import InputError, NoHopfError, SingularPointError
-from landau.general import (DEFAULT_DPS, NumericSystem, critical_pair, hopf_test_function, locate_crossing,
-                            normal_form_at, refine_hopf)
+from landau.general import (DEFAULT_DPS, NumericSystem, hopf_test_function, locate_crossing, normal_form_at,
+                            refine_hopf, second_lyapunov)
 from landau.hopf import HopfResult
 from landau.system import DynamicalSystem
 
@@ -150,8 +151,9 @@ def equilibrium_branch(system: DynamicalSystem, params: Mapping[str, float] | No
         Initial and largest pseudo-arclength step (default 1 % and 5 % of the range).
     max_points : int
         Safety bound on the number of points.
-    direction : {1, −1}
-        Start towards increasing (1) or decreasing (−1) parameter.
+    direction : {1, −1, 0}
+        Start towards increasing (1) or decreasing (−1) parameter; 0 continues both ways from
+        ``start`` and joins the two halves.
     dps : int
         Working precision of the located Hopf points.
     jets : {"taylor", "symbolic"}
@@ -166,8 +168,19 @@ def equilibrium_branch(system: DynamicalSystem, params: Mapping[str, float] | No
     lo, hi = sorted(map(float, p_range))
     if not (math.isfinite(lo) and math.isfinite(hi)) or lo == hi:
         raise InputError(f"p_range must be two different finite numbers, got {p_range!r}")
-    if direction not in (1, -1):
-        raise InputError("direction must be 1 or -1")
+    if direction not in (1, -1, 0):
+        raise InputError("direction must be 1, -1 or 0 (both ways)")
+    if direction == 0:
+        if start is None:
+            raise InputError("direction=0 (both ways) needs a start value")
+        kw = dict(start=start, equilibrium_guess=equilibrium_guess, step=step, max_step=max_step,
+                  max_points=max_points, dps=dps, jets=jets, locate_hopf=locate_hopf)
+        down = equilibrium_branch(system, params, p_range, direction=-1, **kw)
+        up = equilibrium_branch(system, params, p_range, direction=1, **kw)
+        return EquilibriumBranch(system=up.system, parameter=up.parameter, p=np.concatenate([down.p[::-1], up.p[1:]]),
+                                 y=np.concatenate([down.y[::-1], up.y[1:]]),
+                                 n_unstable=np.concatenate([down.n_unstable[::-1], up.n_unstable[1:]]),
+                                 hopf=tuple(down.hopf[::-1]) + up.hopf, folds=tuple(down.folds[::-1]) + up.folds)
     num = NumericSystem(system, params or {}, equilibrium_guess)
     n = num.n
     width = hi - lo
@@ -362,25 +375,100 @@ class _HopfTracker:
         return res
 
 
-def _l2_at(system: DynamicalSystem, params: Mapping[str, float], res: HopfResult, dps: int) -> float | None:
-    """l₂ by :func:`landau.lyapunov.lyapunov_coefficients` where that route exists (else None)."""
-    try:
-        from landau.lyapunov import lyapunov_coefficients
-    except ImportError:
-        return None
-    out = lyapunov_coefficients(system, dict(params), res.p_c, dps=dps)
-    l2 = getattr(out, "l2", None)
-    if l2 is None and isinstance(out, Mapping):
-        l2 = out.get("l2")
-    if l2 is None and isinstance(out, tuple) and len(out) >= 2:
-        l2 = out[1]
-    return None if l2 is None else float(l2)
+def _hopf_residual(num: NumericSystem, sym2, X: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """[f(y; p₁, p₂), Re g, Im g] with g from the bordered system [[iωE − J, b], [cᴴ, 0]] (v, g) = (0, 1).
+
+    g = 0 exactly at a Hopf point (Govaerts 2000, minimally augmented system); well conditioned
+    when b and c approximate the left and right critical eigenvectors.
+    """
+    n = num.n
+    y, p1, p2, om = X[:n], X[n], X[n + 1], X[n + 2]
+    num.params[sym2] = float(p2)
+    num._pv = list(num.params.values())
+    f, J, _ = num.first(y, p1, True)
+    M = np.zeros((n + 1, n + 1), complex)
+    M[:n, :n] = 1j * om * num.E_float(p1) - J
+    M[:n, n] = b
+    M[n, :n] = c.conj()
+    rhs = np.zeros(n + 1, complex)
+    rhs[n] = 1.0
+    g = np.linalg.solve(M, rhs)[n]
+    return np.concatenate([f, [g.real, g.imag]])
+
+
+def _hopf_borders(num: NumericSystem, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    n = num.n
+    _, J, _ = num.first(X[:n], X[n], True)
+    lam, vl, vr = scipy.linalg.eig(J, num.E_float(X[n]), left=True, right=True)
+    i = int(np.argmin(np.abs(lam - 1j * X[n + 2])))
+    return vl[:, i] / np.linalg.norm(vl[:, i]), vr[:, i] / np.linalg.norm(vr[:, i])
+
+
+def _fd_jacobian(G, X: np.ndarray) -> np.ndarray:
+    cols = []
+    for i in range(len(X)):
+        h = 1e-7 * (1 + abs(X[i]))
+        e = np.zeros_like(X)
+        e[i] = h
+        cols.append((G(X + e) - G(X - e)) / (2 * h))
+    return np.column_stack(cols)
+
+
+def _trace_hopf_curve(num: NumericSystem, sym2, X0: np.ndarray, lo: float, hi: float, hmax: float,
+                      max_points: int) -> list[np.ndarray]:
+    """Pseudo-arclength continuation of the Hopf curve in (y, p₁, p₂, ω) both ways from X0 (float64)."""
+    n = num.n
+    out_both = []
+    for direction in (1, -1):
+        X = X0.copy()
+        b, c = _hopf_borders(num, X)
+        G = lambda Z: _hopf_residual(num, sym2, Z, b, c)
+        t = np.linalg.svd(_fd_jacobian(G, X))[2][-1]
+        t = t * direction * (1 if t[n + 1] >= 0 else -1)
+        h = hmax / 4
+        pts = []
+        while len(pts) < max_points:
+            Xp = X + h * t
+            Z = Xp.copy()
+            ok = False
+            for it in range(8):
+                r = np.append(G(Z), t @ (Z - Xp))
+                A = np.vstack([_fd_jacobian(G, Z), t])
+                try:
+                    dZ = np.linalg.solve(A, -r)
+                except np.linalg.LinAlgError:
+                    break
+                Z = Z + dZ
+                if np.max(np.abs(dZ)) <= 1e-10 * (1 + np.max(np.abs(Z))):
+                    ok = True
+                    break
+            if not ok or Z[n + 2] <= 0:
+                h *= 0.5
+                if h < 1e-8 * hmax:
+                    break
+                continue
+            tn = np.linalg.svd(_fd_jacobian(G, Z))[2][-1]
+            t = tn if tn @ t >= 0 else -tn
+            X = Z
+            pts.append(X.copy())
+            b, c = _hopf_borders(num, X)
+            if it <= 3:
+                h = min(1.3 * h, hmax)
+            if not (lo <= X[n + 1] <= hi):
+                break
+        out_both.append(pts)
+    return out_both[1][::-1] + [X0] + out_both[0]
 
 
 def hopf_curve(system: DynamicalSystem, params: Mapping[str, float], second: str, p2_range: tuple[float, float],
                start: HopfResult, *, steps: int = 40, dps: int = 30, jets: str = "taylor",
-               locate_gh: bool = True, l2: bool = True) -> HopfCurve:
-    """Follow a Hopf point in (p₁, p₂) across ``p2_range`` and locate the generalised-Hopf points on the way.
+               locate_gh: bool = True, l2: bool = True, max_points: int = 200) -> HopfCurve:
+    """Follow a Hopf point in (p₁, p₂) while p₂ stays in ``p2_range`` and locate the generalised-Hopf points.
+
+    The curve is traced by pseudo-arclength continuation of the minimally augmented system
+    f(y; p₁, p₂) = 0, g(y, p₁, p₂, ω) = 0 (so it passes turning points in either parameter), both
+    ways from ``start``; at each point the Hopf point is re-located at ``dps`` digits and l₁
+    computed; a sign change of l₁ is bisected to the generalised-Hopf point.
 
     Parameters
     ----------
@@ -391,21 +479,24 @@ def hopf_curve(system: DynamicalSystem, params: Mapping[str, float], second: str
     second : str
         Name of p₂.
     p2_range : (float, float)
-        p₂ runs from ``params[second]`` to each end of this interval (natural continuation in
-        p₂: the curve must be a graph over p₂ in the range).
+        The continuation stops where p₂ leaves this interval.
     start : HopfResult
         A Hopf point at ``params`` (from :func:`landau.general.hopf_normal_form` or
         :func:`equilibrium_branch`).
     steps : int
-        Number of p₂ steps across the range.
+        The largest arclength step is the width of ``p2_range`` divided by ``steps`` (at least 2 % of
+        the norm of the starting point in (y, p₁, p₂, ω)).
     dps : int
-        Working precision along the curve.
+        Working precision of the points and of l₁.
     locate_gh, l2 : bool
         Locate the points where l₁ changes sign, and compute l₂ there.
+    max_points : int
+        Safety bound on the number of points each way.
 
     Returns
     -------
     HopfCurve
+        Points in arclength order.
     """
     if second not in params:
         raise InputError(f"params must give the starting value of {second!r}")
@@ -414,29 +505,32 @@ def hopf_curve(system: DynamicalSystem, params: Mapping[str, float], second: str
     if not (lo <= p20 <= hi):
         raise InputError(f"the starting {second} = {p20:g} is outside {p2_range!r}")
     tracker = _HopfTracker(system, params, second, start, dps, jets)
-    pts: list[tuple[float, HopfResult]] = [(p20, start)]
-    dp = (hi - lo) / steps
-    for end, sgn in ((hi, 1), (lo, -1)):
-        tracker.last = (start.p_c, start.omega_c, start.equilibrium)
-        v = p20
-        while sgn * (end - v) > 1e-12 * max(1.0, abs(end)):
-            v = v + sgn * dp if sgn * (end - v - sgn * dp) > 0 else end
-            try:
-                pts.append((v, tracker.at(v)))
-            except (SingularPointError, NoHopfError):
-                break
-    pts.sort(key=lambda z: z[0])
-    P2 = np.array([z[0] for z in pts])
-    res = [z[1] for z in pts]
+    num = tracker.num
+    X0 = np.array([*start.equilibrium, start.p_c, p20, start.omega_c], float)
+    # the step bound acts on the whole arclength (states, p₁, p₂, ω): at least 2 % of |X₀|
+    hmax = max((hi - lo) / steps, 0.02 * float(np.linalg.norm(X0)))
+    path = _trace_hopf_curve(num, tracker.sym2, X0, lo, hi, hmax, max_points)
+    n = num.n
+    res: list[HopfResult] = []
+    P2: list[float] = []
+    for X in path:
+        if not (lo <= X[n + 1] <= hi):
+            continue
+        tracker.last = (X[n], X[n + 2], tuple(X[:n]))
+        try:
+            res.append(tracker.at(X[n + 1]))
+        except (SingularPointError, NoHopfError):
+            continue  # a turning point in p₂: the point is not isolated at fixed p₂
+        P2.append(float(X[n + 1]))
     L1 = np.array([r.l1 for r in res])
     ghs: list[GeneralisedHopfPoint] = []
     if locate_gh:
-        for k in range(1, len(pts)):
+        for k in range(1, len(res)):
             if L1[k - 1] * L1[k] < 0:
                 tracker.last = (res[k - 1].p_c, res[k - 1].omega_c, res[k - 1].equilibrium)
                 ghs.append(_locate_gh(system, tracker, P2[k - 1], P2[k], l2))
     return HopfCurve(system=system.name, parameters=(system.parameter.name, second), p1=np.array([r.p_c for r in res]),
-                     p2=P2, omega=np.array([r.omega_c for r in res]), l1=L1, generalised_hopf=tuple(ghs))
+                     p2=np.array(P2), omega=np.array([r.omega_c for r in res]), l1=L1, generalised_hopf=tuple(ghs))
 
 
 def _locate_gh(system: DynamicalSystem, tracker: _HopfTracker, a: float, b: float, with_l2: bool) -> GeneralisedHopfPoint:
@@ -449,7 +543,9 @@ def _locate_gh(system: DynamicalSystem, tracker: _HopfTracker, a: float, b: floa
 
     p2 = scipy.optimize.brentq(l1, a, b, xtol=1e-14 * max(1.0, abs(a), abs(b)), rtol=1e-13)
     r = tracker.at(p2, dps=max(tracker.dps, 40))
-    l2v = _l2_at(system, tracker.params, r, max(tracker.dps, 40)) if with_l2 else None
+    l2v = second_lyapunov(system, tracker.params, r, max(tracker.dps, 40)) if with_l2 else None
+    if l2v is not None:
+        r = replace(r, l2=l2v)
     return GeneralisedHopfPoint(system=system.name, parameters=(system.parameter.name, tracker.second), p1=r.p_c,
                                 p2=float(p2), omega=r.omega_c, equilibrium=r.equilibrium, l2=l2v, hopf=r)
 

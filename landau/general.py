@@ -439,7 +439,7 @@ def normal_form_at(num: NumericSystem, pc, wc, y0, *, jets: str = "taylor", jets
 
 def hopf_normal_form(system: DynamicalSystem, params: Mapping[str, float] | None, bracket: tuple[float, float],
                      dps: int = DEFAULT_DPS, *, equilibrium_guess: Sequence[float] | None = None,
-                     jets: str = "taylor", samples: int = SCAN_SAMPLES) -> HopfResult:
+                     jets: str = "taylor", samples: int = SCAN_SAMPLES, l2: bool = False) -> HopfResult:
     """Locate the Hopf point of ``system`` in its parameter inside ``bracket`` and derive its amplitude equation.
 
     Parameters
@@ -461,12 +461,15 @@ def hopf_normal_form(system: DynamicalSystem, params: Mapping[str, float] | None
         Derivatives by Taylor arithmetic (default; fast for large dense systems) or by sympy.
     samples : int
         Number of intervals the bracket is scanned in for crossings.
+    l2 : bool
+        Also compute the second Lyapunov coefficient (:func:`second_lyapunov`; wanted at or near
+        Λ = 0, where l₁ says nothing).
 
     Returns
     -------
     HopfResult
         With ``l1`` and ``c1`` in Kuznetsov's normalisation (l₁ = Re c₁/ω, as MatCont prints it;
-        BifurcationKit prints Re c₁).
+        BifurcationKit prints Re c₁), and ``l2`` if asked for and available.
 
     Raises
     ------
@@ -501,7 +504,28 @@ def hopf_normal_form(system: DynamicalSystem, params: Mapping[str, float] | None
     p0, y0, lam = hits[0]
     with mpmath.workdps(dps):
         pc, wc, y = refine_hopf(num, p0, abs(lam.imag), y0)
-        return normal_form_at(num, pc, wc, y, jets=jets, params=params)
+        res = normal_form_at(num, pc, wc, y, jets=jets, params=params)
+    if l2:
+        res = replace(res, l2=second_lyapunov(system, params, res, max(dps, 40)))
+    return res
+
+
+def _frozen_equilibrium(system: DynamicalSystem, params: Mapping[str, float] | None, result: HopfResult):
+    """(probe system, values, p_c) for the symbolic-jet routes of :mod:`landau.lyapunov` at a located point.
+
+    The probe's equilibrium is a set of fresh unknowns whose values are the numeric equilibrium
+    at p_c (refined at the working precision), so those routes need no closed form.
+    """
+    y0s = tuple(sp.Symbol(f"{s.name}__eq", real=True) for s in system.states)
+    at = dict(zip(system.states, y0s))
+    probe = DynamicalSystem(system.name, system.states, system.rhs, system.mass, system.parameter, y0s,
+                            normalise=system.normalise, unknowns=y0s,
+                            unknown_equations=tuple(sp.sympify(f).xreplace(at) for f in system.rhs))
+    values: dict[str, Any] = dict(params or {})
+    num = NumericSystem(system, params or {}, result.equilibrium)
+    pc, _, y = refine_hopf(num, result.p_c, result.omega_c, result.equilibrium)
+    values.update({s.name: v for s, v in zip(y0s, y)})
+    return probe, values, pc
 
 
 def kuznetsov_check(system: DynamicalSystem, params: Mapping[str, float] | None, result: HopfResult,
@@ -513,6 +537,16 @@ def kuznetsov_check(system: DynamicalSystem, params: Mapping[str, float] | None,
     the transversality is taken from ``result`` (the projection route would move p with the
     equilibrium frozen).  Needs a diagonal, invertible E.
 
+    Parameters
+    ----------
+    system : DynamicalSystem
+    params : mapping or None
+        The other parameters' values, by name.
+    result : HopfResult
+        The point, from :func:`hopf_normal_form` or :func:`landau.continuation.equilibrium_branch`.
+    dps : int
+        Working precision (≥ 30).
+
     Returns
     -------
     landau.lyapunov.LyapunovResult
@@ -520,17 +554,28 @@ def kuznetsov_check(system: DynamicalSystem, params: Mapping[str, float] | None,
     """
     from landau.lyapunov import first_lyapunov
 
-    y0s = tuple(sp.Symbol(f"{s.name}__eq", real=True) for s in system.states)
-    at = dict(zip(system.states, y0s))
-    probe = DynamicalSystem(system.name, system.states, system.rhs, system.mass, system.parameter, y0s,
-                            normalise=system.normalise, unknowns=y0s,
-                            unknown_equations=tuple(sp.sympify(f).xreplace(at) for f in system.rhs))
-    values: dict[str, Any] = dict(params or {})
     with mpmath.workdps(dps):
-        num = NumericSystem(system, params or {}, result.equilibrium)
-        pc, _, y = refine_hopf(num, result.p_c, result.omega_c, result.equilibrium)
-        values.update({s.name: v for s, v in zip(y0s, y)})
+        probe, values, pc = _frozen_equilibrium(system, params, result)
         res = first_lyapunov(probe, values, pc, omega_c=result.omega_c, dps=dps, relocate=False)
     mu = abs(result.dlambda_dp.real)
     C = 2 * res.q_norm * math.sqrt(mu / abs(res.c1.real)) if res.c1.real != 0 else math.inf
     return replace(res, dmu_dp=result.dlambda_dp.real, C=C)
+
+
+def second_lyapunov(system: DynamicalSystem, params: Mapping[str, float] | None, result: HopfResult,
+                    dps: int = 40) -> float | None:
+    """l₂ (Kuznetsov's normalisation) at a located Hopf point by :func:`landau.lyapunov.lyapunov_coefficients`.
+
+    The numeric equilibrium is passed as the values of fresh unknowns (as in
+    :func:`kuznetsov_check`), so no closed form is needed.  Returns None where the toolkit has no
+    second-Lyapunov route.
+    """
+    try:
+        from landau.lyapunov import lyapunov_coefficients
+    except ImportError:
+        return None
+    with mpmath.workdps(dps):
+        probe, values, pc = _frozen_equilibrium(system, params, result)
+        out = lyapunov_coefficients(probe, values, pc, dps=dps)
+    l2 = out.get("l2") if isinstance(out, Mapping) else getattr(out, "l2", None)
+    return None if l2 is None else float(l2)

@@ -191,6 +191,48 @@ class _Series:
         return out
 
 
+def _unary_derivatives(func, x, K: int, as_float: bool):
+    """g⁽ᵏ⁾(x), k = 0…K, for the common elementary functions without symbolic differentiation (else None)."""
+    import math
+
+    import mpmath
+
+    lib = math if as_float else mpmath
+    if func is sp.exp:
+        e = lib.exp(x)
+        return [e] * (K + 1)
+    if func is sp.log:
+        out = [lib.log(x)]
+        fact = 1
+        for k in range(1, K + 1):
+            out.append((-1) ** (k - 1) * fact / x ** k)
+            fact *= k
+        return out
+    if func in (sp.sin, sp.cos):
+        s, c = lib.sin(x), lib.cos(x)
+        cyc = [s, c, -s, -c] if func is sp.sin else [c, -s, -c, s]
+        return [cyc[k % 4] for k in range(K + 1)]
+    if func in (sp.sinh, sp.cosh):
+        s, c = lib.sinh(x), lib.cosh(x)
+        cyc = [s, c] if func is sp.sinh else [c, s]
+        return [cyc[k % 2] for k in range(K + 1)]
+    if func is sp.tanh:
+        # dᵏ tanh/dxᵏ = Pₖ(t), t = tanh x, P₀ = t, Pₖ₊₁ = Pₖ'(t)(1 − t²)
+        t = lib.tanh(x)
+        poly = [0, 1]  # coefficients of P in powers of t
+        out = []
+        for _ in range(K + 1):
+            out.append(sum(c * t ** i for i, c in enumerate(poly)))
+            d = [i * c for i, c in enumerate(poly)][1:]
+            nxt = [0] * (len(d) + 2)
+            for i, c in enumerate(d):
+                nxt[i] += c
+                nxt[i + 2] -= c
+            poly = nxt
+        return out
+    return None
+
+
 class TaylorJets:
     """Every derivative of f up to total order K at a point, by Taylor arithmetic on the expression tree.
 
@@ -229,6 +271,9 @@ class TaylorJets:
         self._build_tape()
 
     def _unary(self, func, x):
+        fast = _unary_derivatives(func, x, self.K, self._float)
+        if fast is not None:
+            return fast
         key = (func, self.K, self._float)
         fns = self._unary_cache.get(key)
         if fns is None:
