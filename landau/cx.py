@@ -85,8 +85,23 @@ def cx_is_zero(z: Cx) -> bool:
     return is_zero(z.re) and is_zero(z.im)
 
 
+def _is_symbolic(x: Any) -> bool:
+    """True for a sympy expression with free symbols, which no float conversion can turn into a
+    number.  ``is_number`` stops at the first symbol it meets, unlike ``free_symbols``, which
+    walks the whole tree."""
+    return getattr(x, "is_number", True) is False
+
+
 def magnitude(z: Cx) -> float:
-    """A float size for pivoting; symbolic entries count as 1 when not structurally zero."""
+    """A float size for pivoting; symbolic entries count as 1 when not structurally zero.
+
+    Expressions with free symbols are recognised before any numeric conversion is tried:
+    ``complex()`` of such an expression makes sympy evaluate the whole expression tree
+    numerically before failing, which dominated the derivation cost for laws with several
+    state variables.
+    """
+    if _is_symbolic(z.re) or _is_symbolic(z.im):
+        return 0.0 if cx_is_zero(z) else 1.0
     try:
         return float(abs(complex(z.re, z.im)))
     except (TypeError, ValueError):

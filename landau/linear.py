@@ -17,6 +17,7 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 import sympy as sp
+from sympy.polys.matrices import DomainMatrix
 
 from landau.codegen import CompiledFormula, compile_expr
 from landau.errors import InputError, NoHopfError, SingularPointError
@@ -30,14 +31,23 @@ w = sp.Symbol("omega", positive=True)   # ω
 NO_HOPF_STABLE = "no Hopf bifurcation: steady sliding is stable for all k"
 
 
-def _split_at_iw(poly: sp.Poly) -> tuple[sp.Expr, sp.Expr]:
-    """(Re, Im) of a polynomial in λ evaluated at λ = iω."""
-    re, im = sp.Integer(0), sp.Integer(0)
-    for (m,), c in poly.terms():
-        unit = (1, 0) if m % 4 == 0 else (0, 1) if m % 4 == 1 else (-1, 0) if m % 4 == 2 else (0, -1)
-        re += unit[0] * c * w ** m
-        im += unit[1] * c * w ** m
-    return re, im
+def _split_at_iw(poly: sp.Poly) -> tuple[sp.Poly, sp.Poly]:
+    """(Re, Im) of a polynomial in λ evaluated at λ = iω, as polynomials in ω over the same
+    coefficient domain."""
+    re, im = {}, {}
+    for (m,), c in poly.rep.terms():
+        sign = 1 if m % 4 in (0, 1) else -1
+        (re if m % 2 == 0 else im)[(m,)] = c if sign == 1 else -c
+    dom = poly.domain
+    return sp.Poly.from_dict(re, w, domain=dom), sp.Poly.from_dict(im, w, domain=dom)
+
+
+def _in_lambda(poly: sp.Poly) -> sp.Poly:
+    """A polynomial in λ and other generators as a polynomial in λ over the ring of the others."""
+    others = [g for g in poly.gens if g != lam]
+    if lam not in poly.gens:
+        return sp.Poly(poly.as_expr(), lam)
+    return poly.reorder(lam, *others).eject(*others) if others else poly
 
 
 @dataclass(frozen=True)
@@ -100,8 +110,17 @@ class HopfLine:
     def _char(self) -> tuple[sp.Poly, sp.Poly]:
         J = sp.Matrix(self.jets.jacobian())
         E = sp.diag(*self.system.mass)
-        char = sp.expand((lam * E - J).det(method="berkowitz"))  # small: entries are atoms
+        # the determinant in the polynomial ring of the entries (atoms, λ, p): exact, and far
+        # cheaper than expanding a symbolic Berkowitz determinant for several state variables
+        A = DomainMatrix.from_Matrix(lam * E - J)
         p = self.system.parameter
+        ring = A.domain
+        if ring.is_PolynomialRing and lam in ring.symbols and p in ring.symbols:
+            char = sp.Poly.from_dict(dict(A.det()), *ring.symbols, domain=ring.domain)
+            if char.degree(p) > 1:
+                raise InputError("the Hopf parameter enters the characteristic polynomial nonlinearly")
+            return _in_lambda(char.eval(p, 0)), _in_lambda(char.diff(p).eval(p, 0))
+        char = sp.expand(ring.to_sympy(A.det()))
         if sp.diff(char, p, 2) != 0:
             raise InputError("the Hopf parameter enters the characteristic polynomial nonlinearly")
         P = sp.Poly(char.subs(p, 0), lam)
@@ -112,13 +131,20 @@ class HopfLine:
     def _hopf_polys(self) -> tuple[sp.Poly, sp.Expr, sp.Expr]:
         """(H(W) = Im(P Q̄)/ω as a polynomial in W = ω², Re(P Q̄), |Q|²)."""
         P, Q = self._char
+        # products of polynomials in ω over the coefficient ring; every product below is even
+        # in ω (Im P(iω) is odd, Re P(iω) even), so ω² → W is a relabelling of the exponents
         Pr, Pi = _split_at_iw(P)
         Qr, Qi = _split_at_iw(Q)
-        im = sp.expand((Pi * Qr - Pr * Qi) / w)
-        re = sp.expand(Pr * Qr + Pi * Qi)
-        q2 = sp.expand(Qr ** 2 + Qi ** 2)
-        to_W = lambda e: sp.expand(e).subs(w, sp.sqrt(W))
-        return sp.Poly(to_W(im), W), to_W(re), to_W(q2)
+        im = (Pi * Qr - Pr * Qi).exquo(sp.Poly(w, w, domain=Pr.domain))
+        re = Pr * Qr + Pi * Qi
+        q2 = Qr ** 2 + Qi ** 2
+
+        def to_W(poly: sp.Poly) -> sp.Poly:
+            terms = poly.terms()
+            assert all(m % 2 == 0 for (m,), _ in terms)
+            return sp.Poly.from_dict({(m // 2,): c for (m,), c in terms}, W, domain=poly.domain)
+
+        return sp.Poly(to_W(im).as_expr(), W), sp.expand(to_W(re).as_expr()), sp.expand(to_W(q2).as_expr())
 
     @cached_property
     def closed_form(self) -> tuple[sp.Expr, sp.Expr] | None:

@@ -70,8 +70,11 @@ _RATIONAL_DIRECT = 100_000
 _BLOCK = 16_384
 #: threads for the blocks (numpy's elementwise loops release the GIL)
 _WORKERS = max(1, min(8, os.cpu_count() or 1))
-#: float32 vs float64 disagreement above which float64 may miss _REL_GOOD (eps ratio ~5e8)
-_REL_SCREEN = 0.02
+#: float32 vs float64 disagreement above which float64 may miss _REL_GOOD.  The eps ratio is
+#: ~5e8, but the float64 error was measured up to ~200x larger than that ratio predicts from
+#: the float32 disagreement (spinodal law at V ~ 3e-8 m/s: 1.2e-10 behind a 0.5 % disagreement),
+#: hence 2e-4 rather than 2e-2
+_REL_SCREEN = 2e-4
 #: extended precision available (x86 80-bit long double: eps 1.1e-19, ~1000x float64)
 _EXTENDED = np.finfo(np.longdouble).eps < 1e-18
 _EXT_GAIN = float(np.finfo(np.float64).eps / np.finfo(np.longdouble).eps) / 4
@@ -314,6 +317,13 @@ def _agree(x: np.ndarray, y: np.ndarray, rel: float) -> np.ndarray:
         return (np.abs(x - y) <= rel * np.abs(y)) | (np.isnan(x) & np.isnan(y))
 
 
+def _sign_settled(x64: np.ndarray, x80: np.ndarray) -> np.ndarray:
+    """Where the extended-precision value is certain in sign: non-zero, and its error — the
+    float64 error |x64 − x80| scaled down by the precision gain — below a tenth of its size."""
+    with np.errstate(all="ignore"):
+        return (x80 != 0) & np.isfinite(x80) & (np.abs(x64 - x80) <= 0.1 * _EXT_GAIN * np.abs(x80))
+
+
 def _with_bases(names: Iterable[str]) -> list[str]:
     """names with the base quantities of derived ones placed before them."""
     out: list[str] = []
@@ -546,7 +556,7 @@ class Derivation:
 
     def evaluate(self, Vs, params: Mapping[str, float] | None = None,
                  names: Sequence[str] = ("kc", "omega_c", "Gamma_bar", "Lambda"),
-                 method: str = "auto") -> dict[str, np.ndarray]:
+                 method: str = "auto", sign_only: bool = False) -> dict[str, np.ndarray]:
         """Vectorised evaluation over velocities (any parameter may also be an array).
 
         NaN where there is no Hopf point.  Every value is checked for round-off: the same
@@ -563,6 +573,11 @@ class Derivation:
         cancelled form, with error bounds and exact fallback; laws rational in V only) or
         "auto": "rational" for large batches (≥ 1e5 points) and once the cancelled form for
         these parameters exists, else "general".
+
+        ``sign_only=True`` is for callers that use only the signs (a scan for sign changes): a
+        point whose extended-precision value is certain in sign (its error, estimated from the
+        float64–extended difference, below a tenth of its size) keeps that value and is not
+        re-evaluated with mpmath; the values returned there may be off by more than 1e-10.
         """
         if method not in ("auto", "general", "rational"):
             raise InputError(f"unknown evaluation method {method!r} (auto, general, rational)")
@@ -601,7 +616,12 @@ class Derivation:
                 ext = self._raw([v.astype(ld) for v in vals], shape, bases, ld, raw["kc"].astype(ld),
                                 np.sqrt(raw["W"]).astype(ld))
                 for n in bases:
-                    need_mp |= ~_agree(raw[n], ext[n].astype(float), _REL_GOOD)
+                    x80 = ext[n].astype(float)
+                    doubtful = ~_agree(raw[n], x80, _REL_GOOD)
+                    if sign_only:
+                        doubtful &= ~_sign_settled(raw[n], x80)
+                        raw[n] = np.where(doubtful, raw[n], x80)
+                    need_mp |= doubtful
             elif bases:
                 need_mp[...] = True
             need_mp &= np.isfinite(raw["kc"])
@@ -625,6 +645,8 @@ class Derivation:
                     good64 = _agree(x64, x80, _REL_GOOD)
                     raw[key][suspect] = np.where(good64, x64, x80)
                     bad[key][suspect] = ~_agree(x64, x80, _REL_GOOD * _EXT_GAIN)
+                    if sign_only:
+                        bad[key][suspect] &= ~_sign_settled(x64, x80)
             need_mp = np.zeros(shape, dtype=bool)
             for key in raw:
                 need_mp |= bad[key]

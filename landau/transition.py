@@ -227,7 +227,8 @@ def _weakening(d: Derivation, params, lo: float, hi: float) -> list[WeakeningRan
 # --------------------------------------------------------------------------------------
 # codimension-two points
 def _lam(d: Derivation, p: Mapping[str, float], V0: float) -> float:
-    return float(d.evaluate(np.array([V0]), p, ["Lambda"])["Lambda"][0])
+    """Λ for a root bracket: only its sign matters (mpmath only where the sign is uncertain)."""
+    return float(d.evaluate(np.array([V0]), p, ["Lambda"], sign_only=True)["Lambda"][0])
 
 
 def _lam_mp(d: Derivation, p: Mapping[str, float], V0) -> mpmath.mpf | None:
@@ -238,11 +239,12 @@ def _lam_mp(d: Derivation, p: Mapping[str, float], V0) -> mpmath.mpf | None:
 
 
 def _confirmed(d: Derivation, p, Va: float, la: float, Vb: float, lb: float) -> bool:
-    """Both bracket values confirmed in sign and size (1e-6 relative) at 50 digits — round-off
-    noise of an identically vanishing Λ fails this."""
+    """Both bracket values confirmed in sign and size at 50 digits — round-off noise of an
+    identically vanishing Λ fails this.  The scan's values are certain in sign, with an error
+    below a tenth of their size (``sign_only``), hence the 0.2 relative tolerance."""
     for V0, lf in ((Va, la), (Vb, lb)):
         lm = _lam_mp(d, p, V0)
-        if lm is None or lm == 0 or abs(float(lm) - lf) > 1e-6 * abs(float(lm)):
+        if lm is None or lm == 0 or abs(float(lm) - lf) > 0.2 * abs(float(lm)):
             return False
     return True
 
@@ -276,7 +278,8 @@ def codim2_points(derivation: Derivation, lo: float, hi: float,
     # widened a little so that an extremum sitting on LO or HI is still found (and avoided)
     ext = extrema(d, p, lo / 1.01, hi * 1.01) if d.hopf.closed_form is not None else []
     Vs = _scan_grid(lo, hi, ext, per_decade)
-    res = d.evaluate(Vs, p, ["Lambda"])
+    # a sign scan: values uncertain beyond 1e-10 but certain in sign are not sent to mpmath
+    res = d.evaluate(Vs, p, ["Lambda"], sign_only=True)
     kc, lam = res["kc"], res["Lambda"]
     ok = np.isfinite(kc) & (kc > 0) & np.isfinite(lam)
     out: list[Codim2Point] = []

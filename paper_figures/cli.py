@@ -11,10 +11,10 @@ from landau.errors import InputError
 
 #: paper name -> package holding its FIGURES table
 PAPERS: dict[str, str] = {
-    "putelat2010": "paper_figures.putelat2010",
-    "galvanetto2004": "paper_figures.galvanetto2004",
-    "lancioni": "paper_figures.lancioni",
-    "skurativskyi2019": "paper_figures.skurativskyi2019",
+    "putelat2010": "landau.paper_figures.putelat2010",
+    "galvanetto2004": "landau.paper_figures.galvanetto2004",
+    "lancioni": "landau.paper_figures.lancioni",
+    "skurativskyi2019": "landau.paper_figures.skurativskyi2019",
 }
 
 

@@ -267,3 +267,35 @@ def test_regime_diagram_split_and_quasi_static_comparison():
     g0 = regime_diagram(d, V, {"c": 3e-4, "M": 0.0})
     assert not np.any(np.isfinite(g0.subcritical)) and g0.codim2 == ()
     assert np.all(g0.inertial_boundary[np.isfinite(g0.kc)] == 0.0)
+
+
+def test_codim2_sign_scan_does_not_fall_back_to_mpmath(monkeypatch):
+    # the scan needs only the sign of Lambda: points near V_m that are doubtful beyond 1e-10 but
+    # certain in sign are settled in extended precision, not by the 50/80-digit route
+    from landau import transition as tr
+
+    calls = []
+    orig = Derivation._evaluate_mp_checked
+
+    def counted(self, *args, **kw):
+        calls.append(args[0])
+        return orig(self, *args, **kw)
+
+    monkeypatch.setattr(Derivation, "_evaluate_mp_checked", counted)
+    d = Derivation(SpringBlock(get_law("micron-scale")))
+    pts = codim2_points(d, 1e-9, 1e-1)
+    assert calls == []
+    # the two transitions of the micron-scale law (Putelat et al. 2010, Fig. 17) as computed at
+    # full accuracy (README: 1.0395e-5 and 2.0794e-4 m/s)
+    assert len(pts) == 2 and all(rel(p.V, v) < 1e-4 for p, v in zip(pts, (1.0395e-5, 2.0794e-4)))
+    # the same scan at full accuracy does need the 50/80-digit route (so the count above can fail),
+    # and the sign-only values agree in sign with those accurate values everywhere
+    p = d.block.resolve(None)
+    ext = extrema(d, p, 1e-9 / 1.01, 1e-1 * 1.01)
+    grid = tr._scan_grid(1e-9, 1e-1, ext, 200)
+    fast = d.evaluate(grid, p, ["Lambda"], sign_only=True)["Lambda"]
+    assert calls == []
+    full = d.evaluate(grid, p, ["Lambda"])["Lambda"]
+    assert len(calls) > 0
+    finite = np.isfinite(full)
+    assert np.array_equal(np.sign(fast[finite]), np.sign(full[finite]))

@@ -1,0 +1,678 @@
+"""The toolkit against its fair peers, every speed goal with its ratio, in one run.
+
+    pip install -e '.[bench]'
+    python benchmarks/run.py                  # every section (tens of minutes on a loaded machine)
+    python benchmarks/run.py --only lambda,derive --quick
+
+Each section measures the toolkit and its baseline side by side in the same process (or in
+fresh interpreters started back to back, where the cost of a cold process is the point) and
+prints one line per goal: the ratio, the goal and pass/fail.  Tables (Markdown), the raw
+numbers (JSON) and work-precision plots (PNG) go to ``benchmarks/results/`` with a
+description of the machine and its load average during the run.
+
+Sections (``--only``):
+
+* ``springblock`` — one period of the Fig. 3 stick-slip cycle of Putelat et al. (2010)
+  (Dieterich law, V/V_* = 100, κ = 1e-3): the toolkit's compiled Radau IIA against
+  ``solve_ivp`` Radau/BDF/LSODA with the generated right-hand side and Jacobian as plain Python
+  and as numba-compiled functions, SUNDIALS CVODE (BDF, compiled f and J, scikit-sundae) and,
+  where installed, LSODA with a compiled right-hand side (numbalsoda).
+* ``forced`` — Skurativskyi et al. (2019) eq. (1) at ω = 16 (20 periods) and ω = 15 (2 periods):
+  the toolkit with its impact log against CVODE and LSODA (compiled, without events) and
+  ``solve_ivp`` DOP853 with the contact event.
+* ``galvanetto`` — Galvanetto (2004) one block, slip→stick event: the hybrid engine against a
+  ``solve_ivp`` loop with a terminal event, at equal event-time error.
+* ``lambda`` — Λ(V) of every built-in one-state law: throughput of ``Derivation.evaluate``
+  on one thread against ``sympy.lambdify(cse=True)`` of the same expression, the first call,
+  and the error of 1000 points against 50-digit mpmath.
+* ``derive`` — derivation + compile CPU time of Dieterich-type laws with 1…6 state
+  variables (fresh interpreter each), with the growth exponent; ``--baseline-derive`` adds the
+  direct routes (numeric conversion of symbolic pivots, Berkowitz determinant) for comparison.
+* ``verify`` — a cold ``landau verify ruina --V 1e-4`` with a warm kernel cache against one
+  with an empty cache.
+* ``figures`` — ``landau figures putelat2010``.
+
+Goals are those of the project's performance plan; CPU time (process time) is used wherever
+possible because the wall clock of a shared machine is not the toolkit's cost.
+"""
+
+from __future__ import annotations
+
+import argparse
+import itertools
+import json
+import os
+import platform
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+import numpy as np
+
+RESULTS = Path(__file__).resolve().parent / "results"
+SECTIONS = ("springblock", "forced", "galvanetto", "lambda", "derive", "verify", "figures")
+
+
+# --------------------------------------------------------------------------------------------
+# bookkeeping
+@dataclass(frozen=True)
+class Goal:
+    """One speed goal: ``value`` compared with ``target`` (``>=`` or ``<=``)."""
+
+    goal: str
+    measure: str
+    value: float
+    target: float
+    sense: str = ">="
+    note: str = ""
+
+    @property
+    def passed(self) -> bool:
+        if not np.isfinite(self.value):
+            return False
+        return self.value >= self.target if self.sense == ">=" else self.value <= self.target
+
+    def line(self) -> str:
+        return (f"{self.goal:9s} {self.measure:64s} {self.value:10.3g} {self.sense} {self.target:<8g} "
+                f"{'PASS' if self.passed else 'FAIL'}{'  ' + self.note if self.note else ''}")
+
+
+GOALS: list[Goal] = []
+TABLES: dict[str, str] = {}
+RAW: dict[str, object] = {}
+
+
+def report(g: Goal) -> None:
+    GOALS.append(g)
+    print("  " + g.line(), flush=True)
+
+
+def machine() -> dict:
+    info = {"python": platform.python_version(), "platform": platform.platform(), "cpus": os.cpu_count()}
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                info["cpu"] = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    import numba
+    import scipy
+    import sympy
+
+    info.update(numpy=np.__version__, scipy=scipy.__version__, sympy=sympy.__version__, numba=numba.__version__)
+    for mod in ("sksundae", "numbalsoda"):
+        try:
+            m = __import__(mod)
+            info[mod] = getattr(m, "__version__", "installed")
+        except ImportError:
+            info[mod] = "not installed"
+    return info
+
+
+def load() -> tuple[float, float, float]:
+    return os.getloadavg()
+
+
+def cpu_time(fn, min_time: float = 0.05, repeat: int = 3):
+    """Best CPU seconds per call over ``repeat`` rounds; fast calls are looped within a round."""
+    best, out = np.inf, None
+    for _ in range(repeat):
+        n, t0 = 0, time.process_time()
+        while True:
+            out = fn()
+            n += 1
+            el = time.process_time() - t0
+            if el >= min_time or n >= 50:
+                break
+        best = min(best, el / n)
+    return out, best
+
+
+def pareto(points):
+    """(cpu, error) pairs not beaten by a faster run that is at least as accurate, by cpu."""
+    pts = sorted((c, e) for c, e in points if np.isfinite(e) and np.isfinite(c))
+    front, best = [], np.inf
+    for c, e in pts:
+        if e < best:
+            front.append((c, e))
+            best = e
+    return front
+
+
+def cpu_at_error(front, err):
+    """CPU time at error ``err`` interpolated log-log along a Pareto front; the cheapest run
+    if it is already more accurate; None if ``err`` is below every error of the front."""
+    if not front or err < front[-1][1]:
+        return None
+    if err >= front[0][1]:
+        return front[0][0]
+    for (c0, e0), (c1, e1) in itertools.pairwise(front):
+        if e1 <= err <= e0:
+            w = (np.log(err) - np.log(e0)) / (np.log(e1) - np.log(e0)) if e1 < e0 else 0.0
+            return float(np.exp(np.log(c0) + w * (np.log(c1) - np.log(c0))))
+    return None
+
+
+def plot_work_precision(rows, title: str, path: Path, xlabel: str = "error") -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from landau.io import atomic_savefig
+
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for method in dict.fromkeys(r["method"] for r in rows):
+        rr = [r for r in rows if r["method"] == method and np.isfinite(r["error"])]
+        if rr:
+            ax.loglog([max(r["error"], 1e-16) for r in rr], [r["cpu"] for r in rr], "o-", ms=4, label=method)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel("CPU time [s]")
+    ax.set_title(title, fontsize=9)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    atomic_savefig(fig, path, dpi=110, bbox_inches="tight")
+    plt.close(fig)
+
+
+def table(rows, cols) -> str:
+    out = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
+    for r in rows:
+        out.append("| " + " | ".join(f"{r[c]:.3g}" if isinstance(r[c], float) else str(r[c]) for c in cols) + " |")
+    return "\n".join(out)
+
+
+def ratios_at_equal_error(rows, ours: str, theirs: list[str], targets):
+    """{target: (their best CPU, our CPU)} at each target error both reach."""
+    front_us = pareto([(r["cpu"], r["error"]) for r in rows if r["method"] == ours])
+    out = {}
+    for tgt in targets:
+        mine = cpu_at_error(front_us, tgt)
+        best = None
+        for m in theirs:
+            c = cpu_at_error(pareto([(r["cpu"], r["error"]) for r in rows if r["method"] == m]), tgt)
+            if c is not None and (best is None or c < best[0]):
+                best = (c, m)
+        if mine is not None and best is not None:
+            out[tgt] = (best[0], mine, best[1])
+    return out
+
+
+# --------------------------------------------------------------------------------------------
+# spring-block (goal 2)
+def section_springblock(quick: bool) -> None:
+    from scipy.integrate import solve_ivp
+
+    from landau.verify.springblock.simulate import W_INDEX, integrate
+    from landau.verify.springblock.workprecision import error, fig3_cycle, fig3_model, scipy_run
+
+    model = fig3_model()
+    orbit = fig3_cycle(model)
+    y0 = np.insert(orbit.z, W_INDEX, 0.0)
+    T = orbit.period
+    c, p, n = model.compiled, model.p, model.n
+    Ts = T / model.time_unit
+    ref = integrate(model, y0, (0.0, T), rtol=1e-13).y
+    tols = [10.0 ** -e for e in range(4, 12 if quick else 13)]
+    # the multistep peers need tighter tolerances for the same error (their error per rtol is
+    # ~1e4 times the toolkit's on this cycle)
+    peer_tols = [10.0 ** -e for e in range(6, 15)]
+    rows = []
+
+    def add(method, rtol, fn, repeat=3):
+        try:
+            y, cpu = cpu_time(fn, repeat=repeat)
+            rows.append({"method": method, "rtol": rtol, "error": error(y, ref), "cpu": cpu})
+        except Exception as exc:  # a peer that fails at this tolerance is reported, not fatal
+            rows.append({"method": method, "rtol": rtol, "error": float("nan"), "cpu": float("nan"),
+                         "note": type(exc).__name__})
+
+    def f_c(t, y):
+        out = np.empty(n)
+        c.rhs(t, y, p, out)
+        return out
+
+    def j_c(t, y):
+        out = np.empty((n, n))
+        c.jac(t, y, p, out)
+        return out
+
+    def scipy_compiled(method, rtol):
+        s = solve_ivp(f_c, (0.0, Ts), y0, method=method, rtol=rtol, atol=rtol, jac=j_c)
+        return s.y[:, -1]
+
+    for rtol in tols:
+        add("landau Radau IIA", rtol, lambda: integrate(model, y0, (0.0, T), rtol=rtol).y)
+        for m in ("Radau", "BDF", "LSODA"):
+            add(f"solve_ivp {m} (compiled f+J)", rtol, lambda: scipy_compiled(m, rtol), repeat=1)
+        if rtol >= 1e-9 or not quick:
+            add("solve_ivp Radau (Python f+J)", rtol, lambda: scipy_run(model, y0, T, "Radau", rtol, True)[0], repeat=1)
+    peers = []
+    try:
+        from sksundae.cvode import CVODE
+
+        def rhs_s(t, y, yp):
+            c.rhs(t, np.array(y), p, yp)
+
+        def jac_s(t, y, yp, JJ):
+            out = np.empty((n, n))
+            c.jac(t, np.array(y), p, out)
+            JJ[:, :] = out
+
+        def cvode(rtol):
+            s = CVODE(rhs_s, jacfn=jac_s, rtol=rtol, atol=rtol, max_num_steps=10 ** 7).solve([0.0, Ts], y0)
+            if not s.success:
+                raise RuntimeError(s.message)
+            return s.y[-1]
+
+        for rtol in peer_tols:
+            add("CVODE BDF (compiled f+J)", rtol, lambda: cvode(rtol))
+        peers.append("CVODE BDF (compiled f+J)")
+    except ImportError:
+        print("  (scikit-sundae not installed: pip install -e '.[bench]')")
+    try:
+        import numba as nb
+        from numbalsoda import lsoda, lsoda_sig
+
+        rhs_nb = c.rhs
+
+        @nb.cfunc(lsoda_sig)
+        def rhs_l(t, u, du, pp):
+            rhs_nb(t, nb.carray(u, (n,)), nb.carray(pp, (p.size,)), nb.carray(du, (n,)))
+
+        addr = rhs_l.address
+
+        def lsoda_run(rtol):
+            usol, ok = lsoda(addr, y0.copy(), np.array([0.0, Ts]), data=p.copy(), rtol=rtol, atol=rtol,
+                             mxstep=10 ** 7)
+            if not ok:
+                raise RuntimeError("lsoda failed")
+            return usol[-1]
+
+        for rtol in peer_tols:
+            add("numbalsoda LSODA (compiled f)", rtol, lambda: lsoda_run(rtol))
+        peers.append("numbalsoda LSODA (compiled f)")
+    except ImportError:
+        print("  (numbalsoda not installed: it builds from source with a Fortran compiler)")
+    compiled = peers + [f"solve_ivp {m} (compiled f+J)" for m in ("Radau", "BDF", "LSODA")]
+    RAW["springblock"] = rows
+    TABLES["springblock"] = (f"One period T = {T:.6g} s of the Fig. 3 cycle (Putelat et al. 2010), error at the end "
+                             f"against the toolkit at rtol 1e-13 (max scaled state error).\n\n"
+                             + table(rows, ["method", "rtol", "error", "cpu"]))
+    plot_work_precision(rows, "Spring-block, one period of the Fig. 3 stick-slip cycle (Dieterich)",
+                        RESULTS / "springblock.png", "error at the end of one period")
+    targets = [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10]
+    eq = ratios_at_equal_error(rows, "landau Radau IIA", compiled, targets)
+    for tgt, (theirs, mine, who) in eq.items():
+        report(Goal("2", f"spring-block: best compiled peer / toolkit CPU at error {tgt:.0e}", theirs / mine, 3.0,
+                    note=f"best peer: {who}"))
+    eq = ratios_at_equal_error(rows, "landau Radau IIA", ["solve_ivp Radau (compiled f+J)"], [1e-8])
+    for tgt, (theirs, mine, _) in eq.items():
+        report(Goal("2", f"spring-block: scipy Radau (compiled f+J) / toolkit at error {tgt:.0e}", theirs / mine, 50.0))
+
+
+# --------------------------------------------------------------------------------------------
+# forced oscillator (goal 3)
+def section_forced(quick: bool) -> None:
+    from landau.verify.benchmarks.skurativskyi_work_precision import errors, scipy_run, toolkit_run
+    from landau.verify.skurativskyi.model import Params, accel
+    from landau.verify.skurativskyi.simulate import rest_state, run
+
+    run(Params(), 1)  # compile
+    cases = [(16.0, 20), (15.0, 2)]
+    rows = []
+    for omega, nper in cases:
+        prm = Params(omega=omega)
+        pk = prm.packed()
+        tend = nper * prm.period
+        ref, _, _ = toolkit_run(prm, nper, 1e-12, repeat=1, min_cpu=0)
+        yref = ref[0]
+
+        def state_error(y):
+            return float(np.max(np.abs((np.asarray(y) - yref) / np.array([1e-3, 1e-2]))))
+
+        for rt in (1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10):
+            res, cpu, _ = toolkit_run(prm, nper, rt, repeat=3)
+            rows.append({"omega": omega, "method": "landau (with impact log)", "rtol": rt,
+                         "error": errors(res, ref)[0], "cpu": cpu})
+        for rt in ((1e-5, 1e-6) if quick else (1e-5, 1e-6, 1e-7)):
+            res, cpu, _ = scipy_run(prm, nper, "DOP853", rt)
+            rows.append({"omega": omega, "method": "solve_ivp DOP853 + event", "rtol": rt,
+                         "error": errors(res, ref)[0] if res is not None else float("nan"), "cpu": cpu})
+        try:
+            from sksundae.cvode import CVODE
+
+            def rhs_s(t, y, yp):
+                yp[0] = y[1]
+                yp[1] = accel(t, y[0], y[1], pk)
+
+            for rt in (1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10):
+                def cv(meth=None, rt=rt):
+                    s = CVODE(rhs_s, method=meth, rtol=rt, atol=[rt * 1e-4, rt * 1e-2],
+                              max_num_steps=500_000).solve([0.0, tend], rest_state(prm))
+                    if not s.success:
+                        raise RuntimeError(s.message)
+                    return s.y[-1]
+                for meth in ("Adams", "BDF"):
+                    try:
+                        y, cpu = cpu_time(lambda: cv(meth), repeat=1)
+                        rows.append({"omega": omega, "method": f"CVODE {meth} (no events)", "rtol": rt,
+                                     "error": state_error(y), "cpu": cpu})
+                    except Exception:
+                        pass
+        except ImportError:
+            pass
+        try:
+            import numba as nb
+            from numbalsoda import lsoda, lsoda_sig
+
+            npk = pk.size
+
+            # numbalsoda takes one scalar atol: integrate (x/1e-4 m, ẋ/1e-2 m/s), which is the
+            # same as the per-component atol (rtol·1e-4 m, rtol·1e-2 m/s) of the other runs
+            s0, s1 = 1e-4, 1e-2
+
+            @nb.cfunc(lsoda_sig)
+            def rhs_l(t, u, du, pp):
+                uu = nb.carray(u, (2,))
+                dd = nb.carray(du, (2,))
+                dd[0] = uu[1] * s1 / s0
+                dd[1] = accel(t, uu[0] * s0, uu[1] * s1, nb.carray(pp, (npk,))) / s1
+
+            for rt in (1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10):
+                def ls(rt=rt):
+                    u0 = rest_state(prm) / np.array([s0, s1])
+                    usol, ok = lsoda(rhs_l.address, u0, np.array([0.0, tend]), data=pk.copy(),
+                                     rtol=rt, atol=rt, mxstep=10 ** 8)
+                    if not ok:
+                        raise RuntimeError("lsoda failed")
+                    return usol[-1] * np.array([s0, s1])
+                try:
+                    y, cpu = cpu_time(ls)
+                except Exception:
+                    continue
+                rows.append({"omega": omega, "method": "numbalsoda LSODA (no events)", "rtol": rt,
+                             "error": state_error(y), "cpu": cpu})
+        except ImportError:
+            pass
+        sub = [r for r in rows if r["omega"] == omega]
+        plot_work_precision(sub, f"Skurativskyi et al. (2019) eq. (1), ω = {omega:g}, {nper} periods",
+                            RESULTS / f"forced_omega{omega:g}.png", "scaled final-state error")
+        peers = sorted({r["method"] for r in sub if "no events" in r["method"]})
+        eq = ratios_at_equal_error(sub, "landau (with impact log)", peers, [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9])
+        for tgt, (theirs, mine, who) in eq.items():
+            report(Goal("3", f"forced ω={omega:g}: compiled peer (no events) / toolkit at error {tgt:.0e}",
+                        theirs / mine, 1.0, note=f"best peer: {who}"))
+        eq = ratios_at_equal_error(sub, "landau (with impact log)", ["solve_ivp DOP853 + event"], [1e-4, 1e-5, 1e-6])
+        for tgt, (theirs, mine, _) in eq.items():
+            report(Goal("3", f"forced ω={omega:g}: solve_ivp + event / toolkit at error {tgt:.0e}", theirs / mine, 100.0))
+    RAW["forced"] = rows
+    TABLES["forced"] = ("Skurativskyi et al. (2019) eq. (1) from rest; error = max |Δ(x, ẋ)|/(1 mm, 10 mm/s) at the "
+                        "end against the toolkit at rtol 1e-12.\n\n" + table(rows, ["omega", "method", "rtol", "error", "cpu"]))
+
+
+# --------------------------------------------------------------------------------------------
+# Galvanetto blocks (goal 4)
+def section_galvanetto(quick: bool) -> None:
+    from landau.verify.benchmarks.event_location_galvanetto import baseline, engine
+
+    t_ref, _, _ = engine("DOP853", 1e-13)
+    rows = []
+    for rtol in (1e-4, 1e-6, 1e-8, 1e-10, 1e-12):
+        for label, fn in (("hybrid engine DOP853", engine), ("solve_ivp DOP853 + terminal event", baseline)):
+            (t_ev, _, _), cpu = cpu_time(lambda: fn("DOP853", rtol), min_time=0.1)
+            rows.append({"method": label, "rtol": rtol, "error": abs(t_ev - t_ref), "cpu": cpu})
+    RAW["galvanetto"] = rows
+    TABLES["galvanetto"] = ("Galvanetto (2004) one block (γ = 3, δ = 0.2, V = 1): slip→stick event time against the "
+                            "engine at rtol 1e-13.\n\n" + table(rows, ["method", "rtol", "error", "cpu"]))
+    plot_work_precision(rows, "Galvanetto (2004) one block: slip→stick event time", RESULTS / "galvanetto.png",
+                        "event-time error")
+    eq = ratios_at_equal_error(rows, "hybrid engine DOP853", ["solve_ivp DOP853 + terminal event"],
+                               [1e-5, 1e-7, 1e-9, 1e-11])
+    for tgt, (theirs, mine, _) in eq.items():
+        report(Goal("4", f"Galvanetto: solve_ivp loop / engine CPU at event-time error {tgt:.0e}", theirs / mine, 1.0))
+
+
+# --------------------------------------------------------------------------------------------
+# Λ(V) (goal 5)
+def section_lambda(quick: bool) -> None:
+    import mpmath
+    import sympy as sp
+
+    import landau.multiscale as ms
+    from landau.laws import get_law
+    from landau.system import SpringBlock
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+    from vw_ranges import LAWS, vw_range
+
+    workers = ms._WORKERS
+    ms._WORKERS = 1                     # single-threaded, like the lambdify baseline
+    n_points = 200_000 if quick else 1_000_000
+    rows = []
+    try:
+        for name in LAWS:
+            lo, hi, ends = vw_range(name)
+            lo, hi = (lo * (1 + 1e-3) if lo in ends else lo), (hi * (1 - 1e-3) if hi in ends else hi)
+            Vs = np.logspace(np.log10(lo), np.log10(hi), n_points)
+            d = ms.derive(SpringBlock(get_law(name)), ["Lambda"])
+            t0 = time.process_time()
+            d.evaluate(Vs[:10], {}, ["Lambda"])
+            compile_s = time.process_time() - t0
+            t0 = time.process_time()
+            d.evaluate(Vs, {}, ["Lambda"])
+            first = n_points / (time.process_time() - t0)
+            _, t_eng = cpu_time(lambda: d.evaluate(Vs, {}, ["Lambda"]), repeat=2)
+            block = d.block
+            p = block.resolve()
+            expr = d.coefficient("Lambda").expr
+            args = list(block.args)
+            fn = sp.lambdify(args, expr, modules="numpy", cse=True)
+            vals = block.argvals(Vs, p)
+            with np.errstate(all="ignore"):
+                _, t_lam = cpu_time(lambda: fn(*vals), repeat=2)
+            # accuracy: 1000 log-spaced points against the 50-digit evaluation
+            Vc = np.logspace(np.log10(lo), np.log10(hi), 1000)
+            got = d.evaluate(Vc, {}, ["Lambda"])["Lambda"]
+            errs = []
+            for V0, g in zip(Vc, got):
+                with mpmath.workdps(50):
+                    want = d.evaluate_mp(float(V0), {}, ["Lambda"], dps=50)["Lambda"]
+                errs.append(float(abs(g - want) / abs(want)) if want != 0 else abs(g))
+            errs = np.array(errs)
+            rows.append({"law": name, "engine pts/s": n_points / t_eng, "lambdify(cse) pts/s": n_points / t_lam,
+                         "first call pts/s": first, "compile s": compile_s, "max rel err": float(errs.max()),
+                         "points > 1e-10": int((errs > 1e-10).sum())})
+            r = rows[-1]
+            print(f"  {name:20s} engine {r['engine pts/s']:.3g}/s  lambdify {r['lambdify(cse) pts/s']:.3g}/s  first "
+                  f"{first:.3g}/s  max err {r['max rel err']:.2g} ({r['points > 1e-10']} > 1e-10)", flush=True)
+            report(Goal("5", f"Λ(V) {name}: engine / lambdify(cse=True) throughput (1 thread)",
+                        r["engine pts/s"] / r["lambdify(cse) pts/s"], 1.0))
+            report(Goal("5", f"Λ(V) {name}: engine points/s (1 thread)", r["engine pts/s"], 1e6))
+            report(Goal("5", f"Λ(V) {name}: points off 50-digit mpmath by > 1e-10 (of 1000)",
+                        float(r["points > 1e-10"]), 0.0, "<="))
+    finally:
+        ms._WORKERS = workers
+    RAW["lambda"] = rows
+    TABLES["lambda"] = (f"Λ(V) over {n_points:.0e} log-spaced V in the velocity-weakening range, one thread, CPU "
+                        "time (best of 2); first call includes no compilation (compile s is separate).\n\n"
+                        + table(rows, list(rows[0]) if rows else []))
+
+
+# --------------------------------------------------------------------------------------------
+# derivation cost against the number of state variables (goal 6)
+_DERIVE_SNIPPET = r"""
+import sys, time
+n, direct = int(sys.argv[1]), sys.argv[2] == "direct"
+from landau.laws import FrictionLaw
+from landau.system import SpringBlock
+from landau.multiscale import QUANTITIES, derive
+if direct:
+    sys.path.insert(0, {bench!r})
+    from direct_routes import install
+    install()
+names = [f"phi{{i}}" for i in range(1, n + 1)]
+mu = "a_v + a*log(v/V_s) + " + " + ".join(f"b{{i}}*log(V_s*phi{{i}}/L{{i}})" for i in range(1, n + 1))
+params = {{}}
+for i in range(1, n + 1):
+    params[f"b{{i}}"] = 0.06 / n * (1 + 0.1 * i)
+    params[f"L{{i}}"] = 1e-6 * 3.0 ** (i - 1)
+law = FrictionLaw.from_strings(f"dieterich-{{n}}", mu, {{p: f"1 - v*{{p}}/L{{i}}" for i, p in enumerate(names, 1)}}, params)
+t0 = time.process_time()
+d = derive(SpringBlock(law), list(QUANTITIES))
+r = d.evaluate([1e-5], {{}}, list(QUANTITIES))
+print(time.process_time() - t0, repr(float(r["Lambda"][0])))
+"""
+
+
+def _derive_cpu(n: int, route: str, timeout: float) -> tuple[float, float]:
+    code = _DERIVE_SNIPPET.format(bench=str(Path(__file__).resolve().parent))
+    try:
+        out = subprocess.run([sys.executable, "-c", code, str(n), route], capture_output=True, text=True,
+                             check=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return float("inf"), float("nan")
+    a, b = out.stdout.split()[-2:]
+    return float(a), float(b)
+
+
+def _exponent(ns, ts) -> float:
+    ok = [(n, t) for n, t in zip(ns, ts) if np.isfinite(t)]
+    if len(ok) < 2:
+        return float("nan")
+    x, y = np.log([n for n, _ in ok]), np.log([t for _, t in ok])
+    return float(np.polyfit(x, y, 1)[0])
+
+
+def section_derive(quick: bool, baseline: bool) -> None:
+    ns = list(range(1, 6 if quick else 7))
+    rows = []
+    for n in ns:
+        t, lam = _derive_cpu(n, "current", 600)
+        row = {"states": n, "CPU s": t, "Lambda(1e-5)": lam}
+        if baseline:
+            tb, lamb = _derive_cpu(n, "direct", 900)
+            row.update({"direct routes CPU s": tb, "same Lambda": bool(lamb == lam) if np.isfinite(lamb) else "n/a"})
+        rows.append(row)
+        print(f"  {n} states: {t:.2f} s" + (f" (direct routes {row['direct routes CPU s']:.2f} s)" if baseline else ""),
+              flush=True)
+    RAW["derive"] = rows
+    cols = list(rows[0])
+    TABLES["derive"] = ("Derivation + compile of all seven quantities, Dieterich law with n states "
+                        "(μ = a_v + a ln(v/V_*) + Σ bᵢ ln(V_*φᵢ/Lᵢ), dφᵢ/dt = 1 − vφᵢ/Lᵢ), CPU seconds in a fresh "
+                        "interpreter (imports excluded).\n\n" + table(rows, cols))
+    exp_now = _exponent(ns, [r["CPU s"] for r in rows])
+    exp_pw = _exponent(ns[-3:], [r["CPU s"] for r in rows][-3:])
+    TABLES["derive"] += f"\n\nGrowth exponent (t ∝ n^p, fit over 1…{ns[-1]}): p = {exp_now:.2f}; over the last three: {exp_pw:.2f}"
+    if baseline:
+        eb = _exponent(ns, [r["direct routes CPU s"] for r in rows])
+        TABLES["derive"] += f"; direct routes: p = {eb:.2f}"
+    for r in rows:
+        if r["states"] <= 5:
+            report(Goal("6", f"derivation + compile, {r['states']} state(s) [CPU s]", r["CPU s"], 2.0, "<="))
+    print(f"  growth exponent over 1..{ns[-1]} states: {exp_now:.2f}")
+
+
+# --------------------------------------------------------------------------------------------
+# cold CLI runs (goals 7, 8)
+def _timed_process(argv, env=None, cwd=None, timeout=1800) -> tuple[float, float, int]:
+    """(wall s, CPU s of the child, return code)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    proc = subprocess.run(argv, env=env, cwd=cwd, capture_output=True, text=True, timeout=timeout)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return wall, cpu, proc.returncode
+
+
+def section_verify(quick: bool) -> None:
+    cmd = [sys.executable, "-m", "landau", "verify", "ruina", "--V", "1e-4"]
+    warm_env = dict(os.environ)
+    _timed_process(cmd, warm_env)                      # fills the kernel cache (and numba's own caches)
+    rows = []
+    for _ in range(1 if quick else 2):
+        w, c, rc = _timed_process(cmd, warm_env)
+        rows.append({"kernel cache": "warm", "wall s": w, "CPU s": c, "exit": rc})
+        with tempfile.TemporaryDirectory() as tmp:
+            env = dict(os.environ, LANDAU_CACHE_DIR=tmp)
+            w2, c2, rc2 = _timed_process(cmd, env)
+        rows.append({"kernel cache": "empty", "wall s": w2, "CPU s": c2, "exit": rc2})
+    RAW["verify"] = rows
+    TABLES["verify"] = ("`landau verify ruina --V 1e-4` in a fresh process: generated kernels from the disk cache "
+                        "(warm) against compiled afresh (empty cache).\n\n" + table(rows, list(rows[0])))
+    warm = min(r["CPU s"] for r in rows if r["kernel cache"] == "warm")
+    warm_wall = min(r["wall s"] for r in rows if r["kernel cache"] == "warm")
+    empty = min(r["CPU s"] for r in rows if r["kernel cache"] == "empty")
+    report(Goal("7", "cold `landau verify ruina --V 1e-4`, warm kernel cache [CPU s]", warm, 2.0, "<=",
+                note=f"wall {warm_wall:.2f} s; empty cache {empty:.2f} CPU s ({empty / warm:.1f}x)"))
+
+
+def section_figures(quick: bool) -> None:
+    with tempfile.TemporaryDirectory() as tmp:
+        w, c, rc = _timed_process([sys.executable, "-m", "landau", "figures", "putelat2010", "--out", tmp])
+    RAW["figures"] = {"wall s": w, "CPU s": c, "exit": rc}
+    TABLES["figures"] = f"`landau figures putelat2010`: wall {w:.1f} s, CPU {c:.1f} s, exit code {rc}."
+    report(Goal("8", "`landau figures putelat2010` [CPU s]", c, 8.0, "<=", note=f"wall {w:.1f} s"))
+
+
+# --------------------------------------------------------------------------------------------
+def main(argv=None) -> int:
+    global RESULTS
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--only", default=",".join(SECTIONS), help=f"comma-separated sections ({', '.join(SECTIONS)})")
+    ap.add_argument("--quick", action="store_true", help="fewer tolerances and points")
+    ap.add_argument("--baseline-derive", action="store_true",
+                    help="also time the derivation with the direct routes (slow: minutes at 5-6 states)")
+    ap.add_argument("--out", default=str(Path(__file__).resolve().parent / "results"), help="folder for tables, JSON and PNGs")
+    args = ap.parse_args(argv)
+    RESULTS = Path(args.out)
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    only = [s.strip() for s in args.only.split(",") if s.strip()]
+    bad = [s for s in only if s not in SECTIONS]
+    if bad:
+        print(f"unknown section(s) {', '.join(bad)} (known: {', '.join(SECTIONS)})", file=sys.stderr)
+        return 2
+    info = machine()
+    loads = [load()]
+    t_start = time.time()
+    print(f"machine: {info.get('cpu', '?')}, {info['cpus']} CPUs, load average {loads[0][0]:.1f}")
+    for s in only:
+        print(f"\n[{s}]", flush=True)
+        try:
+            if s == "derive":
+                section_derive(args.quick, args.baseline_derive)
+            else:
+                globals()[f"section_{s}"](args.quick)
+        except Exception as exc:     # one broken section must not hide the others' results
+            print(f"  section {s} failed: {type(exc).__name__}: {exc}")
+            TABLES[s] = f"failed: {type(exc).__name__}: {exc}"
+        loads.append(load())
+    info["load average (1 min) during the run"] = [round(x[0], 2) for x in loads]
+    info["run seconds"] = round(time.time() - t_start, 1)
+    print("\nsummary (goal, measure, value, target, result)")
+    for g in GOALS:
+        print("  " + g.line())
+    from landau.io import atomic_write_json, atomic_write_text
+
+    md = ["# Benchmarks", "", "Machine: " + ", ".join(f"{k} {v}" for k, v in info.items()), "",
+          "## Goals", "", "| goal | measure | value | target | result | note |", "|---|---|---|---|---|---|"]
+    md += [f"| {g.goal} | {g.measure} | {g.value:.3g} | {g.sense} {g.target:g} | {'PASS' if g.passed else 'FAIL'} | "
+           f"{g.note} |" for g in GOALS]
+    for s in only:
+        md += ["", f"## {s}", "", TABLES.get(s, "")]
+    tag = ("quick" if args.quick else "full") + ("" if set(only) == set(SECTIONS) else "-" + "-".join(only))
+    atomic_write_text(RESULTS / f"results-{tag}.md", "\n".join(md) + "\n")
+    atomic_write_json(RESULTS / f"results-{tag}.json", {"machine": info, "goals": [asdict(g) | {"passed": g.passed}
+                                                                                   for g in GOALS], "raw": RAW})
+    print(f"\nwrote {RESULTS / f'results-{tag}.md'}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
