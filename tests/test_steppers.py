@@ -141,3 +141,68 @@ def test_generated_source_whitelist_refuses_other_code():
         check_source("def fun(t, y, p, out):\n    out[0] = open('f')\n")
     with pytest.raises(InputError, match="attribute"):
         check_source("def fun(t, y, p, out):\n    out[0] = y.__class__\n")
+
+
+# --- the common result type ----------------------------------------------------------------
+def test_forced_oscillator_run_has_a_dense_time_series():
+    # Skurativskyi et al. (2019) eq. (1) with the obstacle far away and no dry friction: the
+    # linear forced oscillator m x'' + c x' + k x = m0e ω² sin ωt, solved in closed form
+    # (particular solution + the homogeneous flow exp(At) of the initial mismatch)
+    from scipy.linalg import expm
+
+    from landau.verify.hybrid.result import Status
+    from landau.verify.skurativskyi.model import PAPER
+    from landau.verify.skurativskyi.simulate import run
+
+    p = PAPER.with_(xI=1.0, T=0.0, omega=16.0)
+    y0 = np.array([1e-3, 0.0])
+    r = run(p, 2, y0, rtol=1e-10, record=100_000)
+    sim = r.simulation()
+    assert sim.status is Status.FINISHED and sim.success
+    assert sim.t[0] == 0.0 and sim.t[-1] == r.t and np.array_equal(sim.y[:, -1], r.y)
+    F, w = p.m0e * p.omega ** 2, p.omega
+    M = np.array([[p.k - p.m * w * w, -p.c * w], [p.c * w, p.k - p.m * w * w]])
+    a, b = np.linalg.solve(M, [F, 0.0])  # x_p = a sin ωt + b cos ωt
+    A = np.array([[0.0, 1.0], [-p.k / p.m, -p.c / p.m]])
+    d0 = y0 - [b, a * w]
+    ts = np.linspace(0.0, r.t, 57)
+    exact = np.array([expm(A * t) @ d0 + [a * np.sin(w * t) + b * np.cos(w * t),
+                                          w * (a * np.cos(w * t) - b * np.sin(w * t))] for t in ts]).T
+    # between step ends the series is a cubic Hermite interpolant: error ~ h⁴|x⁗|/384 with
+    # steps ≲ 0.02 s here, i.e. ≲ 1e-9 m on a 1 mm motion (the integration error at rtol
+    # 1e-10 is smaller); 1e-8 m leaves a margin of 10
+    assert np.max(np.abs(sim.at(ts)[0] - exact[0])) < 1e-8
+    assert sim.at(0.5 * r.t).shape == (2,)
+    assert len(sim.events) == 0  # the obstacle at 1 m is never reached
+
+
+def test_impacts_are_events_of_the_forced_oscillator_result():
+    from landau.verify.skurativskyi.model import PAPER
+    from landau.verify.skurativskyi.simulate import run
+
+    p = PAPER.with_(omega=16.0)
+    r = run(p, 2, rtol=1e-8, record=500)
+    sim = r.simulation()
+    imp = [e for e in sim.events if e.guard == "impact"]
+    assert np.array_equal([e.t for e in imp], r.impacts)
+    assert all(e.y[0] == p.xI for e in imp)
+    assert np.all(np.diff([e.t for e in sim.events]) >= 0)
+    assert len(sim.t) == 500 < r.nsteps  # capped at the requested number of points
+
+
+def test_hybrid_solution_converts_to_the_common_result():
+    from landau.verify.hybrid import DOP853Stepper, Guard, HybridModel, Jump, Mode, simulate
+    from landau.verify.hybrid.result import Status
+
+    g, e = 9.81, 0.5
+    fly = Mode("fly", lambda t, y: np.array([y[1], -g]),
+               (Guard("floor", lambda t, y: y[0], lambda t, y: Jump("fly", np.array([y[0], -e * y[1]]))),))
+    sol = simulate(HybridModel.from_modes(fly, name="ball"), "fly", [1.0, 0.0], (0.0, 1.0),
+                   DOP853Stepper(1e-12, 1e-14))
+    sim = sol.simulation("ball")
+    assert sim.status is Status.FINISHED and sim.success
+    # first impact of a ball dropped from 1 m: t = sqrt(2/g) (closed form)
+    assert sim.events[0].t == pytest.approx(np.sqrt(2 / g), rel=1e-12)
+    # free fall is quadratic: the recorded samples lie on the parabola before the impact
+    before = sim.t < sim.events[0].t
+    assert np.allclose(sim.y[0, before], 1.0 - 0.5 * g * sim.t[before] ** 2, atol=1e-12)
