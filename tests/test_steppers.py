@@ -206,3 +206,21 @@ def test_hybrid_solution_converts_to_the_common_result():
     # free fall is quadratic: the recorded samples lie on the parabola before the impact
     before = sim.t < sim.events[0].t
     assert np.allclose(sim.y[0, before], 1.0 - 0.5 * g * sim.t[before] ** 2, atol=1e-12)
+
+
+# --- the compiled event locator ----------------------------------------------------------
+def test_cubic_locator_finds_a_double_crossing_inside_one_step():
+    from landau.verify.hybrid.crossing import cubic_crossing
+
+    # g(s) = 0.1 − s + s²: positive at both ends of the step, below zero on
+    # ((1 − √0.6)/2, (1 + √0.6)/2) — a dip that sampling at the step ends misses
+    root = (1 - np.sqrt(0.6)) / 2
+    s = cubic_crossing(0.1, -1.0, 1.0, 0.0, 0.0, -1.0, False)
+    assert 0 <= s - root <= 4 * np.finfo(float).eps  # on the new side, to rounding
+    g = lambda x: 0.1 + x * (-1.0 + x)  # the locator's (Horner) evaluation
+    assert g(s) < 0
+    # the next crossing, back to the positive side, searched from the first one
+    s2 = cubic_crossing(0.1, -1.0, 1.0, 0.0, s, 1.0, False)
+    assert s2 == pytest.approx((1 + np.sqrt(0.6)) / 2, abs=4e-16) and g(s2) > 0
+    # a guard that stays positive has no crossing
+    assert cubic_crossing(0.1, -0.2, 0.2, 0.0, 0.0, -1.0, False) == -1.0

@@ -10,7 +10,8 @@ import math
 import numpy as np
 
 from landau.verify.hybrid.compiled import err_norm as _err_norm
-from landau.verify.skurativskyi.rk import MAX_EVENTS, MAX_STEPS, OK, STEP_TOO_SMALL, _first_crossing
+from landau.verify.hybrid.crossing import cubic_crossing
+from landau.verify.skurativskyi.rk import MAX_EVENTS, MAX_STEPS, OK, STEP_TOO_SMALL
 
 
 @jit
@@ -131,7 +132,7 @@ def integrate_mixed(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0
             q1 = 3 * dx - 2 * m0 - m1
             q2 = -2 * dx + m0 + m1
             sgn = -1.0 if contact else 1.0
-            s_star = _first_crossing(g0, m0, q1, q2, sgn)
+            s_star = cubic_crossing(g0, m0, q1, q2, 0.0, sgn, False)
             if s_star <= 0.0 and (ynew[0] - xI) * sgn > 0.0:
                 s_star = 1.0  # defensive: the end state is outside
             if s_star > 0.0:
