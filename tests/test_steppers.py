@@ -224,3 +224,27 @@ def test_cubic_locator_finds_a_double_crossing_inside_one_step():
     assert s2 == pytest.approx((1 + np.sqrt(0.6)) / 2, abs=4e-16) and g(s2) > 0
     # a guard that stays positive has no crossing
     assert cubic_crossing(0.1, -0.2, 0.2, 0.0, 0.0, -1.0, False) == -1.0
+
+
+# --- the periodic-orbit toolkit -------------------------------------------------------------
+def test_shooting_finds_the_fixed_point_and_multipliers_of_a_return_map():
+    from landau.verify.hybrid.analysis import ShootingError, bisect_change, shoot_fixed_point
+
+    # the time-2π map of the damped oscillator x'' + 2ζx' + x = 0 (closed form: exp(2πA)) with a
+    # constant shift b: fixed point (I − P)⁻¹b, multipliers e^{2π(−ζ ± i√(1−ζ²))}
+    from scipy.linalg import expm
+
+    zeta = 0.05
+    A = np.array([[0.0, 1.0], [-1.0, -2 * zeta]])
+    P = expm(2 * np.pi * A)
+    b = np.array([0.3, -0.1])
+    fp = shoot_fixed_point(lambda z: (P @ z + b, P), [1.0, 1.0], tol=1e-13)
+    assert np.allclose(fp.z, np.linalg.solve(np.eye(2) - P, b), rtol=1e-12, atol=1e-14)
+    mu = np.exp(2 * np.pi * complex(-zeta, np.sqrt(1 - zeta ** 2)))
+    assert sorted(abs(m - mu) for m in fp.multipliers)[0] < 1e-12
+    assert fp.iterations <= 3  # Newton is exact for an affine map: one step, then the check
+    with pytest.raises(ShootingError, match="did not converge"):
+        shoot_fixed_point(lambda z: (z ** 3 + 1.0, np.diag(3 * z ** 2)), [5.0], maxiter=2)
+    # locate-by-bisection: where x² > 2 starts, to 2⁻⁴⁰ of the bracket
+    lo, hi = bisect_change(lambda x: x * x > 2.0, 1.0, 2.0, 40)
+    assert lo <= np.sqrt(2.0) <= hi and hi - lo <= 2.0 ** -40
