@@ -1,12 +1,17 @@
-"""A compiled (numba) Dormand–Prince 5(4) integrator with exact contact switching, and a
-stiff SDIRK4 for the stick phases.
+"""A compiled event-driven loop: DOPRI5 with exact contact switching, and a stiff step for the
+stick phases, built for a given field.
 
-:func:`integrate_mixed` (the default path of :func:`landau.verify.skurativskyi.simulate.run`) takes
-every step that starts with |ẋ| below a threshold (stick: the cart rests on the obstacle or
-on the track, |ẋ| ~ 1e-9…1e-6 m/s) with the L-stable SDIRK4 of :mod:`landau.verify.skurativskyi.sdirk`
-(stage equations solved as scalar monotone equations, robust on the |ẋ|^{n₃} cusp) and all
-other steps with DOPRI5; :func:`integrate` is the explicit path alone.  Event location,
-stroboscopic clipping and tangent renormalisation below are the same for both steppers.
+:func:`switching_integrator` ``(fun, stiff_step)`` specialises the loop (source in
+``templates/switching.py``) to a kernel ``fun(t, y, p, out)`` and a stick-phase step — nothing
+here knows a model; :mod:`landau.verify.skurativskyi.simulate` builds it for eq. (1) with the
+SDIRK4 of :mod:`landau.verify.skurativskyi.sdirk`.  Its ``integrate_mixed`` (the default path
+of :func:`landau.verify.skurativskyi.simulate.run`) takes every step that starts with |ẋ|
+below a threshold (stick: the cart rests on the obstacle or on the track, |ẋ| ~ 1e-9…1e-6
+m/s) with the L-stable SDIRK4 (stage equations solved as scalar monotone equations, robust on
+the |ẋ|^{n₃} cusp) and all other steps with the DOPRI5 of :mod:`landau.verify.hybrid.compiled`;
+``integrate`` is the explicit path alone.  Event location (the compiled locator of
+:mod:`landau.verify.hybrid.crossing`), stroboscopic clipping and tangent renormalisation are
+the same for both steppers.
 
 Why explicit outside stick (measured, see ``verify/benchmarks/skurativskyi_work_precision.py``): the
 Hertz damping term sgn(ẋ)|ẋ|^{n₃} (n₃ ≈ 0.187) is not Lipschitz at ẋ = 0 inside contact:
