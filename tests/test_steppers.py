@@ -248,3 +248,28 @@ def test_shooting_finds_the_fixed_point_and_multipliers_of_a_return_map():
     # locate-by-bisection: where x² > 2 starts, to 2⁻⁴⁰ of the bracket
     lo, hi = bisect_change(lambda x: x * x > 2.0, 1.0, 2.0, 40)
     assert lo <= np.sqrt(2.0) <= hi and hi - lo <= 2.0 ** -40
+
+
+def test_contact_run_converts_to_the_common_result():
+    # a block thrown along a slope (tan θ < μ) with the shared contact mechanics: decelerates at
+    # g(μ cos θ − sin θ), stops at t* = u0/(g(μ cos θ − sin θ)) and sticks (closed form)
+    import math
+
+    from landau.verify.hybrid import DOP853Stepper, simulate
+    from landau.verify.hybrid.contact import ContactModel, PointMassOnPlane, default_options
+    from landau.verify.hybrid.result import Status
+
+    g, th, mu, u0 = 9.81, 0.2, 0.5, 1.0
+    cm = ContactModel(PointMassOnPlane(g=g, theta=th, mu=mu))
+    sol = simulate(cm.model, "slip+", [0.0, 0.0, u0, 0.0], (0.0, 1.0), DOP853Stepper(1e-12, 1e-14),
+                   default_options())
+    sim = sol.simulation("block on a slope")
+    assert sim.status is Status.FINISHED
+    dec = g * (mu * math.cos(th) - math.sin(th))
+    t_stop = u0 / dec
+    stop = [e for e in sim.events if e.to_mode == "stick"]
+    assert len(stop) == 1 and stop[0].t == pytest.approx(t_stop, rel=1e-12)
+    # the recorded series follows x = u0 t − dec t²/2 while sliding, then rests at u0²/(2 dec)
+    slide = sim.t < t_stop
+    assert np.allclose(sim.y[0, slide], u0 * sim.t[slide] - 0.5 * dec * sim.t[slide] ** 2, atol=1e-12)
+    assert sim.y_final[0] == pytest.approx(u0 ** 2 / (2 * dec), rel=1e-12)
