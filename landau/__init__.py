@@ -14,12 +14,32 @@ except _PackageNotFoundError:  # running from a source tree that was never insta
     __version__ = "0+unknown"
 
 from landau.errors import InputError, IntegratorError, LandauError, NoHopfError, SingularPointError
-from landau.checking import CheckResult, Verdict, check
-from landau.general import HopfNormalForm, hopf_normal_form
 from landau.hopf import Convention, Criticality, HopfResult
-from landau.linear import HopfLine, HopfPoint, critical_stiffness
-from landau.multiscale import CONVENTION, Coefficient, Derivation, LandauPoint, derive
-from landau.system import DynamicalSystem, SpringBlock
+
+# The derivation engine (sympy) loads on first use of one of its names, so that importing a
+# subpackage (``landau.laws``, ``landau.verify.hybrid``) does not import it.
+_LAZY = {
+    "HopfNormalForm": "landau.general", "hopf_normal_form": "landau.general",
+    "HopfLine": "landau.linear", "HopfPoint": "landau.linear", "critical_stiffness": "landau.linear",
+    "CONVENTION": "landau.multiscale", "Coefficient": "landau.multiscale", "Derivation": "landau.multiscale",
+    "LandauPoint": "landau.multiscale", "derive": "landau.multiscale",
+    "DynamicalSystem": "landau.system", "SpringBlock": "landau.system",
+    "CheckResult": "landau.checking", "Verdict": "landau.checking", "check": "landau.checking",
+}
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        import importlib
+        value = getattr(importlib.import_module(_LAZY[name]), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'landau' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))
+
 
 __all__ = [
     "__version__",

@@ -1,4 +1,10 @@
-"""Analysis tools on top of the engine: Poincaré sections, event maps, one-parameter sweeps.
+"""The periodic-orbit toolkit: return maps, shooting with the monodromy, bisection, sweeps.
+
+* :func:`shoot_fixed_point` — Newton's method on a return map P(z) − z = 0 with its Jacobian
+  (the monodromy restricted to the section), damped to stay in the section's domain; the
+  Floquet multipliers are the eigenvalues of that Jacobian;
+* :func:`bisect_change` — locate by bisection where a yes/no property of a run changes
+  along a parameter (e.g. decay vs growth to a large cycle);
 
 * :func:`poincare` — states at the crossings of a section guard (a guard without
   transition in the model) after a transient;
@@ -20,6 +26,103 @@ import numpy as np
 from landau.errors import LandauError
 from landau.verify.hybrid.model import HybridModel
 from landau.verify.hybrid.simulate import EngineOptions, simulate
+
+
+class ShootingError(LandauError):
+    """Newton's method on a return map did not converge (or the map failed)."""
+
+
+@dataclass(frozen=True)
+class FixedPoint:
+    """A fixed point z* = P(z*) of a return map with its Jacobian DP (monodromy on the section).
+
+    ``extra`` is whatever the return map returned besides (P(z), DP) at the last evaluation
+    (e.g. the return time and the run)."""
+
+    z: np.ndarray
+    DP: np.ndarray = field(repr=False)
+    iterations: int
+    residual: float
+    extra: tuple = field(default=(), repr=False)
+
+    @property
+    def multipliers(self) -> tuple[complex, ...]:
+        """Floquet multipliers: the eigenvalues of DP."""
+        return tuple(complex(m) for m in np.linalg.eigvals(self.DP))
+
+
+def shoot_fixed_point(return_map: Callable, z0, *, tol: float = 1e-9, maxiter: int = 30,
+                      admissible: Callable[[np.ndarray], bool] | None = None, scale_floor: float = 1e-6,
+                      label: str = "") -> FixedPoint:
+    """Newton's method on P(z) − z = 0.
+
+    Parameters
+    ----------
+    return_map : callable
+        ``return_map(z) -> (P(z), DP(z), *extra)`` with the exact Jacobian (monodromy).
+    z0 : array_like
+        Initial guess on the section.
+    tol : float
+        Convergence when |P(z) − z| / max(|z|, ``scale_floor``) < tol.
+    maxiter : int
+        Newton iterations.
+    admissible : callable, optional
+        ``admissible(z)``: a Newton step is halved (up to 20 times) until it lands where this
+        holds (e.g. where the section is crossed in the right direction).
+    label : str
+        Names the problem in error messages.
+
+    Returns
+    -------
+    FixedPoint
+        P(z) at convergence (one more application of the map than the last Newton point).
+
+    Raises
+    ------
+    ShootingError
+        No convergence within ``maxiter`` iterations, or the map raised a LandauError.
+    """
+    z = np.asarray(z0, dtype=float).copy()
+    res = np.inf
+    for it in range(1, maxiter + 1):
+        try:
+            Pz, DP, *extra = return_map(z)
+        except ShootingError:
+            raise
+        except LandauError as exc:
+            raise ShootingError(f"shooting{' at ' + label if label else ''}: {exc}") from exc
+        r = Pz - z
+        res = float(np.linalg.norm(r) / max(np.linalg.norm(z), scale_floor))
+        if res < tol:
+            return FixedPoint(Pz, DP, it, res, tuple(extra))
+        dz = np.linalg.solve(DP - np.eye(len(z)), -r)
+        lam = 1.0
+        if admissible is not None:
+            for _ in range(20):
+                if admissible(z + lam * dz):
+                    break
+                lam *= 0.5
+        z = z + lam * dz
+    raise ShootingError(f"shooting{' at ' + label if label else ''} did not converge in {maxiter} "
+                        f"iterations (relative residual {res:.3g})")
+
+
+def bisect_change(has_property: Callable[[float], bool], lo: float, hi: float, n: int) -> tuple[float, float]:
+    """Bracket where ``has_property`` changes between ``lo`` and ``hi`` by ``n`` bisections.
+
+    ``has_property(lo)`` and ``has_property(hi)`` must differ (checked).  Returns the final
+    bracket (a, b), ``has_property(a) == has_property(lo)``, |b − a| = |hi − lo|/2ⁿ.
+    """
+    p_lo = bool(has_property(lo))
+    if bool(has_property(hi)) == p_lo:
+        raise LandauError(f"the property does not change between {lo!r} and {hi!r}: nothing to bisect")
+    for _ in range(n):
+        mid = 0.5 * (lo + hi)
+        if bool(has_property(mid)) == p_lo:
+            lo = mid
+        else:
+            hi = mid
+    return lo, hi
 
 
 @dataclass(frozen=True)

@@ -264,6 +264,10 @@ class Radau5Solver(_CompiledStepper):
             self.nlu += int(cnt[4])
             self.nrejected += int(cnt[1])
             self.h = float(h_next)
+            if cnt[0] == 0 and cnt[5] > 0:
+                # the Newton iteration failed: the one-step call cannot carry radau_core's retry
+                # with stage Jacobians over to the next call, so halve the step here
+                self.h = 0.5 * h0
             if st == -3 or (st == -1 and cnt[0] == 0):
                 return f"compiled Radau IIA: {'non-finite state' if st == -3 else 'step size too small'} " \
                        f"at t = {self.t:.12g}"

@@ -12,8 +12,8 @@ the right-hand side and Jacobian through first-class function pointers of signat
 ``f(t, y, p, out)`` / ``jac(t, y, p, out)`` — a new friction law compiles only its own
 two small functions.
 
-Crossings of ``y[ev_idx] = ev_val`` are located on the dense output (bisection on the
-collocation polynomial) and recorded; the run can stop after a number of crossings in a
+Crossings of ``y[ev_idx] = ev_val`` are located on the dense output (the collocation cubic,
+by the compiled event locator of :mod:`landau.verify.hybrid.crossing`) and recorded; the run can stop after a number of crossings in a
 chosen direction (Poincaré returns).  Accepted steps may be recorded for plots.
 """
 
@@ -24,6 +24,8 @@ import math
 import numba as nb
 import numpy as np
 from numba import types
+
+from landau.verify.hybrid.crossing import cubic, cubic_crossing
 
 SQ6 = math.sqrt(6.0)
 #: collocation nodes c_i and Butcher matrix A of Radau IIA (order 5)
@@ -336,43 +338,38 @@ def radau_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
         # crossings of y[ev_idx] = ev_val on the dense output
         stop = False
         if ev_idx >= 0:
+            # every sign change of the collocation cubic in the step (the compiled event locator:
+            # exact for double crossings, root on the new side)
             g0 = y[ev_idx] - ev_val
-            g1 = ynew[ev_idx] - ev_val
-            # sample the polynomial to catch double crossings inside a step
-            NS = 4
+            c1 = Q[0, ev_idx]
+            c2 = Q[1, ev_idx]
+            c3 = Q[2, ev_idx]
             xa = 0.0
             ga = g0
-            for s_ in range(1, NS + 1):
-                xb = s_ / NS
-                gb = _poly(y, Q, xb, ev_idx) - ev_val if s_ < NS else g1
-                if (ga < 0.0 and gb >= 0.0) or (ga > 0.0 and gb <= 0.0):
-                    lo = xa
-                    hi = xb
-                    glo = ga
-                    for _ in range(60):
-                        mid = 0.5 * (lo + hi)
-                        gm = _poly(y, Q, mid, ev_idx) - ev_val
-                        if (gm < 0.0) == (glo < 0.0) and gm != 0.0:
-                            lo = mid
-                            glo = gm
-                        else:
-                            hi = mid
-                    xr = hi
-                    d = 1 if gb > ga else -1
-                    k = cnt[6]
-                    if k < EVBUF.shape[0]:
-                        EVDIR[k] = d
-                        EVBUF[k, 0] = t + xr * h
-                        for i in range(n):
-                            EVBUF[k, 1 + i] = _poly(y, Q, xr, i)
-                        cnt[6] += 1
-                    if ev_stop > 0 and (ev_dir == 0 or d == ev_dir):
-                        nev_dir += 1
-                        if nev_dir >= ev_stop:
-                            stop = True
-                            break
-                xa = xb
-                ga = gb
+            for _ in range(4):  # a cubic changes sign at most three times
+                if ga == 0.0:
+                    break
+                sgn = -1.0 if ga > 0.0 else 1.0
+                xr = cubic_crossing(g0, c1, c2, c3, xa, sgn, True)
+                if xr < 0.0:
+                    break
+                d = 1 if sgn > 0.0 else -1
+                k = cnt[6]
+                if k < EVBUF.shape[0]:
+                    EVDIR[k] = d
+                    EVBUF[k, 0] = t + xr * h
+                    for i in range(n):
+                        EVBUF[k, 1 + i] = _poly(y, Q, xr, i)
+                    cnt[6] += 1
+                if ev_stop > 0 and (ev_dir == 0 or d == ev_dir):
+                    nev_dir += 1
+                    if nev_dir >= ev_stop:
+                        stop = True
+                        break
+                xa = xr
+                ga = g0 + cubic(c1, c2, c3, xr)
+                if xr >= 1.0:
+                    break
         # keep this step's polynomial for the next Newton start
         for i in range(n):
             yprev[i] = y[i]

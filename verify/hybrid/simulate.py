@@ -35,6 +35,7 @@ from landau.errors import IntegratorError
 from landau.verify.hybrid.locate import first_crossing, guard_on_dense, root_new_side
 from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.model import HybridModel, as_jump
+from landau.verify.hybrid.result import Simulation, status_from_text
 from landau.verify.hybrid.steppers import ScipyStepper
 from landau.verify.hybrid.zeno import ZenoDiagnosis, ZenoMonitor
 
@@ -109,6 +110,14 @@ class HybridSolution:
         z = f", zeno={self.zeno!r}" if self.zeno else ""
         return (f"HybridSolution(status={self.status!r}, t={self.t:.12g}, mode={self.mode!r}, "
                 f"{len(self.events)} events, {self.nsteps} steps, {self.nfev} fev{z})")
+
+    def simulation(self, model: str = "hybrid") -> Simulation:
+        """The run as the common result type (time series = the recorded segments, linear
+        between samples; the status mapped onto :class:`~landau.verify.hybrid.result.Status`)."""
+        t, y, _ = self.trajectory()
+        st = status_from_text(self.status)
+        msg = st.advice + (f" ({self.zeno!r})" if self.zeno else "")
+        return Simulation(model, t, y, self.events, st, msg, self.t, self.y, self.nsteps, self.nfev)
 
     def trajectory(self) -> tuple[np.ndarray, np.ndarray, list[str]]:
         """Concatenated samples (t, y, mode per point) of the recorded segments."""

@@ -104,15 +104,15 @@ def specialise(template: Path | str, bindings: Mapping[str, object], tag: str) -
         src = "\n".join(header) + "\n" + body
         digest = hashlib.sha256(src.encode()).hexdigest()[:16]
         modname = f"landau_jit_{tag}_{digest}"
-        path = jit_cache_dir() / f"{modname}.py"
         try:
+            path = jit_cache_dir() / f"{modname}.py"
             if not path.exists() or path.read_text() != src:
                 _write_atomic(path, src)
             spec = importlib.util.spec_from_file_location(modname, path)
             module = importlib.util.module_from_spec(spec)
             sys.modules[modname] = module
             spec.loader.exec_module(module)
-        except OSError:
+        except (OSError, RuntimeError):  # unwritable cache, or no home directory
             sys.modules.pop(modname, None)
             module = None
     if module is None:  # in memory: bind the objects directly, compile once per process

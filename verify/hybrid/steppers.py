@@ -14,8 +14,11 @@ and the stepper has
   time (returns shape ``(n,)``) or a 1-D array of times (returns ``(n, m)``);
 * ``nfev``: number of right-hand-side evaluations so far.
 
-A compiled stepper (e.g. a numba-jitted stiff method for a Hertz contact) only has to
-expose these members to be used by :func:`landau.verify.hybrid.simulate` without change.
+A compiled stepper only has to expose these members to be used by
+:func:`landau.verify.hybrid.simulate` without change: :mod:`landau.verify.hybrid.compiled`
+has DOPRI5, Radau IIA 5 and SDIRK4 as factories over a compiled
+:class:`~landau.verify.hybrid.kernel.Kernel` (generated from a symbolic declaration by
+:mod:`landau.kernels`).
 """
 
 from __future__ import annotations

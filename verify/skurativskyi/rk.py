@@ -1,12 +1,17 @@
-"""A compiled (numba) Dormand–Prince 5(4) integrator with exact contact switching, and a
-stiff SDIRK4 for the stick phases.
+"""A compiled event-driven loop: DOPRI5 with exact contact switching, and a stiff step for the
+stick phases, built for a given field.
 
-:func:`integrate_mixed` (the default path of :func:`landau.verify.skurativskyi.simulate.run`) takes
-every step that starts with |ẋ| below a threshold (stick: the cart rests on the obstacle or
-on the track, |ẋ| ~ 1e-9…1e-6 m/s) with the L-stable SDIRK4 of :mod:`landau.verify.skurativskyi.sdirk`
-(stage equations solved as scalar monotone equations, robust on the |ẋ|^{n₃} cusp) and all
-other steps with DOPRI5; :func:`integrate` is the explicit path alone.  Event location,
-stroboscopic clipping and tangent renormalisation below are the same for both steppers.
+:func:`switching_integrator` ``(fun, stiff_step)`` specialises the loop (source in
+``templates/switching.py``) to a kernel ``fun(t, y, p, out)`` and a stick-phase step — nothing
+here knows a model; :mod:`landau.verify.skurativskyi.simulate` builds it for eq. (1) with the
+SDIRK4 of :mod:`landau.verify.skurativskyi.sdirk`.  Its ``integrate_mixed`` (the default path
+of :func:`landau.verify.skurativskyi.simulate.run`) takes every step that starts with |ẋ|
+below a threshold (stick: the cart rests on the obstacle or on the track, |ẋ| ~ 1e-9…1e-6
+m/s) with the L-stable SDIRK4 (stage equations solved as scalar monotone equations, robust on
+the |ẋ|^{n₃} cusp) and all other steps with the DOPRI5 of :mod:`landau.verify.hybrid.compiled`;
+``integrate`` is the explicit path alone.  Event location (the compiled locator of
+:mod:`landau.verify.hybrid.crossing`), stroboscopic clipping and tangent renormalisation are
+the same for both steppers.
 
 Why explicit outside stick (measured, see ``verify/benchmarks/skurativskyi_work_precision.py``): the
 Hertz damping term sgn(ẋ)|ẋ|^{n₃} (n₃ ≈ 0.187) is not Lipschitz at ẋ = 0 inside contact:
@@ -57,54 +62,6 @@ from landau.verify.hybrid.specialise import specialise
 OK, MAX_STEPS, STEP_TOO_SMALL, MAX_EVENTS = 0, 1, 2, 3
 STATUS = {OK: "t_end", MAX_STEPS: "max_steps", STEP_TOO_SMALL: "step-size-underflow", MAX_EVENTS: "max_events"}
 
-@njit(cache=True)
-def _cubic(q0, q1, q2, s):
-    return s * (q0 + s * (q1 + s * q2))
-
-
-@njit(cache=True)
-def _first_crossing(g0, q0, q1, q2, outside_sign):
-    """First s in (0, 1] where g0 + q0 s + q1 s² + q2 s³ has sign ``outside_sign`` (strictly),
-    or −1.  The cubic is monotone between its critical points, which are all checked."""
-    pts = np.empty(3)
-    npts = 0
-    a, b, c = 3 * q2, 2 * q1, q0
-    if a != 0.0:
-        disc = b * b - 4 * a * c
-        if disc >= 0:
-            r = math.sqrt(disc)
-            s1 = (-b - r) / (2 * a)
-            s2 = (-b + r) / (2 * a)
-            if s1 > s2:
-                s1, s2 = s2, s1
-            if 0.0 < s1 < 1.0:
-                pts[npts] = s1
-                npts += 1
-            if 0.0 < s2 < 1.0:
-                pts[npts] = s2
-                npts += 1
-    elif b != 0.0:
-        s = -c / b
-        if 0.0 < s < 1.0:
-            pts[npts] = s
-            npts += 1
-    pts[npts] = 1.0
-    npts += 1
-    lo = 0.0
-    for k in range(npts):
-        hi = pts[k]
-        if (g0 + _cubic(q0, q1, q2, hi)) * outside_sign > 0.0:
-            for _ in range(100):
-                mid = 0.5 * (lo + hi)
-                if mid <= lo or mid >= hi:
-                    break
-                if (g0 + _cubic(q0, q1, q2, mid)) * outside_sign > 0.0:
-                    hi = mid
-                else:
-                    lo = mid
-            return hi
-        lo = hi
-    return -1.0
 
 
 @lru_cache(maxsize=None)

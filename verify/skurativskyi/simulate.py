@@ -13,12 +13,13 @@ Impacts are the crossings of x = x_I with increasing x (the paper's definition, 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from landau.errors import IntegratorError, InputError
-from landau.verify.hybrid import Guard, HybridModel, Jump, Mode
+from landau.verify.hybrid import Event, EventLog, Guard, HybridModel, Jump, Mode
+from landau.verify.hybrid.result import Simulation, Status
 from landau.verify.skurativskyi import rk as R
 from landau.verify.skurativskyi.model import Params, rhs
 from landau.verify.skurativskyi.sdirk import sdirk_step
@@ -67,6 +68,9 @@ class Run:
     max_mismatch: float          # |x − x_I| of a re-taken switching step before projection
     nstiff: int = 0              # steps taken by the stiff SDIRK4 (stick phases)
     method: str = "dopri5"
+    rec_t: np.ndarray = field(default_factory=lambda: np.empty(0), repr=False)   # recorded step ends
+    rec_y: np.ndarray = field(default_factory=lambda: np.empty((0, 2)), repr=False)
+    rec_f: np.ndarray = field(default_factory=lambda: np.empty((0, 2)), repr=False)
 
     @property
     def intervals(self) -> np.ndarray:
@@ -86,6 +90,20 @@ class Run:
             return float("nan")
         return self.lyap_sum / (self.lyap_count * self.params.period)
 
+    def simulation(self) -> Simulation:
+        """The run as the common result type: the recorded time series (``run(..., record=N)``;
+        cubic Hermite between step ends), impacts and detachments as events."""
+        log = EventLog()
+        xI = self.params.xI
+        ev = sorted([(t, v, "impact") for t, v in zip(self.impacts, self.impact_v)]
+                    + [(t, np.nan, "detach") for t in self.detachments])
+        for t, v, g in ev:
+            frm, to = ("free", "contact") if g == "impact" else ("contact", "free")
+            log.append(Event(float(t), np.array([xI, v]), g, frm, to))
+        return Simulation(f"skurativskyi2019(ω={self.params.omega:g})", self.rec_t, self.rec_y.T, log,
+                          Status.FINISHED, Status.FINISHED.advice, self.t, self.y, self.nsteps, self.nfev,
+                          self.rec_f.T, ("x", "xdot", "dx", "dxdot")[:self.rec_y.shape[1]])
+
     def __repr__(self) -> str:
         return (f"Run(ω={self.params.omega:g}, t={self.t:.6g}, {len(self.impacts)} impacts, "
                 f"{len(self.strobe_t)} strobe points, {self.nsteps} steps, {self.nfev} fev)")
@@ -99,14 +117,15 @@ def rest_state(params: Params) -> np.ndarray:
 
 def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float = RTOL, atol=None,
         lyapunov: bool = False, strobe: bool = True, max_events: int = 200_000,
-        max_steps: int = 50_000_000, tangent0=(1.0, 0.0), method: str = "mixed") -> Run:
+        max_steps: int = 50_000_000, tangent0=(1.0, 0.0), method: str = "mixed", record: int = 0) -> Run:
     """Integrate eq. (1) over ``n_periods`` forcing periods from (t0, y0) (default: rest at X₀).
 
     Strobe times are t0 + i·2π/ω.  ``lyapunov=True`` adds the variational equation and
     renormalises the tangent vector every period.  ``method``: ``"mixed"`` (default) takes
     steps that start in stick (|ẋ| < :data:`V_STIFF`, |ẍ| < :data:`A_STICK`) with the
     L-stable SDIRK4 (:mod:`landau.verify.skurativskyi.sdirk`) and all others with DOPRI5;
-    ``"dopri5"`` is the explicit path alone.  Raises IntegratorError on failure.
+    ``"dopri5"`` is the explicit path alone.  ``record``: keep up to that many accepted step ends
+    (t, y, f) as the run's time series (:meth:`Run.simulation`).  Raises IntegratorError on failure.
     """
     if method not in METHODS:
         raise InputError(f"method must be one of {sorted(METHODS)} (got {method!r})")
@@ -128,14 +147,17 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
     n_st = int(n_periods) + 2 if strobe else 1
     out = _integrate_mixed(p, float(t0), y, float(t_end), float(rtol), at, 1e-5, P / 20, params.xI, True,
                             float(t0), P if strobe or lyapunov else 0.0, n_st, lyapunov, max_events, max_steps,
-                            *METHODS[method])
-    t, yend, status, ev_t, ev_k, ev_v, st_t, st_y, ly, nly, nsteps, nfev, nrej, mism, nstiff = out
+                            *METHODS[method], int(record))
+    (t, yend, status, ev_t, ev_k, ev_v, st_t, st_y, ly, nly, nsteps, nfev, nrej, mism, nstiff,
+     rec_t, rec_y, rec_f) = out
     if status != R.OK:
-        raise IntegratorError(f"compiled {method} integrator stopped: {R.STATUS[status]} (ω={params.omega})",
-                              t=t, state=yend)
+        st = {R.MAX_STEPS: Status.MAX_STEPS, R.STEP_TOO_SMALL: Status.STEP_SIZE_UNDERFLOW,
+              R.MAX_EVENTS: Status.MAX_EVENTS}.get(status, Status.FAILED)
+        raise IntegratorError(f"compiled {method} integrator stopped: {R.STATUS[status]} (ω={params.omega}): "
+                              f"{st.advice}", t=t, state=yend)
     up = ev_k > 0
     return Run(params, t, yend, ev_t[up], ev_v[up], ev_t[~up], st_t, st_y, ly, nly, nsteps, nfev, nrej, mism,
-               nstiff, method)
+               nstiff, method, rec_t, rec_y, rec_f)
 
 
 def hybrid_model(params: Params) -> HybridModel:

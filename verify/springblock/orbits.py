@@ -17,13 +17,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from landau.errors import IntegratorError, LandauError
+from landau.errors import IntegratorError
+from landau.verify.hybrid.analysis import ShootingError as _ShootingError, shoot_fixed_point
 from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.simulate import W_INDEX, integrate
 
 
-class ShootingError(LandauError):
-    """Newton on the Poincaré return map did not converge."""
+ShootingError = _ShootingError  # the toolkit's error (one class: ``except`` works with either name)
 
 
 @dataclass(frozen=True)
@@ -126,26 +126,19 @@ def shoot(model: SpringBlockModel, z_guess, *, rtol: float = 1e-10, tol: float =
     z = np.asarray(z_guess, dtype=float).copy()
     if model.f(_on_section(model, z))[W_INDEX] >= 0:
         z = first_return(model, _on_section(model, z))
-    res = np.inf
-    for it in range(1, maxiter + 1):
+
+    def pmap(zz):
         try:
-            Pz, DP, T, run = return_map(model, z, rtol=rtol)
+            return return_map(model, zz, rtol=rtol)
         except IntegratorError as exc:
             raise ShootingError(f"shooting at k = {model.k:.8g}: {exc}") from exc
-        r = Pz - z
-        res = float(np.linalg.norm(r) / max(np.linalg.norm(z), 1e-6))
-        if res < tol:
-            return describe(model, Pz, DP, T, run, it, res)
-        dz = np.linalg.solve(DP - np.eye(len(z)), -r)
-        # damp steps that would leave the section's domain (w must be decreasing there)
-        lam = 1.0
-        for _ in range(20):
-            if model.f(_on_section(model, z + lam * dz))[W_INDEX] < 0:
-                break
-            lam *= 0.5
-        z = z + lam * dz
-    raise ShootingError(f"shooting at V = {model.V:.4g}, k = {model.k:.8g} did not converge in {maxiter} "
-                        f"iterations (relative residual {res:.3g})")
+
+    # damp steps that would leave the section's domain (w must be decreasing there)
+    fp = shoot_fixed_point(pmap, z, tol=tol, maxiter=maxiter,
+                           admissible=lambda zz: model.f(_on_section(model, zz))[W_INDEX] < 0,
+                           label=f"V = {model.V:.4g}, k = {model.k:.8g}")
+    T, run = fp.extra
+    return describe(model, fp.z, fp.DP, T, run, fp.iterations, fp.residual)
 
 
 def first_return(model: SpringBlockModel, y0, rtol: float = 1e-10) -> np.ndarray:

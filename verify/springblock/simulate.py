@@ -14,6 +14,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from landau.errors import InputError, IntegratorError
+from landau.verify.hybrid.log import Event, EventLog
+from landau.verify.hybrid.result import Simulation, status_from_text
 from landau.verify.springblock.model import SpringBlockModel, compile_variational
 from landau.verify.hybrid.radau import A_RADAU, STATUS, VINV, radau_core
 
@@ -39,6 +41,18 @@ class Run:
     event_dir: np.ndarray = field(repr=False)
     rec_t: np.ndarray = field(repr=False)
     rec_y: np.ndarray = field(repr=False)
+
+    def simulation(self, model: str = "spring-block") -> Simulation:
+        """The run as the common result type: the recorded steps (``integrate(..., record=N)``,
+        times in seconds, scaled states, linear between steps) and the located crossings as
+        ``"section"`` events (guard ``"crossing"``, ``note`` = direction)."""
+        log = EventLog()
+        for t, y, d in zip(self.event_t, self.event_y, self.event_dir):
+            log.append(Event(float(t), np.asarray(y), "crossing", "slip", "slip", "section",
+                             np.asarray(y), "up" if d > 0 else "down"))
+        st = status_from_text(self.status)
+        return Simulation(model, self.rec_t, self.rec_y.T, log, st, st.advice, self.t, self.y, self.steps,
+                          self.nfev)
 
     def __repr__(self) -> str:
         return (f"Run(t={self.t:.6g} s, {self.status}, steps={self.steps}, rejected={self.rejected}, "
@@ -127,6 +141,7 @@ def integrate(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol:
         phys = model.to_physical(y[:model.n])
         state = [float(phys["X"]), float(phys["v"])] + [float(phys[s.name]) for s in model.law.states]
         raise IntegratorError(f"spring-block[{model.law.name}] integration failed: {STATUS[int(st)]} after "
-                              f"{int(cnt[0])} steps (state = X [m], v [m/s], phi...)", t=float(t * tu), state=state)
+                              f"{int(cnt[0])} steps (state = X [m], v [m/s], phi...): "
+                              f"{status_from_text(STATUS[int(st)]).advice}", t=float(t * tu), state=state)
     return Run(float(t * tu), y.copy(), STATUS[int(st)], int(cnt[0]), int(cnt[1]), int(cnt[2]), int(cnt[3]),
                int(cnt[4]), cpu, et * tu, ey, evdir[:len(et)].astype(int).copy(), rt * tu, ry)

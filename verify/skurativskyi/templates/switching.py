@@ -10,7 +10,8 @@ import math
 import numpy as np
 
 from landau.verify.hybrid.compiled import err_norm as _err_norm
-from landau.verify.skurativskyi.rk import MAX_EVENTS, MAX_STEPS, OK, STEP_TOO_SMALL, _first_crossing
+from landau.verify.hybrid.crossing import cubic_crossing
+from landau.verify.skurativskyi.rk import MAX_EVENTS, MAX_STEPS, OK, STEP_TOO_SMALL
 
 
 @jit
@@ -24,7 +25,7 @@ def any_step(stiff, p, t, y, k1, h, rtol, atol, ynew, k7, err):
 
 @jit
 def integrate_mixed(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, strobe_dt,
-                    n_strobe_max, renorm, max_events, max_steps, v_stiff, a_stiff):
+                    n_strobe_max, renorm, max_events, max_steps, v_stiff, a_stiff, rec_cap):
     """Integrate with contact switching at x = xI (``guard``), stroboscopic samples every
     ``strobe_dt`` from ``strobe_t0`` (if > 0) and tangent renormalisation there
     (``renorm``, 4-D systems).  A step that starts in stick — |ẋ| < ``v_stiff`` and
@@ -48,6 +49,16 @@ def integrate_mixed(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0
     st_t = np.empty(n_strobe_max)
     st_y = np.empty((n_strobe_max, n))
     nst = 0
+    # the recorded time series (t, y, f at accepted step ends), at most rec_cap points
+    rec_t = np.empty(rec_cap)
+    rec_y = np.empty((rec_cap, n))
+    rec_f = np.empty((rec_cap, n))
+    nrec = 0
+    if rec_cap > 0:
+        rec_t[0] = t
+        rec_y[0, :] = y
+        rec_f[0, :] = k1
+        nrec = 1
     lyap = 0.0
     nly = 0
     g = y[0] - xI
@@ -121,7 +132,7 @@ def integrate_mixed(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0
             q1 = 3 * dx - 2 * m0 - m1
             q2 = -2 * dx + m0 + m1
             sgn = -1.0 if contact else 1.0
-            s_star = _first_crossing(g0, m0, q1, q2, sgn)
+            s_star = cubic_crossing(g0, m0, q1, q2, 0.0, sgn, False)
             if s_star <= 0.0 and (ynew[0] - xI) * sgn > 0.0:
                 s_star = 1.0  # defensive: the end state is outside
             if s_star > 0.0:
@@ -157,6 +168,11 @@ def integrate_mixed(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0
         for a in range(n):
             y[a] = ynew[a]
             k1[a] = k7[a]
+        if nrec < rec_cap:
+            rec_t[nrec] = t
+            rec_y[nrec, :] = y
+            rec_f[nrec, :] = k1
+            nrec += 1
         if switched:
             if nev < max_events:
                 ev_t[nev] = t
@@ -170,15 +186,16 @@ def integrate_mixed(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0
             h_next = max(h_next, h_free)
         h = h_next
     return (t, y, status, ev_t[:nev].copy(), ev_k[:nev].copy(), ev_v[:nev].copy(), st_t[:nst].copy(),
-            st_y[:nst].copy(), lyap, nly, nsteps, nfev, nrej, max_mismatch, nstiff)
+            st_y[:nst].copy(), lyap, nly, nsteps, nfev, nrej, max_mismatch, nstiff, rec_t[:nrec].copy(),
+            rec_y[:nrec].copy(), rec_f[:nrec].copy())
 
 
 @jit
 def integrate(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, strobe_dt,
-              n_strobe_max, renorm, max_events, max_steps):
+              n_strobe_max, renorm, max_events, max_steps, rec_cap):
     """The explicit path: :func:`integrate_mixed` with the stiff stepper disabled (the
     returned tuple has the stiff-step count as its last entry, always 0 here)."""
     return integrate_mixed(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, strobe_dt,
-                           n_strobe_max, renorm, max_events, max_steps, 0.0, 0.0)
+                           n_strobe_max, renorm, max_events, max_steps, 0.0, 0.0, rec_cap)
 
 
