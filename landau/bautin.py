@@ -220,3 +220,140 @@ def quintic_normal_form(system: DynamicalSystem, values: Mapping[str, float], p_
             Lambda5=float(2 * bc.c.re), params={s.name: float(v) for s, v in vals.items()},
             extra={"Im_c": float(bc.c.im)},
         )
+
+
+# --------------------------------------------------------------------------------------
+# the spring–block: Bautin points on the Hopf line k_c(V) and the fold of cycles in (V, k)
+@dataclass(frozen=True)
+class BautinPoint:
+    """A generalised-Hopf (Bautin) point of the spring–block Hopf line: Λ(V*) = 0, with Λ₅ and l₂.
+
+    Parameters
+    ----------
+    V, kc, omega_c : float
+        The point (m/s, N/m, rad/s).
+    Lambda5 : float
+        Quintic coefficient 2 Re c (slip component of the mode 1), 1/(m⁴ s).
+    l2 : float
+        Second Lyapunov coefficient Re c₂ in Kuznetsov's normalisation (⟨q, q⟩ = 1, ⟨p, q⟩ = 1;
+        not divided by ω, as MatCont and BifurcationKit print it): Λ₅ |q_X|⁴ / 2.
+    Gamma_bar : float
+        Γ̄ at V* (Re a = −Γ̄).
+    dLambda_dV : float
+        Slope of Λ along the Hopf line at V*.
+    fold_k2 : float
+        The fold of cycles: k_fold(V) − k_c(V) ≈ fold_k2 (V − V*)² on the side ``fold_side``.
+    fold_amp : float
+        Slip amplitude at the fold ≈ fold_amp |V − V*|^{1/2} (m).
+    fold_side : int
+        −1: the fold exists for V < V*, +1 for V > V*, 0: none (Λ₅ = 0).
+    sign_below, sign_above : int
+        Signs of Λ just below and above V* (−1 supercritical, +1 subcritical).
+    """
+
+    V: float
+    kc: float
+    omega_c: float
+    Lambda5: float
+    l2: float
+    Gamma_bar: float
+    dLambda_dV: float
+    fold_k2: float
+    fold_amp: float
+    fold_side: int
+    sign_below: int
+    sign_above: int
+
+    def predicted_fold(self, V: float) -> tuple[float, float] | None:
+        """(k_fold − k_c(V), slip amplitude) from the expansion about V*, or None on the side without a fold."""
+        dv = V - self.V
+        if self.fold_side == 0 or dv == 0 or (dv > 0) != (self.fold_side > 0):
+            return None
+        return self.fold_k2 * dv * dv, self.fold_amp * math.sqrt(abs(dv))
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"V": self.V, "kc": self.kc, "omega_c": self.omega_c, "Lambda5": self.Lambda5, "l2": self.l2,
+                "Gamma_bar": self.Gamma_bar, "dLambda_dV": self.dLambda_dV, "sign_below": self.sign_below,
+                "sign_above": self.sign_above,
+                "fold_of_cycles": {"side": {-1: "V < V*", 1: "V > V*", 0: "none"}[self.fold_side],
+                                   "k_minus_kc_per_dV2": self.fold_k2, "amplitude_per_sqrt_dV": self.fold_amp,
+                                   "formula": "k_fold - kc(V) = -Lambda(V)^2/(8 Lambda5 Gamma_bar), "
+                                              "amplitude = sqrt(-2 Lambda(V)/Lambda5)"}}
+
+    def __repr__(self) -> str:
+        side = {-1: "V < V*", 1: "V > V*", 0: "none"}[self.fold_side]
+        return (f"BautinPoint(V* = {self.V:.8g} m/s, kc = {self.kc:.6g} N/m, Lambda5 = {self.Lambda5:.6g}, "
+                f"l2 = {self.l2:.6g}; fold of cycles on {side}: k - kc = {self.fold_k2:.4g} (V - V*)^2)")
+
+
+def _unit_mode_slip(d, params: Mapping[str, float], V: float, kc, omega, dps: int = 30) -> float:
+    """|q_X| of the critical eigenvector of E⁻¹J normalised to ⟨q, q⟩ = 1 (the factor between landau's
+    and Kuznetsov's normalisation)."""
+    with mpmath.workdps(dps):
+        vals = {s: mpmath.mpf(params[s.name]) for s in d.system.parameters if s.name in params}
+        vals[next(s for s in d.system.parameters if s.name == "V")] = mpmath.mpf(V)
+        nj = _NumericJets(d.system, d.jets, vals, max_order=1)
+        A, _, _ = nj.at(kc)
+        ev, ER = mpmath.eig(A)
+        i = min(range(len(ev)), key=lambda j: abs(ev[j] - mpmath.mpc(0, omega)))
+        q = [ER[r, i] for r in range(A.rows)]
+        return float(abs(q[d.system.normalise]) / mpmath.sqrt(sum(abs(z) ** 2 for z in q)))
+
+
+def bautin_point(d, V: float, params: Mapping[str, float] | None = None, *, sign_below: int = 0,
+                 sign_above: int = 0, rel_step: float = 1e-6) -> BautinPoint:
+    """Λ₅, l₂ and the fold-of-cycles expansion at a codimension-two velocity V* of the spring–block.
+
+    Parameters
+    ----------
+    d : Derivation
+        The law's derivation (Λ₅ is built on first use).
+    V : float
+        A velocity where Λ = 0 on the Hopf line (e.g. from :func:`landau.transition.codim2_points`).
+    params : mapping, optional
+        Parameter overrides.
+
+    Returns
+    -------
+    BautinPoint
+    """
+    p = d.block.resolve(params)
+    mp = d.evaluate_mp(V, p, ["Gamma_bar", "Lambda", "Lambda5"])
+    h = V * rel_step
+    lp = d.evaluate_mp(V + h, p, ["Lambda"])["Lambda"]
+    lm = d.evaluate_mp(V - h, p, ["Lambda"])["Lambda"]
+    dlam = float((lp - lm) / (2 * h))
+    L5, gb = float(mp["Lambda5"]), float(mp["Gamma_bar"])
+    if M_ok := p["M"] > 0:
+        qx = _unit_mode_slip(d, p, V, mp["kc"], mp["omega_c"])
+        l2 = L5 * qx ** 4 / 2
+    else:
+        l2 = math.nan  # the quasi-static limit is a DAE: no Kuznetsov normalisation
+    del M_ok
+    if L5 == 0 or dlam == 0:
+        k2, amp, side = math.nan, math.nan, 0
+    else:
+        # Λ(V) ≈ Λ'(V − V*): fold where Λ and Λ₅ have opposite signs
+        k2 = -dlam ** 2 / (8 * L5 * gb)
+        amp = math.sqrt(2 * abs(dlam) / abs(L5))
+        side = 1 if dlam * L5 < 0 else -1
+    return BautinPoint(V, float(mp["kc"]), float(mp["omega_c"]), L5, l2, gb, dlam, k2, amp, side,
+                       sign_below, sign_above)
+
+
+def bautin_points(d, lo: float, hi: float, params: Mapping[str, float] | None = None) -> list[BautinPoint]:
+    """Every Bautin point of the spring–block Hopf line with V in [lo, hi] (see :func:`bautin_point`)."""
+    from landau.transition import codim2_points
+
+    p = d.block.resolve(params)
+    return [bautin_point(d, c.V, p, sign_below=c.sign_below, sign_above=c.sign_above)
+            for c in codim2_points(d, lo, hi, p)]
+
+
+def spring_block_fold(d, V: float, params: Mapping[str, float] | None = None) -> FoldOfCycles | None:
+    """The fold of cycles at driving velocity V predicted from the quintic amplitude equation with the
+    coefficients at V itself (k_fold = k_c − Λ²/(8Λ₅Γ̄); amplitude = max slip, m), or None where Λ and
+    Λ₅ have the same sign."""
+    p = d.block.resolve(params)
+    mp = d.evaluate_mp(V, p, ["Gamma_bar", "Lambda", "Lambda5"])
+    return fold_of_cycles(float(mp["Lambda"]), float(mp["Lambda5"]), -float(mp["Gamma_bar"]), float(mp["kc"]))

@@ -177,3 +177,31 @@ def test_quintic_is_lazy():
     assert max(d.jets.built) == 3
     d.coefficient("Lambda5")
     assert max(d.jets.built) == 5
+
+
+def test_cli_codim2_prints_l2_and_Lambda5(capsys):
+    """`landau derive dieterich --codim2` reports Λ₅ and l₂ at V* (the same numbers as the Kuznetsov route:
+    l₂ = Λ₅|q_X|⁴/2 with |q_X| from an independent eigen-solve) and the fold-of-cycles expansion, whose
+    coefficient is −Λ'(V*)²/(8Λ₅Γ̄) by definition — checked here against the fold predicted at a nearby V
+    from the coefficients there (they differ at O(V − V*))."""
+    import json
+
+    from landau.bautin import spring_block_fold
+    from landau.cli import main
+
+    assert main(["derive", "dieterich", "--codim2", "1e-7:1e-2", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    (pt,) = doc["codim2"]
+    d = Derivation(SpringBlock(get_law("dieterich")))
+    mp = d.evaluate_mp(pt["V"], d.block.resolve({}), ["Lambda5"])
+    assert pt["Lambda5"] == pytest.approx(float(mp["Lambda5"]), rel=1e-12)
+    k = lyapunov_coefficients(d.block.system, {**d.block.resolve({}), "V": pt["V"]}, pt["kc"],
+                              omega_c=pt["omega_c"], jets=d.jets)
+    assert pt["l2"] == pytest.approx(k.l2, rel=1e-9)
+    fc = pt["fold_of_cycles"]
+    assert fc["side"] == "V < V*"          # Λ > 0 below V* (subcritical) and Λ₅ < 0
+    V = pt["V"] * (1 - 1e-3)
+    fold = spring_block_fold(d, V)
+    dv2 = (V - pt["V"]) ** 2
+    assert fold.offset == pytest.approx(fc["k_minus_kc_per_dV2"] * dv2, rel=5e-3)
+    assert fold.amplitude == pytest.approx(fc["amplitude_per_sqrt_dV"] * math.sqrt(abs(V - pt["V"])), rel=5e-3)
