@@ -205,3 +205,31 @@ def test_cli_codim2_prints_l2_and_Lambda5(capsys):
     dv2 = (V - pt["V"]) ** 2
     assert fold.offset == pytest.approx(fc["k_minus_kc_per_dV2"] * dv2, rel=5e-3)
     assert fold.amplitude == pytest.approx(fc["amplitude_per_sqrt_dV"] * math.sqrt(abs(V - pt["V"])), rel=5e-3)
+
+
+def test_quintic_extreme_regimes_against_50_digits():
+    """Law (39), c = 3e-4: the compiled float64 Λ₅ (with its round-off screens) against the same formula at
+    50 digits just below the minimum of μ_ss (V_m(1 − 1e-6), where k_c → 0) and in the inertia-free limit
+    (M = 1e-6, 1e-8 kg); the quasi-static DAE (M = 0) is the M → 0 limit of the ODE's value."""
+    from landau.transition import extrema
+
+    d = Derivation(SpringBlock(get_law("modified-dieterich")))
+    p = {"c": 3e-4}
+    (vm,) = [e.V for e in extrema(d, p, 1e-9, 1e-1) if e.kind == "minimum"]
+    for V, pp in [(vm * (1 - 1e-6), p), (1e-4, {**p, "M": 1e-6}), (1e-3, {**p, "M": 1e-8})]:
+        f = d.evaluate(np.array([V]), pp, ["Lambda5"])["Lambda5"][0]
+        ref = float(d.evaluate_mp(V, pp, ["Lambda5"], dps=50)["Lambda5"])
+        assert f == pytest.approx(ref, rel=1e-10), (V, pp)
+    at0 = d.evaluate(np.array([1e-3]), {**p, "M": 0.0}, ["Lambda5"])["Lambda5"][0]
+    at_small = d.evaluate(np.array([1e-3]), {**p, "M": 1e-12}, ["Lambda5"])["Lambda5"][0]
+    assert at0 == pytest.approx(at_small, rel=1e-6)
+
+
+def test_fold_of_cycles_cases():
+    """No fold where Λ and Λ₅ have the same sign; a named error for a zero Λ₅."""
+    from landau.errors import InputError
+
+    assert fold_of_cycles(-1.0, -2.0, 1.0, 0.0) is None
+    with pytest.raises(InputError):
+        fold_of_cycles(1.0, 0.0, 1.0, 0.0)
+    assert cycle_amplitudes(-1.0, -2.0, 1.0, 0.0, -1.0) == ()
