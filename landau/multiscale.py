@@ -132,6 +132,8 @@ class Coefficient:
             if self.name in DERIVED:
                 e = self.formula.xreplace({_GB: d.coefficient("Gamma_bar").closed_form(),
                                            _LA: d.coefficient("Lambda").closed_form()})
+            elif self.name in QUINTIC:
+                e = self.expr  # fifth order: too large for cancellation and factoring (seconds become hours)
             else:
                 e = self.expr
                 if all(e.is_rational_function(s) for s in e.free_symbols):
@@ -144,6 +146,9 @@ class Coefficient:
         return self._cache["closed"]
 
     def latex(self) -> str:
+        if self.name in QUINTIC:
+            raise InputError(f"{self.name}: the fifth-order closed form is too large to print; "
+                             "evaluate it (Derivation.evaluate) or use .formula (in the law's derivatives)")
         return f"{self.symbol} = {sp.latex(self.closed_form())}"
 
     def _repr_latex_(self) -> str:
