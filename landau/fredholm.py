@@ -12,6 +12,10 @@ A = iωE − J and the multilinear forms B, C of the second and third derivative
   Fredholm: ψ·(forcing) = 0 with ψ A = 0 (left null vector u₀*), hence
          δ A_T = α A + β A|A|²,  δ = ψEq, α = p₂ ψ(J_p q − …), β = ψR   (eqs 17–19)
 
+* O(ε⁴), O(ε⁵) (:func:`quintic_coefficient`): the same condition one order further gives
+  dA/dT = … + c A|A|⁴; landau reports Λ₅ = 2 Re c with the critical mode's ``normalise``
+  component equal to 1 (Kuznetsov's l₂ = Re c₂ with ⟨q, q⟩ = 1 is Λ₅|q_n|⁴/2).
+
 The functions here work on :class:`~landau.cx.Cx` numbers over any real field, so the
 same code gives closed forms (sympy atoms) and 50-digit numbers (mpmath).
 """
