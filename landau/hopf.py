@@ -19,7 +19,9 @@ max|y − y₀| ≈ C sqrt|p − p_c|.
 
 Kuznetsov's normalisation (MatCont, BifurcationKit): ⟨q, q⟩ = 1, ⟨p, q⟩ = 1, normal form
 ż = iω z + c₁ z|z|² + c₂ z|z|⁴; the first Lyapunov coefficient ``l1`` = Re c₁ / ω (as MatCont
-prints it; BifurcationKit prints Re c₁ as ``l1``) and the second ``l2`` = Re c₂ / ω.
+prints it; BifurcationKit prints Re c₁ as ``l1``) and the second ``l2`` = Re c₂, not divided by ω
+(MatCont's ``nf_GH.m`` returns ``real(p0'*h32/12)``, BifurcationKit's ``NormalForms.jl``
+``l2 = real(G32)/12``; both with ⟨q, q⟩ = 1).
 
 References
 ----------
@@ -155,7 +157,8 @@ class HopfResult:
     Lambda5 : float, optional
         Quintic coefficient Λ₅ = 2 Re c in landau's convention.
     l2 : float, optional
-        Second Lyapunov coefficient in Kuznetsov's normalisation, Re c₂/ω.
+        Second Lyapunov coefficient in Kuznetsov's normalisation, Re c₂ (not divided by ω: the
+        number MatCont and BifurcationKit print at a generalised-Hopf point).
     params : mapping
         The other parameters' values.
     extra : mapping

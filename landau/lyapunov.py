@@ -32,6 +32,7 @@ equal the engine's C = 2 sqrt(2Γ̄/|Λ|) (Putelat et al. 2010, eq. 23).
 from __future__ import annotations
 
 import itertools
+import math
 from dataclasses import asdict, dataclass
 from typing import Any, Mapping, Sequence
 
@@ -40,6 +41,7 @@ import sympy as sp
 
 from landau.cx import as_expr
 from landau.errors import InputError, NoHopfError, SingularPointError
+from landau.hopf import GENERAL, HopfResult
 from landau.jets import Jets
 from landau.system import DynamicalSystem, SpringBlock
 
@@ -92,10 +94,11 @@ class LyapunovResult:
 class _NumericJets:
     """The jets of E·ẏ = f as mpmath numbers at fixed parameter values, as functions of p."""
 
-    def __init__(self, system: DynamicalSystem, jets: Jets, values: Mapping[sp.Symbol, Any]):
+    def __init__(self, system: DynamicalSystem, jets: Jets, values: Mapping[sp.Symbol, Any], max_order: int = 3):
         self.n = len(system.states)
         self.p = system.parameter
-        orders = {m: jets.order(m) for m in (1, 2, 3)}
+        self.max_order = max_order
+        orders = {m: jets.order(m) for m in range(1, max_order + 1)}
         atoms = dict(jets.atoms)  # after building the orders: every atom they use is defined
 
         def expand(e: sp.Expr) -> sp.Expr:  # atoms written out in the model's symbols (may nest)
@@ -105,9 +108,11 @@ class _NumericJets:
                 e = e.xreplace(atoms)
             raise InputError("jets: atom definitions are circular")
 
+        self._jets = jets
+
         self.keys = {m: list(t) for m, t in orders.items()}
         exprs = [as_expr(e) for e in system.mass]
-        for m in (1, 2, 3):
+        for m in range(1, max_order + 1):
             exprs += [expand(as_expr(orders[m][key])) for key in self.keys[m]]
         free = set().union(*(e.free_symbols for e in exprs)) - {self.p}
         missing = sorted(s.name for s in free if s not in values)
@@ -116,6 +121,29 @@ class _NumericJets:
         syms = sorted(free, key=lambda s: s.name)
         self._fn = sp.lambdify([self.p, *syms], exprs, modules="mpmath")
         self._vals = [values[s] for s in syms]
+
+    def expand(self, e: sp.Expr) -> sp.Expr:
+        """``e`` with the jets' atoms (including any defined since construction) written out."""
+        atoms = self._jets.atoms
+        for _ in range(10):
+            if not (e.free_symbols & atoms.keys()):
+                return e
+            e = e.xreplace(atoms)
+        raise InputError("jets: atom definitions are circular")
+
+    def raw(self, p) -> tuple[list, dict[int, dict[tuple, Any]]]:
+        """(E diagonal, {order: {key: value}}) at parameter p, unscaled (E may have zeros)."""
+        with mpmath.workdps(mpmath.mp.dps):
+            out = self._fn(mpmath.mpf(p), *self._vals)
+        n = self.n
+        pos = n
+        tens: dict[int, dict[tuple, Any]] = {}
+        for m in range(1, self.max_order + 1):
+            tens[m] = {}
+            for key in self.keys[m]:
+                tens[m][key] = mpmath.mpf(out[pos])
+                pos += 1
+        return [mpmath.mpf(x) for x in out[:n]], tens
 
     def at(self, p) -> tuple[mpmath.matrix, list, dict[int, dict[tuple, Any]]]:
         """(A = E⁻¹J, E diagonal, {order: {key: E⁻¹-scaled value}}) at parameter p."""
@@ -128,7 +156,7 @@ class _NumericJets:
                              "the quasi-static limit M = 0 is a DAE")
         pos = n
         tens: dict[int, dict[tuple, Any]] = {}
-        for m in (1, 2, 3):
+        for m in range(1, self.max_order + 1):
             tens[m] = {}
             for key in self.keys[m]:
                 tens[m][key] = mpmath.mpf(out[pos]) / E[key[0]]
@@ -285,3 +313,183 @@ def spring_block_lyapunov(block: SpringBlock, V: float, params: Mapping[str, flo
     else:
         om_guess = None
     return first_lyapunov(system, values, kc_guess, omega_c=om_guess, jets=jets, dps=dps)
+
+
+# --------------------------------------------------------------------------------------
+# second Lyapunov coefficient
+def _set_partitions(items: list) -> list[list[list]]:
+    """Every partition of ``items`` (labelled) into non-empty blocks."""
+    if not items:
+        return [[]]
+    first, rest = items[0], items[1:]
+    out = []
+    for part in _set_partitions(rest):
+        out.append([[first], *part])
+        for i in range(len(part)):
+            out.append([*part[:i], [first, *part[i]], *part[i + 1:]])
+    return out
+
+
+def _kuznetsov_c1_c2(A: mpmath.matrix, tens: Mapping[int, Mapping[tuple, Any]], q: list, pbar: list, om):
+    """c₁ and c₂ of ż = iωz + c₁z|z|² + c₂z|z|⁴ by Kuznetsov's homological equation.
+
+    ẋ = Ax + F(x), F = Σₘ Dₘ[x, …, x]/m!; x = H(z, z̄) = zq + z̄q̄ + Σ h_{jk} z^j z̄^k/(j! k!).
+    The coefficient of z^j z̄^k/(j! k!) in F(H) is the Faà di Bruno sum over the partitions of
+    j labelled z's and k labelled z̄'s into m ≥ 2 blocks of Dₘ(h_{block}, …), and the
+    nonlinear part of H_z ż + H_z̄ dz̄/dt contributes at z^{j+m}z̄^{k+m} the terms
+    [(j+m)!(k+m)!/((j−1)! k!)] c_m h_{jk} and [(j+m)!(k+m)!/(j!(k−1)!)] c̄_m h_{jk}
+    (in the factorial-scaled basis).  Resonant orders (j = k + 1) are solved with the
+    bordered system ⟨p, h_{jk}⟩ = 0; then c₁ = ⟨p, H₂₁⟩/2 and c₂ = ⟨p, H₃₂⟩/12 (Kuznetsov
+    1999, §7; the sum of the terms of MatCont's nf_GH with the c₁-terms kept).
+    """
+    n = A.rows
+    fact = math.factorial
+    h: dict[tuple[int, int], list] = {(1, 0): list(q), (0, 1): [mpmath.conj(z) for z in q]}
+    coef: dict[int, Any] = {}
+    pdot = lambda x: sum(a * b for a, b in zip(pbar, x))
+
+    def shifted(s):
+        M = mpmath.matrix(n, n)
+        for i in range(n):
+            for j in range(n):
+                M[i, j] = (s if i == j else 0) - A[i, j]
+        return M
+
+    for (j, k) in [(2, 0), (1, 1), (3, 0), (2, 1), (3, 1), (2, 2), (3, 2)]:
+        labels = ["z"] * j + ["w"] * k
+        rhs = [mpmath.mpc(0)] * n
+        for part in _set_partitions(list(range(j + k))):
+            m = len(part)
+            if m < 2 or m not in tens:
+                continue
+            vecs = []
+            for block in part:
+                nz = sum(1 for i in block if labels[i] == "z")
+                vecs.append(h[(nz, len(block) - nz)])
+            rhs = [r + t for r, t in zip(rhs, _form(tens[m], vecs, n))]
+        for mm, cm in coef.items():               # ż ∋ c_m z^{m+1} z̄^m
+            for (a, b), vec in h.items():
+                if (a, b) in ((1, 0), (0, 1)) or (a + mm, b + mm) != (j, k):
+                    continue
+                if a > 0:
+                    f = fact(j) * fact(k) / (fact(a - 1) * fact(b))
+                    rhs = [r - f * cm * x for r, x in zip(rhs, vec)]
+                if b > 0:
+                    f = fact(j) * fact(k) / (fact(a) * fact(b - 1))
+                    rhs = [r - f * mpmath.conj(cm) * x for r, x in zip(rhs, vec)]
+        if j - k == 1:
+            mm = k
+            cval = pdot(rhs) / (fact(j) * fact(k))
+            coef[mm] = cval
+            if mm == 2:
+                break
+            rhs = [r - fact(j) * fact(k) * cval * qi for r, qi in zip(rhs, q)]
+            big = mpmath.matrix(n + 1, n + 1)
+            M = shifted(1j * om)
+            for i in range(n):
+                for c in range(n):
+                    big[i, c] = M[i, c]
+                big[i, n] = q[i]
+                big[n, i] = pbar[i]
+            sol = _solve(big, [*rhs, 0])[:n]
+        else:
+            sol = _solve(shifted(1j * (j - k) * om), rhs)
+        h[(j, k)] = sol
+        if j != k:
+            h[(k, j)] = [mpmath.conj(z) for z in sol]
+    return coef[1], coef[2]
+
+
+def lyapunov_coefficients(system: DynamicalSystem, values: Mapping[sp.Symbol | str, Any], p_c: float, *,
+                          dps: int = DEFAULT_DPS, omega_c: float | None = None, jets: Jets | None = None,
+                          relocate: bool = True, rel_step: float = 1e-5) -> HopfResult:
+    """First and second Lyapunov coefficients of a Hopf point by Kuznetsov's projection method.
+
+    Independent of the Fredholm route (it shares only the symbolic jets): the ODE ẏ = E⁻¹f,
+    q and p from mpmath's eigen-solver with ⟨q, q⟩ = 1, ⟨p, q⟩ = 1, and the normal form
+    ż = iωz + c₁z|z|² + c₂z|z|⁴ computed from multilinear forms up to fifth order (see
+    :func:`_kuznetsov_c1_c2`) at ``dps`` digits.
+
+    Parameters
+    ----------
+    system : DynamicalSystem
+        E·ẏ = f(y; p) with every mass entry non-zero.
+    values : mapping
+        Every parameter (by symbol or name) and, where the equilibrium has no closed form,
+        its ``unknowns``.
+    p_c : float
+        Estimate of the Hopf parameter (re-located from the eigenvalues unless
+        ``relocate=False``).
+    dps : int
+        Working precision (≥ 30).
+    omega_c : float, optional
+        Estimate of the frequency, used only to pick the critical pair.
+
+    Returns
+    -------
+    HopfResult
+        ``l1`` = Re c₁/ω (as :func:`first_lyapunov`); ``c1``; ``l2`` = Re c₂ — the number
+        MatCont (``nf_GH.m``: ``real(p0'*h32/12)``) and BifurcationKit
+        (``NormalForms.jl``: ``l2 = real(G32)/12``) print at a generalised-Hopf point, *not*
+        divided by ω; ``extra["l2_over_omega"]`` = Re c₂/ω.  In landau's convention
+        (critical mode with ``normalise`` component 1): Λ = 2 Re c₁/|q_n|²,
+        χ = 2 Im c₁/|q_n|², Λ₅ = 2 Re c₂/|q_n|⁴ with q_n that component of Kuznetsov's q.
+        Re c₂ does not depend on the choice ⟨p, h₂₁⟩ = 0; away from l₁ = 0 it is the
+        coefficient of the normal form without time rescaling.
+
+    References
+    ----------
+    Kuznetsov, Yu. A. (1999). Numerical normalization techniques for all codim 2 bifurcations
+    of equilibria in ODE's. SIAM J. Numer. Anal. 36, 1104–1124, §7 (generalised Hopf).
+    """
+    if dps < 30:
+        raise InputError(f"dps must be >= 30 for the Kuznetsov check, got {dps}")
+    by_name = {s.name: s for s in (*system.parameters, *system.unknowns)}
+    vals: dict[sp.Symbol, Any] = {}
+    with mpmath.workdps(dps):
+        for key, val in values.items():
+            sym = key if isinstance(key, sp.Symbol) else by_name.get(key)
+            if sym is None:
+                continue
+            vals[sym] = mpmath.mpf(val) if not isinstance(val, mpmath.mpf) else val
+        nj = _NumericJets(system, jets or Jets(system), vals, max_order=5)
+        n = nj.n
+        pc = _relocate(nj, p_c, omega_c, mpmath.mpf(10) ** (-(dps - 8))) if relocate else mpmath.mpf(p_c)
+        A, _, tens = nj.at(pc)
+        ev, EL, ER = mpmath.eig(A, left=True, right=True)
+        lam_c = _critical_eig(A, omega_c)
+        i_c = min(range(n), key=lambda i: abs(ev[i] - lam_c))
+        om = mpmath.im(ev[i_c])
+        if abs(mpmath.re(ev[i_c])) > mpmath.mpf(10) ** (-(dps // 2)) * abs(ev[i_c]):
+            raise NoHopfError(f"not a Hopf point: critical eigenvalue {complex(ev[i_c])} at p = {float(pc):.10g}")
+        q = [ER[i, i_c] for i in range(n)]
+        qn = mpmath.sqrt(sum(abs(z) ** 2 for z in q))
+        q = [z / qn for z in q]
+        wl = [EL[i_c, j] for j in range(n)]
+        wq = sum(a * b for a, b in zip(wl, q))
+        pbar = [a / wq for a in wl]
+        c1, c2 = _kuznetsov_c1_c2(A, {m: tens[m] for m in (2, 3, 4, 5)}, q, pbar, om)
+        # dλ/dp (complex) from the eigenvalues: central differences at h and 2h, one Richardson step
+        h = abs(pc) * mpmath.mpf(rel_step) if pc != 0 else mpmath.mpf(rel_step)
+        lam = lambda p: _critical_eig(nj.at(p)[0], float(om))
+        d1 = (lam(pc + h) - lam(pc - h)) / (2 * h)
+        d2 = (lam(pc + 2 * h) - lam(pc - 2 * h)) / (4 * h)
+        dlam = (4 * d1 - d2) / 3
+        qx2 = abs(q[system.normalise]) ** 2
+        eq = []
+        for e in system.equilibrium:
+            e = as_expr(e).xreplace({system.parameter: sp.Float(str(pc), dps)})
+            e = e.xreplace({s: sp.Float(str(v), dps) for s, v in vals.items()})
+            try:
+                eq.append(float(e))
+            except TypeError:
+                eq.append(float("nan"))
+        return HopfResult(
+            system=system.name, parameter=system.parameter.name, p_c=float(pc), omega_c=float(om),
+            equilibrium=tuple(eq), dlambda_dp=complex(dlam), Lambda=float(2 * mpmath.re(c1) / qx2),
+            chi=float(2 * mpmath.im(c1) / qx2), convention=GENERAL, normalise=system.states[system.normalise].name,
+            l1=float(mpmath.re(c1) / om), c1=complex(c1), Lambda5=float(2 * mpmath.re(c2) / qx2 ** 2),
+            l2=float(mpmath.re(c2)), params={s.name: float(v) for s, v in vals.items()},
+            extra={"c2_re": float(mpmath.re(c2)), "c2_im": float(mpmath.im(c2)),
+                   "l2_over_omega": float(mpmath.re(c2) / om), "q_norm": float(mpmath.sqrt(qx2)), "dps": dps},
+        )

@@ -30,7 +30,7 @@ import sympy as sp
 from landau.codegen import AtomTable, CompiledFormula
 from landau.cx import Cx, as_expr
 from landau.errors import InputError, NoHopfError, SingularPointError
-from landau.fredholm import cubic_coefficient, linear_coefficient, null_vectors
+from landau.fredholm import cubic_coefficient, linear_coefficient, null_vectors, quintic_coefficient
 from landau.jets import Jets
 from landau.linear import HopfLine, w
 from landau.system import SpringBlock
@@ -42,7 +42,7 @@ CONVENTION = ("d|A|/dT = (Gamma |A| + Lambda |A|^3)/2, dtheta/dT = (Omega + chi 
               "with slip component 1; Lambda < 0: supercritical, Lambda > 0: subcritical; "
               "C = max|x - x0| / sqrt(|kc - k|) = 2 sqrt(2 Gamma_bar/|Lambda|) (eq. 23)")
 UNITS = {"V": "m/s", "kc": "N/m", "omega_c": "rad/s", "Gamma_bar": "1/(N s)", "Omega_bar": "1/(N s)",
-         "Lambda": "1/(m^2 s)", "chi": "1/(m^2 s)", "C": "m/sqrt(N/m)"}
+         "Lambda": "1/(m^2 s)", "chi": "1/(m^2 s)", "C": "m/sqrt(N/m)", "Lambda5": "1/(m^4 s)"}
 
 #: quantity -> (LaTeX symbol, description, equation)
 QUANTITIES: dict[str, tuple[str, str, str]] = {
@@ -54,6 +54,14 @@ QUANTITIES: dict[str, tuple[str, str, str]] = {
     "chi": (r"\chi", "nonlinear frequency coefficient", "eqs (15)-(21)"),
     "C": (r"C", "slip amplitude per sqrt(k_c - k)", "eq. (23)"),
 }
+
+#: fifth-order quantities: built only when asked for by name (never by ``derive(block)``'s default)
+QUINTIC: dict[str, tuple[str, str, str]] = {
+    "Lambda5": (r"\Lambda_5", "quintic coefficient 2 Re c of dA/dT = ... + c A|A|^4 (slip component of the mode 1)",
+                "Fredholm condition at O(eps^5)"),
+}
+#: every quantity a :class:`Derivation` can build
+ALL_QUANTITIES = {**QUANTITIES, **QUINTIC}
 
 _GB, _LA = sp.symbols("Gamma_bar Lambda", real=True)
 #: quantities composed from others (name -> the base quantities they need)
@@ -97,7 +105,7 @@ class Coefficient:
 
     @property
     def symbol(self) -> str:
-        return QUANTITIES[self.name][0]
+        return ALL_QUANTITIES[self.name][0]
 
     @property
     def units(self) -> str:
@@ -131,6 +139,8 @@ class Coefficient:
             if self.name in DERIVED:
                 e = self.formula.xreplace({_GB: d.coefficient("Gamma_bar").closed_form(),
                                            _LA: d.coefficient("Lambda").closed_form()})
+            elif self.name in QUINTIC:
+                e = self.expr  # fifth order: too large for cancellation and factoring (seconds become hours)
             else:
                 e = self.expr
                 if all(e.is_rational_function(s) for s in e.free_symbols):
@@ -147,6 +157,9 @@ class Coefficient:
         the factored closed form in V and the parameters when the law's derivatives at steady
         sliding are rational (computed once, cached on disk), else the form in those
         derivatives (:func:`landau.latex.coefficient_latex`)."""
+        if self.name in QUINTIC:
+            raise InputError(f"{self.name}: the fifth-order closed form is too large to print; "
+                             "evaluate it (Derivation.evaluate) or use .formula (in the law's derivatives)")
         if "latex" not in self._cache:
             from landau.latex import coefficient_latex
 
@@ -162,7 +175,7 @@ class Coefficient:
                 f"units {self.units.replace('^', '')}; .latex() gives the formula")
 
     def __repr__(self) -> str:
-        return f"Coefficient({self.name}: {QUANTITIES[self.name][1]}, {QUANTITIES[self.name][2]}, [{self.units}])"
+        return f"Coefficient({self.name}: {ALL_QUANTITIES[self.name][1]}, {ALL_QUANTITIES[self.name][2]}, [{self.units}])"
 
     def __call__(self, Vs, **params) -> np.ndarray:
         return self.derivation.evaluate(Vs, params, [self.name])[self.name]
@@ -390,7 +403,17 @@ class Derivation:
         J, E, _, _ = self._structure()
         return cubic_coefficient(self.vectors, J, E, w, self.jets.order(2), self.jets.order(3), sp.Rational(1, 2))
 
+    @cached_property
+    def quintic(self):
+        """b and c of dA/dT = b A|A|² + c A|A|⁴ at the Hopf point (:func:`landau.fredholm.quintic_coefficient`),
+        in atoms with ω symbolic; builds the fourth and fifth derivatives (only when asked for)."""
+        J, E, _, _ = self._structure()
+        tensors = {m: self.jets.order(m) for m in (2, 3, 4, 5)}
+        return quintic_coefficient(self.vectors, J, E, w, tensors, sp.Integer(1))
+
     def formula(self, name: str) -> sp.Expr:
+        if name == "Lambda5":
+            return 2 * self.quintic.c.re
         if name == "kc":
             return self.k
         if name == "omega_c":
@@ -412,8 +435,8 @@ class Derivation:
         """The :class:`Coefficient` ``name`` (one of :data:`QUANTITIES`)."""
         for base in DERIVED.get(name, ()):
             self.coefficient(base)
-        if name not in QUANTITIES:
-            raise InputError(f"unknown quantity {name!r} (known: {', '.join(QUANTITIES)})")
+        if name not in ALL_QUANTITIES:
+            raise InputError(f"unknown quantity {name!r} (known: {', '.join(ALL_QUANTITIES)})")
         if name not in self._coefs:
             t0 = time.perf_counter()
             self._coefs[name] = Coefficient(name, self._cached_formula(name), self)

@@ -437,6 +437,8 @@ def _fredholm_in_field(d, names: Sequence[str], sub: Mapping[sp.Symbol, sp.Expr]
     """The Fredholm code of :mod:`landau.fredholm` in ℚ(gens)(ω), ω² = ω_c²: returns
     (k_c, ω_c², {name: a + b·ω}) as field elements, or None when a derivative at steady
     state is not rational in ``gens`` (after ``sub``)."""
+    if any(n not in ("Gamma_bar", "Omega_bar", "Lambda", "chi") for n in names):
+        return None  # the fifth order (Lambda5) has no exactly cancelled route: the general one is used
     J, E, r, c = d._structure()
     kc, W_c = d.hopf.closed_form
     need_cubic = any(n in ("Lambda", "chi") for n in names)
