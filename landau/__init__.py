@@ -13,8 +13,17 @@ try:
 except _PackageNotFoundError:  # running from a source tree that was never installed
     __version__ = "0+unknown"
 
+from typing import TYPE_CHECKING
+
 from landau.errors import InputError, IntegratorError, LandauError, NoHopfError, SingularPointError
 from landau.hopf import Convention, Criticality, HopfResult
+
+if TYPE_CHECKING:  # the same names as _LAZY, for type checkers and the API documentation
+    from landau.checking import CheckResult, Verdict, check
+    from landau.general import HopfNormalForm, hopf_normal_form
+    from landau.linear import HopfLine, HopfPoint, critical_stiffness
+    from landau.multiscale import CONVENTION, Coefficient, Derivation, LandauPoint, derive
+    from landau.system import DynamicalSystem, SpringBlock
 
 # The derivation engine (sympy) loads on first use of one of its names, so that importing a
 # subpackage (``landau.laws``, ``landau.verify.hybrid``) does not import it.
