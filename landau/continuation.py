@@ -8,8 +8,8 @@
   (:class:`landau.hopf.HopfResult`); folds are reported where the branch turns back in p.
 * :func:`hopf_curve` follows a Hopf point in two parameters (the system's parameter p₁ and a second
   one p₂), with l₁ along the curve, and :func:`generalised_hopf` locates the generalised-Hopf
-  (Bautin) points where l₁ = 0, with the second Lyapunov coefficient l₂ where
-  :func:`landau.lyapunov.lyapunov_coefficients` is available.
+  (Bautin) points where l₁ = 0, with the second Lyapunov coefficient l₂ = Re c₂ from
+  :func:`landau.lyapunov.lyapunov_coefficients`.
 
 Pseudo-arclength continuation (Keller 1977) in float64; each located point is refined at the
 working precision by :func:`landau.general.refine_hopf`.
@@ -572,7 +572,7 @@ def generalised_hopf(system: DynamicalSystem, params: Mapping[str, float], secon
     jets : {"taylor", "symbolic"}
     l2 : bool
         Compute the second Lyapunov coefficient at the point by
-        :func:`landau.lyapunov.lyapunov_coefficients` (``None`` if that route is unavailable).
+        :func:`landau.lyapunov.lyapunov_coefficients` (Re c₂, as MatCont and BifurcationKit print it).
 
     Returns
     -------

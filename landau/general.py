@@ -564,18 +564,16 @@ def kuznetsov_check(system: DynamicalSystem, params: Mapping[str, float] | None,
 
 def second_lyapunov(system: DynamicalSystem, params: Mapping[str, float] | None, result: HopfResult,
                     dps: int = 40) -> float | None:
-    """l₂ (Kuznetsov's normalisation) at a located Hopf point by :func:`landau.lyapunov.lyapunov_coefficients`.
+    """l₂ = Re c₂ (Kuznetsov's normalisation, not divided by ω) at a located Hopf point by
+    :func:`landau.lyapunov.lyapunov_coefficients`.
 
     The numeric equilibrium is passed as the values of fresh unknowns (as in
-    :func:`kuznetsov_check`), so no closed form is needed.  Returns None where the toolkit has no
-    second-Lyapunov route.
+    :func:`kuznetsov_check`), so no closed form is needed; the point is not re-located (the
+    equilibrium is frozen at p_c, as in :func:`kuznetsov_check`).
     """
-    try:
-        from landau.lyapunov import lyapunov_coefficients
-    except ImportError:
-        return None
+    from landau.lyapunov import lyapunov_coefficients
+
     with mpmath.workdps(dps):
         probe, values, pc = _frozen_equilibrium(system, params, result)
-        out = lyapunov_coefficients(probe, values, pc, dps=dps)
-    l2 = out.get("l2") if isinstance(out, Mapping) else getattr(out, "l2", None)
-    return None if l2 is None else float(l2)
+        out = lyapunov_coefficients(probe, values, pc, dps=dps, omega_c=result.omega_c, relocate=False)
+    return None if out.l2 is None else float(out.l2)

@@ -86,19 +86,21 @@ class DynamicalSystem:
 
     def __post_init__(self) -> None:
         # plain Python numbers (mass=(1, 1), equilibrium=(0, 0)) are accepted as sympy numbers
-        for name in ("rhs", "mass", "equilibrium", "unknown_equations", "unknown_guess"):
+        for name in ("rhs", "equilibrium", "unknown_equations", "unknown_guess"):
             object.__setattr__(self, name, tuple(_as_sympy(x, name) for x in getattr(self, name)))
         n = len(self.states)
         mass = self.mass
         if isinstance(mass, sp.MatrixBase) or (len(mass) and isinstance(mass[0], (tuple, list, sp.MatrixBase))):
-            rows = tuple(tuple(sp.sympify(x) for x in row) for row in (mass.tolist() if isinstance(mass, sp.MatrixBase)
-                                                                        else mass))
+            rows = tuple(tuple(_as_sympy(x, "mass") for x in row)
+                         for row in (mass.tolist() if isinstance(mass, sp.MatrixBase) else mass))
             if len(rows) != n or any(len(r) != n for r in rows):
                 raise InputError(f"system {self.name!r}: a full mass matrix must be {n}x{n}")
             if any(rows[i][j] != 0 for i in range(n) for j in range(n) if i != j):
                 object.__setattr__(self, "mass", rows)
             else:  # a diagonal matrix is stored as its diagonal, as every route expects
                 object.__setattr__(self, "mass", tuple(rows[i][i] for i in range(n)))
+        else:
+            object.__setattr__(self, "mass", tuple(_as_sympy(x, "mass") for x in mass))
         if not (len(self.rhs) == len(self.mass) == len(self.equilibrium) == n):
             raise InputError(f"system {self.name!r}: states, rhs, mass and equilibrium must have equal length")
         if set().union(*(sp.sympify(e).free_symbols for e in self.mass_matrix)) & set(self.states):

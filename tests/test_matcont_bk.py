@@ -114,16 +114,13 @@ def test_lorenz84_generalised_hopf_frequency(lorenz_branch):
     assert abs(gh.hopf.l1) < 1e-10
 
 
-@pytest.mark.skipif(not hasattr(__import__("landau.lyapunov", fromlist=["x"]), "lyapunov_coefficients"),
-                    reason="the second Lyapunov coefficient route (landau.lyapunov.lyapunov_coefficients) "
-                           "is not part of this build")
 def test_lorenz84_generalised_hopf_l2(lorenz_branch):
-    # lorenz84.jl line 315: l2 ≈ 0.15555332623343107 (atol 1e-3).  BifurcationKit prints Re c₂ (as it
-    # prints Re c₁ for l1); landau's l2 is Kuznetsov's Re c₂/ω, hence the factor ω.
+    # lorenz84.jl line 315: l2 ≈ 0.15555332623343107 (atol 1e-3).  BifurcationKit prints Re c₂
+    # (NormalForms.jl: l2 = real(G32)/12), and so does landau's HopfResult.l2.
     h = min(lorenz_branch.hopf, key=lambda r: abs(r.p_c - 2.4672))
     curve = hopf_curve(LORENZ84, LORENZ84_PARAMS, "T", (0.03, 0.07), h, steps=8, l2=True)
     gh = curve.generalised_hopf[0]
-    assert gh.l2 * gh.omega == pytest.approx(0.15555332623343107, abs=1e-3)
+    assert gh.l2 == pytest.approx(0.15555332623343107, abs=1e-3)
 
 
 # --- CO oxidation (Bykov) model ----------------------------------------------------------------------
