@@ -22,8 +22,8 @@ Convention (:data:`landau.hopf.GENERAL`): dA/dT = a·(p − p_c)A + b·A|A|² wi
 mode's ``normalise`` component equal to 1; a = dλ/dp, Λ = 2 Re b (Λ < 0: supercritical),
 χ = 2 Im b.  The result also carries Kuznetsov's c₁ = b/⟨q, q⟩ and the first Lyapunov
 coefficient l₁ = Re c₁/ω in Kuznetsov's normalisation (⟨q, q⟩ = 1, ⟨p, q⟩ = 1 for ẏ = E⁻¹f;
-for a DAE, q is the full-state mode), the number MatCont prints as the "first Lyapunov
-coefficient"; BifurcationKit prints Re c₁ (its ``l1``, not divided by ω).
+for a DAE, q is the full-state mode; Kuznetsov 2004, eq. 3.20).  MatCont (``nf_H.m``:
+``real(p0'*h21)/2``) and BifurcationKit (its ``l1``) both print Re c₁ = ω·l₁, not divided by ω.
 
 References
 ----------
@@ -468,8 +468,8 @@ def hopf_normal_form(system: DynamicalSystem, params: Mapping[str, float] | None
     Returns
     -------
     HopfResult
-        With ``l1`` and ``c1`` in Kuznetsov's normalisation (l₁ = Re c₁/ω, as MatCont prints it;
-        BifurcationKit prints Re c₁), and ``l2`` if asked for and available.
+        With ``l1`` and ``c1`` in Kuznetsov's normalisation (l₁ = Re c₁/ω; MatCont and
+        BifurcationKit print Re c₁), and ``l2`` = Re c₂ if asked for.
 
     Raises
     ------

@@ -18,8 +18,9 @@ C = 2 sqrt(2|Re a|/|Λ|): the cycle's amplitude in the normalised coordinate is
 max|y − y₀| ≈ C sqrt|p − p_c|.
 
 Kuznetsov's normalisation (MatCont, BifurcationKit): ⟨q, q⟩ = 1, ⟨p, q⟩ = 1, normal form
-ż = iω z + c₁ z|z|² + c₂ z|z|⁴; the first Lyapunov coefficient ``l1`` = Re c₁ / ω (as MatCont
-prints it; BifurcationKit prints Re c₁ as ``l1``) and the second ``l2`` = Re c₂, not divided by ω
+ż = iω z + c₁ z|z|² + c₂ z|z|⁴; the first Lyapunov coefficient ``l1`` = Re c₁ / ω (Kuznetsov
+2004, eq. 3.20; MatCont's ``nf_H.m`` returns ``real(p0'*h21)/2`` and BifurcationKit its ``l1``,
+both Re c₁ = ω·l1, so compare their number with ``c1.real``) and the second ``l2`` = Re c₂, not divided by ω
 (MatCont's ``nf_GH.m`` returns ``real(p0'*h32/12)``, BifurcationKit's ``NormalForms.jl``
 ``l2 = real(G32)/12``; both with ⟨q, q⟩ = 1).
 
@@ -153,7 +154,7 @@ class HopfResult:
     l1 : float, optional
         First Lyapunov coefficient in Kuznetsov's normalisation, Re c₁/ω.
     c1 : complex, optional
-        Kuznetsov's c₁(0) (⟨q, q⟩ = 1, ⟨p, q⟩ = 1).
+        Kuznetsov's c₁(0) (⟨q, q⟩ = 1, ⟨p, q⟩ = 1); MatCont and BifurcationKit print its real part.
     Lambda5 : float, optional
         Quintic coefficient Λ₅ = 2 Re c in landau's convention.
     l2 : float, optional
