@@ -27,6 +27,7 @@ COMMANDS: dict[str, str] = {
     "scene": "landau.commands.scene",
     "laws": "landau.commands.laws",
     "transition": "landau.commands.transition",
+    "simulate": "landau.commands.simulate",
     "figures": "landau.paper_figures.cli",
     "verify": "landau.verify.cli",
 }
