@@ -176,10 +176,14 @@ def _forced_oscillator(args, t_end: float):
     over = parse_params(args.param)
     _only_known(over, Params.names(), name)
     p = Params().with_(**over)
-    r = run(p, t_end / p.period, record=RECORD)
+    if p.xI < 0:  # the springs press the cart on the obstacle: rest is the static equilibrium in contact
+        y0, note = None, "starts at rest at the static equilibrium (in contact)"
+    else:  # the obstacle is not touched at rest
+        y0, note = np.zeros(2), "starts at rest at x = 0 (free of the obstacle)"
+    r = run(p, t_end / p.period, y0=y0, record=RECORD)
     sim = replace(r.simulation(), model=name)
     used = {k: getattr(p, k) for k in Params.names()}
-    return sim, used, {"x": "m", "xdot": "m/s"}, ["starts at rest at the static equilibrium"]
+    return sim, used, {"x": "m", "xdot": "m/s"}, [note]
 
 
 def simulate_model(args):

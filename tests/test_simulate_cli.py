@@ -1,0 +1,159 @@
+"""``landau simulate``: every model writes a CSV and a PNG; values against independent computations."""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from landau.cli import main
+
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+
+
+def _run(tmp_path, capsys, *argv):
+    """Run the command with a CSV and a PNG output; returns (JSON document, header, rows)."""
+    csv_path, png_path = tmp_path / "run.csv", tmp_path / "run.png"
+    code = main(["simulate", *argv, "--out", str(csv_path), "--out", str(png_path), "--json"])
+    out = capsys.readouterr().out
+    assert code == 0, out
+    doc = json.loads(out)
+    assert doc["status"] == "finished"
+    assert sorted(doc["files"]) == sorted([str(csv_path), str(png_path)])
+    assert png_path.read_bytes()[:8] == PNG_MAGIC
+    with open(csv_path) as fh:
+        reader = csv.reader(fh)
+        header = next(reader)
+        rows = np.array([[float(x) for x in r] for r in reader])
+    assert rows.shape[0] >= 10 and rows.shape[1] == len(header)
+    assert np.all(np.isfinite(rows))
+    assert np.all(np.diff(rows[:, 0]) >= 0)
+    return doc, header, rows
+
+
+def test_spring_block_against_physical_ode(tmp_path, capsys):
+    """The Dieterich spring–block (Putelat et al. 2010, eq. (4)) integrated independently in
+    physical variables (M Ẍ = −kX − σ(μ − μ₀), φ̇ = 1 − vφ/L) by scipy's Radau from the CSV's first
+    row: the CSV's last row agrees to 1e-8 of the scale (L, V, L/V).  The command integrates
+    log-variables with its own compiled Radau IIA at rtol 1e-9, the reference runs at rtol 1e-11;
+    measured difference 3e-11, so 1e-8 leaves room for the error growth of the unstable run
+    on other platforms."""
+    doc, header, rows = _run(tmp_path, capsys, "spring-block", "--V", "1e-4", "--t-end", "0.3")
+    assert header == ["t [s]", "X [m]", "v [m/s]", "phi"]
+    p = doc["parameters"]
+    assert p["law"] == "dieterich"
+    assert any("0.9 k_c" in n for n in doc["notes"])
+    M, k, V, sigma = p["M"], p["k"], p["V"], p["sigma"]
+    a_v, a, b, L, Vs = p["a_v"], p["a"], p["b"], p["L"], p["V_s"]
+
+    def mu(v, phi):
+        return a_v + a * math.log(v / Vs) + b * math.log(Vs * phi / L)
+
+    mu0 = mu(V, L / V)  # steady sliding: φ = L/V
+
+    def rhs(t, y):
+        X, v, phi = y
+        return [v - V, (-k * X - sigma * (mu(v, phi) - mu0)) / M, 1.0 - v * phi / L]
+
+    t_last = rows[-1, 0]
+    ref = solve_ivp(rhs, (0.0, t_last), rows[0, 1:], method="Radau", rtol=1e-11,
+                    atol=[1e-11 * L, 1e-11 * V, 1e-11 * L / V])
+    assert ref.success
+    scale = np.array([L, V, L / V])
+    np.testing.assert_allclose(rows[-1, 1:] / scale, ref.y[:, -1] / scale, rtol=0, atol=1e-8 * np.abs(
+        ref.y[:, -1] / scale).max())
+    # the run is the unstable side of the Hopf point: the oscillation has grown
+    third = len(rows) // 3
+    assert np.abs(rows[-third:, 1]).max() > np.abs(rows[:third, 1]).max()
+
+
+def test_forced_oscillator_before_contact_is_linear(tmp_path, capsys):
+    """Without dry friction (T = 0) and before the cart reaches the obstacle (x < x_I), eq. (1) of
+    Skurativskyi et al. (2019) is the linear damped oscillator m ẍ + c ẋ + k x = m₀e ω² sin ωt,
+    solved in closed form from rest at x = 0.  The command's DOPRI5 runs at rtol 1e-8 with
+    atol 1e-12 m (measured difference 5e-10 of the forced amplitude): agreement to 1e-7."""
+    doc, header, rows = _run(tmp_path, capsys, "forced-oscillator", "--param", "T=0", "--param", "xI=0.003",
+                             "--t-end", "3")
+    assert header == ["t [s]", "x [m]", "xdot [m/s]"]
+    p = doc["parameters"]
+    m, c, k, om, F = p["m"], p["c"], p["k"], p["omega"], p["m0e"] * p["omega"] ** 2
+    # particular solution A sin ωt + B cos ωt
+    det = (k - m * om ** 2) ** 2 + (c * om) ** 2
+    A, B = F * (k - m * om ** 2) / det, -F * c * om / det
+    # homogeneous part fitting x(0) = 0, ẋ(0) = 0
+    zeta, wd = c / (2 * m), math.sqrt(k / m - (c / (2 * m)) ** 2)
+    C1 = -B
+    C2 = (-A * om + zeta * C1) / wd
+    free = np.cumprod(rows[:, 1] < p["xI"]).astype(bool)  # rows before the first contact
+    assert 20 < free.sum() < len(rows)                     # contact does happen later in the run
+    t = rows[free, 0]
+    x = A * np.sin(om * t) + B * np.cos(om * t) + np.exp(-zeta * t) * (C1 * np.cos(wd * t) + C2 * np.sin(wd * t))
+    amp = math.hypot(A, B)
+    np.testing.assert_allclose(rows[free, 1], x, rtol=0, atol=1e-7 * amp)
+    assert doc["events"] > 0
+
+
+def test_galvanetto_one_block_first_stick_phase(tmp_path, capsys):
+    """Galvanetto (2004), one block: started stuck at X = 0 the block rides the belt, X = Vt,
+    Ẋ = V, until the spring force reaches the static friction X = F_s = 1 at t = 1/V (closed form)."""
+    doc, header, rows = _run(tmp_path, capsys, "galvanetto-one-block", "--t-end", "10")
+    assert header == ["t", "X", "Xdot"]
+    V = doc["parameters"]["V"]
+    stick = rows[:, 0] < 1.0 / V - 1e-9
+    assert stick.sum() > 5
+    np.testing.assert_allclose(rows[stick, 1], V * rows[stick, 0], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(rows[stick, 2], V, rtol=0, atol=1e-12)
+    assert rows[~stick, 2].min() < V - 1e-3  # then it slips
+
+
+def test_galvanetto_two_blocks(tmp_path, capsys):
+    """Two blocks (Galvanetto 2004, Sec. 3), started stuck: both ride the belt until block 1's
+    spring force K₁ = X₁ + α(X₁ − X₂) = X₁ reaches F_s1 = 1 at t = 1/V (closed form)."""
+    doc, header, rows = _run(tmp_path, capsys, "galvanetto-two-blocks", "--t-end", "8")
+    assert header == ["t", "X1", "X2", "X1dot", "X2dot"]
+    V = doc["parameters"]["V"]
+    stick = rows[:, 0] < 1.0 / V - 1e-9
+    np.testing.assert_allclose(rows[stick, 1:3], np.repeat(V * rows[stick, 0][:, None], 2, axis=1), rtol=0,
+                               atol=1e-12)
+
+
+def test_impact_oscillator(tmp_path, capsys):
+    """Lancioni, Lenci & Galvanetto (2009), eq. (1), above the Hopf point: while the bar stays on the
+    belt the contact holds, y = l cos φ (the gap g_N = y − l cos φ is zero to integration accuracy)."""
+    doc, header, rows = _run(tmp_path, capsys, "impact-oscillator", "--t-end", "1")
+    assert header == ["t [s]", "phi [rad]", "y [m]", "phidot [rad/s]", "ydot [m/s]"]
+    assert doc["parameters"]["mu"] == 0.42
+    gap = rows[:, 2] - doc["parameters"]["l"] * np.cos(rows[:, 1])
+    assert np.abs(gap).max() < 1e-8
+
+
+def test_npz_output(tmp_path, capsys):
+    out = tmp_path / "run.npz"
+    assert main(["simulate", "galvanetto-one-block", "--t-end", "6", "--out", str(out)]) == 0
+    data = np.load(out)
+    assert list(data["state_names"]) == ["X", "Xdot"]
+    assert data["y"].shape == (2, len(data["t"]))
+    np.testing.assert_allclose(data["y"][:, -1], data["y_final"], rtol=1e-12)
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["spring-blok"], ["unknown model", "did you mean 'spring-block'"]),
+    (["forced-oscillator", "--t-end", "-1"], ["--t-end"]),
+    (["forced-oscillator", "--t-end", "nan"], ["--t-end"]),
+    (["forced-oscillator", "--param", "omgea=3"], ["omgea", "omega"]),
+    (["galvanetto-one-block", "--param", "beta=2"], ["beta", "gamma"]),
+    (["impact-oscillator", "--out", "run.txt"], ["run.txt", ".csv"]),
+    (["spring-block", "--param", "V=1e-4"], ["--V"]),
+    (["spring-block", "--param", "k=1e5"], ["--k", "bifurcation"]),
+    (["galvanetto-one-block", "dieterich"], ["spring-block only"]),
+])
+def test_bad_input_exit_2(argv, words, capsys):
+    assert main(["simulate", *argv]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1
+    for w in words:
+        assert w in err
