@@ -157,3 +157,74 @@ def test_bad_input_exit_2(argv, words, capsys):
     assert len(err.strip().splitlines()) == 1
     for w in words:
         assert w in err
+
+
+# --- the Simulation result: sections, plots, HTML, files -------------------------------------
+def _harmonic(n_periods: int = 5, with_sections: bool = True):
+    """x = cos t, ẋ = −sin t recorded at 40 points per period, with its field (cubic Hermite)."""
+    from landau.verify.hybrid import Event, EventLog
+    from landau.verify.hybrid.result import Simulation, Status
+
+    t = np.linspace(0.0, 2 * np.pi * n_periods, 40 * n_periods + 1)
+    y = np.vstack([np.cos(t), -np.sin(t)])
+    f = np.vstack([-np.sin(t), -np.cos(t)])
+    log = EventLog()
+    if with_sections:
+        for k in range(n_periods):  # ẋ = 0 from above: x maximal
+            tk = 2 * np.pi * (k + 1)
+            log.append(Event(tk, np.array([1.0, 0.0]), "xdot=0", "m", "m", "section"))
+    return Simulation("harmonic", t, y, log, Status.FINISHED, Status.FINISHED.advice, t[-1], y[:, -1],
+                      len(t) - 1, 0, f, ("x", "xdot"))
+
+
+def test_simulation_sections_and_plots(tmp_path):
+    from matplotlib.figure import Figure
+
+    sim = _harmonic()
+    ts, ys = sim.section_points()
+    assert len(ts) == 5 and ys.shape == (2, 5)
+    # strobe at a period that is not a recorded time: cubic Hermite from 40 points per period,
+    # interpolation error ≲ h⁴/384 · max|x''''| = (2π/40)⁴/384 ≈ 1.6e-6
+    ts, ys = sim.section_points(period=2 * np.pi / 3 * 1.01)
+    np.testing.assert_allclose(ys[0], np.cos(ts), atol=2e-6)
+    np.testing.assert_allclose(ys[1], -np.sin(ts), atol=2e-6)
+    fig = sim.plot(units={"x": "m", "xdot": "m/s"})
+    assert isinstance(fig, Figure) and len(fig.axes) == 3
+    assert fig.axes[0].get_ylabel() == "x [m]"
+    fig = sim.plot(kind="poincare")
+    line = fig.axes[0].lines[0]
+    np.testing.assert_allclose(line.get_xdata(), 1.0)
+    with pytest.raises(ValueError, match="no section events"):
+        _harmonic(with_sections=False).plot(kind="poincare")
+    with pytest.raises(ValueError, match="kind"):
+        sim.plot(kind="bode")
+
+
+def test_simulation_html_and_files(tmp_path):
+    sim = _harmonic(2)
+    html = sim._repr_html_()
+    for word in ("harmonic", "finished", "81", "x = 1", "<table>"):
+        assert word in html
+    sim.to_csv(tmp_path / "h.csv", {"x": "m"})
+    rows = np.loadtxt(tmp_path / "h.csv", delimiter=",", skiprows=1)
+    assert open(tmp_path / "h.csv").readline().strip() == "t [s],x [m],xdot"
+    np.testing.assert_array_equal(rows[:, 1:].T, sim.y)  # repr() of floats: exact round trip
+    sim.to_npz(tmp_path / "h.npz")
+    data = np.load(tmp_path / "h.npz")
+    np.testing.assert_array_equal(data["event_t"], [e.t for e in sim.events])
+
+
+def test_failed_run_exits_1(monkeypatch, capsys, tmp_path):
+    """A run that ends without reaching t_end: exit 1, the status and its advice, no files."""
+    from dataclasses import replace
+
+    import landau.commands.simulate as S
+    from landau.verify.hybrid.result import Status
+
+    failed = replace(_harmonic(), status=Status.ZENO, message=Status.ZENO.advice)
+    monkeypatch.setattr(S, "_galvanetto", lambda args, t_end, n: (failed, {}, {}, []))
+    out = tmp_path / "run.csv"
+    assert main(["simulate", "galvanetto-one-block", "--out", str(out)]) == 1
+    text = capsys.readouterr().out
+    assert "zeno" in text and "accumulate" in text
+    assert not out.exists()
