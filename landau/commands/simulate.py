@@ -37,7 +37,7 @@ MODELS = ("spring-block", "galvanetto-one-block", "galvanetto-two-blocks", "impa
           "forced-oscillator")
 FORMATS = (".csv", ".npz", ".png")
 #: default final time per model (seconds; Galvanetto: dimensionless time)
-DEFAULT_T_END = {"spring-block": 200.0, "galvanetto-one-block": 60.0, "galvanetto-two-blocks": 60.0,
+DEFAULT_T_END = {"spring-block": 20.0, "galvanetto-one-block": 60.0, "galvanetto-two-blocks": 60.0,
                  "impact-oscillator": 5.0, "forced-oscillator": 10.0}
 #: state components drawn in the phase portrait (position against its velocity); default (0, 1)
 PHASE_PLANE = {"galvanetto-two-blocks": (0, 2), "impact-oscillator": (0, 2)}
@@ -83,8 +83,9 @@ def _spring_block(args, t_end: float):
     from landau.commands.common import resolve_law
     from landau.linear import critical_stiffness
     from landau.system import SpringBlock
+    from landau.verify.hybrid import EventLog
     from landau.verify.springblock.model import SpringBlockModel
-    from landau.verify.springblock.simulate import integrate
+    from landau.verify.springblock.simulate import W_INDEX, integrate
 
     if args.law is None and args.mu is None and not args.state:
         args.law = "dieterich"
@@ -108,13 +109,20 @@ def _spring_block(args, t_end: float):
         k = _positive(args.k, "--k")
     model = SpringBlockModel.build(law, V, k, params)
     y0 = model.perturbed(0.01 * model.ell)
-    run = integrate(model, y0, (0.0, t_end), rtol=1e-9, record=RECORD)
+    # section events: the crossings of v = V (the extrema of X), marked in the phase portrait
+    run = integrate(model, y0, (0.0, t_end), rtol=1e-9, record=RECORD, event_index=W_INDEX)
     sim = run.simulation("spring-block")
     phys = model.to_physical(sim.y.T)
-    fin = model.to_physical(sim.y_final)
     names = ("X", "v") + tuple(s.name for s in law.states)
-    sim = replace(sim, y=np.vstack([np.asarray(phys[n]) for n in names]), f=None,
-                  y_final=np.array([float(fin[n]) for n in names]), state_names=names)
+    def physical(y):
+        ph = model.to_physical(y)
+        return np.array([float(ph[n]) for n in names])
+
+    events = EventLog()
+    for e in sim.events:  # the located X extrema, in physical units like the series
+        events.append(replace(e, y=physical(e.y), y_after=physical(e.y)))
+    sim = replace(sim, y=np.vstack([np.asarray(phys[n]) for n in names]), f=None, events=events,
+                  y_final=physical(sim.y_final), state_names=names)
     units = {"X": "m", "v": "m/s"}
     used = {"law": law.name, "V": V, "k": k, **params}
     notes.append("X = x - x0(t) is the displacement from steady sliding; starts X = 0.01 L off steady sliding "
