@@ -150,6 +150,8 @@ def test_npz_output(tmp_path, capsys):
     (["spring-block", "--param", "V=1e-4"], ["--V"]),
     (["spring-block", "--param", "k=1e5"], ["--k", "bifurcation"]),
     (["galvanetto-one-block", "dieterich"], ["spring-block only"]),
+    (["galvanetto-one-block", "--law", "ruina"], ["spring-block only"]),
+    (["spring-block", "--law", "nosuchlaw"], ["nosuchlaw"]),
 ])
 def test_bad_input_exit_2(argv, words, capsys):
     assert main(["simulate", *argv]) == 2

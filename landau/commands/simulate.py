@@ -1,6 +1,6 @@
 """Simulate one of the toolkit's models and write its time series (CSV, NPZ) or a plot (PNG).
 
-``landau simulate MODEL [--law NAME | --mu EXPR --state NAME=EXPR ...] [--V V] [--k K]
+``landau simulate MODEL [LAW | --law NAME | --mu EXPR --state NAME=RATE ...] [--V V] [--k K]
 --param NAME=VALUE ... --t-end T --out run.csv --out run.png [--json]``
 
 Models (defaults: the published parameters):
@@ -11,8 +11,8 @@ Models (defaults: the published parameters):
   sliding displaced along the critical mode;
 * ``galvanetto-one-block``, ``galvanetto-two-blocks`` — the dimensionless stick–slip models of
   Galvanetto (2004), started stuck at the origin;
-* ``impact-oscillator`` — the bar on a moving belt of Lancioni, Lenci & Galvanetto (2009),
-  parameter set 1, belt speed −1 m/s, friction coefficient ``mu`` (default 0.42, above the
+* ``impact-oscillator`` — the frictional impact oscillator (a bar on a moving belt) of
+  Lancioni, Lenci & Galvanetto, parameter set 1, belt speed −1 m/s, friction coefficient ``mu`` (default 0.42, above the
   Hopf point), started near the slip equilibrium;
 * ``forced-oscillator`` — the forced cart with Hertz contact of Skurativskyi, Kudra,
   Witkowski & Awrejcewicz (2019), identified parameters, started at rest.
@@ -48,6 +48,8 @@ RECORD = 1_000_000
 def configure(p) -> None:
     p.add_argument("model", help=f"one of {', '.join(MODELS)}")
     add_law_arguments(p)  # positional LAW after MODEL (spring-block only), --mu, --state, --param
+    p.add_argument("--law", dest="law_option", default=None, metavar="NAME",
+                   help="spring-block: built-in law (same as the positional LAW; default dieterich)")
     p.add_argument("--V", default=None, help="spring-block: driving velocity in m/s (default 1e-4)")
     p.add_argument("--k", default=None, help="spring-block: spring stiffness in N/m (default 0.9 k_c(V))")
     p.add_argument("--t-end", default=None,
@@ -197,6 +199,10 @@ def _forced_oscillator(args, t_end: float):
 def simulate_model(args):
     """Run the model named in ``args``; returns (Simulation, parameters, units, notes)."""
     model = args.model
+    if args.law_option is not None:
+        if args.law is not None and args.law != args.law_option:
+            raise InputError(f"two laws given: {args.law!r} and --law {args.law_option!r}")
+        args.law = args.law_option
     if model not in MODELS:
         close = difflib.get_close_matches(model, MODELS, n=1)
         hint = f"; did you mean {close[0]!r}?" if close else ""
