@@ -57,6 +57,9 @@ def configure(p) -> None:
                         + ", ".join(f"{m} {t:g}" for m, t in DEFAULT_T_END.items()))
     p.add_argument("--out", action="append", default=[], metavar="FILE",
                    help="output file, format from the suffix (.csv, .npz, .png); repeatable")
+    p.add_argument("--plot", choices=("overview", "poincare"), default="overview",
+                   help="what a .png shows: time series and phase portrait (default) or the Poincaré section "
+                        "(the logged sections; the forced oscillator: stroboscopic at the forcing period)")
 
 
 def _positive(text, what: str) -> float:
@@ -227,6 +230,13 @@ def run(args) -> dict:
     if len(sim.t) and sim.t[-1] < sim.t_final:
         notes.append(f"the time series holds the first {len(sim.t)} steps only (up to t = {sim.t[-1]:.6g}): "
                      "shorten --t-end for the whole run")
+    if sim.success and any(o.suffix.lower() == ".png" for o in outs):
+        period = 2 * math.pi / params["omega"] if args.model == "forced-oscillator" else None
+        try:
+            fig = sim.plot(args.plot, units=units, phase=PHASE_PLANE.get(args.model, (0, 1)),
+                           period=period if args.plot == "poincare" else None)
+        except ValueError as exc:
+            raise InputError(f"--plot {args.plot}: {args.model}: {str(exc).split(':')[0]}") from None
     if sim.success:
         for o in outs:
             suf = o.suffix.lower()
@@ -237,7 +247,7 @@ def run(args) -> dict:
             else:
                 from landau.io import atomic_savefig
 
-                atomic_savefig(sim.plot(units=units, phase=PHASE_PLANE.get(args.model, (0, 1))), o, dpi=110)
+                atomic_savefig(fig, o, dpi=110)
             files.append(str(o))
     return {"model": args.model, "parameters": params, "units": {k: v for k, v in units.items() if k != "t"},
             "status": sim.status.value, "message": sim.message, "t_final": sim.t_final,
