@@ -119,6 +119,7 @@ def _spring_block(args, t_end: float):
     sim = run.simulation("spring-block")
     phys = model.to_physical(sim.y.T)
     names = ("X", "v") + tuple(s.name for s in law.states)
+
     def physical(y):
         ph = model.to_physical(y)
         return np.array([float(ph[n]) for n in names])
@@ -130,8 +131,8 @@ def _spring_block(args, t_end: float):
                   y_final=physical(sim.y_final), state_names=names)
     units = {"X": "m", "v": "m/s"}
     used = {"law": law.name, "V": V, "k": k, **params}
-    notes.append("X = x - x0(t) is the displacement from steady sliding; starts X = 0.01 L off steady sliding "
-                 "along the critical mode")
+    notes.append("X = x - x0(t) is the displacement from steady sliding; starts X = 0.01 L (the law's memory "
+                 "length) off steady sliding along the critical mode")
     return sim, used, units, notes
 
 
