@@ -38,7 +38,7 @@ MODELS = ("spring-block", "galvanetto-one-block", "galvanetto-two-blocks", "impa
 FORMATS = (".csv", ".npz", ".png")
 #: default final time per model (seconds; Galvanetto: dimensionless time)
 DEFAULT_T_END = {"spring-block": 20.0, "galvanetto-one-block": 60.0, "galvanetto-two-blocks": 60.0,
-                 "impact-oscillator": 5.0, "forced-oscillator": 10.0}
+                 "impact-oscillator": 10.0, "forced-oscillator": 10.0}
 #: state components drawn in the phase portrait (position against its velocity); default (0, 1)
 PHASE_PLANE = {"galvanetto-two-blocks": (0, 2), "impact-oscillator": (0, 2)}
 #: accepted steps kept by the compiled integrators (spring-block, forced oscillator) as the time series
