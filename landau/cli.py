@@ -31,6 +31,7 @@ COMMANDS: dict[str, str] = {
     "laws": "landau.commands.laws",
     "transition": "landau.commands.transition",
     "plot": "landau.commands.plot",
+    "simulate": "landau.commands.simulate",
     "figures": "landau.paper_figures.cli",
     "verify": "landau.verify.cli",
 }

@@ -148,6 +148,132 @@ class Simulation:
             out = h00 * y0 + h10 * h * f0 + h01 * y1 + h11 * h * f1
         return out[:, 0] if np.ndim(times) == 0 else out
 
+    # --- output ---------------------------------------------------------------------
+    def _names(self) -> tuple[str, ...]:
+        m = self.y.shape[0] if self.y.ndim == 2 else len(self.y_final)
+        names = tuple(self.state_names[:m])
+        return names + tuple(f"y{i}" for i in range(len(names), m))
+
+    def section_points(self, period: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Points of a Poincaré section: ``(t, y)`` with ``y`` of shape (n, k).
+
+        The logged section events (``kind == "section"``) when there are any and ``period``
+        is None; otherwise the stroboscopic samples t₀ + i·``period`` of the recorded series.
+        Raises ValueError when neither is available.
+        """
+        if period is None:
+            ev = [e for e in self.events if e.kind == "section"]
+            if not ev:
+                raise ValueError("the run logged no section events: give period= for a stroboscopic section")
+            return np.array([e.t for e in ev]), np.column_stack([np.asarray(e.y, float) for e in ev])
+        if not (np.isfinite(period) and period > 0):
+            raise ValueError(f"period must be > 0, got {period!r}")
+        ts = self.t[0] + period * np.arange(int(np.floor((self.t[-1] - self.t[0]) / period)) + 1)
+        return ts, self.at(ts).reshape(self.y.shape[0], -1)
+
+    def plot(self, kind: str = "overview", *, phase: tuple[int, int] = (0, 1), period: float | None = None,
+             units=None, fig=None):
+        """Draw the run with matplotlib and return the Figure.
+
+        Parameters
+        ----------
+        kind : {"overview", "poincare"}
+            ``"overview"``: the time series of every state and a phase portrait (section
+            events marked); ``"poincare"``: the Poincaré section (see :meth:`section_points`).
+        phase : (int, int)
+            The two state components of the phase plane (default the first two).
+        period : float, optional
+            Strobe period for ``"poincare"`` (default: the logged section events).
+        units : mapping, optional
+            State name → unit for the axis labels.
+        fig : matplotlib Figure, optional
+            Draw into this figure instead of a new one.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+        """
+        from matplotlib.figure import Figure  # lazy: plotting is optional for the simulation layer
+
+        if kind not in ("overview", "poincare"):
+            raise ValueError(f"kind must be 'overview' or 'poincare', got {kind!r}")
+        names = self._names()
+        units = dict(units or {})
+
+        def label(i: int) -> str:
+            u = units.get(names[i])
+            return f"{names[i]} [{u}]" if u else names[i]
+
+        i0, i1 = (int(phase[0]), int(phase[1])) if len(names) > 1 else (0, 0)
+        if not (0 <= i0 < len(names) and 0 <= i1 < len(names)):
+            raise ValueError(f"phase components {phase!r} out of range for {len(names)} states")
+        fig = fig if fig is not None else Figure(figsize=(10, 4.5), layout="constrained")
+        title = f"{self.model} — {self.status.value}"
+        if kind == "poincare":
+            ts, ys = self.section_points(period)
+            ax = fig.add_subplot(1, 1, 1)
+            ax.plot(ys[i0], ys[i1], ".", ms=3)
+            ax.set_xlabel(label(i0))
+            ax.set_ylabel(label(i1))
+            ax.set_title(f"Poincaré section ({len(ts)} points) — {title}")
+            return fig
+        n = len(names)
+        gs = fig.add_gridspec(n, 2)
+        for i in range(n):
+            ax = fig.add_subplot(gs[i, 0])
+            ax.plot(self.t, self.y[i], lw=0.8)
+            ax.set_ylabel(label(i))
+            if i < n - 1:
+                ax.tick_params(labelbottom=False)
+        tu = units.get("t", "s")
+        ax.set_xlabel("t" if tu == "1" else f"t [{tu}]")
+        ax = fig.add_subplot(gs[:, 1])
+        if n >= 2:
+            ax.plot(self.y[i0], self.y[i1], lw=0.6)
+            sec = [e for e in self.events if e.kind == "section"]
+            if sec:
+                ax.plot([e.y[i0] for e in sec], [e.y[i1] for e in sec], ".", ms=4, label="section")
+                ax.legend(loc="best")
+            ax.set_xlabel(label(i0))
+            ax.set_ylabel(label(i1))
+        ax.set_title(title)
+        return fig
+
+    def to_csv(self, path, units=None):
+        """Write the time series as CSV (header ``t [s], name [unit], ...``), atomically."""
+        from landau.io import atomic_write_text
+
+        units = dict(units or {})
+        names = self._names()
+        tu = units.get("t", "s")
+        head = ["t" if tu == "1" else f"t [{tu}]"] + [f"{nm} [{units[nm]}]" if units.get(nm) else nm for nm in names]
+        rows = np.column_stack([self.t, self.y.T])
+        lines = [",".join(head)] + [",".join(repr(float(v)) for v in r) for r in rows]
+        return atomic_write_text(path, "\n".join(lines) + "\n")
+
+    def to_npz(self, path):
+        """Write ``t``, ``y``, ``state_names``, event times/guards and the status as ``.npz``, atomically."""
+        from landau.io import atomic_write
+
+        arrays = dict(t=self.t, y=self.y, state_names=np.array(self._names()), model=np.array(self.model),
+                      status=np.array(self.status.value), t_final=np.array(self.t_final),
+                      y_final=np.asarray(self.y_final, float),
+                      event_t=np.array([e.t for e in self.events], float),
+                      event_guard=np.array([e.guard for e in self.events], str))
+        return atomic_write(path, lambda fh: np.savez(fh, **arrays), mode="wb")
+
+    def _repr_html_(self) -> str:
+        from html import escape
+
+        names = self._names()
+        span = f"[{self.t[0]:.6g}, {self.t[-1]:.6g}]" if len(self.t) else f"up to {self.t_final:.6g}"
+        final = ", ".join(f"{nm} = {float(v):.6g}" for nm, v in zip(names, np.ravel(self.y_final)))
+        rows = [("model", self.model), ("status", f"{self.status.value}: {self.message}"), ("t span", span),
+                ("points", str(len(self.t))), ("events", str(len(self.events))), ("final state", final)]
+        body = "".join(f"<tr><th style='text-align:left'>{escape(k)}</th><td style='text-align:left'>"
+                       f"{escape(v)}</td></tr>" for k, v in rows)
+        return f"<table><caption>Simulation</caption>{body}</table>"
+
     def __repr__(self) -> str:
         return (f"Simulation({self.model}, {self.status.value}, t_final={self.t_final:.6g}, "
                 f"{len(self.t)} points, {len(self.events)} events, {self.nsteps} steps, {self.nfev} fev)")
