@@ -42,13 +42,12 @@ from dataclasses import dataclass
 from typing import Any, Mapping
 
 import mpmath
-import numpy as np
 import sympy as sp
 
-from landau.cx import Cx, as_expr
+from landau.cx import as_expr
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.fredholm import _pencil, best_drop, linear_coefficient, null_vectors, quintic_coefficient
-from landau.hopf import GENERAL, SPRING_BLOCK, HopfResult
+from landau.hopf import GENERAL, HopfResult
 from landau.jets import Jets
 from landau.lyapunov import _NumericJets
 from landau.system import DynamicalSystem

@@ -506,7 +506,6 @@ class FrictionLaw:
     @cached_property
     def _reality_exprs(self):
         args = [v, *self.states, *(p.symbol for p in self.parameters)]
-        out = []
         exprs = []
         for label, e in [("mu", self.mu), *((f"d{s}/dt", r) for s, r in zip(self.states, self.rates))]:
             exprs.append((label, e))
