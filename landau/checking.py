@@ -273,11 +273,16 @@ def _numeric_field(system, params: Mapping[str, float]):
     args = [*system.states, system.parameter, *system.parameters]
     f = sp.lambdify(args, list(system.rhs), "numpy")
     J = sp.lambdify(args, sp.Matrix(system.rhs).jacobian(system.states), "numpy")
-    E = np.array([float(sp.sympify(e).xreplace({s: params[s.name] for s in system.parameters})) for e in system.mass])
-    if np.any(E == 0):
-        raise InputError(f"{system.name}: direct simulation of a differential-algebraic system (zero mass entry) "
-                         "is not supported by the generic check")
-    return f, J, E, vals
+    E_of = sp.lambdify([system.parameter, *system.parameters], system.mass_matrix, "numpy")
+
+    def E_inverse(p: float) -> np.ndarray:
+        E = np.asarray(E_of(p, *vals), dtype=float)
+        if not np.all(np.isfinite(E)) or abs(np.linalg.det(E)) < 1e-300 or np.linalg.cond(E) > 1e14:
+            raise InputError(f"{system.name}: direct simulation needs an invertible mass matrix E; a "
+                             "differential-algebraic system (singular E) is not supported by the generic check")
+        return np.linalg.inv(E)
+
+    return f, J, E_inverse, vals
 
 
 def _shoot(rhs, jac, y0: np.ndarray, T0: float, anchor_f: np.ndarray, rtol: float):
@@ -339,13 +344,14 @@ def _check_system(system, params: Mapping[str, float], bracket, eps2: float, tol
         return CheckResult(p=p, amplitude_predicted=A, amplitude_simulated=None, rel_error=None, frequency_predicted=w,
                            frequency_simulated=None, frequency_rel_error=None, verdict=Verdict.OUTSIDE_VALIDITY,
                            reason=f"the predicted frequency {w:.3g} rad/s is not positive at eps2 = {eps2:g}", **common)
-    f, J, E, vals = _numeric_field(system, params)
+    f, J, E_inverse, vals = _numeric_field(system, params)
+    Einv = E_inverse(p)
 
     def rhs(t, y):
-        return np.asarray(f(*y, p, *vals), dtype=float) / E
+        return Einv @ np.asarray(f(*y, p, *vals), dtype=float)
 
     def jac(t, y):
-        return np.asarray(J(*y, p, *vals), dtype=float) / E[:, None]
+        return Einv @ np.asarray(J(*y, p, *vals), dtype=float)
 
     import scipy.optimize
 
