@@ -47,6 +47,8 @@ SUPERCRITICAL_TOLERANCE = 0.02
 SUBCRITICAL_TOLERANCE = 0.05
 #: the tolerance scales with ε² above 1e-3 (the remainder is O(ε²)), but never beyond this
 MAX_TOLERANCE = 0.2
+#: |p_c| below which a Hopf point counts as p_c = 0 and ε² is an absolute distance (general systems)
+P_C_ZERO = 1e-9
 
 
 class Verdict(str, enum.Enum):
@@ -329,7 +331,7 @@ def _check_system(system, params: Mapping[str, float], bracket, eps2: float, tol
     pr = hopf_normal_form(system, params, bracket)
     crit = Criticality(str(pr.criticality))
     tol = tolerance if tolerance is not None else default_tolerance(crit, eps2)
-    scale = abs(pr.p_c) if pr.p_c != 0 else 1.0
+    scale = abs(pr.p_c) if abs(pr.p_c) > P_C_ZERO else 1.0   # a Hopf point at p = 0: absolute distance
     common = dict(system=system.name, parameter=pr.parameter, eps2=eps2, prediction=pr, tolerance=tol)
     if crit == Criticality.DEGENERATE or pr.cycle_side == 0:
         return CheckResult(p=pr.p_c, amplitude_predicted=None, amplitude_simulated=None, rel_error=None,
@@ -401,7 +403,8 @@ def check(target, V: float | None = None, eps2: float = 1e-3, params: Mapping[st
     V : float
         Driving velocity [m/s] (spring–block only).
     eps2 : float
-        Relative distance from the Hopf point, ε² = |p − p_c|/|p_c|, in (0, 0.5).  The side is chosen
+        Relative distance from the Hopf point, ε² = |p − p_c|/|p_c|, in (0, 0.5) (absolute distance
+        |p − p_c| for a general system whose Hopf point is at p_c = 0, |p_c| < 1e-9).  The side is chosen
         from the prediction: where the stable (supercritical) or unstable (subcritical) cycle exists.
     params : mapping, optional
         Parameter values (overrides of the law's and system's defaults).
