@@ -49,7 +49,7 @@ from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.fredholm import _pencil, best_drop, linear_coefficient, null_vectors, quintic_coefficient
 from landau.hopf import GENERAL, HopfResult
 from landau.jets import Jets
-from landau.lyapunov import _NumericJets
+from landau.lyapunov import _NumericJets, equilibrium_floats, numeric_values
 from landau.system import DynamicalSystem
 
 
@@ -157,9 +157,8 @@ def quintic_normal_form(system: DynamicalSystem, values: Mapping[str, float], p_
         ``extra["Im_c"]`` (gauge-dependent: h₂₁'s normalised component is 0).
     """
     jets = jets or Jets(system)
-    by_name = {s.name: s for s in (*system.parameters, *system.unknowns)}
     with mpmath.workdps(dps):
-        vals = {by_name[k]: mpmath.mpf(v) for k, v in values.items() if k in by_name}
+        vals = numeric_values(system, values)
         nj = _NumericJets(system, jets, vals, max_order=5)
         fp_s, Jp_s = jets.parameter_derivatives()
         pexprs = [nj.expand(as_expr(x)) for x in fp_s] + [nj.expand(as_expr(x)) for row in Jp_s for x in row]
@@ -204,14 +203,7 @@ def quintic_normal_form(system: DynamicalSystem, values: Mapping[str, float], p_
         vec = null_vectors(J, E, wc, system.normalise, r, c)
         a = linear_coefficient(vec, J, Jp, fp, tens[2])
         bc = quintic_coefficient(vec, J, E, wc, {m: tens[m] for m in (2, 3, 4, 5)}, mpmath.mpf(1))
-        eq = []
-        for e in system.equilibrium:
-            e = as_expr(e).xreplace({system.parameter: sp.Float(str(pc), dps)})
-            e = e.xreplace({s: sp.Float(str(v), dps) for s, v in vals.items()})
-            try:
-                eq.append(float(e))
-            except TypeError:
-                eq.append(float("nan"))
+        eq = equilibrium_floats(system, pc, vals, dps)
         return HopfResult(
             system=system.name, parameter=system.parameter.name, p_c=float(pc), omega_c=float(wc),
             equilibrium=tuple(eq), dlambda_dp=complex(float(a.re), float(a.im)), Lambda=float(2 * bc.b.re),

@@ -211,6 +211,32 @@ def _relocate(nj: _NumericJets, p0, omega_hint, tol) -> Any:
     raise NoHopfError(f"Hopf point not found near p = {float(p0):.6g} (Re λ = {float(gb):.3g})")
 
 
+
+def numeric_values(system: DynamicalSystem, values: Mapping[sp.Symbol | str, Any]) -> dict[sp.Symbol, Any]:
+    """``values`` (by symbol or name) as mpmath numbers keyed by the system's symbols; names the
+    system does not use (e.g. g when σ is given) are dropped."""
+    by_name = {s.name: s for s in (*system.parameters, *system.unknowns)}
+    vals: dict[sp.Symbol, Any] = {}
+    for key, val in values.items():
+        sym = key if isinstance(key, sp.Symbol) else by_name.get(key)
+        if sym is not None:
+            vals[sym] = val if isinstance(val, mpmath.mpf) else mpmath.mpf(val)
+    return vals
+
+
+def equilibrium_floats(system: DynamicalSystem, pc, vals: Mapping[sp.Symbol, Any], dps: int) -> list[float]:
+    """The declared equilibrium at p = p_c and the given values, as floats (NaN where it does not
+    evaluate to a number)."""
+    eq = []
+    for e in system.equilibrium:
+        e = as_expr(e).xreplace({system.parameter: sp.Float(str(pc), dps)})
+        e = e.xreplace({s: sp.Float(str(v), dps) for s, v in vals.items()})
+        try:
+            eq.append(float(e))
+        except TypeError:
+            eq.append(float("nan"))
+    return eq
+
 def first_lyapunov(system: DynamicalSystem, values: Mapping[sp.Symbol | str, Any], p_c: float, *,
                    omega_c: float | None = None, jets: Jets | None = None, dps: int = DEFAULT_DPS,
                    relocate: bool = True, rel_step: float = 1e-5) -> LyapunovResult:
@@ -224,14 +250,8 @@ def first_lyapunov(system: DynamicalSystem, values: Mapping[sp.Symbol | str, Any
     """
     if dps < 30:
         raise InputError(f"dps must be >= 30 for the Kuznetsov check, got {dps}")
-    by_name = {s.name: s for s in (*system.parameters, *system.unknowns)}
-    vals: dict[sp.Symbol, Any] = {}
     with mpmath.workdps(dps):
-        for key, val in values.items():
-            sym = key if isinstance(key, sp.Symbol) else by_name.get(key)
-            if sym is None:
-                continue  # parameters the system does not use (e.g. g when σ is given)
-            vals[sym] = mpmath.mpf(val) if not isinstance(val, mpmath.mpf) else val
+        vals = numeric_values(system, values)
         nj = _NumericJets(system, jets or Jets(system), vals)
         n = nj.n
         pc = _relocate(nj, p_c, omega_c, mpmath.mpf(10) ** (-(dps - 8))) if relocate else mpmath.mpf(p_c)
@@ -444,14 +464,8 @@ def lyapunov_coefficients(system: DynamicalSystem, values: Mapping[sp.Symbol | s
     """
     if dps < 30:
         raise InputError(f"dps must be >= 30 for the Kuznetsov check, got {dps}")
-    by_name = {s.name: s for s in (*system.parameters, *system.unknowns)}
-    vals: dict[sp.Symbol, Any] = {}
     with mpmath.workdps(dps):
-        for key, val in values.items():
-            sym = key if isinstance(key, sp.Symbol) else by_name.get(key)
-            if sym is None:
-                continue
-            vals[sym] = mpmath.mpf(val) if not isinstance(val, mpmath.mpf) else val
+        vals = numeric_values(system, values)
         nj = _NumericJets(system, jets or Jets(system), vals, max_order=5)
         n = nj.n
         pc = _relocate(nj, p_c, omega_c, mpmath.mpf(10) ** (-(dps - 8))) if relocate else mpmath.mpf(p_c)
@@ -476,14 +490,7 @@ def lyapunov_coefficients(system: DynamicalSystem, values: Mapping[sp.Symbol | s
         d2 = (lam(pc + 2 * h) - lam(pc - 2 * h)) / (4 * h)
         dlam = (4 * d1 - d2) / 3
         qx2 = abs(q[system.normalise]) ** 2
-        eq = []
-        for e in system.equilibrium:
-            e = as_expr(e).xreplace({system.parameter: sp.Float(str(pc), dps)})
-            e = e.xreplace({s: sp.Float(str(v), dps) for s, v in vals.items()})
-            try:
-                eq.append(float(e))
-            except TypeError:
-                eq.append(float("nan"))
+        eq = equilibrium_floats(system, pc, vals, dps)
         return HopfResult(
             system=system.name, parameter=system.parameter.name, p_c=float(pc), omega_c=float(om),
             equilibrium=tuple(eq), dlambda_dp=complex(dlam), Lambda=float(2 * mpmath.re(c1) / qx2),
