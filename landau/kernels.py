@@ -41,7 +41,7 @@ _ALLOWED_NODES = (ast.Module, ast.FunctionDef, ast.arguments, ast.arg, ast.Assig
                   ast.Store, ast.Subscript, ast.Slice, ast.Tuple, ast.Constant, ast.BinOp, ast.UnaryOp,
                   ast.Call, ast.Attribute, ast.operator, ast.unaryop, ast.IfExp, ast.Compare, ast.cmpop,
                   ast.BoolOp, ast.boolop)
-_BUILTINS = ("abs", "min", "max", "float")
+ALLOWED_BUILTINS = ("abs", "min", "max", "float")  # the only builtins generated code may call
 
 
 class _Printer(PythonCodePrinter):
@@ -65,7 +65,7 @@ def check_source(src: str) -> None:
                                                     and not node.attr.startswith("_")):
             raise InputError(f"generated code accesses attribute {ast.unparse(node)!r}: refusing to compile it")
         if isinstance(node, ast.Call) and not (isinstance(node.func, ast.Attribute)
-                                               or (isinstance(node.func, ast.Name) and node.func.id in _BUILTINS)):
+                                               or (isinstance(node.func, ast.Name) and node.func.id in ALLOWED_BUILTINS)):
             raise InputError(f"generated code calls {ast.unparse(node.func)!r}: refusing to compile it")
         if isinstance(node, ast.Name) and node.id.startswith("__"):
             raise InputError(f"generated code uses the name {node.id!r}: refusing to compile it")
@@ -179,7 +179,7 @@ def generate_kernel(states: Sequence[sp.Symbol], field: Sequence[sp.Expr], param
         pv = [0.0]  # numba needs a non-empty float64[::1]
     # only whitelisted names exist in the namespace (check_source is the filter; this is the
     # second wall: no other builtins are reachable from the generated code)
-    glb: dict = {"math": math, "__builtins__": {nm: getattr(builtins, nm) for nm in _BUILTINS}}
+    glb: dict = {"math": math, "__builtins__": {nm: getattr(builtins, nm) for nm in ALLOWED_BUILTINS}}
     exec(compile(src, f"<kernel {name}>", "exec"), glb)
     fun = nb.njit(FUN_SIG)(glb["fun"])
     jac = nb.njit(JAC_SIG)(glb["jac"]) if jacobian else None

@@ -225,10 +225,10 @@ def test_codim2_point_from_orbits_matches_engine_vstar():
                                  "import os"])
 def test_generated_code_is_whitelisted_before_exec(src):
     from landau.errors import InputError
-    from landau.verify.springblock.model import _check_generated
+    from landau.kernels import check_source
 
     with pytest.raises(InputError, match="refusing to compile"):
-        _check_generated(src)
+        check_source(src)
 
 
 def test_fig12_bistability_does_not_close_up_at_low_kappa():

@@ -21,7 +21,6 @@ builds the model from (m, κ, V/V_*).
 
 from __future__ import annotations
 
-import ast
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -32,6 +31,7 @@ import sympy as sp
 from sympy.printing.pycode import PythonCodePrinter
 
 from landau.errors import InputError
+from landau.kernels import ALLOWED_BUILTINS, check_source
 from landau.system import SpringBlock
 from landau.laws.law import FrictionLaw, v as v_slip
 from landau.verify.jitcache import load_generated, njit_cached
@@ -101,30 +101,8 @@ def compile_law(law: FrictionLaw) -> CompiledLaw:
     return out
 
 
-_ALLOWED_NODES = (ast.Module, ast.FunctionDef, ast.arguments, ast.arg, ast.Assign, ast.Name, ast.Load, ast.Store,
-                  ast.Subscript, ast.Slice, ast.Tuple, ast.Constant, ast.BinOp, ast.UnaryOp, ast.Call,
-                  ast.Attribute, ast.operator, ast.unaryop, ast.IfExp, ast.Compare, ast.cmpop, ast.BoolOp,
-                  ast.boolop)
-
-
-_BUILTINS = {"abs", "min", "max", "float"}
-
-
-def _check_generated(src: str) -> None:
-    """Whitelist the generated right-hand side before it is compiled: assignments of arithmetic on
-    names and subscripts, and calls of ``math.<function>`` only.  The expressions come from the safe
-    law parser and sympy's printer; this keeps that guarantee local to the one ``exec`` below."""
-    for node in ast.walk(ast.parse(src)):
-        if not isinstance(node, _ALLOWED_NODES):
-            raise InputError(f"generated code contains a {type(node).__name__} node: refusing to compile it")
-        if isinstance(node, ast.Attribute) and not (isinstance(node.value, ast.Name) and node.value.id == "math"
-                                                    and not node.attr.startswith("_")):
-            raise InputError(f"generated code accesses attribute {ast.unparse(node)!r}: refusing to compile it")
-        if isinstance(node, ast.Call) and not (isinstance(node.func, ast.Attribute)
-                                               or (isinstance(node.func, ast.Name) and node.func.id in _BUILTINS)):
-            raise InputError(f"generated code calls {ast.unparse(node.func)!r}: refusing to compile it")
-        if isinstance(node, ast.Name) and node.id.startswith("__"):
-            raise InputError(f"generated code uses the name {node.id!r}: refusing to compile it")
+#: builtins the generated code may call (the whitelist itself is landau.kernels.check_source)
+_BUILTINS = set(ALLOWED_BUILTINS)
 
 
 def _emit(ys, f, Jm, pnames, label):
@@ -144,7 +122,7 @@ def _emit(ys, f, Jm, pnames, label):
             if e != 0:
                 lines_j.append(f"    out[{i}, {j}] = {pr.doprint(e)}")
     src = "\n".join(lines_f) + "\n\n" + "\n".join(lines_j) + "\n"
-    _check_generated(src)
+    check_source(src)
     # only the whitelisted names exist in the namespace (the AST check above is the filter; this is
     # the second wall: no other builtins are reachable from the generated code)
     # the source is kept in a per-user cache file named by its hash, so numba's disk cache
