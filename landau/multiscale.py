@@ -142,13 +142,18 @@ class Coefficient:
             elif self.name in QUINTIC:
                 e = self.expr  # fifth order: too large for cancellation and factoring (seconds become hours)
             else:
-                e = self.expr
-                if all(e.is_rational_function(s) for s in e.free_symbols):
-                    e = sp.factor(sp.cancel(sp.together(e)))
-                elif self.name not in ("kc", "omega_c"):
-                    from landau.rational import closed_form
+                from landau.progress import progress
 
-                    e = closed_form(d, self.name) or e
+                # one status line while the closed form is (re-)derived: a terminal or notebook only
+                with progress(total=1, desc=f"closed form of {self.name}", unit="form") as bar:
+                    e = self.expr
+                    if all(e.is_rational_function(s) for s in e.free_symbols):
+                        e = sp.factor(sp.cancel(sp.together(e)))
+                    elif self.name not in ("kc", "omega_c"):
+                        from landau.rational import closed_form
+
+                        e = closed_form(d, self.name) or e
+                    bar.update()
             self._cache["closed"] = e
         return self._cache["closed"]
 
