@@ -213,14 +213,41 @@ class HopfResult:
         return 0 if s == 0 or not math.isfinite(s) else (-1 if s > 0 else 1)
 
     def amplitude(self, p: float) -> float:
-        """Predicted cycle amplitude max|y_n − y₀,n| at parameter p (NaN on the side without a cycle)."""
+        """Predicted cycle amplitude max|y_n − y₀,n| at parameter p (NaN on the side without a cycle).
+
+        Parameters
+        ----------
+        p : float
+            Value of the bifurcation parameter.
+
+        Returns
+        -------
+        float
+            C·sqrt(|p − p_c|) on the side where the cycle exists, else NaN.
+
+        References
+        ----------
+        Kuznetsov, Y. A. (2004), *Elements of Applied Bifurcation Theory*, 3rd ed., Springer,
+        Section 3.5.
+        """
         d = p - self.p_c
         if self.cycle_side == 0 or d == 0 or (d > 0) != (self.cycle_side > 0):
             return math.nan
         return self.C * math.sqrt(abs(d))
 
     def frequency(self, p: float) -> float:
-        """Predicted cycle angular frequency ω_c + (Im a − χ Re a/Λ)(p − p_c)."""
+        """Predicted cycle angular frequency ω_c + (Im a − χ Re a/Λ)(p − p_c).
+
+        Parameters
+        ----------
+        p : float
+            Value of the bifurcation parameter.
+
+        Returns
+        -------
+        float
+            Angular frequency, rad/s (NaN when Λ = 0).
+        """
         a = self.dlambda_dp
         if self.Lambda == 0:
             return math.nan

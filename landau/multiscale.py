@@ -96,6 +96,21 @@ class Coefficient:
     onset frequency ``omega`` and stiffness ``k`` as symbols; :attr:`expr` is the same
     quantity in terms of V and the parameters; ``coef(V, **params)`` evaluates it
     vectorised (float64, with a 50-digit fallback where ω_c² suffers cancellation).
+
+    Parameters
+    ----------
+    name : str
+        The quantity, one of :data:`ALL_QUANTITIES` (``"kc"``, ``"omega_c"``, ``"Gamma_bar"``,
+        ``"Omega_bar"``, ``"Lambda"``, ``"chi"``, ``"C"``, ``"Lambda5"``).
+    formula : sympy.Expr
+        The formula in the law's derivative atoms.
+    derivation : Derivation
+        The derivation it belongs to (obtain coefficients with :meth:`Derivation.coefficient`).
+
+    References
+    ----------
+    Putelat, T., Dawes, J. H. P. & Willis, J. R. (2010), "Regimes of frictional sliding of a
+    spring–block system", J. Mech. Phys. Solids 58(1), 27–53, eqs (23), (32)–(35), (44)–(45).
     """
 
     name: str
@@ -188,7 +203,21 @@ class Coefficient:
 
 @dataclass(frozen=True)
 class LandauPoint:
-    """Amplitude-equation coefficients at one driving velocity (SI units)."""
+    """Amplitude-equation coefficients at one driving velocity (SI units).
+
+    Parameters
+    ----------
+    V : float
+        Driving velocity, m/s.
+    kc : float
+        Critical stiffness, N/m.
+    omega_c : float
+        Angular frequency at onset, rad/s.
+    values : mapping of str to float
+        The other coefficients by name (e.g. ``"Gamma_bar"``, ``"Lambda"``, ``"C"``).
+    criticality : str
+        ``"supercritical"`` (Λ < 0) or ``"subcritical"`` (Λ > 0).
+    """
 
     V: float
     kc: float
@@ -361,7 +390,20 @@ def criticality(lam: float, scale: float = 0.0) -> str:
 
 
 class Derivation:
-    """Lazy multiple-scales derivation for a :class:`SpringBlock` (see module docstring)."""
+    """Lazy multiple-scales derivation for a :class:`SpringBlock` (see module docstring).
+
+    Each coefficient is derived on first request and kept; :func:`landau.derive` builds one.
+
+    Parameters
+    ----------
+    block : SpringBlock or FrictionLaw or str
+        The system (a law or a built-in law's name is wrapped in a :class:`SpringBlock`).
+
+    References
+    ----------
+    Putelat, T., Dawes, J. H. P. & Willis, J. R. (2010), "Regimes of frictional sliding of a
+    spring–block system", J. Mech. Phys. Solids 58(1), 27–53, eqs (23), (32)–(35).
+    """
 
     def __init__(self, block: SpringBlock):
         block = _as_block(block)
@@ -417,6 +459,22 @@ class Derivation:
         return quintic_coefficient(self.vectors, J, E, w, tensors, sp.Integer(1))
 
     def formula(self, name: str) -> sp.Expr:
+        """The quantity ``name`` in the law's derivative atoms (ω and k as symbols).
+
+        Parameters
+        ----------
+        name : str
+            One of :data:`ALL_QUANTITIES`.
+
+        Returns
+        -------
+        sympy.Expr
+
+        Raises
+        ------
+        InputError
+            An unknown quantity.
+        """
         if name == "Lambda5":
             return 2 * self.quintic.c.re
         if name == "kc":
@@ -437,7 +495,17 @@ class Derivation:
         raise InputError(f"unknown quantity {name!r} (known: {', '.join(QUANTITIES)})")
 
     def coefficient(self, name: str) -> Coefficient:
-        """The :class:`Coefficient` ``name`` (one of :data:`QUANTITIES`)."""
+        """The :class:`Coefficient` ``name``, derived on first request.
+
+        Parameters
+        ----------
+        name : str
+            One of :data:`ALL_QUANTITIES`.
+
+        Returns
+        -------
+        Coefficient
+        """
         for base in DERIVED.get(name, ()):
             self.coefficient(base)
         if name not in ALL_QUANTITIES:
@@ -559,7 +627,24 @@ class Derivation:
                 CompiledFormula(W_c, self.args, self.jets.atoms, "mpmath"))
 
     def evaluate_mp(self, V0: float, params: Mapping[str, float], names: Iterable[str], dps: int = 50) -> dict[str, Any]:
-        """The same formulas evaluated at one point with mpmath at ``dps`` digits."""
+        """The same formulas evaluated at one point with mpmath at ``dps`` digits.
+
+        Parameters
+        ----------
+        V0 : float
+            Driving velocity, m/s.
+        params : mapping of str to float
+            Parameter values.
+        names : iterable of str
+            The quantities.
+        dps : int, optional
+            Decimal digits of working precision (default 50).
+
+        Returns
+        -------
+        dict
+            Quantity name -> mpmath value (NaN where there is no Hopf point).
+        """
         p = self.block.resolve(params)
         with mpmath.workdps(dps):
             vals = [mpmath.mpf(x) for x in self.block.argvals(V0, p)]
@@ -606,6 +691,24 @@ class Derivation:
         point whose extended-precision value is certain in sign (its error, estimated from the
         float64–extended difference, below a tenth of its size) keeps that value and is not
         re-evaluated with mpmath; the values returned there may be off by more than 1e-10.
+
+        Parameters
+        ----------
+        Vs : float or array_like
+            Driving velocities, m/s.
+        params : mapping of str to float, optional
+            Parameter overrides (values may be arrays broadcasting against ``Vs``).
+        names : sequence of str, optional
+            The quantities (default k_c, ω_c, Γ̄, Λ).
+        method : {"auto", "general", "rational"}
+            The evaluation route (see above).
+        sign_only : bool, optional
+            Whether only the signs are needed (see above).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            One array per quantity, shaped like the broadcast inputs.
         """
         if method not in ("auto", "general", "rational"):
             raise InputError(f"unknown evaluation method {method!r} (auto, general, rational)")
@@ -808,7 +911,21 @@ class Derivation:
 
     def points(self, Vs, params: Mapping[str, float] | None = None,
                names: Sequence[str] = ("Gamma_bar", "Lambda", "C")) -> list[Any]:
-        """Per-velocity :class:`LandauPoint` (or the linear :class:`HopfPoint` when there is no Hopf point)."""
+        """Per-velocity :class:`LandauPoint` (or the linear :class:`HopfPoint` when there is no Hopf point).
+
+        Parameters
+        ----------
+        Vs : float or sequence of float
+            Driving velocities, m/s.
+        params : mapping of str to float, optional
+            Parameter overrides.
+        names : sequence of str, optional
+            The coefficients to evaluate (default Γ̄, Λ, C).
+
+        Returns
+        -------
+        list of LandauPoint or HopfPoint
+        """
         Vs = np.atleast_1d(np.asarray(Vs, dtype=float))
         res = self.evaluate(Vs, params, ["kc", "omega_c", *names])
         lin = None
