@@ -1,6 +1,7 @@
 """The public API has numpydoc docstrings: Parameters (and Returns) sections the API reference renders."""
 
 import enum
+import importlib
 import inspect
 import re
 
@@ -17,10 +18,29 @@ def _has_section(doc: str, title: str) -> bool:
     return re.search(rf"^\s*{title}\s*\n\s*-{{3,}}\s*$", doc or "", re.MULTILINE) is not None
 
 
+VERIFY_ENTRY_POINTS = (
+    "landau.verify.springblock.checks.predict",
+    "landau.verify.springblock.checks.supercritical_check",
+    "landau.verify.springblock.checks.subcritical_check",
+    "landau.verify.springblock.integrate",
+    "landau.verify.hybrid.simulate",
+    "landau.verify.galvanetto.model.one_block",
+    "landau.verify.galvanetto.model.two_blocks",
+    "landau.verify.galvanetto.model.build_model",
+    "landau.verify.lancioni.model.build",
+    "landau.verify.lancioni.slip.slip_hopf",
+    "landau.verify.skurativskyi.simulate.run",
+)
+
+
 def _public_api():
     names = [(f"landau.{n}", getattr(landau, n)) for n in landau.__all__ if not n.startswith("_")]
     names += [(f"landau.laws.{n}", getattr(landau.laws, n)) for n in getattr(landau.laws, "__all__", ())]
     names += [("landau.checking.check", check), ("landau.testing.assert_prediction", assert_prediction)]
+    # the simulation and check entry points of the API reference (docs/api/verify.md)
+    for path in VERIFY_ENTRY_POINTS:
+        module, _, attr = path.rpartition(".")
+        names.append((path, getattr(importlib.import_module(module), attr)))
     out = []
     for qual, obj in names:
         if inspect.isclass(obj):
