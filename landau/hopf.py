@@ -255,7 +255,12 @@ class HopfResult:
 
     # --- rendering ----------------------------------------------------------------------
     def amplitude_equation(self) -> str:
-        """The amplitude equation with this result's numbers, its criticality and convention."""
+        """The amplitude equation with this result's numbers, its criticality and convention.
+
+        Returns
+        -------
+        str
+        """
         a, b = self.dlambda_dp, complex(self.Lambda / 2, self.chi / 2)
         eq = f"dA/dT = ({_fmt(a)})({self.parameter} - {_fmt(self.p_c, 10)}) A + ({_fmt(b)}) A|A|^2"
         if self.Lambda5 is not None:
@@ -263,7 +268,12 @@ class HopfResult:
         return f"{eq}   [{self.criticality}; {self.convention.normalisation}]"
 
     def as_dict(self) -> dict[str, Any]:
-        """JSON-ready fields (complex numbers split into real and imaginary parts)."""
+        """JSON-ready fields (complex numbers split into real and imaginary parts).
+
+        Returns
+        -------
+        dict
+        """
         out: dict[str, Any] = {
             "system": self.system, "parameter": self.parameter, "p_c": self.p_c, "omega_c": self.omega_c,
             "equilibrium": list(self.equilibrium), "dRe_lambda_dp": self.dlambda_dp.real,

@@ -94,6 +94,13 @@ class HopfPoint:
     weakening: str = ""
 
     def as_dict(self) -> dict[str, Any]:
+        """The point as JSON-ready fields.
+
+        Returns
+        -------
+        dict
+            V and status; k_c and ω_c, or the reason there is no Hopf point; the steady state.
+        """
         d: dict[str, Any] = {"V": self.V, "status": self.status}
         if self.status == "ok":
             d.update(kc=self.kc, omega_c=self.omega_c)

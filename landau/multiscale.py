@@ -120,10 +120,12 @@ class Coefficient:
 
     @property
     def symbol(self) -> str:
+        """The LaTeX symbol (e.g. ``\\Lambda``)."""
         return ALL_QUANTITIES[self.name][0]
 
     @property
     def units(self) -> str:
+        """SI units of the coefficient."""
         return UNITS[self.name]
 
     @property
@@ -148,7 +150,18 @@ class Coefficient:
         derivatives at steady sliding are rational in V and the parameters (Dieterich, Ruina)
         is re-derived in the field ℚ(V, parameters)(ω_c) (:func:`landau.rational.closed_form`:
         FLINT polynomials, well under a second; cached on disk); otherwise the unsimplified
-        :attr:`expr` is returned."""
+        :attr:`expr` is returned.
+
+        Returns
+        -------
+        sympy.Expr
+            The coefficient in V and the law's parameters.
+
+        Raises
+        ------
+        InputError
+            The Hopf line has no closed form (a numeric Hopf line).
+        """
         if "closed" not in self._cache:
             d = self.derivation
             if self.name in DERIVED:
@@ -176,7 +189,18 @@ class Coefficient:
         """The coefficient as LaTeX (an ``aligned`` block, long lines split, paper symbols):
         the factored closed form in V and the parameters when the law's derivatives at steady
         sliding are rational (computed once, cached on disk), else the form in those
-        derivatives (:func:`landau.latex.coefficient_latex`)."""
+        derivatives (:func:`landau.latex.coefficient_latex`).
+
+        Returns
+        -------
+        str
+            LaTeX for a math environment.
+
+        Raises
+        ------
+        InputError
+            For the quintic coefficient (too large to print).
+        """
         if self.name in QUINTIC:
             raise InputError(f"{self.name}: the fifth-order closed form is too large to print; "
                              "evaluate it (Derivation.evaluate) or use .formula (in the law's derivatives)")
@@ -229,6 +253,12 @@ class LandauPoint:
         return {"V": self.V, "kc": self.kc, "omega_c": self.omega_c, **self.values}[key]
 
     def amplitude_equation(self) -> str:
+        """The amplitude equation with this point's Λ and its criticality.
+
+        Returns
+        -------
+        str
+        """
         lam = self.values.get("Lambda")
         if lam is None:
             return "Lambda not computed"
@@ -236,6 +266,13 @@ class LandauPoint:
                 f"{self.criticality} (Lambda < 0: supercritical)")
 
     def as_dict(self) -> dict[str, Any]:
+        """The point as JSON-ready fields.
+
+        Returns
+        -------
+        dict
+            V, k_c, ω_c, the coefficients by name and the criticality.
+        """
         return {"V": self.V, "kc": self.kc, "omega_c": self.omega_c, **self.values, "criticality": self.criticality}
 
     def __repr__(self) -> str:

@@ -136,6 +136,7 @@ class Parameter:
 
     @property
     def symbol(self) -> sp.Symbol:
+        """The sympy symbol (declared positive, or real)."""
         return sp.Symbol(self.name, positive=True) if self.positive else sp.Symbol(self.name, real=True)
 
     def __repr__(self) -> str:
@@ -328,9 +329,17 @@ class FrictionLaw:
     # --- parameters ---------------------------------------------------------------
     @property
     def v(self) -> sp.Symbol:
+        """The slip-rate symbol v."""
         return v
 
     def defaults(self) -> dict[str, float]:
+        """The parameters' default values.
+
+        Returns
+        -------
+        dict of str to float
+            By parameter name (parameters without a default are left out).
+        """
         return {p.name: p.default for p in self.parameters if p.default is not None}
 
     def parameter(self, name: str) -> Parameter:
@@ -596,7 +605,18 @@ class FrictionLaw:
         return [(label, sp.lambdify(args, e, modules="numpy")) for label, e in exprs]
 
     def mu_ss(self) -> sp.Expr:
-        """Steady-state friction coefficient μ_ss(v) (closed form)."""
+        """Steady-state friction coefficient μ_ss(v) (closed form).
+
+        Returns
+        -------
+        sympy.Expr
+            μ_ss in v and the parameters.
+
+        Raises
+        ------
+        InputError
+            The law's steady state has no closed form.
+        """
         ss = self.steady_state_closed_form
         if ss is None:
             raise InputError(f"law {self.name!r}: no closed-form steady state; use numeric evaluation")
@@ -604,6 +624,12 @@ class FrictionLaw:
 
     # --- display ------------------------------------------------------------------
     def latex(self) -> str:
+        """The law (μ and the state rates) as one line of LaTeX.
+
+        Returns
+        -------
+        str
+        """
         lines = [rf"\mu = {sp.latex(self.mu)}"]
         for s, r in zip(self.states, self.rates):
             lines.append(rf"\frac{{d{sp.latex(s)}}}{{dt}} = {sp.latex(r)}")

@@ -121,6 +121,7 @@ class Simulation:
 
     @property
     def success(self) -> bool:
+        """Whether the run reached its end time (or a requested stop)."""
         return self.status.success
 
     def at(self, times) -> np.ndarray:
