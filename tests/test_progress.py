@@ -66,3 +66,16 @@ def test_closed_form_shows_a_status_line_on_a_terminal(monkeypatch):
     d = derive("dieterich", ["kc", "omega_c", "Gamma_bar"])
     d.coefficient("Gamma_bar").closed_form()
     assert "closed form of Gamma_bar" in fake_terminal.getvalue()
+
+
+def test_simulate_shows_a_status_line_on_a_terminal_and_none_with_json(monkeypatch, capsys, tmp_path):
+    fake_terminal = _fake_terminal(monkeypatch)
+    argv = ["simulate", "galvanetto-one-block", "--t-end", "6", "--out", str(tmp_path / "run.csv")]
+    assert main(argv) == 0
+    assert "simulate galvanetto-one-block" in fake_terminal.getvalue()
+    capsys.readouterr()
+    fake_terminal.truncate(0)
+    fake_terminal.seek(0)
+    assert main(argv + ["--json"]) == 0
+    assert fake_terminal.getvalue() == ""
+    assert json.loads(capsys.readouterr().out)["status"] == "finished"
