@@ -437,6 +437,11 @@ class FrictionLaw:
     def steady_state_values(self, vs, params: Mapping[str, float]) -> np.ndarray:
         """φᵢ,ss at slip rates ``vs`` (any shape), shape (number of states, *vs.shape).
 
+        The closed form where there is one; otherwise every positive root of dφ/dt = 0 is
+        found numerically at each point, and the one that is *stable* at fixed slip rate
+        (every eigenvalue of ∂(dφ/dt)/∂φ has a negative real part — the state relaxes to it,
+        so it is the steady sliding the spring–block settles on) is chosen.
+
         Parameters
         ----------
         vs : float or array_like
@@ -448,11 +453,6 @@ class FrictionLaw:
         -------
         numpy.ndarray
             The steady states, shape (number of states, *vs.shape).
-
-        The closed form where there is one; otherwise every positive root of dφ/dt = 0 is
-        found numerically at each point, and the one that is *stable* at fixed slip rate
-        (every eigenvalue of ∂(dφ/dt)/∂φ has a negative real part — the state relaxes to it,
-        so it is the steady sliding the spring–block settles on) is chosen.
 
         Raises
         ------
