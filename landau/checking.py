@@ -155,13 +155,23 @@ class CheckResult:
 
     @property
     def agrees(self) -> bool:
+        """Whether the verdict is :attr:`Verdict.AGREES`."""
         return self.verdict is Verdict.AGREES
 
     @property
     def criticality(self) -> Criticality:
+        """The predicted criticality (from the sign of Λ)."""
         return self.prediction.criticality
 
     def as_dict(self) -> dict[str, Any]:
+        """The result as JSON-ready fields.
+
+        Returns
+        -------
+        dict
+            Predicted and simulated amplitude and frequency, errors, tolerance, verdict and
+            the range of validity.
+        """
         out = {"system": self.system, "parameter": self.parameter, "p": self.p, "eps2": self.eps2,
                "p_c": self.prediction.p_c, "criticality_predicted": str(self.criticality),
                "amplitude_predicted": self.amplitude_predicted, "amplitude_simulated": self.amplitude_simulated,
@@ -175,7 +185,12 @@ class CheckResult:
         return out
 
     def summary(self) -> str:
-        """One line: what was compared and the verdict."""
+        """One line: what was compared and the verdict.
+
+        Returns
+        -------
+        str
+        """
         return (f"{self.system}: {self.criticality} Hopf at {self.parameter}_c = {self.prediction.p_c:.8g}; "
                 f"eps2 = {self.eps2:.3g}: amplitude {_fmt(self.amplitude_simulated)} simulated vs "
                 f"{_fmt(self.amplitude_predicted)} predicted ({_fmt(self.rel_error, '+.2%') if self.rel_error is not None else '—'}, "

@@ -213,14 +213,41 @@ class HopfResult:
         return 0 if s == 0 or not math.isfinite(s) else (-1 if s > 0 else 1)
 
     def amplitude(self, p: float) -> float:
-        """Predicted cycle amplitude max|y_n − y₀,n| at parameter p (NaN on the side without a cycle)."""
+        """Predicted cycle amplitude max|y_n − y₀,n| at parameter p (NaN on the side without a cycle).
+
+        Parameters
+        ----------
+        p : float
+            Value of the bifurcation parameter.
+
+        Returns
+        -------
+        float
+            C·sqrt(|p − p_c|) on the side where the cycle exists, else NaN.
+
+        References
+        ----------
+        Kuznetsov, Y. A. (2004), *Elements of Applied Bifurcation Theory*, 3rd ed., Springer,
+        Section 3.5.
+        """
         d = p - self.p_c
         if self.cycle_side == 0 or d == 0 or (d > 0) != (self.cycle_side > 0):
             return math.nan
         return self.C * math.sqrt(abs(d))
 
     def frequency(self, p: float) -> float:
-        """Predicted cycle angular frequency ω_c + (Im a − χ Re a/Λ)(p − p_c)."""
+        """Predicted cycle angular frequency ω_c + (Im a − χ Re a/Λ)(p − p_c).
+
+        Parameters
+        ----------
+        p : float
+            Value of the bifurcation parameter.
+
+        Returns
+        -------
+        float
+            Angular frequency, rad/s (NaN when Λ = 0).
+        """
         a = self.dlambda_dp
         if self.Lambda == 0:
             return math.nan
@@ -228,7 +255,12 @@ class HopfResult:
 
     # --- rendering ----------------------------------------------------------------------
     def amplitude_equation(self) -> str:
-        """The amplitude equation with this result's numbers, its criticality and convention."""
+        """The amplitude equation with this result's numbers, its criticality and convention.
+
+        Returns
+        -------
+        str
+        """
         a, b = self.dlambda_dp, complex(self.Lambda / 2, self.chi / 2)
         eq = f"dA/dT = ({_fmt(a)})({self.parameter} - {_fmt(self.p_c, 10)}) A + ({_fmt(b)}) A|A|^2"
         if self.Lambda5 is not None:
@@ -236,7 +268,12 @@ class HopfResult:
         return f"{eq}   [{self.criticality}; {self.convention.normalisation}]"
 
     def as_dict(self) -> dict[str, Any]:
-        """JSON-ready fields (complex numbers split into real and imaginary parts)."""
+        """JSON-ready fields (complex numbers split into real and imaginary parts).
+
+        Returns
+        -------
+        dict
+        """
         out: dict[str, Any] = {
             "system": self.system, "parameter": self.parameter, "p_c": self.p_c, "omega_c": self.omega_c,
             "equilibrium": list(self.equilibrium), "dRe_lambda_dp": self.dlambda_dp.real,

@@ -56,6 +56,30 @@ class HopfPoint:
 
     k_c (eq. 7) is the critical stiffness: steady sliding is unstable for k < k_c;
     ω_c (eq. 8) the angular frequency at onset.  ``status`` is "ok" or "no-hopf".
+
+    Parameters
+    ----------
+    V : float
+        Driving velocity, m/s.
+    status : str
+        ``"ok"`` (a Hopf point) or ``"no-hopf"``.
+    kc : float
+        Critical stiffness k_c, N/m (NaN without a Hopf point).
+    omega_c : float
+        Angular frequency at onset ω_c, rad/s (NaN without a Hopf point).
+    phi_ss : tuple of float
+        The state variables at steady sliding.
+    mu_ss, dmu_ss : float
+        Steady-state friction coefficient μ_ss(V) and its slope dμ_ss/dV (s/m).
+    reason : str
+        Why there is no Hopf point (empty when there is one).
+    weakening : str
+        Where the law is velocity weakening, as a sentence.
+
+    References
+    ----------
+    Putelat, T., Dawes, J. H. P. & Willis, J. R. (2010), "Regimes of frictional sliding of a
+    spring–block system", J. Mech. Phys. Solids 58(1), 27–53, eqs (7)–(8).
     """
 
     V: float
@@ -70,6 +94,13 @@ class HopfPoint:
     weakening: str = ""
 
     def as_dict(self) -> dict[str, Any]:
+        """The point as JSON-ready fields.
+
+        Returns
+        -------
+        dict
+            V and status; k_c and ω_c, or the reason there is no Hopf point; the steady state.
+        """
         d: dict[str, Any] = {"V": self.V, "status": self.status}
         if self.status == "ok":
             d.update(kc=self.kc, omega_c=self.omega_c)
@@ -97,7 +128,20 @@ class HopfPoint:
 
 
 class HopfLine:
-    """The Hopf line of a :class:`SpringBlock`: k_c(V) and ω_c(V), symbolic and compiled."""
+    """The Hopf line of a :class:`SpringBlock`: k_c(V) and ω_c(V), symbolic and compiled.
+
+    Parameters
+    ----------
+    block : SpringBlock
+        The mechanical system.
+    jets : Jets, optional
+        Derivatives of its vector field (shared with a :class:`Derivation`); built when omitted.
+
+    References
+    ----------
+    Putelat, T., Dawes, J. H. P. & Willis, J. R. (2010), "Regimes of frictional sliding of a
+    spring–block system", J. Mech. Phys. Solids 58(1), 27–53, eqs (7)–(8).
+    """
 
     def __init__(self, block: SpringBlock, jets: Jets | None = None):
         self.block = block
@@ -198,8 +242,18 @@ class HopfLine:
                 CompiledFormula(re, (W, *self.args), atoms, "mpmath"), CompiledFormula(q2, (W, *self.args), atoms, "mpmath"))
 
     def numeric_point_mp(self, vals: Sequence[Any]) -> tuple[Any, Any]:
-        """(k_c, ω_c²) of the n-state route at the working mpmath precision (``vals``: mpf
-        arguments); (nan, nan) when there is no Hopf point."""
+        """(k_c, ω_c²) of the n-state route at the working mpmath precision.
+
+        Parameters
+        ----------
+        vals : sequence of mpmath.mpf
+            Values of :attr:`args` (the driving velocity and the parameters).
+
+        Returns
+        -------
+        tuple of mpmath.mpf
+            (k_c, ω_c²); (nan, nan) when there is no Hopf point.
+        """
         import mpmath
 
         coeffs, fre, fq2 = self._compiled_poly_mp
@@ -248,6 +302,21 @@ class HopfLine:
 
         ``method="polynomial"`` forces the general n-state route (roots of the Hopf
         polynomial in ω²) even when a closed form exists.
+
+        Parameters
+        ----------
+        Vs : float or sequence of float
+            Driving velocities, m/s.
+        params : mapping of str to float, optional
+            Parameter overrides (defaults: :meth:`SpringBlock.resolve`); values may be arrays.
+        method : {"auto", "polynomial"}
+            The route (see above).
+
+        Returns
+        -------
+        kc, omega_c : numpy.ndarray
+            Critical stiffness (N/m) and onset angular frequency (rad/s), NaN where there is no
+            Hopf point.
         """
         if method not in ("auto", "polynomial"):
             raise InputError(f"unknown method {method!r}")
@@ -271,7 +340,19 @@ class HopfLine:
         return kcs, oms
 
     def points(self, Vs: Sequence[float] | float, params: Mapping[str, float] | None = None) -> list[HopfPoint]:
-        """One :class:`HopfPoint` per velocity, with the steady state and μ_ss slope."""
+        """One :class:`HopfPoint` per velocity, with the steady state and μ_ss slope.
+
+        Parameters
+        ----------
+        Vs : float or sequence of float
+            Driving velocities, m/s.
+        params : mapping of str to float, optional
+            Parameter overrides (defaults: :meth:`SpringBlock.resolve`).
+
+        Returns
+        -------
+        list of HopfPoint
+        """
         Vs = np.atleast_1d(np.asarray(Vs, dtype=float))
         if np.any(~np.isfinite(Vs)) or np.any(Vs <= 0):
             bad = [x for x in Vs if not (np.isfinite(x) and x > 0)][0]
@@ -307,7 +388,17 @@ class HopfLine:
 
     def weakening_range(self, params: Mapping[str, float] | None = None) -> str:
         """Where the law is velocity weakening (dμ_ss/dV < 0, the necessary condition for a Hopf
-        point), read on a log grid of 301 velocities from 1e-12 to 1e3 m/s, as a sentence."""
+        point), read on a log grid of 301 velocities from 1e-12 to 1e3 m/s, as a sentence.
+
+        Parameters
+        ----------
+        params : mapping of str to float, optional
+            Parameter overrides.
+
+        Returns
+        -------
+        str
+        """
         from landau.errors import LandauError
 
         p = self.block.resolve(params)
@@ -340,9 +431,42 @@ class HopfLine:
         return text
 
     def point(self, V0: float, params: Mapping[str, float] | None = None) -> HopfPoint:
+        """The :class:`HopfPoint` at one velocity.
+
+        Parameters
+        ----------
+        V0 : float
+            Driving velocity, m/s.
+        params : mapping of str to float, optional
+            Parameter overrides.
+
+        Returns
+        -------
+        HopfPoint
+            Its ``status`` is ``"no-hopf"`` where there is no Hopf point.
+        """
         return self.points([V0], params)[0]
 
     def require(self, V0: float, params: Mapping[str, float] | None = None) -> HopfPoint:
+        """The :class:`HopfPoint` at one velocity, which must exist.
+
+        Parameters
+        ----------
+        V0 : float
+            Driving velocity, m/s.
+        params : mapping of str to float, optional
+            Parameter overrides.
+
+        Returns
+        -------
+        HopfPoint
+            With ``status == "ok"``.
+
+        Raises
+        ------
+        NoHopfError
+            No Hopf point at ``V0`` (the message gives the velocity-weakening range).
+        """
         pt = self.point(V0, params)
         if pt.status != "ok":
             raise NoHopfError(f"V = {V0:g} m/s: {pt.reason}; {pt.weakening}")

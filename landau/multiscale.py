@@ -96,6 +96,21 @@ class Coefficient:
     onset frequency ``omega`` and stiffness ``k`` as symbols; :attr:`expr` is the same
     quantity in terms of V and the parameters; ``coef(V, **params)`` evaluates it
     vectorised (float64, with a 50-digit fallback where ω_c² suffers cancellation).
+
+    Parameters
+    ----------
+    name : str
+        The quantity, one of :data:`ALL_QUANTITIES` (``"kc"``, ``"omega_c"``, ``"Gamma_bar"``,
+        ``"Omega_bar"``, ``"Lambda"``, ``"chi"``, ``"C"``, ``"Lambda5"``).
+    formula : sympy.Expr
+        The formula in the law's derivative atoms.
+    derivation : Derivation
+        The derivation it belongs to (obtain coefficients with :meth:`Derivation.coefficient`).
+
+    References
+    ----------
+    Putelat, T., Dawes, J. H. P. & Willis, J. R. (2010), "Regimes of frictional sliding of a
+    spring–block system", J. Mech. Phys. Solids 58(1), 27–53, eqs (23), (32)–(35), (44)–(45).
     """
 
     name: str
@@ -105,10 +120,12 @@ class Coefficient:
 
     @property
     def symbol(self) -> str:
+        """The LaTeX symbol (e.g. ``\\Lambda``)."""
         return ALL_QUANTITIES[self.name][0]
 
     @property
     def units(self) -> str:
+        """SI units of the coefficient."""
         return UNITS[self.name]
 
     @property
@@ -133,7 +150,18 @@ class Coefficient:
         derivatives at steady sliding are rational in V and the parameters (Dieterich, Ruina)
         is re-derived in the field ℚ(V, parameters)(ω_c) (:func:`landau.rational.closed_form`:
         FLINT polynomials, well under a second; cached on disk); otherwise the unsimplified
-        :attr:`expr` is returned."""
+        :attr:`expr` is returned.
+
+        Returns
+        -------
+        sympy.Expr
+            The coefficient in V and the law's parameters.
+
+        Raises
+        ------
+        InputError
+            The Hopf line has no closed form (a numeric Hopf line).
+        """
         if "closed" not in self._cache:
             d = self.derivation
             if self.name in DERIVED:
@@ -142,13 +170,18 @@ class Coefficient:
             elif self.name in QUINTIC:
                 e = self.expr  # fifth order: too large for cancellation and factoring (seconds become hours)
             else:
-                e = self.expr
-                if all(e.is_rational_function(s) for s in e.free_symbols):
-                    e = sp.factor(sp.cancel(sp.together(e)))
-                elif self.name not in ("kc", "omega_c"):
-                    from landau.rational import closed_form
+                from landau.progress import progress
 
-                    e = closed_form(d, self.name) or e
+                # one status line while the closed form is (re-)derived: a terminal or notebook only
+                with progress(total=1, desc=f"closed form of {self.name}", unit="form") as bar:
+                    e = self.expr
+                    if all(e.is_rational_function(s) for s in e.free_symbols):
+                        e = sp.factor(sp.cancel(sp.together(e)))
+                    elif self.name not in ("kc", "omega_c"):
+                        from landau.rational import closed_form
+
+                        e = closed_form(d, self.name) or e
+                    bar.update()
             self._cache["closed"] = e
         return self._cache["closed"]
 
@@ -156,7 +189,18 @@ class Coefficient:
         """The coefficient as LaTeX (an ``aligned`` block, long lines split, paper symbols):
         the factored closed form in V and the parameters when the law's derivatives at steady
         sliding are rational (computed once, cached on disk), else the form in those
-        derivatives (:func:`landau.latex.coefficient_latex`)."""
+        derivatives (:func:`landau.latex.coefficient_latex`).
+
+        Returns
+        -------
+        str
+            LaTeX for a math environment.
+
+        Raises
+        ------
+        InputError
+            For the quintic coefficient (too large to print).
+        """
         if self.name in QUINTIC:
             raise InputError(f"{self.name}: the fifth-order closed form is too large to print; "
                              "evaluate it (Derivation.evaluate) or use .formula (in the law's derivatives)")
@@ -183,7 +227,21 @@ class Coefficient:
 
 @dataclass(frozen=True)
 class LandauPoint:
-    """Amplitude-equation coefficients at one driving velocity (SI units)."""
+    """Amplitude-equation coefficients at one driving velocity (SI units).
+
+    Parameters
+    ----------
+    V : float
+        Driving velocity, m/s.
+    kc : float
+        Critical stiffness, N/m.
+    omega_c : float
+        Angular frequency at onset, rad/s.
+    values : mapping of str to float
+        The other coefficients by name (e.g. ``"Gamma_bar"``, ``"Lambda"``, ``"C"``).
+    criticality : str
+        ``"supercritical"`` (Λ < 0) or ``"subcritical"`` (Λ > 0).
+    """
 
     V: float
     kc: float
@@ -195,6 +253,12 @@ class LandauPoint:
         return {"V": self.V, "kc": self.kc, "omega_c": self.omega_c, **self.values}[key]
 
     def amplitude_equation(self) -> str:
+        """The amplitude equation with this point's Λ and its criticality.
+
+        Returns
+        -------
+        str
+        """
         lam = self.values.get("Lambda")
         if lam is None:
             return "Lambda not computed"
@@ -202,6 +266,13 @@ class LandauPoint:
                 f"{self.criticality} (Lambda < 0: supercritical)")
 
     def as_dict(self) -> dict[str, Any]:
+        """The point as JSON-ready fields.
+
+        Returns
+        -------
+        dict
+            V, k_c, ω_c, the coefficients by name and the criticality.
+        """
         return {"V": self.V, "kc": self.kc, "omega_c": self.omega_c, **self.values, "criticality": self.criticality}
 
     def __repr__(self) -> str:
@@ -356,7 +427,20 @@ def criticality(lam: float, scale: float = 0.0) -> str:
 
 
 class Derivation:
-    """Lazy multiple-scales derivation for a :class:`SpringBlock` (see module docstring)."""
+    """Lazy multiple-scales derivation for a :class:`SpringBlock` (see module docstring).
+
+    Each coefficient is derived on first request and kept; :func:`landau.derive` builds one.
+
+    Parameters
+    ----------
+    block : SpringBlock or FrictionLaw or str
+        The system (a law or a built-in law's name is wrapped in a :class:`SpringBlock`).
+
+    References
+    ----------
+    Putelat, T., Dawes, J. H. P. & Willis, J. R. (2010), "Regimes of frictional sliding of a
+    spring–block system", J. Mech. Phys. Solids 58(1), 27–53, eqs (23), (32)–(35).
+    """
 
     def __init__(self, block: SpringBlock):
         block = _as_block(block)
@@ -412,6 +496,22 @@ class Derivation:
         return quintic_coefficient(self.vectors, J, E, w, tensors, sp.Integer(1))
 
     def formula(self, name: str) -> sp.Expr:
+        """The quantity ``name`` in the law's derivative atoms (ω and k as symbols).
+
+        Parameters
+        ----------
+        name : str
+            One of :data:`ALL_QUANTITIES`.
+
+        Returns
+        -------
+        sympy.Expr
+
+        Raises
+        ------
+        InputError
+            An unknown quantity.
+        """
         if name == "Lambda5":
             return 2 * self.quintic.c.re
         if name == "kc":
@@ -432,7 +532,17 @@ class Derivation:
         raise InputError(f"unknown quantity {name!r} (known: {', '.join(QUANTITIES)})")
 
     def coefficient(self, name: str) -> Coefficient:
-        """The :class:`Coefficient` ``name`` (one of :data:`QUANTITIES`)."""
+        """The :class:`Coefficient` ``name``, derived on first request.
+
+        Parameters
+        ----------
+        name : str
+            One of :data:`ALL_QUANTITIES`.
+
+        Returns
+        -------
+        Coefficient
+        """
         for base in DERIVED.get(name, ()):
             self.coefficient(base)
         if name not in ALL_QUANTITIES:
@@ -554,7 +664,24 @@ class Derivation:
                 CompiledFormula(W_c, self.args, self.jets.atoms, "mpmath"))
 
     def evaluate_mp(self, V0: float, params: Mapping[str, float], names: Iterable[str], dps: int = 50) -> dict[str, Any]:
-        """The same formulas evaluated at one point with mpmath at ``dps`` digits."""
+        """The same formulas evaluated at one point with mpmath at ``dps`` digits.
+
+        Parameters
+        ----------
+        V0 : float
+            Driving velocity, m/s.
+        params : mapping of str to float
+            Parameter values.
+        names : iterable of str
+            The quantities.
+        dps : int, optional
+            Decimal digits of working precision (default 50).
+
+        Returns
+        -------
+        dict
+            Quantity name -> mpmath value (NaN where there is no Hopf point).
+        """
         p = self.block.resolve(params)
         with mpmath.workdps(dps):
             vals = [mpmath.mpf(x) for x in self.block.argvals(V0, p)]
@@ -601,6 +728,24 @@ class Derivation:
         point whose extended-precision value is certain in sign (its error, estimated from the
         float64–extended difference, below a tenth of its size) keeps that value and is not
         re-evaluated with mpmath; the values returned there may be off by more than 1e-10.
+
+        Parameters
+        ----------
+        Vs : float or array_like
+            Driving velocities, m/s.
+        params : mapping of str to float, optional
+            Parameter overrides (values may be arrays broadcasting against ``Vs``).
+        names : sequence of str, optional
+            The quantities (default k_c, ω_c, Γ̄, Λ).
+        method : {"auto", "general", "rational"}
+            The evaluation route (see above).
+        sign_only : bool, optional
+            Whether only the signs are needed (see above).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            One array per quantity, shaped like the broadcast inputs.
         """
         if method not in ("auto", "general", "rational"):
             raise InputError(f"unknown evaluation method {method!r} (auto, general, rational)")
@@ -803,7 +948,21 @@ class Derivation:
 
     def points(self, Vs, params: Mapping[str, float] | None = None,
                names: Sequence[str] = ("Gamma_bar", "Lambda", "C")) -> list[Any]:
-        """Per-velocity :class:`LandauPoint` (or the linear :class:`HopfPoint` when there is no Hopf point)."""
+        """Per-velocity :class:`LandauPoint` (or the linear :class:`HopfPoint` when there is no Hopf point).
+
+        Parameters
+        ----------
+        Vs : float or sequence of float
+            Driving velocities, m/s.
+        params : mapping of str to float, optional
+            Parameter overrides.
+        names : sequence of str, optional
+            The coefficients to evaluate (default Γ̄, Λ, C).
+
+        Returns
+        -------
+        list of LandauPoint or HopfPoint
+        """
         Vs = np.atleast_1d(np.asarray(Vs, dtype=float))
         res = self.evaluate(Vs, params, ["kc", "omega_c", *names])
         lin = None

@@ -54,21 +54,40 @@ def _as_sympy(x, what: str) -> sp.Expr:
 class DynamicalSystem:
     """E·ẏ = f(y; p, q) with Hopf parameter p and other parameters q (all sympy).
 
-    Subclass contract / fields
-    --------------------------
-    states : state symbols y.
-    rhs : f(y), one expression per state.
-    mass : E, either its diagonal (n expressions; 1 for an ODE row, 0 for an algebraic row) or
+    Parameters
+    ----------
+    name : str
+        A short name (used in reprs and cache keys).
+    states : tuple of sympy.Symbol
+        The state symbols y.
+    rhs : tuple of sympy.Expr
+        f(y), one expression per state.
+    mass : tuple of sympy.Expr or sympy.Matrix
+        E, either its diagonal (n expressions; 1 for an ODE row, 0 for an algebraic row) or
         the full n×n matrix (n rows of n expressions, or a sympy Matrix); entries may depend on
         the parameters and on the Hopf parameter p (E(p)), not on the states.
-    parameter : the Hopf (bifurcation) parameter p.
-    equilibrium : y₀ as expressions of the other parameters (and of ``unknowns``); it
+    parameter : sympy.Symbol
+        The Hopf (bifurcation) parameter p.
+    equilibrium : tuple of sympy.Expr
+        y₀ as expressions of the other parameters (and of ``unknowns``); it
         must not depend on p — or, if it does, the engine accounts for it.
-    defaults : default values of the other parameters, by name.
-    normalise : index of the state whose component of the critical eigenvector is 1
+    defaults : mapping of str to float, optional
+        Default values of the other parameters, by name (plain ints are accepted).
+    normalise : int, optional
+        Index of the state whose component of the critical eigenvector is 1
         (fixes the normalisation of the Landau coefficient Λ).
-    unknowns / unknown_equations : equilibrium pieces with no closed form, defined by
-        ``unknown_equations = 0`` (solved numerically at each evaluation point).
+    unknowns, unknown_equations : tuple of sympy.Symbol, tuple of sympy.Expr, optional
+        Equilibrium pieces with no closed form, defined by ``unknown_equations = 0``
+        (solved numerically at each evaluation point).
+    unknown_guess : tuple of sympy.Expr, optional
+        Starting values for ``unknowns``.
+    description : str, optional
+        One line describing the system.
+
+    References
+    ----------
+    Kuznetsov, Y. A. (2004), *Elements of Applied Bifurcation Theory*, 3rd ed., Springer,
+    Section 3.5 (the Hopf normal form the engine computes).
     """
 
     name: str
@@ -135,6 +154,16 @@ class SpringBlock:
     σ (normal load) is its own parameter, default M·g with M = 1.2 kg, g = 9.81 m/s²
     (σ = 11.772 N).  Changing M alone changes the inertia only — as the paper's M = 0
     (quasi-static) curves do; give ``g`` or ``sigma`` to change the load.
+
+    Parameters
+    ----------
+    law : FrictionLaw or str
+        The friction law, or a built-in law's name (:func:`landau.laws.get_law`).
+
+    References
+    ----------
+    Putelat, T., Dawes, J. H. P. & Willis, J. R. (2010), "Regimes of frictional sliding of a
+    spring–block system", J. Mech. Phys. Solids 58(1), 27–53, eq. (4).
     """
 
     law: FrictionLaw
@@ -154,7 +183,22 @@ class SpringBlock:
         return d
 
     def resolve(self, overrides: Mapping[str, float] | None = None) -> dict[str, float]:
-        """Full parameter dict (law + M, g, sigma) with overrides applied and checked."""
+        """Full parameter dict (law + M, g, sigma) with overrides applied and checked.
+
+        Parameters
+        ----------
+        overrides : mapping of str to float, optional
+            Values replacing the defaults, by parameter name.
+
+        Returns
+        -------
+        dict of str to float
+
+        Raises
+        ------
+        InputError
+            An unknown parameter, or a value that is not a finite number.
+        """
         p = dict(self.defaults)
         over = dict(overrides or {})
         declared = {prm.name for prm in self.law.parameters} | set(p)
@@ -234,7 +278,20 @@ class SpringBlock:
         return (V, *(p.symbol for p in self.law.parameters), M, g, sigma, *unknowns)
 
     def argvals(self, Vs, params: Mapping[str, float]) -> list:
-        """Values for :attr:`args`; checks that the law is real and finite at steady sliding."""
+        """Values for :attr:`args`; checks that the law is real and finite at steady sliding.
+
+        Parameters
+        ----------
+        Vs : float or array_like
+            Driving velocities, m/s.
+        params : mapping of str to float
+            Resolved parameters (:meth:`resolve`).
+
+        Returns
+        -------
+        list
+            One value (or array) per entry of :attr:`args`, broadcast together.
+        """
         n = len(self.law.parameters) + 3
         vals = [Vs, *(params[s.name] for s in self.args[1:n + 1])]
         shape = np.broadcast(*[np.asarray(x, dtype=float) for x in vals]).shape
@@ -247,7 +304,13 @@ class SpringBlock:
         return vals
 
     def mu_ss(self) -> sp.Expr:
-        """μ_ss(V) (closed form)."""
+        """μ_ss(V) (closed form).
+
+        Returns
+        -------
+        sympy.Expr
+            The steady-state friction coefficient in V and the law's parameters.
+        """
         return self.law.mu_ss().subs(v_slip, V)
 
     def __repr__(self) -> str:

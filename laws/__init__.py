@@ -26,7 +26,28 @@ BUILTIN: dict[str, Callable[[], FrictionLaw]] = {
 
 
 def get_law(name: str) -> FrictionLaw:
-    """A built-in law by its CLI name."""
+    """A built-in law by its CLI name.
+
+    Parameters
+    ----------
+    name : str
+        One of :data:`BUILTIN` (``landau laws`` lists them), e.g. ``"dieterich"``, ``"ruina"``.
+
+    Returns
+    -------
+    FrictionLaw
+        The law, with its parameters' published defaults.
+
+    Raises
+    ------
+    InputError
+        An unknown name (with a "did you mean" suggestion).
+
+    References
+    ----------
+    Putelat, T., Dawes, J. H. P. & Willis, J. R. (2010), "Regimes of frictional sliding of a
+    spring–block system", J. Mech. Phys. Solids 58(1), 27–53, Table 1 (the laws, parameters).
+    """
     if not isinstance(name, str) or name not in BUILTIN:
         import difflib
 

@@ -109,7 +109,23 @@ def _solve_steady_state(rates, states):
 
 @dataclass(frozen=True)
 class Parameter:
-    """A named constant of a law with its default value, units and provenance."""
+    """A named constant of a law with its default value, units and provenance.
+
+    Parameters
+    ----------
+    name : str
+        The symbol's name in the law's expressions (e.g. ``"a"``, ``"V_s"``).
+    default : float or None
+        The published value (None: the user must give one).
+    units : str, optional
+        SI units, e.g. ``"m/s"``.
+    source : str, optional
+        Where the default comes from (paper, table).
+    description : str, optional
+        What the constant is.
+    positive : bool, optional
+        Whether the constant is positive (its sympy symbol is declared so; default True).
+    """
 
     name: str
     default: float | None
@@ -120,6 +136,7 @@ class Parameter:
 
     @property
     def symbol(self) -> sp.Symbol:
+        """The sympy symbol (declared positive, or real)."""
         return sp.Symbol(self.name, positive=True) if self.positive else sp.Symbol(self.name, real=True)
 
     def __repr__(self) -> str:
@@ -312,12 +329,36 @@ class FrictionLaw:
     # --- parameters ---------------------------------------------------------------
     @property
     def v(self) -> sp.Symbol:
+        """The slip-rate symbol v."""
         return v
 
     def defaults(self) -> dict[str, float]:
+        """The parameters' default values.
+
+        Returns
+        -------
+        dict of str to float
+            By parameter name (parameters without a default are left out).
+        """
         return {p.name: p.default for p in self.parameters if p.default is not None}
 
     def parameter(self, name: str) -> Parameter:
+        """The declared parameter ``name``.
+
+        Parameters
+        ----------
+        name : str
+            A parameter of this law.
+
+        Returns
+        -------
+        Parameter
+
+        Raises
+        ------
+        InputError
+            The law has no such parameter.
+        """
         for p in self.parameters:
             if p.name == name:
                 return p
@@ -325,6 +366,17 @@ class FrictionLaw:
                          f"(known: {', '.join(p.name for p in self.parameters)})")
 
     def symbol(self, name: str) -> sp.Symbol:
+        """The sympy symbol of the slip rate ``"v"``, a state or a parameter.
+
+        Parameters
+        ----------
+        name : str
+            ``"v"``, a state name or a parameter name.
+
+        Returns
+        -------
+        sympy.Symbol
+        """
         if name == "v":
             return v
         for s in self.states:
@@ -333,7 +385,18 @@ class FrictionLaw:
         return self.parameter(name).symbol
 
     def with_defaults(self, **values: float) -> "FrictionLaw":
-        """A copy with some parameter defaults changed."""
+        """A copy with some parameter defaults changed.
+
+        Parameters
+        ----------
+        **values : float
+            New defaults by parameter name.
+
+        Returns
+        -------
+        FrictionLaw
+            A new law; this one is unchanged.
+        """
         new = []
         for p in self.parameters:
             if p.name in values:
@@ -378,6 +441,18 @@ class FrictionLaw:
         found numerically at each point, and the one that is *stable* at fixed slip rate
         (every eigenvalue of ∂(dφ/dt)/∂φ has a negative real part — the state relaxes to it,
         so it is the steady sliding the spring–block settles on) is chosen.
+
+        Parameters
+        ----------
+        vs : float or array_like
+            Slip rates in m/s.
+        params : mapping of str to float
+            Values of the law's parameters.
+
+        Returns
+        -------
+        numpy.ndarray
+            The steady states, shape (number of states, *vs.shape).
 
         Raises
         ------
@@ -486,7 +561,21 @@ class FrictionLaw:
     def check_real(self, vs, phis, params: Mapping[str, float]) -> None:
         """Refuse (:class:`DomainError`) a law whose μ, rates or their first derivatives are not
         real and finite at slip rates ``vs`` and states ``phis`` (the numeric half of the
-        reality check; the symbolic half runs when the law is built)."""
+        reality check; the symbolic half runs when the law is built).
+
+        Parameters
+        ----------
+        vs : array_like
+            Slip rates in m/s.
+        phis : sequence of array_like
+            The states at those slip rates (one array per state).
+        params : mapping of str to float
+            Values of the law's parameters.
+
+        Returns
+        -------
+        None
+        """
         exprs = self._reality_exprs
         if not exprs:       # real and finite for every v > 0, states > 0, proved symbolically
             return
@@ -515,7 +604,18 @@ class FrictionLaw:
         return [(label, sp.lambdify(args, e, modules="numpy")) for label, e in exprs]
 
     def mu_ss(self) -> sp.Expr:
-        """Steady-state friction coefficient μ_ss(v) (closed form)."""
+        """Steady-state friction coefficient μ_ss(v) (closed form).
+
+        Returns
+        -------
+        sympy.Expr
+            μ_ss in v and the parameters.
+
+        Raises
+        ------
+        InputError
+            The law's steady state has no closed form.
+        """
         ss = self.steady_state_closed_form
         if ss is None:
             raise InputError(f"law {self.name!r}: no closed-form steady state; use numeric evaluation")
@@ -523,6 +623,12 @@ class FrictionLaw:
 
     # --- display ------------------------------------------------------------------
     def latex(self) -> str:
+        """The law (μ and the state rates) as one line of LaTeX.
+
+        Returns
+        -------
+        str
+        """
         lines = [rf"\mu = {sp.latex(self.mu)}"]
         for s, r in zip(self.states, self.rates):
             lines.append(rf"\frac{{d{sp.latex(s)}}}{{dt}} = {sp.latex(r)}")

@@ -97,6 +97,13 @@ def test_ci_example_file_runs_and_agrees():
     ns["test_my_law_amplitude_equation_holds"]()
 
 
+def test_readme_shows_the_ci_example_file_verbatim():
+    """The README's CI example is the very file the suite runs, so the two cannot drift apart."""
+    example = (ROOT / "examples" / "ci" / "test_my_law.py").read_text(encoding="utf-8")
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert "```python\n" + example in readme
+
+
 @pytest.mark.slow
 def test_subcritical_point_within_one_percent_agrees():
     """Dieterich law, V = 1e-5 m/s, ε² = 1.6e-5 (subcritical, below V_D* ≈ 2.07e-4 m/s): the shot

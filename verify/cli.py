@@ -17,6 +17,7 @@ from pathlib import Path
 
 from landau.commands.common import add_law_arguments, parse_floats, parse_velocities, resolve_law
 from landau.errors import InputError
+from landau.progress import progress, set_quiet
 from landau.system import SpringBlock
 from landau.checking import MAX_TOLERANCE, SUBCRITICAL_TOLERANCE, SUPERCRITICAL_TOLERANCE, check
 from landau.verify.springblock.checks import fitted_exponent
@@ -58,14 +59,18 @@ def run(args) -> dict:
             if not (0 < e < 0.5):
                 raise InputError(f"--eps2: values must be in (0, 0.5), got {e!r}")
         points = []
-        for V in parse_velocities(args.V):
-            for e in eps2s:
+        grid = [(V, e) for V in parse_velocities(args.V) for e in eps2s]
+        set_quiet(getattr(args, "json", False))
+        with progress(total=len(grid), desc=f"verify {law.name}", unit="point") as bar:
+            for V, e in grid:
+                bar.set_postfix_str(f"V={V:g}, eps2={e:g}")
                 r = check(law, V, e, params, tolerance=args.tol, bistability=not args.no_bistability)
                 rec = r.as_dict()
                 rec.update(V=V, k=r.p, kc=r.prediction.p_c)
                 points.append(rec)
                 if not r.agrees:
                     exit_code = 1
+                bar.update()
         doc.update(law=law.name, source=law.source, params=params, points=points)
         if len(eps2s) >= 3:
             fits = {}

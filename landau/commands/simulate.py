@@ -226,7 +226,12 @@ def run(args) -> dict:
     for o in outs:
         if o.suffix.lower() not in FORMATS:
             raise InputError(f"--out {str(o)!r}: unknown format {o.suffix!r} (use {', '.join(FORMATS)})")
-    sim, params, units, notes = simulate_model(args)
+    from landau.progress import progress, set_quiet
+
+    set_quiet(getattr(args, "json", False))
+    with progress(total=1, desc=f"simulate {args.model}", unit="run") as bar:   # a status line on a terminal
+        sim, params, units, notes = simulate_model(args)
+        bar.update()
     files = []
     if len(sim.t) and sim.t[-1] < sim.t_final:
         notes.append(f"the time series holds the first {len(sim.t)} steps only (up to t = {sim.t[-1]:.6g}): "

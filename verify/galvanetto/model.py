@@ -57,11 +57,59 @@ class StickSlipParams:
 
 
 def one_block(V: float, gamma: float = 3.0, delta: float = 0.0, c: float = 0.0) -> StickSlipParams:
+    """Parameters of the one-block model (dimensionless, the paper's symbols).
+
+    Parameters
+    ----------
+    V : float
+        Belt velocity.
+    gamma : float, optional
+        Velocity weakening γ of the kinetic friction (default 3, the paper's examples).
+    delta : float, optional
+        Residual kinetic friction level δ in [0, 1].
+    c : float, optional
+        Viscous damping.
+
+    Returns
+    -------
+    StickSlipParams
+        Input of :func:`build_model`.
+
+    References
+    ----------
+    Galvanetto, U. (2004), "Sliding bifurcations in the dynamics of mechanical systems with dry
+    friction — remarks for engineers and applied scientists", J. Sound Vib. 276, 121–139, eqs (3a), (4a), (7).
+    """
     return StickSlipParams(V=V, gamma=gamma, delta=delta, c=c, n=1)
 
 
 def two_blocks(V: float, alpha: float = 1.2, beta: float = 1.3, gamma: float = 3.0,
                delta: float = 0.0) -> StickSlipParams:
+    """Parameters of the two-block model (dimensionless, the paper's symbols).
+
+    Parameters
+    ----------
+    V : float
+        Belt velocity.
+    alpha : float, optional
+        Stiffness α of the spring between the blocks.
+    beta : float, optional
+        Static friction level β of block 2 (block 1's is 1).
+    gamma : float, optional
+        Velocity weakening γ of the kinetic friction.
+    delta : float, optional
+        Residual kinetic friction level δ in [0, 1].
+
+    Returns
+    -------
+    StickSlipParams
+        Input of :func:`build_model`.
+
+    References
+    ----------
+    Galvanetto, U. (2004), "Sliding bifurcations in the dynamics of mechanical systems with dry
+    friction — remarks for engineers and applied scientists", J. Sound Vib. 276, 121–139, eqs (3b), (4b), (7), (8b).
+    """
     return StickSlipParams(V=V, gamma=gamma, delta=delta, alpha=alpha, beta=beta, n=2)
 
 
@@ -118,6 +166,25 @@ def build_model(p: StickSlipParams, sections: bool = False, transparent: frozens
     ``"K{i}=+Fs"`` / ``"K{i}=-Fs"`` (a stuck block i does not leave on that side), or
     ``"stick{i}:n"``, ``"stick{i}:p"`` (block i sticks whenever rᵢ reaches 0 from that side,
     whatever Kᵢ).
+
+    Parameters
+    ----------
+    p : StickSlipParams
+        From :func:`one_block` or :func:`two_blocks`.
+    sections : bool, optional
+        Log the extrema the sliding-bifurcation locators need (see the module docstring).
+    transparent : frozenset of str, optional
+        Guards to remove (see above).
+
+    Returns
+    -------
+    HybridModel
+        For :func:`landau.verify.hybrid.simulate`.
+
+    References
+    ----------
+    Galvanetto, U. (2004), "Sliding bifurcations in the dynamics of mechanical systems with dry
+    friction — remarks for engineers and applied scientists", J. Sound Vib. 276, 121–139, eqs (2)–(8).
     """
     n, V, Fs = p.n, p.V, p.Fs
     modes = {}

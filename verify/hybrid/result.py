@@ -121,12 +121,24 @@ class Simulation:
 
     @property
     def success(self) -> bool:
+        """Whether the run reached its end time (or a requested stop)."""
         return self.status.success
 
     def at(self, times) -> np.ndarray:
         """The state at ``times`` (scalar → (n,), array → (n, k)) from the recorded series:
         cubic Hermite on each recorded interval when the field is recorded, else linear.
-        Times outside [t[0], t[-1]] raise ValueError."""
+        Times outside [t[0], t[-1]] raise ValueError.
+
+        Parameters
+        ----------
+        times : float or array_like
+            Times inside the recorded interval.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (n,) for a scalar time, (n, k) for k times.
+        """
         ts = np.atleast_1d(np.asarray(times, float))
         if len(self.t) < 2:
             raise ValueError("the run recorded fewer than two points: nothing to interpolate")
@@ -160,6 +172,16 @@ class Simulation:
         The logged section events (``kind == "section"``) when there are any and ``period``
         is None; otherwise the stroboscopic samples t₀ + i·``period`` of the recorded series.
         Raises ValueError when neither is available.
+
+        Parameters
+        ----------
+        period : float, optional
+            Sampling period of a stroboscopic section (e.g. the forcing period).
+
+        Returns
+        -------
+        t : numpy.ndarray, shape (k,)
+        y : numpy.ndarray, shape (n, k)
         """
         if period is None:
             ev = [e for e in self.events if e.kind == "section"]
@@ -240,7 +262,20 @@ class Simulation:
         return fig
 
     def to_csv(self, path, units=None):
-        """Write the time series as CSV (header ``t [s], name [unit], ...``), atomically."""
+        """Write the time series as CSV (header ``t [s], name [unit], ...``), atomically.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The file to write.
+        units : mapping of str to str, optional
+            Units by state name (and ``"t"``, default s) for the header.
+
+        Returns
+        -------
+        pathlib.Path
+            The file written.
+        """
         from landau.io import atomic_write_text
 
         units = dict(units or {})
@@ -252,7 +287,18 @@ class Simulation:
         return atomic_write_text(path, "\n".join(lines) + "\n")
 
     def to_npz(self, path):
-        """Write ``t``, ``y``, ``state_names``, event times/guards and the status as ``.npz``, atomically."""
+        """Write ``t``, ``y``, ``state_names``, event times/guards and the status as ``.npz``, atomically.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The file to write.
+
+        Returns
+        -------
+        pathlib.Path
+            The file written.
+        """
         from landau.io import atomic_write
 
         arrays = dict(t=self.t, y=self.y, state_names=np.array(self._names()), model=np.array(self.model),

@@ -145,6 +145,28 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
     ``stop(event) -> bool`` ends the run after a logged event (used for event maps).
     Raises :class:`~landau.errors.IntegratorError` if a mode integrator fails or the state
     becomes non-finite (never returns a silently truncated result).
+
+    Parameters
+    ----------
+    model : HybridModel
+        The modes, guards and jumps.
+    mode : str
+        The starting mode.
+    y0 : array_like
+        The starting state.
+    t_span : tuple of float
+        ``(t0, t_end)``.
+    stepper : callable, optional
+        Integrator of one mode's smooth field (default: DOP853, rtol 1e-10, atol 1e-12).
+    options : EngineOptions, optional
+        Event location, Zeno and recording settings.
+    stop : callable, optional
+        ``stop(event) -> bool``: end the run after a logged event.
+
+    Returns
+    -------
+    HybridSolution
+        The trajectory and the event log; ``.simulation()`` gives a :class:`Simulation`.
     """
     t0, t_end = map(float, t_span)
     t, y, mname = t0, np.array(y0, dtype=float), mode

@@ -137,6 +137,33 @@ def build(mu: float, eN: float = 0.0, params: Mapping[str, float] | None = None,
 
     ``stick_tol`` > 0 switches on the numerical stick tolerance of
     :class:`landau.verify.lancioni.contact.ContactModel` (default 0: the exact model).
+
+    Parameters
+    ----------
+    mu : float
+        Friction coefficient μ.
+    eN : float, optional
+        Normal coefficient of restitution of the Poisson impact law.
+    params : mapping of str to float, optional
+        Mechanical parameters (default: set 1, :data:`SET1`).
+    belt : callable, optional
+        Belt velocity v(t) in m/s (default constant, v = −1 m/s).
+    sections : tuple of Section, optional
+        Poincaré sections to log (default: maxima of φ̇).
+    stick_tol : float, optional
+        Numerical stick tolerance (0: the exact model).
+    stick_tol_reset : str, optional
+        How the state is reset when the tolerance is used (see ``ContactModel``).
+
+    Returns
+    -------
+    ContactModel
+        A hybrid model for :func:`landau.verify.hybrid.simulate`.
+
+    References
+    ----------
+    Lancioni, G., Lenci, S. & Galvanetto, U., the frictional impact oscillator (hopping of a
+    windscreen wiper), eq. (1).
     """
     mech = Lancioni(params=dict(params or SET1), mu=float(mu), eN=float(eN), belt=belt or ConstantBelt())
     return ContactModel(mech, sections=sections, stick_tol=float(stick_tol), stick_tol_reset=stick_tol_reset)

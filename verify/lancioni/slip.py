@@ -163,7 +163,27 @@ def slip_hopf(params: Mapping[str, float] | None = None, bracket: tuple[float, f
               s: int = 1) -> HopfNormalForm:
     """Hopf point of the slip equilibrium in μ through the landau engine.
 
-    Without ``bracket`` the interval comes from :func:`hopf_bracket` (a scan of the model)."""
+    Without ``bracket`` the interval comes from :func:`hopf_bracket` (a scan of the model).
+
+    Parameters
+    ----------
+    params : mapping of str to float, optional
+        Mechanical parameters (default: set 1).
+    bracket : tuple of float, optional
+        A μ interval containing the Hopf point.
+    s : int, optional
+        Slip sign (+1: positive slip, the belt direction with a Hopf point).
+
+    Returns
+    -------
+    HopfNormalForm
+        μ_c, ω_c, the Landau coefficient and the criticality.
+
+    References
+    ----------
+    Kuznetsov, Y. A. (2004), *Elements of Applied Bifurcation Theory*, 3rd ed., Springer,
+    Section 3.5.
+    """
     if bracket is None:
         bracket = hopf_bracket(params, s)
     return hopf_normal_form(slip_system(s), resolve(params), bracket=bracket)

@@ -126,6 +126,42 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
     L-stable SDIRK4 (:mod:`landau.verify.skurativskyi.sdirk`) and all others with DOPRI5;
     ``"dopri5"`` is the explicit path alone.  ``record``: keep up to that many accepted step ends
     (t, y, f) as the run's time series (:meth:`Run.simulation`).  Raises IntegratorError on failure.
+
+    Parameters
+    ----------
+    params : Params
+        Model parameters (the forcing frequency among them).
+    n_periods : float
+        Length of the run in forcing periods.
+    y0 : array_like, optional
+        Starting state (default: rest at X₀).
+    t0 : float, optional
+        Starting time, s.
+    rtol, atol : float, optional
+        Integration tolerances.
+    lyapunov : bool, optional
+        Also compute the largest Lyapunov exponent (see above).
+    strobe : bool, optional
+        Record the stroboscopic (Poincaré) samples.
+    max_events, max_steps : int, optional
+        Limits that end a run which would not finish.
+    tangent0 : tuple of float, optional
+        Starting tangent vector of the variational equation.
+    method : {"mixed", "dopri5"}
+        The integrator (see above).
+    record : int, optional
+        Keep up to that many step ends as the time series.
+
+    Returns
+    -------
+    Run
+        Final state, impacts, detachments, stroboscopic points and (with ``record``) the time series.
+
+    References
+    ----------
+    Skurativskyi, S., Kudra, G., Witkowski, K. & Awrejcewicz, J. (2019), "Bifurcation phenomena
+    and statistical regularities in dynamics of forced impacting oscillator", Nonlinear Dyn. 98,
+    1795–1806, eq. (1).
     """
     if method not in METHODS:
         raise InputError(f"method must be one of {sorted(METHODS)} (got {method!r})")

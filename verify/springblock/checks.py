@@ -132,7 +132,38 @@ def find_cycle(model: SpringBlockModel, amplitude_guess: float, *, rtol: float =
 
 def supercritical_check(law: FrictionLaw, V: float, eps2: float, params: Mapping[str, float] | None = None,
                         *, tolerance: float = AMPLITUDE_TOLERANCE, prediction: HopfResult | None = None) -> PointCheck:
-    """Limit cycle at k = k_c(1 − ε²) vs C·sqrt(k_c − k) and the predicted frequency."""
+    """Limit cycle at k = k_c(1 − ε²) vs C·sqrt(k_c − k) and the predicted frequency.
+
+    Parameters
+    ----------
+    law : FrictionLaw
+        The friction law of the spring–block.
+    V : float
+        Driving velocity, m/s.
+    eps2 : float
+        Distance from the Hopf point, ε² = |k − k_c|/k_c, in (0, 1).
+    params : mapping of str to float, optional
+        Parameter overrides (defaults: the law's and the block's).
+    tolerance : float, optional
+        Largest relative amplitude error that agrees.
+    prediction : HopfResult, optional
+        The prediction at this point (computed by :func:`predict` when omitted).
+
+    Returns
+    -------
+    PointCheck
+        Simulated and predicted amplitude and frequency, and whether they agree.
+
+    Raises
+    ------
+    InputError
+        ``eps2`` outside (0, 1), or a point that is not supercritical.
+
+    References
+    ----------
+    Putelat, T., Dawes, J. H. P. & Willis, J. R. (2010), "Regimes of frictional sliding of a
+    spring–block system", J. Mech. Phys. Solids 58(1), 27–53, eqs (4), (23).
+    """
     if not (0 < eps2 < 1):
         raise InputError(f"eps2 must be in (0, 1), got {eps2!r}")
     pr = prediction or predict(law, V, params)
@@ -204,7 +235,42 @@ def subcritical_check(law: FrictionLaw, V: float, eps2: float, params: Mapping[s
     """At k = k_c(1 + ε²): the unstable cycle by shooting (amplitude vs C·sqrt(k − k_c)) and, with
     ``test_bistability``, bistability — bisection on the initial amplitude along the critical mode (on
     the section where X is maximal) between decay to steady sliding and growth to a stick–slip cycle,
-    whose stability is then confirmed by shooting (Floquet multipliers)."""
+    whose stability is then confirmed by shooting (Floquet multipliers).
+
+    Parameters
+    ----------
+    law : FrictionLaw
+        The friction law of the spring–block.
+    V : float
+        Driving velocity, m/s.
+    eps2 : float
+        Distance from the Hopf point, ε² = |k − k_c|/k_c, in (0, 1).
+    params : mapping of str to float, optional
+        Parameter overrides (defaults: the law's and the block's).
+    tolerance : float, optional
+        Largest relative amplitude error that agrees.
+    bisections : int, optional
+        Bisection steps on the initial amplitude (bistability test).
+    test_bistability : bool, optional
+        Whether to run the (slow) bistability test.
+    prediction : HopfResult, optional
+        The prediction at this point (computed by :func:`predict` when omitted).
+
+    Returns
+    -------
+    PointCheck
+        Simulated and predicted amplitude, the bisection bracket, and whether they agree.
+
+    Raises
+    ------
+    InputError
+        ``eps2`` outside (0, 1), or a point that is not subcritical.
+
+    References
+    ----------
+    Putelat, T., Dawes, J. H. P. & Willis, J. R. (2010), "Regimes of frictional sliding of a
+    spring–block system", J. Mech. Phys. Solids 58(1), 27–53, eqs (4), (23).
+    """
     if not (0 < eps2 < 1):
         raise InputError(f"eps2 must be in (0, 1), got {eps2!r}")
     pr = prediction or predict(law, V, params)
