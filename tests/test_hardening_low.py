@@ -147,3 +147,18 @@ def test_tiny_inertia_lambda_is_returned_not_degenerate():
     # the exactly vanishing quasi-static case stays degenerate
     zero = d.evaluate(Vs, {"M": 0.0}, ["Lambda"])
     assert list(zero["Lambda"]) == [0.0, 0.0] and zero["degenerate"].all()
+
+
+def test_tiny_inertia_lambda_on_the_cli(capsys):
+    # the same through `landau derive`: Λ ∝ M, so Λ(M = 1e-50) = 1e-30·Λ(M = 1e-20) with its sign
+    import json
+
+    docs = {}
+    for m in ("1e-50", "1e-20"):
+        code = main(["derive", "dieterich", "--V", "1e-5", "--param", f"M={m}", "--json"])
+        out, err = capsys.readouterr()
+        assert code == 0, err
+        docs[m] = json.loads(out)["points"][0]
+    tiny, ref = docs["1e-50"], docs["1e-20"]
+    assert tiny["criticality"] == ref["criticality"] == "subcritical"
+    assert abs(tiny["Lambda"] - 1e-30 * ref["Lambda"]) <= 1e-9 * abs(1e-30 * ref["Lambda"])
