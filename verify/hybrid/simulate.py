@@ -156,10 +156,6 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
         raise InputError(f"initial state must be finite, got {y.tolist()!r}")
     if mname not in model.modes:
         raise InputError(f"model {model.name!r} has no mode {mname!r} (modes: {', '.join(sorted(model.modes))})")
-    f0 = np.asarray(model.mode(mname).rhs(t, y), dtype=float)
-    if not np.all(np.isfinite(f0)):
-        raise IntegratorError(f"mode {mname!r}: the vector field is not finite at the initial state "
-                              f"({f0.tolist()!r})", t=t, state=y)
     log = EventLog()
     segs: list[Segment] = []
     monitor = ZenoMonitor(options.zeno_interval, options.max_event_rate, options.rate_window,
@@ -188,6 +184,12 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             g0 = np.maximum(g0, -atol)  # recovering guards start as pending
             dec_before = np.zeros(len(guards), bool)
             g_last = g0.copy()
+            if t == t0 and len(log) == 0:
+                # scipy's initial step selection never ends on a NaN vector field
+                f0 = np.asarray(m.rhs(t, y), dtype=float)
+                if not np.all(np.isfinite(f0)):
+                    raise IntegratorError(f"mode {mname!r}: the vector field is not finite at the initial "
+                                          f"state ({f0.tolist()!r})", t=t, state=y)
             solver = stepper(m.rhs, t, y, t_end, m.jac)
             seg_t, seg_y = [np.array([t])], [y[:, None]]
             hit = None  # (t_hit, j, kind)
