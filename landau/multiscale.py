@@ -591,8 +591,10 @@ class Derivation:
         value is used where it is itself good to 1e-10.  What is still doubtful is taken from
         the exactly cancelled form when the law's derivatives are rational in V
         (:mod:`landau.rational`: Dieterich, Ruina, modified Dieterich), else re-evaluated at 50
-        and 80 digits with mpmath.  A quantity that vanishes identically is returned as 0 and
-        the point flagged ``degenerate``.
+        and 80 digits with mpmath, and at up to 550 digits until two successive precisions
+        agree (a tiny but genuine value, e.g. Λ ∝ M at M = 1e-50, keeps its value and sign).
+        A quantity that vanishes identically is returned as 0 and the point flagged
+        ``degenerate``.
 
         ``method``: "general" (the route above), "rational" (every point from the exactly
         cancelled form, with error bounds and exact fallback; laws rational in V only) or
