@@ -83,6 +83,8 @@ _WORKERS = max(1, min(8, os.cpu_count() or 1))
 #: the float32 disagreement (spinodal law at V ~ 3e-8 m/s: 1.2e-10 behind a 0.5 % disagreement),
 #: hence 2e-4 rather than 2e-2
 _REL_SCREEN = 2e-4
+#: digits of the successive mpmath evaluations that decide whether a tiny value is genuine
+_MP_LADDER = (50, 80, 120, 200, 330, 550)
 #: extended precision available (x86 80-bit long double: eps 1.1e-19, ~1000x float64)
 _EXTENDED = np.finfo(np.longdouble).eps < 1e-18
 _EXT_GAIN = float(np.finfo(np.float64).eps / np.finfo(np.longdouble).eps) / 4
@@ -716,8 +718,10 @@ class Derivation:
         value is used where it is itself good to 1e-10.  What is still doubtful is taken from
         the exactly cancelled form when the law's derivatives are rational in V
         (:mod:`landau.rational`: Dieterich, Ruina, modified Dieterich), else re-evaluated at 50
-        and 80 digits with mpmath.  A quantity that vanishes identically is returned as 0 and
-        the point flagged ``degenerate``.
+        and 80 digits with mpmath, and at up to 550 digits until two successive precisions
+        agree (a tiny but genuine value, e.g. Λ ∝ M at M = 1e-50, keeps its value and sign).
+        A quantity that vanishes identically is returned as 0 and the point flagged
+        ``degenerate``.
 
         ``method``: "general" (the route above), "rational" (every point from the exactly
         cancelled form, with error bounds and exact fallback; laws rational in V only) or
@@ -928,18 +932,33 @@ class Derivation:
         return res
 
     def _evaluate_mp_checked(self, V0: float, point: Mapping[str, float], names) -> tuple[dict, bool]:
-        """Values at 50 digits.  A coefficient whose 50- and 80-digit values differ by more
-        than 1e-20 relative is round-off of an identically vanishing quantity (a genuine
-        value, even after 30 digits of cancellation, agrees to ~1e-20): it is returned as 0
-        and flagged."""
-        hi = self.evaluate_mp(V0, point, names, dps=50)
-        ref = self.evaluate_mp(V0, point, names, dps=80)
+        """Values at 50 digits, or more where needed.  A coefficient whose values at two
+        successive precisions (50, 80, 120, 200, 330, 550 digits) agree to 1e-20 relative is
+        settled at the finer one: a tiny but genuine value (e.g. Λ ∝ M at M = 1e-50) is
+        cancellation-free once the precision exceeds the orders it lies below its terms.  A
+        coefficient that never settles is round-off of an identically vanishing quantity
+        (its value keeps shrinking with the precision): it is returned as 0 and flagged."""
+        ladder = _MP_LADDER
+        hi = self.evaluate_mp(V0, point, names, dps=ladder[0])
+        ref = self.evaluate_mp(V0, point, names, dps=ladder[1])
         degenerate = False
         res = dict(hi)
+        tol = mpmath.mpf("1e-20")
         for n in names:
             if n in DERIVED:
                 continue
-            if abs(hi[n] - ref[n]) > mpmath.mpf("1e-20") * abs(ref[n]):
+            if abs(hi[n] - ref[n]) <= tol * abs(ref[n]):
+                continue
+            prev, settled = ref[n], None
+            for dps in ladder[2:]:
+                cur = self.evaluate_mp(V0, point, [n], dps=dps)[n]
+                if abs(cur - prev) <= tol * abs(cur):
+                    settled = cur
+                    break
+                prev = cur
+            if settled is not None:
+                res[n] = settled
+            else:
                 res[n] = mpmath.mpf(0)
                 degenerate = degenerate or n == "Lambda"
         if degenerate and "C" in res:

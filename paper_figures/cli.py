@@ -37,8 +37,10 @@ def load(paper: str):
 def run(args) -> dict:
     figures = load(args.paper)
     names = list(figures)
-    if args.only:
+    if args.only is not None:
         wanted = [s.strip() for s in args.only.split(",") if s.strip()]
+        if not wanted:
+            raise InputError(f"--only names no figure (got {args.only!r}; known: {', '.join(names)})")
         unknown = [w for w in wanted if w not in figures]
         if unknown:
             raise InputError(f"unknown figure(s) {', '.join(unknown)} for {args.paper} (known: {', '.join(names)})")

@@ -103,6 +103,27 @@ class PainleveError(IntegratorError):
         self.candidates = tuple(candidates)
 
 
+def check_contact_coefficients(mu: float, eN: float) -> None:
+    """Refuse a Coulomb coefficient or a restitution coefficient outside its domain.
+
+    Parameters
+    ----------
+    mu : float
+        Coulomb friction coefficient; must be finite and >= 0.
+    eN : float
+        Newton restitution coefficient; must be in [0, 1].
+
+    Raises
+    ------
+    InputError
+        Naming the parameter, its domain and the value given (NaN included).
+    """
+    if not (np.isfinite(mu) and mu >= 0):
+        raise InputError(f"friction coefficient mu must be a finite number >= 0, got {mu!r}")
+    if not (0 <= eN <= 1):
+        raise InputError(f"restitution eN must be in [0, 1], got {eN!r}")
+
+
 class ContactMechanics:
     """Subclass contract: one frictional unilateral contact of an n-DOF system.
 
@@ -278,6 +299,7 @@ class ContactModel:
     model: HybridModel = field(init=False)
 
     def __post_init__(self):
+        check_contact_coefficients(self.mech.mu, self.mech.eN)
         if not (self.stick_tol >= 0 and np.isfinite(self.stick_tol)):
             raise InputError(f"stick_tol must be a finite number >= 0, got {self.stick_tol!r}")
         if self.stick_tol_reset not in ("project", "hold"):

@@ -31,7 +31,7 @@ from typing import Callable
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from landau.errors import IntegratorError
+from landau.errors import InputError, IntegratorError
 from landau.verify.hybrid.locate import first_crossing, guard_on_dense, root_new_side
 from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.model import HybridModel, as_jump
@@ -144,7 +144,9 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
 
     ``stop(event) -> bool`` ends the run after a logged event (used for event maps).
     Raises :class:`~landau.errors.IntegratorError` if a mode integrator fails or the state
-    becomes non-finite (never returns a silently truncated result).
+    becomes non-finite, or if the vector field is not finite at the initial state (never
+    returns a silently truncated result), and :class:`~landau.errors.InputError` for an
+    unknown mode, a non-finite initial state or a time span that is not finite and increasing.
 
     Parameters
     ----------
@@ -169,7 +171,13 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
         The trajectory and the event log; ``.simulation()`` gives a :class:`Simulation`.
     """
     t0, t_end = map(float, t_span)
+    if not (np.isfinite(t0) and np.isfinite(t_end) and t_end > t0):
+        raise InputError(f"time span must be finite and increasing (t0 < t_end), got {tuple(t_span)!r}")
     t, y, mname = t0, np.array(y0, dtype=float), mode
+    if not np.all(np.isfinite(y)):
+        raise InputError(f"initial state must be finite, got {y.tolist()!r}")
+    if mname not in model.modes:
+        raise InputError(f"model {model.name!r} has no mode {mname!r} (modes: {', '.join(sorted(model.modes))})")
     log = EventLog()
     segs: list[Segment] = []
     monitor = ZenoMonitor(options.zeno_interval, options.max_event_rate, options.rate_window,
@@ -198,6 +206,12 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             g0 = np.maximum(g0, -atol)  # recovering guards start as pending
             dec_before = np.zeros(len(guards), bool)
             g_last = g0.copy()
+            if t == t0 and len(log) == 0:
+                # scipy's initial step selection never ends on a NaN vector field
+                f0 = np.asarray(m.rhs(t, y), dtype=float)
+                if not np.all(np.isfinite(f0)):
+                    raise IntegratorError(f"mode {mname!r}: the vector field is not finite at the initial "
+                                          f"state ({f0.tolist()!r})", t=t, state=y)
             solver = stepper(m.rhs, t, y, t_end, m.jac)
             seg_t, seg_y = [np.array([t])], [y[:, None]]
             hit = None  # (t_hit, j, kind)

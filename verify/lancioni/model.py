@@ -24,8 +24,8 @@ from typing import Mapping
 
 import numpy as np
 
-from landau.errors import InputError
 from landau.verify.lancioni.contact import ContactMechanics, ContactModel, Section
+from landau.verify.hybrid.contact import check_contact_coefficients
 from landau.verify.lancioni.slip import SET1, SET2, resolve
 
 
@@ -69,10 +69,7 @@ class Lancioni(ContactMechanics):
 
     def __post_init__(self):
         object.__setattr__(self, "params", resolve(self.params))
-        if not (0 <= self.eN <= 1):
-            raise InputError(f"restitution eN must be in [0, 1], got {self.eN!r}")
-        if self.mu < 0:
-            raise InputError(f"friction coefficient mu must be >= 0, got {self.mu!r}")
+        check_contact_coefficients(self.mu, self.eN)
         p = self.params
         object.__setattr__(self, "_c", (p["m1"], p["m2"], p["l"], p["k_y"], p["k_phi"], p["c_y"], p["c_phi"],
                                          p["phi0"], p["y0"], p["g"]))
