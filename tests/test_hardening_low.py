@@ -6,12 +6,11 @@ from __future__ import annotations
 import math
 import threading
 
-import mpmath
 import numpy as np
 import pytest
 
 from landau.cli import main
-from landau.errors import InputError, IntegratorError, LandauError
+from landau.errors import InputError, IntegratorError
 from landau.verify.hybrid import Guard, HybridModel, Mode, simulate
 
 

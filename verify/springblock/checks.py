@@ -380,7 +380,7 @@ def bistability_scan(law: FrictionLaw, V: float, eps2: float, params: Mapping[st
     pr = prediction or predict(law, V, params)
     k = pr.kc * (1 + eps2)
     model = SpringBlockModel.build(law, V, k, params)
-    A = pr.amplitude(k)
+    A = pr.C * np.sqrt(abs(pr.kc - k))   # the amplitude scale on the side where no cycle is predicted
     out = {}
     for a in multiples:
         fate, _ = _fate(model, section_point(model, a * A), 0.1 * a * A, 3.0 * a * A)
