@@ -17,38 +17,134 @@ printed; Sec. 4.1's one-block values are reproduced only with δ = 0.2).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
+import sympy as sp
+
+from landau.errors import InputError
+
+#: the symbols the branch expressions are written in: relative velocity r and the parameters γ, δ
+R = sp.Symbol("r", real=True)
+GAMMA, DELTA = sp.symbols("gamma delta", positive=True)
+
+_PAPER_NEG = (1 - DELTA) / (1 - GAMMA * R) + DELTA      # eq. (7), r < 0
+_PAPER_POS = -(1 - DELTA) / (1 + GAMMA * R) - DELTA     # eq. (7), r > 0
+
+
+def _numeric(expr: sp.Expr):
+    """expr(r, γ, δ) compiled once to a numpy function of (r, gamma, delta)."""
+    return sp.lambdify((R, GAMMA, DELTA), expr, modules="numpy")
 
 
 @dataclass(frozen=True)
 class KineticFriction:
-    """F_k(r) of eq. (7).  ``neg``/``pos`` are the two smooth branches (defined beyond r = 0,
-    which the grazing analysis uses to continue a slip field past the switching surface)."""
+    """F_k(r) of eq. (7), or a user-written law of the same two-branch form.
+
+    The law lives once, symbolically: ``neg_expr``/``pos_expr`` are sympy expressions of the
+    two smooth branches in the relative velocity :data:`R` (and optionally the parameters
+    :data:`GAMMA`, :data:`DELTA`, whose values are ``gamma``/``delta``).  The numeric branch
+    functions ``neg``/``pos`` and the derivatives ``dneg``/``dpos``/``d3neg`` are generated from
+    them (sympy differentiation, lambdified once per law).  The branches are defined beyond
+    r = 0, which the grazing analysis uses to continue a slip field past the switching surface.
+    The default expressions are Galvanetto's eq. (7); see :meth:`from_expression` for others.
+    """
 
     gamma: float = 3.0
     delta: float = 0.0
+    neg_expr: sp.Expr = field(default=_PAPER_NEG, repr=False)
+    pos_expr: sp.Expr = field(default=_PAPER_POS, repr=False)
 
+    def __post_init__(self) -> None:
+        for name in ("neg_expr", "pos_expr"):
+            e = getattr(self, name)
+            if not isinstance(e, sp.Expr):
+                raise InputError(f"KineticFriction: {name} must be a sympy expression in r")
+            extra = e.free_symbols - {R, GAMMA, DELTA}
+            if extra:
+                raise InputError(f"KineticFriction: {name} uses unknown symbol(s) "
+                                 f"{', '.join(sorted(map(str, extra)))}; only r, gamma, delta are allowed")
+        fns = {"_neg": self.neg_expr, "_pos": self.pos_expr,
+               "_dneg": sp.diff(self.neg_expr, R), "_dpos": sp.diff(self.pos_expr, R),
+               "_d3neg": sp.diff(self.neg_expr, R, 3)}
+        for k, e in fns.items():
+            object.__setattr__(self, k, _numeric(e))
+
+    # ---------------------------------------------------------------- symbolic form
+    def branch(self, side: str = "neg", *, symbolic: bool = False) -> sp.Expr:
+        """The sympy expression of one branch in :data:`R`.
+
+        Parameters
+        ----------
+        side : "neg" (r < 0, block slower than the belt) or "pos" (r > 0).
+        symbolic : keep γ, δ as the symbols :data:`GAMMA`, :data:`DELTA` (True) or substitute
+            this law's values (False).
+
+        Returns
+        -------
+        sympy.Expr
+        """
+        if side not in ("neg", "pos"):
+            raise InputError(f"KineticFriction.branch: side must be 'neg' or 'pos', not {side!r}")
+        e = self.neg_expr if side == "neg" else self.pos_expr
+        return e if symbolic else e.subs({GAMMA: self.gamma, DELTA: self.delta})
+
+    @classmethod
+    def from_expression(cls, neg, pos=None, *, gamma: float = 3.0, delta: float = 0.0) -> "KineticFriction":
+        """A kinetic law from its r < 0 branch (and optionally its r > 0 branch).
+
+        Parameters
+        ----------
+        neg : sympy expression in :data:`R` (and :data:`GAMMA`, :data:`DELTA`), or a string in
+            the names ``r``, ``gamma``, ``delta`` parsed by :func:`landau.laws.parse.parse_expression`
+            (never evaluated).
+        pos : the same for r > 0; default the odd reflection −neg(−r).
+        gamma, delta : values of the parameters γ, δ if the expressions use them.
+
+        Returns
+        -------
+        KineticFriction
+
+        Raises
+        ------
+        ParseError, InputError
+            On a string the parser refuses, or an expression in other symbols.
+
+        References
+        ----------
+        U. Galvanetto, J. Sound Vib. 276 (2004) 121–139, eq. (7) (the law's two-branch form).
+        """
+        def as_expr(x, what):
+            if isinstance(x, str):
+                from landau.laws.parse import parse_expression
+                return parse_expression(x, {"r": R, "gamma": GAMMA, "delta": DELTA}, what=what)
+            if isinstance(x, sp.Expr):
+                return x
+            raise InputError(f"KineticFriction.from_expression: {what} must be a string or a sympy expression")
+        n = as_expr(neg, "neg")
+        p = -n.subs(R, -R) if pos is None else as_expr(pos, "pos")
+        return cls(gamma=float(gamma), delta=float(delta), neg_expr=n, pos_expr=p)
+
+    # ---------------------------------------------------------------- numeric form
     def neg(self, r):
-        """Branch r < 0: (1 − δ)/(1 − γ r) + δ  (> 0: the belt drags the block forward)."""
-        return (1.0 - self.delta) / (1.0 - self.gamma * r) + self.delta
+        """Branch r < 0: (1 − δ)/(1 − γ r) + δ for eq. (7)  (> 0: the belt drags the block forward)."""
+        return self._neg(r, self.gamma, self.delta)
 
     def pos(self, r):
-        """Branch r > 0: −(1 − δ)/(1 + γ r) − δ."""
-        return -(1.0 - self.delta) / (1.0 + self.gamma * r) - self.delta
+        """Branch r > 0: −(1 − δ)/(1 + γ r) − δ for eq. (7)."""
+        return self._pos(r, self.gamma, self.delta)
 
     def dneg(self, r):
-        """dF_k/dr on the r < 0 branch: γ(1 − δ)/(1 − γ r)²."""
-        return self.gamma * (1.0 - self.delta) / (1.0 - self.gamma * r) ** 2
+        """dF_k/dr on the r < 0 branch (γ(1 − δ)/(1 − γ r)² for eq. (7))."""
+        return self._dneg(r, self.gamma, self.delta)
 
     def dpos(self, r):
-        """dF_k/dr on the r > 0 branch: γ(1 − δ)/(1 + γ r)²."""
-        return self.gamma * (1.0 - self.delta) / (1.0 + self.gamma * r) ** 2
+        """dF_k/dr on the r > 0 branch (γ(1 − δ)/(1 + γ r)² for eq. (7))."""
+        return self._dpos(r, self.gamma, self.delta)
 
     def d3neg(self, r):
-        """d³F_k/dr³ on the r < 0 branch: 6γ³(1 − δ)/(1 − γ r)⁴."""
-        return 6.0 * self.gamma ** 3 * (1.0 - self.delta) / (1.0 - self.gamma * r) ** 4
+        """d³F_k/dr³ on the r < 0 branch (6γ³(1 − δ)/(1 − γ r)⁴ for eq. (7))."""
+        return self._d3neg(r, self.gamma, self.delta)
 
     def __call__(self, r):
         """F_k(r) for r ≠ 0 (at r = 0 the force is set-valued, [−1, 1]; returns nan)."""
@@ -62,5 +158,13 @@ class KineticFriction:
         """The Coulomb limit γ → 0: F_k = −sign(r), kinetic level = static level = 1."""
         return cls(gamma=0.0, delta=0.0)
 
+    @property
+    def is_paper_law(self) -> bool:
+        """True for Galvanetto's eq. (7) (the default branches)."""
+        return self.neg_expr == _PAPER_NEG and self.pos_expr == _PAPER_POS
+
     def __repr__(self) -> str:
-        return f"KineticFriction(γ={self.gamma:g}, δ={self.delta:g})  # Galvanetto 2004 eq. (7)"
+        if self.is_paper_law:
+            return f"KineticFriction(γ={self.gamma:g}, δ={self.delta:g})  # Galvanetto 2004 eq. (7)"
+        return (f"KineticFriction(r<0: {self.neg_expr}, r>0: {self.pos_expr}, "
+                f"γ={self.gamma:g}, δ={self.delta:g})")

@@ -237,3 +237,82 @@ def test_damped_slip_system_for_landau_engine():
     c1 = sp.solve(sp.Eq(J.trace(), 0), sysm.parameter)[0]
     assert float(c1) == pytest.approx(B.hopf_c1(0.5, 3.0, 0.0), abs=1e-14)
     assert float(J.det()) == pytest.approx(1.0)   # ω_c = 1
+
+
+# ------------------------------------------------------------------ a user-written kinetic law
+
+def _user_exp_law():
+    # F_k(r) = (1 − δ)·exp(γ r) + δ on r < 0 (odd reflection on r > 0): |F_k(0±)| = 1, → δ as r → −∞
+    return KineticFriction.from_expression("(1 - delta)*exp(gamma*r) + delta", gamma=3.0, delta=0.2)
+
+
+def test_user_kinetic_law_parsed_and_differentiated():
+    import sympy as sp
+    from landau.errors import InputError, ParseError
+    from landau.laws.kinetic import DELTA, GAMMA, R
+    law = _user_exp_law()
+    ref = (1 - DELTA) * sp.exp(GAMMA * R) + DELTA
+    assert sp.simplify(law.neg_expr - ref) == 0
+    for r in (-0.7, -0.1):   # exact closed forms (rounding only)
+        assert law.neg(r) == pytest.approx(0.8 * math.exp(3 * r) + 0.2, rel=1e-14)
+        assert law.pos(-r) == pytest.approx(-(0.8 * math.exp(3 * r) + 0.2), rel=1e-14)
+        assert law.dneg(r) == pytest.approx(2.4 * math.exp(3 * r), rel=1e-14)
+        assert law.d3neg(r) == pytest.approx(0.8 * 27 * math.exp(3 * r), rel=1e-14)
+    assert law.neg(0.0) == pytest.approx(1.0, abs=1e-15)
+    with pytest.raises(ParseError):
+        KineticFriction.from_expression("__import__('os').getcwd()")
+    with pytest.raises(InputError):
+        KineticFriction.from_expression(sp.Symbol("q") * R)
+    with pytest.raises(InputError):   # a law and a conflicting γ
+        B.hopf_c1(0.5, gamma=2.0, law=law)
+
+
+def test_user_kinetic_law_hopf_point_and_criticality():
+    # c1 = F_k'(−V): slope of the user's branch at r = −V computed here by a finite difference of
+    # the parsed branch (independent of the law's symbolic derivative); the engine locates the Hopf
+    # point numerically (agreement to its root tolerance).  Criticality: ẅ + w = −(c − c1)ẇ + a3 ẇ³
+    # + (even terms, no first-Lyapunov contribution) with a3 = F_k'''(−V)/6 > 0 → subcritical and
+    # C = 1/sqrt(2ℓ1), ℓ1 = 3a3/8 (Guckenheimer–Holmes 3.4.11), as for eq. (7) above.
+    import sympy as sp
+    from landau.laws.kinetic import R
+    V = 0.5
+    law = _user_exp_law()
+    h = 1e-5
+    slope = (law.neg(-V + h) - law.neg(-V - h)) / (2 * h)           # O(h²) ≈ 1e-10 relative
+    assert B.hopf_c1(V, law=law) == pytest.approx(slope, rel=1e-8)
+    br = law.branch("neg")
+    d3 = float(sp.diff(br, R, 3).subs(R, -V))
+    hf = B.hopf_c1_normal_form(V, law=law)
+    assert hf.p_c == pytest.approx(slope, rel=1e-8)
+    assert hf.omega_c == pytest.approx(1.0, rel=1e-10)
+    assert hf.criticality == "subcritical" and d3 > 0
+    assert hf.C == pytest.approx(1.0 / math.sqrt(2 * 3.0 * (d3 / 6.0) / 8.0), rel=1e-8)
+
+
+def test_user_kinetic_law_decays_to_slip_equilibrium_above_c1():
+    # Hybrid-engine run of the r < 0 slip field (a terminal stick guard r = 0, a section at the
+    # displacement maxima) from 0.01 off the equilibrium X0 = F_k(−V) at c = c1 + 0.05: well inside
+    # the unstable cycle (displacement amplitude C·sqrt(0.05) ≈ 0.29), so it decays without
+    # sticking; the envelope's decay rate equals the real part of the eigenvalues of the slip
+    # field's finite-difference Jacobian (independent of the Hopf engine).  Tolerance 1%:
+    # nonlinear corrections are O((0.01/0.29)²) ≈ 1e-3.
+    from landau.verify.hybrid import Guard, HybridModel, Mode, simulate
+    from landau.verify.hybrid.simulate import EngineOptions
+    V = 0.5
+    law = _user_exp_law()
+    c = B.hopf_c1(V, law=law) + 0.05
+    X0 = law.neg(-V)
+    rhs = lambda t, y: np.array([y[1], -(y[0] + c * y[1]) + law.neg(y[1] - V)])
+    y0 = np.array([X0, 0.0])
+    J = np.column_stack([(rhs(0, y0 + e) - rhs(0, y0 - e)) / 2e-6 for e in np.eye(2) * 1e-6])
+    growth = np.max(np.linalg.eigvals(J).real)
+    assert growth < 0
+    model = HybridModel.from_modes(Mode("slip", rhs, (Guard("stick", lambda t, y: V - y[1], terminal=True),
+                                                     Guard("xmax", lambda t, y: y[1]))))
+    sol = simulate(model, "slip", [X0 + 0.01, 0.0], (0.0, 200.0), default_stepper(), EngineOptions(record=False))
+    assert sol.status == "t_end"   # never reached the stick line
+    ev = [(e.t, abs(e.y[0] - X0)) for e in sol.events if e.guard == "xmax"]
+    assert len(ev) > 20
+    t, a = np.array(ev).T
+    assert np.polyfit(t, np.log(a), 1)[0] == pytest.approx(growth, rel=0.01)
+    assert abs(sol.y[0] - X0) < 0.01 * math.exp(200 * growth) * 1.2

@@ -349,21 +349,26 @@ def multi_sliding(bracket=(10.745, 10.756), V=0.05, alpha=1.2, beta=2.0, delta=0
 
 # ----------------------------------------------------------------- damped one block (Sec. 4.2)
 
-def hopf_c1(V: float = 0.5, gamma: float = 3.0, delta: float = 0.0) -> float:
-    """c₁ = F_k'(−V) = γ(1 − δ)/(1 + γV)² (closed form): the linearised slip field
-    u'' + (c − F_k'(−V))u' + u = 0 about the equilibrium X = F_k(−V) loses its damping."""
-    return gamma * (1 - delta) / (1 + gamma * V) ** 2
+def hopf_c1(V: float = 0.5, gamma: float | None = None, delta: float | None = None, law=None) -> float:
+    """c₁ = F_k'(−V): the linearised slip field u'' + (c − F_k'(−V))u' + u = 0 about the
+    equilibrium X = F_k(−V) loses its damping.  ``law`` is the kinetic law (default Galvanetto's
+    eq. (7) with ``gamma`` = 3, ``delta`` = 0, where c₁ = γ(1 − δ)/(1 + γV)²); the slope is that
+    of its r < 0 branch, differentiated symbolically."""
+    from landau.verify.galvanetto.smooth import kinetic_law
+    return float(kinetic_law(gamma, delta, law).dneg(-V))
 
 
-def hopf_c1_normal_form(V: float = 0.5, gamma: float = 3.0, delta: float = 0.0):
+def hopf_c1_normal_form(V: float = 0.5, gamma: float | None = None, delta: float | None = None, law=None):
     """The damped one block's Hopf point c₁ located by the landau engine (:mod:`landau.general`) on
-    the smooth slip field, with its amplitude equation: Λ > 0 means subcritical (an unstable cycle
-    for c > c₁ whose displacement amplitude is C·sqrt(c − c₁))."""
+    the smooth slip field of the kinetic law ``law`` (default eq. (7) with ``gamma``, ``delta``),
+    with its amplitude equation: Λ > 0 means subcritical (an unstable cycle for c > c₁ whose
+    displacement amplitude is C·sqrt(c − c₁))."""
     from landau.general import hopf_normal_form
-    from landau.verify.galvanetto.smooth import damped_slip_system
+    from landau.verify.galvanetto.smooth import damped_slip_system, kinetic_law
 
-    c1 = hopf_c1(V, gamma, delta)
-    return hopf_normal_form(damped_slip_system(V, gamma, delta), {"V": V, "gamma": gamma, "delta": delta},
+    law = kinetic_law(gamma, delta, law)
+    c1 = hopf_c1(V, law=law)
+    return hopf_normal_form(damped_slip_system(V, law=law), {"V": V, "gamma": law.gamma, "delta": law.delta},
                             (0.5 * c1, 1.5 * c1))
 
 
