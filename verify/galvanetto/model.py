@@ -123,21 +123,19 @@ def K_of(p: StickSlipParams, y):
 
 def _make_rhs(p: StickSlipParams, code: str):
     V, n, Fs, law = p.V, p.n, p.Fs, p.law
-    g, dl = law.gamma, law.delta
+    fneg, fpos = law.neg, law.pos   # the branches of eq. (7), generated from the law's symbolic form
     if n == 1:
         c = p.c
         if code == "s":
             return lambda t, y: np.array([V, 0.0])
         if code == "n":
-            return lambda t, y: np.array([y[1], -(y[0] + c * y[1]) + (1 - dl) / (1 - g * (y[1] - V)) + dl])
-        return lambda t, y: np.array([y[1], -(y[0] + c * y[1]) - (1 - dl) / (1 + g * (y[1] - V)) - dl])
+            return lambda t, y: np.array([y[1], -(y[0] + c * y[1]) + fneg(y[1] - V)])
+        return lambda t, y: np.array([y[1], -(y[0] + c * y[1]) + fpos(y[1] - V)])
     a, c = p.alpha, p.c
     F1, F2 = Fs
 
     def fr(ch, r, F):
-        if ch == "n":
-            return F * ((1 - dl) / (1 - g * r) + dl)
-        return -F * ((1 - dl) / (1 + g * r) + dl)
+        return F * (fneg(r) if ch == "n" else fpos(r))
 
     c1, c2 = code
 
