@@ -70,6 +70,10 @@ class KineticFriction:
         for k, e in fns.items():
             object.__setattr__(self, k, _numeric(e))
 
+    def __reduce__(self):
+        # rebuilt from its fields (the generated numeric functions are not picklable)
+        return (type(self), (self.gamma, self.delta, self.neg_expr, self.pos_expr))
+
     # ---------------------------------------------------------------- symbolic form
     def branch(self, side: str = "neg", *, symbolic: bool = False) -> sp.Expr:
         """The sympy expression of one branch in :data:`R`.

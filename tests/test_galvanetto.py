@@ -259,6 +259,9 @@ def test_user_kinetic_law_parsed_and_differentiated():
         assert law.dneg(r) == pytest.approx(2.4 * math.exp(3 * r), rel=1e-14)
         assert law.d3neg(r) == pytest.approx(0.8 * 27 * math.exp(3 * r), rel=1e-14)
     assert law.neg(0.0) == pytest.approx(1.0, abs=1e-15)
+    import pickle   # rebuilt from its expressions (the generated functions are not picklable)
+    back = pickle.loads(pickle.dumps(law))
+    assert back == law and back.dneg(-0.3) == law.dneg(-0.3)
     with pytest.raises(ParseError):
         KineticFriction.from_expression("__import__('os').getcwd()")
     with pytest.raises(InputError):
