@@ -18,6 +18,7 @@ printed; Sec. 4.1's one-block values are reproduced only with δ = 0.2).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 import sympy as sp
@@ -32,8 +33,10 @@ _PAPER_NEG = (1 - DELTA) / (1 - GAMMA * R) + DELTA      # eq. (7), r < 0
 _PAPER_POS = -(1 - DELTA) / (1 + GAMMA * R) - DELTA     # eq. (7), r > 0
 
 
+@lru_cache(maxsize=256)
 def _numeric(expr: sp.Expr):
-    """expr(r, γ, δ) compiled once to a numpy function of (r, gamma, delta)."""
+    """expr(r, γ, δ) compiled once (per expression, shared by every law that uses it: sweeps build
+    many laws with the same branches) to a numpy function of (r, gamma, delta)."""
     return sp.lambdify((R, GAMMA, DELTA), expr, modules="numpy")
 
 
