@@ -47,7 +47,7 @@ import sympy as sp
 
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.fredholm import _pencil, best_drop, cubic_coefficient, linear_coefficient, null_vectors, row_dot
-from landau.cx import Cx
+from landau.cx import Cx, as_expr
 from landau.hopf import GENERAL, HopfResult
 from landau.jets import Jets, TaylorJets
 from landau.system import DynamicalSystem
@@ -110,7 +110,7 @@ class NumericSystem:
                 if len(system.unknown_guess) != len(system.unknowns):
                     raise InputError(f"{system.name}: the equilibrium has no closed form; give unknown_guess "
                                      "or an equilibrium guess")
-                eq = [sp.sympify(e).xreplace(dict(zip(system.unknowns, system.unknown_guess))) for e in eq]
+                eq = [as_expr(e).xreplace(dict(zip(system.unknowns, system.unknown_guess))) for e in eq]
             fn = sp.lambdify([self.p, *self.params], eq, "numpy")
             self._guess = lambda p: [float(x) for x in fn(p, *self._pv)]
 
@@ -303,9 +303,9 @@ def _symbolic_tensors(num: NumericSystem, y0, pc, jets_cache: dict) -> dict[int,
 
         def expand(e):
             for _ in range(10):
-                if not (sp.sympify(e).free_symbols & atoms.keys()):
+                if not (as_expr(e).free_symbols & atoms.keys()):
                     return e
-                e = sp.sympify(e).xreplace(atoms)
+                e = as_expr(e).xreplace(atoms)
             return e
         fn = sp.lambdify([*y0s, sysm.parameter, *num.params], [expand(v) for _, v in entries], "mpmath")
         jets_cache[key] = ([k for k, _ in entries], fn)
@@ -520,7 +520,7 @@ def _frozen_equilibrium(system: DynamicalSystem, params: Mapping[str, float] | N
     at = dict(zip(system.states, y0s))
     probe = DynamicalSystem(system.name, system.states, system.rhs, system.mass, system.parameter, y0s,
                             normalise=system.normalise, unknowns=y0s,
-                            unknown_equations=tuple(sp.sympify(f).xreplace(at) for f in system.rhs))
+                            unknown_equations=tuple(as_expr(f).xreplace(at) for f in system.rhs))
     values: dict[str, Any] = dict(params or {})
     num = NumericSystem(system, params or {}, result.equilibrium)
     pc, _, y = refine_hopf(num, result.p_c, result.omega_c, result.equilibrium)

@@ -19,7 +19,7 @@ from typing import Any, Callable, Sequence
 
 import sympy as sp
 
-from landau.cx import Cx, cx_is_zero
+from landau.cx import Cx, as_expr, cx_is_zero
 from landau.system import DynamicalSystem
 
 
@@ -261,7 +261,7 @@ class TaylorJets:
 
         self.variables = tuple(variables)
         self.K = int(order)
-        exprs = [sp.sympify(e) for e in exprs]
+        exprs = [as_expr(e) for e in exprs]
         for e in exprs:
             bad = e.atoms(sp.Piecewise, sp.Abs, sp.sign, sp.Heaviside, sp.Min, sp.Max, sp.floor, sp.ceiling)
             if bad:

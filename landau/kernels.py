@@ -30,6 +30,7 @@ import sympy as sp
 from numba import types
 from sympy.printing.pycode import PythonCodePrinter
 
+from landau.cx import as_expr
 from landau.errors import InputError
 from landau.verify.hybrid.kernel import Kernel
 
@@ -100,7 +101,7 @@ def kernel_source(states: Sequence[sp.Symbol], field: Sequence[sp.Expr], params:
     if len(set(names)) != len(names):
         raise InputError(f"state, parameter and time symbols must be distinct (got {names})")
     known = set(states) | set(params) | ({time} if time is not None else set())
-    exprs = [sp.sympify(e) for e in field]
+    exprs = [as_expr(e) for e in field]
     free = set().union(*(e.free_symbols for e in exprs)) - known
     if free:
         raise InputError(f"field uses undeclared symbol(s) {sorted(s.name for s in free)}")

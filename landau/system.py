@@ -122,7 +122,7 @@ class DynamicalSystem:
             object.__setattr__(self, "mass", tuple(_as_sympy(x, "mass") for x in mass))
         if not (len(self.rhs) == len(self.mass) == len(self.equilibrium) == n):
             raise InputError(f"system {self.name!r}: states, rhs, mass and equilibrium must have equal length")
-        if set().union(*(sp.sympify(e).free_symbols for e in self.mass_matrix)) & set(self.states):
+        if set().union(*(e.free_symbols for e in self.mass_matrix)) & set(self.states):
             raise InputError(f"system {self.name!r}: the mass matrix must not depend on the states")
 
     @property
@@ -138,7 +138,7 @@ class DynamicalSystem:
     @cached_property
     def parameters(self) -> tuple[sp.Symbol, ...]:
         """Every free symbol except the states, the Hopf parameter and the unknowns, sorted by name."""
-        syms = set().union(*(sp.sympify(e).free_symbols for e in (*self.rhs, *self.mass_matrix, *self.equilibrium)))
+        syms = set().union(*(e.free_symbols for e in (*self.rhs, *self.mass_matrix, *self.equilibrium)))
         syms -= set(self.states) | {self.parameter} | set(self.unknowns)
         return tuple(sorted(syms, key=lambda s: s.name))
 
