@@ -185,29 +185,6 @@ class VelocityFriction(Law):
         plist = [p for p in plist if p.symbol in syms]
         return cls(name, pos, neg, tuple(plist), quantity, source, description)
 
-    def with_defaults(self, **values: float) -> "VelocityFriction":
-        """A copy with some parameter defaults changed.
-
-        Parameters
-        ----------
-        **values : float
-            New defaults by parameter name.
-
-        Returns
-        -------
-        VelocityFriction
-        """
-        new = []
-        for p in self.parameters:
-            if p.name in values:
-                new.append(Parameter(p.name, float(values.pop(p.name)), p.units, p.source, p.description, p.positive))
-            else:
-                new.append(p)
-        if values:
-            raise InputError(f"law {self.name!r} has no parameter(s) {', '.join(sorted(values))}")
-        return VelocityFriction(self.name, self.positive, self.negative, tuple(new), self.quantity, self.source,
-                                self.description)
-
     # ------------------------------------------------------------------ symbolic form
     @property
     def v(self) -> sp.Symbol:
