@@ -390,7 +390,7 @@ class VelocityFriction(Law):
 
 
 # ---------------------------------------------------------------------- built-in laws
-LANCIONI = "Lancioni, Lenci & Galvanetto, frictional impact oscillator, eq. (1) (Coulomb friction)"
+LANCIONI = "Lancioni, Lenci & Galvanetto (c. 2008), frictional impact oscillator, eq. (1): Coulomb friction"
 SKURATIVSKYI = "Skurativskyi, Kudra, Witkowski, Awrejcewicz 2019, Nonlinear Dyn. 98:1795, eq. (1), Sec. 2"
 
 
