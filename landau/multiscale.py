@@ -960,9 +960,11 @@ class Derivation:
             return lambda V, k: ()
         by_name = {s.name: s for s in system.parameters}
         fixed = {by_name[n]: v for n, v in resolved.items() if n in by_name}
-        V = by_name.get("V")
+        V = by_name.get("V", sp.Dummy())
         exprs = [as_expr(e).xreplace(fixed) for e in system.equilibrium]
-        fn = sp.lambdify([V if V is not None else sp.Dummy(), self.k], exprs, modules="math")
+        if set().union(*(e.free_symbols for e in exprs)) - {V, self.k}:
+            return lambda Vi, k: ()
+        fn = sp.lambdify([V, self.k], exprs, modules="math")
         return lambda Vi, k: tuple(float(y) for y in fn(Vi, k))
 
 
