@@ -8,7 +8,8 @@ them (with common-subexpression elimination) as Python source for
 
 checks that source against a whitelist of syntax (assignments of arithmetic on names and
 subscripts, ``math.<function>`` calls and a few builtins), executes it in a namespace that
-holds nothing else, and compiles both functions with numba.  The result (:class:`Kernel`)
+holds nothing else, and compiles both functions with numba (:func:`compile_source`, through
+the cross-process code cache of :mod:`landau.verify.jitcache`).  The result (:class:`Kernel`)
 is what the compiled steppers of :mod:`landau.verify.hybrid.compiled` take: the
 simulation layer itself never imports sympy — kernels are made here, on the derivation
 side, and handed over as numba callables.
@@ -20,11 +21,10 @@ in code) reach this module; user strings never reach ``exec``.
 from __future__ import annotations
 
 import ast
-import builtins
 import math
+from dataclasses import dataclass, field
 from typing import Mapping, Sequence
 
-import numba as nb
 import numpy as np
 import sympy as sp
 from numba import types
@@ -33,6 +33,7 @@ from sympy.printing.pycode import PythonCodePrinter
 from landau.cx import as_expr
 from landau.errors import InputError
 from landau.verify.hybrid.kernel import Kernel
+from landau.verify.jitcache import load_generated, njit_cached
 
 #: numba signatures of the generated functions (the ones the compiled steppers call)
 FUN_SIG = types.void(types.float64, types.float64[::1], types.float64[::1], types.float64[::1])
@@ -178,10 +179,66 @@ def generate_kernel(states: Sequence[sp.Symbol], field: Sequence[sp.Expr], param
                 raise InputError(f"kernel {name!r}: {len(pv)} values for {len(params)} parameters")
     else:
         pv = [0.0]  # numba needs a non-empty float64[::1]
-    # only whitelisted names exist in the namespace (check_source is the filter; this is the
-    # second wall: no other builtins are reachable from the generated code)
-    glb: dict = {"math": math, "__builtins__": {nm: getattr(builtins, nm) for nm in ALLOWED_BUILTINS}}
-    exec(compile(src, f"<kernel {name}>", "exec"), glb)
-    fun = nb.njit(FUN_SIG)(glb["fun"])
-    jac = nb.njit(JAC_SIG)(glb["jac"]) if jacobian else None
-    return Kernel(fun, np.asarray(pv, float), jac, name=name, n=len(states), source=src)
+    compiled = compile_source(src, name)
+    return Kernel(compiled.fun, np.asarray(pv, float), compiled.jac, name=name, n=len(states), source=src)
+
+
+@dataclass(frozen=True)
+class CompiledSource:
+    """The functions of one generated kernel source, compiled and as plain Python.
+
+    Attributes
+    ----------
+    source : str
+        The source (from :func:`kernel_source`).
+    fun, jac : numba dispatcher
+        ``fun(t, y, p, out)`` and ``jac(t, y, p, out)`` (``jac`` None when not emitted).
+    fun_py, jac_py : function
+        The same functions uncompiled (e.g. for a pure-Python baseline).
+    """
+
+    source: str = field(repr=False)
+    fun: object
+    jac: object | None
+    fun_py: object = field(repr=False)
+    jac_py: object | None = field(repr=False)
+
+
+_COMPILED: dict[str, CompiledSource] = {}
+
+
+def compile_source(src: str, name: str = "kernel") -> CompiledSource:
+    """Compile a kernel source of :func:`kernel_source` with numba, through the code cache.
+
+    The source is checked again (:func:`check_source`), kept in the cross-process code cache
+    of :mod:`landau.verify.jitcache` (a file named by its SHA-256, executed with the builtins
+    ``abs``, ``min``, ``max``, ``float`` and the module ``math`` only) and compiled with
+    ``cache=True``, so a later process loads the machine code from disk.  The compiled
+    functions are module-level functions of that file's module, so compiled-method templates
+    bound to them are cached on disk as well (:mod:`landau.verify.hybrid.specialise`).  One
+    source is compiled once per process.
+
+    Parameters
+    ----------
+    src : str
+        Source defining ``fun(t, y, p, out)`` and optionally ``jac(t, y, p, out)``.
+    name : str
+        A label for error messages.
+
+    Returns
+    -------
+    CompiledSource
+    """
+    hit = _COMPILED.get(src)
+    if hit is not None:
+        return hit
+    check_source(src)
+    ns = load_generated(src, {"math": math}, ALLOWED_BUILTINS)
+    if not callable(ns.get("fun")):
+        raise InputError(f"kernel {name!r}: the source defines no function fun")
+    fun_py, jac_py = ns["fun"], ns.get("jac")
+    fun = njit_cached(fun_py, FUN_SIG)
+    jac = njit_cached(jac_py, JAC_SIG) if jac_py is not None else None
+    out = CompiledSource(src, fun, jac, fun_py, jac_py)
+    _COMPILED[src] = out
+    return out
