@@ -93,7 +93,9 @@ def kernel_source(states: Sequence[sp.Symbol], field: Sequence[sp.Expr], params:
     Returns
     -------
     str
-        The source, already checked by :func:`check_source`.
+        The source, already checked by :func:`check_source`.  It is kept in the disk cache of
+        derivations (:mod:`landau.cache`, switched off by ``LANDAU_CACHE=off``), so a later
+        process asking for the same field skips the differentiation and the elimination.
     """
     n = len(states)
     if len(field) != n:
@@ -114,11 +116,50 @@ def kernel_source(states: Sequence[sp.Symbol], field: Sequence[sp.Expr], params:
         ren[time] = sp.Symbol("t", **time.assumptions0)
     exprs = [e.xreplace(ren) for e in exprs]
     svars = [ren[s] for s in states]
+    # what sympy derives here (the Jacobian, the common subexpressions) depends only on the
+    # renamed field: the source is kept in the disk cache of derivations (landau.cache) under
+    # that field's canonical text, this generator's own code and the sympy version
+    from landau import cache
+
+    key = cache.make_key("kernel-source", _generator_fingerprint(), sp.__version__, jacobian, len(params),
+                         sp.srepr((tuple(svars), tuple(exprs))))
+    src = cache.get("kernel-source", key)
+    if isinstance(src, str):
+        try:
+            check_source(src)                   # the cached text passes the same whitelist,
+            return src
+        except (InputError, SyntaxError):       # or it is rebuilt
+            pass
+    src = _emit(exprs, svars, len(params), jacobian)
+    cache.put("kernel-source", key, src)
+    return src
+
+
+_FINGERPRINT: str | None = None
+
+
+def _generator_fingerprint() -> str:
+    """SHA-256 of this module's source: a changed generator never reads an older entry."""
+    global _FINGERPRINT
+    if _FINGERPRINT is None:
+        import hashlib
+        from pathlib import Path
+
+        try:
+            _FINGERPRINT = hashlib.sha256(Path(__file__).read_bytes()).hexdigest()[:16]
+        except OSError:
+            _FINGERPRINT = "unknown"
+    return _FINGERPRINT
+
+
+def _emit(exprs, svars, nparams: int, jacobian: bool) -> str:
+    """The source of fun (and jac) for the renamed field ``exprs`` over ``svars`` (s_i, q_i, t names)."""
+    n = len(svars)
     jm = sp.Matrix(exprs).jacobian(sp.Matrix(svars)) if jacobian else sp.zeros(0, 0)
     reps, red = sp.cse(exprs + list(jm), symbols=sp.numbered_symbols("c"), optimizations="basic")
     pr = _Printer({"fully_qualified_modules": True})
     head = [f"    s{i} = y[{i}]" for i in range(n)]
-    head += [f"    q{i} = p[{i}]" for i in range(len(params))]
+    head += [f"    q{i} = p[{i}]" for i in range(nparams)]
     body = [f"    {s} = {pr.doprint(e)}" for s, e in reps]
     lines = ["def fun(t, y, p, out):", *head, *body]
     lines += [f"    out[{i}] = {pr.doprint(red[i])}" for i in range(n)]

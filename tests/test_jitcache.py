@@ -178,3 +178,36 @@ def test_concurrent_processes_share_one_entry(cache):
     assert len(list(cache.glob("landau_kernel_*.py"))) == 1      # one complete file, whoever wrote it last
     assert jitcache.source_path(src).read_text() == src
     assert _hits(_compile(src)) == (1, 0)            # and its numba entry serves the next process
+
+
+def test_generated_source_is_kept_with_the_derivations(tmp_path, monkeypatch):
+    import sympy as sp
+
+    from landau import cache as dcache
+    from landau import kernels
+
+    monkeypatch.setenv("LANDAU_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(dcache, "_enabled", True)
+    x, v, w = sp.symbols("x v w")
+    field = [v, -w ** 2 * x - sp.Rational(1, 10) * v]
+    src = kernels.kernel_source([x, v], field, [w])
+    assert len(list((tmp_path / "kernel-source").glob("*.pkl"))) == 1
+
+    def no_emission(*args):
+        raise AssertionError("the source was derived again")
+
+    real_emit = kernels._emit
+    monkeypatch.setattr(kernels, "_emit", no_emission)
+    # the same field under other symbol names is the same source: served from the cache
+    a, b, c = sp.symbols("a b c")
+    assert kernels.kernel_source([a, b], [b, -c ** 2 * a - sp.Rational(1, 10) * b], [c]) == src
+    # an entry that fails the whitelist of generated code is derived again, not executed
+    entry = next((tmp_path / "kernel-source").glob("*.pkl"))
+    dcache.put("kernel-source", entry.stem, "import os\n")
+    monkeypatch.setattr(kernels, "_emit", real_emit)
+    assert kernels.kernel_source([x, v], field, [w]) == src
+    # and the generated field is the declared one: x'' + 0.1 x' + w^2 x = 0 at (x, v) = (1, 2), w = 3
+    k = kernels.compile_source(src)
+    out = np.empty(2)
+    k.fun(0.0, np.array([1.0, 2.0]), np.array([3.0]), out)
+    assert list(out) == [2.0, -9.0 - 0.2]
