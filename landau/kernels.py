@@ -22,7 +22,8 @@ from __future__ import annotations
 
 import ast
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from dataclasses import field as _field
 from typing import Mapping, Sequence
 
 import numpy as np
@@ -238,11 +239,11 @@ class CompiledSource:
         The same functions uncompiled (e.g. for a pure-Python baseline).
     """
 
-    source: str = field(repr=False)
+    source: str = _field(repr=False)
     fun: object
     jac: object | None
-    fun_py: object = field(repr=False)
-    jac_py: object | None = field(repr=False)
+    fun_py: object = _field(repr=False)
+    jac_py: object | None = _field(repr=False)
 
 
 _COMPILED: dict[str, CompiledSource] = {}

@@ -165,7 +165,17 @@ def section_point(model: SpringBlockModel, amplitude: float) -> np.ndarray:
 
 
 def leading_growth_rate(model: SpringBlockModel) -> float:
-    """Largest real part of the eigenvalues of J at steady sliding (per unit of the scaled time τ)."""
+    """Largest real part of the eigenvalues of J at steady sliding (per unit of the scaled time τ).
+
+    Parameters
+    ----------
+    model : SpringBlockModel
+
+    Returns
+    -------
+    float
+        Negative where steady sliding is linearly stable.
+    """
     return float(np.max(np.linalg.eigvals(model.J(np.zeros(model.n))).real))
 
 
