@@ -32,7 +32,7 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from landau.errors import InputError, IntegratorError
-from landau.verify.hybrid.locate import first_crossing, guard_on_dense, root_new_side
+from landau.verify.hybrid.locate import HermiteScreen, first_crossing, guard_on_dense, root_new_side
 from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.model import HybridModel, as_jump
 from landau.verify.hybrid.result import Simulation, status_from_text
@@ -183,6 +183,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
     monitor = ZenoMonitor(options.zeno_interval, options.max_event_rate, options.rate_window,
                           relative=options.zeno_relative)
     nodes = np.arange(1, options.samples + 2) / (options.samples + 1)
+    screen = HermiteScreen(options.samples) if options.samples > 0 and not options.record else None
     nsteps = nfev = 0
     n_zero = 0
     atol = options.guard_atol
@@ -215,6 +216,12 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             solver = stepper(m.rhs, t, y, t_end, m.jac)
             seg_t, seg_y = [np.array([t])], [y[:, None]]
             hit = None  # (t_hit, j, kind)
+            # the Hermite screen needs the vector field at the step ends (``f``, which scipy's
+            # and the compiled steppers keep); it is off when samples are recorded for plots
+            use_screen = screen is not None and getattr(solver, "f", None) is not None
+            if use_screen:
+                screen.start(solver.y, solver.f)
+            all_armed = bool((state == ARMED).all())
             while hit is None:
                 msg = solver.step()
                 nsteps += 1
@@ -223,6 +230,26 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                 if not np.all(np.isfinite(solver.y)):
                     raise IntegratorError(f"mode {mname!r}: non-finite state", t=solver.t_old, state=y)
                 t_old, t_new = solver.t_old, solver.t
+                if use_screen:
+                    probe = screen.samples(t_old, t_new, solver.y, solver.f)
+                    if probe is not None and all_armed:
+                        quiet = True
+                        ends = []
+                        for j, g in enumerate(guards):
+                            ok, g_end, dec = screen.quiet(g_last[j], np.asarray(g.fun(*probe), dtype=float),
+                                                          bool(dec_before[j]))
+                            if not ok:
+                                quiet = False
+                                break
+                            ends.append((g_end, dec))
+                        if quiet:
+                            for j, (g_end, dec) in enumerate(ends):
+                                g_last[j], dec_before[j] = g_end, dec
+                            if solver.status == "finished":
+                                nfev += solver.nfev
+                                t, y = solver.t, solver.y.copy()
+                                return finish("t_end")
+                            continue
                 dense = _LazyDense(solver)  # built only if a sample or a root needs it
                 ts_int = t_old + (t_new - t_old) * nodes[:-1]
                 Y = np.column_stack([dense(ts_int), solver.y]) if len(ts_int) else solver.y[:, None]
@@ -299,6 +326,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                         j = hit[1]
                         kind = hit[2]
                         break
+                all_armed = bool((state == ARMED).all())
                 if options.record:
                     seg_t.append(ts[1:])
                     seg_y.append(Y)
