@@ -9,6 +9,11 @@ local minima of the samples.  For a locally quadratic guard the true minimum can
 below the sampled one by at most the rise to the higher neighbour, so every sampled
 minimum closer to zero than (twice) that rise is refined by a bounded minimisation on the
 dense output, and a negative minimum gives the bracket [left sample, argmin].
+
+:class:`HermiteScreen` spares most steps that scan: it evaluates the same tests on the
+step's cubic Hermite interpolant (free: step ends and vector field there), widened by an
+estimate of that interpolant's error, and passes a step only if no value within those
+bounds could trigger the scan on the dense output.
 """
 
 from __future__ import annotations

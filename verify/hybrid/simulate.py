@@ -2,7 +2,9 @@
 
 ``simulate(model, mode, y0, (t0, t_end), stepper)`` integrates one mode at a time with a
 stepper that has dense output (see :mod:`landau.verify.hybrid.steppers`), scans the mode's
-guards on every step (:mod:`landau.verify.hybrid.locate`), applies the earliest switching
+guards on every step (:mod:`landau.verify.hybrid.locate`; when no trajectory is recorded, a
+step is first screened on its cubic Hermite interpolant and the dense output is built only
+where a guard may cross), applies the earliest switching
 transition at its root (taken on the new side of the guard), logs every event, and
 watches for Zeno accumulation (:mod:`landau.verify.hybrid.zeno`).
 
@@ -59,6 +61,11 @@ class EngineOptions:
     zeno_relative: True (default): ``zeno_interval`` is relative to max(1, |t|); False: it is
         an absolute time (ending chattering when the inter-impact time < a fixed tolerance).
     record: keep the sampled trajectory (for plots); off for fast maps.
+    screen: when not recording, first sample the guards on each step's cubic Hermite
+        interpolant with an error bound and build the dense output only for steps where that
+        could trigger the scan (:class:`~landau.verify.hybrid.locate.HermiteScreen`): the same
+        events, without the dense output's extra stages on quiet steps.  False: scan every
+        step on the dense output.
     """
 
     samples: int = 4
@@ -73,6 +80,7 @@ class EngineOptions:
     recover_tol: float = 1e-9
     record: bool = True
     zeno_relative: bool = True
+    screen: bool = True
 
 
 @dataclass(frozen=True)
@@ -183,7 +191,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
     monitor = ZenoMonitor(options.zeno_interval, options.max_event_rate, options.rate_window,
                           relative=options.zeno_relative)
     nodes = np.arange(1, options.samples + 2) / (options.samples + 1)
-    screen = HermiteScreen(options.samples) if options.samples > 0 and not options.record else None
+    screen = HermiteScreen(options.samples) if options.screen and options.samples > 0 and not options.record else None
     nsteps = nfev = 0
     n_zero = 0
     atol = options.guard_atol
