@@ -18,6 +18,8 @@ bounds could trigger the scan on the dense output.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 from scipy.optimize import brentq, minimize_scalar
@@ -30,15 +32,23 @@ def guard_on_dense(fun, dense):
 
 def root_new_side(gs, a: float, b: float, xtol: float) -> float:
     """Root of ``gs`` in [a, b] (gs(a) > 0 >= gs(b)), returned on the side gs <= 0."""
-    if gs(b) > 0:  # defensive: caller guarantees the sign change
+    seen: dict[float, float] = {}  # every value once: the dense output is the costly part
+
+    def g(s):
+        v = seen.get(s)
+        if v is None:
+            v = seen[s] = gs(s)
+        return v
+
+    if g(b) > 0:  # defensive: caller guarantees the sign change
         return b
-    ga = gs(a)
+    ga = g(a)
     if ga <= 0:
         return a
-    r = brentq(gs, a, b, xtol=xtol, rtol=4 * np.finfo(float).eps, maxiter=200)
+    r = brentq(g, a, b, xtol=xtol, rtol=4 * np.finfo(float).eps, maxiter=200)
     # Brent returns a point within xtol of the root, on either side; walk to the new side.
     step = max(xtol, 4 * np.finfo(float).eps * abs(r))
-    while gs(r) > 0 and r < b:
+    while g(r) > 0 and r < b:
         r = min(b, r + step)
         step *= 2
     return r
@@ -116,56 +126,61 @@ class HermiteScreen:
     Equations I*, 2nd ed., Springer, Sec. II.6 (dense output, Hermite interpolation).
     """
 
-    __slots__ = ("s", "safety", "dip_factor", "ya", "fa", "d3", "d3_prev", "mid", "has_prev", "ts", "Ys")
+    __slots__ = ("s", "safety", "dip_factor", "ya", "fa", "d3", "d3_prev", "mid", "has_prev", "ts", "Ys", "vals")
 
     def __init__(self, samples: int, safety: float = 10.0, dip_factor: float = 2.0):
         self.s = np.arange(1, samples + 1) / (samples + 1)
         self.safety, self.dip_factor = float(safety), float(dip_factor)
-        self.start(np.zeros(0), np.zeros(0))
+        self.start(np.zeros(0), np.zeros(0), 0)
 
-    def start(self, y0: np.ndarray, f0: np.ndarray) -> None:
-        """Begin a phase at state ``y0`` with vector field ``f0`` (forgets the previous step)."""
+    def start(self, y0: np.ndarray, f0: np.ndarray, n_guards: int) -> None:
+        """Begin a phase at state ``y0`` with vector field ``f0`` and ``n_guards`` guards
+        (forgets the previous step)."""
         n, m = len(y0), len(self.s)
         self.ya, self.fa = np.array(y0, dtype=float), np.array(f0, dtype=float)
         self.d3, self.d3_prev = np.empty(n), np.empty(n)
         self.mid = np.zeros(1)
         self.has_prev = False
         self.ts, self.Ys = np.empty(3 * m + 1), np.empty((n, 3 * m + 1))
+        self.vals = np.empty((n_guards, 3 * m + 1))
 
-    def samples(self, t0: float, t1: float, y1: np.ndarray, f1: np.ndarray):
-        """Times and states at which to evaluate the guards for the step from the previous
-        state (the phase start or the last step end) to ``(t1, y1)``, or None.
+    def advance(self, t0: float, t1: float, y1: np.ndarray, f1: np.ndarray) -> int:
+        """Take the step from the previous state (the phase start or the last step end) to
+        ``(t1, y1)`` with vector field ``f1`` there.
 
-        Returns ``(ts, Ys)`` with ``3m + 1`` columns: the m interpolated interior samples, the
-        exact step end, then the interior samples moved by + and - the error bound; None when
-        there is no error estimate yet (the first step of a phase).  The arrays are reused
-        from step to step.
+        Returns 1 when the step can be screened (:meth:`quiet`), 0 when there is no error
+        estimate yet (the first step of a phase), -1 when ``y1`` is not finite.
         """
         self.d3, self.d3_prev = self.d3_prev, self.d3
-        ok = _hermite_probe(self.s, self.safety, float(t0), float(t1), self.ya, self.fa,
-                            np.asarray(y1, dtype=float), np.asarray(f1, dtype=float),
-                            self.d3, self.d3_prev, self.mid, self.has_prev, self.ts, self.Ys)
+        code = _hermite_probe(self.s, self.safety, t0, t1, self.ya, self.fa, y1, f1,
+                              self.d3, self.d3_prev, self.mid, self.has_prev, self.ts, self.Ys)
         self.has_prev = True
-        return (self.ts, self.Ys) if ok else None
+        return code
 
-    def quiet(self, g_start: float, values, dec_before: bool) -> tuple[bool, float, bool]:
-        """Whether an armed guard certainly needs no dense-output scan in this step.
+    def quiet(self, guards, g_start: np.ndarray, dec_before: np.ndarray) -> bool:
+        """Whether no guard needs a dense-output scan of the step just taken (all armed).
 
-        ``values`` is the guard on :meth:`samples`' columns, ``g_start`` its value at the step
-        start, ``dec_before`` whether it was decreasing at the end of the previous step.
-        Returns ``(quiet, g_end, decreasing_at_end)``; the decrease is taken pessimistically
-        (True if it may be decreasing).
+        The guards are evaluated at the times ``self.ts`` and states ``self.Ys``: the m
+        interpolated interior samples, the exact step end, then the interior samples moved by
+        + and - the error bound.  ``g_start``: the guards at the step start; ``dec_before``:
+        whether each was decreasing at the end of the previous step.  When quiet, both are
+        advanced in place to the step end (the decrease taken pessimistically: True if a
+        guard may be decreasing there).
         """
-        code, g_end = _quiet_guard(np.asarray(values, dtype=float), len(self.s), float(g_start),
-                                   bool(dec_before), self.dip_factor)
-        return code > 0, g_end, code != 1
+        vals, ts, Ys = self.vals, self.ts, self.Ys
+        for j, g in enumerate(guards):
+            vals[j] = g.fun(ts, Ys)
+        return _quiet_guards(vals, len(self.s), g_start, dec_before, self.dip_factor)
 
 
 @njit(cache=True)
 def _hermite_probe(s, safety, t0, t1, ya, fa, y1, f1, d3, d3_prev, mid, has_prev, ts, Ys):
-    """Fill ``ts``/``Ys`` for :meth:`HermiteScreen.samples`; advance ``ya``/``fa`` to the step
-    end; return False when there is no error estimate yet."""
+    """Fill ``ts``/``Ys`` for :meth:`HermiteScreen.quiet`; advance ``ya``/``fa`` to the step
+    end; return 1, 0 (no error estimate yet) or -1 (``y1`` not finite)."""
     n, m = ya.shape[0], s.shape[0]
+    for i in range(n):
+        if not math.isfinite(y1[i]):
+            return -1
     h = t1 - t0
     new_mid = t0 + 0.5 * h
     dmid = new_mid - mid[0]
@@ -193,18 +208,32 @@ def _hermite_probe(s, safety, t0, t1, ya, fa, y1, f1, d3, d3_prev, mid, has_prev
     for i in range(n):
         ya[i] = y1[i]
         fa[i] = f1[i]
-    return ok
+    return 1 if ok else 0
 
 
 @njit(cache=True)
-def _quiet_guard(values, m, g_start, dec_before, dip_factor):
-    """(code, g_end): code 0 = the dense-output scan is needed; 1 = quiet, not decreasing at
-    the end; 2 = quiet, possibly decreasing at the end.  Worst case of :func:`first_crossing`'s
-    tests over the samples' uncertainty intervals: each sample as low, its neighbours as high
-    as their intervals allow."""
+def _quiet_guards(vals, m, g_start, dec_before, dip_factor):
+    """:meth:`HermiteScreen.quiet` on the guard values ``vals`` (one row per guard): the
+    worst case of :func:`first_crossing`'s tests over the samples' uncertainty intervals,
+    each sample as low and its neighbours as high as their intervals allow."""
+    k_guards = vals.shape[0]
+    for j in range(k_guards):
+        if _guard_code(vals[j], m, g_start[j], dec_before[j], dip_factor) == 0:
+            return False
+    for j in range(k_guards):
+        dec = _guard_code(vals[j], m, g_start[j], dec_before[j], dip_factor) == 2
+        g_start[j] = vals[j, m]
+        dec_before[j] = dec
+    return True
+
+
+@njit(cache=True)
+def _guard_code(values, m, g_start, dec_before, dip_factor):
+    """0: the dense-output scan is needed; 1: quiet, not decreasing at the end; 2: quiet,
+    possibly decreasing at the end."""
     g_end = values[m]
     if not g_end > 0.0:
-        return 0, g_end
+        return 0
     hi_prev = g_start
     hi_first = 0.0
     hi_last = 0.0
@@ -213,18 +242,18 @@ def _quiet_guard(values, m, g_start, dec_before, dip_factor):
         spread = max(abs(values[m + 1 + k] - g), abs(values[2 * m + 1 + k] - g))
         lo = g - spread
         if not lo > 0.0:
-            return 0, g_end
+            return 0
         if k + 1 < m:
             gn = values[k + 1]
             hi_next = gn + max(abs(values[m + 2 + k] - gn), abs(values[2 * m + 2 + k] - gn))
         else:
             hi_next = g_end
         if lo <= min(hi_prev, hi_next) and lo <= dip_factor * (max(hi_prev, hi_next) - lo):
-            return 0, g_end
+            return 0
         if k == 0:
             hi_first = g + spread
         hi_last = g + spread
         hi_prev = g + spread
     if m > 0 and dec_before and hi_first >= g_start and g_start <= dip_factor * (hi_first - g_start):
-        return 0, g_end
-    return (2 if g_end < hi_last else 1), g_end
+        return 0
+    return 2 if g_end < hi_last else 1

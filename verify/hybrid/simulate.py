@@ -228,36 +228,24 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             # and the compiled steppers keep); it is off when samples are recorded for plots
             use_screen = screen is not None and getattr(solver, "f", None) is not None
             if use_screen:
-                screen.start(solver.y, solver.f)
+                screen.start(solver.y, solver.f, len(guards))
             all_armed = bool((state == ARMED).all())
             while hit is None:
                 msg = solver.step()
                 nsteps += 1
                 if solver.status == "failed":
                     raise IntegratorError(f"mode {mname!r}: {msg}", t=solver.t, state=solver.y)
-                if not np.all(np.isfinite(solver.y)):
-                    raise IntegratorError(f"mode {mname!r}: non-finite state", t=solver.t_old, state=y)
                 t_old, t_new = solver.t_old, solver.t
-                if use_screen:
-                    probe = screen.samples(t_old, t_new, solver.y, solver.f)
-                    if probe is not None and all_armed:
-                        quiet = True
-                        ends = []
-                        for j, g in enumerate(guards):
-                            ok, g_end, dec = screen.quiet(g_last[j], np.asarray(g.fun(*probe), dtype=float),
-                                                          bool(dec_before[j]))
-                            if not ok:
-                                quiet = False
-                                break
-                            ends.append((g_end, dec))
-                        if quiet:
-                            for j, (g_end, dec) in enumerate(ends):
-                                g_last[j], dec_before[j] = g_end, dec
-                            if solver.status == "finished":
-                                nfev += solver.nfev
-                                t, y = solver.t, solver.y.copy()
-                                return finish("t_end")
-                            continue
+                probe = (screen.advance(t_old, t_new, np.asarray(solver.y, dtype=float), np.asarray(solver.f, dtype=float))
+                         if use_screen else 0 if np.isfinite(solver.y).all() else -1)
+                if probe < 0:
+                    raise IntegratorError(f"mode {mname!r}: non-finite state", t=t_old, state=y)
+                if probe > 0 and all_armed and screen.quiet(guards, g_last, dec_before):
+                    if solver.status == "finished":
+                        nfev += solver.nfev
+                        t, y = solver.t, solver.y.copy()
+                        return finish("t_end")
+                    continue
                 dense = _LazyDense(solver)  # built only if a sample or a root needs it
                 ts_int = t_old + (t_new - t_old) * nodes[:-1]
                 Y = np.column_stack([dense(ts_int), solver.y]) if len(ts_int) else solver.y[:, None]
