@@ -125,14 +125,17 @@ def test_hermite_screen_skips_only_steps_the_dense_scan_passes():
 
 def test_hermite_screen_saves_the_dense_output_stages():
     # harmonic oscillator with a guard that never fires: the screened run takes the same
-    # DOP853 steps as solve_ivp and builds one dense output only (the first step of the phase,
-    # which has no error estimate yet): 3 extra stages (Hairer's DOP853 dense output)
+    # DOP853 steps as solve_ivp and builds no dense output (3 extra stages per step in Hairer's
+    # DOP853); its only extra evaluation is y'' at the phase start (first-step error estimate)
     m = HybridModel.from_modes(Mode("o", lambda t, y: np.array([y[1], -y[0]]),
                                     (Guard("far", lambda t, y: 2.0 + y[0], lambda t, y: ("o", y)),)))
     sol = simulate(m, "o", [1.0, 0.0], (0.0, 50.0), DOP853Stepper(1e-10, 1e-12), EngineOptions(record=False))
     base = solve_ivp(lambda t, y: [y[1], -y[0]], (0.0, 50.0), [1.0, 0.0], method="DOP853", rtol=1e-10, atol=1e-12)
     assert sol.status == "t_end" and len(sol.events) == 0
-    assert sol.nfev == base.nfev + 3
+    assert sol.nfev == base.nfev + 1
+    unscreened = simulate(m, "o", [1.0, 0.0], (0.0, 50.0), DOP853Stepper(1e-10, 1e-12),
+                          EngineOptions(record=False, screen=False))
+    assert unscreened.nfev == base.nfev + 3 * unscreened.nsteps
 
 
 def test_two_guards_at_the_same_instant():

@@ -126,16 +126,21 @@ class HermiteScreen:
     Equations I*, 2nd ed., Springer, Sec. II.6 (dense output, Hermite interpolation).
     """
 
-    __slots__ = ("s", "safety", "dip_factor", "ya", "fa", "d3", "d3_prev", "mid", "has_prev", "ts", "Ys", "vals")
+    __slots__ = ("s", "safety", "dip_factor", "ya", "fa", "d3", "d3_prev", "mid", "has_prev", "ts", "Ys", "vals",
+                 "rhs", "nfev")
 
     def __init__(self, samples: int, safety: float = 10.0, dip_factor: float = 2.0):
         self.s = np.arange(1, samples + 1) / (samples + 1)
         self.safety, self.dip_factor = float(safety), float(dip_factor)
+        self.nfev = 0
         self.start(np.zeros(0), np.zeros(0), 0)
 
-    def start(self, y0: np.ndarray, f0: np.ndarray, n_guards: int) -> None:
+    def start(self, y0: np.ndarray, f0: np.ndarray, n_guards: int, rhs=None) -> None:
         """Begin a phase at state ``y0`` with vector field ``f0`` and ``n_guards`` guards
-        (forgets the previous step)."""
+        (forgets the previous step).  With the mode's ``rhs`` the first step is screened too:
+        y'' at the phase start is taken from one extra evaluation of ``rhs`` (a forward
+        difference along the flow), and y⁽⁴⁾ from the quartic through y, y' and y'' at the
+        start and y, y' at the end of the step."""
         n, m = len(y0), len(self.s)
         self.ya, self.fa = np.array(y0, dtype=float), np.array(f0, dtype=float)
         self.d3, self.d3_prev = np.empty(n), np.empty(n)
@@ -143,40 +148,54 @@ class HermiteScreen:
         self.has_prev = False
         self.ts, self.Ys = np.empty(3 * m + 1), np.empty((n, 3 * m + 1))
         self.vals = np.empty((n_guards, 3 * m + 1))
+        self.rhs = rhs
 
     def advance(self, t0: float, t1: float, y1: np.ndarray, f1: np.ndarray) -> int:
         """Take the step from the previous state (the phase start or the last step end) to
         ``(t1, y1)`` with vector field ``f1`` there.
 
         Returns 1 when the step can be screened (:meth:`quiet`), 0 when there is no error
-        estimate yet (the first step of a phase), -1 when ``y1`` is not finite.
+        estimate (the first step of a phase started without ``rhs``), -1 when ``y1`` is not
+        finite.
         """
-        self.d3, self.d3_prev = self.d3_prev, self.d3
+        first = not self.has_prev
+        a0 = self.d3_prev  # unused unless first (then a scratch buffer for y'' at t0)
+        if first and self.rhs is not None and t1 > t0:
+            delta = 1e-6 * (t1 - t0)
+            a0 = (np.asarray(self.rhs(t0 + delta, self.ya + delta * self.fa), dtype=float) - self.fa) / delta
+            self.nfev += 1
+        else:
+            first = False
+            self.d3, self.d3_prev = self.d3_prev, self.d3
         code = _hermite_probe(self.s, self.safety, t0, t1, self.ya, self.fa, y1, f1,
-                              self.d3, self.d3_prev, self.mid, self.has_prev, self.ts, self.Ys)
+                              self.d3, self.d3_prev, self.mid, self.has_prev, first and self.rhs is not None, a0,
+                              self.ts, self.Ys)
         self.has_prev = True
         return code
 
-    def quiet(self, guards, g_start: np.ndarray, dec_before: np.ndarray) -> bool:
-        """Whether no guard needs a dense-output scan of the step just taken (all armed).
+    def quiet(self, guards, g_start: np.ndarray, dec_before: np.ndarray, state: np.ndarray, atol: float) -> bool:
+        """Whether no guard needs a dense-output scan of the step just taken.
 
         The guards are evaluated at the times ``self.ts`` and states ``self.Ys``: the m
         interpolated interior samples, the exact step end, then the interior samples moved by
         + and - the error bound.  ``g_start``: the guards at the step start; ``dec_before``:
-        whether each was decreasing at the end of the previous step.  When quiet, both are
-        advanced in place to the step end (the decrease taken pessimistically: True if a
-        guard may be decreasing there).
+        whether each was decreasing at the end of the previous step; ``state``: 1 armed, 0
+        pending (armed by the scan at its first sample above ``atol``), -1 disarmed (never
+        quiet).  When quiet, all three are advanced in place to the step end (the decrease
+        taken pessimistically: True if a guard may be decreasing there; pending guards armed).
         """
         vals, ts, Ys = self.vals, self.ts, self.Ys
         for j, g in enumerate(guards):
             vals[j] = g.fun(ts, Ys)
-        return _quiet_guards(vals, len(self.s), g_start, dec_before, self.dip_factor)
+        return _quiet_guards(vals, len(self.s), g_start, dec_before, state, atol, self.dip_factor)
 
 
 @njit(cache=True)
-def _hermite_probe(s, safety, t0, t1, ya, fa, y1, f1, d3, d3_prev, mid, has_prev, ts, Ys):
+def _hermite_probe(s, safety, t0, t1, ya, fa, y1, f1, d3, d3_prev, mid, has_prev, first, a0, ts, Ys):
     """Fill ``ts``/``Ys`` for :meth:`HermiteScreen.quiet`; advance ``ya``/``fa`` to the step
-    end; return 1, 0 (no error estimate yet) or -1 (``y1`` not finite)."""
+    end; return 1, 0 (no error estimate) or -1 (``y1`` not finite).  y⁽⁴⁾ comes from the change
+    of the cubic's third derivative since the previous step (``has_prev``) or, on the first step
+    (``first``), from the quartic with y''(t0) = ``a0``."""
     n, m = ya.shape[0], s.shape[0]
     for i in range(n):
         if not math.isfinite(y1[i]):
@@ -184,7 +203,7 @@ def _hermite_probe(s, safety, t0, t1, ya, fa, y1, f1, d3, d3_prev, mid, has_prev
     h = t1 - t0
     new_mid = t0 + 0.5 * h
     dmid = new_mid - mid[0]
-    ok = has_prev and dmid > 0.0
+    ok = (has_prev and dmid > 0.0) or (first and h > 0.0)
     for i in range(n):
         d3[i] = (12.0 * (ya[i] - y1[i]) + 6.0 * h * (fa[i] + f1[i])) / h ** 3
     if ok:
@@ -192,12 +211,18 @@ def _hermite_probe(s, safety, t0, t1, ya, fa, y1, f1, d3, d3_prev, mid, has_prev
             sk = s[k]
             s2, s3 = sk * sk, sk * sk * sk
             h00, h10, h01, h11 = 2 * s3 - 3 * s2 + 1, s3 - 2 * s2 + sk, -2 * s3 + 3 * s2, s3 - s2
-            w = safety * h ** 4 * s2 * (1 - sk) ** 2 / 24.0 / dmid
+            w = safety * h ** 4 * s2 * (1 - sk) ** 2 / 24.0
             tk = t0 + h * sk
             ts[k], ts[m + 1 + k], ts[2 * m + 1 + k] = tk, tk, tk
             for i in range(n):
                 yk = h00 * ya[i] + h10 * h * fa[i] + h01 * y1[i] + h11 * h * f1[i]
-                e = w * abs(d3[i] - d3_prev[i])
+                if has_prev:
+                    d4 = abs(d3[i] - d3_prev[i]) / dmid
+                else:
+                    r1 = y1[i] - ya[i] - h * fa[i] - 0.5 * h * h * a0[i]
+                    r2 = h * (f1[i] - fa[i]) - h * h * a0[i]
+                    d4 = 24.0 * abs(r2 - 3.0 * r1) / h ** 4
+                e = w * d4
                 Ys[i, k] = yk
                 Ys[i, m + 1 + k] = yk + e
                 Ys[i, 2 * m + 1 + k] = yk - e
@@ -212,27 +237,34 @@ def _hermite_probe(s, safety, t0, t1, ya, fa, y1, f1, d3, d3_prev, mid, has_prev
 
 
 @njit(cache=True)
-def _quiet_guards(vals, m, g_start, dec_before, dip_factor):
+def _quiet_guards(vals, m, g_start, dec_before, state, atol, dip_factor):
     """:meth:`HermiteScreen.quiet` on the guard values ``vals`` (one row per guard): the
     worst case of :func:`first_crossing`'s tests over the samples' uncertainty intervals,
-    each sample as low and its neighbours as high as their intervals allow."""
+    each sample as low and its neighbours as high as their intervals allow.  A pending guard
+    is quiet only if every sample is above ``atol`` (the scan would arm it at the first one
+    and find nothing after it)."""
     k_guards = vals.shape[0]
     for j in range(k_guards):
-        if _guard_code(vals[j], m, g_start[j], dec_before[j], dip_factor) == 0:
+        if state[j] < 0:
+            return False
+        thr = atol if state[j] == 0 else 0.0
+        if _guard_code(vals[j], m, g_start[j], dec_before[j] and state[j] > 0, dip_factor, thr) == 0:
             return False
     for j in range(k_guards):
-        dec = _guard_code(vals[j], m, g_start[j], dec_before[j], dip_factor) == 2
+        thr = atol if state[j] == 0 else 0.0
+        dec = _guard_code(vals[j], m, g_start[j], dec_before[j] and state[j] > 0, dip_factor, thr) == 2
         g_start[j] = vals[j, m]
         dec_before[j] = dec
+        state[j] = 1
     return True
 
 
 @njit(cache=True)
-def _guard_code(values, m, g_start, dec_before, dip_factor):
+def _guard_code(values, m, g_start, dec_before, dip_factor, thr):
     """0: the dense-output scan is needed; 1: quiet, not decreasing at the end; 2: quiet,
-    possibly decreasing at the end."""
+    possibly decreasing at the end.  Every sample must be above ``thr``."""
     g_end = values[m]
-    if not g_end > 0.0:
+    if not g_end > thr:
         return 0
     hi_prev = g_start
     hi_first = 0.0
@@ -241,7 +273,7 @@ def _guard_code(values, m, g_start, dec_before, dip_factor):
         g = values[k]
         spread = max(abs(values[m + 1 + k] - g), abs(values[2 * m + 1 + k] - g))
         lo = g - spread
-        if not lo > 0.0:
+        if not lo > thr:
             return 0
         if k + 1 < m:
             gn = values[k + 1]

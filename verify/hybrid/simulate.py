@@ -197,7 +197,8 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
     atol = options.guard_atol
 
     def finish(status, zeno=None):
-        return HybridSolution(t, y, mname, status, log, tuple(segs), zeno, nsteps, nfev)
+        extra = screen.nfev if screen is not None else 0  # the screen's y'' at phase starts
+        return HybridSolution(t, y, mname, status, log, tuple(segs), zeno, nsteps, nfev + extra)
 
     while True:
         m = model.mode(mname)
@@ -228,8 +229,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             # and the compiled steppers keep); it is off when samples are recorded for plots
             use_screen = screen is not None and getattr(solver, "f", None) is not None
             if use_screen:
-                screen.start(solver.y, solver.f, len(guards))
-            all_armed = bool((state == ARMED).all())
+                screen.start(solver.y, solver.f, len(guards), m.rhs)
             while hit is None:
                 msg = solver.step()
                 nsteps += 1
@@ -240,7 +240,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                          if use_screen else 0 if np.isfinite(solver.y).all() else -1)
                 if probe < 0:
                     raise IntegratorError(f"mode {mname!r}: non-finite state", t=t_old, state=y)
-                if probe > 0 and all_armed and screen.quiet(guards, g_last, dec_before):
+                if probe > 0 and screen.quiet(guards, g_last, dec_before, state, atol):
                     if solver.status == "finished":
                         nfev += solver.nfev
                         t, y = solver.t, solver.y.copy()
@@ -322,7 +322,6 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                         j = hit[1]
                         kind = hit[2]
                         break
-                all_armed = bool((state == ARMED).all())
                 if options.record:
                     seg_t.append(ts[1:])
                     seg_y.append(Y)
