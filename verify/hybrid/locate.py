@@ -108,8 +108,8 @@ class HermiteScreen:
     step, so y⁽⁴⁾ is estimated from the change of that third derivative between consecutive
     steps of a phase.  Each guard is evaluated on the samples moved by ``safety`` times that
     error in either direction along every component; the spread of the three values bounds
-    the sample's uncertainty.  The first step of a phase has no estimate and is always
-    scanned on the dense output.
+    the sample's uncertainty.  On the first step of a phase y'' at the start comes from one
+    extra evaluation of the vector field and y⁽⁴⁾ from the quartic through the end data.
 
     Parameters
     ----------

@@ -225,9 +225,9 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             solver = stepper(m.rhs, t, y, t_end, m.jac)
             seg_t, seg_y = [np.array([t])], [y[:, None]]
             hit = None  # (t_hit, j, kind)
-            # the Hermite screen needs the vector field at the step ends (``f``, which scipy's
-            # and the compiled steppers keep); it is off when samples are recorded for plots
-            use_screen = screen is not None and getattr(solver, "f", None) is not None
+            # the Hermite screen needs the vector field at the step ends; it is off when samples
+            # are recorded for plots
+            use_screen = screen is not None and _keeps_current_f(solver)
             if use_screen:
                 screen.start(solver.y, solver.f, len(guards), m.rhs)
             while hit is None:
@@ -359,6 +359,17 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                              f"accumulation extrapolated at t={diag.t_accumulation:.12g}"))
             mname, y = jz.mode, np.array(jz.y, dtype=float)
             monitor.reset()
+
+
+def _keeps_current_f(solver) -> bool:
+    """Whether ``solver.f`` is the vector field at ``(solver.t, solver.y)`` after every step:
+    scipy's explicit Runge–Kutta solvers and Radau, the compiled DOPRI5 and SDIRK4 (the
+    compiled Radau IIA and scipy's BDF/LSODA do not keep it)."""
+    from scipy.integrate import DOP853, RK23, RK45, Radau
+
+    from landau.verify.hybrid.compiled import DOPRI5Solver, SDIRK4Solver
+
+    return isinstance(solver, (DOP853, RK45, RK23, Radau, DOPRI5Solver, SDIRK4Solver))
 
 
 class _LazyDense:
