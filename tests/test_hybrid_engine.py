@@ -247,3 +247,23 @@ def test_stiff_contact_mode_with_radau_and_jacobian():
     assert t_out - t_in == pytest.approx(math.pi / math.sqrt(k), rel=1e-6)
     assert sol.events[1].y[1] == pytest.approx(-v0, rel=1e-6)
     assert sol.y[0] == pytest.approx(-(3.0 - t_out) * v0, abs=1e-6)
+
+
+def test_hermite_screen_on_a_multi_phase_run_matches_the_dense_scan():
+    # Galvanetto (2004) two blocks, one step of the event map: eight switching events, most
+    # phases starting with a guard exactly on its surface (pending) — the screen arms those
+    # and screens the first step of every phase.  Independent computation: the same run with
+    # the screen off (dense-output scan on every step) must log the same events at the same
+    # times, and the screen must build no dense output on quiet steps (fewer evaluations).
+    from landau.verify.galvanetto.maps import gsp_start, model_for
+    from landau.verify.galvanetto.model import two_blocks
+
+    p = two_blocks(0.25, beta=1.722)
+    mode, y0 = gsp_start(p, -0.3)
+    runs = [simulate(model_for(p), mode, y0, (0.0, 300.0), DOP853Stepper(1e-10, 1e-12),
+                     EngineOptions(record=False, screen=screen), stop=lambda ev: ev.to_mode == "ss")
+            for screen in (False, True)]
+    full, screened = runs
+    assert len(full.events) == 8 and full.mode == "ss"
+    assert [(e.guard, e.to_mode, e.t) for e in screened.events] == [(e.guard, e.to_mode, e.t) for e in full.events]
+    assert screened.nfev < full.nfev - 2 * full.nsteps  # 3 dense-output stages saved on most steps
