@@ -181,13 +181,39 @@ def lift_off_mu(params: Mapping[str, float] | None = None, s: int = 1, span: flo
 
 
 def stick_onset_mu(params: Mapping[str, float] | None = None, s: int = 1, v: float = -1.0,
-                   span: float = 0.05) -> tuple[float, SlipCycle]:
-    """μ where the slip cycle first reaches g_T = 0 (stick appears), belt speed v."""
+                   span: float = 0.05, *, friction=None, parameter: str | None = None) -> tuple[float, SlipCycle]:
+    """μ (or the law's bifurcation parameter) where the slip cycle first reaches g_T = 0 (stick
+    appears), belt speed v.
+
+    Parameters
+    ----------
+    params : mapping, optional
+        Mechanical parameters (default: set 1).
+    s : {+1, -1}
+        Slip sign.
+    v : float
+        Belt velocity (m/s).
+    span : float
+        The search runs from the Hopf point to this distance beyond it, on the cycle's side.
+    friction : VelocityFriction, optional
+        Friction-coefficient law (default: Coulomb μ).
+    parameter : str, optional
+        Its bifurcation parameter (default the first).
+
+    Returns
+    -------
+    tuple
+        (parameter value, the :class:`SlipCycle` there).
+    """
     p = S.resolve(params)
-    h = S.slip_hopf(p, s=s)
-    f = lambda m: (slip_cycle(m, p, s, v, hopf=h).gT_min if s > 0 else -slip_cycle(m, p, s, v, hopf=h).gT_max)  # noqa: E731
-    m = brentq(f, h.p_c + 1e-7, h.p_c + span, xtol=1e-10)
-    return m, slip_cycle(m, p, s, v, hopf=h)
+    h = S.slip_hopf(p, s=s, friction=friction, parameter=parameter, v=v if friction is not None else None)
+    side = h.cycle_side or 1
+
+    def f(m):
+        c = slip_cycle(m, p, s, v, hopf=h, friction=friction, parameter=parameter)
+        return c.gT_min if s > 0 else -c.gT_max
+    m = brentq(f, *sorted((h.p_c + side * 1e-7, h.p_c + side * span)), xtol=1e-10)
+    return m, slip_cycle(m, p, s, v, hopf=h, friction=friction, parameter=parameter)
 
 
 # --------------------------------------------------------------------------- simulation check

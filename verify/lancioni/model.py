@@ -93,7 +93,12 @@ class Lancioni(ContactMechanics):
         missing = [p.name for p, x in zip(law.parameters, vals) if x is None]
         if missing:
             raise InputError(f"friction law {law.name!r}: parameter(s) {', '.join(missing)} need a value")
-        lo, hi = law.limits_at_zero()
+        dep = any(V_SLIP in law.branch(s).free_symbols for s in (1, -1))
+        if dep:
+            lo, hi = law.limits_at_zero()
+        else:  # constant branches (Coulomb): the limits are their values
+            at = {p.symbol: x for p, x in zip(law.parameters, vals)}
+            lo, hi = (float(law.branch(s).xreplace(at)) for s in (-1, 1))
         if self.mu is not None and self.friction is not None and not np.isclose(float(self.mu), hi, rtol=1e-14,
                                                                                  atol=0.0):
             raise InputError(f"give the friction either as mu or as a law, not both (mu={self.mu!r}, law "
@@ -101,10 +106,9 @@ class Lancioni(ContactMechanics):
         object.__setattr__(self, "friction", law)
         object.__setattr__(self, "mu", hi)
         check_contact_coefficients(self.mu, self.eN)
-        dep = any(V_SLIP in law.branch(s).free_symbols for s in (1, -1))
         object.__setattr__(self, "velocity_dependent", dep)
         object.__setattr__(self, "_static", (hi, -lo))
-        object.__setattr__(self, "_branch", {s: law.numeric(s) for s in (1, -1)})
+        object.__setattr__(self, "_branch", {s: law.numeric(s) for s in (1, -1)} if dep else {})
         object.__setattr__(self, "_law_values", tuple(vals))
         p = self.params
         object.__setattr__(self, "_c", (p["m1"], p["m2"], p["l"], p["k_y"], p["k_phi"], p["c_y"], p["c_phi"],
