@@ -23,7 +23,6 @@ default the paper's Coulomb μ) and ``parameter`` (the bifurcation parameter, se
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 from typing import Mapping
 
 import numpy as np
@@ -34,7 +33,7 @@ from landau.errors import IntegratorError, NoHopfError
 from landau.verify.hybrid import DOP853Stepper, simulate
 from landau.verify.lancioni import slip as S
 from landau.verify.lancioni.contact import default_options
-from landau.verify.lancioni.model import ConstantBelt, at_parameter, build, slip_state
+from landau.verify.lancioni.model import ConstantBelt, build, slip_state
 
 
 @dataclass(frozen=True)
