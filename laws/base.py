@@ -73,6 +73,39 @@ class Law:
         raise InputError(f"law {self.name!r} has no parameter {name!r} "
                          f"(known: {', '.join(p.name for p in self.parameters) or 'none'})")
 
+    def with_defaults(self, **values: float):
+        """A copy with some parameter defaults changed.
+
+        Parameters
+        ----------
+        **values : float
+            New defaults by parameter name.
+
+        Returns
+        -------
+        Law
+            A new law of the same kind; this one is unchanged.
+
+        Raises
+        ------
+        InputError
+            A name that is not a parameter of the law.
+        """
+        import dataclasses
+
+        from landau.laws.law import Parameter
+
+        values = dict(values)
+        new = []
+        for p in self.parameters:
+            if p.name in values:
+                new.append(Parameter(p.name, float(values.pop(p.name)), p.units, p.source, p.description, p.positive))
+            else:
+                new.append(p)
+        if values:
+            raise InputError(f"law {self.name!r} has no parameter(s) {', '.join(sorted(values))}")
+        return dataclasses.replace(self, parameters=tuple(new))
+
     def latex(self) -> str:  # pragma: no cover - every subclass defines it
         """The law as one line of LaTeX.
 

@@ -352,30 +352,6 @@ class FrictionLaw(Law):
                 return s
         return self.parameter(name).symbol
 
-    def with_defaults(self, **values: float) -> "FrictionLaw":
-        """A copy with some parameter defaults changed.
-
-        Parameters
-        ----------
-        **values : float
-            New defaults by parameter name.
-
-        Returns
-        -------
-        FrictionLaw
-            A new law; this one is unchanged.
-        """
-        new = []
-        for p in self.parameters:
-            if p.name in values:
-                new.append(Parameter(p.name, float(values.pop(p.name)), p.units, p.source, p.description, p.positive))
-            else:
-                new.append(p)
-        if values:
-            raise InputError(f"law {self.name!r} has no parameter(s) {', '.join(sorted(values))}")
-        return FrictionLaw(self.name, self.mu, self.states, self.rates, tuple(new), self.source,
-                           self.description, self.steady_state)
-
     # --- steady state -------------------------------------------------------------
     @cached_property
     def steady_state_closed_form(self) -> tuple[sp.Expr, ...] | None:

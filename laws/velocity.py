@@ -185,29 +185,6 @@ class VelocityFriction(Law):
         plist = [p for p in plist if p.symbol in syms]
         return cls(name, pos, neg, tuple(plist), quantity, source, description)
 
-    def with_defaults(self, **values: float) -> "VelocityFriction":
-        """A copy with some parameter defaults changed.
-
-        Parameters
-        ----------
-        **values : float
-            New defaults by parameter name.
-
-        Returns
-        -------
-        VelocityFriction
-        """
-        new = []
-        for p in self.parameters:
-            if p.name in values:
-                new.append(Parameter(p.name, float(values.pop(p.name)), p.units, p.source, p.description, p.positive))
-            else:
-                new.append(p)
-        if values:
-            raise InputError(f"law {self.name!r} has no parameter(s) {', '.join(sorted(values))}")
-        return VelocityFriction(self.name, self.positive, self.negative, tuple(new), self.quantity, self.source,
-                                self.description)
-
     # ------------------------------------------------------------------ symbolic form
     @property
     def v(self) -> sp.Symbol:
@@ -413,7 +390,7 @@ class VelocityFriction(Law):
 
 
 # ---------------------------------------------------------------------- built-in laws
-LANCIONI = "Lancioni, Lenci & Galvanetto, frictional impact oscillator, eq. (1) (Coulomb friction)"
+LANCIONI = "Lancioni, Lenci & Galvanetto (c. 2008), frictional impact oscillator, eq. (1): Coulomb friction"
 SKURATIVSKYI = "Skurativskyi, Kudra, Witkowski, Awrejcewicz 2019, Nonlinear Dyn. 98:1795, eq. (1), Sec. 2"
 
 

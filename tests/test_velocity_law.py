@@ -89,3 +89,16 @@ def test_landau_hopf_spring_block_matches_the_linear_closed_form(capsys):
     assert doc["p_c"] == pytest.approx(kc, rel=1e-10)
     assert doc["criticality"] == "subcritical"
     assert main(["hopf", "no-such-model"]) == 2
+
+
+def test_landau_laws_lists_velocity_laws(capsys):
+    from landau.cli import main
+    import json
+
+    assert main(["laws", "regularised-coulomb", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)["laws"][0]
+    assert doc["kind"] == "velocity" and doc["set_valued_at_zero"] is False
+    assert {p["name"]: p["default"] for p in doc["parameters"]} == {"c": 6.6511, "T": 0.63133, "eps": 1e-6}
+    assert main(["laws", "--json"]) == 0
+    kinds = {d["name"]: d["kind"] for d in json.loads(capsys.readouterr().out)["laws"]}
+    assert kinds["coulomb"] == "velocity" and kinds["dieterich"] == "rate-and-state"

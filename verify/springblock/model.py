@@ -22,6 +22,7 @@ builds the model from (m, κ, V/V_*).
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Mapping
@@ -66,10 +67,19 @@ def _law_key(law: FrictionLaw) -> tuple:
             tuple(p.name for p in law.parameters))
 
 
+#: the compiled pieces of each law object seen (identity lookup: the structural key below prints
+#: the law's expressions, which costs more than a loose-tolerance integration)
+_BY_LAW: "weakref.WeakKeyDictionary[FrictionLaw, CompiledLaw]" = weakref.WeakKeyDictionary()
+
+
 def compile_law(law: FrictionLaw) -> CompiledLaw:
     """Generate and compile the scaled right-hand side and analytic Jacobian of eq. (4) for ``law``."""
+    hit = _BY_LAW.get(law)
+    if hit is not None:
+        return hit
     key = _law_key(law)
     if key in _CACHE:
+        _BY_LAW[law] = _CACHE[key]
         return _CACHE[key]
     ns = len(law.states)
     n = 2 + ns
@@ -98,6 +108,7 @@ def compile_law(law: FrictionLaw) -> CompiledLaw:
     src, rhs_py, jac_py, rhs, jac = _emit(ys, f, Jm, pnames, law.name)
     out = CompiledLaw(law.name, n, tuple(p.name for p in law.parameters), src, rhs, jac, rhs_py, jac_py)
     _CACHE[key] = out
+    _BY_LAW[law] = out
     return out
 
 
