@@ -18,7 +18,7 @@ from scipy.optimize import brentq
 from landau.cli import main
 from landau.errors import InputError
 from landau.laws.velocity import VelocityFriction, coulomb
-from landau.verify.hybrid.contact import contact_problem
+from landau.verify.hybrid.contact import contact_problem, poisson_impact
 from landau.verify.lancioni import slip as S
 from landau.verify.lancioni.flight_onset import first_lift_off
 from landau.verify.lancioni.model import Lancioni, build, slip_state
@@ -162,6 +162,18 @@ def test_asymmetric_stick_cone_closed_form():
     assert sol.mode == "slip+" and sol.lamT == pytest.approx(-2.0)
     sol = contact_problem(G, np.array([-g, -6.0]), (0.2, 0.5), 0.0)                       # λ_T = 6 > 5
     assert sol.mode == "slip-" and sol.lamT == pytest.approx(5.0)
+
+
+def test_poisson_impact_uses_the_one_sided_limit_of_the_sliding_direction():
+    # point mass (G = I): plastic impact with γ⁻ = (−1, γ_T⁻).  Sticking needs the impulse
+    # Λ_T = −γ_T⁻ inside [−μ₊Λ_N, μ₋Λ_N] with Λ_N = 1; otherwise the tangential velocity keeps its
+    # sign and drops by μ_σ (closed form γ_T⁺ = γ_T⁻ − σ μ_σ).
+    G = np.eye(2)
+    assert poisson_impact(G, [-1.0, -0.4], (0.2, 0.5), 0.0).compression == "stick"
+    r = poisson_impact(G, [-1.0, 0.4], (0.2, 0.5), 0.0)
+    assert r.compression == "slip+" and r.gamma_plus[1] == pytest.approx(0.4 - 0.2)
+    r = poisson_impact(G, [-1.0, -0.9], (0.2, 0.5), 0.0)
+    assert r.compression == "slip-" and r.gamma_plus[1] == pytest.approx(-0.9 + 0.5)
 
 
 def test_bad_laws_are_refused(law):
