@@ -19,6 +19,7 @@ from landau.cli import main
 from landau.errors import InputError
 from landau.laws.velocity import VelocityFriction, coulomb
 from landau.verify.hybrid.contact import contact_problem, poisson_impact
+from landau.verify.lancioni import analysis as A
 from landau.verify.lancioni import slip as S
 from landau.verify.lancioni.flight_onset import first_lift_off
 from landau.verify.lancioni.model import Lancioni, build, slip_state
@@ -106,6 +107,17 @@ def test_subcritical_by_direct_integration(hopf):
     small, large = maxima(0.7), maxima(1.4)
     assert np.all(np.diff(small) < 0) and small[-1] < 0.85 * small[0]
     assert len(large) >= 5 and np.all(np.diff(large) > 0) and large[-1] > 1.2 * large[0]
+
+
+def test_hopf_point_with_a_user_law_confirmed_by_the_hybrid_simulation(law, hopf):
+    # growth rate of a 1e-5 kick in the full hybrid model (the model evaluates the law at each
+    # state's g_T; impact, flight and stick guards armed) at μ_c ∓ 0.002: the zero of the line
+    # through them is within O(δ² σ''/σ') ~ 1e-5 of the engine's μ_c, its slope within 5 % of
+    # the engine's dRe λ/dμ (linear theory)
+    mu0, g1, g2 = A.hopf_by_simulation(delta=2e-3, friction=law)
+    assert g1.sigma < 0 < g2.sigma and g1.modes == g2.modes == ("slip+",)
+    assert abs(mu0 - hopf.p_c) < 5e-5
+    assert (g2.sigma - g1.sigma) / 4e-3 == pytest.approx(hopf.dlambda_dp.real, rel=0.05)
 
 
 def test_lift_off_with_a_user_law_matches_solve_ivp(law):

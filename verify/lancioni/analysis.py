@@ -33,7 +33,7 @@ from landau.errors import IntegratorError, NoHopfError
 from landau.verify.hybrid import DOP853Stepper, simulate
 from landau.verify.lancioni import slip as S
 from landau.verify.lancioni.contact import default_options
-from landau.verify.lancioni.model import ConstantBelt, build, slip_state
+from landau.verify.lancioni.model import ConstantBelt, build, build_at, slip_state
 
 
 @dataclass(frozen=True)
@@ -228,15 +228,18 @@ class GrowthRate:
 
 
 def growth_rate(mu: float, params: Mapping[str, float] | None = None, t_end: float = 20.0,
-                kick: float = 1e-5, stepper=DOP853Stepper(1e-11, 1e-13)) -> GrowthRate:
+                kick: float = 1e-5, stepper=DOP853Stepper(1e-11, 1e-13), *, friction=None,
+                parameter: str | None = None) -> GrowthRate:
     """Exponential growth rate of a small slip oscillation, measured by the hybrid engine.
 
     The run starts on the surface at φ_e + kick with every mode, guard and the impact law
-    armed; the rate is the least-squares slope of log(φ̇-max) after the first 2 s.
+    armed; the rate is the least-squares slope of log(φ̇-max) after the first 2 s.  With a
+    ``friction`` law, ``mu`` is the value of its bifurcation parameter ``parameter``.
     """
     p = S.resolve(params)
-    cm = build(mu, 0.0, p, ConstantBelt(-1.0))
-    y0 = slip_state(cm.mech, S.equilibrium_phi(p, mu, 1) + kick)
+    cm = build_at(mu, 0.0, p, ConstantBelt(-1.0), friction=friction, parameter=parameter)
+    vv = -1.0 if friction is not None else None
+    y0 = slip_state(cm.mech, S.equilibrium_phi(cm.mech.params, None, 1, cm.mech.friction, None, vv) + kick)
     sol = simulate(cm.model, cm.initial_mode(0.0, y0), y0, (0.0, t_end), stepper, default_options(record=False))
     ev = [e for e in sol.events.filter(guard="phidot-max") if e.t > 2.0 and e.y[2] > 0]
     modes = tuple(sorted({e.from_mode for e in sol.events} | {sol.mode}))
@@ -247,9 +250,14 @@ def growth_rate(mu: float, params: Mapping[str, float] | None = None, t_end: flo
 
 
 def hopf_by_simulation(params: Mapping[str, float] | None = None, delta: float = 2e-3, **kw) -> tuple[float, GrowthRate, GrowthRate]:
-    """Simulated Hopf point: zero of the measured growth rate between μ_c ∓ delta (engine's μ_c as centre)."""
+    """Simulated Hopf point: zero of the measured growth rate between μ_c ∓ delta (engine's μ_c as centre).
+
+    ``friction=``/``parameter=`` (passed on to :func:`growth_rate`) give a law and its bifurcation
+    parameter instead of the Coulomb μ.
+    """
     p = S.resolve(params)
-    mc = S.slip_hopf(p).p_c
+    mc = S.slip_hopf(p, friction=kw.get("friction"), parameter=kw.get("parameter"),
+                     v=-1.0 if kw.get("friction") is not None else None).p_c
     g1, g2 = growth_rate(mc - delta, p, **kw), growth_rate(mc + delta, p, **kw)
     mu0 = g1.mu - g1.sigma * (g2.mu - g1.mu) / (g2.sigma - g1.sigma)
     return float(mu0), g1, g2

@@ -41,8 +41,8 @@ from landau.verify.lancioni.model import (
     PHI_ZERO_UP,
     PHIDOT_MAX,
     ConstantBelt,
-    at_parameter,
     build,
+    build_at,
     slip_state,
 )
 from landau.verify.lancioni.period_adding import stick_exit
@@ -74,10 +74,7 @@ class FlightCycle:
 
 def _model(mu, eN, p, v, friction, parameter, **kw):
     """The hybrid model at bifurcation-parameter value ``mu`` (Coulomb μ by default)."""
-    if friction is None and parameter is None:
-        return build(mu, eN, p, ConstantBelt(v), **kw)
-    p, law = at_parameter(mu, p, friction, parameter)
-    return build(None, eN, p, ConstantBelt(v), friction=law, **kw)
+    return build_at(mu, eN, p, ConstantBelt(v), friction=friction, parameter=parameter, **kw)
 
 
 def _start(mu: float, p, v: float, friction=None, parameter=None):

@@ -261,11 +261,38 @@ def at_parameter(value: float, params: Mapping[str, float] | None = None, fricti
     return p, law.with_defaults(**{par: float(value)})
 
 
+def build_at(value: float, eN: float = 0.0, params: Mapping[str, float] | None = None, belt=None, *,
+             friction: VelocityFriction | None = None, parameter: str | None = None, **kw) -> ContactModel:
+    """:func:`build` with the bifurcation parameter at ``value`` (see :func:`at_parameter`).
+
+    Parameters
+    ----------
+    value : float
+        The Coulomb μ (default) or the value of ``parameter`` of the law ``friction``.
+    eN, params, belt
+        As for :func:`build`.
+    friction : VelocityFriction, optional
+        Friction-coefficient law (default: Coulomb).
+    parameter : str, optional
+        Its bifurcation parameter (default the first).
+    **kw
+        Further arguments of :func:`build` (sections, stick tolerance).
+
+    Returns
+    -------
+    ContactModel
+    """
+    if friction is None and parameter in (None, "mu"):
+        return build(value, eN, params, belt, **kw)
+    p, law = at_parameter(value, params, friction, parameter)
+    return build(None, eN, p, belt, friction=law, **kw)
+
+
 def slip_state(mech: Lancioni, phi: float, phidot: float = 0.0) -> np.ndarray:
     """A state on the surface (g_N = 0, γ_N = 0) with angle φ and rate φ̇."""
     l = mech.params["l"]
     return np.array([phi, l * np.cos(phi), phidot, -l * np.sin(phi) * phidot])
 
 
-__all__ = ["Lancioni", "at_parameter", "check_friction", "ConstantBelt", "SineBelt", "build", "slip_state", "PHIDOT_MAX", "PHI_ZERO_UP",
+__all__ = ["Lancioni", "at_parameter", "build_at", "check_friction", "ConstantBelt", "SineBelt", "build", "slip_state", "PHIDOT_MAX", "PHI_ZERO_UP",
            "SET1", "SET2"]
