@@ -61,6 +61,8 @@ def configure(p) -> None:
     add_law_arguments(p)
     add_friction_arguments(p)
     p.add_argument("--V", default=None, help="spring-block: driving velocity in m/s (default 1e-4)")
+    p.add_argument("--parameter", default=None, metavar="NAME",
+                   help="impact-oscillator: the bifurcation parameter (default mu, or the first parameter of --friction)")
 
 
 def run(args) -> dict:
