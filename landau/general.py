@@ -52,10 +52,6 @@ from landau.hopf import GENERAL, HopfResult
 from landau.jets import Jets, TaylorJets
 from landau.system import DynamicalSystem
 
-#: deprecated former name of :class:`landau.hopf.HopfResult`, the result of :func:`hopf_normal_form`
-#: (the same class; use ``HopfResult``)
-HopfNormalForm = HopfResult
-
 #: default working precision of the located point and its coefficients (decimal digits)
 DEFAULT_DPS = 50
 #: samples of the bracket when looking for crossings

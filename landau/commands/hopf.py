@@ -37,6 +37,9 @@ def _spring_block(args):
     if args.friction is not None:
         raise InputError("landau hopf spring-block: the spring-block takes a rate-and-state law (LAW or "
                          "--mu/--state), not --friction")
+    if getattr(args, "parameter", None) not in (None, "k"):
+        raise InputError("landau hopf spring-block: the bifurcation parameter is the stiffness k "
+                         f"(got --parameter {args.parameter})")
     block, params = block_and_params(args)
     Vs = parse_velocities(args.V if args.V is not None else "1e-4")
     if len(Vs) != 1:

@@ -50,7 +50,8 @@ import numpy as np
 import sympy as sp
 
 from landau.errors import InputError, NoHopfError
-from landau.general import HopfNormalForm, hopf_normal_form
+from landau.general import hopf_normal_form
+from landau.hopf import HopfResult
 from landau.laws.velocity import V_SLIP, VelocityFriction
 from landau.system import DynamicalSystem
 
@@ -464,7 +465,7 @@ def hopf_bracket(params: Mapping[str, float] | None = None, s: int = 1, n: int =
 
 def slip_hopf(params: Mapping[str, float] | None = None, bracket: tuple[float, float] | None = None,
               s: int = 1, friction: VelocityFriction | None = None, parameter: str | None = None,
-              v: float | None = None) -> HopfNormalForm:
+              v: float | None = None) -> HopfResult:
     """Hopf point of the slip equilibrium in μ (or another parameter) through the landau engine.
 
     Without ``bracket`` the interval comes from :func:`hopf_bracket` (a scan of the model).
@@ -486,7 +487,7 @@ def slip_hopf(params: Mapping[str, float] | None = None, bracket: tuple[float, f
 
     Returns
     -------
-    HopfNormalForm
+    HopfResult
         p_c, ω_c, the Landau coefficient, c₁ and the criticality.
 
     References
