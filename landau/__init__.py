@@ -5,20 +5,13 @@ Data flows one way: a friction law (:mod:`laws`) → a mechanical system
 :func:`hopf_normal_form`) → numbers, LaTeX and compiled code.
 """
 
-from importlib.metadata import PackageNotFoundError as _PackageNotFoundError
-from importlib.metadata import version as _version
-
-try:
-    __version__: str = _version("landau-friction")
-except _PackageNotFoundError:  # running from a source tree that was never installed
-    __version__ = "0+unknown"
-
 from typing import TYPE_CHECKING
 
 from landau.errors import InputError, IntegratorError, LandauError, NoHopfError, SingularPointError
 from landau.hopf import Convention, Criticality, HopfResult
 
 if TYPE_CHECKING:  # the same names as _LAZY, for type checkers and the API documentation
+    __version__: str
     from landau.checking import CheckResult, Verdict, check
     from landau.general import hopf_normal_form
     from landau.linear import HopfLine, HopfPoint, critical_stiffness
@@ -37,7 +30,20 @@ _LAZY = {
 }
 
 
+def _package_version() -> str:
+    """The installed distribution's version (importlib.metadata reads it on first request)."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("landau-friction")
+    except PackageNotFoundError:  # running from a source tree that was never installed
+        return "0+unknown"
+
+
 def __getattr__(name: str):
+    if name == "__version__":
+        value = globals()["__version__"] = _package_version()
+        return value
     if name in _LAZY:
         import importlib
         value = getattr(importlib.import_module(_LAZY[name]), name)
@@ -47,7 +53,7 @@ def __getattr__(name: str):
 
 
 def __dir__():
-    return sorted(set(globals()) | set(_LAZY))
+    return sorted(set(globals()) | set(_LAZY) | {"__version__"})
 
 
 __all__ = [

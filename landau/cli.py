@@ -67,18 +67,27 @@ def _jsonable(obj: Any) -> Any:
 
 
 def _version() -> str:
-    from importlib.metadata import PackageNotFoundError, version
+    from landau import __version__
 
-    try:
-        return version("landau-friction")
-    except PackageNotFoundError:
-        return "0+unknown"
+    return __version__
+
+
+class _VersionAction(argparse.Action):
+    """``--version``: the installed version, looked up only when asked for."""
+
+    def __init__(self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, help=None):
+        super().__init__(option_strings=option_strings, dest=dest, default=default, nargs=0,
+                         help=help or "show the version and exit")
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(f"landau {_version()}")
+        parser.exit()
 
 
 def build_parser(only: str | None = None) -> tuple[argparse.ArgumentParser, dict[str, Any]]:
     """The argument parser; with ``only``, just that sub-command's module is imported (fast start)."""
     parser = _Parser(prog="landau", description=__doc__.splitlines()[0])
-    parser.add_argument("--version", action="version", version=f"landau {_version()}")
+    parser.add_argument("--version", action=_VersionAction)
     sub = parser.add_subparsers(dest="command", parser_class=_Parser)
     modules: dict[str, Any] = {}
     for name, modname in COMMANDS.items():

@@ -22,10 +22,11 @@ def set_quiet(flag: bool) -> None:
 
 
 def _in_notebook() -> bool:
+    ipython = sys.modules.get("IPython")   # a notebook kernel has imported it already
+    if ipython is None:
+        return False
     try:
-        from IPython import get_ipython
-
-        shell = get_ipython()
+        shell = ipython.get_ipython()
     except Exception:
         return False
     return shell is not None and type(shell).__name__ == "ZMQInteractiveShell"

@@ -47,11 +47,14 @@ def run(args) -> dict:
         names = wanted
     out = Path(args.out)
     rows = []
-    from tqdm import tqdm
+    bar = None
+    if not (args.no_progress or args.json):
+        from tqdm import tqdm
 
-    bar = tqdm(names, disable=args.no_progress or args.json, desc=args.paper, unit="fig")
-    for name in bar:
-        bar.set_postfix_str(name)
+        bar = tqdm(names, desc=args.paper, unit="fig")
+    for name in names if bar is None else bar:
+        if bar is not None:
+            bar.set_postfix_str(name)
         t0 = time.perf_counter()
         paths = figures[name](out)
         rows.append({"figure": name, "files": [str(p) for p in paths], "seconds": time.perf_counter() - t0})

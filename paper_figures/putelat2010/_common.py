@@ -1,9 +1,15 @@
-"""Shared helpers of the Putelat et al. (2010) figures: cached derivations, velocity grids, saving."""
+"""Shared helpers of the Putelat et al. (2010) figures: cached derivations, velocity grids, saving.
+
+The figures of one run share their work: one :class:`Derivation` per law (derived and
+compiled once), one evaluation per (law, velocity grid, parameters) however many panels and
+figures plot from it (:class:`SharedDerivation`), and one mathtext parser for every figure's
+labels (:func:`save`)."""
 
 from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import Mapping, Sequence
 
 import matplotlib
 
@@ -11,9 +17,10 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker as mticker  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.mathtext import MathTextParser  # noqa: E402
 
 from landau.io import atomic_savefig  # noqa: E402
-from landau.multiscale import Derivation  # noqa: E402
+from landau.multiscale import CoefficientTable, Derivation  # noqa: E402
 from landau.system import SpringBlock  # noqa: E402
 from landau.transition import velocity_weakening_ranges  # noqa: E402
 from landau.laws import get_law  # noqa: E402
@@ -21,18 +28,64 @@ from landau.laws import get_law  # noqa: E402
 #: the paper's Table 1 values used in labels
 L = 0.9e-6
 V_S = 1e-6
-_DERIVATIONS: dict[str, Derivation] = {}
 
 
-def derivation(law: str) -> Derivation:
-    """One lazily-derived :class:`Derivation` per law, shared by the figures of a run."""
+class SharedDerivation(Derivation):
+    """A :class:`Derivation` that evaluates each (velocity grid, parameters) once.
+
+    The figures plot several quantities of one law on one grid, through helpers that each
+    ask :meth:`Derivation.evaluate` for a few names (:mod:`landau.amplitude`); the points
+    near an extremum of μ_ss go to a 50-digit fallback on every such call.  Here a call
+    whose names were already evaluated on the same grid and parameters gets the stored
+    arrays (copies), and a call with new names evaluates only those and adds them.  Calls
+    with ``sign_only``, another ``method`` or array-valued parameters are passed through.
+
+    A figure that plots several quantities asks for all of them in its first call
+    (:data:`AMPLITUDE_NAMES`), so that the fallback runs once per point for all of them.
+    """
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._tables: dict[tuple, dict[str, np.ndarray]] = {}
+
+    def evaluate(self, Vs, params: Mapping[str, float] | None = None,
+                 names: Sequence[str] = ("kc", "omega_c", "Gamma_bar", "Lambda"),
+                 method: str = "auto", sign_only: bool = False) -> CoefficientTable:
+        if isinstance(names, str):
+            names = [names]
+        V = np.asarray(Vs, dtype=float)
+        if sign_only or method != "auto" or any(np.ndim(v) for v in (params or {}).values()) or V.size < 2:
+            return super().evaluate(Vs, params, names, method, sign_only)
+        p = self.block.resolve(params)
+        key = (V.shape, V.tobytes(), tuple(sorted(p.items())))
+        table = self._tables.get(key)
+        missing = [n for n in names if table is None or n not in table]
+        if missing:
+            new = super().evaluate(V, p, missing)
+            if table is None:
+                table = dict(new)
+            else:   # quantities evaluated before keep their values; a degenerate point stays flagged
+                table = {**new, **table, "degenerate": table["degenerate"] | new["degenerate"]}
+            self._tables[key] = table
+        return CoefficientTable({k: v.copy() for k, v in table.items()}, law=self.block.law.name, params=p)
+
+
+#: what the amplitude, growth-rate and apparent-stiffness panels use (:mod:`landau.amplitude`)
+AMPLITUDE_NAMES = ("kc", "omega_c", "Gamma_bar", "Omega_bar", "Lambda", "chi")
+
+_DERIVATIONS: dict[str, SharedDerivation] = {}
+
+
+def derivation(law: str) -> SharedDerivation:
+    """One lazily-derived :class:`SharedDerivation` per law, shared by the figures of a run."""
     if law not in _DERIVATIONS:
-        _DERIVATIONS[law] = Derivation(SpringBlock(get_law(law)))
+        _DERIVATIONS[law] = SharedDerivation(SpringBlock(get_law(law)))
     return _DERIVATIONS[law]
 
 
-def fresh(law: str) -> Derivation:
-    return Derivation(SpringBlock(get_law(law)))
+def fresh(law: str) -> SharedDerivation:
+    """A new :class:`SharedDerivation` of ``law`` (nothing derived or evaluated yet)."""
+    return SharedDerivation(SpringBlock(get_law(law)))
 
 
 def vw_grid(d: Derivation, params: dict, n: int = 300, lo: float = 1e-9, hi: float = 1e-1) -> np.ndarray:
@@ -84,8 +137,18 @@ def vlabel(ax) -> None:
     ax.set_xlabel("V (m s$^{-1}$)")
 
 
+#: one mathtext parser for every figure: matplotlib keeps parsed labels per parser (each new
+#: figure's renderer would otherwise parse the same tick labels, "$10^{-5}$", again)
+_MATHTEXT = MathTextParser("path")
+
+
 def save(fig, out_dir: Path, name: str) -> list[Path]:
+    """Lay out ``fig`` (tight layout, computed once), write ``name``.png atomically, close it."""
+    fig.canvas.get_renderer().mathtext_parser = _MATHTEXT
     fig.tight_layout()
+    # tight_layout() leaves a placeholder layout engine, which makes savefig draw the whole
+    # figure once more before drawing it for the file; the layout is final: drop the engine
+    fig.set_layout_engine(None)
     path = atomic_savefig(fig, Path(out_dir) / f"{name}.png", dpi=100)
     plt.close(fig)
     return [path]

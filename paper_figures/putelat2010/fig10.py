@@ -29,6 +29,8 @@ def data() -> dict:
     P, P0 = {"c": C}, {"c": C, "M": 0.0}
     out = kc_panel(d)
     V = out["V"]
+    for prm in (P, P0):    # Γ and Λ of the panels below in one evaluation per parameter set
+        d.evaluate(V, prm, ["Gamma_bar", "Lambda"])
     Vmu = np.logspace(-9, -1, 300)
     out.update(V_mu=Vmu, mu_ss=mu_ss(d, Vmu, P), Gamma=growth_rate(d, V, P), Gamma_M0=growth_rate(d, V, P0),
                Lambda=d.evaluate(V, P, ["Lambda"])["Lambda"], Lambda_M0=d.evaluate(V, P0, ["Lambda"])["Lambda"],

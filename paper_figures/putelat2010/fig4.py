@@ -14,7 +14,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from landau.amplitude import apparent_stiffness, growth_rate, slip_amplitude, slip_rate_amplitude
-from landau.paper_figures.putelat2010._common import derivation, mu_ss, panel_title, save, symlog_y, vlabel
+from landau.paper_figures.putelat2010._common import AMPLITUDE_NAMES, derivation, mu_ss, panel_title, save, symlog_y, vlabel
 
 V = np.logspace(-7, -2, 240)
 DX_UM = (0.1, 1.0, 10.0)
@@ -22,6 +22,11 @@ DX_UM = (0.1, 1.0, 10.0)
 
 def data() -> dict:
     R, Dl = derivation("ruina"), derivation("dieterich")
+    # every quantity of the panels below in one evaluation per law and parameter set (M = 0:
+    # only k_c and Γ are drawn; Λ vanishes identically there)
+    R.evaluate(V, {}, AMPLITUDE_NAMES)
+    R.evaluate(V, {"M": 0.0}, ["kc", "Gamma_bar"])
+    Dl.evaluate(V, {}, ["Gamma_bar", "Lambda"])
     out = {"V": V, "mu_ss": mu_ss(R, V, {})}
     out["kc"] = R.evaluate(V, {}, ["kc"])["kc"]
     out["kc_M0"] = R.evaluate(V, {"M": 0.0}, ["kc"])["kc"]

@@ -12,7 +12,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from landau.amplitude import apparent_stiffness, growth_rate, slip_amplitude, slip_rate_amplitude
-from landau.paper_figures.putelat2010._common import derivation, mu_ss, panel_title, save, symlog_y, vlabel, vw_grid
+from landau.paper_figures.putelat2010._common import AMPLITUDE_NAMES, derivation, mu_ss, panel_title, save, symlog_y, vlabel, vw_grid
 
 C = 1e-3
 DX = 5.7e-6
@@ -22,6 +22,8 @@ def data() -> dict:
     d = derivation("spinodal")
     P, P0 = {"c": C}, {"c": C, "M": 0.0}
     V = vw_grid(d, P, 260)
+    for prm in (P, P0):    # every quantity of the panels below in one evaluation per parameter set
+        d.evaluate(V, prm, AMPLITUDE_NAMES)
     Vmu = np.logspace(-9, -1, 300)
     return {"V": V, "V_mu": Vmu, "mu_ss": mu_ss(d, Vmu, P),
             "kc": d.evaluate(V, P, ["kc"])["kc"], "kc_M0": d.evaluate(V, P0, ["kc"])["kc"],

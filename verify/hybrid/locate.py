@@ -22,7 +22,6 @@ import math
 
 import numpy as np
 from numba import njit
-from scipy.optimize import brentq, minimize_scalar
 
 
 def guard_on_dense(fun, dense):
@@ -45,6 +44,8 @@ def root_new_side(gs, a: float, b: float, xtol: float) -> float:
     ga = g(a)
     if ga <= 0:
         return a
+    from scipy.optimize import brentq
+
     r = brentq(g, a, b, xtol=xtol, rtol=4 * np.finfo(float).eps, maxiter=200)
     # Brent returns a point within xtol of the root, on either side; walk to the new side.
     step = max(xtol, 4 * np.finfo(float).eps * abs(r))
@@ -79,6 +80,8 @@ def first_crossing(G: np.ndarray, ts: np.ndarray, start: int, gs, dec_before: bo
             lo, hi, rise = ts[i - 1], ts[i + 1], max(G[i - 1], G[i + 1]) - gi
         if gi > dip_factor * rise:
             continue
+        from scipy.optimize import minimize_scalar
+
         res = minimize_scalar(gs, bounds=(lo, hi), method="bounded",
                               options={"xatol": 1e-10 * (hi - lo) + 1e-15})
         tmin = float(res.x)

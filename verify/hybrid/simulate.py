@@ -31,7 +31,6 @@ from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from landau.errors import InputError, IntegratorError
 from landau.verify.hybrid.locate import HermiteScreen, first_crossing, guard_on_dense, root_new_side
@@ -269,6 +268,8 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                                 # of the double-crossing check): maximise g before the first
                                 # negative sample
                                 gs = guard_on_dense(g.fun, dense)
+                                from scipy.optimize import minimize_scalar
+
                                 res = minimize_scalar(lambda s: -gs(s), bounds=(ts[0], ts[kneg]),
                                                       method="bounded",
                                                       options={"xatol": 1e-10 * (ts[kneg] - ts[0]) + 1e-15})

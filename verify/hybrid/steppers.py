@@ -32,9 +32,9 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, Mapping
 
 import numpy as np
-from scipy.integrate import DOP853, LSODA, RK23, RK45, Radau, BDF
 
-_METHODS = {"DOP853": DOP853, "RK45": RK45, "RK23": RK23, "Radau": Radau, "BDF": BDF, "LSODA": LSODA}
+#: scipy.integrate solver classes by name (scipy is imported on first use)
+_METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA")
 
 
 @dataclass(frozen=True)
@@ -53,7 +53,11 @@ class ScipyStepper:
     options: Mapping[str, Any] = field(default_factory=dict)
 
     def __call__(self, fun, t0: float, y0: np.ndarray, t_bound: float, jac=None):
-        cls = _METHODS[self.method]
+        import scipy.integrate
+
+        if self.method not in _METHODS:
+            raise KeyError(self.method)
+        cls = getattr(scipy.integrate, self.method)
         kw = dict(rtol=self.rtol, atol=self.atol, max_step=self.max_step, **self.options)
         if self.first_step is not None:
             kw["first_step"] = min(self.first_step, abs(t_bound - t0)) or None
