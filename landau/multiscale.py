@@ -659,6 +659,25 @@ class Derivation:
             self._compiled[key] = CompiledFormula(f, (w, self.k, *self.args), self.jets.atoms, modules)
         return self._compiled[key]
 
+    def _bounded_kernel(self, bases: Sequence[str]):
+        """k_c, ω_c² and the coefficients ``bases`` as one compiled program with a round-off
+        bound (:class:`landau.bounded.BoundedKernel`); None where it cannot be built (an
+        operation it does not know, no llvmlite), and the float32-screened route is used."""
+        key = ("bounded", tuple(bases))
+        if key not in self._compiled:
+            from landau.bounded import BoundedKernel
+
+            kc, W_c = self.hopf.closed_form
+            defs = {**self.jets.atoms, w: sp.sqrt(W_c), self.k: kc}
+            try:
+                kernel = BoundedKernel([kc, W_c, *(self.coefficient(n).formula for n in bases)], self.args, defs)
+                kernel.compiled([True] + [False] * (len(self.args) - 1))
+            except (ValueError, ImportError, RuntimeError) as exc:
+                logger.info("%s: no bounded kernel (%s)", self.block.law.name, exc)
+                kernel = None
+            self._compiled[key] = kernel
+        return self._compiled[key]
+
     @cached_property
     def _hopf_mp(self):
         kc, W_c = self.hopf.closed_form
@@ -799,26 +818,37 @@ class Derivation:
             need_mp &= np.isfinite(raw["kc"])
             exact_zero = np.zeros(shape, dtype=bool)
         else:
-            raw = self._raw(vals, shape, bases, np.float64)
-            # cheap screen: the same code in float32; where it disagrees by more than 2 % the
-            # float64 value may be off by more than ~1e-10 (errors scale with the unit round-off)
-            r32 = self._raw([v.astype(np.float32) for v in vals], shape, bases, np.float32)
-            suspect = np.zeros(shape, dtype=bool)
-            for key in raw:
-                suspect |= ~_agree(raw[key], r32[key].astype(float), _REL_SCREEN)
-            bad = {key: suspect.copy() for key in raw}
-            if _EXTENDED and suspect.any():
-                # the suspects again in extended precision: keep the value where float64 and it
-                # agree; take the extended value where it is itself good enough; else mpmath
-                sub = [v[suspect].astype(np.longdouble) for v in vals]
-                ext = self._raw(sub, sub[0].shape, bases, np.longdouble)
+            kernel = self._bounded_kernel(bases)
+            if kernel is not None:
+                # compiled, with a first-order round-off bound at every point: proven values
+                # are kept, the rest refined in long double (landau.bounded), then below
+                from landau.bounded import evaluate_proven
+
+                flat, unproven = evaluate_proven(kernel, vals, _REL_GOOD, _WORKERS, sign_only)
+                keys = ["kc", "W", *bases]
+                raw = {key: flat[j].reshape(shape) for j, key in enumerate(keys)}
+                bad = {key: unproven[j].reshape(shape) for j, key in enumerate(keys)}
+            else:
+                raw = self._raw(vals, shape, bases, np.float64)
+                # cheap screen: the same code in float32; where it disagrees by more than 2 % the
+                # float64 value may be off by more than ~1e-10 (errors scale with the unit round-off)
+                r32 = self._raw([v.astype(np.float32) for v in vals], shape, bases, np.float32)
+                suspect = np.zeros(shape, dtype=bool)
                 for key in raw:
-                    x64, x80 = raw[key][suspect], ext[key].astype(float)
-                    good64 = _agree(x64, x80, _REL_GOOD)
-                    raw[key][suspect] = np.where(good64, x64, x80)
-                    bad[key][suspect] = ~_agree(x64, x80, _REL_GOOD * _EXT_GAIN)
-                    if sign_only:
-                        bad[key][suspect] &= ~_sign_settled(x64, x80)
+                    suspect |= ~_agree(raw[key], r32[key].astype(float), _REL_SCREEN)
+                bad = {key: suspect.copy() for key in raw}
+                if _EXTENDED and suspect.any():
+                    # the suspects again in extended precision: keep the value where float64 and it
+                    # agree; take the extended value where it is itself good enough; else mpmath
+                    sub = [v[suspect].astype(np.longdouble) for v in vals]
+                    ext = self._raw(sub, sub[0].shape, bases, np.longdouble)
+                    for key in raw:
+                        x64, x80 = raw[key][suspect], ext[key].astype(float)
+                        good64 = _agree(x64, x80, _REL_GOOD)
+                        raw[key][suspect] = np.where(good64, x64, x80)
+                        bad[key][suspect] = ~_agree(x64, x80, _REL_GOOD * _EXT_GAIN)
+                        if sign_only:
+                            bad[key][suspect] &= ~_sign_settled(x64, x80)
             need_mp = np.zeros(shape, dtype=bool)
             for key in raw:
                 need_mp |= bad[key]
