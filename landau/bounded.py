@@ -645,20 +645,15 @@ def evaluate_proven(kernel: BoundedKernel, vals: Sequence, tol: float, workers: 
 
 
 # --------------------------------------------------------------------------------------------
-_TM = None
-
-
 def _target_machine():
-    global _TM
-    if _TM is None:
-        import llvmlite.binding as llvm
+    """A new target machine for the host CPU (an execution engine owns the one it is given)."""
+    import llvmlite.binding as llvm
 
-        llvm.initialize_native_target()
-        llvm.initialize_native_asmprinter()
-        target = llvm.Target.from_default_triple()
-        _TM = target.create_target_machine(cpu=llvm.get_host_cpu_name(), features=llvm.get_host_cpu_features().flatten(),
-                                           opt=2)
-    return _TM
+    llvm.initialize_native_target()
+    llvm.initialize_native_asmprinter()
+    target = llvm.Target.from_default_triple()
+    return target.create_target_machine(cpu=llvm.get_host_cpu_name(), features=llvm.get_host_cpu_features().flatten(),
+                                        opt=2)
 
 
 def _jit(ir: str, extended: bool = False):
@@ -695,6 +690,7 @@ def _jit(ir: str, extended: bool = False):
         return None
 
     engine.set_object_cache(notify, getbuffer)
+    engine._landau_keep = (notify, getbuffer, tm)     # alive as long as the engine
     engine.finalize_object()
     addr = engine.get_function_address("kernel")
     ptrs = 3 if extended else 2
