@@ -157,6 +157,32 @@ class _IREmitter:
         return out
 
 
+class _IRDoubleEmitter(_IREmitter):
+    """LLVM IR on scalar doubles, registers named %w… (the bound of the extended pass)."""
+
+    def __init__(self, lines: list[str]):
+        super().__init__(1)
+        self.lines = lines
+        self.T = "double"
+        self.sfx = "f64"
+
+    def _new(self, code: str) -> str:
+        self.n += 1
+        name = f"%w{self.n}"
+        self.lines.append(f"  {name} = {code}")
+        return name
+
+    def const(self, x: float) -> str:
+        return _hex(x)
+
+    def call(self, fname: str, a):
+        f = _FUNCS[fname][0]
+        if f.startswith("llvm."):
+            return self._intrinsic(f.split(".")[1], f"double {a}")
+        self.used.add(f)
+        return self._new(f"call double @{f}(double {a})")
+
+
 class _IR80Emitter(_IREmitter):
     """LLVM IR in the x87 80-bit extended type, one point per iteration (the refinement pass);
     integer powers by repeated multiplication, library functions from libm's long-double set."""
@@ -385,15 +411,22 @@ class BoundedKernel:
             d = E.call("sinh", x)
         return [d], E.mul(two, at)
 
-    def _program(self, E, vals: list) -> list[tuple[object, object]]:
-        """Forward sweep, then one reverse sweep per output: [(value, absolute bound / u)]."""
+    def _program(self, E, vals: list, B=None, convert=None) -> list[tuple[object, object]]:
+        """Forward sweep with emitter ``E``, then one reverse sweep per output with emitter
+        ``B`` (default ``E``; ``convert`` maps a value of ``E`` to ``B``'s type — the bound
+        needs no more than a few correct digits): [(value, absolute bound / u)]."""
         self._forward(E, vals)
+        if B is None:
+            B, bvals = E, vals
+        else:
+            bvals = [convert(v) for v in vals]
+        vals_fwd, vals, E = vals, bvals, B
         n_in = self._n_in
         local: dict[int, tuple] = {}
         res = []
         for out in self._outs:
             if out < n_in:
-                res.append((vals[out], E.const(0.0)))
+                res.append((vals_fwd[out], E.const(0.0)))
                 continue
             cone, stack = set(), [out]
             while stack:
@@ -419,7 +452,7 @@ class BoundedKernel:
                 for arg, d in zip(op.args, partials):
                     if arg >= n_in:
                         contrib.setdefault(arg, []).append(g if d == E.const(1.0) else E.mul(g, d))
-            res.append((vals[out], bound if bound is not None else E.const(0.0)))
+            res.append((vals_fwd[out], bound if bound is not None else E.const(0.0)))
         return res
 
     # --- float64: LLVM IR compiled with llvmlite -------------------------------------------
@@ -482,17 +515,16 @@ class BoundedKernel:
             vals.append(f"%a{k}")
         for j in range(len(self.consts)):
             head += [f"  %pc{j} = getelementptr {T}, ptr %C, i64 {j}", f"  %c{j} = load {T}, ptr %pc{j}, align 16"]
-        head.append(f"  %U = fpext double %u to {T}")
-        res = self._program(E, vals)
+        B = _IRDoubleEmitter(E.lines)
+        res = self._program(E, vals, B, lambda v: B._new(f"fptrunc {T} {v} to double"))
         store = []
         for j, (v, b) in enumerate(res):
-            rel = E.div(E.mul(b, "%U"), E.abs(v))
+            rel = B.div(B.mul(b, "%u"), B.abs(B._new(f"fptrunc {T} {v} to double")))
             store += [f"  %o{j} = mul i64 %n, {j}", f"  %oi{j} = add i64 %o{j}, %i",
                       f"  %pv{j} = getelementptr {T}, ptr %V, i64 %oi{j}", f"  store {T} {v}, ptr %pv{j}, align 16",
-                      f"  %rd{j} = fptrunc {T} {rel} to double",
-                      f"  %pr{j} = getelementptr double, ptr %R, i64 %oi{j}", f"  store double %rd{j}, ptr %pr{j}"]
+                      f"  %pr{j} = getelementptr double, ptr %R, i64 %oi{j}", f"  store double {rel}, ptr %pr{j}"]
         return "\n".join([
-            *E.declarations(), "",
+            *E.declarations(), *B.declarations(), "",
             "define void @kernel(i64 %n, ptr noalias %A, ptr noalias %S, ptr noalias %C, double %u, ptr noalias %V, "
             "ptr noalias %R) {",
             "entry:", *head, "  br label %loop", "loop:",
@@ -562,6 +594,13 @@ class BoundedKernel:
         return V[:, :size], R[:, :size]
 
     # --- x87 extended precision: the refinement pass -----------------------------------------
+    def compiled_extended(self) -> Callable:
+        """The compiled extended-precision loop (a ctypes function), compiled on first use."""
+        with self._lock:
+            if "ext" not in self._fn64:
+                self._fn64["ext"] = _jit(self.ir_extended(), extended=True)
+        return self._fn64["ext"][0]
+
     def extended(self, *vals) -> tuple[np.ndarray, np.ndarray]:
         """The same program in x87 80-bit extended precision (compiled, x86 only) with its own
         bound; for the points whose float64 bound is too large.
@@ -571,10 +610,7 @@ class BoundedKernel:
         values, rel_bound : numpy.ndarray
             Long-double values and float64 relative bounds, shape ``(n_outputs, n)``.
         """
-        with self._lock:
-            if "ext" not in self._fn64:
-                self._fn64["ext"] = _jit(self.ir_extended(), extended=True)
-        fn = self._fn64["ext"][0]
+        fn = self.compiled_extended()
         arrs = [_flat(v) for v in vals]
         n = max((a.size for a in arrs), default=1)
         ld = np.longdouble

@@ -665,13 +665,15 @@ class Derivation:
         operation it does not know, no llvmlite), and the float32-screened route is used."""
         key = ("bounded", tuple(bases))
         if key not in self._compiled:
-            from landau.bounded import BoundedKernel
+            from landau.bounded import EXTENDED, BoundedKernel
 
             kc, W_c = self.hopf.closed_form
             defs = {**self.jets.atoms, w: sp.sqrt(W_c), self.k: kc}
             try:
                 kernel = BoundedKernel([kc, W_c, *(self.coefficient(n).formula for n in bases)], self.args, defs)
                 kernel.compiled([True] + [False] * (len(self.args) - 1))
+                if EXTENDED:
+                    kernel.compiled_extended()
             except (ValueError, ImportError, RuntimeError) as exc:
                 logger.info("%s: no bounded kernel (%s)", self.block.law.name, exc)
                 kernel = None
