@@ -662,7 +662,8 @@ class Derivation:
     def _bounded_kernel(self, bases: Sequence[str]):
         """k_c, ω_c² and the coefficients ``bases`` as one compiled program with a round-off
         bound (:class:`landau.bounded.BoundedKernel`); None where it cannot be built (an
-        operation it does not know, no llvmlite), and the float32-screened route is used."""
+        operation it does not know, an llvmlite without LLVM 16 IR), and the float32-screened
+        route is used."""
         key = ("bounded", tuple(bases))
         if key not in self._compiled:
             from landau.bounded import EXTENDED, BoundedKernel
@@ -674,7 +675,7 @@ class Derivation:
                 kernel.compiled([True] + [False] * (len(self.args) - 1))
                 if EXTENDED:
                     kernel.compiled_extended()
-            except (ValueError, ImportError, RuntimeError) as exc:
+            except Exception as exc:  # an unknown operation, an llvmlite too old for the IR: old route
                 logger.info("%s: no bounded kernel (%s)", self.block.law.name, exc)
                 kernel = None
             self._compiled[key] = kernel
@@ -732,11 +733,13 @@ class Derivation:
                  method: str = "auto", sign_only: bool = False) -> dict[str, np.ndarray]:
         """Vectorised evaluation over velocities (any parameter may also be an array).
 
-        NaN where there is no Hopf point.  Every value is checked for round-off: the same
-        compiled code runs in float32 as a screen; where float32 and float64 disagree (the
-        float64 error may exceed 1e-10: cancellation near an extremum of μ_ss, inertia-free
-        limits, Λ ≡ 0 at M = 0) it runs again in extended precision (80-bit long double), whose
-        value is used where it is itself good to 1e-10.  What is still doubtful is taken from
+        NaN where there is no Hopf point.  Every value is checked for round-off: with a
+        closed-form Hopf line, k_c, ω_c² and the coefficients are one compiled program that
+        computes a first-order bound of its own round-off at every point
+        (:mod:`landau.bounded`); where the bound exceeds 1e-10 (cancellation near an extremum
+        of μ_ss, inertia-free limits, Λ ≡ 0 at M = 0) the program runs again in 80-bit extended
+        precision with its own bound, whose value is used where it is proven to 1e-10 (laws
+        whose formulas the program cannot express use a float32 screen instead).  What is still doubtful is taken from
         the exactly cancelled form when the law's derivatives are rational in V
         (:mod:`landau.rational`: Dieterich, Ruina, modified Dieterich), else re-evaluated at 50
         and 80 digits with mpmath, and at up to 550 digits until two successive precisions
