@@ -20,9 +20,9 @@ The float64 loop is generated as LLVM IR and compiled with llvmlite (numba's cod
 generator, already a dependency) — numba's own front end takes seconds to type a few
 thousand scalar statements, LLVM a fraction of that.  The machine code is cached on disk
 (``landau.cache.cache_dir()/kernels``, named by a hash of the IR and the CPU).  The same
-program is also generated as numpy code for the platform's long double (80 bits on x86:
-~2000 times finer than float64), which :meth:`BoundedKernel.extended` runs, with its own
-bound, on the few points whose float64 bound is too large.
+program is also generated in the x87 80-bit extended type (x86 only: 2048 times finer than
+float64, one point per iteration, the bound swept in double), which
+:meth:`BoundedKernel.extended` runs on the points whose float64 bound is too large.
 
 References
 ----------
@@ -56,11 +56,9 @@ EXTENDED = np.finfo(np.longdouble).eps < 1e-18 and platform.machine().lower() in
 #: points per chunk of the compiled loop handed to one thread
 CHUNK = 65_536
 
-#: sympy function -> C library / LLVM intrinsic used by the float64 loop, numpy ufunc for long double
-_FUNCS = {"exp": ("llvm.exp", "np.exp"), "log": ("llvm.log", "np.log"), "asinh": ("asinh", "np.arcsinh"),
-          "sin": ("llvm.sin", "np.sin"), "cos": ("llvm.cos", "np.cos"), "tanh": ("tanh", "np.tanh"),
-          "atan": ("atan", "np.arctan"), "sinh": ("sinh", "np.sinh"), "cosh": ("cosh", "np.cosh"),
-          "sqrt": ("llvm.sqrt", "np.sqrt"), "Abs": ("llvm.fabs", "np.abs")}
+#: sympy function -> C library function or LLVM intrinsic of the compiled loops
+_FUNCS = {"exp": "llvm.exp", "log": "llvm.log", "asinh": "asinh", "sin": "llvm.sin", "cos": "llvm.cos",
+          "tanh": "tanh", "atan": "atan", "sinh": "sinh", "cosh": "cosh", "sqrt": "llvm.sqrt", "Abs": "llvm.fabs"}
 
 
 def _exact_in_float(r: sp.Rational) -> bool:
@@ -132,7 +130,7 @@ class _IREmitter:
         return self._intrinsic("pow", f"{self.T} {a}", f"{self.T} {b}")
 
     def call(self, fname: str, a):
-        f = _FUNCS[fname][0]
+        f = _FUNCS[fname]
         if f.startswith("llvm."):
             return self._intrinsic(f.split(".")[1], f"{self.T} {a}")
         self.used.add(f)
@@ -176,7 +174,7 @@ class _IRDoubleEmitter(_IREmitter):
         return _hex(x)
 
     def call(self, fname: str, a):
-        f = _FUNCS[fname][0]
+        f = _FUNCS[fname]
         if f.startswith("llvm."):
             return self._intrinsic(f.split(".")[1], f"double {a}")
         self.used.add(f)
@@ -207,7 +205,7 @@ class _IR80Emitter(_IREmitter):
         return result
 
     def call(self, fname: str, a):
-        f = _FUNCS[fname][0]
+        f = _FUNCS[fname]
         if f.startswith("llvm."):
             return self._intrinsic(f.split(".")[1], f"{self.T} {a}")
         self.used.add(f + "l")

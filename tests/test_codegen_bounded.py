@@ -150,3 +150,24 @@ def test_lambda_1000_points_within_1e_10(name):
     worst, checked = _worst(d, _velocities(name, 1000 - 2 * n_edge * len(ends), n_edge))
     assert checked >= 800
     assert worst <= 1e-10, worst
+
+
+def test_machine_code_cached_on_disk(tmp_path, monkeypatch):
+    """The compiled loop is stored under the cache directory and reloaded from it: same values."""
+    from landau import cache
+
+    monkeypatch.setenv("LANDAU_CACHE_DIR", str(tmp_path))
+    cache.set_enabled(True)
+    try:
+        x = sp.Symbol("x")
+        expr = sp.asinh(x) * sp.exp(x) + x ** 3
+        first = BoundedKernel([expr], [x])(np.array([0.5, 2.0]))
+        stored = list((tmp_path / "kernels").glob("bounded_*.o"))
+        assert len(stored) == 1
+        again = BoundedKernel([expr], [x])(np.array([0.5, 2.0]))      # a new engine: loads the object file
+        assert np.array_equal(first[0], again[0]) and np.array_equal(first[1], again[1])
+        with mpmath.workdps(30):
+            ref = mpmath.asinh(2) * mpmath.exp(2) + 8
+        assert _rel_err(first[0][0, 1], ref) <= first[1][0, 1] * 1.0001 + 1e-16
+    finally:
+        cache.set_enabled(None)
