@@ -594,6 +594,28 @@ class Derivation:
             self._compiled[key] = CompiledFormula(f, (w, self.k, *self.args), self.jets.atoms, modules)
         return self._compiled[key]
 
+    def _bounded_kernel(self, bases: Sequence[str]):
+        """k_c, ω_c² and the coefficients ``bases`` as one compiled program with a round-off
+        bound (:class:`landau.bounded.BoundedKernel`); None where it cannot be built (an
+        operation it does not know, an llvmlite without LLVM 16 IR), and the float32-screened
+        route is used."""
+        key = ("bounded", tuple(bases))
+        if key not in self._compiled:
+            from landau.bounded import EXTENDED, BoundedKernel
+
+            kc, W_c = self.hopf.closed_form
+            defs = {**self.jets.atoms, w: sp.sqrt(W_c), self.k: kc}
+            try:
+                kernel = BoundedKernel([kc, W_c, *(self.coefficient(n).formula for n in bases)], self.args, defs)
+                kernel.compiled([True] + [False] * (len(self.args) - 1))
+                if EXTENDED:
+                    kernel.compiled_extended()
+            except Exception as exc:  # an unknown operation, an llvmlite too old for the IR: old route
+                logger.info("%s: no bounded kernel (%s)", self.block.law.name, exc)
+                kernel = None
+            self._compiled[key] = kernel
+        return self._compiled[key]
+
     @cached_property
     def _hopf_mp(self):
         kc, W_c = self.hopf.closed_form
@@ -646,11 +668,13 @@ class Derivation:
                  method: str = "auto", sign_only: bool = False) -> dict[str, np.ndarray]:
         """Vectorised evaluation over velocities (any parameter may also be an array).
 
-        NaN where there is no Hopf point.  Every value is checked for round-off: the same
-        compiled code runs in float32 as a screen; where float32 and float64 disagree (the
-        float64 error may exceed 1e-10: cancellation near an extremum of μ_ss, inertia-free
-        limits, Λ ≡ 0 at M = 0) it runs again in extended precision (80-bit long double), whose
-        value is used where it is itself good to 1e-10.  What is still doubtful is taken from
+        NaN where there is no Hopf point.  Every value is checked for round-off: with a
+        closed-form Hopf line, k_c, ω_c² and the coefficients are one compiled program that
+        computes a first-order bound of its own round-off at every point
+        (:mod:`landau.bounded`); where the bound exceeds 1e-10 (cancellation near an extremum
+        of μ_ss, inertia-free limits, Λ ≡ 0 at M = 0) the program runs again in 80-bit extended
+        precision with its own bound, whose value is used where it is proven to 1e-10 (laws
+        whose formulas the program cannot express use a float32 screen instead).  What is still doubtful is taken from
         the exactly cancelled form when the law's derivatives are rational in V
         (:mod:`landau.rational`: Dieterich, Ruina, modified Dieterich), else re-evaluated at 50
         and 80 digits with mpmath, and at up to 550 digits until two successive precisions
@@ -734,26 +758,37 @@ class Derivation:
             need_mp &= np.isfinite(raw["kc"])
             exact_zero = np.zeros(shape, dtype=bool)
         else:
-            raw = self._raw(vals, shape, bases, np.float64)
-            # cheap screen: the same code in float32; where it disagrees by more than 2 % the
-            # float64 value may be off by more than ~1e-10 (errors scale with the unit round-off)
-            r32 = self._raw([v.astype(np.float32) for v in vals], shape, bases, np.float32)
-            suspect = np.zeros(shape, dtype=bool)
-            for key in raw:
-                suspect |= ~_agree(raw[key], r32[key].astype(float), _REL_SCREEN)
-            bad = {key: suspect.copy() for key in raw}
-            if _EXTENDED and suspect.any():
-                # the suspects again in extended precision: keep the value where float64 and it
-                # agree; take the extended value where it is itself good enough; else mpmath
-                sub = [v[suspect].astype(np.longdouble) for v in vals]
-                ext = self._raw(sub, sub[0].shape, bases, np.longdouble)
+            kernel = self._bounded_kernel(bases)
+            if kernel is not None:
+                # compiled, with a first-order round-off bound at every point: proven values
+                # are kept, the rest refined in long double (landau.bounded), then below
+                from landau.bounded import evaluate_proven
+
+                flat, unproven = evaluate_proven(kernel, vals, _REL_GOOD, _WORKERS, sign_only)
+                keys = ["kc", "W", *bases]
+                raw = {key: flat[j].reshape(shape) for j, key in enumerate(keys)}
+                bad = {key: unproven[j].reshape(shape) for j, key in enumerate(keys)}
+            else:
+                raw = self._raw(vals, shape, bases, np.float64)
+                # cheap screen: the same code in float32; where it disagrees by more than 2 % the
+                # float64 value may be off by more than ~1e-10 (errors scale with the unit round-off)
+                r32 = self._raw([v.astype(np.float32) for v in vals], shape, bases, np.float32)
+                suspect = np.zeros(shape, dtype=bool)
                 for key in raw:
-                    x64, x80 = raw[key][suspect], ext[key].astype(float)
-                    good64 = _agree(x64, x80, _REL_GOOD)
-                    raw[key][suspect] = np.where(good64, x64, x80)
-                    bad[key][suspect] = ~_agree(x64, x80, _REL_GOOD * _EXT_GAIN)
-                    if sign_only:
-                        bad[key][suspect] &= ~_sign_settled(x64, x80)
+                    suspect |= ~_agree(raw[key], r32[key].astype(float), _REL_SCREEN)
+                bad = {key: suspect.copy() for key in raw}
+                if _EXTENDED and suspect.any():
+                    # the suspects again in extended precision: keep the value where float64 and it
+                    # agree; take the extended value where it is itself good enough; else mpmath
+                    sub = [v[suspect].astype(np.longdouble) for v in vals]
+                    ext = self._raw(sub, sub[0].shape, bases, np.longdouble)
+                    for key in raw:
+                        x64, x80 = raw[key][suspect], ext[key].astype(float)
+                        good64 = _agree(x64, x80, _REL_GOOD)
+                        raw[key][suspect] = np.where(good64, x64, x80)
+                        bad[key][suspect] = ~_agree(x64, x80, _REL_GOOD * _EXT_GAIN)
+                        if sign_only:
+                            bad[key][suspect] &= ~_sign_settled(x64, x80)
             need_mp = np.zeros(shape, dtype=bool)
             for key in raw:
                 need_mp |= bad[key]

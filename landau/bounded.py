@@ -1,0 +1,746 @@
+"""Compiled evaluation with a first-order round-off bound at every point.
+
+:class:`BoundedKernel` turns a few sympy expressions (sharing sub-expressions and
+definitions, e.g. k_c, ω_c² and Λ in the derivative atoms of a law) into one straight-line
+program: every distinct sub-expression is computed once, in one loop over the points, with
+no temporary arrays.  Alongside each value the program computes a bound on its round-off
+error: the first-order term of the accumulated rounding error (Linnainmaa 1976),
+
+    |computed − exact| ≲ u · Σ_t |∂out/∂t| · r_t,
+
+summed over the operations t of the program, with r_t the error the operation commits
+(|t| for +, −, ×, ÷; 2|t| for a library function — glibc's exp, log, pow, asinh are within
+one ulp; |c| for a constant not representable in the working precision; inputs are exact).
+The sensitivities ∂out/∂t come from one reverse (adjoint) sweep per output, so errors of a
+shared sub-expression that cancel further on are counted with their signs: near a
+cancellation (Λ → 0/0 at an extremum of μ_ss) the bound grows with the cancelling terms,
+elsewhere it stays within one to three orders of magnitude of the actual error.
+
+The float64 loop is generated as LLVM IR and compiled with llvmlite (numba's code
+generator, already a dependency) — numba's own front end takes seconds to type a few
+thousand scalar statements, LLVM a fraction of that.  The machine code is cached on disk
+(``landau.cache.cache_dir()/kernels``, named by a hash of the IR and the CPU).  The same
+program is also generated in the x87 80-bit extended type (x86 only: 2048 times finer than
+float64, one point per iteration, the bound swept in double), which
+:meth:`BoundedKernel.extended` runs on the points whose float64 bound is too large.
+
+References
+----------
+Linnainmaa, S. (1976), "Taylor expansion of the accumulated rounding error", BIT 16(2),
+146–160.
+Higham, N. J. (2002), *Accuracy and Stability of Numerical Algorithms*, 2nd ed., SIAM,
+Sec. 3.3 (running error analysis).
+"""
+
+from __future__ import annotations
+
+import ctypes
+import hashlib
+import platform
+import struct
+import threading
+from concurrent.futures import ThreadPoolExecutor
+from fractions import Fraction
+from typing import Callable, Mapping, Sequence
+
+import numpy as np
+import sympy as sp
+
+#: unit round-off of float64 and of the platform's long double
+U64 = float(np.finfo(np.float64).eps) / 2
+ULD = np.finfo(np.longdouble).eps / 2
+#: unit round-off of the x87 80-bit extended format
+U80 = 2.0 ** -64
+#: whether the platform's long double is wider than float64 (x86: 64-bit mantissa)
+EXTENDED = np.finfo(np.longdouble).eps < 1e-18 and platform.machine().lower() in ("x86_64", "amd64", "i386", "i686")
+#: points per chunk of the compiled loop handed to one thread
+CHUNK = 65_536
+
+#: sympy function -> C library function or LLVM intrinsic of the compiled loops
+_FUNCS = {"exp": "llvm.exp", "log": "llvm.log", "asinh": "asinh", "sin": "llvm.sin", "cos": "llvm.cos",
+          "tanh": "tanh", "atan": "atan", "sinh": "sinh", "cosh": "cosh", "sqrt": "llvm.sqrt", "Abs": "llvm.fabs"}
+
+
+def _exact_in_float(r: sp.Rational) -> bool:
+    return Fraction(float(r)) == Fraction(int(r.p), int(r.q))
+
+
+# --------------------------------------------------------------------------------------------
+# emitters: the program is written once against this interface, as LLVM IR or as numpy code
+def _hex(x: float) -> str:
+    return "0x%016X" % struct.unpack(">Q", struct.pack(">d", float(x)))[0]
+
+
+#: points per iteration of the compiled loop (4 doubles: one AVX2 register)
+LANES = 4
+
+
+class _IREmitter:
+    """LLVM IR on vectors of LANES doubles (one basic block); library functions without a
+    vector form are called lane by lane."""
+
+    def __init__(self, lanes: int = LANES):
+        self.lines: list[str] = []
+        self.n = 0
+        self.used: set[str] = set()
+        self.lanes = lanes
+        self.T = f"<{lanes} x double>"
+        self.sfx = f"v{lanes}f64"
+
+    def _new(self, code: str) -> str:
+        self.n += 1
+        name = f"%v{self.n}"
+        self.lines.append(f"  {name} = {code}")
+        return name
+
+    def const(self, x: float) -> str:
+        h = _hex(x)
+        return "<" + ", ".join([f"double {h}"] * self.lanes) + ">"
+
+    def cref(self, j: int) -> str:
+        return f"%c{j}"
+
+    def add(self, a, b):
+        return self._new(f"fadd {self.T} {a}, {b}")
+
+    def mul(self, a, b):
+        return self._new(f"fmul {self.T} {a}, {b}")
+
+    def div(self, a, b):
+        return self._new(f"fdiv {self.T} {a}, {b}")
+
+    def neg(self, a):
+        return self._new(f"fneg {self.T} {a}")
+
+    def _intrinsic(self, name: str, *args: str, extra: str = "") -> str:
+        f = f"llvm.{name}.{self.sfx}{extra}"
+        self.used.add(f)
+        return self._new(f"call {self.T} @{f}(" + ", ".join(args) + ")")
+
+    def abs(self, a):
+        return self._intrinsic("fabs", f"{self.T} {a}")
+
+    def sign(self, a):
+        return self._intrinsic("copysign", f"{self.T} {self.const(1.0)}", f"{self.T} {a}")
+
+    def powi(self, a, n: int):
+        return self._intrinsic("powi", f"{self.T} {a}", f"i32 {n}", extra=".i32")
+
+    def pow(self, a, b):
+        return self._intrinsic("pow", f"{self.T} {a}", f"{self.T} {b}")
+
+    def call(self, fname: str, a):
+        f = _FUNCS[fname]
+        if f.startswith("llvm."):
+            return self._intrinsic(f.split(".")[1], f"{self.T} {a}")
+        self.used.add(f)
+        acc = "poison"
+        for k in range(self.lanes):
+            x = self._new(f"extractelement {self.T} {a}, i32 {k}")
+            y = self._new(f"call double @{f}(double {x})")
+            acc = self._new(f"insertelement {self.T} {acc}, double {y}, i32 {k}")
+        return acc
+
+    def declarations(self) -> list[str]:
+        out = []
+        for f in sorted(self.used):
+            if not f.startswith("llvm."):
+                # a library function without side effects (errno is not read): calls can be shared
+                out.append(f"declare double @{f}(double) #0")
+            elif ".powi." in f:
+                out.append(f"declare {self.T} @{f}({self.T}, i32)")
+            else:
+                n_args = 2 if (".copysign." in f or ".pow." in f) else 1
+                out.append(f"declare {self.T} @{f}(" + ", ".join([self.T] * n_args) + ")")
+        return out
+
+
+class _IRDoubleEmitter(_IREmitter):
+    """LLVM IR on scalar doubles, registers named %w… (the bound of the extended pass)."""
+
+    def __init__(self, lines: list[str]):
+        super().__init__(1)
+        self.lines = lines
+        self.T = "double"
+        self.sfx = "f64"
+
+    def _new(self, code: str) -> str:
+        self.n += 1
+        name = f"%w{self.n}"
+        self.lines.append(f"  {name} = {code}")
+        return name
+
+    def const(self, x: float) -> str:
+        return _hex(x)
+
+    def call(self, fname: str, a):
+        f = _FUNCS[fname]
+        if f.startswith("llvm."):
+            return self._intrinsic(f.split(".")[1], f"double {a}")
+        self.used.add(f)
+        return self._new(f"call double @{f}(double {a})")
+
+
+class _IR80Emitter(_IREmitter):
+    """LLVM IR in the x87 80-bit extended type, one point per iteration (the refinement pass);
+    integer powers by repeated multiplication, library functions from libm's long-double set."""
+
+    def __init__(self):
+        super().__init__(1)
+        self.T = "x86_fp80"
+        self.sfx = "f80"
+
+    def const(self, x: float) -> str:
+        raw = np.longdouble(x).tobytes()[:10]
+        return "0xK" + raw[::-1].hex().upper()
+
+    def powi(self, a, n: int):
+        result, base, k = None, a, n
+        while k:
+            if k & 1:
+                result = base if result is None else self.mul(result, base)
+            k >>= 1
+            if k:
+                base = self.mul(base, base)
+        return result
+
+    def call(self, fname: str, a):
+        f = _FUNCS[fname]
+        if f.startswith("llvm."):
+            return self._intrinsic(f.split(".")[1], f"{self.T} {a}")
+        self.used.add(f + "l")
+        return self._new(f"call {self.T} @{f}l({self.T} {a})")
+
+    def declarations(self) -> list[str]:
+        out = []
+        for f in sorted(self.used):
+            if not f.startswith("llvm."):
+                out.append(f"declare {self.T} @{f}({self.T}) #0")
+            else:
+                n_args = 2 if (".copysign." in f or ".pow." in f) else 1
+                out.append(f"declare {self.T} @{f}(" + ", ".join([self.T] * n_args) + ")")
+        return out
+
+
+# --------------------------------------------------------------------------------------------
+class _Op:
+    """One operation t = kind(args) of the program."""
+
+    __slots__ = ("kind", "args", "param")
+
+    def __init__(self, kind: str, args: tuple = (), param=None):
+        self.kind, self.args, self.param = kind, args, param
+
+
+class BoundedKernel:
+    """Values of several expressions with a first-order round-off bound, compiled once.
+
+    Parameters
+    ----------
+    outputs : sequence of sympy.Expr
+        The expressions to evaluate.
+    inputs : sequence of sympy.Symbol
+        Their arguments, in call order (taken as exact).
+    definitions : mapping of sympy.Symbol to sympy.Expr, optional
+        Symbols that stand for expressions (possibly through one another), e.g. derivative
+        atoms, ω in terms of ω_c²; each is evaluated once.
+
+    Raises
+    ------
+    ValueError
+        An operation the kernel does not know (a distribution, a piecewise function): the
+        caller evaluates such expressions another way.
+
+    Notes
+    -----
+    ``kernel(*vals)`` returns ``(values, rel_bound)``, two float64 arrays of shape
+    ``(len(outputs), n)``; ``rel_bound`` bounds |computed − exact| / |computed| to first
+    order in the unit round-off (NaN or inf where it cannot be stated: a division by an
+    exact zero, an overflow — treat those points as unproven).
+    """
+
+    def __init__(self, outputs: Sequence[sp.Expr], inputs: Sequence[sp.Symbol],
+                 definitions: Mapping[sp.Symbol, sp.Expr] | None = None):
+        self.inputs = tuple(inputs)
+        self.n_out = len(outputs)
+        definitions = dict(definitions or {})
+        # slots: 0..n_in-1 inputs, then one per operation
+        slot: dict[sp.Basic, int] = {s: i for i, s in enumerate(self.inputs)}
+        ops: list[_Op] = []
+        consts: list[sp.Rational] = []
+        n_in = len(self.inputs)
+
+        def push(op: _Op) -> int:
+            ops.append(op)
+            return n_in + len(ops) - 1
+
+        for o in outputs:
+            stack = [(sp.sympify(o), False)]
+            while stack:
+                cur, done = stack.pop()
+                if cur in slot:
+                    continue
+                if cur.is_Symbol:
+                    if cur not in definitions:
+                        raise ValueError(f"symbol {cur} is neither an input nor defined")
+                    d = definitions[cur]
+                    if not done:
+                        stack.append((cur, True))
+                        if d not in slot:
+                            stack.append((d, False))
+                        continue
+                    slot[cur] = slot[d]
+                    continue
+                if cur.is_Number or cur in (sp.pi, sp.E):
+                    if not (cur.is_Rational or cur.is_Float):
+                        raise ValueError(f"constant {cur} is not a number the kernel handles")
+                    r = sp.Rational(cur)
+                    slot[cur] = push(_Op("const", (), (len(consts), bool(cur.is_Rational and _exact_in_float(r)))))
+                    consts.append(r)
+                    continue
+                if not done:
+                    stack.append((cur, True))
+                    stack.extend((a, False) for a in cur.args if a not in slot)
+                    continue
+                slot[cur] = self._lower(cur, slot, push)
+        self._ops = ops
+        self._n_in = n_in
+        self._outs = [slot[sp.sympify(o)] for o in outputs]
+        self.consts = tuple(consts)
+        self._lock = threading.Lock()
+        self._fn64: dict[tuple, tuple] = {}
+
+    @staticmethod
+    def _lower(node, slot, push) -> int:
+        a = [slot[x] for x in node.args]
+        if node.is_Add or node.is_Mul:
+            acc = a[0]
+            for x in a[1:]:
+                acc = push(_Op("add" if node.is_Add else "mul", (acc, x)))
+            return acc
+        if node.is_Pow:
+            x, p = slot[node.base], node.exp
+            if p.is_Integer:
+                n = int(p)
+                if n == -1:
+                    return push(_Op("inv", (x,)))
+                if n == 2:
+                    return push(_Op("sq", (x,)))
+                return push(_Op("powi", (x,), n))
+            if p == sp.Rational(1, 2):
+                return push(_Op("func", (x,), "sqrt"))
+            if p.is_Rational and _exact_in_float(p):
+                return push(_Op("powf", (x,), float(p)))
+            return push(_Op("powx", (x, slot[p])))
+        fname = type(node).__name__
+        if isinstance(node, sp.Function) and fname in _FUNCS and len(a) == 1:
+            return push(_Op("func", (a[0],), fname))
+        raise ValueError(f"no bounded operation for {fname}")
+
+    # --- the program, written against an emitter ---------------------------------------------
+    def _forward(self, E, vals: list) -> None:
+        """Append the value of every operation to ``vals`` (inputs already there)."""
+        for op in self._ops:
+            k, a = op.kind, [vals[i] for i in op.args]
+            if k == "const":
+                vals.append(E.cref(op.param[0]))
+            elif k == "add":
+                vals.append(E.add(a[0], a[1]))
+            elif k == "mul":
+                vals.append(E.mul(a[0], a[1]))
+            elif k == "inv":
+                vals.append(E.div(E.const(1.0), a[0]))
+            elif k == "sq":
+                vals.append(E.mul(a[0], a[0]))
+            elif k == "powi":
+                n = op.param
+                vals.append(E.powi(a[0], n) if n > 0 else E.div(E.const(1.0), E.powi(a[0], -n)))
+            elif k == "powf":
+                vals.append(E.pow(a[0], E.const(op.param)))
+            elif k == "powx":
+                vals.append(E.pow(a[0], a[1]))
+            else:
+                vals.append(E.call(op.param, a[0]))
+
+    def _local(self, E, op: _Op, vals: list, t) -> tuple[list, object]:
+        """(∂t/∂arg for each arg, the rounding error t commits in units of u) as emitter values."""
+        k, a = op.kind, [vals[i] for i in op.args]
+        one, two = E.const(1.0), E.const(2.0)
+        at = E.abs(t) if k != "const" else None
+        if k == "const":
+            return [], (None if op.param[1] else E.abs(t))
+        if k == "add":
+            return [one, one], at
+        if k == "mul":
+            return [a[1], a[0]], at
+        if k == "inv":
+            return [E.neg(E.mul(t, t))], at
+        if k == "sq":
+            return [E.mul(two, a[0])], at
+        if k == "powi":
+            n = op.param
+            return [E.mul(E.const(n), E.div(t, a[0]))], E.mul(E.const(abs(n) + 1), at)
+        if k == "powf":
+            return [E.mul(E.const(op.param), E.div(t, a[0]))], E.mul(two, at)
+        if k == "powx":
+            return [E.div(E.mul(a[1], t), a[0]), E.mul(t, E.call("log", a[0]))], E.mul(two, at)
+        f, x = op.param, a[0]
+        if f == "sqrt":
+            return [E.div(E.const(0.5), t)], at
+        if f == "Abs":
+            return [E.sign(x)], None
+        if f == "exp":
+            d = t
+        elif f == "log":
+            d = E.div(one, x)
+        elif f == "asinh":
+            d = E.div(one, E.call("sqrt", E.add(one, E.mul(x, x))))
+        elif f == "atan":
+            d = E.div(one, E.add(one, E.mul(x, x)))
+        elif f == "tanh":
+            d = E.add(one, E.neg(E.mul(t, t)))
+        elif f == "sin":
+            d = E.call("cos", x)
+        elif f == "cos":
+            d = E.neg(E.call("sin", x))
+        elif f == "sinh":
+            d = E.call("cosh", x)
+        else:  # cosh
+            d = E.call("sinh", x)
+        return [d], E.mul(two, at)
+
+    def _program(self, E, vals: list, B=None, convert=None) -> list[tuple[object, object]]:
+        """Forward sweep with emitter ``E``, then one reverse sweep per output with emitter
+        ``B`` (default ``E``; ``convert`` maps a value of ``E`` to ``B``'s type — the bound
+        needs no more than a few correct digits): [(value, absolute bound / u)]."""
+        self._forward(E, vals)
+        if B is None:
+            B, bvals = E, vals
+        else:
+            bvals = [convert(v) for v in vals]
+        vals_fwd, vals, E = vals, bvals, B
+        n_in = self._n_in
+        local: dict[int, tuple] = {}
+        res = []
+        for out in self._outs:
+            if out < n_in:
+                res.append((vals_fwd[out], E.const(0.0)))
+                continue
+            cone, stack = set(), [out]
+            while stack:
+                s = stack.pop()
+                if s in cone or s < n_in:
+                    continue
+                cone.add(s)
+                stack.extend(self._ops[s - n_in].args)
+            contrib: dict[int, list] = {out: [E.const(1.0)]}
+            bound = None
+            for s in sorted(cone, reverse=True):
+                op = self._ops[s - n_in]
+                terms = contrib.pop(s)
+                g = terms[0]
+                for x in terms[1:]:
+                    g = E.add(g, x)
+                if s not in local:
+                    local[s] = self._local(E, op, vals, vals[s])
+                partials, rnd = local[s]
+                if rnd is not None:
+                    term = E.mul(E.abs(g), rnd)
+                    bound = term if bound is None else E.add(bound, term)
+                for arg, d in zip(op.args, partials):
+                    if arg >= n_in:
+                        contrib.setdefault(arg, []).append(g if d == E.const(1.0) else E.mul(g, d))
+            res.append((vals_fwd[out], bound if bound is not None else E.const(0.0)))
+        return res
+
+    # --- float64: LLVM IR compiled with llvmlite -------------------------------------------
+    def ir(self, varying: Sequence[bool]) -> str:
+        """The float64 loop as LLVM IR, LANES points per iteration:
+        ``void kernel(i64 n, ptr A, ptr C, double U, ptr V, ptr R)`` (n a multiple of LANES);
+        input k is ``A[k][i]`` where ``varying[k]`` else ``A[k][0]``; output j goes to
+        ``V[j*n + i]``, its relative bound to ``R[j*n + i]``."""
+        E = _IREmitter()
+        T, L = E.T, E.lanes
+        n_in = self._n_in
+        head, vals = [], []
+
+        def splat(name: str, scalar: str) -> list[str]:
+            return [f"  %{name}_1 = insertelement {T} poison, double {scalar}, i32 0",
+                    f"  %{name} = shufflevector {T} %{name}_1, {T} poison, <{L} x i32> zeroinitializer"]
+
+        for k in range(n_in):
+            head += [f"  %pa{k} = getelementptr ptr, ptr %A, i64 {k}", f"  %A{k} = load ptr, ptr %pa{k}"]
+            if varying[k]:
+                E.lines += [f"  %px{k} = getelementptr double, ptr %A{k}, i64 %i", f"  %a{k} = load {T}, ptr %px{k}, align 8"]
+            else:
+                head += [f"  %s{k} = load double, ptr %A{k}", *splat(f"a{k}", f"%s{k}")]
+            vals.append(f"%a{k}")
+        for j in range(len(self.consts)):
+            head += [f"  %pc{j} = getelementptr double, ptr %C, i64 {j}", f"  %sc{j} = load double, ptr %pc{j}",
+                     *splat(f"c{j}", f"%sc{j}")]
+        head += splat("U", "%u")
+        res = self._program(E, vals)
+        store = []
+        for j, (v, b) in enumerate(res):
+            rel = E.div(E.mul(b, "%U"), E.abs(v))
+            store += [f"  %o{j} = mul i64 %n, {j}", f"  %oi{j} = add i64 %o{j}, %i",
+                      f"  %pv{j} = getelementptr double, ptr %V, i64 %oi{j}", f"  store {T} {v}, ptr %pv{j}, align 8",
+                      f"  %pr{j} = getelementptr double, ptr %R, i64 %oi{j}", f"  store {T} {rel}, ptr %pr{j}, align 8"]
+        text = "\n".join(E.lines)      # the program, then |value| and the relative bound of each output
+        return "\n".join([
+            *E.declarations(), "",
+            "define void @kernel(i64 %n, ptr noalias %A, ptr noalias %C, double %u, ptr noalias %V, ptr noalias %R) {",
+            "entry:", *head, "  br label %loop", "loop:",
+            "  %i = phi i64 [0, %entry], [%inext, %loop]",
+            text, *store,
+            f"  %inext = add i64 %i, {L}", "  %more = icmp slt i64 %inext, %n",
+            "  br i1 %more, label %loop, label %exit", "exit:", "  ret void", "}", "",
+            "attributes #0 = { nounwind willreturn memory(none) }", ""])
+
+    def ir_extended(self) -> str:
+        """The refinement loop as LLVM IR in x87 80-bit extended precision, one point per
+        iteration: ``void kernel(i64 n, ptr A, ptr S, ptr C, double U, ptr V, ptr R)`` with
+        float64 inputs ``A[k][i*S[k]]``, long-double constants ``C``, long-double values
+        ``V[j*n + i]`` and float64 relative bounds ``R[j*n + i]``."""
+        E = _IR80Emitter()
+        T = E.T
+        head, vals = [], []
+        for k in range(self._n_in):
+            head += [f"  %pa{k} = getelementptr ptr, ptr %A, i64 {k}", f"  %A{k} = load ptr, ptr %pa{k}",
+                     f"  %ps{k} = getelementptr i64, ptr %S, i64 {k}", f"  %S{k} = load i64, ptr %ps{k}"]
+            E.lines += [f"  %ix{k} = mul i64 %i, %S{k}", f"  %px{k} = getelementptr double, ptr %A{k}, i64 %ix{k}",
+                        f"  %d{k} = load double, ptr %px{k}", f"  %a{k} = fpext double %d{k} to {T}"]
+            vals.append(f"%a{k}")
+        for j in range(len(self.consts)):
+            head += [f"  %pc{j} = getelementptr {T}, ptr %C, i64 {j}", f"  %c{j} = load {T}, ptr %pc{j}, align 16"]
+        B = _IRDoubleEmitter(E.lines)
+        res = self._program(E, vals, B, lambda v: B._new(f"fptrunc {T} {v} to double"))
+        store = []
+        for j, (v, b) in enumerate(res):
+            rel = B.div(B.mul(b, "%u"), B.abs(B._new(f"fptrunc {T} {v} to double")))
+            store += [f"  %o{j} = mul i64 %n, {j}", f"  %oi{j} = add i64 %o{j}, %i",
+                      f"  %pv{j} = getelementptr {T}, ptr %V, i64 %oi{j}", f"  store {T} {v}, ptr %pv{j}, align 16",
+                      f"  %pr{j} = getelementptr double, ptr %R, i64 %oi{j}", f"  store double {rel}, ptr %pr{j}"]
+        return "\n".join([
+            *E.declarations(), *B.declarations(), "",
+            "define void @kernel(i64 %n, ptr noalias %A, ptr noalias %S, ptr noalias %C, double %u, ptr noalias %V, "
+            "ptr noalias %R) {",
+            "entry:", *head, "  br label %loop", "loop:",
+            "  %i = phi i64 [0, %entry], [%inext, %loop]",
+            "\n".join(E.lines), *store,
+            "  %inext = add i64 %i, 1", "  %more = icmp slt i64 %inext, %n",
+            "  br i1 %more, label %loop, label %exit", "exit:", "  ret void", "}", "",
+            "attributes #0 = { nounwind willreturn memory(none) }", ""])
+
+    def compiled(self, varying: Sequence[bool]) -> Callable:
+        """The compiled float64 loop for inputs that vary (arrays) or not (scalars): a ctypes
+        function, which releases the GIL while it runs."""
+        key = tuple(bool(x) for x in varying)
+        with self._lock:
+            if key not in self._fn64:
+                self._fn64[key] = _jit(self.ir(key))
+        return self._fn64[key][0]
+
+    def __call__(self, *vals, workers: int = 1) -> tuple[np.ndarray, np.ndarray]:
+        """Values and relative bounds in float64 over the broadcast inputs (flattened).
+
+        Parameters
+        ----------
+        *vals : float or array_like
+            One value per input; arrays broadcast (scalars and length-1 arrays against the rest).
+        workers : int, optional
+            Threads for large batches (the compiled loop releases the GIL).
+
+        Returns
+        -------
+        values, rel_bound : numpy.ndarray
+            Shape ``(n_outputs, n)``.
+        """
+        arrs = [_flat(v) for v in vals]
+        if len(arrs) != self._n_in:
+            raise ValueError(f"kernel takes {self._n_in} inputs, got {len(arrs)}")
+        n = max((a.size for a in arrs), default=1)
+        if any(a.size not in (1, n) for a in arrs):
+            raise ValueError("inputs must have one element or a common length")
+        fn = self.compiled([a.size > 1 for a in arrs])
+        C = np.array([float(c) for c in self.consts] or [0.0], dtype=np.float64)
+        if n == 0:
+            return np.empty((self.n_out, 0)), np.empty((self.n_out, 0))
+        size = n
+        if n % LANES:                   # the loop takes LANES points at a time: pad with the last point
+            n = n + LANES - n % LANES
+            arrs = [a if a.size == 1 else np.concatenate([a, np.full(n - size, a[-1])]) for a in arrs]
+        V = np.empty((self.n_out, n))
+        R = np.empty((self.n_out, n))
+
+        def run(lo: int, hi: int, v: np.ndarray, r: np.ndarray) -> None:
+            ptrs = (ctypes.c_void_p * len(arrs))(*[a.ctypes.data + (0 if a.size == 1 else 8 * lo) for a in arrs])
+            fn(hi - lo, ptrs, C.ctypes.data, U64, v.ctypes.data, r.ctypes.data)
+
+        if workers <= 1 or n <= CHUNK:
+            run(0, n, V, R)
+            return V[:, :size], R[:, :size]
+
+        def chunk(lo: int) -> None:
+            hi = min(lo + CHUNK, n)
+            v, r = np.empty((self.n_out, hi - lo)), np.empty((self.n_out, hi - lo))
+            run(lo, hi, v, r)
+            V[:, lo:hi], R[:, lo:hi] = v, r
+
+        with ThreadPoolExecutor(max_workers=workers) as pool:
+            list(pool.map(chunk, range(0, n, CHUNK)))
+        return V[:, :size], R[:, :size]
+
+    # --- x87 extended precision: the refinement pass -----------------------------------------
+    def compiled_extended(self) -> Callable:
+        """The compiled extended-precision loop (a ctypes function), compiled on first use."""
+        with self._lock:
+            if "ext" not in self._fn64:
+                self._fn64["ext"] = _jit(self.ir_extended(), extended=True)
+        return self._fn64["ext"][0]
+
+    def extended(self, *vals) -> tuple[np.ndarray, np.ndarray]:
+        """The same program in x87 80-bit extended precision (compiled, x86 only) with its own
+        bound; for the points whose float64 bound is too large.
+
+        Returns
+        -------
+        values, rel_bound : numpy.ndarray
+            Long-double values and float64 relative bounds, shape ``(n_outputs, n)``.
+        """
+        fn = self.compiled_extended()
+        arrs = [_flat(v) for v in vals]
+        n = max((a.size for a in arrs), default=1)
+        ld = np.longdouble
+        C = np.array([ld(int(c.p)) / ld(int(c.q)) for c in self.consts] or [ld(0)], dtype=ld)
+        V = np.empty((self.n_out, n), dtype=ld)
+        R = np.empty((self.n_out, n))
+        if n:
+            ptrs = (ctypes.c_void_p * len(arrs))(*[a.ctypes.data for a in arrs])
+            S = np.array([0 if a.size == 1 else 1 for a in arrs] or [0], dtype=np.int64)
+            fn(n, ptrs, S.ctypes.data, C.ctypes.data, U80, V.ctypes.data, R.ctypes.data)
+        return V, R
+
+
+def _flat(v) -> np.ndarray:
+    """A contiguous float64 vector; an array broadcast from one value (all strides 0) as that value."""
+    a = np.asarray(v, dtype=np.float64)
+    if a.ndim and a.size and not any(a.strides):
+        return np.ascontiguousarray(a.reshape(-1)[:1])
+    return np.ascontiguousarray(np.ravel(a))
+
+
+def evaluate_proven(kernel: BoundedKernel, vals: Sequence, tol: float, workers: int = 1,
+                    sign_only: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Values of ``kernel``'s outputs, each proven to ``tol`` relative where possible.
+
+    float64 first (compiled); points whose bound exceeds ``tol`` again in long double with
+    its own bound (when the platform's long double is wider than float64).  The first two
+    outputs are taken to be k_c and ω_c²: a point where either is negative beyond doubt has no
+    Hopf point and is not refined.
+
+    Parameters
+    ----------
+    kernel : BoundedKernel
+    vals : sequence of float or array_like
+        The kernel's inputs.
+    tol : float
+        The relative accuracy to prove.
+    workers : int, optional
+        Threads for the float64 loop.
+    sign_only : bool, optional
+        A value whose sign is proven (bound below 1/2) counts as proven.
+
+    Returns
+    -------
+    values : numpy.ndarray
+        Shape ``(n_outputs, n)`` (float64).
+    unproven : numpy.ndarray of bool
+        Where the value is not proven to ``tol`` (the caller evaluates those another way).
+    """
+    V, R = kernel(*vals, workers=workers)
+    bad = ~(R <= tol)
+    no_hopf = np.zeros(V.shape[1], dtype=bool)
+    for j in range(min(2, V.shape[0])):
+        no_hopf |= (V[j] < 0) & (R[j] < 0.5)
+    todo = np.flatnonzero(bad.any(axis=0) & ~no_hopf)
+    if todo.size and EXTENDED:
+        sub = [np.ravel(v)[todo] if np.size(v) > 1 and any(np.asarray(v).strides) else np.ravel(v)[:1] for v in vals]
+        Ve, Re = kernel.extended(*sub)
+        for j in range(V.shape[0]):
+            use = bad[j, todo] & (Re[j] < R[j, todo])
+            V[j, todo] = np.where(use, Ve[j].astype(np.float64), V[j, todo])
+            R[j, todo] = np.where(use, Re[j].astype(np.float64), R[j, todo])
+            bad[j, todo] = ~(Re[j] <= tol) & bad[j, todo]
+    if sign_only:
+        bad &= ~(R < 0.5)
+    bad[:, no_hopf] = False
+    return V, bad
+
+
+# --------------------------------------------------------------------------------------------
+def _target_machine():
+    """A new target machine for the host CPU (an execution engine owns the one it is given)."""
+    import llvmlite.binding as llvm
+
+    llvm.initialize_native_target()
+    llvm.initialize_native_asmprinter()
+    target = llvm.Target.from_default_triple()
+    return target.create_target_machine(cpu=llvm.get_host_cpu_name(), features=llvm.get_host_cpu_features().flatten(),
+                                        opt=2)
+
+
+def _jit(ir: str, extended: bool = False):
+    """Compile ``ir`` (function ``kernel``) to machine code, the object file cached on disk."""
+    import llvmlite.binding as llvm
+
+    tm = _target_machine()
+    mod = llvm.parse_assembly(ir)
+    mod.verify()
+    pto = llvm.create_pipeline_tuning_options(speed_level=2)
+    pto.loop_vectorization = True
+    pto.slp_vectorization = True
+    pb = llvm.create_pass_builder(tm, pto)
+    pb.getModulePassManager().run(mod, pb)
+    engine = llvm.create_mcjit_compiler(mod, tm)
+    key = hashlib.sha256((ir + tm.triple + str(llvm.get_host_cpu_name())).encode()).hexdigest()[:32]
+    path = _cache_path(key)
+
+    def notify(_module, buffer: bytes) -> None:
+        if path is not None:
+            try:
+                from landau.io import atomic_write
+
+                atomic_write(path, lambda f: f.write(buffer), mode="wb")
+            except OSError:
+                pass
+
+    def getbuffer(_module):
+        if path is not None and path.exists():
+            try:
+                return path.read_bytes()
+            except OSError:
+                return None
+        return None
+
+    engine.set_object_cache(notify, getbuffer)
+    engine._landau_keep = (notify, getbuffer, tm)     # alive as long as the engine
+    engine.finalize_object()
+    addr = engine.get_function_address("kernel")
+    ptrs = 3 if extended else 2
+    proto = ctypes.CFUNCTYPE(None, ctypes.c_int64, *[ctypes.c_void_p] * ptrs, ctypes.c_double,
+                             ctypes.c_void_p, ctypes.c_void_p)
+    return proto(addr), engine
+
+
+def _cache_path(key: str):
+    from landau import cache
+
+    if not cache.enabled():
+        return None
+    try:
+        folder = cache.cache_dir() / "kernels"
+        folder.mkdir(parents=True, exist_ok=True, mode=0o700)
+    except OSError:
+        return None
+    return folder / f"bounded_{key}.o"
