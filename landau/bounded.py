@@ -541,6 +541,34 @@ class BoundedKernel:
                 self._fn64[key] = _jit(self.ir(key))
         return self._fn64[key][0]
 
+    def ready(self, varying: Sequence[bool]) -> bool:
+        """Whether the float64 and extended loops for ``varying`` cost no compilation: compiled in
+        this process already, or their object files are in the disk cache.
+
+        Parameters
+        ----------
+        varying : sequence of bool
+            Which inputs vary (see :meth:`compiled`).
+
+        Returns
+        -------
+        bool
+        """
+        key = tuple(bool(x) for x in varying)
+        with self._lock:
+            have64 = key in self._fn64
+            have_ext = "ext" in self._fn64 or not EXTENDED
+        try:
+            if not have64:
+                p = _object_path(self.ir(key))
+                have64 = p is not None and p.exists()
+            if not have_ext:
+                p = _object_path(self.ir_extended())
+                have_ext = p is not None and p.exists()
+        except Exception:  # an IR the emitter cannot write: not ready (the caller falls back)
+            return False
+        return have64 and have_ext
+
     def __call__(self, *vals, workers: int = 1) -> tuple[np.ndarray, np.ndarray]:
         """Values and relative bounds in float64 over the broadcast inputs (flattened).
 
@@ -697,14 +725,16 @@ def _jit(ir: str, extended: bool = False):
     tm = _target_machine()
     mod = llvm.parse_assembly(ir)
     mod.verify()
-    pto = llvm.create_pipeline_tuning_options(speed_level=2)
-    pto.loop_vectorization = True
-    pto.slp_vectorization = True
-    pb = llvm.create_pass_builder(tm, pto)
-    pb.getModulePassManager().run(mod, pb)
+    path = _object_path(ir, tm.triple)
+    if path is None or not path.exists():
+        # optimise only what will be compiled: on a cache hit the engine loads the object file
+        # and never generates code from the module
+        pto = llvm.create_pipeline_tuning_options(speed_level=2)
+        pto.loop_vectorization = True
+        pto.slp_vectorization = True
+        pb = llvm.create_pass_builder(tm, pto)
+        pb.getModulePassManager().run(mod, pb)
     engine = llvm.create_mcjit_compiler(mod, tm)
-    key = hashlib.sha256((ir + tm.triple + str(llvm.get_host_cpu_name())).encode()).hexdigest()[:32]
-    path = _cache_path(key)
 
     def notify(_module, buffer: bytes) -> None:
         if path is not None:
@@ -731,6 +761,16 @@ def _jit(ir: str, extended: bool = False):
     proto = ctypes.CFUNCTYPE(None, ctypes.c_int64, *[ctypes.c_void_p] * ptrs, ctypes.c_double,
                              ctypes.c_void_p, ctypes.c_void_p)
     return proto(addr), engine
+
+
+def _object_path(ir: str, triple: str | None = None):
+    """Where the object file compiled from ``ir`` for this machine is kept (None: no disk cache)."""
+    import llvmlite.binding as llvm
+
+    if triple is None:
+        triple = llvm.get_default_triple()
+    key = hashlib.sha256((ir + triple + str(llvm.get_host_cpu_name())).encode()).hexdigest()[:32]
+    return _cache_path(key)
 
 
 def _cache_path(key: str):

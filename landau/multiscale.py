@@ -42,6 +42,10 @@ CONVENTION = ("d|A|/dT = (Gamma |A| + Lambda |A|^3)/2, dtheta/dT = (Omega + chi 
               "Gamma = -2 Gamma_bar (k - kc)/eps^2, Omega = 2 Omega_bar (k - kc)/eps^2; critical mode normalised "
               "with slip component 1; Lambda < 0: supercritical, Lambda > 0: subcritical; "
               "C = max|x - x0| / sqrt(|kc - k|) = 2 sqrt(2 Gamma_bar/|Lambda|) (eq. 23)")
+#: smallest grid on which Derivation.evaluate compiles the bounded program (landau.bounded) when
+#: it is not compiled already: below, the compile (0.4–0.9 s) costs more than it saves
+BOUNDED_MIN_POINTS = 20_000
+
 #: SI units of the spring–block quantities (and of a spring–block :class:`~landau.hopf.HopfResult`'s fields)
 UNITS = SPRING_BLOCK_UNITS
 
@@ -594,27 +598,45 @@ class Derivation:
             self._compiled[key] = CompiledFormula(f, (w, self.k, *self.args), self.jets.atoms, modules)
         return self._compiled[key]
 
-    def _bounded_kernel(self, bases: Sequence[str]):
+    def _bounded_kernel(self, bases: Sequence[str], n_points: int = BOUNDED_MIN_POINTS):
         """k_c, ω_c² and the coefficients ``bases`` as one compiled program with a round-off
         bound (:class:`landau.bounded.BoundedKernel`); None where it cannot be built (an
         operation it does not know, an llvmlite without LLVM 16 IR), and the float32-screened
-        route is used."""
-        key = ("bounded", tuple(bases))
-        if key not in self._compiled:
-            from landau.bounded import EXTENDED, BoundedKernel
+        route is used.
 
+        Compiling the program costs 0.4–0.9 s per law and set of coefficients, which only pays
+        off on large grids: below :data:`BOUNDED_MIN_POINTS` points it is used only when it is
+        already compiled (in this process, or its object files are in the disk cache)."""
+        key = ("bounded", tuple(bases))
+        if key in self._compiled:
+            return self._compiled[key]
+        from landau.bounded import EXTENDED, BoundedKernel
+
+        varying = [True] + [False] * (len(self.args) - 1)
+        draft_key = ("bounded-draft", tuple(bases))
+        if draft_key not in self._compiled:
             kc, W_c = self.hopf.closed_form
             defs = {**self.jets.atoms, w: sp.sqrt(W_c), self.k: kc}
             try:
-                kernel = BoundedKernel([kc, W_c, *(self.coefficient(n).formula for n in bases)], self.args, defs)
-                kernel.compiled([True] + [False] * (len(self.args) - 1))
-                if EXTENDED:
-                    kernel.compiled_extended()
-            except Exception as exc:  # an unknown operation, an llvmlite too old for the IR: old route
+                draft = BoundedKernel([kc, W_c, *(self.coefficient(n).formula for n in bases)], self.args, defs)
+                cheap = draft.ready(varying)
+            except Exception as exc:  # an unknown operation: the old route, for good
                 logger.info("%s: no bounded kernel (%s)", self.block.law.name, exc)
-                kernel = None
-            self._compiled[key] = kernel
-        return self._compiled[key]
+                self._compiled[key] = None
+                return None
+            self._compiled[draft_key] = (draft, cheap)
+        kernel, cheap = self._compiled[draft_key]
+        if n_points < BOUNDED_MIN_POINTS and not cheap:
+            return None
+        try:
+            kernel.compiled(varying)
+            if EXTENDED:
+                kernel.compiled_extended()
+        except Exception as exc:  # an llvmlite too old for the IR: old route
+            logger.info("%s: no bounded kernel (%s)", self.block.law.name, exc)
+            kernel = None
+        self._compiled[key] = kernel
+        return kernel
 
     @cached_property
     def _hopf_mp(self):
@@ -758,7 +780,7 @@ class Derivation:
             need_mp &= np.isfinite(raw["kc"])
             exact_zero = np.zeros(shape, dtype=bool)
         else:
-            kernel = self._bounded_kernel(bases)
+            kernel = self._bounded_kernel(bases, int(np.prod(shape)))
             if kernel is not None:
                 # compiled, with a first-order round-off bound at every point: proven values
                 # are kept, the rest refined in long double (landau.bounded), then below
