@@ -28,35 +28,57 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from landau.laws.kinetic import KineticFriction
+from landau.laws.kinetic import KineticFriction, resolve_kinetic_law
 from landau.verify.hybrid import Guard, HybridModel, Jump, Mode
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class StickSlipParams:
-    """Parameters of the one-block (n=1) or two-block (n=2) model; paper's symbols."""
+    """Parameters of the one-block (n=1) or two-block (n=2) model; paper's symbols.
 
-    V: float = 0.25
-    gamma: float = 3.0
-    delta: float = 0.0
-    c: float = 0.0
-    alpha: float = 1.2
-    beta: float = 1.3
-    n: int = 1
+    The kinetic friction is the law object ``law`` (:class:`landau.laws.kinetic.KineticFriction`,
+    default Galvanetto's eq. (7) with γ = 3, δ = 0); ``gamma``/``delta`` are its parameters
+    (given to the constructor they set those of the default law, or of ``law`` when they agree
+    with it).
+    """
+
+    V: float
+    c: float
+    alpha: float
+    beta: float
+    n: int
+    law: KineticFriction
+
+    def __init__(self, V: float = 0.25, gamma: float | None = None, delta: float | None = None, c: float = 0.0,
+                 alpha: float = 1.2, beta: float = 1.3, n: int = 1, law: KineticFriction | None = None):
+        law = resolve_kinetic_law(law, gamma, delta)
+        for k, v in (("V", float(V)), ("c", float(c)), ("alpha", float(alpha)), ("beta", float(beta)),
+                     ("n", int(n)), ("law", law)):
+            object.__setattr__(self, k, v)
 
     @property
-    def law(self) -> KineticFriction:
-        return KineticFriction(self.gamma, self.delta)
+    def gamma(self) -> float:
+        """γ of the kinetic law."""
+        return self.law.gamma
+
+    @property
+    def delta(self) -> float:
+        """δ of the kinetic law."""
+        return self.law.delta
 
     @property
     def Fs(self) -> tuple[float, ...]:
         return (1.0,) if self.n == 1 else (1.0, self.beta)
 
     def with_(self, **kw) -> "StickSlipParams":
-        return replace(self, **kw)
+        """A copy with some parameters changed; ``gamma``/``delta`` change the kinetic law's values."""
+        lawkw = {k: float(kw.pop(k)) for k in ("gamma", "delta") if k in kw}
+        p = replace(self, **kw)
+        return replace(p, law=replace(p.law, **lawkw)) if lawkw else p
 
 
-def one_block(V: float, gamma: float = 3.0, delta: float = 0.0, c: float = 0.0) -> StickSlipParams:
+def one_block(V: float, gamma: float | None = None, delta: float | None = None, c: float = 0.0, *,
+              law: KineticFriction | None = None) -> StickSlipParams:
     """Parameters of the one-block model (dimensionless, the paper's symbols).
 
     Parameters
@@ -66,9 +88,12 @@ def one_block(V: float, gamma: float = 3.0, delta: float = 0.0, c: float = 0.0) 
     gamma : float, optional
         Velocity weakening γ of the kinetic friction (default 3, the paper's examples).
     delta : float, optional
-        Residual kinetic friction level δ in [0, 1].
+        Residual kinetic friction level δ in [0, 1] (default 0).
     c : float, optional
         Viscous damping.
+    law : KineticFriction, optional
+        The kinetic friction law (default eq. (7) with ``gamma``, ``delta``); e.g.
+        ``KineticFriction.from_expression("(1 - delta)*exp(gamma*r) + delta")``.
 
     Returns
     -------
@@ -80,11 +105,11 @@ def one_block(V: float, gamma: float = 3.0, delta: float = 0.0, c: float = 0.0) 
     Galvanetto, U. (2004), "Sliding bifurcations in the dynamics of mechanical systems with dry
     friction — remarks for engineers and applied scientists", J. Sound Vib. 276, 121–139, eqs (3a), (4a), (7).
     """
-    return StickSlipParams(V=V, gamma=gamma, delta=delta, c=c, n=1)
+    return StickSlipParams(V=V, gamma=gamma, delta=delta, c=c, n=1, law=law)
 
 
-def two_blocks(V: float, alpha: float = 1.2, beta: float = 1.3, gamma: float = 3.0,
-               delta: float = 0.0) -> StickSlipParams:
+def two_blocks(V: float, alpha: float = 1.2, beta: float = 1.3, gamma: float | None = None,
+               delta: float | None = None, *, law: KineticFriction | None = None) -> StickSlipParams:
     """Parameters of the two-block model (dimensionless, the paper's symbols).
 
     Parameters
@@ -96,9 +121,11 @@ def two_blocks(V: float, alpha: float = 1.2, beta: float = 1.3, gamma: float = 3
     beta : float, optional
         Static friction level β of block 2 (block 1's is 1).
     gamma : float, optional
-        Velocity weakening γ of the kinetic friction.
+        Velocity weakening γ of the kinetic friction (default 3).
     delta : float, optional
-        Residual kinetic friction level δ in [0, 1].
+        Residual kinetic friction level δ in [0, 1] (default 0).
+    law : KineticFriction, optional
+        The kinetic friction law (default eq. (7) with ``gamma``, ``delta``).
 
     Returns
     -------
@@ -110,7 +137,7 @@ def two_blocks(V: float, alpha: float = 1.2, beta: float = 1.3, gamma: float = 3
     Galvanetto, U. (2004), "Sliding bifurcations in the dynamics of mechanical systems with dry
     friction — remarks for engineers and applied scientists", J. Sound Vib. 276, 121–139, eqs (3b), (4b), (7), (8b).
     """
-    return StickSlipParams(V=V, gamma=gamma, delta=delta, alpha=alpha, beta=beta, n=2)
+    return StickSlipParams(V=V, gamma=gamma, delta=delta, alpha=alpha, beta=beta, n=2, law=law)
 
 
 def K_of(p: StickSlipParams, y):
