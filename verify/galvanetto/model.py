@@ -17,7 +17,8 @@ side; a stuck block leaves when Kᵢ reaches ±F_si (to ``n`` at +F_si, to ``p``
 
 Optional sections (``sections=True``) log, without switching, the extrema that the
 sliding-bifurcation locators need: ``rmax{i}`` (a maximum of rᵢ while slipping with
-rᵢ < 0: grazing of the stick surface), ``rmin{i}`` (a minimum while rᵢ > 0) and
+rᵢ < 0: grazing of the stick surface), ``rmin{i}`` (a minimum while rᵢ > 0), ``rzero{i}``
+(a slip branch made transparent at rᵢ = 0 crosses it) and
 ``Kmin{i}``/``Kmax{i}`` (extrema of Kᵢ while block i sticks: multi-sliding).
 """
 
@@ -238,6 +239,8 @@ def build_model(p: StickSlipParams, sections: bool = False, transparent: frozens
 
                 if f"r{i + 1}=0:{ch}" not in transparent:
                     guards.append(Guard(f"r{i + 1}=0", r_guard, land))
+                elif sections:   # the continued slip branch crosses r = 0: logged (``rzero{i}``)
+                    guards.append(Guard(f"rzero{i + 1}", r_guard))
                 if sections:
                     acc = _accel_fun(p, i, ch)
                     if ch == "n":
