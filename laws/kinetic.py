@@ -97,7 +97,8 @@ class KineticFriction:
         return e if symbolic else e.subs({GAMMA: self.gamma, DELTA: self.delta})
 
     @classmethod
-    def from_expression(cls, neg, pos=None, *, gamma: float = 3.0, delta: float = 0.0) -> "KineticFriction":
+    def from_expression(cls, neg, pos=None, *, gamma: float = 3.0, delta: float = 0.0,
+                        names: tuple[str, str] = ("neg", "pos")) -> "KineticFriction":
         """A kinetic law from its r < 0 branch (and optionally its r > 0 branch).
 
         Parameters
@@ -107,6 +108,7 @@ class KineticFriction:
             (never evaluated).
         pos : the same for r > 0; default the odd reflection −neg(−r).
         gamma, delta : values of the parameters γ, δ if the expressions use them.
+        names : how the two branches are named in error messages (e.g. the CLI's option names).
 
         Returns
         -------
@@ -128,8 +130,8 @@ class KineticFriction:
             if isinstance(x, sp.Expr):
                 return x
             raise InputError(f"KineticFriction.from_expression: {what} must be a string or a sympy expression")
-        n = as_expr(neg, "neg")
-        p = -n.subs(R, -R) if pos is None else as_expr(pos, "pos")
+        n = as_expr(neg, names[0])
+        p = -n.subs(R, -R) if pos is None else as_expr(pos, names[1])
         return cls(gamma=float(gamma), delta=float(delta), neg_expr=n, pos_expr=p)
 
     # ---------------------------------------------------------------- numeric form

@@ -189,7 +189,8 @@ def test_two_block_type_II_off_paper_against_solve_ivp_attractor(law, Fneg, what
         assert np.sign(min(m)) == sign, what
 
 
-@pytest.mark.parametrize("V,law,Fneg", [(0.26, *EQ7_G2[:2]), (0.25, *EXP[:2])], ids=["eq7-g2-V0.26", "user-exp"])
+@pytest.mark.parametrize("V,law,Fneg", [(0.25, KineticFriction(3.5, 0.0), lambda r: 1.0 / (1 - 3.5 * r)),
+                                        (0.25, *EXP[:2])], ids=["eq7-g3.5", "user-exp"])
 def test_fold_off_paper_against_solve_ivp_map(V, law, Fneg):
     # the discontinuous fold (derived: beta scan from 1 validated as the paper's case (3)): just
     # below it the minimum of f − id near the kink is > 0 (no fixed point), just above it < 0 (a

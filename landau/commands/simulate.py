@@ -165,12 +165,14 @@ def _galvanetto(args, t_end: float, n: int):
     if args.kinetic_pos is not None and args.kinetic is None:
         raise InputError(f"{name}: --kinetic-pos needs --kinetic (the r < 0 branch)")
     law = (KineticFriction() if args.kinetic is None
-           else KineticFriction.from_expression(args.kinetic, args.kinetic_pos))  # parsed, never evaluated
+           else KineticFriction.from_expression(args.kinetic, args.kinetic_pos,   # parsed, never evaluated
+                                                names=("--kinetic", "--kinetic-pos")))
     p = StickSlipParams(n=n, law=law).with_(**over)
     if not p.V > 0:
         raise InputError(f"{name}: belt velocity V must be > 0, got {p.V!r}")
     for side, r in (("--kinetic", -p.V), ("--kinetic-pos", p.V)):
-        vals = p.law.neg(r * _R_PROBE) if side == "--kinetic" else p.law.pos(r * _R_PROBE)
+        with np.errstate(all="ignore"):
+            vals = p.law.neg(r * _R_PROBE) if side == "--kinetic" else p.law.pos(r * _R_PROBE)
         if not np.all(np.isfinite(vals)):
             raise InputError(f"{name}: the kinetic law's {side} branch is not finite on the slip velocities "
                              f"0 < |r| <= {p.V:g} ({p.law!r})")

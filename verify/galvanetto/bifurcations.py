@@ -524,7 +524,9 @@ def _fold_scan(V, alpha, law) -> tuple[float, float]:
     β is scanned upward from 1 (equal static levels) in steps of 0.05 up to 1 + 2(1 + α) with
     H(β) = f(d_k) − d_k (DOP853, rtol 1e-8).  A fold of Fig. 12's kind is a sign change from + to −
     (the minimum of f at its kink drops below the diagonal, two fixed points are born) at which f
-    has slopes in (−1, 0) left of the kink and > 1 right of it (Galvanetto 2004, Sec. 2.2 case (3)).
+    decreases left of the kink and has slope > 1 right of it (Galvanetto 2004, Sec. 2.2 case (3):
+    the left slope is in (−1, 0) at the fold itself; at the scan's grid point, up to 0.05 later, it
+    may already be below −1, past the period doubling).
     """
     st = default_stepper(SCAN_RTOL)
     warm = _Warm(None)
@@ -555,7 +557,7 @@ def _fold_scan(V, alpha, law) -> tuple[float, float]:
                 right = map_slope(p, dk + off, 1, st, h=off / 20)
             except (MapUndefined, IntegratorError):
                 left = right = np.nan
-            if -1.0 < left < 0.0 and right > 1.0:
+            if left < 0.0 and right > 1.0:
                 return prev[0], beta
         prev = (beta, h)
     raise InputError(f"discontinuous fold: no fold of Galvanetto's case (3) for beta in (1, {betas[-1]:.3g}] "
