@@ -155,10 +155,15 @@ def _galvanetto(args, t_end: float, n: int):
     from landau.verify.hybrid import EngineOptions, simulate
 
     name = MODELS[n]
-    V, args.V = args.V, None   # --V is the (dimensionless) belt velocity here
+    V, args.V = args.V, None   # --V (or --param V=...) is the (dimensionless) belt velocity here
     _no_law(args, name)
     known = ["V", "gamma", "delta", "c"] + (["alpha", "beta"] if n == 2 else [])
-    over = parse_params(args.param)
+    given_V = [it for it in args.param if it.split("=", 1)[0].strip() == "V"]
+    if given_V:
+        if V is not None or len(given_V) > 1:
+            raise InputError(f"{name}: the belt velocity V is given twice")
+        V = given_V[0].split("=", 1)[1]
+    over = parse_params([it for it in args.param if it not in given_V])
     _only_known(over, known, name)
     if V is not None:
         over["V"] = _positive(V, "--V")
