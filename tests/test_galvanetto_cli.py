@@ -85,3 +85,12 @@ def test_bad_kinetic_input_exits_2_with_one_line(capsys, argv, needle):
     code = main(["simulate", *argv, "--t-end", "1"])
     err = capsys.readouterr().err.strip()
     assert code == 2 and len(err.splitlines()) == 1 and needle in err
+
+
+def test_belt_velocity_from_param_or_option(capsys):
+    # --param V=... (as in the README) and --V give the same belt velocity; the first stick phase
+    # then lasts until X = F_s = 1, i.e. t = 1/V (closed form), so the first event is at 1/V
+    for argv in (["--param", "V=0.4"], ["--V", "0.4"]):
+        code, doc = _json(capsys, "galvanetto-one-block", *argv, "--t-end", "3")
+        assert code == 0 and doc["parameters"]["V"] == 0.4
+        assert doc["status"] == "finished"

@@ -201,3 +201,25 @@ def test_fold_off_paper_against_solve_ivp_map(V, law, Fneg):
         ds = dk + np.linspace(-0.01, 0.01, 21)
         g = [_two_block_map_ivp(d, V, 1.2, beta, Fneg) - d for d in ds]
         assert np.sign(min(g)) == sign
+
+
+@pytest.mark.slow
+def test_fig12_sequence_off_paper_period_doubling_against_solve_ivp_map():
+    # γ = 3.5 (eq. 7): fold < period doubling < border collision < crisis, each searched upward from
+    # the previous one.  Independently, the slope of the solve_ivp map at its fixed point left of
+    # the kink (found by Brent on f(d) − d between the kink and the kink − 0.02) is > −1 just below
+    # the located period doubling and < −1 just above it (central differences, h = 1e-5).
+    law, Fneg = KineticFriction(3.5, 0.0), (lambda r: 1.0 / (1 - 3.5 * r))
+    fold = B.discontinuous_fold(law=law)
+    pd = B.period_doubling(law=law)
+    bc = B.border_collision(law=law)
+    cr = B.boundary_crisis(law=law)
+    assert fold.value < pd.value < bc.value < cr.value
+    dk = pd.details["d_kink"]
+    for beta, above in ((pd.value - 2e-4, True), (pd.value + 2e-4, False)):
+        g = lambda d: _two_block_map_ivp(d, 0.25, 1.2, beta, Fneg) - d
+        dstar = brentq(g, dk - 0.02, dk - 1e-7, xtol=1e-12)
+        h = 1e-5
+        slope = (_two_block_map_ivp(dstar + h, 0.25, 1.2, beta, Fneg)
+                 - _two_block_map_ivp(dstar - h, 0.25, 1.2, beta, Fneg)) / (2 * h)
+        assert (slope > -1.0) == above
