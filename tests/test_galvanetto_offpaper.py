@@ -173,20 +173,22 @@ def test_independent_two_block_map_agrees_with_the_toolkit():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("law,Fneg,what", [EQ7_G2, EXP], ids=["eq7-g2-d0.1", "user-exp"])
-def test_two_block_type_II_off_paper_against_solve_ivp_attractor(law, Fneg, what):
+@pytest.mark.parametrize("alpha,law,Fneg", [(1.0, KineticFriction(3.0, 0.0), lambda r: 1.0 / (1 - 3.0 * r)),
+                                            (1.2, KineticFriction(2.5, 0.0), lambda r: 1.0 / (1 - 2.5 * r))],
+                         ids=["alpha1-g3", "alpha1.2-g2.5"])
+def test_two_block_type_II_off_paper_against_solve_ivp_attractor(alpha, law, Fneg):
     # the located V (derived range: the attractor's margins on a grid around the law's weakening
     # velocity) separates attractors whose r<0 slip phases all end inside the stick interval
     # (K + F_s ≥ 0) from those with a crossing (K + F_s < 0), by the solve_ivp map at ±1 %
-    loc = B.two_block_sliding("II", law=law)
+    loc = B.two_block_sliding("II", alpha=alpha, law=law)
     for V, sign in ((loc.value * 0.99, 1), (loc.value * 1.01, -1)):
         d = loc.details["d"]
         for _ in range(60):
-            d = _two_block_map_ivp(d, V, 1.2, 1.3, Fneg)
+            d = _two_block_map_ivp(d, V, alpha, 1.3, Fneg)
         m = []
         for _ in range(8):
-            d = _two_block_map_ivp(d, V, 1.2, 1.3, Fneg, margins=m)
-        assert np.sign(min(m)) == sign, what
+            d = _two_block_map_ivp(d, V, alpha, 1.3, Fneg, margins=m)
+        assert np.sign(min(m)) == sign
 
 
 @pytest.mark.parametrize("V,law,Fneg", [(0.25, KineticFriction(3.5, 0.0), lambda r: 1.0 / (1 - 3.5 * r)),

@@ -141,6 +141,11 @@ def two_blocks(V: float, alpha: float = 1.2, beta: float = 1.3, gamma: float | N
     return StickSlipParams(V=V, gamma=gamma, delta=delta, alpha=alpha, beta=beta, n=2, law=law)
 
 
+#: relative width of the band outside ±F_s where a landing block whose spring force moves into
+#: its sticking interval sticks at once (see :func:`build_model`)
+CORNER_TOL = 1e-6
+
+
 def K_of(p: StickSlipParams, y):
     """Spring(+damper) force Kᵢ on each block; works on y of shape (2n,) or (2n, m)."""
     if p.n == 1:
@@ -227,7 +232,14 @@ def build_model(p: StickSlipParams, sections: bool = False, transparent: frozens
                     y = np.array(y, dtype=float)
                     y[n + i] = V  # exactly on the surface
                     K = K_of(p, y)[i]
-                    if -Fs[i] <= K <= Fs[i] or f"stick{i + 1}:{ch}" in transparent:
+                    # dKᵢ/dt with block i at the belt speed (its stick-phase rate)
+                    kd = p.V if n == 1 else (1 + p.alpha) * y[n + i] - p.alpha * y[2 * n - 1 - i]
+                    # a landing just outside the sticking interval (by < CORNER_TOL F_s, the accuracy
+                    # of a located event near a sliding bifurcation) while Kᵢ moves into it: the
+                    # slip on the other side would reverse at once (an O(ε²) excursion), so it sticks
+                    corner = ((-Fs[i] * (1 + CORNER_TOL) <= K < -Fs[i] and kd > 0)
+                              or (Fs[i] < K <= Fs[i] * (1 + CORNER_TOL) and kd < 0))
+                    if -Fs[i] <= K <= Fs[i] or corner or f"stick{i + 1}:{ch}" in transparent:
                         new, note = "s", "slip→stick"
                     elif K < -Fs[i]:
                         new, note = "p", "slip→slip (crossing, r>0)"
