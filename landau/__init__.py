@@ -20,18 +20,18 @@ from landau.hopf import Convention, Criticality, HopfResult
 
 if TYPE_CHECKING:  # the same names as _LAZY, for type checkers and the API documentation
     from landau.checking import CheckResult, Verdict, check
-    from landau.general import HopfNormalForm, hopf_normal_form
+    from landau.general import hopf_normal_form
     from landau.linear import HopfLine, HopfPoint, critical_stiffness
-    from landau.multiscale import CONVENTION, Coefficient, Derivation, LandauPoint, derive
+    from landau.multiscale import CONVENTION, Coefficient, Derivation, derive
     from landau.system import DynamicalSystem, SpringBlock
 
 # The derivation engine (sympy) loads on first use of one of its names, so that importing a
 # subpackage (``landau.laws``, ``landau.verify.hybrid``) does not import it.
 _LAZY = {
-    "HopfNormalForm": "landau.general", "hopf_normal_form": "landau.general",
+    "hopf_normal_form": "landau.general",
     "HopfLine": "landau.linear", "HopfPoint": "landau.linear", "critical_stiffness": "landau.linear",
     "CONVENTION": "landau.multiscale", "Coefficient": "landau.multiscale", "Derivation": "landau.multiscale",
-    "LandauPoint": "landau.multiscale", "derive": "landau.multiscale",
+    "derive": "landau.multiscale",
     "DynamicalSystem": "landau.system", "SpringBlock": "landau.system",
     "CheckResult": "landau.checking", "Verdict": "landau.checking", "check": "landau.checking",
 }
@@ -53,7 +53,7 @@ def __dir__():
 __all__ = [
     "__version__",
     "CONVENTION", "CheckResult", "Coefficient", "Convention", "Criticality", "Derivation", "DynamicalSystem",
-    "HopfLine", "HopfNormalForm", "HopfPoint", "HopfResult", "InputError", "IntegratorError", "LandauError",
-    "LandauPoint", "NoHopfError", "SingularPointError", "SpringBlock", "Verdict", "check", "critical_stiffness",
+    "HopfLine", "HopfPoint", "HopfResult", "InputError", "IntegratorError", "LandauError",
+    "NoHopfError", "SingularPointError", "SpringBlock", "Verdict", "check", "critical_stiffness",
     "derive", "hopf_normal_form",
 ]

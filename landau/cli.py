@@ -32,6 +32,7 @@ COMMANDS: dict[str, str] = {
     "transition": "landau.commands.transition",
     "plot": "landau.commands.plot",
     "simulate": "landau.commands.simulate",
+    "hopf": "landau.commands.hopf",
     "figures": "landau.paper_figures.cli",
     "verify": "landau.verify.cli",
 }

@@ -52,9 +52,6 @@ from landau.hopf import GENERAL, HopfResult
 from landau.jets import Jets, TaylorJets
 from landau.system import DynamicalSystem
 
-#: the result type of :func:`hopf_normal_form` (kept under its former name)
-HopfNormalForm = HopfResult
-
 #: default working precision of the located point and its coefficients (decimal digits)
 DEFAULT_DPS = 50
 #: samples of the bracket when looking for crossings
@@ -529,7 +526,7 @@ def _frozen_equilibrium(system: DynamicalSystem, params: Mapping[str, float] | N
 
 
 def kuznetsov_check(system: DynamicalSystem, params: Mapping[str, float] | None, result: HopfResult,
-                    dps: int = 40):
+                    dps: int = 40) -> HopfResult:
     """Kuznetsov's projection formula (:func:`landau.lyapunov.first_lyapunov`) at a located Hopf point.
 
     Works without a closed-form equilibrium: the numeric equilibrium of ``result`` is passed to
@@ -549,17 +546,20 @@ def kuznetsov_check(system: DynamicalSystem, params: Mapping[str, float] | None,
 
     Returns
     -------
-    landau.lyapunov.LyapunovResult
-        l₁, c₁, and C = 2|q_n| sqrt(|Re a|/|Re c₁|) with a from ``result``.
+    HopfResult
+        l₁, c₁, Λ = 2 Re c₁/|q_n|², χ = 2 Im c₁/|q_n|² and a = dλ/dp from ``result``, so that
+        C = 2|q_n| sqrt(|Re a|/|Re c₁|).
+
+    References
+    ----------
+    Kuznetsov, Yu. A. (2004). Elements of Applied Bifurcation Theory, 3rd ed., Springer, eq. (3.20).
     """
     from landau.lyapunov import first_lyapunov
 
     with mpmath.workdps(dps):
         probe, values, pc = _frozen_equilibrium(system, params, result)
         res = first_lyapunov(probe, values, pc, omega_c=result.omega_c, dps=dps, relocate=False)
-    mu = abs(result.dlambda_dp.real)
-    C = 2 * res.q_norm * math.sqrt(mu / abs(res.c1.real)) if res.c1.real != 0 else math.inf
-    return replace(res, dmu_dp=result.dlambda_dp.real, C=C)
+    return replace(res, dlambda_dp=result.dlambda_dp)
 
 
 def second_lyapunov(system: DynamicalSystem, params: Mapping[str, float] | None, result: HopfResult,

@@ -113,6 +113,14 @@ SPRING_BLOCK = Convention(
 )
 
 
+#: units of the fields of a spring–block result (SI; ``as_dict`` names)
+SPRING_BLOCK_UNITS: dict[str, str] = {
+    "V": "m/s", "p_c": "N/m", "k_c": "N/m", "kc": "N/m", "omega_c": "rad/s", "dRe_lambda_dp": "1/(N s)",
+    "dIm_lambda_dp": "1/(N s)", "Gamma_bar": "1/(N s)", "Omega_bar": "1/(N s)", "Lambda": "1/(m^2 s)",
+    "chi": "1/(m^2 s)", "C": "m/sqrt(N/m)", "Lambda5": "1/(m^4 s)",
+}
+
+
 def _fmt(x: Any, digits: int = 6) -> str:
     if x is None:
         return "—"
@@ -163,7 +171,20 @@ class HopfResult:
     params : mapping
         The other parameters' values.
     extra : mapping
-        Route-specific numbers (e.g. the driving velocity V, Γ̄, Ω̄ of the spring–block).
+        Route-specific numbers (e.g. the driving velocity V, Γ̄, Ω̄ of the spring–block), also
+        readable as attributes (``result.V``).
+    units : mapping
+        Unit of each field by its :meth:`as_dict` name (empty: the system's own units, unstated).
+    at : tuple of str
+        Names of ``extra`` (or ``params``) entries that locate the point on a family, shown
+        first in the repr and in tables (``("V",)`` for a spring–block point at driving
+        velocity V).
+
+    Notes
+    -----
+    Names kept from the former result types: ``omega`` (= ``omega_c``), ``dmu_dp``
+    (= Re ``dlambda_dp``), ``sign`` (of Λ), ``result["Lambda"]`` (any :meth:`as_dict` entry), and
+    the spring–block's ``V``, ``kc``, ``Gamma_bar``, ``Omega_bar`` (from ``extra``).
     """
 
     system: str
@@ -182,6 +203,8 @@ class HopfResult:
     l2: float | None = None
     params: Mapping[str, float] = field(default_factory=dict)
     extra: Mapping[str, float] = field(default_factory=dict)
+    units: Mapping[str, str] = field(default_factory=dict)
+    at: tuple[str, ...] = ()
 
     def __getattr__(self, name: str) -> Any:
         # route-specific numbers (e.g. ``kc``, ``V``, ``Gamma_bar`` of the spring–block) read as attributes
@@ -193,11 +216,43 @@ class HopfResult:
             return extra[name]
         raise AttributeError(f"{type(self).__name__} has no attribute {name!r}")
 
+    def __getitem__(self, key: str) -> Any:
+        """``result["Lambda"]``: any entry of :meth:`as_dict` by name."""
+        fields = self.as_dict()
+        if key not in fields:
+            raise KeyError(f"{key!r} (known: {', '.join(fields)})")
+        return fields[key]
+
+    def _located(self) -> dict[str, Any]:
+        """The entries named by ``at``, from ``extra`` or ``params``."""
+        out: dict[str, Any] = {}
+        for name in self.at:
+            if name in self.extra:
+                out[name] = self.extra[name]
+            elif name in self.params:
+                out[name] = self.params[name]
+        return out
+
     # --- derived quantities -------------------------------------------------------------
     @property
     def criticality(self) -> Criticality:
         """Super/subcritical from the sign of Λ (degenerate where Λ is zero or not finite)."""
         return Criticality.from_sign(self.Lambda)
+
+    @property
+    def sign(self) -> int:
+        """Sign of Λ: −1 supercritical, +1 subcritical, 0 degenerate."""
+        return {Criticality.SUPERCRITICAL: -1, Criticality.SUBCRITICAL: 1}.get(self.criticality, 0)
+
+    @property
+    def omega(self) -> float:
+        """The angular frequency at onset, ``omega_c`` (rad/s)."""
+        return self.omega_c
+
+    @property
+    def dmu_dp(self) -> float:
+        """The transversality d Re λ/dp = Re ``dlambda_dp``."""
+        return self.dlambda_dp.real
 
     @property
     def C(self) -> float:
@@ -275,7 +330,8 @@ class HopfResult:
         dict
         """
         out: dict[str, Any] = {
-            "system": self.system, "parameter": self.parameter, "p_c": self.p_c, "omega_c": self.omega_c,
+            "system": self.system, "parameter": self.parameter, **self._located(), "p_c": self.p_c,
+            "omega_c": self.omega_c,
             "equilibrium": list(self.equilibrium), "dRe_lambda_dp": self.dlambda_dp.real,
             "dIm_lambda_dp": self.dlambda_dp.imag, "Lambda": self.Lambda, "chi": self.chi, "C": self.C,
             "criticality": self.criticality.value, "normalise": self.normalise, "convention": self.convention.name,
@@ -288,21 +344,87 @@ class HopfResult:
         out.update(self.extra)
         return out
 
+    def _unit(self, name: str) -> str:
+        u = self.units.get(name)
+        return f" {u}" if u else ""
+
+    def _where(self) -> str:
+        return ", ".join(f"{k} = {_fmt(v, 4)}{self._unit(k)}" for k, v in self._located().items())
+
     def __repr__(self) -> str:
-        parts = [f"{self.parameter}_c = {_fmt(self.p_c, 10)}", f"ω_c = {_fmt(self.omega_c)}",
-                 f"Λ = {_fmt(self.Lambda)} ({self.criticality})", f"C = {_fmt(self.C)}"]
+        parts = [f"{self.parameter}_c = {_fmt(self.p_c, 10)}{self._unit('p_c')}",
+                 f"ω_c = {_fmt(self.omega_c)}{self._unit('omega_c')}",
+                 f"Λ = {_fmt(self.Lambda)}{self._unit('Lambda')} ({self.criticality})",
+                 f"C = {_fmt(self.C)}{self._unit('C')}"]
         for name in ("l1", "Lambda5", "l2"):
             if getattr(self, name) is not None:
-                parts.append(f"{name} = {_fmt(getattr(self, name))}")
-        return f"HopfResult({self.system}: " + ", ".join(parts) + ")"
+                parts.append(f"{name} = {_fmt(getattr(self, name))}{self._unit(name)}")
+        where = self._where()
+        return f"HopfResult({self.system}{' at ' + where if where else ''}: " + ", ".join(parts) + ")"
+
+    def _display_row(self) -> dict[str, Any]:
+        # one row of a table of results (ResultList): where, the Hopf point, Λ, C, criticality
+        row: dict[str, Any] = {**self._located(), f"{self.parameter}_c": self.p_c, "omega_c": self.omega_c,
+                               "Lambda": self.Lambda, "C": self.C}
+        for name in ("l1", "Lambda5", "l2"):
+            if getattr(self, name) is not None:
+                row[name] = getattr(self, name)
+        row["criticality"] = self.criticality.value
+        return row
 
     def _repr_latex_(self) -> str:
-        return (rf"${self.parameter}_c = {_fmt(self.p_c, 10)},\ \omega_c = {_fmt(self.omega_c)},\ "
+        where = "".join(rf"{k} = {_fmt(v, 4)},\ " for k, v in self._located().items())
+        return (rf"${where}{self.parameter}_c = {_fmt(self.p_c, 10)},\ \omega_c = {_fmt(self.omega_c)},\ "
                 rf"\Lambda = {_fmt(self.Lambda)}$ ({self.criticality})")
 
     def _repr_html_(self) -> str:
         from landau.display import html_record
 
         fields = {k: v for k, v in self.as_dict().items() if k not in ("system", "convention")}
-        return html_record(f"Hopf point of {self.system}: {self.criticality}", fields,
-                           note=f"Convention: {self.convention}")
+        where = self._where()
+        return html_record(f"Hopf point of {self.system}{' at ' + where if where else ''}: {self.criticality}",
+                           fields, units=self.units, note=f"Convention: {self.convention}")
+
+
+def spring_block_result(law: str, V: float, kc: float, omega_c: float, Gamma_bar: float, Omega_bar: float,
+                        Lambda: float, chi: float, params: Mapping[str, float], **fields: Any) -> HopfResult:
+    """A spring–block Hopf point at driving velocity V as a :class:`HopfResult`.
+
+    Spring–block convention (Putelat et al. 2010, eq. 20): p = k, dλ/dk = −Γ̄ + iΩ̄, the critical
+    mode normalised with slip component X = 1; SI units.
+
+    Parameters
+    ----------
+    law : str
+        Name of the friction law.
+    V : float
+        Driving velocity, m/s.
+    kc, omega_c : float
+        Critical stiffness (N/m) and angular frequency at onset (rad/s).
+    Gamma_bar, Omega_bar : float
+        Γ̄ and Ω̄ (1/(N s)): dλ/dk = −Γ̄ + iΩ̄.
+    Lambda, chi : float
+        Landau coefficient Λ and nonlinear frequency coefficient χ (1/(m² s)).
+    params : mapping
+        The other parameters' values.
+    **fields
+        Further :class:`HopfResult` fields (``equilibrium``, ``Lambda5``, ``l1``, ``c1``; ``extra``
+        entries to add).
+
+    Returns
+    -------
+    HopfResult
+        With ``extra`` V, k_c, Γ̄, Ω̄ (readable as attributes), located at V.
+
+    References
+    ----------
+    Putelat, T., Dawes, J. H. P., Willis, J. R. (2010). Regimes of frictional sliding of a
+    spring–block system. J. Mech. Phys. Solids 58, 27–53, eqs (7), (8), (18)–(23).
+    """
+    extra = {"V": float(V), "kc": float(kc), "Gamma_bar": float(Gamma_bar), "Omega_bar": float(Omega_bar),
+             **fields.pop("extra", {})}
+    fields.setdefault("equilibrium", ())
+    return HopfResult(system=law, parameter="k", p_c=float(kc), omega_c=float(omega_c),
+                      dlambda_dp=complex(-Gamma_bar, Omega_bar), Lambda=float(Lambda), chi=float(chi),
+                      convention=SPRING_BLOCK, normalise="X", params=dict(params), extra=extra,
+                      units=SPRING_BLOCK_UNITS, at=("V",), **fields)

@@ -8,7 +8,8 @@ them (with common-subexpression elimination) as Python source for
 
 checks that source against a whitelist of syntax (assignments of arithmetic on names and
 subscripts, ``math.<function>`` calls and a few builtins), executes it in a namespace that
-holds nothing else, and compiles both functions with numba.  The result (:class:`Kernel`)
+holds nothing else, and compiles both functions with numba (:func:`compile_source`, through
+the cross-process code cache of :mod:`landau.verify.jitcache`).  The result (:class:`Kernel`)
 is what the compiled steppers of :mod:`landau.verify.hybrid.compiled` take: the
 simulation layer itself never imports sympy — kernels are made here, on the derivation
 side, and handed over as numba callables.
@@ -20,11 +21,11 @@ in code) reach this module; user strings never reach ``exec``.
 from __future__ import annotations
 
 import ast
-import builtins
 import math
+from dataclasses import dataclass
+from dataclasses import field as _field
 from typing import Mapping, Sequence
 
-import numba as nb
 import numpy as np
 import sympy as sp
 from numba import types
@@ -33,6 +34,7 @@ from sympy.printing.pycode import PythonCodePrinter
 from landau.cx import as_expr
 from landau.errors import InputError
 from landau.verify.hybrid.kernel import Kernel
+from landau.verify.jitcache import load_generated, njit_cached
 
 #: numba signatures of the generated functions (the ones the compiled steppers call)
 FUN_SIG = types.void(types.float64, types.float64[::1], types.float64[::1], types.float64[::1])
@@ -92,7 +94,9 @@ def kernel_source(states: Sequence[sp.Symbol], field: Sequence[sp.Expr], params:
     Returns
     -------
     str
-        The source, already checked by :func:`check_source`.
+        The source, already checked by :func:`check_source`.  It is kept in the disk cache of
+        derivations (:mod:`landau.cache`, switched off by ``LANDAU_CACHE=off``), so a later
+        process asking for the same field skips the differentiation and the elimination.
     """
     n = len(states)
     if len(field) != n:
@@ -113,11 +117,50 @@ def kernel_source(states: Sequence[sp.Symbol], field: Sequence[sp.Expr], params:
         ren[time] = sp.Symbol("t", **time.assumptions0)
     exprs = [e.xreplace(ren) for e in exprs]
     svars = [ren[s] for s in states]
+    # what sympy derives here (the Jacobian, the common subexpressions) depends only on the
+    # renamed field: the source is kept in the disk cache of derivations (landau.cache) under
+    # that field's canonical text, this generator's own code and the sympy version
+    from landau import cache
+
+    key = cache.make_key("kernel-source", _generator_fingerprint(), sp.__version__, jacobian, len(params),
+                         sp.srepr((tuple(svars), tuple(exprs))))
+    src = cache.get("kernel-source", key)
+    if isinstance(src, str):
+        try:
+            check_source(src)                   # the cached text passes the same whitelist,
+            return src
+        except (InputError, SyntaxError):       # or it is rebuilt
+            pass
+    src = _emit(exprs, svars, len(params), jacobian)
+    cache.put("kernel-source", key, src)
+    return src
+
+
+_FINGERPRINT: str | None = None
+
+
+def _generator_fingerprint() -> str:
+    """SHA-256 of this module's source: a changed generator never reads an older entry."""
+    global _FINGERPRINT
+    if _FINGERPRINT is None:
+        import hashlib
+        from pathlib import Path
+
+        try:
+            _FINGERPRINT = hashlib.sha256(Path(__file__).read_bytes()).hexdigest()[:16]
+        except OSError:
+            _FINGERPRINT = "unknown"
+    return _FINGERPRINT
+
+
+def _emit(exprs, svars, nparams: int, jacobian: bool) -> str:
+    """The source of fun (and jac) for the renamed field ``exprs`` over ``svars`` (s_i, q_i, t names)."""
+    n = len(svars)
     jm = sp.Matrix(exprs).jacobian(sp.Matrix(svars)) if jacobian else sp.zeros(0, 0)
     reps, red = sp.cse(exprs + list(jm), symbols=sp.numbered_symbols("c"), optimizations="basic")
     pr = _Printer({"fully_qualified_modules": True})
     head = [f"    s{i} = y[{i}]" for i in range(n)]
-    head += [f"    q{i} = p[{i}]" for i in range(len(params))]
+    head += [f"    q{i} = p[{i}]" for i in range(nparams)]
     body = [f"    {s} = {pr.doprint(e)}" for s, e in reps]
     lines = ["def fun(t, y, p, out):", *head, *body]
     lines += [f"    out[{i}] = {pr.doprint(red[i])}" for i in range(n)]
@@ -178,10 +221,66 @@ def generate_kernel(states: Sequence[sp.Symbol], field: Sequence[sp.Expr], param
                 raise InputError(f"kernel {name!r}: {len(pv)} values for {len(params)} parameters")
     else:
         pv = [0.0]  # numba needs a non-empty float64[::1]
-    # only whitelisted names exist in the namespace (check_source is the filter; this is the
-    # second wall: no other builtins are reachable from the generated code)
-    glb: dict = {"math": math, "__builtins__": {nm: getattr(builtins, nm) for nm in ALLOWED_BUILTINS}}
-    exec(compile(src, f"<kernel {name}>", "exec"), glb)
-    fun = nb.njit(FUN_SIG)(glb["fun"])
-    jac = nb.njit(JAC_SIG)(glb["jac"]) if jacobian else None
-    return Kernel(fun, np.asarray(pv, float), jac, name=name, n=len(states), source=src)
+    compiled = compile_source(src, name)
+    return Kernel(compiled.fun, np.asarray(pv, float), compiled.jac, name=name, n=len(states), source=src)
+
+
+@dataclass(frozen=True)
+class CompiledSource:
+    """The functions of one generated kernel source, compiled and as plain Python.
+
+    Attributes
+    ----------
+    source : str
+        The source (from :func:`kernel_source`).
+    fun, jac : numba dispatcher
+        ``fun(t, y, p, out)`` and ``jac(t, y, p, out)`` (``jac`` None when not emitted).
+    fun_py, jac_py : function
+        The same functions uncompiled (e.g. for a pure-Python baseline).
+    """
+
+    source: str = _field(repr=False)
+    fun: object
+    jac: object | None
+    fun_py: object = _field(repr=False)
+    jac_py: object | None = _field(repr=False)
+
+
+_COMPILED: dict[str, CompiledSource] = {}
+
+
+def compile_source(src: str, name: str = "kernel") -> CompiledSource:
+    """Compile a kernel source of :func:`kernel_source` with numba, through the code cache.
+
+    The source is checked again (:func:`check_source`), kept in the cross-process code cache
+    of :mod:`landau.verify.jitcache` (a file named by its SHA-256, executed with the builtins
+    ``abs``, ``min``, ``max``, ``float`` and the module ``math`` only) and compiled with
+    ``cache=True``, so a later process loads the machine code from disk.  The compiled
+    functions are module-level functions of that file's module, so compiled-method templates
+    bound to them are cached on disk as well (:mod:`landau.verify.hybrid.specialise`).  One
+    source is compiled once per process.
+
+    Parameters
+    ----------
+    src : str
+        Source defining ``fun(t, y, p, out)`` and optionally ``jac(t, y, p, out)``.
+    name : str
+        A label for error messages.
+
+    Returns
+    -------
+    CompiledSource
+    """
+    hit = _COMPILED.get(src)
+    if hit is not None:
+        return hit
+    check_source(src)
+    ns = load_generated(src, {"math": math}, ALLOWED_BUILTINS)
+    if not callable(ns.get("fun")):
+        raise InputError(f"kernel {name!r}: the source defines no function fun")
+    fun_py, jac_py = ns["fun"], ns.get("jac")
+    fun = njit_cached(fun_py, FUN_SIG)
+    jac = njit_cached(jac_py, JAC_SIG) if jac_py is not None else None
+    out = CompiledSource(src, fun, jac, fun_py, jac_py)
+    _COMPILED[src] = out
+    return out

@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import asdict, dataclass
 from typing import Any, Mapping, Sequence
 
 import mpmath
@@ -41,54 +40,12 @@ import sympy as sp
 
 from landau.cx import as_expr
 from landau.errors import InputError, NoHopfError, SingularPointError
-from landau.hopf import GENERAL, HopfResult
+from landau.hopf import GENERAL, HopfResult, spring_block_result
 from landau.jets import Jets
 from landau.system import DynamicalSystem, SpringBlock
 
 #: digits used when the caller does not say (≥ 30: far above the float64 engine it checks)
 DEFAULT_DPS = 40
-
-
-@dataclass(frozen=True)
-class LyapunovResult:
-    """First Lyapunov coefficient of a Hopf point (Kuznetsov's projection formula).
-
-    p_c, omega : Hopf parameter and angular frequency, re-located from the eigenvalues.
-    c1 : the complex normal-form coefficient c₁(0) with ⟨q, q⟩ = 1, ⟨p, q⟩ = 1.
-    l1 : Re c₁ / ω (< 0 supercritical, > 0 subcritical).
-    dmu_dp : transversality d Re λ / dp at p_c.
-    q_norm : |q| of the normalised component (the slip X for the spring–block).
-    C : amplitude of that component per sqrt|p − p_c|, 2|q_X| sqrt(|μ'| / |Re c₁|).
-    dps : working precision (decimal digits).
-    """
-
-    p_c: float
-    omega: float
-    c1: complex
-    l1: float
-    dmu_dp: float
-    q_norm: float
-    C: float
-    dps: int
-
-    @property
-    def sign(self) -> int:
-        return 0 if self.l1 == 0 else (1 if self.l1 > 0 else -1)
-
-    @property
-    def criticality(self) -> str:
-        return {-1: "supercritical", 1: "subcritical", 0: "degenerate"}[self.sign]
-
-    def as_dict(self) -> dict[str, Any]:
-        d = asdict(self)
-        d["c1"] = [self.c1.real, self.c1.imag]
-        d["sign"] = self.sign
-        d["criticality"] = self.criticality
-        return d
-
-    def __repr__(self) -> str:
-        return (f"LyapunovResult(p_c={self.p_c:.10g}, omega={self.omega:.10g}, l1={self.l1:.10g}, "
-                f"dmu_dp={self.dmu_dp:.6g}, C={self.C:.10g}; {self.criticality}, {self.dps} digits)")
 
 
 class _NumericJets:
@@ -239,14 +196,42 @@ def equilibrium_floats(system: DynamicalSystem, pc, vals: Mapping[sp.Symbol, Any
 
 def first_lyapunov(system: DynamicalSystem, values: Mapping[sp.Symbol | str, Any], p_c: float, *,
                    omega_c: float | None = None, jets: Jets | None = None, dps: int = DEFAULT_DPS,
-                   relocate: bool = True, rel_step: float = 1e-5) -> LyapunovResult:
+                   relocate: bool = True, rel_step: float = 1e-5) -> HopfResult:
     """l₁ and C_K of the Hopf point of ``system`` near ``p_c`` (generic entry point).
 
-    ``values`` gives every parameter of the system (by symbol or name) and, where the
-    equilibrium has no closed form, its ``unknowns`` (the numeric equilibrium).  ``p_c``
-    is an estimate of the Hopf parameter (re-located from the eigenvalues unless
-    ``relocate=False``); ``omega_c`` an optional estimate of the frequency, used only to
-    pick the critical eigenvalue pair.
+    Parameters
+    ----------
+    system : DynamicalSystem
+        E·ẏ = f(y; p) with every mass entry non-zero.
+    values : mapping
+        Every parameter of the system (by symbol or name) and, where the equilibrium has no
+        closed form, its ``unknowns`` (the numeric equilibrium).
+    p_c : float
+        Estimate of the Hopf parameter (re-located from the eigenvalues unless
+        ``relocate=False``).
+    omega_c : float, optional
+        Estimate of the frequency, used only to pick the critical eigenvalue pair.
+    jets : Jets, optional
+        The system's symbolic jets (built if not given).
+    dps : int
+        Working precision (≥ 30).
+    relocate : bool
+        Whether to re-locate p_c from the eigenvalues.
+    rel_step : float
+        Relative step of the finite differences of λ(p).
+
+    Returns
+    -------
+    HopfResult
+        In the general convention (critical mode with ``normalise`` component 1):
+        ``l1`` = Re c₁/ω, ``c1`` (⟨q, q⟩ = 1, ⟨p, q⟩ = 1), ``dlambda_dp`` from eigenvalues at
+        p_c ± h, p_c ± 2h (``dmu_dp`` its real part), Λ = 2 Re c₁/|q_n|², χ = 2 Im c₁/|q_n|²,
+        so ``C`` = 2|q_n| sqrt(|μ'|/|Re c₁|); ``extra``: ``q_norm`` = |q_n| and ``dps``.
+
+    References
+    ----------
+    Kuznetsov, Yu. A. (2004). Elements of Applied Bifurcation Theory, 3rd ed., Springer,
+    eqs (3.20), (5.39).
     """
     if dps < 30:
         raise InputError(f"dps must be >= 30 for the Kuznetsov check, got {dps}")
@@ -291,28 +276,61 @@ def first_lyapunov(system: DynamicalSystem, values: Mapping[sp.Symbol | str, Any
         vec = [c - 2 * b1 + b2 for c, b1, b2 in zip(Cqqqb, Bq_h11, Bqb_h20)]
         c1 = sum(a * b for a, b in zip(pbar, vec)) / 2
         l1 = mpmath.re(c1) / om
-        # transversality d Re λ / dp: central differences at h and 2h, one Richardson step
+        # transversality dλ/dp: central differences at h and 2h, one Richardson step
         h = abs(pc) * mpmath.mpf(rel_step) if pc != 0 else mpmath.mpf(rel_step)
-        rl = lambda p: mpmath.re(_critical_eig(nj.at(p)[0], float(om)))
-        d1 = (rl(pc + h) - rl(pc - h)) / (2 * h)
-        d2 = (rl(pc + 2 * h) - rl(pc - 2 * h)) / (4 * h)
-        dmu = (4 * d1 - d2) / 3
+        eig = {s: _critical_eig(nj.at(pc + s * h)[0], float(om)) for s in (1, -1, 2, -2)}
+
+        def richardson(part):
+            d1 = (part(eig[1]) - part(eig[-1])) / (2 * h)
+            d2 = (part(eig[2]) - part(eig[-2])) / (4 * h)
+            return (4 * d1 - d2) / 3
+
+        dmu, dom = richardson(mpmath.re), richardson(mpmath.im)      # d Re λ/dp, d Im λ/dp
         qx = abs(q[system.normalise])
-        if mpmath.re(c1) == 0:
-            C = mpmath.inf
-        else:
-            C = 2 * qx * mpmath.sqrt(abs(dmu) / abs(mpmath.re(c1)))
-        return LyapunovResult(p_c=float(pc), omega=float(om), c1=complex(c1), l1=float(l1), dmu_dp=float(dmu),
-                              q_norm=float(qx), C=float(C), dps=dps)
+        eq = equilibrium_floats(system, pc, vals, dps)
+        return HopfResult(
+            system=system.name, parameter=system.parameter.name, p_c=float(pc), omega_c=float(om),
+            equilibrium=tuple(eq), dlambda_dp=complex(float(dmu), float(dom)),
+            Lambda=float(2 * mpmath.re(c1) / qx ** 2), chi=float(2 * mpmath.im(c1) / qx ** 2), convention=GENERAL,
+            normalise=system.states[system.normalise].name, l1=float(l1), c1=complex(c1),
+            params={s.name: float(v) for s, v in vals.items()}, extra={"q_norm": float(qx), "dps": dps},
+        )
 
 
 def spring_block_lyapunov(block: SpringBlock, V: float, params: Mapping[str, float] | None = None, *,
                           kc_guess: float | None = None, jets: Jets | None = None,
-                          dps: int = DEFAULT_DPS) -> LyapunovResult:
+                          dps: int = DEFAULT_DPS) -> HopfResult:
     """Kuznetsov's l₁ and C_K for the spring–block (Putelat et al. 2010, eq. 4) at driving velocity V.
 
     The starting estimate of k_c is ``kc_guess`` or the linear Hopf line (eq. 7); it is
     re-located from the eigenvalues.  Needs M > 0.
+
+    Parameters
+    ----------
+    block : SpringBlock
+        The spring–block with its friction law (closed-form steady state).
+    V : float
+        Driving velocity, m/s.
+    params : mapping, optional
+        Parameter overrides.
+    kc_guess : float, optional
+        Starting estimate of k_c (default: the linear Hopf line).
+    jets : Jets, optional
+        The system's symbolic jets.
+    dps : int
+        Working precision (≥ 30).
+
+    Returns
+    -------
+    HopfResult
+        As :func:`first_lyapunov`, in the spring–block convention (p = k, slip component X of
+        the mode 1, so Λ, χ and C are comparable with :meth:`landau.multiscale.Derivation.points`;
+        Γ̄ = −d Re λ/dk and Ω̄ = d Im λ/dk by finite differences), located at V.
+
+    References
+    ----------
+    Putelat, T., Dawes, J. H. P., Willis, J. R. (2010). Regimes of frictional sliding of a
+    spring–block system. J. Mech. Phys. Solids 58, 27–53.
     """
     p = block.resolve(params)
     if p["M"] <= 0:
@@ -332,7 +350,11 @@ def spring_block_lyapunov(block: SpringBlock, V: float, params: Mapping[str, flo
         kc_guess, om_guess = float(kc[0]), float(om[0])
     else:
         om_guess = None
-    return first_lyapunov(system, values, kc_guess, omega_c=om_guess, jets=jets, dps=dps)
+    res = first_lyapunov(system, values, kc_guess, omega_c=om_guess, jets=jets, dps=dps)
+    a = res.dlambda_dp
+    return spring_block_result(block.law.name, float(V), res.p_c, res.omega_c, -a.real, a.imag, res.Lambda,
+                               res.chi, {**p, "V": float(V)}, equilibrium=res.equilibrium, l1=res.l1, c1=res.c1,
+                               extra=dict(res.extra))
 
 
 # --------------------------------------------------------------------------------------

@@ -31,6 +31,7 @@ from landau.codegen import AtomTable, CompiledFormula
 from landau.cx import Cx, as_expr
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.fredholm import cubic_coefficient, linear_coefficient, null_vectors, quintic_coefficient
+from landau.hopf import SPRING_BLOCK_UNITS, spring_block_result
 from landau.jets import Jets
 from landau.linear import HopfLine, w
 from landau.system import SpringBlock
@@ -41,8 +42,8 @@ CONVENTION = ("d|A|/dT = (Gamma |A| + Lambda |A|^3)/2, dtheta/dT = (Omega + chi 
               "Gamma = -2 Gamma_bar (k - kc)/eps^2, Omega = 2 Omega_bar (k - kc)/eps^2; critical mode normalised "
               "with slip component 1; Lambda < 0: supercritical, Lambda > 0: subcritical; "
               "C = max|x - x0| / sqrt(|kc - k|) = 2 sqrt(2 Gamma_bar/|Lambda|) (eq. 23)")
-UNITS = {"V": "m/s", "kc": "N/m", "omega_c": "rad/s", "Gamma_bar": "1/(N s)", "Omega_bar": "1/(N s)",
-         "Lambda": "1/(m^2 s)", "chi": "1/(m^2 s)", "C": "m/sqrt(N/m)", "Lambda5": "1/(m^4 s)"}
+#: SI units of the spring–block quantities (and of a spring–block :class:`~landau.hopf.HopfResult`'s fields)
+UNITS = SPRING_BLOCK_UNITS
 
 #: quantity -> (LaTeX symbol, description, equation)
 QUANTITIES: dict[str, tuple[str, str, str]] = {
@@ -225,72 +226,6 @@ class Coefficient:
 
     def __call__(self, Vs, **params) -> np.ndarray:
         return self.derivation.evaluate(Vs, params, [self.name])[self.name]
-
-
-@dataclass(frozen=True)
-class LandauPoint:
-    """Amplitude-equation coefficients at one driving velocity (SI units).
-
-    Parameters
-    ----------
-    V : float
-        Driving velocity, m/s.
-    kc : float
-        Critical stiffness, N/m.
-    omega_c : float
-        Angular frequency at onset, rad/s.
-    values : mapping of str to float
-        The other coefficients by name (e.g. ``"Gamma_bar"``, ``"Lambda"``, ``"C"``).
-    criticality : str
-        ``"supercritical"`` (Λ < 0) or ``"subcritical"`` (Λ > 0).
-    """
-
-    V: float
-    kc: float
-    omega_c: float
-    values: Mapping[str, float]
-    criticality: str
-
-    def __getitem__(self, key: str) -> float:
-        return {"V": self.V, "kc": self.kc, "omega_c": self.omega_c, **self.values}[key]
-
-    def amplitude_equation(self) -> str:
-        """The amplitude equation with this point's Λ and its criticality.
-
-        Returns
-        -------
-        str
-        """
-        lam = self.values.get("Lambda")
-        if lam is None:
-            return "Lambda not computed"
-        return (f"d|A|/dT = (Gamma |A| + Lambda |A|^3)/2 with Lambda = {lam:.6g} 1/(m^2 s): "
-                f"{self.criticality} (Lambda < 0: supercritical)")
-
-    def as_dict(self) -> dict[str, Any]:
-        """The point as JSON-ready fields.
-
-        Returns
-        -------
-        dict
-            V, k_c, ω_c, the coefficients by name and the criticality.
-        """
-        return {"V": self.V, "kc": self.kc, "omega_c": self.omega_c, **self.values, "criticality": self.criticality}
-
-    def __repr__(self) -> str:
-        vals = ", ".join(f"{k}={v:.6g}" for k, v in self.values.items())
-        return f"LandauPoint(V={self.V:.4g} m/s, kc={self.kc:.6g} N/m, omega_c={self.omega_c:.6g} rad/s, {vals}; {self.criticality})"
-
-    def _repr_html_(self) -> str:
-        from landau.display import html_record
-
-        return html_record(f"Hopf point at V = {self.V:.4g} m/s: {self.criticality}", self.as_dict(), units=UNITS,
-                           note=f"Convention: {CONVENTION}")
-
-    def _repr_latex_(self) -> str:
-        parts = [rf"V = {self.V:.4g}", rf"k_c = {self.kc:.6g}", rf"\omega_c = {self.omega_c:.6g}"]
-        parts += [rf"{QUANTITIES[k][0]} = {v:.6g}" for k, v in self.values.items() if k in QUANTITIES]
-        return "$" + r",\ ".join(parts) + rf"$ ({self.criticality})"
 
 
 class CoefficientTable(dict):
@@ -967,7 +902,11 @@ class Derivation:
 
     def points(self, Vs, params: Mapping[str, float] | None = None,
                names: Sequence[str] = ("Gamma_bar", "Lambda", "C")) -> list[Any]:
-        """Per-velocity :class:`LandauPoint` (or the linear :class:`HopfPoint` when there is no Hopf point).
+        """Per-velocity :class:`~landau.hopf.HopfResult` (or the linear :class:`HopfPoint` when
+        there is no Hopf point).
+
+        Each point is in the spring–block convention (Putelat et al. 2010, eq. 20): p = k,
+        dλ/dk = −Γ̄ + iΩ̄, with ``V``, ``kc``, ``Gamma_bar``, ``Omega_bar`` in ``extra``.
 
         Parameters
         ----------
@@ -976,14 +915,22 @@ class Derivation:
         params : mapping of str to float, optional
             Parameter overrides.
         names : sequence of str, optional
-            The coefficients to evaluate (default Γ̄, Λ, C).
+            The coefficients evaluated together (default Γ̄, Λ, C: their values are exactly
+            those of :meth:`evaluate` with these names); Ω̄ and χ, which every point carries,
+            are evaluated separately where not named.  Any other quantity named (``"Lambda5"``)
+            is carried too.
 
         Returns
         -------
-        list of LandauPoint or HopfPoint
+        list of HopfResult or HopfPoint
+            A :class:`~landau.display.ResultList` (one table in a notebook).
         """
         Vs = np.atleast_1d(np.asarray(Vs, dtype=float))
         res = self.evaluate(Vs, params, ["kc", "omega_c", *names])
+        rest = [n for n in ("Gamma_bar", "Omega_bar", "Lambda", "chi") if n not in names]
+        more = self.evaluate(Vs, params, rest) if rest else {}
+        resolved = self.block.resolve(params)
+        equilibrium = self._equilibrium_function(resolved)
         lin = None
         out = []
         for i, Vi in enumerate(Vs):
@@ -992,14 +939,33 @@ class Derivation:
                 out.append(lin[i])
                 continue
             values = {n: float(res[n][i]) for n in names}
-            if res["degenerate"][i]:
-                crit = "degenerate"
-            else:
-                crit = criticality(values["Lambda"]) if "Lambda" in values else "unknown"
-            out.append(LandauPoint(float(Vi), float(res["kc"][i]), float(res["omega_c"][i]), values, crit))
+            values.update({n: float(more[n][i]) for n in rest})
+            if res["degenerate"][i] or (rest and more["degenerate"][i]):
+                values["Lambda"] = 0.0            # vanishes identically: criticality degenerate, C infinite
+            fields = {n: values.pop(n) for n in ("Gamma_bar", "Omega_bar", "Lambda", "chi")}
+            values.pop("C", None)                 # a property of the result (the same formula)
+            quintic = {"Lambda5": values.pop("Lambda5")} if "Lambda5" in values else {}
+            kc = float(res["kc"][i])
+            out.append(spring_block_result(self.block.law.name, float(Vi), kc, float(res["omega_c"][i]),
+                                           params={**resolved, "V": float(Vi)}, extra=values,
+                                           equilibrium=equilibrium(float(Vi), kc), **fields, **quintic))
         from landau.display import ResultList
 
         return ResultList(out, title=f"Hopf points of law {self.block.law.name}", units=UNITS)
+
+    def _equilibrium_function(self, resolved: Mapping[str, float]):
+        """(V, k) -> the steady sliding state (X, u, φ…) as floats; () where it has no closed form."""
+        system = self.system
+        if system.unknowns:
+            return lambda V, k: ()
+        by_name = {s.name: s for s in system.parameters}
+        fixed = {by_name[n]: v for n, v in resolved.items() if n in by_name}
+        V = by_name.get("V", sp.Dummy())
+        exprs = [as_expr(e).xreplace(fixed) for e in system.equilibrium]
+        if set().union(*(e.free_symbols for e in exprs)) - {V, self.k}:
+            return lambda Vi, k: ()
+        fn = sp.lambdify([V, self.k], exprs, modules="math")
+        return lambda Vi, k: tuple(float(y) for y in fn(Vi, k))
 
 
 def _as_block(block) -> SpringBlock:

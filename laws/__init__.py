@@ -4,6 +4,11 @@ Built-in laws (CLI names): ``dieterich``, ``ruina``, ``spinodal``,
 ``modified-dieterich``, ``nanoscale``, ``micron-scale`` (Putelat et al. 2010) and
 ``two-state-dieterich``.  A new law: :meth:`FrictionLaw.from_strings` or the
 :class:`FrictionLaw` constructor.
+
+Velocity-only friction (:class:`VelocityFriction`, on the same :class:`Law` base): the plain
+Coulomb law of the frictional impact oscillator of Lancioni, Lenci & Galvanetto
+(:func:`coulomb`), the regularised Coulomb resistance of Skurativskyi et al. (2019)
+(:func:`regularised_coulomb`), or your own (:meth:`VelocityFriction.from_strings`).
 """
 
 from __future__ import annotations
@@ -11,7 +16,9 @@ from __future__ import annotations
 from typing import Callable
 
 from landau.errors import InputError
+from landau.laws.base import Law
 from landau.laws.law import TABLE1, FrictionLaw, Parameter, v
+from landau.laws.velocity import BUILTIN_VELOCITY, VelocityFriction, coulomb, regularised_coulomb
 from landau.laws import putelat2010 as _p
 
 BUILTIN: dict[str, Callable[[], FrictionLaw]] = {
@@ -57,4 +64,5 @@ def get_law(name: str) -> FrictionLaw:
     return BUILTIN[name]()
 
 
-__all__ = ["FrictionLaw", "Parameter", "TABLE1", "BUILTIN", "get_law", "v"]
+__all__ = ["FrictionLaw", "Parameter", "TABLE1", "BUILTIN", "get_law", "v", "Law", "VelocityFriction", "coulomb",
+           "regularised_coulomb", "BUILTIN_VELOCITY"]

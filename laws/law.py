@@ -31,6 +31,7 @@ import numpy as np
 import sympy as sp
 
 from landau.errors import DomainError, InputError
+from landau.laws.base import Law
 from landau.laws.parse import parse_expression
 
 #: the slip-rate symbol shared by every law
@@ -158,7 +159,7 @@ TABLE1: dict[str, Parameter] = {
 
 
 @dataclass(frozen=True, eq=False)
-class FrictionLaw:
+class FrictionLaw(Law):
     """μ(v, φ…) and dφᵢ/dt for any number of states, with parameters and provenance.
 
     Parameters
@@ -332,39 +333,6 @@ class FrictionLaw:
         """The slip-rate symbol v."""
         return v
 
-    def defaults(self) -> dict[str, float]:
-        """The parameters' default values.
-
-        Returns
-        -------
-        dict of str to float
-            By parameter name (parameters without a default are left out).
-        """
-        return {p.name: p.default for p in self.parameters if p.default is not None}
-
-    def parameter(self, name: str) -> Parameter:
-        """The declared parameter ``name``.
-
-        Parameters
-        ----------
-        name : str
-            A parameter of this law.
-
-        Returns
-        -------
-        Parameter
-
-        Raises
-        ------
-        InputError
-            The law has no such parameter.
-        """
-        for p in self.parameters:
-            if p.name == name:
-                return p
-        raise InputError(f"law {self.name!r} has no parameter {name!r} "
-                         f"(known: {', '.join(p.name for p in self.parameters)})")
-
     def symbol(self, name: str) -> sp.Symbol:
         """The sympy symbol of the slip rate ``"v"``, a state or a parameter.
 
@@ -383,30 +351,6 @@ class FrictionLaw:
             if s.name == name:
                 return s
         return self.parameter(name).symbol
-
-    def with_defaults(self, **values: float) -> "FrictionLaw":
-        """A copy with some parameter defaults changed.
-
-        Parameters
-        ----------
-        **values : float
-            New defaults by parameter name.
-
-        Returns
-        -------
-        FrictionLaw
-            A new law; this one is unchanged.
-        """
-        new = []
-        for p in self.parameters:
-            if p.name in values:
-                new.append(Parameter(p.name, float(values.pop(p.name)), p.units, p.source, p.description, p.positive))
-            else:
-                new.append(p)
-        if values:
-            raise InputError(f"law {self.name!r} has no parameter(s) {', '.join(sorted(values))}")
-        return FrictionLaw(self.name, self.mu, self.states, self.rates, tuple(new), self.source,
-                           self.description, self.steady_state)
 
     # --- steady state -------------------------------------------------------------
     @cached_property
@@ -638,5 +582,3 @@ class FrictionLaw:
         rates = ", ".join(f"d{s}/dt = {r}" for s, r in zip(self.states, self.rates))
         return f"FrictionLaw({self.name!r}: mu = {self.mu}; {rates}; source={self.source!r})"
 
-    def _repr_latex_(self) -> str:
-        return f"${self.latex()}$"

@@ -146,7 +146,7 @@ def test_a_list_of_results_is_one_table(dieterich):
     pts = d.points([1e-5, 1e-4, 1e-3])
     page = pts._repr_html_()
     assert page.count("<table>") == 1 and page.count("<tr>") == 1 + 3      # header + one row per point
-    assert "kc [N/m]" in page and "supercritical" in page and "subcritical" in page
+    assert "k_c [N/m]" in page and "V [m/s]" in page and "supercritical" in page and "subcritical" in page
     assert len(repr(pts).splitlines()) == 2 + 3
 
 

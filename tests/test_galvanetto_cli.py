@@ -94,3 +94,22 @@ def test_belt_velocity_from_param_or_option(capsys):
         code, doc = _json(capsys, "galvanetto-one-block", *argv, "--t-end", "3")
         assert code == 0 and doc["parameters"]["V"] == 0.4
         assert doc["status"] == "finished"
+
+
+def test_landau_hopf_damped_one_block_with_user_law(capsys):
+    # `landau hopf galvanetto-one-block`: the same closed forms as above (c1 = γ(1 − δ)e^{−γV},
+    # subcritical, C = 1/sqrt(2ℓ1) with ℓ1 = 3a3/8), from the Hopf command
+    V, g, d = 0.5, 3.0, 0.2
+    code = main(["hopf", "galvanetto-one-block", "--kinetic", EXP_LAW, "--param", f"delta={d}", "--V", str(V),
+                 "--json"])
+    doc = json.loads(capsys.readouterr().out)
+    assert code == 0
+    assert doc["p_c"] == pytest.approx(g * (1 - d) * math.exp(-g * V), rel=1e-8)
+    assert doc["omega_c"] == pytest.approx(1.0, rel=1e-10) and doc["criticality"] == "subcritical"
+    a3 = g ** 3 * (1 - d) * math.exp(-g * V) / 6
+    assert doc["C"] == pytest.approx(1 / math.sqrt(2 * 3 * a3 / 8), rel=1e-8)
+    # a law that strengthens with the slip speed (F_k'(−V) = −1 < 0) has no Hopf point: NoHopfError,
+    # exit 1 with one line
+    code = main(["hopf", "galvanetto-one-block", "--kinetic", "1 - r", "--json"])
+    err = capsys.readouterr().err.strip()
+    assert code == 1 and "NoHopfError" in err and len(err.splitlines()) == 1

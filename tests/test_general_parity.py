@@ -19,7 +19,7 @@ import sympy as sp
 
 from landau.continuation import equilibrium_branch, generalised_hopf
 from landau.errors import InputError, NoHopfError
-from landau.general import HopfNormalForm, hopf_normal_form, kuznetsov_check
+from landau.general import hopf_normal_form, kuznetsov_check
 from landau.hopf import HopfResult
 from landau.lyapunov import first_lyapunov
 from landau.system import DynamicalSystem
@@ -47,7 +47,6 @@ def bautin_cartesian(omega=1) -> DynamicalSystem:
 # --- the result type -------------------------------------------------------------------------------------
 
 def test_result_type_is_the_unified_hopf_result():
-    assert HopfNormalForm is HopfResult
     h = hopf_normal_form(bautin_cartesian(), {"a": -0.5, "b": 1.0}, (-0.3, 0.2))
     assert isinstance(h, HopfResult)
     # closed form: q = (1, −i) (x-component 1), y = A q e^{it} + c.c., so z = 2A e^{it} and
@@ -133,6 +132,7 @@ def test_kuznetsov_route_without_closed_form_equilibrium():
     assert br.hopf
     for h in br.hopf:
         k = kuznetsov_check(lor, par, h)
+        assert isinstance(k, HopfResult) and k.dlambda_dp == h.dlambda_dp
         assert k.l1 == pytest.approx(h.l1, rel=1e-12)
         assert k.c1 == pytest.approx(h.c1, rel=1e-12)
         assert k.C == pytest.approx(h.C, rel=1e-12)

@@ -70,9 +70,10 @@ def _dip_model():
     return HybridModel.from_modes(a, b)
 
 
-def test_double_crossing_inside_one_step_is_caught():
+@pytest.mark.parametrize("record", [True, False])  # False: steps are screened on the Hermite cubic first
+def test_double_crossing_inside_one_step_is_caught(record):
     st = ScipyStepper("RK45", rtol=1e-6, atol=1e-9)  # steps grow to ~10 on this linear field
-    sol = simulate(_dip_model(), "a", [0.0], (0.0, 20.0), st)
+    sol = simulate(_dip_model(), "a", [0.0], (0.0, 20.0), st, EngineOptions(record=record))
     assert len(sol.events) == 1
     assert sol.events[0].t == pytest.approx(4.9, abs=1e-12)
     assert sol.mode == "b"
@@ -80,6 +81,61 @@ def test_double_crossing_inside_one_step_is_caught():
     base = solve_ivp(lambda t, y: [1.0], (0.0, 20.0), [0.0], method="RK45", rtol=1e-6, atol=1e-9,
                      events=lambda t, y: (y[0] - 5.0) ** 2 - 0.01)
     assert np.max(np.diff(base.t)) > 1.0 and len(base.t_events[0]) == 0
+
+
+def _grazing_oscillators(rng):
+    # two (lightly damped) oscillators and a linear guard c·y + d whose offset d puts the guard
+    # within 1e-8…1e-1 of zero, above or below, at one of its local minima: a dip that may
+    # cross and come back inside one step
+    w1, w2 = rng.uniform(0.5, 3.0, 2)
+    A = np.zeros((4, 4))
+    A[0, 1] = A[2, 3] = 1.0
+    A[1, 0], A[3, 2], A[1, 1] = -w1 ** 2, -w2 ** 2, -0.05
+    c, y0 = rng.normal(size=4), rng.normal(size=4)
+    ref = solve_ivp(lambda t, y: A @ y, (0.0, 10.0), y0, rtol=1e-11, atol=1e-13, dense_output=True)
+    g = c @ ref.sol(np.linspace(0.0, 10.0, 4001))
+    mins = np.nonzero((g[1:-1] < g[:-2]) & (g[1:-1] < g[2:]))[0] + 1
+    d = -g[rng.choice(mins)] + rng.choice([-1.0, 1.0]) * 10.0 ** rng.uniform(-8, -1)
+    a = Mode("a", lambda t, y: A @ y, (Guard("g", lambda t, y: c @ y + d, lambda t, y: ("b", y)),))
+    return HybridModel.from_modes(a, Mode("b", lambda t, y: np.zeros(4))), y0
+
+
+def test_hermite_screen_skips_only_steps_the_dense_scan_passes():
+    # Independent computation: with record=True every step is scanned on the dense output
+    # (samples of the solver's interpolant + dip refinement); with record=False a step is first
+    # screened on the cubic Hermite interpolant with an error bound.  The screen may only skip
+    # steps the dense scan passes, so both runs must log exactly the same events (bit for bit:
+    # same steps, same brackets, same root search) — on grazing guards at very loose
+    # tolerances and few samples, where steps are long, the Hermite cubic is far from the
+    # solution and double crossings inside one step are common.  (Without the error bound,
+    # i.e. screening the bare Hermite samples, several of these cases lose an event.)
+    rng = np.random.default_rng(1)
+    n_events = 0
+    for _ in range(36):
+        m, y0 = _grazing_oscillators(rng)
+        for method, rtol, samples in (("DOP853", 1e-2, 1), ("DOP853", 1e-3, 1), ("RK45", 1e-2, 4),
+                                      ("RK45", 1e-3, 2)):
+            st = ScipyStepper(method, rtol, rtol * 1e-2)
+            full, screened = (simulate(m, "a", y0, (0.0, 10.0), st, EngineOptions(record=rec, samples=samples))
+                              for rec in (True, False))
+            assert [e.t for e in screened.events] == [e.t for e in full.events]
+            n_events += len(full.events)
+    assert n_events > 50  # the grazing cases do produce events
+
+
+def test_hermite_screen_saves_the_dense_output_stages():
+    # harmonic oscillator with a guard that never fires: the screened run takes the same
+    # DOP853 steps as solve_ivp and builds no dense output (3 extra stages per step in Hairer's
+    # DOP853); its only extra evaluation is y'' at the phase start (first-step error estimate)
+    m = HybridModel.from_modes(Mode("o", lambda t, y: np.array([y[1], -y[0]]),
+                                    (Guard("far", lambda t, y: 2.0 + y[0], lambda t, y: ("o", y)),)))
+    sol = simulate(m, "o", [1.0, 0.0], (0.0, 50.0), DOP853Stepper(1e-10, 1e-12), EngineOptions(record=False))
+    base = solve_ivp(lambda t, y: [y[1], -y[0]], (0.0, 50.0), [1.0, 0.0], method="DOP853", rtol=1e-10, atol=1e-12)
+    assert sol.status == "t_end" and len(sol.events) == 0
+    assert sol.nfev == base.nfev + 1
+    unscreened = simulate(m, "o", [1.0, 0.0], (0.0, 50.0), DOP853Stepper(1e-10, 1e-12),
+                          EngineOptions(record=False, screen=False))
+    assert unscreened.nfev == base.nfev + 3 * unscreened.nsteps
 
 
 def test_two_guards_at_the_same_instant():
@@ -191,3 +247,23 @@ def test_stiff_contact_mode_with_radau_and_jacobian():
     assert t_out - t_in == pytest.approx(math.pi / math.sqrt(k), rel=1e-6)
     assert sol.events[1].y[1] == pytest.approx(-v0, rel=1e-6)
     assert sol.y[0] == pytest.approx(-(3.0 - t_out) * v0, abs=1e-6)
+
+
+def test_hermite_screen_on_a_multi_phase_run_matches_the_dense_scan():
+    # Galvanetto (2004) two blocks, one step of the event map: eight switching events, most
+    # phases starting with a guard exactly on its surface (pending) — the screen arms those
+    # and screens the first step of every phase.  Independent computation: the same run with
+    # the screen off (dense-output scan on every step) must log the same events at the same
+    # times, and the screen must build no dense output on quiet steps (fewer evaluations).
+    from landau.verify.galvanetto.maps import gsp_start, model_for
+    from landau.verify.galvanetto.model import two_blocks
+
+    p = two_blocks(0.25, beta=1.722)
+    mode, y0 = gsp_start(p, -0.3)
+    runs = [simulate(model_for(p), mode, y0, (0.0, 300.0), DOP853Stepper(1e-10, 1e-12),
+                     EngineOptions(record=False, screen=screen), stop=lambda ev: ev.to_mode == "ss")
+            for screen in (False, True)]
+    full, screened = runs
+    assert len(full.events) == 8 and full.mode == "ss"
+    assert [(e.guard, e.to_mode, e.t) for e in screened.events] == [(e.guard, e.to_mode, e.t) for e in full.events]
+    assert screened.nfev < full.nfev - 2 * full.nsteps  # 3 dense-output stages saved on most steps

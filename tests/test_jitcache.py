@@ -1,6 +1,11 @@
-"""Generated numba kernels cached on disk, keyed by their source (landau.verify.jitcache)."""
+"""Generated code cached on disk, keyed by its source (landau.verify.jitcache): generated kernels
+and compiled-method templates specialised to a kernel share one folder and one mechanism."""
 
 import math
+import os
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -14,8 +19,8 @@ SRC = "def kern(y, out):\n    out[0] = math.sin(y[0]) + abs(y[1])\n"
 
 @pytest.fixture()
 def cache(tmp_path, monkeypatch):
-    monkeypatch.setenv("LANDAU_CACHE_DIR", str(tmp_path / "kernels"))
-    return tmp_path / "kernels"
+    monkeypatch.setenv("LANDAU_CACHE_DIR", str(tmp_path))
+    return tmp_path / "jit"
 
 
 def _compile(src):
@@ -76,3 +81,133 @@ def test_corrupt_numba_entry_alone_is_rebuilt(cache):
     kern = _compile(SRC)
     assert _run(kern) == math.sin(0.3) + 2.0
     assert _hits(_compile(SRC)) == (1, 0)
+
+
+# --- one folder, one mechanism -------------------------------------------------------------
+def test_cache_folder_settings(tmp_path, monkeypatch):
+    monkeypatch.setenv("LANDAU_JIT_DIR", str(tmp_path / "old"))
+    monkeypatch.setenv("LANDAU_CACHE_DIR", str(tmp_path / "root"))
+    assert jitcache.cache_dir() == tmp_path / "root" / "jit"      # the root of every landau cache wins
+    monkeypatch.delenv("LANDAU_CACHE_DIR")
+    assert jitcache.cache_dir() == tmp_path / "old"               # the older setting is still accepted
+    monkeypatch.delenv("LANDAU_JIT_DIR")
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
+    assert jitcache.cache_dir() == tmp_path / "xdg" / "landau" / "jit"
+
+
+TEMPLATE = '''"""A one-function template: y <- y + h f(t, y) (explicit Euler) over the free name fun."""
+import numpy as np
+
+
+@jit
+def euler(p, t, y, h):
+    out = np.empty_like(y)
+    fun(t, y, p, out)
+    return y + h * out
+'''
+
+
+def _generated_decay():
+    import sympy as sp
+
+    from landau.kernels import generate_kernel
+
+    y, lam = sp.symbols("y lam")
+    return generate_kernel([y], [-lam * y], [lam], [2.0], name="decay")
+
+
+def _euler(template, kernel):
+    from landau.verify.hybrid import specialise
+
+    specialise._LOADED.clear()                       # a fresh specialisation, as in a new process
+    return specialise.specialise(template, {"fun": kernel.fun}, "euler").euler
+
+
+def test_generated_kernels_and_their_specialised_templates_share_the_cache(cache, tmp_path):
+    template = tmp_path / "euler.py"
+    template.write_text(TEMPLATE)
+    k = _generated_decay()
+    # the compiled kernel is a module-level function of its cache file's module
+    mod = sys.modules[k.fun.py_func.__module__]
+    assert mod.fun is k.fun and Path(mod.__file__).parent == cache
+    euler = _euler(template, k)
+    y = np.array([1.0])
+    # one explicit Euler step of y' = -2y: 1 - 2h (closed form)
+    assert euler(k.p, 0.0, y, 0.125)[0] == 0.75
+    assert _hits(euler) == (0, 1)
+    assert len(list(cache.glob("landau_jit_euler_*.py"))) == 1    # the specialised source, in the same folder
+    again = _euler(template, k)
+    assert again(k.p, 0.0, y, 0.125)[0] == 0.75
+    assert _hits(again) == (1, 0)                    # machine code from disk, not compiled again
+
+
+def test_corrupt_entry_of_a_lazily_compiled_template_is_rebuilt(cache, tmp_path):
+    template = tmp_path / "euler.py"
+    template.write_text(TEMPLATE)
+    k = _generated_decay()
+    _euler(template, k)(k.p, 0.0, np.array([1.0]), 0.125)
+    entries = list((cache / "__pycache__").glob("landau_jit_euler_*.nb[ic]"))
+    assert entries
+    for f in entries:
+        f.write_bytes(b"\x80garbage")
+    euler = _euler(template, k)
+    assert euler(k.p, 0.0, np.array([1.0]), 0.125)[0] == 0.75
+    assert _hits(euler) == (0, 1)                    # rebuilt, not loaded
+
+
+_WORKER = """
+import math, sys
+import numpy as np
+from numba import types
+from landau.verify import jitcache
+ns = jitcache.load_generated(sys.argv[1], {"math": math}, {"abs"})
+k = jitcache.njit_cached(ns["kern"], types.void(types.float64[::1], types.float64[::1]))
+out = np.zeros(1)
+k(np.array([0.3, -2.0]), out)
+print(repr(float(out[0])))
+"""
+
+
+def test_concurrent_processes_share_one_entry(cache):
+    src = SRC.replace("abs(y[1])", "abs(y[1]) * 3.0")
+    procs = [subprocess.Popen([sys.executable, "-c", _WORKER, src], stdout=subprocess.PIPE, text=True,
+                              env=dict(os.environ)) for _ in range(3)]
+    outs = [p.communicate(timeout=300)[0] for p in procs]
+    assert all(p.returncode == 0 for p in procs)
+    assert [float(o) for o in outs] == [math.sin(0.3) + 6.0] * 3
+    assert len(list(cache.glob("landau_kernel_*.py"))) == 1      # one complete file, whoever wrote it last
+    assert jitcache.source_path(src).read_text() == src
+    assert _hits(_compile(src)) == (1, 0)            # and its numba entry serves the next process
+
+
+def test_generated_source_is_kept_with_the_derivations(tmp_path, monkeypatch):
+    import sympy as sp
+
+    from landau import cache as dcache
+    from landau import kernels
+
+    monkeypatch.setenv("LANDAU_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(dcache, "_enabled", True)
+    x, v, w = sp.symbols("x v w")
+    field = [v, -w ** 2 * x - sp.Rational(1, 10) * v]
+    src = kernels.kernel_source([x, v], field, [w])
+    assert len(list((tmp_path / "kernel-source").glob("*.pkl"))) == 1
+
+    def no_emission(*args):
+        raise AssertionError("the source was derived again")
+
+    real_emit = kernels._emit
+    monkeypatch.setattr(kernels, "_emit", no_emission)
+    # the same field under other symbol names is the same source: served from the cache
+    a, b, c = sp.symbols("a b c")
+    assert kernels.kernel_source([a, b], [b, -c ** 2 * a - sp.Rational(1, 10) * b], [c]) == src
+    # an entry that fails the whitelist of generated code is derived again, not executed
+    entry = next((tmp_path / "kernel-source").glob("*.pkl"))
+    dcache.put("kernel-source", entry.stem, "import os\n")
+    monkeypatch.setattr(kernels, "_emit", real_emit)
+    assert kernels.kernel_source([x, v], field, [w]) == src
+    # and the generated field is the declared one: x'' + 0.1 x' + w^2 x = 0 at (x, v) = (1, 2), w = 3
+    k = kernels.compile_source(src)
+    out = np.empty(2)
+    k.fun(0.0, np.array([1.0, 2.0]), np.array([3.0]), out)
+    assert list(out) == [2.0, -9.0 - 0.2]

@@ -21,7 +21,8 @@ import sympy as sp
 
 from landau.laws import get_law
 from landau.errors import InputError
-from landau.lyapunov import LyapunovResult, first_lyapunov, spring_block_lyapunov
+from landau.hopf import Criticality, HopfResult
+from landau.lyapunov import first_lyapunov, spring_block_lyapunov
 from landau.multiscale import derive
 from landau.system import DynamicalSystem, SpringBlock
 from vw_ranges import LAWS, vw_range
@@ -102,14 +103,22 @@ def test_generic_entry_point_on_the_normal_form(s_val):
     # With Kuznetsov's ⟨q, q⟩ = 1, q = (1, −i)/√2 (up to a phase), x + iy = √2 z_K, so
     # ż_K = (p + i) z_K + 2s z_K|z_K|²: c₁ = 2s, l₁ = 2s.  Fixes every factor of 2 in the route.
     res = first_lyapunov(_normal_form_system(s_val), {"s": s_val}, 0.01)
-    assert isinstance(res, LyapunovResult)
+    assert isinstance(res, HopfResult)
     assert abs(res.p_c) < 1e-30
     assert math.isclose(res.omega, 1.0, rel_tol=1e-25)
     assert math.isclose(res.l1, 2 * s_val, rel_tol=1e-25)
     assert math.isclose(res.dmu_dp, 1.0, rel_tol=1e-15)
     assert math.isclose(res.C, 1 / math.sqrt(abs(s_val)), rel_tol=1e-15)
     assert res.as_dict()["criticality"] == ("supercritical" if s_val < 0 else "subcritical")
-    assert "LyapunovResult(" in repr(res)
+    assert res.criticality is (Criticality.SUPERCRITICAL if s_val < 0 else Criticality.SUBCRITICAL)
+    assert "HopfResult(hopf-normal-form: p_c = " in repr(res)
+    # landau's convention (mode (1, −i), x component 1): (x, y) = A e^{it}(1, −i) + c.c., so
+    # x + iy = 2A e^{it} and Ȧ = (p + i)A + 4s A|A|²: Λ = 2 Re b = 8s, χ = 0, dλ/dp = 1 (closed
+    # form; dλ/dp by finite differences of λ(p) at 40 digits)
+    assert math.isclose(res.Lambda, 8 * s_val, rel_tol=1e-25)
+    assert abs(res.chi) < 1e-25
+    assert abs(res.dlambda_dp - 1) < 1e-15
+    assert res.equilibrium == (0.0, 0.0) and res.normalise == "x"
 
 
 def test_quasi_static_limit_is_refused():
@@ -121,3 +130,24 @@ def test_quasi_static_limit_is_refused():
 def test_low_precision_is_refused():
     with pytest.raises(InputError):
         first_lyapunov(_normal_form_system(-1.0), {"s": -1.0}, 0.0, dps=15)
+
+
+@pytest.mark.parametrize("V0", [1e-4, 1e-3])
+def test_both_routes_return_the_same_result_field_by_field(V0):
+    # One result type for both routes: the Fredholm engine's point (Derivation.points) and
+    # Kuznetsov's projection (spring_block_lyapunov) are HopfResults in the spring–block
+    # convention, so every field compares directly — Λ, χ, k_c, ω_c, Γ̄ = −d Re λ/dk and
+    # Ω̄ = d Im λ/dk (the latter two from eigenvalues at k_c ± h, ±2h), C.  Dieterich's law is
+    # subcritical at 1e-4 m/s and supercritical at 1e-3 m/s (Putelat et al. 2010, Sec. 3.2).
+    # Observed agreement ≤ 2e-13; 1e-10 is the engine's accuracy target for every value.
+    d = derive(SpringBlock(get_law("dieterich")))
+    eng = d.points([V0])[0]
+    kuz = spring_block_lyapunov(d.block, V0, jets=d.jets)
+    assert isinstance(eng, HopfResult) and isinstance(kuz, HopfResult)
+    assert eng.convention == kuz.convention and eng.normalise == kuz.normalise == "X"
+    assert eng.V == kuz.V == V0 and eng.criticality is kuz.criticality
+    for name in ("p_c", "kc", "omega_c", "Lambda", "chi", "C", "Gamma_bar", "Omega_bar"):
+        assert math.isclose(getattr(eng, name), getattr(kuz, name), rel_tol=1e-10), name
+    assert eng.equilibrium == pytest.approx(kuz.equilibrium, rel=1e-14)      # (X, u, φ) = (0, 0, L/V)
+    assert eng.equilibrium[2] == pytest.approx(d.block.resolve()["L"] / V0, rel=1e-14)
+    assert eng.l1 is None and kuz.l1 == pytest.approx(kuz.c1.real / kuz.omega_c, rel=1e-14)

@@ -1,16 +1,29 @@
-"""Generated numba kernels cached across processes, keyed by their source.
+"""Generated code cached across processes: one content-addressed folder of Python modules.
 
 Numba's disk cache (``cache=True``) finds a function's compiled code through the file that
-defines it, so a kernel built from a string with ``exec`` is compiled again in every process.
-:func:`load_generated` writes the generated source once to a file named by its SHA-256 in a
-per-user cache folder, executes that file's code (with only the builtins the caller allows)
-and returns its functions; :func:`njit_cached` compiles one of them with ``cache=True``, so the
-second process loads the machine code from disk.  A changed source is a new file (a new key);
-a cache file that does not hold the source its name promises, or a numba cache entry that
-cannot be loaded, is rebuilt.
+defines it, so code built from a string with ``exec`` would be compiled again in every
+process.  Everything the toolkit generates at run time therefore goes through one mechanism:
 
-The cache folder is ``$LANDAU_CACHE_DIR`` if set, else ``$XDG_CACHE_HOME/landau/kernels``,
-else ``~/.cache/landau/kernels``.
+* :func:`cached_source_file` writes a generated source once to a file named by its SHA-256
+  (``landau_<tag>_<hash>.py``) in :func:`cache_dir`, atomically (:mod:`landau.io`); a file
+  that does not hold the source its name promises is rewritten, and numba cache entries
+  that cannot be read are removed first, so a corrupt entry is rebuilt, never loaded;
+* :func:`exec_cached` executes that file's code as a module registered in ``sys.modules``
+  under the file's name, with only the globals and builtins the caller allows;
+* :func:`njit_cached` compiles one of its functions with ``cache=True`` (so the second
+  process loads the machine code from disk) and binds the compiled function in the module
+  in place of the Python one, so that other generated code can import it by name.
+
+Two kinds of source use it: kernels generated from a symbolic declaration
+(:func:`load_generated`, used by :mod:`landau.kernels`) and compiled-method templates bound to
+one kernel (:mod:`landau.verify.hybrid.specialise`).  A changed source is a new file (a new
+key); files are only ever replaced whole, so concurrent processes see either no file or a
+complete one.  When the folder cannot be written the code runs from memory (compiled once per
+process).
+
+The folder is ``$LANDAU_CACHE_DIR/jit`` when ``LANDAU_CACHE_DIR`` is set (the root of every
+landau cache), else ``$LANDAU_JIT_DIR`` (the folder itself, an older setting still accepted),
+else ``jit`` in the per-user cache folder (``~/.cache/landau/jit`` on Linux).
 """
 
 from __future__ import annotations
@@ -18,31 +31,39 @@ from __future__ import annotations
 import builtins
 import hashlib
 import os
+import pickle
 import sys
 import types
 from pathlib import Path
 from typing import Iterable, Mapping
 
+from landau.errors import OutputError
 from landau.io import atomic_write_text
 
-_PREFIX = "landau_kernel_"
+#: file-name prefix of generated kernels (:func:`load_generated`)
+_KERNEL_TAG = "kernel"
+ENV_ROOT = "LANDAU_CACHE_DIR"
+ENV_JIT = "LANDAU_JIT_DIR"
 
 
 def cache_dir() -> Path:
-    """The per-user folder holding generated kernel sources and numba's cache of them.
+    """The per-user folder holding generated sources and numba's cache of them.
 
     Returns
     -------
     pathlib.Path
-        ``$LANDAU_CACHE_DIR``, else ``$XDG_CACHE_HOME/landau/kernels``, else
-        ``~/.cache/landau/kernels`` (not created here).
+        ``$LANDAU_CACHE_DIR/jit``, else ``$LANDAU_JIT_DIR``, else ``jit`` in the per-user
+        cache folder of landau (``platformdirs.user_cache_dir("landau")``); not created here.
     """
-    env = os.environ.get("LANDAU_CACHE_DIR")
-    if env:
-        return Path(env)
-    xdg = os.environ.get("XDG_CACHE_HOME")
-    base = Path(xdg) if xdg else Path.home() / ".cache"
-    return base / "landau" / "kernels"
+    root = os.environ.get(ENV_ROOT)
+    if root:
+        return Path(root) / "jit"
+    jit = os.environ.get(ENV_JIT)
+    if jit:
+        return Path(jit)
+    import platformdirs
+
+    return Path(platformdirs.user_cache_dir("landau", appauthor=False)) / "jit"
 
 
 def source_key(source: str) -> str:
@@ -50,13 +71,93 @@ def source_key(source: str) -> str:
     return hashlib.sha256(source.encode("utf-8")).hexdigest()[:24]
 
 
-def source_path(source: str) -> Path:
-    """Where :func:`load_generated` keeps ``source``."""
-    return cache_dir() / f"{_PREFIX}{source_key(source)}.py"
+def module_name(source: str, tag: str = _KERNEL_TAG) -> str:
+    """The module (and file stem) name of ``source``: ``landau_<tag>_<key>``."""
+    if not tag.isidentifier():
+        raise ValueError(f"cache tag {tag!r} is not an identifier")
+    return f"landau_{tag}_{source_key(source)}"
+
+
+def source_path(source: str, tag: str = _KERNEL_TAG) -> Path:
+    """Where :func:`cached_source_file` keeps ``source``."""
+    return cache_dir() / f"{module_name(source, tag)}.py"
+
+
+def cached_source_file(source: str, tag: str = _KERNEL_TAG) -> Path | None:
+    """The cache file holding ``source``, written (atomically) if absent or not ``source``.
+
+    Numba cache entries of the file that cannot be read are removed (they are rebuilt at the
+    next compilation); a rewritten file loses all of its numba entries.
+
+    Parameters
+    ----------
+    source : str
+        Generated Python source.
+    tag : str
+        A label in the file name (an identifier).
+
+    Returns
+    -------
+    pathlib.Path or None
+        The file, or None when the cache folder cannot be written (run from memory then).
+    """
+    try:
+        path = source_path(source, tag)
+    except (OSError, RuntimeError):             # no home directory to put the cache in
+        return None
+    try:
+        on_disk = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        on_disk = None
+    if on_disk != source:                       # absent, truncated or otherwise not ours: (re)write
+        try:
+            atomic_write_text(path, source)
+        except (OSError, OutputError):          # read-only or missing home: run without a disk cache
+            return None
+        _drop_numba_entries(path)
+    else:
+        _drop_unreadable_numba_entries(path)
+    return path
+
+
+def exec_cached(source: str, tag: str = _KERNEL_TAG, globals_: Mapping[str, object] | None = None,
+                allowed_builtins: Iterable[str] | None = None) -> types.ModuleType:
+    """Execute ``source`` from its cache file as a module (registered in ``sys.modules``).
+
+    Parameters
+    ----------
+    source : str
+        Python source (already checked by the caller: it is executed as is).
+    tag : str
+        A label in the module name (an identifier).
+    globals_ : mapping, optional
+        Names the source may use besides its own definitions (e.g. ``{"math": math}``).
+    allowed_builtins : iterable of str, optional
+        The only builtins reachable from the executed code (default: all of them, for the
+        toolkit's own templates).
+
+    Returns
+    -------
+    module
+        Its functions' code objects name the cache file, so numba can cache their compiled
+        code on disk (``cache=True``); when no file could be written they name
+        ``<generated ...>`` and must be compiled without ``cache``.
+    """
+    name = module_name(source, tag)
+    path = cached_source_file(source, tag)
+    filename = str(path) if path is not None else f"<generated {name}>"
+    module = types.ModuleType(name)
+    module.__file__ = filename
+    if allowed_builtins is not None:
+        module.__dict__["__builtins__"] = {b: getattr(builtins, b) for b in allowed_builtins}
+    module.__dict__.update(globals_ or {})
+    sys.modules[name] = module                  # numba rebuilds cached code against its module
+    exec(compile(source, filename, "exec"), module.__dict__)
+    return module
 
 
 def load_generated(source: str, globals_: Mapping[str, object], allowed_builtins: Iterable[str]) -> dict:
-    """Execute generated ``source`` from its cache file and return the namespace it defines.
+    """Execute a generated kernel ``source`` from its cache file and return its namespace.
 
     Parameters
     ----------
@@ -70,39 +171,22 @@ def load_generated(source: str, globals_: Mapping[str, object], allowed_builtins
     Returns
     -------
     dict
-        The module namespace after execution; its functions' code objects name the cache file,
-        so :func:`njit_cached` can cache their compiled code on disk.
+        The module namespace after execution (see :func:`exec_cached`); compile its
+        functions with :func:`njit_cached`.
     """
-    path = source_path(source)
-    try:
-        on_disk = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError):
-        on_disk = None
-    if on_disk != source:                       # absent, truncated or otherwise not ours: (re)write
-        try:
-            atomic_write_text(path, source)
-            _drop_numba_entries(path)
-        except OSError:                         # read-only home: still run, just without a disk cache
-            path = Path(f"<generated {source_key(source)}>")
-    name = path.stem
-    ns: dict = {"__name__": name, "__file__": str(path),
-                "__builtins__": {b: getattr(builtins, b) for b in allowed_builtins}}
-    ns.update(globals_)
-    module = types.ModuleType(name)
-    module.__dict__.update(ns)
-    sys.modules.setdefault(name, module)        # numba rebuilds cached code against its module
-    exec(compile(source, str(path), "exec"), module.__dict__)
-    return module.__dict__
+    return exec_cached(source, _KERNEL_TAG, globals_, allowed_builtins).__dict__
 
 
 def njit_cached(fn, signature):
-    """``numba.njit(signature, cache=True)(fn)``; a numba cache entry that cannot be loaded is
-    dropped and the kernel compiled afresh.
+    """``numba.njit(signature, cache=True)(fn)``, bound in ``fn``'s module under its name.
+
+    A numba cache entry that cannot be loaded is dropped and the function compiled afresh;
+    a function whose source is not in a cache file is compiled in memory.
 
     Parameters
     ----------
     fn : function
-        A function from :func:`load_generated`.
+        A function of a module from :func:`exec_cached` / :func:`load_generated`.
     signature : numba signature
         The explicit signature (compilation happens here, not at the first call).
 
@@ -114,21 +198,60 @@ def njit_cached(fn, signature):
 
     path = Path(fn.__code__.co_filename)
     if not path.is_file():                      # no cache file could be written: compile in memory
-        return nb.njit(signature)(fn)
-    try:
-        return nb.njit(signature, cache=True)(fn)
-    except Exception:                           # e.g. a truncated index or object file
-        _drop_numba_entries(path)
-        return nb.njit(signature, cache=True)(fn)
+        disp = nb.njit(signature)(fn)
+    else:
+        try:
+            disp = nb.njit(signature, cache=True)(fn)
+        except Exception:                       # e.g. an index or object file numba cannot read
+            _drop_numba_entries(path)
+            disp = nb.njit(signature, cache=True)(fn)
+    if fn.__globals__.get(fn.__name__) is fn:   # as a decorator would: importable by name
+        fn.__globals__[fn.__name__] = disp
+    return disp
+
+
+def _numba_entries(path: Path, suffix: str) -> list[Path]:
+    pycache = path.parent / "__pycache__"
+    if not pycache.is_dir():
+        return []
+    return list(pycache.glob(f"{path.stem}.*.{suffix}"))
 
 
 def _drop_numba_entries(path: Path) -> None:
     """Remove numba's cache files (index ``.nbi``, code ``.nbc``) belonging to the source ``path``."""
-    pycache = path.parent / "__pycache__"
-    if not pycache.is_dir():
-        return
-    for f in pycache.glob(f"{path.stem}.*.nb[ic]"):
+    for f in _numba_entries(path, "nb[ic]"):
         try:
             f.unlink()
         except OSError:
             pass
+
+
+def _readable_index(f: Path) -> bool:
+    """Whether a numba index file unpickles (its version header, then its stamp and overloads)."""
+    try:
+        with open(f, "rb") as fh:
+            pickle.load(fh)
+            pickle.loads(fh.read())
+        return True
+    except Exception:
+        return False
+
+
+def _readable_data(f: Path) -> bool:
+    """A cheap test of a numba code file: a pickle (protocol header) that ends with STOP."""
+    try:
+        with open(f, "rb") as fh:
+            head = fh.read(2)
+            fh.seek(-1, os.SEEK_END)
+            tail = fh.read(1)
+    except OSError:
+        return False
+    return len(head) == 2 and head[0] == 0x80 and tail == b"."
+
+
+def _drop_unreadable_numba_entries(path: Path) -> None:
+    """Remove every numba cache file of ``path`` when one of them cannot be read (numba would
+    raise while loading it, and templates compile lazily, at their first call)."""
+    entries = _numba_entries(path, "nb[ic]")
+    if any(not (_readable_index(f) if f.suffix == ".nbi" else _readable_data(f)) for f in entries):
+        _drop_numba_entries(path)

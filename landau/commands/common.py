@@ -132,3 +132,52 @@ def fmt(x: float, width: int = 12) -> str:
     if x is None or (isinstance(x, float) and not math.isfinite(x)):
         return "-".rjust(width)
     return f"{x:{width}.6g}"
+
+
+# ---------------------------------------------------------------------------------------------
+# velocity-only friction laws (impact oscillator, forced oscillator): --friction EXPR
+def add_friction_arguments(p: argparse.ArgumentParser) -> None:
+    """``--friction EXPR`` (F for positive sliding velocity ``v``), ``--friction-neg EXPR``
+    (for v < 0; default the odd extension) and ``--friction-name NAME``."""
+    p.add_argument("--friction", default=None, metavar="EXPR",
+                   help="your velocity-dependent friction for sliding velocity v > 0 (impact and forced "
+                        "oscillators), e.g. 'mu_k + (mu_s - mu_k)*exp(-v/v_s)'; its parameters by --param")
+    p.add_argument("--friction-neg", default=None, metavar="EXPR",
+                   help="the friction for v < 0 (default: the odd extension -F(-v))")
+    p.add_argument("--friction-name", default="user-friction", metavar="NAME", help="a name for --friction")
+
+
+def velocity_law_from_args(args, default, params: dict[str, float], *, quantity: str = "coefficient"):
+    """The model's friction law: ``default`` (a :class:`~landau.laws.velocity.VelocityFriction`)
+    with any --param values of its parameters, or the law declared by --friction.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        With ``friction``, ``friction_neg``, ``friction_name``.
+    default : VelocityFriction
+        The model's published law.
+    params : dict
+        The --param values; the law's own are removed from it (the rest are the model's).
+    quantity : {"coefficient", "force"}
+        What the model expects the law to give.
+
+    Returns
+    -------
+    VelocityFriction
+    """
+    from landau.laws.parse import referenced_names
+    from landau.laws.velocity import VelocityFriction
+
+    text = getattr(args, "friction", None)
+    neg = getattr(args, "friction_neg", None)
+    if text is None:
+        if neg is not None:
+            raise InputError("--friction-neg needs --friction (the branch for v > 0)")
+        own = {p.name for p in default.parameters}
+        law_params = {k: params.pop(k) for k in list(params) if k in own}
+        return default.with_defaults(**law_params) if law_params else default
+    names = referenced_names(text, what="--friction") | (referenced_names(neg, what="--friction-neg") if neg else set())
+    law_params = {k: params.pop(k) for k in list(params) if k in names}
+    name = getattr(args, "friction_name", None) or "user-friction"
+    return VelocityFriction.from_strings(name, text, neg, law_params, quantity=quantity)

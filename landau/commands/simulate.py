@@ -15,8 +15,9 @@ Models (defaults: the published parameters):
   gamma, delta; ``--kinetic-pos EXPR`` the r > 0 branch, default the odd reflection);
   ``--hopf`` (one block) adds the Hopf point c₁ of the damped block, ω and the criticality;
 * ``impact-oscillator`` — the frictional impact oscillator (a bar on a moving belt) of
-  Lancioni, Lenci & Galvanetto, parameter set 1, belt speed −1 m/s, friction coefficient ``mu`` (default 0.42, above the
-  Hopf point), started near the slip equilibrium;
+  Lancioni, Lenci & Galvanetto, parameter set 1, belt speed ``v_belt`` −1 m/s, Coulomb friction coefficient ``mu``
+  (default 0.42, above the Hopf point) or your law ``--friction EXPR`` with its ``--param`` values,
+  started near the slip equilibrium;
 * ``forced-oscillator`` — the forced cart with Hertz contact of Skurativskyi, Kudra,
   Witkowski & Awrejcewicz (2019), identified parameters, started at rest.
 
@@ -26,6 +27,7 @@ The output format follows each ``--out`` suffix: ``.csv`` (header ``t [s], name 
 
 from __future__ import annotations
 
+import argparse
 import difflib
 import math
 from dataclasses import replace
@@ -33,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from landau.commands.common import add_law_arguments, parse_params
+from landau.commands.common import add_friction_arguments, add_law_arguments, parse_params
 from landau.errors import InputError
 
 MODELS = ("spring-block", "galvanetto-one-block", "galvanetto-two-blocks", "impact-oscillator",
@@ -51,6 +53,10 @@ RECORD = 1_000_000
 def configure(p) -> None:
     p.add_argument("model", help=f"one of {', '.join(MODELS)}")
     add_law_arguments(p)  # positional LAW after MODEL (spring-block only), --mu, --state, --param
+    try:  # --friction EXPR, --friction-neg, --friction-name (impact-oscillator)
+        add_friction_arguments(p)
+    except argparse.ArgumentError:  # already added for another model
+        pass
     p.add_argument("--law", dest="law_option", default=None, metavar="NAME",
                    help="spring-block: built-in law (same as the positional LAW; default dieterich)")
     p.add_argument("--V", default=None, help="spring-block: driving velocity in m/s (default 1e-4); "
@@ -225,6 +231,8 @@ def _galvanetto_hopf(p) -> dict:
 
 
 def _impact_oscillator(args, t_end: float):
+    from landau.commands.common import velocity_law_from_args
+    from landau.laws.velocity import coulomb
     from landau.verify.hybrid import DOP853Stepper, simulate
     from landau.verify.lancioni import slip as S
     from landau.verify.lancioni.contact import default_options
@@ -233,17 +241,24 @@ def _impact_oscillator(args, t_end: float):
     name = "impact-oscillator"
     _no_law(args, name)
     over = parse_params(args.param)
-    known = ["mu", "eN", "v"] + list(S.PARAM_NAMES)
+    law = velocity_law_from_args(args, coulomb(over.get("mu", 0.42)), over)
+    known = ["eN", "v_belt"] + list(S.PARAM_NAMES)
     _only_known(over, known, name)
-    mu, eN, v = over.pop("mu", 0.42), over.pop("eN", 0.0), over.pop("v", -1.0)
+    eN, v = over.pop("eN", 0.0), over.pop("v_belt", -1.0)
+    if not (math.isfinite(v) and v != 0):
+        raise InputError(f"{name}: v_belt must be a nonzero belt velocity (m/s), got {v!r}")
     p = S.resolve(over)
-    cm = build(mu, eN, p, ConstantBelt(v))
-    y0 = slip_state(cm.mech, S.equilibrium_phi(p, mu, 1 if v < 0 else -1) + 1e-3)
+    cm = build(None, eN, p, ConstantBelt(v), friction=law)
+    s = 1 if v < 0 else -1
+    y0 = slip_state(cm.mech, S.equilibrium_phi(p, None, s, law, None, v) + 1e-3)
     sol = simulate(cm.model, cm.initial_mode(0.0, y0), y0, (0.0, t_end), DOP853Stepper(1e-10, 1e-12),
                    default_options(record=True))
     sim = replace(sol.simulation(name), state_names=("phi", "y", "phidot", "ydot"))
     units = {"phi": "rad", "y": "m", "phidot": "rad/s", "ydot": "m/s"}
-    return sim, {"mu": mu, "eN": eN, "v": v, **p}, units, ["starts on the belt 1e-3 rad off the slip equilibrium"]
+    used = {**law.defaults(), "eN": eN, "v_belt": v, **p}
+    if args.friction is not None:
+        used["friction"] = f"{law.positive} (v > 0), {law.branch(-1)} (v < 0)"
+    return sim, used, units, ["starts on the belt 1e-3 rad off the slip equilibrium"]
 
 
 def _forced_oscillator(args, t_end: float):

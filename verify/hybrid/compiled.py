@@ -35,7 +35,7 @@ from numba import njit
 
 from landau.errors import InputError
 from landau.verify.hybrid.kernel import Kernel
-from landau.verify.hybrid.radau import A_RADAU, VINV, radau_core
+from landau.verify.hybrid.radau import A_RADAU, VINV, pointers, radau_core
 from landau.verify.hybrid.specialise import specialise
 
 _TEMPLATES = Path(__file__).parent / "templates"
@@ -254,10 +254,11 @@ class Radau5Solver(_CompiledStepper):
         evbuf = np.empty((1, n + 1))
         evdir = np.empty(1)
         k = self.kernel
+        fun, jac = pointers(k.fun, k.jac)
         for _ in range(500):
             h0 = min(self.h, self.max_step, self.t_bound - self.t)
             st, t, y, cnt, *_, h_next, Q = radau_core(
-                k.fun, k.jac, self.t, np.ascontiguousarray(self.y), self.t_bound, k.p, self.rtol, self.atol,
+                fun, jac, self.t, np.ascontiguousarray(self.y), self.t_bound, k.p, self.rtol, self.atol,
                 h0, self.max_step, 1, -1, 0.0, 0, 0, 0, A_RADAU, VINV, evbuf, evdir)
             self.nfev += int(cnt[2]) - 1  # radau_core evaluates f at its start: already counted
             self.njev += int(cnt[3])

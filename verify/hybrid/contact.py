@@ -68,6 +68,15 @@ q̇ ← q̇ − M⁻¹w_N γ_N/G_NN) and decides the contact mode; the engine lo
 below ``v_tol`` (1e-10 m/s) is treated as plastic as well (logged as an impact "→ stick/slip"):
 with e_N = 0.2 this velocity rule, not the time rule, ends the chattering once the chatter
 tolerance is ≤ 1e-6 s (see verify/benchmarks/results/lancioni_chatter.md).
+Velocity-dependent friction.  The friction coefficient need not be a constant: the
+mechanics object gives its magnitude in slip s at the current relative velocity,
+``slip_mu(s, γ_T)`` (λ_T = −s·slip_mu·λ_N), and its one-sided limits at γ_T = 0,
+``static_mu() = (μ₊, μ₋)``: stick holds while −μ₊λ_N ≤ λ_T ≤ μ₋λ_N and slip s starts when
+λ_T reaches the edge of that cone.  The impulsive friction of an impact (a vanishing time in
+which the sliding velocity is not defined) takes the one-sided limit of the sliding
+direction, μ_σ.  Plain Coulomb friction is slip_mu = μ₊ = μ₋ = μ (the default of
+:class:`ContactMechanics`).  This module only receives these numbers; the model evaluates
+its friction law.
 Stick tolerance (off by default).  ``ContactModel(stick_tol=η)`` imitates simulation codes
 that treat |γ_T| < η as stick: a slip phase ends when it enters the band |γ_T| ≤ η while
 stick is admissible (|λ_T| ≤ μλ_N, λ_N > 0 for the stick forces at that state), not only at
@@ -132,12 +141,27 @@ class ContactMechanics:
 
     * ``terms(t, q, qd) -> (a0, MiW, G, b)`` with shapes (n,…), (n, 2,…), (2, 2,…), (2,…);
     * ``gap(q)`` (g_N), ``gammas(t, q, qd) -> (γ_N, γ_T)``;
-    * ``project(t, y) -> y`` onto g_N = 0 (exactly), γ_N = 0 (only the position by default).
+    * ``project(t, y) -> y`` onto g_N = 0 (exactly), γ_N = 0 (only the position by default);
+    * ``slip_mu(s, gT)`` and ``static_mu()`` — the friction coefficient in slip s at relative
+      velocity γ_T and its one-sided limits (μ₊, μ₋) at γ_T = 0; by default the constant
+      ``mu`` (plain Coulomb friction).  ``velocity_dependent`` says whether ``slip_mu``
+      depends on γ_T (if not, γ_T is not evaluated for it).
     """
 
     n: int = 1
     mu: float = 0.0
     eN: float = 0.0
+    velocity_dependent: bool = False
+
+    def slip_mu(self, s: int, gT):
+        """Magnitude of the friction coefficient in slip ``s`` (±1) at relative velocity ``gT``:
+        λ_T = −s·slip_mu·λ_N (vectorised over ``gT``).  Default: the constant ``mu``."""
+        return self.mu
+
+    def static_mu(self) -> tuple[float, float]:
+        """(μ₊, μ₋): the coefficient's one-sided limits at γ_T = 0⁺ and 0⁻ (magnitudes); stick holds
+        while −μ₊λ_N ≤ λ_T ≤ μ₋λ_N.  Default: (``mu``, ``mu``)."""
+        return self.mu, self.mu
 
     def terms(self, t, q, qd):  # pragma: no cover - interface
         raise NotImplementedError
@@ -157,6 +181,13 @@ class ContactMechanics:
 
 
 # --------------------------------------------------------------------------- contact algebra
+def _mu_pair(mu) -> tuple[float, float]:
+    """(μ₊, μ₋) from one coefficient (plain Coulomb) or a pair."""
+    if isinstance(mu, (tuple, list)):
+        return float(mu[0]), float(mu[1])
+    return float(mu), float(mu)
+
+
 def slip_forces(G, b, mu: float, s: int):
     """(λ_N, λ_T, D_s) in slip with sign s: λ_N = −b_N/D_s, λ_T = −sμλ_N."""
     D = G[0, 0] - s * mu * G[0, 1]
@@ -181,9 +212,16 @@ class ContactSolution:
     lamT: float
 
 
-def contact_problem(G, b, mu: float, gT: float, v_tol: float = 1e-10, flight_allowed: bool = True,
+def contact_problem(G, b, mu, gT: float, v_tol: float = 1e-10, flight_allowed: bool = True,
                     t: float | None = None, state=None) -> ContactSolution:
-    """Every admissible contact mode at g_N = 0, γ_N = 0; exactly one or a :class:`PainleveError`."""
+    """Every admissible contact mode at g_N = 0, γ_N = 0; exactly one or a :class:`PainleveError`.
+
+    ``mu`` is the friction coefficient at the current relative velocity γ_T = ``gT``: one number
+    (plain Coulomb friction, or the coefficient of the slip direction at γ_T), or the pair
+    (μ₊, μ₋) of magnitudes for slip+ and slip− (at γ_T = 0: the one-sided limits, which bound
+    the stick cone −μ₊λ_N ≤ λ_T ≤ μ₋λ_N).
+    """
+    mu_p, mu_m = _mu_pair(mu)
     sols: list[ContactSolution] = []
     scale = max(abs(float(b[0])), abs(float(b[1])), 1e-300)
     tiny = 1e-12 * scale
@@ -191,22 +229,23 @@ def contact_problem(G, b, mu: float, gT: float, v_tol: float = 1e-10, flight_all
         sols.append(ContactSolution("flight", 0.0, 0.0))
     if abs(gT) > v_tol:
         s = 1 if gT > 0 else -1
-        lamN, lamT, D = slip_forces(G, b, mu, s)
+        lamN, lamT, D = slip_forces(G, b, mu_p if s > 0 else mu_m, s)
         if lamN > 0 and not (flight_allowed and abs(b[0]) <= tiny):
             sols.append(ContactSolution("slip+" if s > 0 else "slip-", float(lamN), float(lamT)))
     else:
         lamN, lamT = stick_forces(G, b)
-        if lamN > 0 and abs(lamT) <= mu * lamN * (1 + 1e-12) and not (flight_allowed and abs(b[0]) <= tiny):
+        if lamN > 0 and -mu_p * lamN * (1 + 1e-12) <= lamT <= mu_m * lamN * (1 + 1e-12) \
+                and not (flight_allowed and abs(b[0]) <= tiny):
             sols.append(ContactSolution("stick", float(lamN), float(lamT)))
         else:
             for s in (1, -1):
-                lamN, lamT, D = slip_forces(G, b, mu, s)
+                lamN, lamT, D = slip_forces(G, b, mu_p if s > 0 else mu_m, s)
                 gTdot = b[1] + G[1, 0] * lamN + G[1, 1] * lamT
                 if lamN > 0 and s * gTdot > 0:
                     sols.append(ContactSolution("slip+" if s > 0 else "slip-", float(lamN), float(lamT)))
     if len(sols) == 1:
         return sols[0]
-    D = {s: float(G[0, 0] - s * mu * G[0, 1]) for s in (1, -1)}
+    D = {s: float(G[0, 0] - s * (mu_p if s > 0 else mu_m) * G[0, 1]) for s in (1, -1)}
     if not sols:
         raise PainleveError("inconsistent", f"no admissible contact mode (b_N = {float(b[0]):.6g}, "
                             f"D± = {D[1]:.6g}, {D[-1]:.6g}, γ_T = {gT:.6g})", t=t, state=state)
@@ -234,8 +273,13 @@ class ImpactResult:
                 f"Λ_E={np.round(self.Lambda_E, 8)}, γ⁺={np.round(self.gamma_plus, 8)})")
 
 
-def poisson_impact(G, gamma_minus, mu: float, eN: float, t: float | None = None, state=None) -> ImpactResult:
-    """Poisson impact with Coulomb friction (compression + expansion); see the module docstring."""
+def poisson_impact(G, gamma_minus, mu, eN: float, t: float | None = None, state=None) -> ImpactResult:
+    """Poisson impact with Coulomb friction (compression + expansion); see the module docstring.
+
+    ``mu`` is the Coulomb coefficient, or the pair (μ₊, μ₋) of the friction's one-sided limits
+    at zero sliding velocity (the impulsive friction in sliding direction σ is μ_σ).
+    """
+    mu_p, mu_m = _mu_pair(mu)
     G = np.asarray(G, float)
     gm = np.asarray(gamma_minus, float)
     if gm[0] >= 0:
@@ -243,25 +287,26 @@ def poisson_impact(G, gamma_minus, mu: float, eN: float, t: float | None = None,
     cands = []
     det = G[0, 0] * G[1, 1] - G[0, 1] * G[1, 0]
     L = np.array([-(G[1, 1] * gm[0] - G[0, 1] * gm[1]) / det, -(-G[1, 0] * gm[0] + G[0, 0] * gm[1]) / det])
-    if L[0] >= 0 and abs(L[1]) <= mu * L[0] * (1 + 1e-12):
+    if L[0] >= 0 and -mu_p * L[0] * (1 + 1e-12) <= L[1] <= mu_m * L[0] * (1 + 1e-12):
         cands.append(("stick", L, np.zeros(2)))
     for sig in (1, -1):
-        D = G[0, 0] - sig * mu * G[0, 1]
+        mu_s = mu_p if sig > 0 else mu_m
+        D = G[0, 0] - sig * mu_s * G[0, 1]
         if D <= 0:
             continue
         LN = -gm[0] / D
-        LC = np.array([LN, -sig * mu * LN])
+        LC = np.array([LN, -sig * mu_s * LN])
         gC = gm + G @ LC
         if sig * gC[1] > 0:
             cands.append(("slip+" if sig > 0 else "slip-", LC, np.array([0.0, gC[1]])))
     if len(cands) != 1:
         kind = "no" if not cands else f"{len(cands)}"
         raise PainleveError("impact", f"{kind} admissible compression phases {[c[0] for c in cands]} "
-                            f"(γ⁻ = {gm}, D± = {G[0, 0] - mu * G[0, 1]:.6g}, {G[0, 0] + mu * G[0, 1]:.6g})",
+                            f"(γ⁻ = {gm}, D± = {G[0, 0] - mu_p * G[0, 1]:.6g}, {G[0, 0] + mu_m * G[0, 1]:.6g})",
                             t=t, state=state, candidates=[c[0] for c in cands])
     mode, LC, gC = cands[0]
     LNE = eN * LC[0]
-    LTE = float(np.clip(-(gC[1] + G[1, 0] * LNE) / G[1, 1], -mu * LNE, mu * LNE))
+    LTE = float(np.clip(-(gC[1] + G[1, 0] * LNE) / G[1, 1], -mu_p * LNE, mu_m * LNE))
     LE = np.array([LNE, LTE])
     gp = gC + G @ LE
     if gp[0] < -1e-12 * max(1.0, abs(gm[0])):
@@ -300,6 +345,10 @@ class ContactModel:
 
     def __post_init__(self):
         check_contact_coefficients(self.mech.mu, self.mech.eN)
+        mu_p, mu_m = self.mech.static_mu()
+        if not (np.isfinite(mu_p) and np.isfinite(mu_m) and mu_p >= 0 and mu_m >= 0):
+            raise InputError(f"the friction's limits at zero sliding velocity must be finite with "
+                             f"F(0+) >= 0 >= F(0-) (a stick cone), got F(0+) = {mu_p!r}, F(0-) = {-mu_m!r}")
         if not (self.stick_tol >= 0 and np.isfinite(self.stick_tol)):
             raise InputError(f"stick_tol must be a finite number >= 0, got {self.stick_tol!r}")
         if self.stick_tol_reset not in ("project", "hold"):
@@ -325,9 +374,21 @@ class ContactModel:
         return self.mech.project_stick(t, y)
 
     def stick_margin(self, t, y):
-        """min(μλ_N − |λ_T|, λ_N) of the stick forces at y: ≥ 0 where stick is admissible (vectorised)."""
+        """min(μ₊λ_N + λ_T, μ₋λ_N − λ_T, λ_N) of the stick forces at y (for plain Coulomb friction
+        min(μλ_N − |λ_T|, λ_N)): ≥ 0 where stick is admissible (vectorised)."""
         _, lamN, lamT, _ = self.forces("stick", t, y)
-        return np.minimum(self.mech.mu * lamN - np.abs(lamT), lamN)
+        mu_p, mu_m = self.mech.static_mu()
+        if mu_p == mu_m:
+            return np.minimum(mu_p * lamN - np.abs(lamT), lamN)
+        return np.minimum(np.minimum(mu_p * lamN + lamT, mu_m * lamN - lamT), lamN)
+
+    def slip_mu(self, s: int, t, y):
+        """The mechanics' friction coefficient in slip ``s`` at the state y (vectorised)."""
+        mech = self.mech
+        if not mech.velocity_dependent:
+            return mech.slip_mu(s, 0.0)
+        n = mech.n
+        return mech.slip_mu(s, mech.gammas(t, y[:n], y[n:])[1])
 
     # ---- dynamics of each mode (vectorised over sample axes)
     def forces(self, mode: str, t, y):
@@ -340,7 +401,8 @@ class ContactModel:
         if mode == "stick":
             lamN, lamT = stick_forces(G, b)
         else:
-            lamN, lamT, _ = slip_forces(G, b, self.mech.mu, 1 if mode == "slip+" else -1)
+            s = 1 if mode == "slip+" else -1
+            lamN, lamT, _ = slip_forces(G, b, self.slip_mu(s, t, y), s)
         acc = a0 + MiW[:, 0] * lamN + MiW[:, 1] * lamT
         return acc, lamN, lamT, (G, b)
 
@@ -362,7 +424,11 @@ class ContactModel:
         n = self.mech.n
         a0, MiW, G, b = self.mech.terms(t, y[:n], y[n:])
         gT = float(self.mech.gammas(t, y[:n], y[n:])[1])
-        sol = contact_problem(G, b, self.mech.mu, gT, self.v_tol, flight_allowed, t=t, state=y)
+        if abs(gT) > self.v_tol:
+            mu = float(self.mech.slip_mu(1 if gT > 0 else -1, gT))
+        else:
+            mu = self.mech.static_mu()
+        sol = contact_problem(G, b, mu, gT, self.v_tol, flight_allowed, t=t, state=y)
         return Jump(sol.mode, y, f"{note} → {sol.mode}")
 
     def impact(self, t, y) -> Jump:
@@ -372,7 +438,7 @@ class ContactModel:
         if gN_dot >= -self.v_tol:  # grazing touch: no impulse, the contact problem decides
             return self.decide(t, y, "grazing contact")
         a0, MiW, G, b = self.mech.terms(t, q, qd)
-        res = poisson_impact(G, [gN_dot, gT], self.mech.mu, self.mech.eN, t=t, state=y)
+        res = poisson_impact(G, [gN_dot, gT], self.mech.static_mu(), self.mech.eN, t=t, state=y)
         y2 = np.array(y, float)
         y2[n:] = qd + MiW @ res.Lambda
         y2 = self.mech.project(t, y2)
@@ -403,9 +469,11 @@ class ContactModel:
                 gs.append(Guard("lift-off", lam_n, lambda t, y: Jump(
                     "flight", mech.project(t, y, normal_velocity=True), "lift-off (λ_N = 0)")))
                 if mode == "stick":
-                    mu = mech.mu
+                    static = dict(zip((1, -1), mech.static_mu()))
 
                     def onset(sgn):
+                        mu = static[sgn]
+
                         def gfun(t, y):
                             _, lamN, lamT, _ = self.forces("stick", t, y)
                             return mu * lamN + sgn * lamT
@@ -435,7 +503,7 @@ class ContactModel:
 
                     def painleve(t, y, s=s):
                         _, _, G, _ = mech.terms(t, y[:n], y[n:])
-                        return G[0, 0] - s * mech.mu * G[0, 1]
+                        return G[0, 0] - s * self.slip_mu(s, t, y) * G[0, 1]
 
                     def raise_p(t, y, s=s):
                         raise PainleveError("slip", f"D_{'+' if s > 0 else '-'} reached 0 in slip", t=t, state=y)
@@ -471,7 +539,7 @@ class ContactModel:
             n = self.mech.n
             y = self._to_stick(t, y)  # exactly on γ_T = 0 (a rounding-size correction); "hold": γ_T kept
             a0, MiW, G, b = self.mech.terms(t, y[:n], y[n:])
-            sol = contact_problem(G, b, self.mech.mu, 0.0, self.v_tol, flight_allowed=False, t=t, state=y)
+            sol = contact_problem(G, b, self.mech.static_mu(), 0.0, self.v_tol, flight_allowed=False, t=t, state=y)
             return Jump(sol.mode, y, f"slip{'+' if s > 0 else '-'} end (γ_T = 0) → {sol.mode}")
         return tr
 

@@ -49,6 +49,61 @@ SIG = types.void(types.float64, types.float64[::1], types.float64[::1], types.fl
 SIG_JAC = types.void(types.float64, types.float64[::1], types.float64[::1], types.float64[:, ::1])
 FUN_T = types.FunctionType(SIG)
 JAC_T = types.FunctionType(SIG_JAC)
+
+
+class FunctionPointer(types.WrapperAddressProtocol):
+    """A compiled function handed to :func:`radau_core` by its machine address.
+
+    Passing a numba dispatcher where a first-class function type is expected makes numba look
+    up (and possibly compile) its wrapper at *every* call — about 0.2 ms, more than a whole
+    loose-tolerance run of a small system.  This object resolves the address once; numba then
+    only reads it (:meth:`__wrapper_address__`).  It keeps the dispatcher alive, so the
+    address stays valid.
+    """
+
+    def __init__(self, dispatcher, signature):
+        from numba.experimental.function_type import _get_wrapper_address
+
+        self._dispatcher = dispatcher
+        self._signature = signature
+        self._address = _get_wrapper_address(dispatcher, signature)
+
+    def __wrapper_address__(self) -> int:
+        return self._address
+
+    def signature(self):
+        return self._signature
+
+    def __call__(self, *args):
+        return self._dispatcher(*args)
+
+
+_POINTERS: dict[tuple[int, str], FunctionPointer] = {}
+
+
+def pointers(fun, jac) -> tuple[FunctionPointer, FunctionPointer]:
+    """(fun, jac) as :class:`FunctionPointer` objects for :func:`radau_core` (made once per function).
+
+    Parameters
+    ----------
+    fun, jac : numba dispatchers
+        ``fun(t, y, p, out)`` and ``jac(t, y, p, out)`` (signatures :data:`SIG`, :data:`SIG_JAC`).
+
+    Returns
+    -------
+    tuple of FunctionPointer
+    """
+    out = []
+    for f, sig, tag in ((fun, SIG, "f"), (jac, SIG_JAC, "J")):
+        if isinstance(f, FunctionPointer):
+            out.append(f)
+            continue
+        key = (id(f), tag)
+        ptr = _POINTERS.get(key)
+        if ptr is None or ptr._dispatcher is not f:
+            ptr = _POINTERS[key] = FunctionPointer(f, sig)
+        out.append(ptr)
+    return out[0], out[1]
 F64 = types.float64
 A1 = types.float64[::1]
 A2 = types.float64[:, ::1]

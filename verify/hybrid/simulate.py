@@ -2,7 +2,9 @@
 
 ``simulate(model, mode, y0, (t0, t_end), stepper)`` integrates one mode at a time with a
 stepper that has dense output (see :mod:`landau.verify.hybrid.steppers`), scans the mode's
-guards on every step (:mod:`landau.verify.hybrid.locate`), applies the earliest switching
+guards on every step (:mod:`landau.verify.hybrid.locate`; when no trajectory is recorded, a
+step is first screened on its cubic Hermite interpolant and the dense output is built only
+where a guard may cross), applies the earliest switching
 transition at its root (taken on the new side of the guard), logs every event, and
 watches for Zeno accumulation (:mod:`landau.verify.hybrid.zeno`).
 
@@ -32,7 +34,7 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from landau.errors import InputError, IntegratorError
-from landau.verify.hybrid.locate import first_crossing, guard_on_dense, root_new_side
+from landau.verify.hybrid.locate import HermiteScreen, first_crossing, guard_on_dense, root_new_side
 from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.model import HybridModel, as_jump
 from landau.verify.hybrid.result import Simulation, status_from_text
@@ -59,6 +61,11 @@ class EngineOptions:
     zeno_relative: True (default): ``zeno_interval`` is relative to max(1, |t|); False: it is
         an absolute time (ending chattering when the inter-impact time < a fixed tolerance).
     record: keep the sampled trajectory (for plots); off for fast maps.
+    screen: when not recording, first sample the guards on each step's cubic Hermite
+        interpolant with an error bound and build the dense output only for steps where that
+        could trigger the scan (:class:`~landau.verify.hybrid.locate.HermiteScreen`): the same
+        events, without the dense output's extra stages on quiet steps.  False: scan every
+        step on the dense output.
     """
 
     samples: int = 4
@@ -73,6 +80,7 @@ class EngineOptions:
     recover_tol: float = 1e-9
     record: bool = True
     zeno_relative: bool = True
+    screen: bool = True
 
 
 @dataclass(frozen=True)
@@ -183,12 +191,14 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
     monitor = ZenoMonitor(options.zeno_interval, options.max_event_rate, options.rate_window,
                           relative=options.zeno_relative)
     nodes = np.arange(1, options.samples + 2) / (options.samples + 1)
+    screen = HermiteScreen(options.samples) if options.screen and options.samples > 0 and not options.record else None
     nsteps = nfev = 0
     n_zero = 0
     atol = options.guard_atol
 
     def finish(status, zeno=None):
-        return HybridSolution(t, y, mname, status, log, tuple(segs), zeno, nsteps, nfev)
+        extra = screen.nfev if screen is not None else 0  # the screen's y'' at phase starts
+        return HybridSolution(t, y, mname, status, log, tuple(segs), zeno, nsteps, nfev + extra)
 
     while True:
         m = model.mode(mname)
@@ -215,14 +225,27 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             solver = stepper(m.rhs, t, y, t_end, m.jac)
             seg_t, seg_y = [np.array([t])], [y[:, None]]
             hit = None  # (t_hit, j, kind)
+            # the Hermite screen needs the vector field at the step ends; it is off when samples
+            # are recorded for plots
+            use_screen = screen is not None and _keeps_current_f(solver)
+            if use_screen:
+                screen.start(solver.y, solver.f, len(guards), m.rhs)
             while hit is None:
                 msg = solver.step()
                 nsteps += 1
                 if solver.status == "failed":
                     raise IntegratorError(f"mode {mname!r}: {msg}", t=solver.t, state=solver.y)
-                if not np.all(np.isfinite(solver.y)):
-                    raise IntegratorError(f"mode {mname!r}: non-finite state", t=solver.t_old, state=y)
                 t_old, t_new = solver.t_old, solver.t
+                probe = (screen.advance(t_old, t_new, np.asarray(solver.y, dtype=float), np.asarray(solver.f, dtype=float))
+                         if use_screen else 0 if np.isfinite(solver.y).all() else -1)
+                if probe < 0:
+                    raise IntegratorError(f"mode {mname!r}: non-finite state", t=t_old, state=y)
+                if probe > 0 and screen.quiet(guards, g_last, dec_before, state, atol):
+                    if solver.status == "finished":
+                        nfev += solver.nfev
+                        t, y = solver.t, solver.y.copy()
+                        return finish("t_end")
+                    continue
                 dense = _LazyDense(solver)  # built only if a sample or a root needs it
                 ts_int = t_old + (t_new - t_old) * nodes[:-1]
                 Y = np.column_stack([dense(ts_int), solver.y]) if len(ts_int) else solver.y[:, None]
@@ -336,6 +359,17 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                              f"accumulation extrapolated at t={diag.t_accumulation:.12g}"))
             mname, y = jz.mode, np.array(jz.y, dtype=float)
             monitor.reset()
+
+
+def _keeps_current_f(solver) -> bool:
+    """Whether ``solver.f`` is the vector field at ``(solver.t, solver.y)`` after every step:
+    scipy's explicit Runge–Kutta solvers and Radau, the compiled DOPRI5 and SDIRK4 (the
+    compiled Radau IIA and scipy's BDF/LSODA do not keep it)."""
+    from scipy.integrate import DOP853, RK23, RK45, Radau
+
+    from landau.verify.hybrid.compiled import DOPRI5Solver, SDIRK4Solver
+
+    return isinstance(solver, (DOP853, RK45, RK23, Radau, DOPRI5Solver, SDIRK4Solver))
 
 
 class _LazyDense:

@@ -14,6 +14,11 @@ and the stepper has
   time (returns shape ``(n,)``) or a 1-D array of times (returns ``(n, m)``);
 * ``nfev``: number of right-hand-side evaluations so far.
 
+Steppers that keep ``f`` (the vector field at ``(t, y)``) current after every step — scipy's
+explicit Runge–Kutta solvers and Radau, the compiled DOPRI5 and SDIRK4 — let the engine screen
+each step on its cubic Hermite interpolant and skip the dense output where no guard can cross
+(:class:`landau.verify.hybrid.locate.HermiteScreen`).
+
 A compiled stepper only has to expose these members to be used by
 :func:`landau.verify.hybrid.simulate` without change: :mod:`landau.verify.hybrid.compiled`
 has DOPRI5, Radau IIA 5 and SDIRK4 as factories over a compiled

@@ -10,7 +10,13 @@
   Painlevé onset, simulated Hopf point;
 * :mod:`landau.verify.lancioni.period_adding` — the e_N = 0 detached branch near μ = 0.38957 (why
   eq. (1) has no period-adding cascade);
-* :mod:`landau.verify.lancioni.diagrams` — bifurcation diagrams in μ and the sinusoidal belt runs.
+* :mod:`landau.verify.lancioni.diagrams` — bifurcation diagrams in μ and the sinusoidal belt runs;
+* :mod:`landau.verify.lancioni.hopf_cli` — ``landau hopf impact-oscillator``.
+
+Friction.  The paper's Coulomb coefficient μ is the default; every model, analysis and
+command also takes a velocity-dependent friction coefficient law
+(:class:`landau.laws.velocity.VelocityFriction`, ``friction=``; ``--friction`` on the command
+line), with its bifurcation parameter (``parameter=``, default the law's first).
 
 Results against the paper (g = 10 m/s², belt v = −1 m/s — the direction with the Hopf point)
 --------------------------------------------------------------------------------------------

@@ -14,16 +14,18 @@
 * :func:`growth_rate` / :func:`hopf_by_simulation` — the growth rate of a small slip
   oscillation measured by the *hybrid* simulation (all modes armed) on both sides of the
   Hopf point; its zero (linear interpolation) is the simulated Hopf point.
+
+Each takes an optional ``friction`` law (:class:`~landau.laws.velocity.VelocityFriction`,
+default the paper's Coulomb μ) and ``parameter`` (the bifurcation parameter, see
+:func:`landau.verify.lancioni.slip.hopf_parameter`); ``mu`` is then that parameter's value.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 from typing import Mapping
 
 import numpy as np
-import sympy as sp
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
@@ -31,15 +33,7 @@ from landau.errors import IntegratorError, NoHopfError
 from landau.verify.hybrid import DOP853Stepper, simulate
 from landau.verify.lancioni import slip as S
 from landau.verify.lancioni.contact import default_options
-from landau.verify.lancioni.model import ConstantBelt, build, slip_state
-
-
-@lru_cache(maxsize=4)
-def _reduced(s: int):
-    F, L = S.slip_accelerations(s)
-    names = [sp.Symbol(n, real=True) for n in S.PARAM_NAMES]
-    return (sp.lambdify([S.phi, S.omega, S.mu, *names], F, "math"),
-            sp.lambdify([S.phi, S.omega, S.mu, *names], L, "math"))
+from landau.verify.lancioni.model import ConstantBelt, build, build_at, slip_state
 
 
 @dataclass(frozen=True)
@@ -65,18 +59,22 @@ class SlipCycle:
                 f"[{self.gT_min:.4g}, {self.gT_max:.4g}])")
 
 
-def _flow(p, mu, s):
-    F, L = _reduced(s)
-    args = (mu, *[p[n] for n in S.PARAM_NAMES])
+def _flow(p, mu, s, friction=None, parameter=None, v=None):
+    """(rhs(t, (φ, ω)), λ_N(φ, ω)) of the slip mode at bifurcation-parameter value ``mu``."""
+    fns = S.slip_functions(s, friction)
+    over = {} if mu is None else {S.hopf_parameter(friction, parameter): mu}
+    vals = S.slip_values(p, s, friction, v if friction is not None else None, **over)
+    args = tuple(vals[n] for n in fns.names)
+    F, L = fns.F, fns.L
 
     def rhs(t, y):
         return [y[1], F(y[0], y[1], *args)]
     return rhs, lambda ph, w: L(ph, w, *args)
 
 
-def _one_turn(p, mu, s, w0, phi_e, T_guess, rtol=1e-12, dense=False):
+def _one_turn(p, mu, s, w0, phi_e, T_guess, rtol=1e-12, dense=False, law=()):
     """From (φ_e, w0), w0 > 0, to the next upward crossing of φ = φ_e."""
-    rhs, _ = _flow(p, mu, s)
+    rhs, _ = _flow(p, mu, s, *law)
 
     def back(t, y):  # masked (negative) for the first 3/4 of a period, where φ − φ_e ≤ 0 near its end
         return y[0] - phi_e if t > 0.75 * T_guess else -1.0
@@ -89,34 +87,40 @@ def _one_turn(p, mu, s, w0, phi_e, T_guess, rtol=1e-12, dense=False):
 
 
 def slip_cycle(mu: float, params: Mapping[str, float] | None = None, s: int = 1, v: float = -1.0,
-               hopf=None) -> SlipCycle:
-    """Periodic orbit of the slip ODE (smooth continuation, admissible or not) at μ > μ_c.
+               hopf=None, friction=None, parameter: str | None = None) -> SlipCycle:
+    """Periodic orbit of the slip ODE (smooth continuation, admissible or not) on the side of the
+    Hopf point where it exists (μ > μ_c for a supercritical point).
 
     Shooting on the return map of the section φ = φ_e, φ̇ > 0 (unknown: φ̇ there), started
-    from the normal-form amplitude ω_c·C·sqrt(μ − μ_c).
+    from the normal-form amplitude ω_c·C·sqrt|μ − μ_c|.  With a ``friction`` law, ``mu`` is the
+    value of its bifurcation parameter ``parameter`` and ``v`` the belt velocity.
     """
     p = S.resolve(params)
-    h = hopf or S.slip_hopf(p, s=s)
-    if mu <= h.p_c:
-        raise NoHopfError(f"no slip cycle at μ={mu} <= μ_c={h.p_c:.8g} (supercritical Hopf)")
-    phi_e = S.equilibrium_phi(p, mu, s)
+    law = (friction, parameter, v)
+    vv = v if friction is not None else None
+    h = hopf or S.slip_hopf(p, s=s, friction=friction, parameter=parameter, v=vv)
+    if h.cycle_side == 0 or (mu - h.p_c) * h.cycle_side <= 0:
+        raise NoHopfError(f"no slip cycle at {h.parameter}={mu}: the cycle of the Hopf point "
+                          f"{h.parameter}_c={h.p_c:.8g} ({h.criticality}) is on the other side")
+    phi_e = S.equilibrium_phi(p, mu, s, friction, parameter, vv)
     T_guess = 2 * np.pi / h.omega_c
     w_nf = h.amplitude(mu) * h.omega_c
 
     def defect(w0):
-        sol = _one_turn(p, mu, s, w0, phi_e, T_guess)
+        sol = _one_turn(p, mu, s, w0, phi_e, T_guess, law=law)
         return sol.y_events[0][0][1] - w0
     lo, hi = 0.3 * w_nf, 2.5 * w_nf
-    while defect(lo) < 0 and lo > 1e-9:
+    e = 1.0 if h.Lambda < 0 else -1.0  # inside a stable cycle small oscillations grow, inside an unstable one decay
+    while e * defect(lo) < 0 and lo > 1e-9:
         lo *= 0.5
-    while defect(hi) > 0 and hi < 50.0:
+    while e * defect(hi) > 0 and hi < 50.0:
         hi *= 1.5
     w0 = brentq(defect, lo, hi, xtol=1e-14, rtol=1e-13)
-    sol = _one_turn(p, mu, s, w0, phi_e, T_guess, dense=True)
+    sol = _one_turn(p, mu, s, w0, phi_e, T_guess, dense=True, law=law)
     T = float(sol.t_events[0][0])
     tt = np.linspace(0, T, 4001)
     ph, w = sol.sol(tt)
-    _, L = _flow(p, mu, s)
+    _, L = _flow(p, mu, s, *law)
     lam = np.array([L(a_, b_) for a_, b_ in zip(ph, w)])
     gT = p["l"] * np.cos(ph) * w - v
     i = int(np.argmin(lam))
@@ -132,26 +136,83 @@ def _parabola_min(f, tt, i):
     return float(min(r.fun, f(tt[i])))
 
 
-def lift_off_mu(params: Mapping[str, float] | None = None, s: int = 1, span: float = 5e-4) -> tuple[float, SlipCycle]:
-    """μ where min λ_N on the slip cycle reaches 0 (end of the slip periodic branch)."""
+def lift_off_mu(params: Mapping[str, float] | None = None, s: int = 1, span: float = 5e-4, *, friction=None,
+                parameter: str | None = None, v: float = -1.0) -> tuple[float, SlipCycle]:
+    """μ (or the law's bifurcation parameter) where min λ_N on the slip cycle reaches 0 (end of the
+    slip periodic branch), on the side of the Hopf point where the cycle exists.
+
+    Parameters
+    ----------
+    params : mapping, optional
+        Mechanical parameters (default: set 1).
+    s : {+1, -1}
+        Slip sign.
+    span : float
+        First distance from the Hopf point tried (doubled until min λ_N < 0).
+    friction : VelocityFriction, optional
+        Friction-coefficient law (default: Coulomb μ).
+    parameter : str, optional
+        Its bifurcation parameter (default the first).
+    v : float
+        Belt velocity (m/s; matters for a velocity-dependent law).
+
+    Returns
+    -------
+    tuple
+        (parameter value, the :class:`SlipCycle` there).
+    """
     p = S.resolve(params)
-    h = S.slip_hopf(p, s=s)
-    f = lambda m: slip_cycle(m, p, s, hopf=h).lamN_min  # noqa: E731
-    lo, hi = h.p_c + 1e-7, h.p_c + span
-    while f(hi) > 0:
+    vv = v if friction is not None else None
+    h = S.slip_hopf(p, s=s, friction=friction, parameter=parameter, v=vv)
+    side = h.cycle_side
+    if side == 0:
+        raise NoHopfError(f"degenerate Hopf point at {h.parameter}_c={h.p_c:.8g}: no slip cycle branch")
+    f = lambda m: slip_cycle(m, p, s, v, hopf=h, friction=friction, parameter=parameter).lamN_min  # noqa: E731
+    lo, hi = h.p_c + side * 1e-7 * max(1.0, abs(h.p_c)), h.p_c + side * span * max(1.0, abs(h.p_c))
+    for _ in range(40):
+        if f(hi) <= 0:
+            break
         hi = h.p_c + 2 * (hi - h.p_c)
-    m = brentq(f, lo, hi, xtol=1e-10)
-    return m, slip_cycle(m, p, s, hopf=h)
+    else:
+        raise NoHopfError(f"min λ_N on the slip cycle stays positive up to {h.parameter}={hi:.6g}")
+    m = brentq(f, *sorted((lo, hi)), xtol=1e-10)
+    return m, slip_cycle(m, p, s, v, hopf=h, friction=friction, parameter=parameter)
 
 
 def stick_onset_mu(params: Mapping[str, float] | None = None, s: int = 1, v: float = -1.0,
-                   span: float = 0.05) -> tuple[float, SlipCycle]:
-    """μ where the slip cycle first reaches g_T = 0 (stick appears), belt speed v."""
+                   span: float = 0.05, *, friction=None, parameter: str | None = None) -> tuple[float, SlipCycle]:
+    """μ (or the law's bifurcation parameter) where the slip cycle first reaches g_T = 0 (stick
+    appears), belt speed v.
+
+    Parameters
+    ----------
+    params : mapping, optional
+        Mechanical parameters (default: set 1).
+    s : {+1, -1}
+        Slip sign.
+    v : float
+        Belt velocity (m/s).
+    span : float
+        The search runs from the Hopf point to this distance beyond it, on the cycle's side.
+    friction : VelocityFriction, optional
+        Friction-coefficient law (default: Coulomb μ).
+    parameter : str, optional
+        Its bifurcation parameter (default the first).
+
+    Returns
+    -------
+    tuple
+        (parameter value, the :class:`SlipCycle` there).
+    """
     p = S.resolve(params)
-    h = S.slip_hopf(p, s=s)
-    f = lambda m: (slip_cycle(m, p, s, v, hopf=h).gT_min if s > 0 else -slip_cycle(m, p, s, v, hopf=h).gT_max)  # noqa: E731
-    m = brentq(f, h.p_c + 1e-7, h.p_c + span, xtol=1e-10)
-    return m, slip_cycle(m, p, s, v, hopf=h)
+    h = S.slip_hopf(p, s=s, friction=friction, parameter=parameter, v=v if friction is not None else None)
+    side = h.cycle_side or 1
+
+    def f(m):
+        c = slip_cycle(m, p, s, v, hopf=h, friction=friction, parameter=parameter)
+        return c.gT_min if s > 0 else -c.gT_max
+    m = brentq(f, *sorted((h.p_c + side * 1e-7, h.p_c + side * span)), xtol=1e-10)
+    return m, slip_cycle(m, p, s, v, hopf=h, friction=friction, parameter=parameter)
 
 
 # --------------------------------------------------------------------------- simulation check
@@ -167,15 +228,18 @@ class GrowthRate:
 
 
 def growth_rate(mu: float, params: Mapping[str, float] | None = None, t_end: float = 20.0,
-                kick: float = 1e-5, stepper=DOP853Stepper(1e-11, 1e-13)) -> GrowthRate:
+                kick: float = 1e-5, stepper=DOP853Stepper(1e-11, 1e-13), *, friction=None,
+                parameter: str | None = None) -> GrowthRate:
     """Exponential growth rate of a small slip oscillation, measured by the hybrid engine.
 
     The run starts on the surface at φ_e + kick with every mode, guard and the impact law
-    armed; the rate is the least-squares slope of log(φ̇-max) after the first 2 s.
+    armed; the rate is the least-squares slope of log(φ̇-max) after the first 2 s.  With a
+    ``friction`` law, ``mu`` is the value of its bifurcation parameter ``parameter``.
     """
     p = S.resolve(params)
-    cm = build(mu, 0.0, p, ConstantBelt(-1.0))
-    y0 = slip_state(cm.mech, S.equilibrium_phi(p, mu, 1) + kick)
+    cm = build_at(mu, 0.0, p, ConstantBelt(-1.0), friction=friction, parameter=parameter)
+    vv = -1.0 if friction is not None else None
+    y0 = slip_state(cm.mech, S.equilibrium_phi(cm.mech.params, None, 1, cm.mech.friction, None, vv) + kick)
     sol = simulate(cm.model, cm.initial_mode(0.0, y0), y0, (0.0, t_end), stepper, default_options(record=False))
     ev = [e for e in sol.events.filter(guard="phidot-max") if e.t > 2.0 and e.y[2] > 0]
     modes = tuple(sorted({e.from_mode for e in sol.events} | {sol.mode}))
@@ -186,9 +250,14 @@ def growth_rate(mu: float, params: Mapping[str, float] | None = None, t_end: flo
 
 
 def hopf_by_simulation(params: Mapping[str, float] | None = None, delta: float = 2e-3, **kw) -> tuple[float, GrowthRate, GrowthRate]:
-    """Simulated Hopf point: zero of the measured growth rate between μ_c ∓ delta (engine's μ_c as centre)."""
+    """Simulated Hopf point: zero of the measured growth rate between μ_c ∓ delta (engine's μ_c as centre).
+
+    ``friction=``/``parameter=`` (passed on to :func:`growth_rate`) give a law and its bifurcation
+    parameter instead of the Coulomb μ.
+    """
     p = S.resolve(params)
-    mc = S.slip_hopf(p).p_c
+    mc = S.slip_hopf(p, friction=kw.get("friction"), parameter=kw.get("parameter"),
+                     v=-1.0 if kw.get("friction") is not None else None).p_c
     g1, g2 = growth_rate(mc - delta, p, **kw), growth_rate(mc + delta, p, **kw)
     mu0 = g1.mu - g1.sigma * (g2.mu - g1.mu) / (g2.sigma - g1.sigma)
     return float(mu0), g1, g2

@@ -17,6 +17,11 @@ a more complex free flight–slip–stick–slip motion takes place"; the bifurc
   0.4444 (d μ_flight/d|v| ≈ −0.36, d μ_stick/d|v| ≈ +0.017).  |v| ≈ 0.991 reproduces all
   three published values (Hopf 0.3531, stick 0.3601, flight 0.4530); :func:`flies` lets a
   test check that at μ = 0.453 without a bisection.
+
+Every function also takes a ``friction`` law (:class:`~landau.laws.velocity.VelocityFriction`,
+default the paper's Coulomb μ) and its bifurcation ``parameter``; ``mu`` is then that
+parameter's value.  :func:`first_lift_off` follows the slip phase from a state on the belt to
+its first event (lift-off, or the end of slip) — the lift-off of a slip motion with any law.
 """
 
 from __future__ import annotations
@@ -37,6 +42,7 @@ from landau.verify.lancioni.model import (
     PHIDOT_MAX,
     ConstantBelt,
     build,
+    build_at,
     slip_state,
 )
 from landau.verify.lancioni.period_adding import stick_exit
@@ -66,17 +72,24 @@ class FlightCycle:
                 f"phidot_max={self.phidot_max}, phi_min={self.phi_min:.4g})")
 
 
-def _start(mu: float, p, v: float):
-    cm = build(mu, 0.0, p, ConstantBelt(v))
-    return slip_state(cm.mech, S.equilibrium_phi(p, mu, 1) + 0.05)
+def _model(mu, eN, p, v, friction, parameter, **kw):
+    """The hybrid model at bifurcation-parameter value ``mu`` (Coulomb μ by default)."""
+    return build_at(mu, eN, p, ConstantBelt(v), friction=friction, parameter=parameter, **kw)
+
+
+def _start(mu: float, p, v: float, friction=None, parameter=None):
+    cm = _model(mu, 0.0, p, v, friction, parameter)
+    vv = v if friction is not None else None
+    return slip_state(cm.mech, S.equilibrium_phi(cm.mech.params, None, 1, cm.mech.friction, None, vv) + 0.05)
 
 
 def flight_cycle(mu: float, eN: float = 0.0, v: float = -1.0, params: Mapping[str, float] | None = None,
-                 t_transient: float = 14.0, t_keep: float = 6.0) -> FlightCycle:
+                 t_transient: float = 14.0, t_keep: float = 6.0, *, friction=None,
+                 parameter: str | None = None) -> FlightCycle:
     """Run from the slip equilibrium + 0.05 rad (set 2 by default) and measure the last ``t_keep`` s."""
     p = S.resolve(params or S.SET2)
-    cm = build(mu, eN, p, ConstantBelt(v), sections=(PHIDOT_MAX, PHI_ZERO_UP))
-    y0 = _start(mu, p, v)
+    cm = _model(mu, eN, p, v, friction, parameter, sections=(PHIDOT_MAX, PHI_ZERO_UP))
+    y0 = _start(mu, p, v, friction, parameter)
     T = t_transient + t_keep
     sol = simulate(cm.model, cm.initial_mode(0.0, y0), y0, (0.0, T), STEPPER, default_options(1e-6, record=True))
     if sol.status != "t_end":
@@ -102,7 +115,8 @@ def flight_cycle(mu: float, eN: float = 0.0, v: float = -1.0, params: Mapping[st
                        float(np.min(y[0, k])), sum(e.guard == "phi=0 up" for e in ev))
 
 
-def continued_phidot_max(mu: float, v: float = -1.0, params: Mapping[str, float] | None = None) -> float:
+def continued_phidot_max(mu: float, v: float = -1.0, params: Mapping[str, float] | None = None, *,
+                         friction=None, parameter: str | None = None) -> float:
     """φ̇_max of the stick–slip branch with the contact kept closed (λ_N < 0 allowed).
 
     Independent of the hybrid engine: the stick exit P(μ) (lower end of the admissible stick
@@ -110,8 +124,9 @@ def continued_phidot_max(mu: float, v: float = -1.0, params: Mapping[str, float]
     φ̈ = F(φ, φ̇; μ) (g_N ≡ 0) to the first maximum of φ̇ with φ̇ > 0.
     """
     p = S.resolve(params or S.SET2)
-    P = stick_exit(build(mu, 0.0, p, ConstantBelt(v)))
-    rhs, _ = _flow(p, mu, 1)
+    cm = _model(mu, 0.0, p, v, friction, parameter)
+    P = stick_exit(cm)
+    rhs, _ = _flow(cm.mech.params, None, 1, cm.mech.friction, None, v if friction is not None else None)
 
     def top(t, y):  # φ̈ = 0 going down, only once φ̇ > 0
         return rhs(t, y)[1] if y[1] > 0 else 1.0
@@ -124,13 +139,86 @@ def continued_phidot_max(mu: float, v: float = -1.0, params: Mapping[str, float]
 
 
 def flies(mu: float, v: float = -1.0, params: Mapping[str, float] | None = None, t_end: float = 16.0,
-          t_keep: float = 4.0) -> bool:
+          t_keep: float = 4.0, *, friction=None, parameter: str | None = None) -> bool:
     """Does the set-2 attractor at (μ, v) lift off in the last ``t_keep`` s (e_N = 0)?"""
     p = S.resolve(params or S.SET2)
-    cm = build(mu, 0.0, p, ConstantBelt(v))
-    y0 = _start(mu, p, v)
+    cm = _model(mu, 0.0, p, v, friction, parameter)
+    y0 = _start(mu, p, v, friction, parameter)
     sol = simulate(cm.model, cm.initial_mode(0.0, y0), y0, (0.0, t_end), STEPPER, default_options(1e-6))
     return any(e.guard == "lift-off" and e.t > t_end - t_keep for e in sol.events)
 
 
-__all__ = ["FlightCycle", "continued_phidot_max", "flies", "flight_cycle"]
+@dataclass(frozen=True)
+class FirstEvent:
+    """The first event of a slip phase: when, which (``lift-off``: λ_N = 0; ``stop``: g_T = 0), where."""
+
+    t: float
+    guard: str
+    state: np.ndarray       # (φ, y, φ̇, ẏ) at the event
+    next_mode: str
+
+    def __repr__(self) -> str:
+        return (f"FirstEvent({self.guard} at t={self.t:.10g} s, phi={self.state[0]:.10g}, "
+                f"phidot={self.state[2]:.10g}, then {self.next_mode})")
+
+
+def first_lift_off(mu: float | None = None, phi: float | None = None, phidot: float = 0.0, v: float = -1.0,
+                   params: Mapping[str, float] | None = None, t_end: float = 20.0, *, friction=None,
+                   parameter: str | None = None, kick: float = 0.05) -> FirstEvent:
+    """Simulate the impact oscillator from a state on the belt to the first end of its slip phase.
+
+    Parameters
+    ----------
+    mu : float, optional
+        Value of the bifurcation parameter (Coulomb μ; with a law, its ``parameter``); None keeps
+        the law's own values.
+    phi, phidot : float, optional
+        Start on the belt (g_N = γ_N = 0) at this angle and rate; default the slip equilibrium
+        + ``kick`` rad, at rest.
+    v : float
+        Constant belt velocity (m/s).
+    params : mapping, optional
+        Mechanical parameters (default set 1).
+    t_end : float
+        Give up after this time (s).
+    friction : VelocityFriction, optional
+        Friction-coefficient law (default: Coulomb).
+    parameter : str, optional
+        Its bifurcation parameter.
+    kick : float
+        Default start offset from the slip equilibrium (rad).
+
+    Returns
+    -------
+    FirstEvent
+
+    Raises
+    ------
+    IntegratorError
+        No event before ``t_end``, or the start is not in slip.
+    """
+    p = S.resolve(params)
+    if mu is None:
+        law = friction
+        cm = build(None if law is not None else 0.4, 0.0, p, ConstantBelt(v), friction=law)
+    else:
+        cm = _model(mu, 0.0, p, v, friction, parameter)
+    if phi is None:
+        vv = v if cm.mech.velocity_dependent else None
+        phi = S.equilibrium_phi(cm.mech.params, None, 1 if v < 0 else -1, cm.mech.friction, None, vv) + kick
+    y0 = slip_state(cm.mech, phi, phidot)
+    mode = cm.initial_mode(0.0, y0)
+    if not mode.startswith("slip"):
+        raise IntegratorError(f"the start (phi={phi:.6g}, phidot={phidot:.6g}) is not in slip but in {mode}",
+                              t=0.0, state=y0)
+    ends = ("lift-off", "stop")
+    sol = simulate(cm.model, mode, y0, (0.0, t_end), STEPPER, default_options(1e-6, record=False),
+                   stop=lambda e: e.guard in ends)
+    ev = [e for e in sol.events if e.guard in ends]
+    if not ev:
+        raise IntegratorError(f"the slip phase did not end before t={t_end:g} s ({sol.status})", t=sol.t, state=sol.y)
+    e = ev[0]
+    return FirstEvent(float(e.t), e.guard, np.array(e.y, float), e.to_mode)
+
+
+__all__ = ["FirstEvent", "FlightCycle", "continued_phidot_max", "first_lift_off", "flies", "flight_cycle"]

@@ -11,6 +11,12 @@ velocity g_T = lφ̇ cos φ − v(t) (ŵ_T = −lφ̇² sin φ − v̇).  The re
 slip±, stick), transitions, Poisson impact law and Painlevé checks are the generic ones
 of :mod:`landau.verify.lancioni.contact`; this module only supplies the mechanics.
 
+Friction.  The paper's plain Coulomb friction (coefficient μ) is the default law,
+:func:`landau.laws.velocity.coulomb`; any :class:`~landau.laws.velocity.VelocityFriction`
+coefficient law F(g_T) can replace it: in slip λ_T = −F(g_T) λ_N at the current relative
+velocity, in stick −F(0⁺)λ_N ≤ λ_T ≤ −F(0⁻)λ_N (the law's one-sided limits), and the
+impulsive friction of an impact takes the limit of the sliding direction.
+
 Belt.  The paper's constant belt speed is not printed; |v| = 1 m/s (the amplitude of the
 sinusoidal belt v = sin(πt/2) of Fig. 6) is used, in the direction that has the Hopf
 point: v = −1 (g_T > 0 on the slip equilibrium, *positive slip*; see
@@ -24,9 +30,11 @@ from typing import Mapping
 
 import numpy as np
 
+from landau.errors import InputError
+from landau.laws.velocity import V_SLIP, VelocityFriction, coulomb
 from landau.verify.lancioni.contact import ContactMechanics, ContactModel, Section
 from landau.verify.hybrid.contact import check_contact_coefficients
-from landau.verify.lancioni.slip import SET1, SET2, resolve
+from landau.verify.lancioni.slip import PARAM_NAMES, SET1, SET2, check_friction, hopf_parameter, resolve
 
 
 @dataclass(frozen=True)
@@ -58,24 +66,72 @@ class SineBelt:
 
 @dataclass(frozen=True)
 class Lancioni(ContactMechanics):
-    """Eq. (1) with Coulomb coefficient ``mu``, restitution ``eN`` and belt ``belt``."""
+    """Eq. (1) with friction ``friction`` (default: Coulomb coefficient ``mu``, 0.4), restitution
+    ``eN`` and belt ``belt``.
+
+    With a law, ``mu`` becomes its static level F(0⁺) (give ``mu`` or a law, not two
+    different values).
+    """
 
     params: Mapping[str, float] = field(default_factory=lambda: dict(SET1))
-    mu: float = 0.4
+    mu: float | None = None
     eN: float = 0.0
     belt: object = ConstantBelt()
     n: int = 2
     name: str = "lancioni"
+    friction: VelocityFriction | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "params", resolve(self.params))
+        law = self.friction
+        if law is None:
+            mu = 0.4 if self.mu is None else self.mu
+            check_contact_coefficients(mu, self.eN)
+            law = coulomb(float(mu))
+        check_friction(law)
+        vals = [float(law.defaults()[p.name]) if p.name in law.defaults() else None for p in law.parameters]
+        missing = [p.name for p, x in zip(law.parameters, vals) if x is None]
+        if missing:
+            raise InputError(f"friction law {law.name!r}: parameter(s) {', '.join(missing)} need a value")
+        dep = any(V_SLIP in law.branch(s).free_symbols for s in (1, -1))
+        if dep:
+            lo, hi = law.limits_at_zero()
+        else:  # constant branches (Coulomb): the limits are their values
+            at = {p.symbol: x for p, x in zip(law.parameters, vals)}
+            lo, hi = (float(law.branch(s).xreplace(at)) for s in (-1, 1))
+        if self.mu is not None and self.friction is not None and not np.isclose(float(self.mu), hi, rtol=1e-14,
+                                                                                 atol=0.0):
+            raise InputError(f"give the friction either as mu or as a law, not both (mu={self.mu!r}, law "
+                             f"{law.name!r} has F(0+) = {hi!r})")
+        object.__setattr__(self, "friction", law)
+        object.__setattr__(self, "mu", hi)
         check_contact_coefficients(self.mu, self.eN)
+        object.__setattr__(self, "velocity_dependent", dep)
+        object.__setattr__(self, "_static", (hi, -lo))
+        object.__setattr__(self, "_branch", {s: law.numeric(s) for s in (1, -1)} if dep else {})
+        object.__setattr__(self, "_law_values", tuple(vals))
         p = self.params
         object.__setattr__(self, "_c", (p["m1"], p["m2"], p["l"], p["k_y"], p["k_phi"], p["c_y"], p["c_phi"],
                                          p["phi0"], p["y0"], p["g"]))
 
     def with_(self, **kw) -> "Lancioni":
+        if "mu" in kw and "friction" not in kw:
+            kw["friction"] = None  # a new Coulomb coefficient replaces the law
+        elif "friction" in kw and "mu" not in kw:
+            kw["mu"] = None
         return replace(self, **kw)
+
+    def slip_mu(self, s: int, gT):
+        """|F(g_T)| in slip s: λ_T = −s·slip_mu·λ_N = −F(g_T)·λ_N; a γ_T a rounding error on the wrong
+        side of 0 (at the end of a slip phase) is taken as 0 on the slip side."""
+        if not self.velocity_dependent:
+            return self._static[0] if s > 0 else self._static[1]
+        v = s * np.maximum(s * np.asarray(gT, float), 0.0)
+        return s * self._branch[s](v, *self._law_values)
+
+    def static_mu(self) -> tuple[float, float]:
+        """(F(0⁺), −F(0⁻)): the stick cone −F(0⁺)λ_N ≤ λ_T ≤ −F(0⁻)λ_N."""
+        return self._static
 
     def terms(self, t, q, qd):
         m1, m2, l, ky, kp, cy, cp, p0, y0, g = self._c
@@ -128,17 +184,19 @@ PHIDOT_MAX = Section("phidot-max", lambda t, y, acc: acc[0])
 PHI_ZERO_UP = Section("phi=0 up", lambda t, y, acc: -y[0])
 
 
-def build(mu: float, eN: float = 0.0, params: Mapping[str, float] | None = None, belt=None,
-          sections=(PHIDOT_MAX,), stick_tol: float = 0.0, stick_tol_reset: str = "project") -> ContactModel:
-    """The hybrid model of eq. (1) (set 1 by default, g = 10) at friction coefficient μ.
+def build(mu: float | None = None, eN: float = 0.0, params: Mapping[str, float] | None = None, belt=None,
+          sections=(PHIDOT_MAX,), stick_tol: float = 0.0, stick_tol_reset: str = "project", *,
+          friction: VelocityFriction | None = None) -> ContactModel:
+    """The hybrid model of eq. (1) (set 1 by default, g = 10) at Coulomb coefficient μ, or with a
+    velocity-dependent friction law.
 
     ``stick_tol`` > 0 switches on the numerical stick tolerance of
     :class:`landau.verify.lancioni.contact.ContactModel` (default 0: the exact model).
 
     Parameters
     ----------
-    mu : float
-        Friction coefficient μ.
+    mu : float, optional
+        Coulomb friction coefficient μ (default 0.4 when no ``friction`` law is given).
     eN : float, optional
         Normal coefficient of restitution of the Poisson impact law.
     params : mapping of str to float, optional
@@ -151,6 +209,10 @@ def build(mu: float, eN: float = 0.0, params: Mapping[str, float] | None = None,
         Numerical stick tolerance (0: the exact model).
     stick_tol_reset : str, optional
         How the state is reset when the tolerance is used (see ``ContactModel``).
+    friction : VelocityFriction, optional
+        A friction-coefficient law F(g_T) of the relative sliding velocity g_T, with its
+        parameter values as defaults (instead of ``mu``), e.g.
+        ``VelocityFriction.from_strings("mine", "mu*(1 + alpha*exp(-v/v0))", params=...)``.
 
     Returns
     -------
@@ -162,8 +224,68 @@ def build(mu: float, eN: float = 0.0, params: Mapping[str, float] | None = None,
     Lancioni, G., Lenci, S. & Galvanetto, U., the frictional impact oscillator (hopping of a
     windscreen wiper), eq. (1).
     """
-    mech = Lancioni(params=dict(params or SET1), mu=float(mu), eN=float(eN), belt=belt or ConstantBelt())
+    mech = Lancioni(params=dict(params or SET1), mu=None if mu is None else float(mu), eN=float(eN),
+                    belt=belt or ConstantBelt(), friction=friction)
     return ContactModel(mech, sections=sections, stick_tol=float(stick_tol), stick_tol_reset=stick_tol_reset)
+
+
+def at_parameter(value: float, params: Mapping[str, float] | None = None, friction: VelocityFriction | None = None,
+                 parameter: str | None = None) -> tuple[dict[str, float], VelocityFriction]:
+    """Mechanical parameters and friction law with the bifurcation parameter set to ``value``.
+
+    Parameters
+    ----------
+    value : float
+        Value of the bifurcation parameter: the Coulomb μ by default; with a law, its parameter
+        ``parameter`` (default the first) or a mechanical parameter.
+    params : mapping, optional
+        Mechanical parameters (default: set 1).
+    friction : VelocityFriction, optional
+        Friction-coefficient law (default: Coulomb).
+    parameter : str, optional
+        The bifurcation parameter's name.
+
+    Returns
+    -------
+    tuple
+        (mechanical parameters, friction law) for :func:`build`.
+    """
+    p = resolve(params)
+    if friction is None and parameter in (None, "mu"):
+        check_contact_coefficients(value, 0.0)
+        return p, coulomb(float(value))
+    law = check_friction(friction if friction is not None else coulomb())
+    par = hopf_parameter(friction, parameter)
+    if par in PARAM_NAMES:
+        return resolve({**p, par: value}), law
+    return p, law.with_defaults(**{par: float(value)})
+
+
+def build_at(value: float, eN: float = 0.0, params: Mapping[str, float] | None = None, belt=None, *,
+             friction: VelocityFriction | None = None, parameter: str | None = None, **kw) -> ContactModel:
+    """:func:`build` with the bifurcation parameter at ``value`` (see :func:`at_parameter`).
+
+    Parameters
+    ----------
+    value : float
+        The Coulomb μ (default) or the value of ``parameter`` of the law ``friction``.
+    eN, params, belt
+        As for :func:`build`.
+    friction : VelocityFriction, optional
+        Friction-coefficient law (default: Coulomb).
+    parameter : str, optional
+        Its bifurcation parameter (default the first).
+    **kw
+        Further arguments of :func:`build` (sections, stick tolerance).
+
+    Returns
+    -------
+    ContactModel
+    """
+    if friction is None and parameter in (None, "mu"):
+        return build(value, eN, params, belt, **kw)
+    p, law = at_parameter(value, params, friction, parameter)
+    return build(None, eN, p, belt, friction=law, **kw)
 
 
 def slip_state(mech: Lancioni, phi: float, phidot: float = 0.0) -> np.ndarray:
@@ -172,5 +294,5 @@ def slip_state(mech: Lancioni, phi: float, phidot: float = 0.0) -> np.ndarray:
     return np.array([phi, l * np.cos(phi), phidot, -l * np.sin(phi) * phidot])
 
 
-__all__ = ["Lancioni", "ConstantBelt", "SineBelt", "build", "slip_state", "PHIDOT_MAX", "PHI_ZERO_UP",
+__all__ = ["Lancioni", "at_parameter", "build_at", "check_friction", "ConstantBelt", "SineBelt", "build", "slip_state", "PHIDOT_MAX", "PHI_ZERO_UP",
            "SET1", "SET2"]

@@ -25,7 +25,7 @@ from typing import Mapping
 import numpy as np
 
 from landau.errors import InputError, NoHopfError
-from landau.hopf import SPRING_BLOCK, Criticality, HopfResult
+from landau.hopf import Criticality, HopfResult, spring_block_result
 from landau.multiscale import derive
 from landau.system import SpringBlock
 from landau.laws.law import FrictionLaw
@@ -78,12 +78,7 @@ def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = Non
     vals = {n: float(np.ravel(r[n])[0]) for n in names}
     if not np.isfinite(vals["kc"]) or vals["kc"] <= 0:
         raise NoHopfError(f"law {law.name!r} has no Hopf point at V = {V!r} m/s")
-    return HopfResult(system=law.name, parameter="k", p_c=vals["kc"], omega_c=vals["omega_c"], equilibrium=(),
-                      dlambda_dp=complex(-vals["Gamma_bar"], vals["Omega_bar"]), Lambda=vals["Lambda"],
-                      chi=vals["chi"], convention=SPRING_BLOCK, normalise="X",
-                      params={k: float(v) for k, v in resolved.items()},
-                      extra={"V": float(V), "kc": vals["kc"], "Gamma_bar": vals["Gamma_bar"],
-                             "Omega_bar": vals["Omega_bar"]})
+    return spring_block_result(law.name, float(V), params={k: float(v) for k, v in resolved.items()}, **vals)
 
 
 @dataclass(frozen=True)

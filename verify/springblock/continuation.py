@@ -25,8 +25,8 @@ import numpy as np
 from landau.errors import IntegratorError
 from landau.progress import progress as bar
 from landau.verify.springblock.model import SpringBlockModel
-from landau.verify.springblock.orbits import (PeriodicOrbit, ShootingError, describe, hopf_stiffness, return_map,
-                                       section_point)
+from landau.verify.springblock.orbits import (PeriodicOrbit, ShootingError, describe, hopf_parameter, hopf_stiffness,
+                                              return_map, section_point)
 
 
 @dataclass(frozen=True)
@@ -216,13 +216,8 @@ def continue_in_k(model: SpringBlockModel, k_lo: float, k_hi: float, **kw) -> Br
 
 def continue_in_logV(model: SpringBlockModel, V_lo: float, V_hi: float, **kw) -> Branch:
     """Fig. 11: cycles vs log₁₀ V at fixed k (fixed κ), from the Hopf point in [V_lo, V_hi]."""
-    from scipy.optimize import brentq
-
-    def growth(lv):
-        m = model.with_(V=10 ** lv)
-        return float(np.max(np.linalg.eigvals(m.J(np.zeros(m.n))).real))
-
-    lv_h = brentq(growth, np.log10(V_lo), np.log10(V_hi), xtol=1e-14, rtol=1e-14)
+    lv_h = hopf_parameter(lambda lv: model.with_(V=10 ** lv), np.log10(V_lo), np.log10(V_hi), xtol=1e-14,
+                          rtol=1e-14)
     make = lambda lam: model.with_(V=10 ** lam)  # noqa: E731
     pts = None
     for direction in (-1.0, 1.0):

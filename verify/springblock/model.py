@@ -11,10 +11,11 @@ positive and O(1) over stick phases where v falls by tens of decades:
     w' = (ℓ/V) e^{−w} [−kℓξ − σ(μ(v, φ) − μ₀)] / (M V),
     ψᵢ' = (ℓ/V) rateᵢ(v, φ)/φᵢ,
 
-so that steady sliding is the origin.  The right-hand side and its exact Jacobian are
-generated from the symbolic law (sympy, common-subexpression elimination, logs of
-products expanded so that ln v = ln V + w is never formed from an underflowed v), then
-compiled with numba.  The dimensionless parameters of the paper (eq. 6) are
+so that steady sliding is the origin.  The right-hand side is written from the symbolic
+law (logs of products expanded so that ln v = ln V + w is never formed from an underflowed
+v); it and its exact Jacobian are then generated and compiled by :mod:`landau.kernels`
+(common-subexpression elimination, the whitelist of generated syntax, numba through the
+cross-process code cache).  The dimensionless parameters of the paper (eq. 6) are
 m = M V_*²/(σL) and κ = kL/σ (σ = Mg); :meth:`SpringBlockModel.from_dimensionless`
 builds the model from (m, κ, V/V_*).
 """
@@ -22,20 +23,18 @@ builds the model from (m, κ, V/V_*).
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Mapping
 
 import numpy as np
 import sympy as sp
-from sympy.printing.pycode import PythonCodePrinter
 
 from landau.errors import InputError
-from landau.kernels import ALLOWED_BUILTINS, check_source
+from landau.kernels import compile_source, kernel_source
 from landau.system import SpringBlock
 from landau.laws.law import FrictionLaw, v as v_slip
-from landau.verify.jitcache import load_generated, njit_cached
-from landau.verify.springblock.radau import SIG, SIG_JAC
 
 
 @dataclass(frozen=True)
@@ -52,11 +51,6 @@ class CompiledLaw:
     jac_py: object = field(repr=False)
 
 
-class _Printer(PythonCodePrinter):
-    def _print_Symbol(self, expr):
-        return expr.name
-
-
 _CACHE: dict[tuple, CompiledLaw] = {}
 _SYS_NAMES = ("M", "sigma", "k", "V", "ell", "mu0")
 
@@ -66,10 +60,19 @@ def _law_key(law: FrictionLaw) -> tuple:
             tuple(p.name for p in law.parameters))
 
 
+#: the compiled pieces of each law object seen (identity lookup: the structural key below prints
+#: the law's expressions, which costs more than a loose-tolerance integration)
+_BY_LAW: "weakref.WeakKeyDictionary[FrictionLaw, CompiledLaw]" = weakref.WeakKeyDictionary()
+
+
 def compile_law(law: FrictionLaw) -> CompiledLaw:
     """Generate and compile the scaled right-hand side and analytic Jacobian of eq. (4) for ``law``."""
+    hit = _BY_LAW.get(law)
+    if hit is not None:
+        return hit
     key = _law_key(law)
     if key in _CACHE:
+        _BY_LAW[law] = _CACHE[key]
         return _CACHE[key]
     ns = len(law.states)
     n = 2 + ns
@@ -91,49 +94,24 @@ def compile_law(law: FrictionLaw) -> CompiledLaw:
          (ell / Vsym) * sp.exp(-w) * (-ksym * ell * xi - sig * (mu - mu0)) / (Msym * Vsym)]
     for r, ph in zip(law.rates, phis):
         f.append((ell / Vsym) * sp.expand(tidy(r) / ph))
-    Jm = sp.Matrix(f).jacobian(sp.Matrix(ys))
-    _SYMBOLIC[key] = (ys, f, Jm)
-    pnames = [s.name for s in lp] + [s.name for s in (Msym, sig, ksym, Vsym, ell, mu0)] + [s.name for s in phi0]
-    _PNAMES[key] = pnames
-    src, rhs_py, jac_py, rhs, jac = _emit(ys, f, Jm, pnames, law.name)
-    out = CompiledLaw(law.name, n, tuple(p.name for p in law.parameters), src, rhs, jac, rhs_py, jac_py)
+    psyms = [*lp, Msym, sig, ksym, Vsym, ell, mu0, *phi0]
+    _SYMBOLIC[key] = (ys, f, psyms)
+    out = _compile(ys, f, psyms, law.name, tuple(p.name for p in law.parameters))
     _CACHE[key] = out
+    _BY_LAW[law] = out
     return out
 
 
-#: builtins the generated code may call (the whitelist itself is landau.kernels.check_source)
-_BUILTINS = set(ALLOWED_BUILTINS)
-
-
-def _emit(ys, f, Jm, pnames, label):
-    """Python source for rhs(t, y, p, out) and jac(t, y, p, out) (shared CSE), exec'd and njit-compiled."""
-    n = len(ys)
-    reps, red = sp.cse(list(f) + list(Jm), optimizations="basic")
-    pr = _Printer({"fully_qualified_modules": True})
-    head = [f"    {s.name} = y[{i}]" for i, s in enumerate(ys)]
-    head += [f"    {nm} = p[{i}]" for i, nm in enumerate(pnames)]
-    body_r = [f"    {s} = {pr.doprint(e)}" for s, e in reps]
-    lines_f = ["def rhs(t, y, p, out):", *head, *body_r]
-    lines_f += [f"    out[{i}] = {pr.doprint(red[i])}" for i in range(n)]
-    lines_j = ["def jac(t, y, p, out):", "    out[:, :] = 0.0", *head, *body_r]
-    for i in range(n):
-        for j in range(n):
-            e = red[n + i * n + j]
-            if e != 0:
-                lines_j.append(f"    out[{i}, {j}] = {pr.doprint(e)}")
-    src = "\n".join(lines_f) + "\n\n" + "\n".join(lines_j) + "\n"
-    check_source(src)
-    # only the whitelisted names exist in the namespace (the AST check above is the filter; this is
-    # the second wall: no other builtins are reachable from the generated code)
-    # the source is kept in a per-user cache file named by its hash, so numba's disk cache
-    # serves the compiled kernels to later processes
-    glb = load_generated(src, {"math": math}, _BUILTINS)
-    rhs_py, jac_py = glb["rhs"], glb["jac"]
-    return src, rhs_py, jac_py, njit_cached(rhs_py, SIG), njit_cached(jac_py, SIG_JAC)
+def _compile(ys, f, psyms, label, param_names) -> CompiledLaw:
+    """The field ``f`` over the states ``ys`` and parameter vector ``psyms``, through the kernel
+    generator of :mod:`landau.kernels` (exact Jacobian by sympy, common subexpressions, the
+    whitelist of generated syntax, the cross-process code cache)."""
+    src = kernel_source(ys, f, psyms)
+    c = compile_source(src, label)
+    return CompiledLaw(label, len(ys), param_names, src, c.fun, c.jac, c.fun_py, c.jac_py)
 
 
 _SYMBOLIC: dict[tuple, tuple] = {}
-_PNAMES: dict[tuple, list] = {}
 _VAR_CACHE: dict[tuple, CompiledLaw] = {}
 
 
@@ -144,15 +122,14 @@ def compile_variational(law: FrictionLaw) -> CompiledLaw:
     if key in _VAR_CACHE:
         return _VAR_CACHE[key]
     compile_law(law)
-    ys, f, Jm = _SYMBOLIC[key]
+    ys, f, psyms = _SYMBOLIC[key]
     n = len(ys)
+    Jm = sp.Matrix(f).jacobian(sp.Matrix(ys))
     Phi = sp.Matrix(n, n, sp.symbols(f"y{n}:{n + n * n}", real=True))
     JP = Jm * Phi
     faug = list(f) + [JP[i, j] for i in range(n) for j in range(n)]
     yaug = list(ys) + [Phi[i, j] for i in range(n) for j in range(n)]
-    Jaug = sp.Matrix(faug).jacobian(sp.Matrix(yaug))
-    src, rhs_py, jac_py, rhs, jac = _emit(yaug, faug, Jaug, _PNAMES[key], law.name + " (variational)")
-    out = CompiledLaw(law.name, n + n * n, _CACHE[key].param_names, src, rhs, jac, rhs_py, jac_py)
+    out = _compile(yaug, faug, psyms, law.name + " (variational)", _CACHE[key].param_names)
     _VAR_CACHE[key] = out
     return out
 

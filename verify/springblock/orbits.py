@@ -14,6 +14,7 @@ stable and unstable cycles alike.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Callable
 
 import numpy as np
 
@@ -163,12 +164,45 @@ def section_point(model: SpringBlockModel, amplitude: float) -> np.ndarray:
     return _off_section(y)
 
 
+def leading_growth_rate(model: SpringBlockModel) -> float:
+    """Largest real part of the eigenvalues of J at steady sliding (per unit of the scaled time τ).
+
+    Parameters
+    ----------
+    model : SpringBlockModel
+
+    Returns
+    -------
+    float
+        Negative where steady sliding is linearly stable.
+    """
+    return float(np.max(np.linalg.eigvals(model.J(np.zeros(model.n))).real))
+
+
+def hopf_parameter(make: Callable[[float], SpringBlockModel], lo: float, hi: float, *, xtol: float,
+                   rtol: float) -> float:
+    """The parameter q in [lo, hi] where the steady state of ``make(q)`` loses (or gains) stability:
+    the root of :func:`leading_growth_rate` along the equilibrium branch, by Brent's method.
+
+    Parameters
+    ----------
+    make : callable
+        q -> SpringBlockModel.
+    lo, hi : float
+        A bracket: the growth rate changes sign between them.
+    xtol, rtol : float
+        Tolerances of :func:`scipy.optimize.brentq`.
+
+    Returns
+    -------
+    float
+    """
+    from scipy.optimize import brentq
+
+    return float(brentq(lambda q: leading_growth_rate(make(q)), lo, hi, xtol=xtol, rtol=rtol))
+
+
 def hopf_stiffness(model: SpringBlockModel, k_lo: float, k_hi: float, rtol: float = 1e-13) -> float:
     """Stiffness where the steady state's leading eigenvalue pair crosses the imaginary axis
     (along the equilibrium branch in k, located by Brent's method on max Re λ(J(0; k)))."""
-    from scipy.optimize import brentq
-
-    def growth(kk):
-        return float(np.max(np.linalg.eigvals(model.with_(k=kk).J(np.zeros(model.n))).real))
-
-    return float(brentq(growth, k_lo, k_hi, rtol=rtol, xtol=1e-14 * k_hi))
+    return hopf_parameter(lambda kk: model.with_(k=kk), k_lo, k_hi, xtol=1e-14 * k_hi, rtol=rtol)

@@ -17,7 +17,7 @@ from landau.errors import InputError, IntegratorError
 from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.result import Simulation, status_from_text
 from landau.verify.springblock.model import SpringBlockModel, compile_variational
-from landau.verify.hybrid.radau import A_RADAU, STATUS, VINV, radau_core
+from landau.verify.hybrid.radau import A_RADAU, STATUS, VINV, pointers, radau_core
 
 #: index of w = ln(v/V) in the scaled state; w = 0 ⇔ ẋ = V ⇔ X = x − x₀ extremal
 W_INDEX = 1
@@ -132,7 +132,8 @@ def integrate(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol:
     evbuf = np.empty((max_events if event_index >= 0 else 1, nn + 1))
     evdir = np.empty(evbuf.shape[0])
     tic = time.process_time()
-    st, t, y, cnt, et, ey, rt, ry, _, _ = radau_core(c.rhs, c.jac, t0, y0, t1, model.p, float(rtol), at, float(h0),
+    fun, jac = pointers(c.rhs, c.jac)
+    st, t, y, cnt, et, ey, rt, ry, _, _ = radau_core(fun, jac, t0, y0, t1, model.p, float(rtol), at, float(h0),
                                                float(ms), int(max_steps), int(event_index), float(event_value),
                                                int(event_direction), int(stop_after), int(record), A_RADAU,
                                                VINV, evbuf, evdir)
