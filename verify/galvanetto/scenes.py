@@ -28,8 +28,12 @@ def _interval(lo: float, hi: float) -> tuple[float, float]:
 
 
 def _bracket(p: dict):
-    """The scene's (lo, hi), or None (derived from the model) when both are 0."""
-    return None if p["lo"] == 0 and p["hi"] == 0 else (p["lo"], p["hi"])
+    """The scene's (lo, hi), or None (derived from the model) when both are 0; ``lo = 0`` with a
+    given ``hi`` searches (hi/1000, hi) (the parameters searched are positive)."""
+    lo, hi = p["lo"], p["hi"]
+    if lo == 0 and hi == 0:
+        return None
+    return (hi * 1e-3 if lo == 0 else lo, hi)
 
 
 def _doc(loc: B.Located, **extra) -> dict:
