@@ -97,7 +97,8 @@ class KineticFriction:
         return e if symbolic else e.subs({GAMMA: self.gamma, DELTA: self.delta})
 
     @classmethod
-    def from_expression(cls, neg, pos=None, *, gamma: float = 3.0, delta: float = 0.0) -> "KineticFriction":
+    def from_expression(cls, neg, pos=None, *, gamma: float = 3.0, delta: float = 0.0,
+                        names: tuple[str, str] = ("neg", "pos")) -> "KineticFriction":
         """A kinetic law from its r < 0 branch (and optionally its r > 0 branch).
 
         Parameters
@@ -107,6 +108,7 @@ class KineticFriction:
             (never evaluated).
         pos : the same for r > 0; default the odd reflection −neg(−r).
         gamma, delta : values of the parameters γ, δ if the expressions use them.
+        names : how the two branches are named in error messages (e.g. the CLI's option names).
 
         Returns
         -------
@@ -128,8 +130,8 @@ class KineticFriction:
             if isinstance(x, sp.Expr):
                 return x
             raise InputError(f"KineticFriction.from_expression: {what} must be a string or a sympy expression")
-        n = as_expr(neg, "neg")
-        p = -n.subs(R, -R) if pos is None else as_expr(pos, "pos")
+        n = as_expr(neg, names[0])
+        p = -n.subs(R, -R) if pos is None else as_expr(pos, names[1])
         return cls(gamma=float(gamma), delta=float(delta), neg_expr=n, pos_expr=p)
 
     # ---------------------------------------------------------------- numeric form
@@ -160,6 +162,35 @@ class KineticFriction:
         out = np.where(r == 0, np.nan, out)
         return out if out.ndim else float(out)
 
+    def weakening_velocity(self) -> float | None:
+        """The velocity scale of the r < 0 branch: the |r| at which F_k has made half its drop
+        from F_k(0⁻) to its far level F_k(r → −∞) (1/γ for eq. (7)); None when the branch does
+        not weaken (Coulomb friction).  Locators use it to set their search ranges in V.
+
+        Returns
+        -------
+        float or None
+        """
+        ks = np.arange(-6.0, 10.0)
+        with np.errstate(all="ignore"):
+            vals = np.array([float(self.neg(-10.0 ** k)) for k in ks])
+        ok = np.isfinite(vals)
+        f0 = float(self.neg(0.0))
+        if not ok.any() or not np.isfinite(f0):
+            return None
+        far = vals[ok][-1]
+        if not abs(f0 - far) > 1e-9 * max(1.0, abs(f0)):
+            return None
+        half = 0.5 * (f0 + far)
+        g = lambda v: float(self.neg(-v)) - half
+        lo = 0.0
+        for k, v in zip(ks[ok], vals[ok]):
+            if np.sign(v - half) != np.sign(f0 - half):
+                from scipy.optimize import brentq
+                return float(brentq(g, lo, 10.0 ** k, xtol=1e-14, rtol=1e-12))
+            lo = 10.0 ** k
+        return None
+
     @classmethod
     def coulomb(cls) -> "KineticFriction":
         """The Coulomb limit γ → 0: F_k = −sign(r), kinetic level = static level = 1."""
@@ -175,3 +206,38 @@ class KineticFriction:
             return f"KineticFriction(γ={self.gamma:g}, δ={self.delta:g})  # Galvanetto 2004 eq. (7)"
         return (f"KineticFriction(r<0: {self.neg_expr}, r>0: {self.pos_expr}, "
                 f"γ={self.gamma:g}, δ={self.delta:g})")
+
+
+def resolve_kinetic_law(law: KineticFriction | None = None, gamma: float | None = None,
+                        delta: float | None = None, *, default_gamma: float = 3.0,
+                        default_delta: float = 0.0) -> KineticFriction:
+    """The kinetic law of a Galvanetto-model computation, from a law object and/or γ, δ values.
+
+    Parameters
+    ----------
+    law : KineticFriction, optional
+        The law; default Galvanetto's eq. (7).
+    gamma, delta : float, optional
+        Values of the law's parameters γ, δ.  Without ``law`` they build eq. (7) (missing ones
+        take ``default_gamma``/``default_delta``); with ``law`` they must equal the law's own.
+    default_gamma, default_delta : float
+        The values used for eq. (7) when ``gamma``/``delta`` are not given.
+
+    Returns
+    -------
+    KineticFriction
+
+    Raises
+    ------
+    InputError
+        ``law`` is not a :class:`KineticFriction`, or ``gamma``/``delta`` conflict with it.
+    """
+    if law is None:
+        return KineticFriction(float(default_gamma if gamma is None else gamma),
+                               float(default_delta if delta is None else delta))
+    if not isinstance(law, KineticFriction):
+        raise InputError(f"law must be a KineticFriction, not {type(law).__name__}")
+    for name, v in (("gamma", gamma), ("delta", delta)):
+        if v is not None and float(v) != getattr(law, name):
+            raise InputError(f"{name}={v} conflicts with the law's {name}={getattr(law, name)}; give one of them")
+    return law

@@ -64,6 +64,10 @@ def configure(p) -> None:
     add_law_arguments(p)
     add_friction_arguments(p)
     p.add_argument("--V", default=None, help="spring-block: driving velocity in m/s (default 1e-4)")
+    p.add_argument("--kinetic", default=None, metavar="EXPR",
+                   help="galvanetto-one-block: kinetic friction for r = Xdot - V < 0 in r, gamma, delta")
+    p.add_argument("--kinetic-pos", default=None, metavar="EXPR",
+                   help="galvanetto-one-block: the r > 0 branch (default the odd reflection of --kinetic)")
     p.add_argument("--parameter", default=None, metavar="NAME",
                    help="impact-oscillator: the bifurcation parameter (default mu, or the first parameter of --friction)")
 

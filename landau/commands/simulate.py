@@ -10,7 +10,10 @@ Models (defaults: the published parameters):
   stiffness [N/m] (default 0.9 k_c(V), where steady sliding is unstable); starts from steady
   sliding displaced along the critical mode;
 * ``galvanetto-one-block``, ``galvanetto-two-blocks`` — the dimensionless stick–slip models of
-  Galvanetto (2004), started stuck at the origin;
+  Galvanetto (2004), started stuck at the origin; kinetic friction eq. (7) or the user's law
+  ``--kinetic EXPR`` (branch r < 0 in the relative velocity r = Ẋ − V and the parameters
+  gamma, delta; ``--kinetic-pos EXPR`` the r > 0 branch, default the odd reflection);
+  ``--hopf`` (one block) adds the Hopf point c₁ of the damped block, ω and the criticality;
 * ``impact-oscillator`` — the frictional impact oscillator (a bar on a moving belt) of
   Lancioni, Lenci & Galvanetto, parameter set 1, belt speed ``v_belt`` −1 m/s, Coulomb friction coefficient ``mu``
   (default 0.42, above the Hopf point) or your law ``--friction EXPR`` with its ``--param`` values,
@@ -56,13 +59,21 @@ def configure(p) -> None:
         pass
     p.add_argument("--law", dest="law_option", default=None, metavar="NAME",
                    help="spring-block: built-in law (same as the positional LAW; default dieterich)")
-    p.add_argument("--V", default=None, help="spring-block: driving velocity in m/s (default 1e-4)")
+    p.add_argument("--V", default=None, help="spring-block: driving velocity in m/s (default 1e-4); "
+                                              "galvanetto models: belt velocity (dimensionless, default 0.25)")
     p.add_argument("--k", default=None, help="spring-block: spring stiffness in N/m (default 0.9 k_c(V))")
     p.add_argument("--t-end", default=None,
                    help="final time (s; dimensionless for the Galvanetto models); default per model: "
                         + ", ".join(f"{m} {t:g}" for m, t in DEFAULT_T_END.items()))
     p.add_argument("--out", action="append", default=[], metavar="FILE",
                    help="output file, format from the suffix (.csv, .npz, .png); repeatable")
+    p.add_argument("--kinetic", default=None, metavar="EXPR",
+                   help="galvanetto models: kinetic friction for r = Xdot - V < 0 in r, gamma, delta, "
+                        "e.g. '(1 - delta)*exp(gamma*r) + delta' (default Galvanetto 2004 eq. 7)")
+    p.add_argument("--kinetic-pos", default=None, metavar="EXPR",
+                   help="galvanetto models: the r > 0 branch (default the odd reflection of --kinetic)")
+    p.add_argument("--hopf", action="store_true",
+                   help="galvanetto-one-block: also give the damped block's Hopf point c1, omega and criticality")
     p.add_argument("--plot", choices=("overview", "poincare"), default="overview",
                    help="what a .png shows: time series and phase portrait (default) or the Poincaré section "
                         "(the logged sections; the forced oscillator: stroboscopic at the forcing period)")
@@ -145,24 +156,78 @@ def _spring_block(args, t_end: float):
 def _galvanetto(args, t_end: float, n: int):
     from landau.verify.galvanetto.analysis import FIG_STEPPER
     from landau.verify.galvanetto.maps import model_for
+    from landau.laws.kinetic import KineticFriction
     from landau.verify.galvanetto.model import StickSlipParams
     from landau.verify.hybrid import EngineOptions, simulate
 
     name = MODELS[n]
+    V, args.V = args.V, None   # --V (or --param V=...) is the (dimensionless) belt velocity here
     _no_law(args, name)
     known = ["V", "gamma", "delta", "c"] + (["alpha", "beta"] if n == 2 else [])
-    over = parse_params(args.param)
+    given_V = [it for it in args.param if it.split("=", 1)[0].strip() == "V"]
+    if given_V:
+        if V is not None or len(given_V) > 1:
+            raise InputError(f"{name}: the belt velocity V is given twice")
+        V = given_V[0].split("=", 1)[1]
+    over = parse_params([it for it in args.param if it not in given_V])
     _only_known(over, known, name)
-    p = StickSlipParams(n=n).with_(**over)
+    if V is not None:
+        over["V"] = _positive(V, "--V")
+    if args.kinetic_pos is not None and args.kinetic is None:
+        raise InputError(f"{name}: --kinetic-pos needs --kinetic (the r < 0 branch)")
+    law = (KineticFriction() if args.kinetic is None
+           else KineticFriction.from_expression(args.kinetic, args.kinetic_pos,   # parsed, never evaluated
+                                                names=("--kinetic", "--kinetic-pos")))
+    p = StickSlipParams(n=n, law=law).with_(**over)
     if not p.V > 0:
         raise InputError(f"{name}: belt velocity V must be > 0, got {p.V!r}")
+    for side, r in (("--kinetic", -p.V), ("--kinetic-pos", p.V)):
+        with np.errstate(all="ignore"):
+            vals = p.law.neg(r * _R_PROBE) if side == "--kinetic" else p.law.pos(r * _R_PROBE)
+        if not np.all(np.isfinite(vals)):
+            raise InputError(f"{name}: the kinetic law's {side} branch is not finite on the slip velocities "
+                             f"0 < |r| <= {p.V:g} ({p.law!r})")
     mode = "s" * n
     y0 = np.array([0.0] * n + [p.V] * n)
     sol = simulate(model_for(p), mode, y0, (0.0, t_end), FIG_STEPPER, EngineOptions(record=True, samples=8))
     names = ("X", "Xdot") if n == 1 else ("X1", "X2", "X1dot", "X2dot")
     sim = replace(sol.simulation(name), state_names=names)
     used = {k: getattr(p, k) for k in known}
-    return sim, used, {"t": "1"}, ["dimensionless time and displacements; starts stuck at X = 0"]
+    notes = ["dimensionless time and displacements; starts stuck at X = 0"]
+    if not p.law.is_paper_law:
+        used["kinetic"] = str(p.law.neg_expr)
+        used["kinetic_pos"] = str(p.law.pos_expr)
+        notes.append(f"kinetic friction: {p.law!r}")
+    if args.hopf:
+        if n != 1:
+            raise InputError(f"{name}: --hopf applies to galvanetto-one-block (the damped one block)")
+        used["hopf"] = _galvanetto_hopf(p)
+        h = used["hopf"]
+        notes.append(f"damped one block at V = {p.V:g}: Hopf point c1 = {h['c1']:.10g} (omega = {h['omega']:.6g}), "
+                     f"{h['criticality']}" if h["c1"] is not None else h["note"])
+    return sim, used, {"t": "1"}, notes
+
+
+#: fractions of the belt velocity where a user's kinetic branch is checked to be finite
+_R_PROBE = np.array([1e-9, 1e-3, 0.25, 0.5, 0.75, 1.0])
+
+
+def _galvanetto_hopf(p) -> dict:
+    """The damped one block's Hopf analysis for the law of ``p`` (landau engine on the slip field)."""
+    from landau.errors import NoHopfError
+    from landau.verify.galvanetto.bifurcations import hopf_c1, hopf_c1_normal_form
+
+    c1 = hopf_c1(p.V, law=p.law)
+    if not (math.isfinite(c1) and c1 > 0):
+        return {"c1": None, "note": f"no Hopf point: F_k'(-V) = {c1:.6g} <= 0, steady sliding is stable for c >= 0"}
+    try:
+        h = hopf_c1_normal_form(p.V, law=p.law)
+    except NoHopfError as exc:
+        return {"c1": None, "note": f"no Hopf point: {exc}"}
+    return {"c1": float(h.p_c), "c1_closed_form": float(c1), "omega": float(h.omega_c),
+            "Lambda": float(h.Lambda), "criticality": str(h.criticality), "C": float(h.C),
+            "formula": "c1 = F_k'(-V), the slope of the r<0 branch at r = -V",
+            "engine": "landau.general.hopf_normal_form on the smooth slip field"}
 
 
 def _impact_oscillator(args, t_end: float):
@@ -231,6 +296,8 @@ def simulate_model(args):
         return _spring_block(args, t_end)
     if model.startswith("galvanetto"):
         return _galvanetto(args, t_end, 1 if model.endswith("one-block") else 2)
+    if args.kinetic is not None or args.kinetic_pos is not None or args.hopf:
+        raise InputError(f"{model}: --kinetic, --kinetic-pos and --hopf apply to the galvanetto models only")
     if model == "impact-oscillator":
         return _impact_oscillator(args, t_end)
     return _forced_oscillator(args, t_end)
@@ -247,6 +314,7 @@ def run(args) -> dict:
     with progress(total=1, desc=f"simulate {args.model}", unit="run") as bar:   # a status line on a terminal
         sim, params, units, notes = simulate_model(args)
         bar.update()
+    extra = {"hopf": params.pop("hopf")} if "hopf" in params else {}   # galvanetto-one-block --hopf
     files = []
     if len(sim.t) and sim.t[-1] < sim.t_final:
         notes.append(f"the time series holds the first {len(sim.t)} steps only (up to t = {sim.t[-1]:.6g}): "
@@ -275,7 +343,7 @@ def run(args) -> dict:
             "points": len(sim.t), "events": len(sim.events), "steps": sim.nsteps,
             "state_names": list(sim._names()),
             "final_state": dict(zip(sim._names(), (float(v) for v in np.ravel(sim.y_final)))),
-            "notes": notes, "files": files, "exit_code": 0 if sim.success else 1}
+            "notes": notes, "files": files, **extra, "exit_code": 0 if sim.success else 1}
 
 
 def render(doc: dict) -> str:

@@ -8,6 +8,13 @@
   landau (Hopf) engine;
 * :mod:`landau.verify.galvanetto.scenes` — the published points as scenes.
 
+Every entry point takes the kinetic friction as a law object, ``law=``
+(:class:`landau.laws.kinetic.KineticFriction`: Galvanetto's eq. (7) by default, or a user's
+two-branch law from :meth:`~landau.laws.kinetic.KineticFriction.from_expression`); ``gamma``/``delta``
+remain as shortcuts for eq. (7).  The locators derive their search intervals from the model:
+the law's weakening velocity for the sliding points in V, the Hopf point c₁ for c₂, a β scan for
+the discontinuous fold and, from it upward, the period doubling, border collision and crisis.
+
 Findings (located values; DOP853 rtol 1e-11, converged to < 1e-8 against rtol 1e-12)
 -------------------------------------------------------------------------------------
 * One block, γ = 3, c = 0 (Sec. 4.1): with δ = 0.2 type II at V = 1.2409307 and type I

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from landau.laws.kinetic import KineticFriction, resolve_kinetic_law
 from landau.verify.galvanetto.maps import MapUndefined, default_stepper, f, model_for
 from landau.verify.galvanetto.model import StickSlipParams, two_blocks
 from landau.verify.hybrid import EngineOptions, simulate
@@ -26,10 +27,13 @@ def map_curve(p: StickSlipParams, ds, period: int = 1, stepper=FIG_STEPPER) -> n
     return np.array(out)
 
 
-def beta_diagram(betas, d0: float, V: float = 0.25, alpha: float = 1.2, gamma: float = 3.0, delta: float = 0.0,
-                 n_transient: int = 40, n_keep: int = 24, stepper=FIG_STEPPER) -> SweepResult:
-    """Bifurcation diagram of the event map in β (Figs 12, 15): attractor points of d."""
-    return map_bifurcation_diagram(lambda b: (lambda d: f(two_blocks(V, alpha, b, gamma, delta), d, stepper)),
+def beta_diagram(betas, d0: float, V: float = 0.25, alpha: float = 1.2, gamma: float | None = None,
+                 delta: float | None = None, n_transient: int = 40, n_keep: int = 24, stepper=FIG_STEPPER, *,
+                 law: KineticFriction | None = None) -> SweepResult:
+    """Bifurcation diagram of the event map in β (Figs 12, 15): attractor points of d, for the
+    kinetic law ``law`` (default eq. (7) with ``gamma`` = 3, ``delta`` = 0)."""
+    law = resolve_kinetic_law(law, gamma, delta)
+    return map_bifurcation_diagram(lambda b: (lambda d: f(two_blocks(V, alpha, b, law=law), d, stepper)),
                                    betas, d0, n_transient, n_keep)
 
 

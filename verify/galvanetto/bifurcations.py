@@ -25,15 +25,17 @@ Test functions (r = Ẋ − V, K the spring force, F_s the static level):
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable
 
 import numpy as np
 from scipy.optimize import brentq
 
-from landau.errors import InputError, LandauError
-from landau.verify.galvanetto.maps import (MapUndefined, default_stepper, f_n, one_block_cycle, two_block_map)
-from landau.verify.galvanetto.model import K_of, StickSlipParams, one_block, two_blocks
+from landau.errors import InputError, IntegratorError, LandauError
+from landau.verify.galvanetto.maps import (MapUndefined, d_range, default_stepper, f_n, one_block_cycle,
+                                           two_block_map)
+from landau.laws.kinetic import KineticFriction, resolve_kinetic_law
+from landau.verify.galvanetto.model import K_of, StickSlipParams, _make_rhs, one_block, two_blocks
 
 XTOL = 1e-12
 
@@ -141,29 +143,116 @@ def _root(H: Callable[[float], float], a: float, b: float, xtol: float = XTOL):
     return x, abs(H(x)), count[0] + 1, time.perf_counter() - t0
 
 
+def scan_bracket(H: Callable[[float], float], grid, what: str) -> tuple[float, float]:
+    """The first pair of neighbouring grid points where the test function H changes sign.
+
+    Points where H is undefined (:class:`MapUndefined`, an integrator failure) or not finite
+    break the chain: a bracket is made of two neighbours both defined.
+
+    Parameters
+    ----------
+    H : the test function.
+    grid : increasing (or decreasing) parameter values, in the order they are tried.
+    what : the bifurcation's name for the error message.
+
+    Returns
+    -------
+    (a, b) : a bracket of the sign change, in grid order.
+
+    Raises
+    ------
+    InputError
+        No sign change on the grid (the bifurcation is not in the range for these parameters).
+    """
+    prev = None
+    for x in grid:
+        x = float(x)
+        try:
+            h = float(H(x))
+        except (MapUndefined, IntegratorError):
+            prev = None
+            continue
+        if not np.isfinite(h):
+            prev = None
+            continue
+        if h == 0.0:
+            return x, x
+        if prev is not None and np.sign(h) != np.sign(prev[1]):
+            return prev[0], x
+        prev = (x, h)
+    raise InputError(f"{what}: the test function does not change sign for the parameter in "
+                     f"[{float(grid[0]):.6g}, {float(grid[-1]):.6g}]; the bifurcation is not in that range "
+                     "for these parameters (give a bracket)")
+
+
+def _locate(H, bracket, xtol: float = XTOL):
+    a, b = bracket
+    if a == b:
+        return a, 0.0, 1, 0.0
+    return _root(H, min(a, b), max(a, b), xtol)
+
+
+def _velocity_scale(law) -> float:
+    """The kinetic law's weakening velocity (1/γ for eq. (7)); InputError if it does not weaken."""
+    v = law.weakening_velocity()
+    if v is None or not v > 0:
+        raise InputError(f"the kinetic law {law!r} does not weaken with the slip velocity: "
+                         "no sliding bifurcation to locate")
+    return v
+
+
 # ----------------------------------------------------------------- one block (Sec. 4.1, 4.2)
 
-def one_block_sliding(kind: str, gamma: float = 3.0, delta: float = 0.2, c: float = 0.0,
-                      bracket: tuple[float, float] | None = None, stepper=None) -> Located:
+def one_block_sliding(kind: str, gamma: float | None = None, delta: float | None = None, c: float = 0.0,
+                      bracket: tuple[float, float] | None = None, stepper=None, *,
+                      law: KineticFriction | None = None) -> Located:
     """Type II (``kind="II"``) or type I (``"I"``) sliding point of the one block, in V.
 
     The cycle starts at the end of the stick interval (X = F_s − cV, Ẋ = V).  Type II:
     the first return to r = 0 (from r < 0) happens at K = X + cV = −F_s.  Type I: the
-    return from r > 0 happens at K = +F_s.  Paper (δ misprinted as 0; δ = 0.2 reproduces them): 1.241, 10.801.
+    return from r > 0 happens at K = +F_s.  Paper (δ misprinted as 0; δ = 0.2 reproduces them):
+    1.241, 10.801.
+
+    Parameters
+    ----------
+    kind : "II" or "I".
+    gamma, delta : parameters of the default law, eq. (7) (defaults γ = 3, δ = 0.2).
+    c : viscous damping.
+    bracket : search interval in V; default derived from the law: the test function is
+        scanned on a logarithmic grid of V from 0.01 to 10⁴ times the law's weakening velocity
+        (:meth:`KineticFriction.weakening_velocity`, 1/γ for eq. (7)) — type I from the type II
+        point upward, as the r > 0 slip phase is born there.
+    stepper : mode integrator (default DOP853, rtol 1e-11).
+    law : the kinetic law (default eq. (7) with ``gamma``, ``delta``).
+
+    Returns
+    -------
+    Located
+
+    References
+    ----------
+    U. Galvanetto, J. Sound Vib. 276 (2004) 121–139, Sec. 4.1, Fig. 7.
     """
+    if kind not in ("II", "I"):
+        raise InputError(f"one_block_sliding: kind must be 'II' or 'I', not {kind!r}")
+    law = resolve_kinetic_law(law, gamma, delta, default_delta=0.2)
     side = "n" if kind == "II" else "p"
 
     def H(V):
-        p = one_block(V, gamma, delta, c)
+        p = one_block(V, c=c, law=law)
         sol = one_block_cycle(p, stepper, stop=lambda ev: ev.guard == "r1=0" and ev.from_mode == side)
         if sol.status != "stop":
             return 1.0  # never reaches r = 0 from that side: still before the bifurcation
         return _margins(p, sol.events, side)[-1]
 
     if bracket is None:
-        bracket = (0.05, 30.0) if kind == "II" else (one_block_sliding("II", gamma, delta, c).value * 1.01, 60.0)
-    V, res, n, sec = _root(H, *bracket)
-    return Located(f"one-block-type-{kind}", "V", V, res, n, sec, {"gamma": gamma, "delta": delta, "c": c})
+        vs = _velocity_scale(law)
+        start = 0.01 * vs if kind == "II" else one_block_sliding("II", c=c, stepper=stepper, law=law).value
+        grid = start * 10.0 ** (np.arange(0, 1 + 8 * np.log10(1e4 * vs / start)) / 8)
+        bracket = scan_bracket(H, grid, f"one-block type {kind} sliding")
+    V, res, n, sec = _locate(H, bracket)
+    return Located(f"one-block-type-{kind}", "V", V, res, n, sec,
+                   {"gamma": law.gamma, "delta": law.delta, "c": c, "bracket": tuple(map(float, bracket))})
 
 
 # ----------------------------------------------------------------- two blocks (Sec. 4.1)
@@ -175,34 +264,122 @@ class _Warm:
         self.d = d0
 
 
-def two_block_sliding(kind: str, alpha: float = 1.2, beta: float = 1.3, gamma: float = 3.0,
-                      delta: float = 0.0, bracket: tuple[float, float] = (0.18, 0.19),
-                      period: int = 2, d0: float | None = None, stepper=None) -> Located:
+#: a cheaper integrator for the coarse scans that only bracket a sign change (the root itself is
+#: refined with the caller's stepper)
+SCAN_RTOL = 1e-8
+
+
+def attractor(p: StickSlipParams, d0: float = 0.0, n_transient: int = 80, max_period: int = 8, stepper=None,
+              transparent: frozenset = frozenset(), tol: float = 1e-9) -> tuple[np.ndarray, int | None]:
+    """Iterate the event map from ``d0``: the last ``max_period`` + 1 points and the smallest period
+    p ≤ ``max_period`` with |f^p(d) − d| < ``tol`` on them (None when not periodic to that tolerance)."""
+    d = float(d0)
+    for _ in range(n_transient):
+        d = f_n(p, d, 1, stepper, transparent)
+    orb = [d]
+    for _ in range(max_period):
+        orb.append(f_n(p, orb[-1], 1, stepper, transparent))
+    orb = np.array(orb)
+    period = next((k for k in range(1, max_period + 1) if abs(orb[k] - orb[0]) < tol), None)
+    return orb, period
+
+
+def two_block_sliding(kind: str, alpha: float = 1.2, beta: float = 1.3, gamma: float | None = None,
+                      delta: float | None = None, bracket: tuple[float, float] | None = None,
+                      period: int | None = None, d0: float | None = None, stepper=None, *,
+                      law: KineticFriction | None = None) -> Located:
     """Type II / type I sliding point of the two blocks in V (Figs 8, 9).
 
     H is evaluated on the stable periodic point of f^period (warm-started); for type I the
     blocks are made to stick virtually at r = 0 from r > 0 so that the map stays defined
     past the bifurcation (where the g.s.p. disappears).
+
+    Parameters
+    ----------
+    kind : "II" or "I".
+    alpha, beta : inter-block stiffness α and block 2's static level β.
+    gamma, delta : parameters of the default law, eq. (7) (defaults γ = 3, δ = 0).
+    bracket : search interval in V.  Default derived from the law: the minimum of the margin
+        over the map's attractor (80 transient iterations, warm-started along the scan, DOP853 at
+        rtol 1e-8) is scanned on a logarithmic grid of V from 0.1 to 10 times the law's weakening
+        velocity (1/γ for eq. (7)); the first sign change brackets the bifurcation.
+    period : period of the map orbit the bifurcation happens on; default: the attractor's
+        period at the bracket's lower end.
+    d0 : start of the periodic-point iteration (default: the attractor at the lower end).
+    stepper : mode integrator (default DOP853, rtol 1e-11).
+    law : the kinetic law (default eq. (7) with ``gamma``, ``delta``).
+
+    Returns
+    -------
+    Located
+
+    References
+    ----------
+    U. Galvanetto, J. Sound Vib. 276 (2004) 121–139, Sec. 4.1, Figs 8, 9.
     """
+    if kind not in ("II", "I"):
+        raise InputError(f"two_block_sliding: kind must be 'II' or 'I', not {kind!r}")
+    law = resolve_kinetic_law(law, gamma, delta)
     side = "n" if kind == "II" else "p"
     virt = frozenset() if kind == "II" else frozenset({"stick1:p", "stick2:p"})
-    p0 = two_blocks(bracket[0], alpha, beta, gamma, delta)
-    if d0 is None:
-        d = 0.0
-        for _ in range(80):
-            d = f_n(p0, d, 1, stepper, virt)
-        d0 = d
+
+    if bracket is None:
+        scan_st = default_stepper(SCAN_RTOL)
+        warm_scan = _Warm(0.0)
+        periods = {}
+
+        def H_attractor(V):
+            p = two_blocks(V, alpha, beta, law=law)
+            try:
+                orb, per = attractor(p, warm_scan.d, 60 if warm_scan.d == 0.0 else 30, 8, scan_st, virt, tol=1e-6)
+                evs = orbit_events(p, orb[0], 8, scan_st, transparent=virt)
+            except (MapUndefined, IntegratorError):
+                warm_scan.d = 0.0
+                raise
+            warm_scan.d = float(orb[-1])
+            periods[V] = (per, float(orb[0]))
+            m = _margins(p, evs, side)
+            return min(m) if m else 1.0   # no slip phase on that side ends: before the bifurcation
+
+        vs = _velocity_scale(law)
+        a, b = scan_bracket(H_attractor, vs * 10.0 ** (np.arange(-8, 9) / 8), f"two-block type {kind} sliding")
+        # bisect on the attractor until both ends sit on periodic orbits of the same period
+        ha = H_attractor(a)
+        for _ in range(12):
+            if periods[a][0] is not None and periods[a][0] == periods[b][0]:
+                break
+            m = 0.5 * (a + b)
+            warm_scan.d = periods[a][1]
+            hm = H_attractor(m)
+            if np.sign(hm) == np.sign(ha):
+                a, ha = m, hm
+            else:
+                b = m
+        if period is None and periods[a][0] is not None and periods[a][0] == periods[b][0]:
+            period = periods[a][0]
+            d0 = periods[a][1] if d0 is None else d0
+        bracket = (a, b)
+    p0 = two_blocks(bracket[0], alpha, beta, law=law)
+    if d0 is None or period is None:
+        orb, per = attractor(p0, 0.0, 80, 8, stepper, virt)
+        d0 = float(orb[0]) if d0 is None else d0
+        if period is None:
+            if per is None:
+                raise InputError(f"two-block type {kind} sliding: the map's attractor at V = {bracket[0]:.6g} is not "
+                                 "periodic (period <= 8); give period and bracket")
+            period = per
     warm = _Warm(d0)
 
     def H(V):
-        p = two_blocks(V, alpha, beta, gamma, delta)
+        p = two_blocks(V, alpha, beta, law=law)
         pp = periodic_point(p, warm.d, period, stepper, transparent=virt)
         warm.d = pp.d
         return min(_margins(p, orbit_events(p, pp.d, period, stepper, transparent=virt), side))
 
-    V, res, n, sec = _root(H, *bracket)
+    V, res, n, sec = _locate(H, bracket)
     return Located(f"two-block-type-{kind}", "V", V, res, n, sec,
-                   {"alpha": alpha, "beta": beta, "gamma": gamma, "delta": delta, "d": warm.d, "period": period})
+                   {"alpha": alpha, "beta": beta, "gamma": law.gamma, "delta": law.delta, "d": warm.d, "period": period,
+                    "bracket": tuple(map(float, bracket))})
 
 
 # ----------------------------------------------------------------- map bifurcations in β (Sec. 4.2)
@@ -211,97 +388,332 @@ GRAZE1 = frozenset({"r1=0:n"})
 
 
 def kink_function(p: StickSlipParams, d: float, stepper=None) -> float:
-    """max r₁ in the first slip phase of block 1 with both blocks slipping (r₁ < 0 branch,
-    continued through r₁ = 0): zero where the orbit grazes the sticking region of block 1,
-    i.e. at the slope discontinuity of f in Figs 13–14."""
+    """Grazing test of block 1's first slip phase with both blocks slipping (r₁ < 0 branch):
+    max r₁ (< 0) when the phase turns back before reaching r₁ = 0; when it crosses r₁ = 0 with
+    ṙ₁ = a > 0, r̈₁ = j < 0, the height a²/(2|j|) of the local parabola's vertex (the continued
+    maximum, > 0).  Both tend to 0 at the tangency, so the function is continuous; its zero is
+    the grazing of block 1's sticking region, i.e. the slope discontinuity of f in Figs 13–14."""
     ms = two_block_map(p, d, stepper, sections=True, transparent=GRAZE1,
-                       stop=lambda ev: ev.to_mode == "ss" or (ev.guard == "rmax1" and ev.from_mode == "nn"))
+                       stop=lambda ev: ev.to_mode == "ss" or (ev.guard in ("rmax1", "rzero1") and ev.from_mode == "nn"))
     for e in ms.events:
-        if e.guard == "rmax1" and e.from_mode == "nn":
+        if e.from_mode == "nn" and e.guard == "rmax1":
             return float(e.y[2] - p.V)
+        if e.from_mode == "nn" and e.guard == "rzero1":
+            # crossing with ṙ₁ = a > 0 and r̈₁ = j: near the tangency r₁ is a parabola whose vertex
+            # lies a²/(2|j|) above 0 (the continued maximum, without integrating into the region
+            # where the r < 0 branch may be singular)
+            rhs = _make_rhs(p, "nn")
+            y = np.asarray(e.y, float)
+            fy = rhs(e.t, y)
+            h = 1e-7
+            jerk = (rhs(e.t + h, y + h * fy)[2] - rhs(e.t - h, y - h * fy)[2]) / (2 * h)
+            a = float(fy[2])
+            return a * a / (2 * -jerk) if jerk < 0 else a
     raise MapUndefined("no r1 maximum in an 'nn' phase")
 
 
-def kink(p: StickSlipParams, d0: float = -0.096, stepper=None) -> float:
-    """The slope-discontinuity point d_k of f (root of :func:`kink_function`, secant)."""
-    x0, x1 = d0, d0 + 1e-4
-    h0, h1 = kink_function(p, x0, stepper), kink_function(p, x1, stepper)
-    for _ in range(40):
-        if h1 == h0:
+def kink(p: StickSlipParams, d0: float | None = None, stepper=None, tol: float = 1e-10) -> float:
+    """The slope-discontinuity point d_k of f (root of :func:`kink_function`).
+
+    From ``d0`` by secant; without ``d0`` (or when the secant does not converge inside the map's
+    domain) :func:`kink_function` is scanned on 25 points of the domain (:func:`d_range`, from the
+    parameters) and the sign change is refined by Brent's method.
+
+    Parameters
+    ----------
+    p : two-block parameters.
+    d0 : a start near the kink (e.g. the kink at a neighbouring β).
+    stepper : mode integrator (default DOP853, rtol 1e-11).
+    tol : the secant's result is accepted when |kink_function| < tol.
+
+    Returns
+    -------
+    float
+        d_k.
+    """
+    lo, hi = d_range(p)
+
+    def g(d, st):
+        # the r₁ < 0 branch continued beyond r₁ = 0 may become singular (eq. (7) has a pole at
+        # r = 1/γ): then the maximum of r₁ is certainly positive
+        try:
+            return kink_function(p, d, st)
+        except IntegratorError:
+            return 1.0
+
+    def refine(a, b):
+        x = brentq(lambda d: g(d, stepper), min(a, b), max(a, b), xtol=1e-15 if tol <= 1e-10 else 0.1 * tol,
+                   rtol=1e-15)
+        if not abs(g(x, stepper)) < max(tol, 1e-9):
+            raise MapUndefined(f"no grazing of block 1's sticking region near d = {x:.6g} (a jump, not a kink)")
+        return x
+
+    if d0 is not None:
+        try:   # secant from d0 (a few evaluations when d0 is close)
+            x0, x1 = d0, d0 + 1e-4
+            h0, h1 = kink_function(p, x0, stepper), kink_function(p, x1, stepper)
+            for _ in range(12):
+                if h1 == h0:
+                    break
+                x0, h0, x1 = x1, h1, x1 - h1 * (x1 - x0) / (h1 - h0)
+                h1 = kink_function(p, x1, stepper)
+                if abs(x1 - x0) < 1e-15 or h1 == 0:
+                    break
+            if lo < x1 < hi and abs(h1) < tol:
+                return x1
+        except (MapUndefined, IntegratorError):
+            pass
+        w = 1e-3 * (hi - lo)   # else a bracket grown around d0
+        g0 = g(d0, stepper)
+        while w < hi - lo:
+            for e in (d0 - w, d0 + w):
+                if lo < e < hi:
+                    try:
+                        if np.sign(g(e, stepper)) != np.sign(g0):
+                            return refine(d0, e)
+                    except MapUndefined:
+                        pass
+            w *= 4
+    scan_st = default_stepper(SCAN_RTOL)
+    a, b = scan_bracket(lambda d: g(d, scan_st), np.linspace(lo, hi, 27)[1:-1], "slope discontinuity of the map")
+    return refine(a, b)
+
+
+def fig12_params(beta: float, V: float = 0.25, alpha: float = 1.2, gamma: float | None = None,
+                 delta: float | None = None, *, law: KineticFriction | None = None) -> StickSlipParams:
+    """The two blocks of Fig. 12 (V = 0.25, α = 1.2, eq. (7) with γ = 3, δ = 0) at static level β."""
+    return two_blocks(V, alpha, beta, gamma, delta, law=law)
+
+
+def fixed_point_beside_kink(p: StickSlipParams, dk: float, side: int, stepper=None) -> PeriodicPoint:
+    """The fixed point of f on one side of the kink d_k (``side`` −1: left, +1: right), when f has
+    its minimum at the kink below the diagonal (f(d_k) < d_k): steps away from d_k by 2ʲ|f(d_k) − d_k|
+    until f(d) − d changes sign, then Brent's method."""
+    h = lambda d: f_n(p, d, 1, stepper) - d
+    h0 = h(dk)
+    if not h0 < 0:
+        raise MapUndefined(f"f(d_k) - d_k = {h0:.3g} >= 0: no fixed point next to the kink")
+    lo, hi = d_range(p)
+    w = max(abs(h0), 1e-12)
+    inner = dk + side * 1e-12
+    for _ in range(60):
+        d = dk + side * w
+        if not lo < d < hi:
             break
-        x0, h0, x1 = x1, h1, x1 - h1 * (x1 - x0) / (h1 - h0)
-        h1 = kink_function(p, x1, stepper)
-        if abs(x1 - x0) < 1e-15 or h1 == 0:
-            break
-    return x1
+        if h(d) > 0:
+            x = brentq(h, min(inner, d), max(inner, d), xtol=1e-15, rtol=1e-15)
+            return PeriodicPoint(x, 1, abs(h(x)))
+        inner, w = d, 2 * w
+    raise MapUndefined(f"no fixed point of f {'left' if side < 0 else 'right'} of the kink d_k = {dk:.6g}")
 
 
-def fig12_params(beta: float, V: float = 0.25, alpha: float = 1.2, gamma: float = 3.0, delta: float = 0.0):
-    return two_blocks(V, alpha, beta, gamma, delta)
+#: first step and growth of the upward scans in β that chain the Fig. 12 bifurcations
+BETA_STEP, BETA_GROWTH = 1e-4, 2.0
 
 
-def discontinuous_fold(bracket=(1.7210, 1.7225), V=0.25, alpha=1.2, gamma=3.0, delta=0.0, stepper=None) -> Located:
-    """β where a fixed point of f sits at the kink: f(d_k) = d_k (Fig. 12, β ≈ 1.7217)."""
-    warm = _Warm(-0.096)
+def _chain_scan(H, start: float, what: str, limit: float = 0.5) -> tuple[float, float]:
+    """Bracket of the first sign change of H above ``start``: β = start + 10⁻⁴·2ᵏ (k = 0, 1, ...)
+    up to start + ``limit``."""
+    steps = BETA_STEP * BETA_GROWTH ** np.arange(0, 1 + np.log(limit / BETA_STEP) / np.log(BETA_GROWTH))
+    return scan_bracket(H, start + steps, what)
+
+
+def _fold_scan(V, alpha, law) -> tuple[float, float]:
+    """Bracket in β of the discontinuous fold of Fig. 12 type, from the model alone.
+
+    β is scanned upward from 1 (equal static levels) in steps of 0.05 up to 1 + 2(1 + α) with
+    H(β) = f(d_k) − d_k (DOP853, rtol 1e-8).  A fold of Fig. 12's kind is a sign change from + to −
+    (the minimum of f at its kink drops below the diagonal, two fixed points are born) at which f
+    decreases left of the kink and has slope > 1 right of it (Galvanetto 2004, Sec. 2.2 case (3):
+    the left slope is in (−1, 0) at the fold itself; at the scan's grid point, up to 0.05 later, it
+    may already be below −1, past the period doubling).
+    """
+    st = default_stepper(SCAN_RTOL)
+    warm = _Warm(None)
 
     def H(beta):
-        p = fig12_params(beta, V, alpha, gamma, delta)
+        p = fig12_params(beta, V, alpha, law=law)
+        try:
+            warm.d = kink(p, warm.d, st, tol=1e-6)
+        except (MapUndefined, IntegratorError, InputError):
+            warm.d = None
+            raise MapUndefined("no kink")
+        return f_n(p, warm.d, 1, st) - warm.d
+
+    betas = 1.0 + 0.05 * np.arange(1, 1 + int(round(2 * (1 + alpha) / 0.05)))
+    prev = None
+    for beta in betas:
+        try:
+            h = H(beta)
+        except (MapUndefined, IntegratorError):
+            prev = None
+            continue
+        if prev is not None and prev[1] > 0 > h:
+            p = fig12_params(beta, V, alpha, law=law)
+            dk = warm.d
+            off = 2e-4 * (d_range(p)[1] - d_range(p)[0])
+            try:
+                left = map_slope(p, dk - off, 1, st, h=off / 20)
+                right = map_slope(p, dk + off, 1, st, h=off / 20)
+            except (MapUndefined, IntegratorError):
+                left = right = np.nan
+            if left < 0.0 and right > 1.0:
+                return prev[0], beta
+        prev = (beta, h)
+    raise InputError(f"discontinuous fold: no fold of Galvanetto's case (3) for beta in (1, {betas[-1]:.3g}] "
+                     f"at V = {V:g}, alpha = {alpha:g}, {law!r}")
+
+
+def discontinuous_fold(bracket=None, V=0.25, alpha=1.2, gamma=None, delta=None, stepper=None, *,
+                       law: KineticFriction | None = None) -> Located:
+    """β where a fixed point of f sits at the kink: f(d_k) = d_k (Fig. 12, β ≈ 1.7217).
+
+    Parameters
+    ----------
+    bracket : search interval in β; default from the model (:func:`_fold_scan`: the first fold of
+        the paper's case (3) above β = 1).
+    V, alpha : belt velocity and inter-block stiffness (Fig. 12: 0.25, 1.2).
+    gamma, delta : parameters of the default law, eq. (7) (defaults γ = 3, δ = 0).
+    stepper : mode integrator (default DOP853, rtol 1e-11).
+    law : the kinetic law (default eq. (7) with ``gamma``, ``delta``).
+
+    Returns
+    -------
+    Located
+
+    References
+    ----------
+    U. Galvanetto, J. Sound Vib. 276 (2004) 121–139, Sec. 2.2 and 4.2, Figs 12, 13.
+    """
+    law = resolve_kinetic_law(law, gamma, delta)
+    return _memo('fold', V, alpha, law, bracket, stepper,
+                 lambda: _discontinuous_fold(bracket, V, alpha, stepper, law))
+
+
+def _discontinuous_fold(bracket, V, alpha, stepper, law) -> Located:
+    if bracket is None:
+        bracket = _fold_scan(V, alpha, law)
+    warm = _Warm(None)
+
+    def H(beta):
+        p = fig12_params(beta, V, alpha, law=law)
         warm.d = kink(p, warm.d, stepper)
         return f_n(p, warm.d, 1, stepper) - warm.d
 
-    b, res, n, sec = _root(H, *bracket)
-    return Located("fold", "beta", b, res, n, sec, {"d_kink": warm.d})
+    b, res, n, sec = _locate(H, bracket)
+    return Located("fold", "beta", b, res, n, sec, {"d_kink": float(warm.d), "bracket": tuple(map(float, bracket))})
 
 
-def period_doubling(bracket=(1.7225, 1.7235), V=0.25, alpha=1.2, gamma=3.0, delta=0.0, stepper=None) -> Located:
-    """β where the stable fixed point (left of the kink) has slope −1 (Fig. 12, β ≈ 1.7231)."""
-    warm = _Warm(-0.0975)
+#: the Fig. 12 sequence located with the default stepper and derived brackets, per parameter set
+#: (each bifurcation is searched upward from the previous one, so they are reused)
+_SEQ_CACHE: dict = {}
 
-    def H(beta):
-        p = fig12_params(beta, V, alpha, gamma, delta)
-        dk = kink(p, -0.096, stepper)
-        pp = periodic_point(p, warm.d, 1, stepper, bracket=(dk - 0.004, dk - 1e-9))
-        warm.d = pp.d
+
+def _memo(name: str, V, alpha, law, bracket, stepper, compute) -> Located:
+    if bracket is not None or stepper is not None:
+        return compute()
+    key = (name, float(V), float(alpha), law)
+    if key not in _SEQ_CACHE:
+        if len(_SEQ_CACHE) > 64:
+            _SEQ_CACHE.clear()
+        _SEQ_CACHE[key] = compute()
+    return _SEQ_CACHE[key]
+
+
+def period_doubling(bracket=None, V=0.25, alpha=1.2, gamma=None, delta=None, stepper=None, *,
+                    law: KineticFriction | None = None) -> Located:
+    """β where the stable fixed point (left of the kink) has slope −1 (Fig. 12, β ≈ 1.7231).
+
+    The default ``bracket`` is searched upward from the discontinuous fold (where that fixed point
+    is born at the kink with the left slope in (−1, 0)); other parameters as
+    :func:`discontinuous_fold`.
+    """
+    law = resolve_kinetic_law(law, gamma, delta)
+    return _memo('period-doubling', V, alpha, law, bracket, stepper,
+                 lambda: _period_doubling(bracket, V, alpha, stepper, law))
+
+
+def _period_doubling(bracket, V, alpha, stepper, law) -> Located:
+    warm = _Warm(None)
+
+    def H(beta, stepper=stepper):
+        p = fig12_params(beta, V, alpha, law=law)
+        dk = kink(p, warm.d, stepper)
+        warm.d = dk
+        pp = fixed_point_beside_kink(p, dk, -1, stepper)
         return map_slope(p, pp.d, 1, stepper, h=min(2e-5, (dk - pp.d) / 3)) + 1.0
 
-    b, res, n, sec = _root(H, *bracket)
-    return Located("period-doubling", "beta", b, res, n, sec, {"d_fixed": warm.d})
+    if bracket is None:
+        fold = discontinuous_fold(None, V, alpha, law=law)
+        warm.d = fold.details["d_kink"]
+        bracket = _chain_scan(H, fold.value, "period doubling")
+    b, res, n, sec = _locate(H, bracket)
+    return Located("period-doubling", "beta", b, res, n, sec,
+                   {"d_kink": float(warm.d), "bracket": tuple(map(float, bracket))})
 
 
-def border_collision(bracket=(1.7233, 1.7239), V=0.25, alpha=1.2, gamma=3.0, delta=0.0, stepper=None) -> Located:
-    """β where the period-2 orbit reaches the kink: f²(d_k) = d_k (Fig. 12/14, β ≈ 1.7236)."""
-    warm = _Warm(-0.096)
+def border_collision(bracket=None, V=0.25, alpha=1.2, gamma=None, delta=None, stepper=None, *,
+                     law: KineticFriction | None = None) -> Located:
+    """β where the period-2 orbit reaches the kink: f²(d_k) = d_k (Fig. 12/14, β ≈ 1.7236).
+
+    The default ``bracket`` is searched upward from the period doubling (where the period-2 orbit
+    is born); other parameters as :func:`discontinuous_fold`.
+    """
+    law = resolve_kinetic_law(law, gamma, delta)
+    return _memo('border-collision', V, alpha, law, bracket, stepper,
+                 lambda: _border_collision(bracket, V, alpha, stepper, law))
+
+
+def _border_collision(bracket, V, alpha, stepper, law) -> Located:
+    warm = _Warm(None)
 
     def H(beta):
-        p = fig12_params(beta, V, alpha, gamma, delta)
+        p = fig12_params(beta, V, alpha, law=law)
         warm.d = kink(p, warm.d, stepper)
         return f_n(p, warm.d, 2, stepper) - warm.d
 
-    b, res, n, sec = _root(H, *bracket)
-    return Located("border-collision", "beta", b, res, n, sec, {"d_kink": warm.d})
+    if bracket is None:
+        pd = period_doubling(None, V, alpha, law=law)
+        warm.d = pd.details["d_kink"]
+        bracket = _chain_scan(H, pd.value, "border collision")
+    b, res, n, sec = _locate(H, bracket)
+    return Located("border-collision", "beta", b, res, n, sec,
+                   {"d_kink": float(warm.d), "bracket": tuple(map(float, bracket))})
 
 
-def boundary_crisis(bracket=(1.7280, 1.7295), V=0.25, alpha=1.2, gamma=3.0, delta=0.0, stepper=None) -> Located:
+def boundary_crisis(bracket=None, V=0.25, alpha=1.2, gamma=None, delta=None, stepper=None, *,
+                    law: KineticFriction | None = None) -> Located:
     """β where the chaotic attractor born at the border collision touches the unstable
     period-1 point u (right of the kink) and disappears (Fig. 12, tick label ≈ 1.7280).
 
     f has a minimum at the kink d_k, so the attractor is the interval [f(d_k), f²(d_k)];
-    it collides with u when f²(d_k) = u: H(β) = f²(d_k) − u.
+    it collides with u when f²(d_k) = u: H(β) = f²(d_k) − u.  The default ``bracket`` is
+    searched upward from the border collision; other parameters as :func:`discontinuous_fold`.
     """
-    warm = _Warm(-0.095)
+    law = resolve_kinetic_law(law, gamma, delta)
+    return _memo('crisis', V, alpha, law, bracket, stepper,
+                 lambda: _boundary_crisis(bracket, V, alpha, stepper, law))
+
+
+def _boundary_crisis(bracket, V, alpha, stepper, law) -> Located:
+    warm = _Warm(None)
 
     def H(beta):
-        p = fig12_params(beta, V, alpha, gamma, delta)
+        p = fig12_params(beta, V, alpha, law=law)
         warm.d = dk = kink(p, warm.d, stepper)
-        u = periodic_point(p, 0.0, 1, stepper, bracket=(dk + 1e-10, dk + 0.004)).d
+        u = fixed_point_beside_kink(p, dk, +1, stepper).d
         return f_n(p, dk, 2, stepper) - u
 
-    b, res, n, sec = _root(H, *bracket)
-    return Located("crisis", "beta", b, res, n, sec, {"d_kink": warm.d})
+    if bracket is None:
+        bc = border_collision(None, V, alpha, law=law)
+        warm.d = bc.details["d_kink"]
+        bracket = _chain_scan(H, bc.value, "boundary crisis")
+    b, res, n, sec = _locate(H, bracket)
+    return Located("crisis", "beta", b, res, n, sec, {"d_kink": float(warm.d), "bracket": tuple(map(float, bracket))})
 
 
-def grazing_sliding(bracket=(1.7652, 1.7656), V=0.25, alpha=1.2, gamma=3.0, delta=0.0, stepper=None,
-                    d0: float = -0.0858) -> Located:
+def grazing_sliding(bracket=(1.7652, 1.7656), V=0.25, alpha=1.2, gamma=None, delta=None, stepper=None,
+                    d0: float = -0.0858, *, law: KineticFriction | None = None) -> Located:
     """β* of Fig. 15: on the period-2 attractor, the slip phase of block 1 that follows the
     start of block 2's slip grazes block 1's sticking region (max r₁ = 0 at K₁ = F_s1).
 
@@ -312,8 +724,9 @@ def grazing_sliding(bracket=(1.7652, 1.7656), V=0.25, alpha=1.2, gamma=3.0, delt
     """
     warm = _Warm(d0)
 
+    law = resolve_kinetic_law(law, gamma, delta)
     def H(beta):
-        p = fig12_params(beta, V, alpha, gamma, delta)
+        p = fig12_params(beta, V, alpha, law=law)
         pp = periodic_point(p, warm.d, 2, stepper)
         warm.d = pp.d
         return kink_function(p, pp.d, stepper)
@@ -322,16 +735,18 @@ def grazing_sliding(bracket=(1.7652, 1.7656), V=0.25, alpha=1.2, gamma=3.0, delt
     return Located("grazing-sliding", "beta", b, res, n, sec, {"d": warm.d, "grazing_block": 1})
 
 
-def multi_sliding(bracket=(10.745, 10.756), V=0.05, alpha=1.2, beta=2.0, delta=0.0, stepper=None,
-                  d0: float = 0.19664) -> Located:
+def multi_sliding(bracket=(10.745, 10.756), V=0.05, alpha=1.2, beta=2.0, delta=None, stepper=None,
+                  d0: float = 0.19664, *,
+                  law: KineticFriction | None = None) -> Located:
     """γ of Fig. 16: during a stick phase of block 2 (block 1 slipping with r₁ > 0) the
     minimum of K₂ touches −β, so a slip phase of block 2 with r₂ > 0 is born from the stick
     phase.  H = min K₂ + β in that stick phase (guard made transparent to continue it)."""
+    law = resolve_kinetic_law(law, None, delta)
     warm = _Warm(d0)
     virt = frozenset({"K2=-Fs"})
 
     def H(gamma):
-        p = two_blocks(V, alpha, beta, gamma, delta)
+        p = two_blocks(V, alpha, beta, law=replace(law, gamma=float(gamma)))
         pp = periodic_point(p, warm.d, 2, stepper)
         warm.d = pp.d
         d = pp.d
@@ -372,8 +787,9 @@ def hopf_c1_normal_form(V: float = 0.5, gamma: float | None = None, delta: float
                             (0.5 * c1, 1.5 * c1))
 
 
-def nonsmooth_fold_c2(V: float = 0.5, gamma: float = 3.0, delta: float = 0.0,
-                      bracket: tuple[float, float] | None = None, stepper=None) -> Located:
+def nonsmooth_fold_c2(V: float = 0.5, gamma: float | None = None, delta: float | None = None,
+                      bracket: tuple[float, float] | None = None, stepper=None, *,
+                      law: KineticFriction | None = None) -> Located:
     """c₂: the unstable cycle of the smooth slip field touches the stick line Ẋ = V at the
     stick end X = F_s − cV (Fig. 10c), where stick–slip and slip–stick transitions merge.
 
@@ -382,18 +798,43 @@ def nonsmooth_fold_c2(V: float = 0.5, gamma: float = 3.0, delta: float = 0.0,
     to its previous velocity maximum: H(c) = r there.  c < c₂: the point lies outside the
     cycle, the backward orbit shrinks onto it, H < 0; c > c₂: inside, H > 0.  H is smooth
     and bounded (the backward orbit never leaves the cycle's neighbourhood).
+
+    Parameters
+    ----------
+    V : belt velocity.
+    gamma, delta : parameters of the default law, eq. (7) (defaults γ = 3, δ = 0).
+    bracket : search interval in c; default derived from the Hopf point c₁ = F_k'(−V) (the
+        unstable cycle is born there): H is scanned on a logarithmic grid of c − c₁ from
+        10⁻⁴ c₁ to 10² c₁.
+    stepper : mode integrator (default DOP853, rtol 1e-11).
+    law : the kinetic law (default eq. (7) with ``gamma``, ``delta``).
+
+    Returns
+    -------
+    Located
+
+    Raises
+    ------
+    NoHopfError
+        c₁ ≤ 0: the law does not weaken at r = −V, steady sliding has no Hopf point.
+
+    References
+    ----------
+    U. Galvanetto, J. Sound Vib. 276 (2004) 121–139, Sec. 4.2, Fig. 10.
     """
+    from landau.errors import NoHopfError
     from landau.verify.hybrid import Guard, HybridModel, Mode, simulate
     from landau.verify.hybrid.simulate import EngineOptions
-    c1 = hopf_c1(V, gamma, delta)
+    law = resolve_kinetic_law(law, gamma, delta)
+    c1 = hopf_c1(V, law=law)
+    if not c1 > 0:
+        raise NoHopfError(f"F_k'(-V) = {c1:.6g} <= 0 at V = {V:g}: no Hopf point c1 > 0 for {law!r}")
     st = stepper or default_stepper()
 
     def H(c):
-        p = one_block(V, gamma, delta, c)
-        law = p.law
-        rhs = lambda t, y: np.array([-y[1], (y[0] + c * y[1]) - law.neg(y[1] - V)])
-        acc = lambda t, y: -(y[0] + c * y[1]) + law.neg(y[1] - V)
-        model = HybridModel.from_modes(Mode("slip-back", rhs, (Guard("vmax", lambda t, y: -acc(t, y)),)))
+        slip = _make_rhs(one_block(V, c=c, law=law), "n")   # the r < 0 slip field of the model
+        back = lambda t, y: -slip(t, y)
+        model = HybridModel.from_modes(Mode("slip-back", back, (Guard("vmax", lambda t, y: -slip(t, y)[1]),)))
         sol = simulate(model, "slip-back", [1.0 - c * V, V], (0.0, 100.0), st, EngineOptions(record=False),
                        stop=lambda ev: ev.guard == "vmax")
         if sol.status != "stop":
@@ -401,6 +842,6 @@ def nonsmooth_fold_c2(V: float = 0.5, gamma: float = 3.0, delta: float = 0.0,
         return float(sol.y[1] - V)
 
     if bracket is None:
-        bracket = (c1 * 1.0001, c1 * 3)
-    c, res, n, sec = _root(H, *bracket)
-    return Located("one-block-c2", "c", c, res, n, sec, {"c1": c1})
+        bracket = scan_bracket(H, c1 * (1.0 + 10.0 ** (np.arange(-16, 9) / 4)), "non-smooth fold c2")
+    c, res, n, sec = _locate(H, bracket)
+    return Located("one-block-c2", "c", c, res, n, sec, {"c1": c1, "bracket": tuple(map(float, bracket))})

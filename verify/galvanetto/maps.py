@@ -22,7 +22,11 @@ from landau.errors import LandauError
 from landau.verify.galvanetto.model import StickSlipParams, build_model
 from landau.verify.hybrid import EngineOptions, EventLog, ScipyStepper, simulate
 
-FAST = EngineOptions(record=False)
+#: map runs record no samples.  A stuck block whose spring force lands just outside its sticking
+#: interval while moving into it is entered (``recover_tol``, larger than the model's landing band
+#: ``CORNER_TOL``·F_s): at a sliding bifurcation itself the slip phase ends exactly at K = ±F_s, and
+#: a smaller tolerance makes the Filippov rule alternate between slip and stick there.
+FAST = EngineOptions(record=False, recover_tol=1e-5)
 
 
 def default_stepper(rtol: float = 1e-11) -> ScipyStepper:

@@ -17,7 +17,8 @@ side; a stuck block leaves when Kᵢ reaches ±F_si (to ``n`` at +F_si, to ``p``
 
 Optional sections (``sections=True``) log, without switching, the extrema that the
 sliding-bifurcation locators need: ``rmax{i}`` (a maximum of rᵢ while slipping with
-rᵢ < 0: grazing of the stick surface), ``rmin{i}`` (a minimum while rᵢ > 0) and
+rᵢ < 0: grazing of the stick surface), ``rmin{i}`` (a minimum while rᵢ > 0), ``rzero{i}``
+(a slip branch made transparent at rᵢ = 0 crosses it) and
 ``Kmin{i}``/``Kmax{i}`` (extrema of Kᵢ while block i sticks: multi-sliding).
 """
 
@@ -28,35 +29,57 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from landau.laws.kinetic import KineticFriction
+from landau.laws.kinetic import KineticFriction, resolve_kinetic_law
 from landau.verify.hybrid import Guard, HybridModel, Jump, Mode
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class StickSlipParams:
-    """Parameters of the one-block (n=1) or two-block (n=2) model; paper's symbols."""
+    """Parameters of the one-block (n=1) or two-block (n=2) model; paper's symbols.
 
-    V: float = 0.25
-    gamma: float = 3.0
-    delta: float = 0.0
-    c: float = 0.0
-    alpha: float = 1.2
-    beta: float = 1.3
-    n: int = 1
+    The kinetic friction is the law object ``law`` (:class:`landau.laws.kinetic.KineticFriction`,
+    default Galvanetto's eq. (7) with γ = 3, δ = 0); ``gamma``/``delta`` are its parameters
+    (given to the constructor they set those of the default law, or of ``law`` when they agree
+    with it).
+    """
+
+    V: float
+    c: float
+    alpha: float
+    beta: float
+    n: int
+    law: KineticFriction
+
+    def __init__(self, V: float = 0.25, gamma: float | None = None, delta: float | None = None, c: float = 0.0,
+                 alpha: float = 1.2, beta: float = 1.3, n: int = 1, law: KineticFriction | None = None):
+        law = resolve_kinetic_law(law, gamma, delta)
+        for k, v in (("V", float(V)), ("c", float(c)), ("alpha", float(alpha)), ("beta", float(beta)),
+                     ("n", int(n)), ("law", law)):
+            object.__setattr__(self, k, v)
 
     @property
-    def law(self) -> KineticFriction:
-        return KineticFriction(self.gamma, self.delta)
+    def gamma(self) -> float:
+        """γ of the kinetic law."""
+        return self.law.gamma
+
+    @property
+    def delta(self) -> float:
+        """δ of the kinetic law."""
+        return self.law.delta
 
     @property
     def Fs(self) -> tuple[float, ...]:
         return (1.0,) if self.n == 1 else (1.0, self.beta)
 
     def with_(self, **kw) -> "StickSlipParams":
-        return replace(self, **kw)
+        """A copy with some parameters changed; ``gamma``/``delta`` change the kinetic law's values."""
+        lawkw = {k: float(kw.pop(k)) for k in ("gamma", "delta") if k in kw}
+        p = replace(self, **kw)
+        return replace(p, law=replace(p.law, **lawkw)) if lawkw else p
 
 
-def one_block(V: float, gamma: float = 3.0, delta: float = 0.0, c: float = 0.0) -> StickSlipParams:
+def one_block(V: float, gamma: float | None = None, delta: float | None = None, c: float = 0.0, *,
+              law: KineticFriction | None = None) -> StickSlipParams:
     """Parameters of the one-block model (dimensionless, the paper's symbols).
 
     Parameters
@@ -66,9 +89,12 @@ def one_block(V: float, gamma: float = 3.0, delta: float = 0.0, c: float = 0.0) 
     gamma : float, optional
         Velocity weakening γ of the kinetic friction (default 3, the paper's examples).
     delta : float, optional
-        Residual kinetic friction level δ in [0, 1].
+        Residual kinetic friction level δ in [0, 1] (default 0).
     c : float, optional
         Viscous damping.
+    law : KineticFriction, optional
+        The kinetic friction law (default eq. (7) with ``gamma``, ``delta``); e.g.
+        ``KineticFriction.from_expression("(1 - delta)*exp(gamma*r) + delta")``.
 
     Returns
     -------
@@ -80,11 +106,11 @@ def one_block(V: float, gamma: float = 3.0, delta: float = 0.0, c: float = 0.0) 
     Galvanetto, U. (2004), "Sliding bifurcations in the dynamics of mechanical systems with dry
     friction — remarks for engineers and applied scientists", J. Sound Vib. 276, 121–139, eqs (3a), (4a), (7).
     """
-    return StickSlipParams(V=V, gamma=gamma, delta=delta, c=c, n=1)
+    return StickSlipParams(V=V, gamma=gamma, delta=delta, c=c, n=1, law=law)
 
 
-def two_blocks(V: float, alpha: float = 1.2, beta: float = 1.3, gamma: float = 3.0,
-               delta: float = 0.0) -> StickSlipParams:
+def two_blocks(V: float, alpha: float = 1.2, beta: float = 1.3, gamma: float | None = None,
+               delta: float | None = None, *, law: KineticFriction | None = None) -> StickSlipParams:
     """Parameters of the two-block model (dimensionless, the paper's symbols).
 
     Parameters
@@ -96,9 +122,11 @@ def two_blocks(V: float, alpha: float = 1.2, beta: float = 1.3, gamma: float = 3
     beta : float, optional
         Static friction level β of block 2 (block 1's is 1).
     gamma : float, optional
-        Velocity weakening γ of the kinetic friction.
+        Velocity weakening γ of the kinetic friction (default 3).
     delta : float, optional
-        Residual kinetic friction level δ in [0, 1].
+        Residual kinetic friction level δ in [0, 1] (default 0).
+    law : KineticFriction, optional
+        The kinetic friction law (default eq. (7) with ``gamma``, ``delta``).
 
     Returns
     -------
@@ -110,7 +138,12 @@ def two_blocks(V: float, alpha: float = 1.2, beta: float = 1.3, gamma: float = 3
     Galvanetto, U. (2004), "Sliding bifurcations in the dynamics of mechanical systems with dry
     friction — remarks for engineers and applied scientists", J. Sound Vib. 276, 121–139, eqs (3b), (4b), (7), (8b).
     """
-    return StickSlipParams(V=V, gamma=gamma, delta=delta, alpha=alpha, beta=beta, n=2)
+    return StickSlipParams(V=V, gamma=gamma, delta=delta, alpha=alpha, beta=beta, n=2, law=law)
+
+
+#: relative width of the band outside ±F_s where a landing block whose spring force moves into
+#: its sticking interval sticks at once (see :func:`build_model`)
+CORNER_TOL = 1e-6
 
 
 def K_of(p: StickSlipParams, y):
@@ -199,7 +232,14 @@ def build_model(p: StickSlipParams, sections: bool = False, transparent: frozens
                     y = np.array(y, dtype=float)
                     y[n + i] = V  # exactly on the surface
                     K = K_of(p, y)[i]
-                    if -Fs[i] <= K <= Fs[i] or f"stick{i + 1}:{ch}" in transparent:
+                    # dKᵢ/dt with block i at the belt speed (its stick-phase rate)
+                    kd = p.V if n == 1 else (1 + p.alpha) * y[n + i] - p.alpha * y[2 * n - 1 - i]
+                    # a landing just outside the sticking interval (by < CORNER_TOL F_s, the accuracy
+                    # of a located event near a sliding bifurcation) while Kᵢ moves into it: the
+                    # slip on the other side would reverse at once (an O(ε²) excursion), so it sticks
+                    corner = ((-Fs[i] * (1 + CORNER_TOL) <= K < -Fs[i] and kd > 0)
+                              or (Fs[i] < K <= Fs[i] * (1 + CORNER_TOL) and kd < 0))
+                    if -Fs[i] <= K <= Fs[i] or corner or f"stick{i + 1}:{ch}" in transparent:
                         new, note = "s", "slip→stick"
                     elif K < -Fs[i]:
                         new, note = "p", "slip→slip (crossing, r>0)"
@@ -211,6 +251,8 @@ def build_model(p: StickSlipParams, sections: bool = False, transparent: frozens
 
                 if f"r{i + 1}=0:{ch}" not in transparent:
                     guards.append(Guard(f"r{i + 1}=0", r_guard, land))
+                elif sections:   # the continued slip branch crosses r = 0: logged (``rzero{i}``)
+                    guards.append(Guard(f"rzero{i + 1}", r_guard))
                 if sections:
                     acc = _accel_fun(p, i, ch)
                     if ch == "n":

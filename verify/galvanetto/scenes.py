@@ -4,7 +4,9 @@
 instead of a number (Figs 8, 9, 15) the published value is the interval's midpoint and the
 tolerance its relative half-width, so ``agrees`` means "inside the printed interval".
 ``lo``/``hi`` bound the search (Brent's method on the scene's test function, see
-:mod:`landau.verify.galvanetto.bifurcations`).
+:mod:`landau.verify.galvanetto.bifurcations`); ``lo = hi = 0`` (the default) derives the search
+interval from the model (the law's weakening velocity, the Hopf point, the preceding bifurcation),
+so the scenes also run at parameters away from the paper's (``--param``).
 """
 
 from __future__ import annotations
@@ -25,13 +27,22 @@ def _interval(lo: float, hi: float) -> tuple[float, float]:
     return mid, 0.5 * (hi - lo) / mid
 
 
+def _bracket(p: dict):
+    """The scene's (lo, hi), or None (derived from the model) when both are 0; ``lo = 0`` with a
+    given ``hi`` searches (hi/1000, hi) (the parameters searched are positive)."""
+    lo, hi = p["lo"], p["hi"]
+    if lo == 0 and hi == 0:
+        return None
+    return (hi * 1e-3 if lo == 0 else lo, hi)
+
+
 def _doc(loc: B.Located, **extra) -> dict:
     return {"value": loc.value, "residual": loc.residual, "evaluations": loc.evaluations, **loc.details, **extra}
 
 
 def _one_block(kind):
     def compute(p):
-        loc = B.one_block_sliding(kind, p["gamma"], p["delta"], p["c"], bracket=(p["lo"], p["hi"]))
+        loc = B.one_block_sliding(kind, p["gamma"], p["delta"], p["c"], bracket=_bracket(p))
         return _doc(loc)
     return compute
 
@@ -39,14 +50,14 @@ def _one_block(kind):
 register(Scene(
     name="galvanetto2004/one-block-type-II", parameter="V", units="dimensionless",
     source=f"{SRC}, Sec. 4.1, Fig. 7 (V≈1.241; reproduced with δ=0.2, the printed δ=0 gives ≈0.642)",
-    compute=_one_block("II"), defaults={"gamma": 3.0, "delta": 0.2, "c": 0.0, "lo": 0.05, "hi": 5.0},
+    compute=_one_block("II"), defaults={"gamma": 3.0, "delta": 0.2, "c": 0.0, "lo": 0.0, "hi": 0.0},
     published=1.241, tolerance=_half_digit(1.241, 3),
     description="one block: the slip phase (r<0) ends exactly at the left end of the stick interval"))
 
 register(Scene(
     name="galvanetto2004/one-block-type-I", parameter="V", units="dimensionless",
     source=f"{SRC}, Sec. 4.1, Fig. 7(c) (V≈10.801; reproduced with δ=0.2, printed δ=0 gives ≈4.424)",
-    compute=_one_block("I"), defaults={"gamma": 3.0, "delta": 0.2, "c": 0.0, "lo": 1.3, "hi": 40.0},
+    compute=_one_block("I"), defaults={"gamma": 3.0, "delta": 0.2, "c": 0.0, "lo": 0.0, "hi": 0.0},
     published=10.801, tolerance=_half_digit(10.801, 3),
     description="one block: the slip phase with r>0 ends exactly at the right end of the stick interval"))
 
@@ -67,7 +78,7 @@ register(Scene(
 
 
 def _c2(p):
-    loc = B.nonsmooth_fold_c2(p["V"], p["gamma"], p["delta"], bracket=(p["lo"], p["hi"]) if p["hi"] > 0 else None)
+    loc = B.nonsmooth_fold_c2(p["V"], p["gamma"], p["delta"], bracket=_bracket(p))
     return _doc(loc)
 
 
@@ -76,13 +87,14 @@ register(Scene(
     source=f"{SRC}, Sec. 4.2, Fig. 10(c) (non-smooth fold; no number printed)",
     compute=_c2, defaults={"V": 0.5, "gamma": 3.0, "delta": 0.0, "lo": 0.0, "hi": 0.0},
     description="damped one block: the unstable slip cycle touches the stick line at the stick end "
-                "(lo=hi=0: bracket (1.0001 c1, 3 c1))"))
+                "(lo=hi=0: searched above the Hopf point c1)"))
 
 
 def _two_block(kind, period):
     def compute(p):
-        loc = B.two_block_sliding(kind, p["alpha"], p["beta"], p["gamma"], p["delta"],
-                                  bracket=(p["lo"], p["hi"]), period=period)
+        br = _bracket(p)
+        loc = B.two_block_sliding(kind, p["alpha"], p["beta"], p["gamma"], p["delta"], bracket=br,
+                                  period=period if br is not None else None)
         return _doc(loc)
     return compute
 
@@ -91,20 +103,20 @@ _mid, _tol = _interval(0.18, 0.19)
 register(Scene(
     name="galvanetto2004/two-block-type-II", parameter="V", units="dimensionless",
     source=f"{SRC}, Sec. 4.1, Fig. 8 (type II between V=0.18 and V=0.19)",
-    compute=_two_block("II", 2), defaults={"alpha": 1.2, "beta": 1.3, "gamma": 3.0, "delta": 0.0, "lo": 0.18, "hi": 0.19},
+    compute=_two_block("II", 2), defaults={"alpha": 1.2, "beta": 1.3, "gamma": 3.0, "delta": 0.0, "lo": 0.0, "hi": 0.0},
     published=_mid, tolerance=_tol, description="two blocks, period-2 orbit of the map; published = interval midpoint"))
 
 _mid, _tol = _interval(0.725, 0.740)
 register(Scene(
     name="galvanetto2004/two-block-type-I", parameter="V", units="dimensionless",
     source=f"{SRC}, Sec. 4.1, Fig. 9 (type I for 0.725 < V < 0.740)",
-    compute=_two_block("I", 1), defaults={"alpha": 1.2, "beta": 1.3, "gamma": 3.0, "delta": 0.0, "lo": 0.725, "hi": 0.74},
+    compute=_two_block("I", 1), defaults={"alpha": 1.2, "beta": 1.3, "gamma": 3.0, "delta": 0.0, "lo": 0.0, "hi": 0.0},
     published=_mid, tolerance=_tol, description="two blocks, period-1 orbit of the map; published = interval midpoint"))
 
 
 def _beta_scene(fn):
     def compute(p):
-        loc = fn(bracket=(p["lo"], p["hi"]), V=p["V"], alpha=p["alpha"], gamma=p["gamma"], delta=p["delta"])
+        loc = fn(bracket=_bracket(p), V=p["V"], alpha=p["alpha"], gamma=p["gamma"], delta=p["delta"])
         return _doc(loc)
     return compute
 
@@ -113,19 +125,19 @@ _fig12 = {"V": 0.25, "alpha": 1.2, "gamma": 3.0, "delta": 0.0}
 register(Scene(
     name="galvanetto2004/fold", parameter="beta", units="dimensionless",
     source=f"{SRC}, Sec. 4.2, Figs 12-13 (discontinuous fold, beta≈1.7217)",
-    compute=_beta_scene(B.discontinuous_fold), defaults={**_fig12, "lo": 1.7210, "hi": 1.7225},
+    compute=_beta_scene(B.discontinuous_fold), defaults={**_fig12, "lo": 0.0, "hi": 0.0},
     published=1.7217, tolerance=_half_digit(1.7217, 4),
     description="a fixed point of the map sits at its slope discontinuity"))
 register(Scene(
     name="galvanetto2004/period-doubling", parameter="beta", units="dimensionless",
     source=f"{SRC}, Sec. 4.2, Fig. 12 (period doubling, beta≈1.7231)",
-    compute=_beta_scene(B.period_doubling), defaults={**_fig12, "lo": 1.7225, "hi": 1.7235},
+    compute=_beta_scene(B.period_doubling), defaults={**_fig12, "lo": 0.0, "hi": 0.0},
     published=1.7231, tolerance=_half_digit(1.7231, 4),
     description="slope of the map at the stable fixed point reaches -1"))
 register(Scene(
     name="galvanetto2004/border-collision", parameter="beta", units="dimensionless",
     source=f"{SRC}, Sec. 4.2, Figs 12, 14 (border collision period 2 -> chaos, beta≈1.7236)",
-    compute=_beta_scene(B.border_collision), defaults={**_fig12, "lo": 1.7233, "hi": 1.7239},
+    compute=_beta_scene(B.border_collision), defaults={**_fig12, "lo": 0.0, "hi": 0.0},
     published=1.7236, tolerance=_half_digit(1.7236, 4),
     description="the period-2 orbit reaches the slope discontinuity of the map"))
 _mid, _tol = _interval(1.7652, 1.7656)

@@ -17,23 +17,15 @@ from __future__ import annotations
 
 import sympy as sp
 
-from landau.errors import InputError
-from landau.laws.kinetic import DELTA, GAMMA, R, KineticFriction
+from landau.laws.kinetic import DELTA, GAMMA, R, KineticFriction, resolve_kinetic_law
 
 
 def kinetic_law(gamma: float | None = None, delta: float | None = None,
                 law: KineticFriction | None = None) -> KineticFriction:
     """The kinetic law of a damped one-block computation: ``law`` if given, else Galvanetto's
-    eq. (7) with ``gamma`` (default 3) and ``delta`` (default 0).  Giving ``law`` together with a
-    ``gamma`` or ``delta`` that differs from the law's own is an :class:`InputError`."""
-    if law is None:
-        return KineticFriction(3.0 if gamma is None else float(gamma), 0.0 if delta is None else float(delta))
-    if not isinstance(law, KineticFriction):
-        raise InputError("law must be a KineticFriction")
-    for name, v in (("gamma", gamma), ("delta", delta)):
-        if v is not None and float(v) != getattr(law, name):
-            raise InputError(f"{name}={v} conflicts with the law's {name}={getattr(law, name)}; give one of them")
-    return law
+    eq. (7) with ``gamma`` (default 3) and ``delta`` (default 0); see
+    :func:`landau.laws.kinetic.resolve_kinetic_law`."""
+    return resolve_kinetic_law(law, gamma, delta)
 
 
 def damped_slip_system(V: float = 0.5, gamma: float | None = None, delta: float | None = None,
