@@ -24,6 +24,7 @@ import numpy as np
 import sympy as sp
 
 from landau.errors import InputError
+from landau.laws.base import Law
 
 #: the symbols the branch expressions are written in: relative velocity r and the parameters γ, δ
 R = sp.Symbol("r", real=True)
@@ -40,8 +41,11 @@ def _numeric(expr: sp.Expr):
     return sp.lambdify((R, GAMMA, DELTA), expr, modules="numpy")
 
 
+SOURCE = "Galvanetto 2004, J. Sound Vib. 276:121, eq. (7)"
+
+
 @dataclass(frozen=True)
-class KineticFriction:
+class KineticFriction(Law):
     """F_k(r) of eq. (7), or a user-written law of the same two-branch form.
 
     The law lives once, symbolically: ``neg_expr``/``pos_expr`` are sympy expressions of the
@@ -200,6 +204,54 @@ class KineticFriction:
     def is_paper_law(self) -> bool:
         """True for Galvanetto's eq. (7) (the default branches)."""
         return self.neg_expr == _PAPER_NEG and self.pos_expr == _PAPER_POS
+
+    # ------------------------------------------------------------ the Law interface
+    @property
+    def name(self) -> str:
+        """``"galvanetto-2004"`` for eq. (7), ``"user-kinetic"`` for other branches."""
+        return "galvanetto-2004" if self.is_paper_law else "user-kinetic"
+
+    @property
+    def source(self) -> str:
+        """Galvanetto (2004) eq. (7), or "user-defined"."""
+        return SOURCE if self.is_paper_law else "user-defined"
+
+    @property
+    def parameters(self) -> tuple:
+        """γ and δ as :class:`~landau.laws.law.Parameter` objects (dimensionless)."""
+        from landau.laws.law import Parameter
+
+        return (Parameter("gamma", float(self.gamma), "", SOURCE, "velocity weakening γ", positive=False),
+                Parameter("delta", float(self.delta), "", SOURCE, "residual kinetic level δ", positive=False))
+
+    def with_defaults(self, **values: float) -> "KineticFriction":
+        """A copy with γ and/or δ changed.
+
+        Parameters
+        ----------
+        **values : float
+            ``gamma`` and/or ``delta``.
+
+        Returns
+        -------
+        KineticFriction
+        """
+        unknown = sorted(set(values) - {"gamma", "delta"})
+        if unknown:
+            raise InputError(f"law {self.name!r} has no parameter(s) {', '.join(unknown)}")
+        import dataclasses
+
+        return dataclasses.replace(self, **{k: float(v) for k, v in values.items()})
+
+    def latex(self) -> str:
+        """The two branches as one line of LaTeX.
+
+        Returns
+        -------
+        str
+        """
+        return (rf"F_k(r) = {sp.latex(self.neg_expr)}\ (r < 0),\quad "
+                rf"F_k(r) = {sp.latex(self.pos_expr)}\ (r > 0)")
 
     def __repr__(self) -> str:
         if self.is_paper_law:

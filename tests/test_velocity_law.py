@@ -102,3 +102,15 @@ def test_landau_laws_lists_velocity_laws(capsys):
     assert main(["laws", "--json"]) == 0
     kinds = {d["name"]: d["kind"] for d in json.loads(capsys.readouterr().out)["laws"]}
     assert kinds["coulomb"] == "velocity" and kinds["dieterich"] == "rate-and-state"
+
+
+def test_galvanetto_kinetic_law_is_on_the_same_base():
+    from landau.laws.kinetic import KineticFriction
+
+    k = KineticFriction()
+    assert isinstance(k, Law) and k.name == "galvanetto-2004"
+    assert k.defaults() == {"gamma": 3.0, "delta": 0.0}
+    # eq. (7) of Galvanetto (2004) at r = -1 with gamma = 2, delta = 0.2: (1 - 0.2)/(1 + 2) + 0.2
+    assert k.with_defaults(gamma=2.0, delta=0.2).neg(-1.0) == pytest.approx(0.8 / 3 + 0.2, rel=1e-15)
+    with pytest.raises(InputError, match="no parameter"):
+        k.with_defaults(mu=1.0)
