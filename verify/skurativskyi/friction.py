@@ -7,8 +7,9 @@ Coulomb law c ẋ + T ẋ/sqrt(ẋ² + ε²) of their eq. (1), :func:`~landau.la
 derivatives (by sympy) as Python source, each branch a function of its own,
 checks that source with the whitelist of :func:`landau.kernels.check_source`, and compiles
 
-    friction(v, p)        -> F(v)
-    friction_slope(v, p)  -> (F(v), dF/dv)
+    friction(v, p)             -> F(v)
+    friction_slope(v, p)       -> (F(v), dF/dv)
+    friction_derivative(v, p)  -> dF/dv
 
 with numba.  Their parameters are read from the model's packed vector ``p`` (from index
 ``first``: the law's parameters in declaration order, then F(0) and F'(0), so that v = 0
@@ -19,16 +20,21 @@ what :func:`landau.verify.hybrid.specialise.specialise` needs to inline them int
 field and integrators of :mod:`landau.verify.skurativskyi.model` with numba's disk cache.
 
 Half-integer powers, frequent in regularised laws, are printed as square roots
-(s^{−3/2} → 1/(s·sqrt(s))): a pow call costs several times a square root in the inner loop.
+(s^{−3/2} → 1/(s·sqrt(s))) and small integer powers as products (v² → v*v): a power routine
+costs several times a multiplication or a square root in the inner loop.
 """
 
 from __future__ import annotations
 
+import functools
 import math
 import weakref
 from dataclasses import dataclass, field
+from pathlib import Path
 
+import numpy as np
 import sympy as sp
+from sympy.printing.precedence import PRECEDENCE
 from sympy.printing.pycode import PythonCodePrinter
 
 from landau.errors import DomainError, InputError
@@ -37,13 +43,38 @@ from landau.laws.velocity import V_SLIP, VelocityFriction
 
 
 class _Printer(PythonCodePrinter):
-    """Python printer with bare symbol names and half-integer powers as square roots."""
+    """Python printer with bare symbol names, small integer powers as products and half-integer
+    powers as square roots."""
 
     def _print_Symbol(self, expr):
         return expr.name
 
+    def _print_Mul(self, expr):
+        # a numerator factor x**k (k = 2…4) is printed as k factors of the product, left to
+        # right (T*eps*eps/…, as typed by hand), not as a parenthesised sub-product
+        c, nc = expr.args_cnc()
+        small = lambda f: f.is_Pow and f.exp.is_Integer and 2 <= int(f.exp) <= 4
+        if nc or not any(small(f) for f in c) or any(f.is_Number and f.is_negative for f in c):
+            return super()._print_Mul(expr)
+        num = [f for f in c if not (f.is_Pow and f.exp.is_negative)]
+        den = [f.base ** (-f.exp) for f in c if f.is_Pow and f.exp.is_negative]
+        prec = PRECEDENCE["Mul"]
+        parts = []
+        for f in num:
+            if small(f):
+                parts += [self.parenthesize(f.base, prec, strict=True)] * int(f.exp)
+            else:
+                parts.append(self.parenthesize(f, prec, strict=False))
+        text = "*".join(parts)
+        if den:
+            text += "/" + self.parenthesize(sp.Mul(*den), prec, strict=True)
+        return text
+
     def _print_Pow(self, expr, rational=False):
         b, e = expr.base, expr.exp
+        if e.is_Integer and 2 <= int(e) <= 4:               # x*x*…: no power routine
+            base = self.parenthesize(b, PRECEDENCE["Mul"], strict=True)
+            return "(" + "*".join([base] * int(e)) + ")"
         if e.is_Rational and e.q == 2 and abs(e.p) <= 7:
             k = (abs(e.p) - 1) // 2                       # |e| = k + 1/2
             base = self.parenthesize(b, 1000)
@@ -67,8 +98,9 @@ class CompiledFriction:
         Index in the packed vector of the first law parameter.
     source : str
         The generated source.
-    friction, friction_slope : numba dispatcher
-        ``friction(v, p) -> F``, ``friction_slope(v, p) -> (F, dF/dv)``.
+    friction, friction_slope, friction_derivative : numba dispatcher
+        ``friction(v, p) -> F``, ``friction_slope(v, p) -> (F, dF/dv)``,
+        ``friction_derivative(v, p) -> dF/dv``.
     """
 
     law_name: str
@@ -77,6 +109,7 @@ class CompiledFriction:
     source: str = field(repr=False)
     friction: object = field(repr=False)
     friction_slope: object = field(repr=False)
+    friction_derivative: object = field(repr=False)
 
     @property
     def size(self) -> int:
@@ -104,18 +137,17 @@ def _value_key(law: VelocityFriction) -> tuple:
 
 def _branch_source(name: str, value, slope, params, first: int) -> str:
     """``def name(v, p)`` computing F into r0 (printed as declared: for the paper's law the same
-    floating-point operations as eq. (1) written by hand) and, if ``slope`` is given, dF/dv
-    (common subexpressions eliminated) into r1; no return (added by the caller)."""
+    floating-point operations as eq. (1) written by hand) and, if ``slope`` is given, dF/dv into
+    r1 (repeated subexpressions are shared by the compiler); no return (added by the caller)."""
     ren = {V_SLIP: sp.Symbol("v", real=True)}
     ren.update({p.symbol: sp.Symbol(f"q{i}", real=True) for i, p in enumerate(params)})
     pr = _Printer({"fully_qualified_modules": True})
     lines = [f"def {name}(v, p):"]
     lines += [f"    q{i} = p[{first + i}]" for i in range(len(params))]
-    lines.append(f"    r0 = {pr.doprint(value.xreplace(ren))}")
+    if value is not None:
+        lines.append(f"    r0 = {pr.doprint(value.xreplace(ren))}")
     if slope is not None:
-        reps, red = sp.cse([slope.xreplace(ren)], symbols=sp.numbered_symbols("c"))
-        lines += [f"    {s} = {pr.doprint(e)}" for s, e in reps]
-        lines.append(f"    r1 = {pr.doprint(red[0])}")
+        lines.append(f"    r1 = {pr.doprint(slope.xreplace(ren))}")
     return "\n".join(lines) + "\n"
 
 
@@ -149,7 +181,78 @@ def friction_slope(v, p):
     if v < 0.0:
         return _slope_neg(v, p)
     return p[{i0}], p[{i0} + 1]
+
+
+def friction_derivative(v, p):
+    if v > 0.0:
+        return _deriv_pos(v, p)
+    if v < 0.0:
+        return _deriv_neg(v, p)
+    return p[{i0} + 1]
 """
+
+# the same, when one expression serves both signs and is finite at v = 0 (e.g. the paper's law)
+_ONE_EXPRESSION = """
+def friction(v, p):
+    return _value_pos(v, p)
+
+
+def friction_slope(v, p):
+    return _slope_pos(v, p)
+
+
+def friction_derivative(v, p):
+    return _deriv_pos(v, p)
+"""
+
+
+@functools.lru_cache(maxsize=256)
+def _single_expression_key(key: tuple) -> bool:
+    return _smooth_single_expression_uncached(_KEYED[key])
+
+
+_KEYED: dict = {}
+
+
+def _smooth_single_expression(law: VelocityFriction) -> bool:
+    """:func:`_smooth_single_expression_uncached`, once per law expression."""
+    key = law_key(law)
+    _KEYED.setdefault(key, law)
+    return _single_expression_key(key)
+
+
+def _smooth_single_expression_uncached(law: VelocityFriction) -> bool:
+    """Whether F(v > 0) and F(v < 0) are one expression that, with its derivative, has a value at
+    v = 0 for generic parameter values (no division by v, no log v, …); :func:`packed_values`
+    checks that value is finite for the parameter values of a run."""
+    pos, neg = law.branch(1), law.branch(-1)
+    if pos != neg:
+        return False
+    for e in (pos, _derivative(pos)):
+        at0 = e.subs(V_SLIP, 0)
+        if at0.has(sp.nan, sp.zoo, sp.oo, -sp.oo) or at0.has(sp.log):
+            return False
+    return True
+
+
+def _inlined(fn, signature):
+    """``numba.njit(signature, cache=True, inline="always")(fn)``: numba inlines the function into
+    every jitted caller at its own IR level (a call into another compiled library is otherwise
+    an opaque call that costs ~15 % of a field evaluation); the disk cache works as in
+    :func:`landau.verify.jitcache.njit_cached`, which this follows (a cache entry that cannot be
+    loaded is dropped and the function compiled afresh)."""
+    import numba as nb
+
+    from landau.verify import jitcache
+
+    path = Path(fn.__code__.co_filename)
+    if not path.is_file():
+        return nb.njit(signature, inline="always")(fn)
+    try:
+        return nb.njit(signature, cache=True, inline="always")(fn)
+    except Exception:
+        jitcache._drop_numba_entries(path)
+        return nb.njit(signature, cache=True, inline="always")(fn)
 
 
 def compile_friction(law: VelocityFriction, first: int) -> CompiledFriction:
@@ -170,7 +273,7 @@ def compile_friction(law: VelocityFriction, first: int) -> CompiledFriction:
     """
     from numba import types
 
-    from landau.verify.jitcache import load_generated, njit_cached
+    from landau.verify.jitcache import load_generated
 
     key = (law_key(law), int(first))
     if key in _CACHE:
@@ -181,21 +284,24 @@ def compile_friction(law: VelocityFriction, first: int) -> CompiledFriction:
         f0 = law.branch(side)
         parts.append((_branch_source(f"_value_{tag}", f0, None, params, first), "r0"))
         parts.append((_branch_source(f"_slope_{tag}", f0, _derivative(f0), params, first), "(r0, r1)"))
+        parts.append((_branch_source(f"_deriv_{tag}", None, _derivative(f0), params, first), "r1"))
     check_source("\n".join(body for body, _ in parts))
-    src = "\n\n".join(f"{body}    return {ret}\n" for body, ret in parts) + _DISPATCH.format(i0=first + len(params))
+    src = "\n\n".join(f"{body}    return {ret}\n" for body, ret in parts) + (
+        _ONE_EXPRESSION if _smooth_single_expression(law) else _DISPATCH.format(i0=first + len(params)))
     ns = load_generated(src, {"math": math}, ALLOWED_BUILTINS)
     one = types.float64(types.float64, types.float64[::1])
     two = types.UniTuple(types.float64, 2)(types.float64, types.float64[::1])
     # the dispatchers replace the Python functions in the cached module, so that the functions
     # calling them compile against them and `from <module> import friction` finds them
-    for nm in ("_value_pos", "_value_neg"):
-        ns[nm] = njit_cached(ns[nm], one)
+    for nm in ("_value_pos", "_value_neg", "_deriv_pos", "_deriv_neg"):
+        ns[nm] = _inlined(ns[nm], one)
     for nm in ("_slope_pos", "_slope_neg"):
-        ns[nm] = njit_cached(ns[nm], two)
-    ns["friction"] = njit_cached(ns["friction"], one)
-    ns["friction_slope"] = njit_cached(ns["friction_slope"], two)
+        ns[nm] = _inlined(ns[nm], two)
+    ns["friction"] = _inlined(ns["friction"], one)
+    ns["friction_slope"] = _inlined(ns["friction_slope"], two)
+    ns["friction_derivative"] = _inlined(ns["friction_derivative"], one)
     out = CompiledFriction(law.name, tuple(p.name for p in params), int(first), src, ns["friction"],
-                           ns["friction_slope"])
+                           ns["friction_slope"], ns["friction_derivative"])
     _CACHE[key] = out
     return out
 
@@ -225,6 +331,13 @@ def packed_values(law: VelocityFriction) -> list[float]:
         if not (math.isfinite(f0) and math.isfinite(d0)):
             raise InputError(f"friction law {law.name!r}: F or dF/dv is not finite at v = 0 (F(0) = {f0!r}, "
                              f"F'(0) = {d0!r}); the forced oscillator needs a law smooth through v = 0")
+        if _smooth_single_expression(law):
+            # the compiled code evaluates the expression itself at v = 0 (no branch): it must be finite
+            with np.errstate(all="ignore"):
+                direct = [float(law.numeric(1, k)(0.0, *vals)) for k in (0, 1)]
+            if not all(map(math.isfinite, direct)):
+                raise InputError(f"friction law {law.name!r}: its expression is not finite at v = 0 for these "
+                                 "parameter values")
         _PACKED[key] = vals + [f0, d0]
     return list(_PACKED[key])
 

@@ -244,7 +244,8 @@ def _compiled(key) -> SimpleNamespace:
     law = _LAWS[key]
     fr = compile_friction(law, ILAW)
     mod = specialise(Path(__file__).parent / "templates" / "field.py",
-                     {"friction": fr.friction, "friction_slope": fr.friction_slope}, "skurativskyi_field")
+                     {"friction": fr.friction, "friction_slope": fr.friction_slope,
+                      "friction_derivative": fr.friction_derivative}, "skurativskyi_field")
     return SimpleNamespace(friction=fr, **{n: getattr(mod, n) for n in _KERNELS})
 
 

@@ -2,7 +2,8 @@
 landau.verify.hybrid.specialise for how templates are bound; landau.verify.skurativskyi.model
 binds it).
 
-Free names: ``friction(v, p) -> F`` and ``friction_slope(v, p) -> (F, dF/dv)`` (generated
+Free names: ``friction(v, p) -> F``, ``friction_slope(v, p) -> (F, dF/dv)`` and
+``friction_derivative(v, p) -> dF/dv`` (generated
 from the law by landau.verify.skurativskyi.friction), ``jit`` (the numba decorator).
 """
 
@@ -34,7 +35,7 @@ def accel_grad(t, x, v, p):
     """(∂ẍ/∂x, ∂ẍ/∂ẋ).  The |ẋ|^{n₃−1} slope of the Hertz damping is unbounded at ẋ = 0; it
     is evaluated with |ẋ| floored at p[IVF] (in the variational equation the tangent crosses
     ẋ = 0 in an integrable way: the slope is O(|ẋ|^{−0.81}); the floor keeps it finite)."""
-    _, dfr = friction_slope(v, p)
+    dfr = friction_derivative(v, p)
     dx = -p[IK]
     dv = -dfr
     d = x - p[IXI]
