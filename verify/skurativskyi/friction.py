@@ -238,7 +238,7 @@ def _smooth_single_expression_uncached(law: VelocityFriction) -> bool:
 def _inlined(fn, signature):
     """``numba.njit(signature, cache=True, inline="always")(fn)``: numba inlines the function into
     every jitted caller at its own IR level (a call into another compiled library is otherwise
-    an opaque call that costs ~15 % of a field evaluation); the disk cache works as in
+    an opaque call, measured ~10 % slower in the integrators); the disk cache works as in
     :func:`landau.verify.jitcache.njit_cached`, which this follows (a cache entry that cannot be
     loaded is dropped and the function compiled afresh)."""
     import numba as nb
