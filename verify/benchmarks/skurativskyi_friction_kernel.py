@@ -22,8 +22,7 @@ from numba import njit
 
 from landau.verify.skurativskyi import rk as R
 from landau.verify.skurativskyi import simulate as S
-from landau.verify.skurativskyi.model import (IB, IK, IKI, IM, IM0E, IN1, IN2, IN3, ILAW, IOM, IVF, IXI, Params,
-                                              compiled_field)
+from landau.verify.skurativskyi.model import IB, IK, IKI, IM, IM0E, IN1, IN2, IN3, ILAW, IOM, IVF, IXI, Params
 from landau.verify.skurativskyi.sdirk import cusp_sdirk_method
 
 IC, IT, IEPS = ILAW, ILAW + 1, ILAW + 2      # the paper's law packs (c, T, eps) from ILAW on

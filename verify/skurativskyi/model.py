@@ -48,8 +48,7 @@ V_FLOOR = 1e-6
 
 #: the mechanical parameters of eq. (1) (the friction's live in its law)
 MECHANICAL = ("m", "m0e", "n1", "n2", "n3", "k", "kI", "b", "xI", "omega")
-_DEFAULTS = {"m": 8.735, "m0e": 0.01805, "n1": 1.5, "n2": 1.5, "n3": 0.18667, "k": 1418.9, "kI": 2.3983e8,
-             "b": 0.8485, "xI": -2.086e-3, "omega": 16.0}
+
 
 
 @dataclass(frozen=True, init=False)
