@@ -144,6 +144,38 @@ class Parameter:
         return f"{self.name} = {self.default!r} {self.units}".rstrip() + (f"  [{self.source}]" if self.source else "")
 
 
+def user_parameter(name: str, value, positive: bool = True) -> Parameter:
+    """A :class:`Parameter` from a user's value (a number, or a :class:`Parameter` kept as it is).
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name.
+    value : float or Parameter
+        Its value.
+    positive : bool, optional
+        Whether its symbol is declared positive (else real).
+
+    Returns
+    -------
+    Parameter
+
+    Raises
+    ------
+    InputError
+        The value is not a finite number.
+    """
+    if isinstance(value, Parameter):
+        return value
+    try:
+        x = float(value)
+    except (TypeError, ValueError, OverflowError):
+        raise InputError(f"parameter {name!r} must be a number, got {value!r}") from None
+    if not math.isfinite(x):
+        raise InputError(f"parameter {name!r} must be finite, got {value!r}")
+    return Parameter(name, x, source="user", positive=positive)
+
+
 #: Table 1 of Putelat, Dawes & Willis (2010), the parameter set that reproduces their numbers
 #: (L = 0.9e-6 m and V_* = 1e-6 m/s; the values of Sec. 3.1 and of the Fig. 15/17 captions do not).
 TABLE1: dict[str, Parameter] = {
@@ -296,16 +328,7 @@ class FrictionLaw(Law):
         plist: list[Parameter] = []
         for pname, val in params.items():
             _check_name(pname, "parameter")
-            if isinstance(val, Parameter):
-                plist.append(val)
-                continue
-            try:
-                x = float(val)
-            except (TypeError, ValueError, OverflowError):
-                raise InputError(f"parameter {pname!r} must be a number, got {val!r}") from None
-            if not math.isfinite(x):
-                raise InputError(f"parameter {pname!r} must be finite, got {val!r}")
-            plist.append(Parameter(pname, x, source="user"))
+            plist.append(user_parameter(pname, val))
         given = {p.name for p in plist}
         from landau.laws.parse import CONSTANTS, FUNCTIONS
 

@@ -36,7 +36,7 @@ import sympy as sp
 
 from landau.errors import DomainError, InputError
 from landau.laws.base import Law
-from landau.laws.law import Parameter
+from landau.laws.law import Parameter, user_parameter
 from landau.laws.parse import parse_expression
 
 #: the sliding-velocity symbol of every velocity-only law (real: both signs occur)
@@ -160,16 +160,7 @@ class VelocityFriction(Law):
         plist: list[Parameter] = []
         for pname, val in dict(params or {}).items():
             _check_parameter_name(pname)
-            if isinstance(val, Parameter):
-                plist.append(val)
-                continue
-            try:
-                x = float(val)
-            except (TypeError, ValueError, OverflowError):
-                raise InputError(f"parameter {pname!r} must be a number, got {val!r}") from None
-            if not math.isfinite(x):
-                raise InputError(f"parameter {pname!r} must be finite, got {val!r}")
-            plist.append(Parameter(pname, x, source="user", positive=False))
+            plist.append(user_parameter(pname, val, positive=False))
         texts = {"F(v > 0)": positive} | ({"F(v < 0)": negative} if negative is not None else {})
         used: set[str] = set()
         for what, text in texts.items():
