@@ -27,7 +27,6 @@ The output format follows each ``--out`` suffix: ``.csv`` (header ``t [s], name 
 
 from __future__ import annotations
 
-import argparse
 import difflib
 import math
 from dataclasses import replace
@@ -53,10 +52,7 @@ RECORD = 1_000_000
 def configure(p) -> None:
     p.add_argument("model", help=f"one of {', '.join(MODELS)}")
     add_law_arguments(p)  # positional LAW after MODEL (spring-block only), --mu, --state, --param
-    try:  # --friction EXPR, --friction-neg, --friction-name (impact-oscillator)
-        add_friction_arguments(p)
-    except argparse.ArgumentError:  # already added for another model
-        pass
+    add_friction_arguments(p)  # --friction EXPR, --friction-neg, --friction-name (impact-oscillator)
     p.add_argument("--law", dest="law_option", default=None, metavar="NAME",
                    help="spring-block: built-in law (same as the positional LAW; default dieterich)")
     p.add_argument("--V", default=None, help="spring-block: driving velocity in m/s (default 1e-4); "
