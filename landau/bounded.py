@@ -46,6 +46,8 @@ from typing import Callable, Mapping, Sequence
 import numpy as np
 import sympy as sp
 
+from landau.cx import as_expr
+
 #: unit round-off of float64 and of the platform's long double
 U64 = float(np.finfo(np.float64).eps) / 2
 ULD = np.finfo(np.longdouble).eps / 2
@@ -275,7 +277,7 @@ class BoundedKernel:
             return n_in + len(ops) - 1
 
         for o in outputs:
-            stack = [(sp.sympify(o), False)]
+            stack = [(as_expr(o), False)]
             while stack:
                 cur, done = stack.pop()
                 if cur in slot:
@@ -305,7 +307,7 @@ class BoundedKernel:
                 slot[cur] = self._lower(cur, slot, push)
         self._ops = ops
         self._n_in = n_in
-        self._outs = [slot[sp.sympify(o)] for o in outputs]
+        self._outs = [slot[as_expr(o)] for o in outputs]
         self.consts = tuple(consts)
         self._lock = threading.Lock()
         self._fn64: dict[tuple, tuple] = {}
