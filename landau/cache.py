@@ -1,7 +1,8 @@
 """A disk cache of derivations and closed forms, so a second run on the same law is instant.
 
 Entries live in a per-user cache directory (``platformdirs.user_cache_dir("landau")``, e.g.
-``~/.cache/landau`` on Linux), or in ``$LANDAU_CACHE_DIR`` when that is set.  Set
+``~/.cache/landau`` on Linux), or in ``$LANDAU_CACHE_DIR`` when that is set (the one rule of
+:mod:`landau.cachedir`; generated code is kept in its ``jit`` folder).  Set
 ``LANDAU_CACHE=off`` (or call :func:`set_enabled` with ``False``) to neither read nor write.
 
 An entry is keyed by a SHA-256 of the library version (with a fingerprint of the deriving
@@ -27,9 +28,11 @@ from typing import Any, Callable
 
 import sympy as sp
 
+from landau.cachedir import ENV_ROOT
+
 logger = logging.getLogger(__name__)
 
-ENV_DIR = "LANDAU_CACHE_DIR"
+ENV_DIR = ENV_ROOT
 ENV_SWITCH = "LANDAU_CACHE"
 _MAGIC = "landau-cache/1"
 _enabled: bool | None = None
@@ -72,13 +75,11 @@ def set_enabled(flag: bool | None) -> None:
 
 
 def cache_dir() -> Path:
-    """The cache directory: ``$LANDAU_CACHE_DIR`` or the per-user cache directory."""
-    env = os.environ.get(ENV_DIR)
-    if env:
-        return Path(env)
-    import platformdirs
+    """The cache directory: ``$LANDAU_CACHE_DIR`` or the per-user cache directory
+    (:func:`landau.cachedir.cache_root`, the one rule for every landau cache)."""
+    from landau.cachedir import cache_root
 
-    return Path(platformdirs.user_cache_dir("landau", appauthor=False))
+    return cache_root()
 
 
 def system_key(system) -> str:

@@ -4,14 +4,25 @@ Results are formulas in *atoms* (derivatives of the law at the steady state, see
 :mod:`landau.jets`) and parameters.  :class:`CompiledFormula` lambdifies the atom
 definitions it needs and the formula separately, each with common-subexpression
 elimination, and composes them: vectorised over numpy arrays in any argument.
+
+Every lambdified function goes through :func:`lambdify`, whose generated source is cached
+across processes (:mod:`landau.verify.jitcache`), keyed by the formula's structure, the
+arguments, the module set and the library versions: a second process executes the stored
+source instead of running sympy's common-subexpression elimination and printer again.
 """
 
 from __future__ import annotations
 
+import dis
+import hashlib
+import logging
+import linecache
 from typing import Callable, Mapping, Sequence
 
 import numpy as np
 import sympy as sp
+
+logger = logging.getLogger(__name__)
 
 
 def _dirac_np(x, *_):
@@ -42,9 +53,179 @@ def _modules(modules: str):
     return modules
 
 
+#: changes whenever the generated code for the same inputs would change (a new cache key)
+_LAMBDIFY_FORMAT = "landau-lambdify/1"
+_LAMBDIFY_TAG = "lambdify"
+_NAMESPACES: dict[str, dict] = {}
+
+
+def _versions() -> str:
+    import numpy
+
+    try:
+        import mpmath
+        mp_version = mpmath.__version__
+    except ImportError:          # pragma: no cover - mpmath is a dependency of sympy
+        mp_version = "-"
+    return f"{_LAMBDIFY_FORMAT} sympy {sp.__version__} numpy {numpy.__version__} mpmath {mp_version}"
+
+
+def structure_text(exprs) -> str:
+    """A canonical text of ``exprs`` (an expression or nested lists/tuples of them) that visits
+    each distinct subexpression once: the key of generated code.
+
+    Two inputs get the same text exactly when they have the same tree: the class of every
+    node, in sympy's argument order, and the ``srepr`` of every atom (symbols with their
+    assumptions, numbers with their precision).  Nodes are compared by that structure, never
+    by sympy's ``==`` (which may equate ``2`` and ``2.0``); a repeated subexpression is written
+    once and referred to by number, so the cost is linear in the DAG, not in the (possibly
+    exponentially larger) tree.
+
+    Parameters
+    ----------
+    exprs : sympy expression or (nested) list or tuple of them
+
+    Returns
+    -------
+    str
+    """
+    number: dict[tuple, int] = {}          # structural description -> line number
+    memo: dict[int, int] = {}              # id(object) -> line number (objects stay alive meanwhile)
+    lines: list[str] = []
+    keep = []                              # numbers sympified here, kept alive while their id is used
+
+    def emit(desc: tuple, text: str) -> int:
+        if desc not in number:
+            number[desc] = len(lines)
+            lines.append(text)
+        return number[desc]
+
+    stack = [(exprs, False)]
+    while stack:
+        node, done = stack.pop()
+        if id(node) in memo:
+            continue
+        if isinstance(node, (list, tuple)):
+            children = list(node)
+        elif isinstance(node, sp.Basic):
+            children = list(node.args)
+        else:
+            sym = sp.sympify(node)     # a plain number a caller put in a list (never user text)
+            keep.append(sym)
+            memo[id(node)] = memo.setdefault(id(sym), emit(("atom", sp.srepr(sym)), sp.srepr(sym)))
+            continue
+        if not children:
+            text = sp.srepr(node) if isinstance(node, sp.Basic) else "[]"
+            memo[id(node)] = emit(("atom", text), text)
+            continue
+        if not done:
+            stack.append((node, True))
+            stack.extend((a, False) for a in reversed(children) if id(a) not in memo)
+            continue
+        refs = tuple(memo[id(a)] for a in children)
+        head = "[seq]" if isinstance(node, (list, tuple)) else type(node).__name__
+        memo[id(node)] = emit((head, refs), f"{head}({','.join(map(str, refs))})")
+    return "\n".join(lines)
+
+
+def _lambdify_key(args: Sequence[sp.Symbol], expr, modules: str) -> str:
+    h = hashlib.sha256()
+    for part in (_versions(), modules, sp.srepr(tuple(args)), structure_text(expr)):
+        h.update(part.encode())
+        h.update(b"\0")
+    return h.hexdigest()[:32]
+
+
+def _namespace(modules: str) -> dict:
+    """The globals sympy's lambdify gives generated code for ``modules`` (made once per process)."""
+    ns = _NAMESPACES.get(modules)
+    if ns is None:
+        ns = _NAMESPACES[modules] = sp.lambdify([], 0, modules=_modules(modules)).__globals__
+    return ns
+
+
+def _global_names(code) -> set[str]:
+    out = {ins.argval for ins in dis.get_instructions(code) if ins.opname in ("LOAD_GLOBAL", "LOAD_NAME")}
+    for c in code.co_consts:
+        if hasattr(c, "co_code"):
+            out |= _global_names(c)
+    return out
+
+
+def _source_of(fn, ns: dict) -> str | None:
+    """The source sympy generated for ``fn``, when every global it reads is the same object in
+    the shared namespace ``ns`` (else None: such a function is not cached)."""
+    entry = linecache.cache.get(fn.__code__.co_filename)
+    if not entry:
+        return None
+    source = "".join(entry[2])
+    import builtins
+
+    for name in _global_names(fn.__code__):
+        if name in ns:
+            if ns[name] is not fn.__globals__.get(name):
+                return None
+        elif not hasattr(builtins, name):
+            return None
+    return source
+
+
+def _from_source(source: str, ns: dict, filename: str):
+    local: dict = {}
+    exec(compile(source, filename, "exec"), ns, local)
+    (fn,) = local.values()
+    return fn
+
+
+def lambdify(args: Sequence[sp.Symbol], expr, modules: str = "numpy") -> Callable:
+    """``sympy.lambdify(args, expr, modules, cse=True)``, its generated source cached on disk.
+
+    The key is a SHA-256 of the structure of ``expr`` (:func:`structure_text`), the
+    arguments, the module set and the sympy/numpy/mpmath versions; the source is stored
+    atomically in the code folder of :mod:`landau.verify.jitcache`.  A stored file that is
+    truncated or does not compile is removed and rebuilt.  Only code whose every global name
+    is the module set's own is stored (so executing it in that namespace is what sympy would
+    have done); anything else is lambdified in every process.
+
+    Parameters
+    ----------
+    args : sequence of sympy.Symbol
+        The arguments, in order.
+    expr : sympy expression or list of them
+        What to compute.
+    modules : {"numpy", "mpmath"} or other lambdify module name
+        The numeric library (with the distributions of :func:`_modules`).
+
+    Returns
+    -------
+    callable
+    """
+    from landau.verify import jitcache
+
+    args = list(args)
+    try:
+        key = _lambdify_key(args, expr, modules)
+    except (TypeError, ValueError, RecursionError):      # something structure_text cannot print
+        return sp.lambdify(args, expr, modules=_modules(modules), cse=True)
+    ns = _namespace(modules)
+    stored = jitcache.load_keyed_source(key, _LAMBDIFY_TAG)
+    if stored is not None:
+        source, path = stored
+        try:
+            return _from_source(source, ns, str(path))
+        except Exception as exc:                 # corrupt though complete: rebuild below
+            logger.warning("ignoring unusable generated code %s (%s)", path, exc)
+            jitcache.discard_keyed_source(key, _LAMBDIFY_TAG)
+    fn = sp.lambdify(args, expr, modules=_modules(modules), cse=True)
+    source = _source_of(fn, ns)
+    if source is not None:
+        jitcache.store_keyed_source(key, _LAMBDIFY_TAG, source)
+    return fn
+
+
 def compile_expr(expr: sp.Expr, args: Sequence[sp.Symbol], modules: str = "numpy") -> Callable:
     """lambdify ``expr`` over ``args`` with CSE; broadcasts over numpy arrays."""
-    fn = sp.lambdify(list(args), expr, modules=_modules(modules), cse=True)
+    fn = lambdify(args, expr, modules)
     if modules != "numpy":
         return fn
 
@@ -80,7 +261,7 @@ class CompiledFormula:
         self.atom_syms = tuple(sorted(needed, key=lambda s: s.name))
         atom_exprs = [atoms[s].xreplace({t: atoms[t] for t in self.atom_syms}) for s in self.atom_syms]
         self.modules = modules
-        self._atoms = sp.lambdify(list(self.args), atom_exprs, modules=_modules(modules), cse=True) if atom_exprs else None
+        self._atoms = lambdify(self.args, atom_exprs, modules) if atom_exprs else None
         inputs = [*self.atom_syms, *self.args]
         tape = None
         if tree_size(formula) > _TAPE_FROM:
@@ -91,7 +272,7 @@ class CompiledFormula:
         if tape is not None:
             self._f = lambda *vals: tape(*vals, modules=modules)
         else:
-            self._f = sp.lambdify(inputs, formula, modules=_modules(modules), cse=True)
+            self._f = lambdify(inputs, formula, modules)
 
     def call_with_atoms(self, atom_values: Mapping[sp.Symbol, object], *vals):
         """Evaluate with atom values computed elsewhere (shared between formulas)."""
@@ -122,7 +303,7 @@ class AtomTable:
         if key not in self._fns:
             syms = tuple(sorted(key, key=lambda s: s.name))
             exprs = [self.atoms[s] for s in syms]
-            self._fns[key] = (syms, sp.lambdify(list(self.args), exprs, modules=_modules("numpy"), cse=True) if syms else None)
+            self._fns[key] = (syms, lambdify(self.args, exprs, "numpy") if syms else None)
         syms, fn = self._fns[key]
         if fn is None:
             return {}

@@ -37,13 +37,12 @@ import types
 from pathlib import Path
 from typing import Iterable, Mapping
 
+from landau.cachedir import ENV_JIT, ENV_ROOT, code_dir  # noqa: F401  (re-exported names)
 from landau.errors import OutputError
 from landau.io import atomic_write_text
 
 #: file-name prefix of generated kernels (:func:`load_generated`)
 _KERNEL_TAG = "kernel"
-ENV_ROOT = "LANDAU_CACHE_DIR"
-ENV_JIT = "LANDAU_JIT_DIR"
 
 
 def cache_dir() -> Path:
@@ -53,17 +52,9 @@ def cache_dir() -> Path:
     -------
     pathlib.Path
         ``$LANDAU_CACHE_DIR/jit``, else ``$LANDAU_JIT_DIR``, else ``jit`` in the per-user
-        cache folder of landau (``platformdirs.user_cache_dir("landau")``); not created here.
+        cache folder of landau (the one rule of :func:`landau.cachedir.code_dir`); not created here.
     """
-    root = os.environ.get(ENV_ROOT)
-    if root:
-        return Path(root) / "jit"
-    jit = os.environ.get(ENV_JIT)
-    if jit:
-        return Path(jit)
-    import platformdirs
-
-    return Path(platformdirs.user_cache_dir("landau", appauthor=False)) / "jit"
+    return code_dir()
 
 
 def source_key(source: str) -> str:
@@ -118,6 +109,73 @@ def cached_source_file(source: str, tag: str = _KERNEL_TAG) -> Path | None:
     else:
         _drop_unreadable_numba_entries(path)
     return path
+
+
+def keyed_source_path(key: str, tag: str) -> Path:
+    """Where :func:`store_keyed_source` keeps the source stored under ``key``."""
+    if not tag.isidentifier() or not key.isalnum():
+        raise ValueError(f"cache tag {tag!r} or key {key!r} is not a plain name")
+    return cache_dir() / f"landau_{tag}_{key}.py"
+
+
+def _keyed_header(key: str, tag: str) -> str:
+    return f"# landau generated code: {tag} {key}\n"
+
+
+def load_keyed_source(key: str, tag: str) -> tuple[str, Path] | None:
+    """The source stored under ``key`` by :func:`store_keyed_source`, with its file.
+
+    For generated code whose key is a hash of what it was generated *from* (e.g. a formula)
+    rather than of the source itself.  A file that does not start with the header naming its
+    key, or is not text, is removed (and rebuilt by the caller): a truncated or foreign file is
+    never executed.
+
+    Parameters
+    ----------
+    key : str
+        The caller's cache key (hex digits).
+    tag : str
+        A label in the file name (an identifier).
+
+    Returns
+    -------
+    tuple of (str, pathlib.Path) or None
+        The source without its header line and the file, or None (absent or unreadable).
+    """
+    try:
+        path = keyed_source_path(key, tag)
+        text = path.read_text(encoding="utf-8")
+    except (OSError, RuntimeError, UnicodeDecodeError):
+        return None
+    header = _keyed_header(key, tag)
+    if not text.startswith(header) or not text.endswith("\n"):
+        discard_keyed_source(key, tag)
+        return None
+    return text[len(header):], path
+
+
+def store_keyed_source(key: str, tag: str, source: str) -> Path | None:
+    """Write ``source`` atomically under ``key`` (see :func:`load_keyed_source`).
+
+    Returns
+    -------
+    pathlib.Path or None
+        The file, or None when the cache folder cannot be written (nothing is cached then).
+    """
+    try:
+        path = keyed_source_path(key, tag)
+        atomic_write_text(path, _keyed_header(key, tag) + source.rstrip("\n") + "\n")
+    except (OSError, RuntimeError, OutputError):
+        return None
+    return path
+
+
+def discard_keyed_source(key: str, tag: str) -> None:
+    """Remove the file stored under ``key`` (a corrupt entry; it is rebuilt at the next use)."""
+    try:
+        keyed_source_path(key, tag).unlink()
+    except (OSError, RuntimeError):
+        pass
 
 
 def exec_cached(source: str, tag: str = _KERNEL_TAG, globals_: Mapping[str, object] | None = None,
