@@ -16,6 +16,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker as mticker  # noqa: E402
+import matplotlib.transforms as mtransforms  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.mathtext import MathTextParser  # noqa: E402
 
@@ -142,9 +144,58 @@ def vlabel(ax) -> None:
 _MATHTEXT = MathTextParser("path")
 
 
+def _unlabelled_minor_ticks(axis) -> list[Line2D]:
+    """The marks of ``axis``'s minor ticks as one line per side, when none of them has a label.
+
+    A log axis over many decades carries ~50 minor ticks, each a matplotlib ``Tick`` of five
+    artists, created, positioned and laid out at every draw — most of the time of a figure.
+    The same marks (positions, marker, size, width, colour and transform copied from the
+    axis's own minor tick) drawn as one line of markers per side give the same pixels.
+    Returns [] when the ticks carry labels or grid lines (nothing is replaced then)."""
+    if not isinstance(axis.get_minor_locator(), mticker.LogLocator):
+        return []
+    locs = np.asarray(axis.get_minorticklocs(), dtype=float)      # those on a major tick removed
+    lo, hi = sorted(axis.get_view_interval())
+    tr = axis.get_transform()
+    inside = tr.transform([lo, hi])
+    locs = np.array([x for x in locs if mtransforms._interval_contains_close(inside, tr.transform(x))])
+    if locs.size == 0 or any(axis.get_minor_formatter().format_ticks(locs)):
+        return []
+    tick = axis.get_minor_ticks(1)[0]
+    if not tick.get_visible() or tick.gridline.get_visible():
+        return []
+    lines = []
+    for mark, side in ((tick.tick1line, 0.0), (tick.tick2line, 1.0)):
+        if not mark.get_visible():
+            continue
+        other = np.full(locs.shape, side)
+        line = Line2D(*((locs, other) if axis.axis_name == "x" else (other, locs)))
+        line.update_from(mark)                 # marker, size, width, colours, transform, no clip path
+        line.set_zorder(axis.get_zorder())     # drawn where the axis draws its ticks
+        line.set_in_layout(False)              # tick marks never counted in the tight layout
+        lines.append(line)
+    return lines
+
+
+def _merge_minor_ticks(fig) -> None:
+    """Every unlabelled minor-tick set of ``fig`` drawn as single lines (:func:`_unlabelled_minor_ticks`).
+
+    All replacements are found before any locator is switched off: axes sharing an axis share
+    its locator."""
+    found = [(ax, axis, _unlabelled_minor_ticks(axis)) for ax in fig.axes for axis in (ax.xaxis, ax.yaxis)]
+    for ax, axis, lines in found:
+        if not lines:
+            continue
+        for line in lines:
+            ax.add_artist(line)
+            line.set_clip_on(False)            # outside the axes, like the tick marks
+        axis.set_minor_locator(mticker.NullLocator())
+
+
 def save(fig, out_dir: Path, name: str) -> list[Path]:
     """Lay out ``fig`` (tight layout, computed once), write ``name``.png atomically, close it."""
     fig.canvas.get_renderer().mathtext_parser = _MATHTEXT
+    _merge_minor_ticks(fig)
     fig.tight_layout()
     # tight_layout() leaves a placeholder layout engine, which makes savefig draw the whole
     # figure once more before drawing it for the file; the layout is final: drop the engine
