@@ -261,8 +261,10 @@ class CompiledFormula:
         self.atom_syms = tuple(sorted(needed, key=lambda s: s.name))
         atom_exprs = [atoms[s].xreplace({t: atoms[t] for t in self.atom_syms}) for s in self.atom_syms]
         self.modules = modules
-        self._atoms = lambdify(self.args, atom_exprs, modules) if atom_exprs else None
         inputs = [*self.atom_syms, *self.args]
+        if modules == "mpmath" and self._mp_tapes(formula, atom_exprs, inputs):
+            return
+        self._atoms = lambdify(self.args, atom_exprs, modules) if atom_exprs else None
         tape = None
         if tree_size(formula) > _TAPE_FROM:
             try:
@@ -273,6 +275,20 @@ class CompiledFormula:
             self._f = lambda *vals: tape(*vals, modules=modules)
         else:
             self._f = lambdify(inputs, formula, modules)
+
+    def _mp_tapes(self, formula, atom_exprs, inputs) -> bool:
+        """The mpmath version as straight-line programs (:class:`Tape`): built in one pass over
+        the distinct subexpressions, where lambdify's common-subexpression elimination costs
+        tenths of a second per formula — paid in every process for the few points that need
+        50 digits.  False (nothing set) when an operation has no tape form."""
+        try:
+            atoms = Tape(list(atom_exprs), list(self.args)) if atom_exprs else None
+            tape = Tape(formula, inputs)
+        except ValueError:
+            return False
+        self._atoms = (lambda *vals: atoms(*vals, modules="mpmath")) if atoms is not None else None
+        self._f = lambda *vals: tape(*vals, modules="mpmath")
+        return True
 
     def call_with_atoms(self, atom_values: Mapping[sp.Symbol, object], *vals):
         """Evaluate with atom values computed elsewhere (shared between formulas)."""
@@ -361,10 +377,12 @@ class Tape:
     (any float dtype, the per-operation overhead is negligible for vectors) or mpmath numbers.
     """
 
-    def __init__(self, expr: sp.Expr, inputs: Sequence[sp.Symbol]):
+    def __init__(self, expr, inputs: Sequence[sp.Symbol]):
+        self._many = isinstance(expr, (list, tuple))       # several outputs sharing one program
+        outputs = list(expr) if self._many else [expr]
         slot: dict[sp.Basic, int] = {s: i for i, s in enumerate(inputs)}
         ops: list[tuple[str, object, tuple[int, ...]]] = []
-        stack = [(expr, False)]
+        stack = [(e, False) for e in reversed(outputs)]
         while stack:
             node, done = stack.pop()
             if node in slot:
@@ -398,7 +416,8 @@ class Tape:
             slot[node] = len(inputs) + len(ops)
             ops.append(op)
         self.ops = ops
-        self.out = slot[expr]
+        self.outs = [slot[e] for e in outputs]
+        self.out = self.outs[0]
         self._consts: dict[str, list] = {}
 
     def _constants(self, mode: str) -> list:
@@ -418,8 +437,7 @@ class Tape:
         if modules == "mpmath":
             import mpmath
 
-            consts = [None if k != "const" else (mpmath.mpf(int(v.p)) / int(v.q) if v.is_Rational else mpmath.mpf(str(v)))
-                      for k, v, _ in self.ops]
+            consts = [None if k != "const" else _mp_constant(v) for k, v, _ in self.ops]
             funcs = {k: getattr(mpmath, v) for k, v in _MP_FUNCS.items()}
             funcs["DiracDelta"], funcs["Heaviside"] = _dirac_mp, _heaviside_mp
         else:
@@ -454,4 +472,20 @@ class Tape:
                 reg.append(reg[args[0]] ** reg[args[1]])
             else:
                 reg.append(funcs[val](*(reg[j] for j in args)))
-        return reg[self.out]
+        return [reg[i] for i in self.outs] if self._many else reg[self.out]
+
+
+def _mp_constant(v: sp.Basic):
+    """A constant of a tape at mpmath's working precision: rationals exactly, a Float with its
+    exact binary value (as sympy's mpmath printer writes it), π and e to full precision."""
+    import mpmath
+
+    if v.is_Rational:
+        return mpmath.mpf(int(v.p)) / int(v.q)
+    if v is sp.pi:
+        return +mpmath.pi
+    if v is sp.E:
+        return +mpmath.e
+    if isinstance(v, sp.Float):
+        return mpmath.mpf(v._mpf_)
+    return mpmath.mpf(str(v))

@@ -151,3 +151,17 @@ def test_one_rule_for_every_cache_folder(tmp_path, monkeypatch):
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
     assert dcache.cache_dir() == tmp_path / "xdg" / "landau"
     assert jitcache.cache_dir() == tmp_path / "old"               # the older setting, when the root is not set
+
+
+def test_mpmath_formulas_are_straight_line_programs_that_agree_with_lambdify(code):
+    a, b = sp.symbols("a b", real=True)
+    atoms = {a: sp.exp(x) / (1 + y), b: sp.log(a + 2)}         # b defined through a: nested atoms
+    formula = (a - b) ** 3 * sp.Float(0.1) + sp.pi * a * b - sp.sqrt(x) * sp.Rational(2, 7)
+    f = codegen.CompiledFormula(formula, (x, y), atoms, "mpmath")
+    assert _entries(code) == []                                  # nothing lambdified
+    g = sp.lambdify([x, y], formula.subs(b, sp.log(a + 2)).subs(a, sp.exp(x) / (1 + y)), "mpmath")
+    with mpmath.workdps(50):
+        for xv, yv in ((0.5, 2.0), (3.0, -0.25)):
+            want = g(mpmath.mpf(xv), mpmath.mpf(yv))
+            # both at 50 digits, in a different order of operations: agreement to ~1e-45
+            assert abs(f(mpmath.mpf(xv), mpmath.mpf(yv)) - want) <= mpmath.mpf(10) ** -45 * abs(want)
