@@ -833,7 +833,8 @@ class Derivation:
             logger.info("%s: 50-digit fallback at %d points", self.block.law.name, int(np.sum(need_mp & ok)))
         for idx in map(tuple, np.argwhere(need_mp & ok)):
             point = {s.name: float(vals[i + 1][idx]) for i, s in enumerate(self.args[1:])}
-            mp, degenerate = self._evaluate_mp_checked(float(vals[0][idx]), point, extra)
+            estimate = {n: float(out[n][idx]) for n in extra if n in out} if sign_only else None
+            mp, degenerate = self._evaluate_mp_checked(float(vals[0][idx]), point, extra, estimate)
             for n in ("kc", "omega_c", *extra):
                 if n not in DERIVED:
                     out[n][idx] = float(mp[n])
@@ -923,15 +924,29 @@ class Derivation:
             res[n] = np.asarray(f.call_with_atoms(atoms, om, kc, *vals), dtype=dtype) * np.ones(shape, dtype)
         return res
 
-    def _evaluate_mp_checked(self, V0: float, point: Mapping[str, float], names) -> tuple[dict, bool]:
+    def _evaluate_mp_checked(self, V0: float, point: Mapping[str, float], names,
+                             sign_estimate: Mapping[str, float] | None = None) -> tuple[dict, bool]:
         """Values at 50 digits, or more where needed.  A coefficient whose values at two
         successive precisions (50, 80, 120, 200, 330, 550 digits) agree to 1e-20 relative is
         settled at the finer one: a tiny but genuine value (e.g. Λ ∝ M at M = 1e-50) is
         cancellation-free once the precision exceeds the orders it lies below its terms.  A
         coefficient that never settles is round-off of an identically vanishing quantity
-        (its value keeps shrinking with the precision): it is returned as 0 and flagged."""
+        (its value keeps shrinking with the precision): it is returned as 0 and flagged.
+
+        ``sign_estimate`` (a sign scan's float values at this point): round-off grows with the
+        unit round-off times the same condition number at every precision, so a 50-digit value
+        h whose float estimate f (unit round-off ≥ 5e-20) is off by |h − f| is itself off by
+        about |h − f|·1e-30.  Where |h − f| ≤ 1e20·|h| (f non-zero) that is below 1e-10·|h|:
+        the sign is certain and the 50-digit values are returned without climbing the ladder.
+        Round-off of a quantity that vanishes identically, or a genuine value far below its
+        terms (|h − f| ~ 1e34·|h|), still climbs it."""
         ladder = _MP_LADDER
         hi = self.evaluate_mp(V0, point, names, dps=ladder[0])
+        if sign_estimate is not None and all(
+                n in DERIVED or (hi[n] != 0 and sign_estimate.get(n, 0.0) != 0
+                                 and abs(hi[n] - sign_estimate.get(n, float("nan"))) <= 1e20 * abs(hi[n]))
+                for n in names):
+            return dict(hi), False
         ref = self.evaluate_mp(V0, point, names, dps=ladder[1])
         degenerate = False
         res = dict(hi)
