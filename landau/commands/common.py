@@ -31,17 +31,24 @@ NOT_PARAMS = {
 }
 
 
+def split_assignment(item: str, option: str, rhs: str, seen) -> tuple[str, str]:
+    """``NAME=RHS`` of a repeatable option split at the first '=' (name stripped); InputError
+    when there is no '=' or the name is already in ``seen``."""
+    if "=" not in item:
+        raise InputError(f"{option} {item!r}: expected NAME={rhs}")
+    name, val = item.split("=", 1)
+    name = name.strip()
+    if name in seen:
+        raise InputError(f"{option} {name} is given twice")
+    return name, val
+
+
 def parse_params(items: Sequence[str]) -> dict[str, float]:
     out: dict[str, float] = {}
     for item in items:
-        if "=" not in item:
-            raise InputError(f"--param {item!r}: expected NAME=VALUE")
-        name, val = item.split("=", 1)
-        name = name.strip()
+        name, val = split_assignment(item, "--param", "VALUE", out)
         if name in NOT_PARAMS:
             raise InputError(f"--param {name}: {NOT_PARAMS[name]}")
-        if name in out:
-            raise InputError(f"--param {name} is given twice")
         try:
             x = float(val)
         except ValueError:
@@ -105,12 +112,7 @@ def resolve_law(args) -> tuple[FrictionLaw, dict[str, float]]:
             raise InputError("an inline law needs both --mu and at least one --state NAME=RATE")
         states = {}
         for item in args.state:
-            if "=" not in item:
-                raise InputError(f"--state {item!r}: expected NAME=RATE")
-            name, rate = item.split("=", 1)
-            name = name.strip()
-            if name in states:
-                raise InputError(f"--state {name} is given twice")
+            name, rate = split_assignment(item, "--state", "RATE", states)
             states[name] = rate
         law_params = {k: v for k, v in params.items() if k not in SYSTEM_PARAMS}
         if args.law is not None and (not args.law.strip() or len(args.law) > 100):
