@@ -372,36 +372,53 @@ class PainleveOnset:
         return f"PainleveOnset(mu={self.mu:.6f}, bracket=[{self.bracket[0]:.6f}, {self.bracket[1]:.6f}])"
 
 
-def painleve_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[float, float] = (0.64, 0.65),
+def painleve_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[float, float] | None = None,
                       xtol: float = 1e-5, t_end: float = 13.0) -> PainleveOnset:
     """Smallest μ where the detached (flight–slip–stick) attractor of set 1 (e_N = 0) meets a
     Painlevé situation: the slip phase reaches D₊ = G_NN − μG_NT = 0 (the engine raises
     :class:`~verify.lancioni.contact.PainleveError`).  The paper reports a change of motion type at
     μ ≈ 0.6450 (free flight–stick–slip below, free flight–stick above) — where our model stops
     with a Painlevé situation instead of choosing a continuation silently.
+
+    The attractor is reached from the slip equilibrium + 0.05 rad at 1.1 × the lift-off μ
+    (:func:`lift_off_mu`: above it the slip cycle is gone and the motion detaches).  Without a
+    ``bracket`` the window comes from the model: its lower end starts there and its upper end
+    moves up in doubling steps (from 5 % of that μ) until a Painlevé situation is met.
     """
     from landau.verify.lancioni.contact import PainleveError
     p = S.resolve(params)
-    lo, hi = map(float, bracket)
-    y = np.array([0.38, 0.929, 0.0, 0.0])
-    _, sol = _attractor(0.45, y, None, p, t_end)
-    _, sol = _attractor(lo, sol.y, sol.mode, p, t_end)
-    start = (sol.y, sol.mode)
+    mu0 = 1.1 * lift_off_mu(p)[0]
+    cm = build(mu0, 0.0, p)
+    _, sol = _attractor(mu0, slip_state(cm.mech, S.equilibrium_phi(p, mu0, 1) + 0.05), None, p, t_end)
     msg = ""
 
-    def hits(m):
+    def hits(m, start):
         nonlocal msg
         try:
-            _attractor(m, start[0], start[1], p, t_end)
-            return False
+            return False, _attractor(m, start[0], start[1], p, t_end)[1]
         except PainleveError as exc:
             msg = str(exc)
-            return True
-    if hits(lo) or not hits(hi):
+            return True, None
+    if bracket is None:
+        lo, step = mu0, 0.05 * mu0
+        for _ in range(6):
+            hit, nxt = hits(lo + step, (sol.y, sol.mode))
+            if hit:
+                break
+            lo, step, sol = lo + step, 2 * step, nxt
+        else:
+            raise NoHopfError(f"no Painlevé situation on the detached attractor up to mu={lo:.6g}")
+        hi = lo + step
+    else:
+        lo, hi = map(float, bracket)
+        _, sol = _attractor(lo, sol.y, sol.mode, p, t_end)
+    start = (sol.y, sol.mode)
+    hits_from_start = lambda m: hits(m, start)[0]  # noqa: E731
+    if bracket is not None and (hits_from_start(lo) or not hits_from_start(hi)):
         raise NoHopfError(f"Painlevé onset not bracketed by [{lo}, {hi}]")
     while hi - lo > xtol:
         mid = 0.5 * (lo + hi)
-        if hits(mid):
+        if hits_from_start(mid):
             hi = mid
         else:
             lo = mid
