@@ -3,10 +3,10 @@
 The scenes' search windows come from the law's scales (V̂ = sqrt(aσL/M) of eq. 31, c_crit of Sec. 4.1,
 V_m of eq. 41, L/t_ss), so these sets move the answers away from the printed numbers.  The
 references are Kuznetsov's first Lyapunov coefficient at 40 digits (projection method on the full
-system, not the multiple-scales closed form the scenes evaluate), closed forms, and mpmath roots.
+system, not the multiple-scales closed form the scenes evaluate) and closed forms; the extrema of μ_ss
+(against mpmath roots) are in test_off_paper.py.
 """
 
-import mpmath
 import pytest
 from scipy.optimize import brentq
 
@@ -52,24 +52,6 @@ def test_critical_residual_strength_off_paper(params):
     assert below["value"] > 0
     with pytest.raises(InputError):
         run_scene("putelat2010/V-star-modified-dieterich", {**params, "c": 1.01 * c})
-
-
-@pytest.mark.parametrize("params", [{"c": 3e-4}, {"t_ss": 30.0}])
-def test_spinodal_local_maximum_off_paper(params):
-    """Local maximum V_M of μ_ss of the spinodal law (37)–(38) at other c and t_ss against a 40-digit
-    root of dμ_ss/dV (mpmath differentiation of μ_ss(V) = a asinh(V (c + φ_ss(1 + V_* t_ss/L))^{b/a}
-    e^{a_v/a}/(2V_*)), φ_ss = 1/(1 + V t_ss/L)), to 1e-8 (the scene's brentq in log V stops at 1e-15)."""
-    doc = run_scene("putelat2010/spinodal-V_M", params)
-    p = {k: mpmath.mpf(v) for k, v in doc["params"].items()}
-    with mpmath.workdps(40):
-        def mu_ss(V):
-            phi = 1 / (1 + V * p["t_ss"] / p["L"])
-            return p["a"] * mpmath.asinh(V * (p["c"] + phi * (1 + p["V_s"] * p["t_ss"] / p["L"])) ** (p["b"] / p["a"])
-                                         * mpmath.exp(p["a_v"] / p["a"]) / (2 * p["V_s"]))
-        lv = mpmath.findroot(lambda x: mpmath.diff(lambda y: mu_ss(mpmath.exp(y)), x), mpmath.log(doc["value"]))
-        second = mpmath.diff(lambda y: mu_ss(mpmath.exp(y)), lv, 2)
-    assert doc["value"] == pytest.approx(float(mpmath.exp(lv)), rel=1e-8)
-    assert second < 0                                            # a maximum, not the minimum V_m
 
 
 @pytest.mark.parametrize("params", [{"M": 0.3}, {"L": 3e-6, "b": 0.06}])
