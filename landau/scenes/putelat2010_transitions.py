@@ -94,8 +94,8 @@ def _gamma_max_velocity(p: dict) -> dict:
     from landau.amplitude import growth_rate_max
 
     q = _params(p)
-    g = growth_rate_max(_derivation("dieterich"), q)
     V_hat = _v_hat(q)
+    g = growth_rate_max(_derivation("dieterich"), q, 1e-4 * V_hat, 1e2 * V_hat)  # window on the scale V̂
     return {"value": g.V / V_hat, "V": g.V, "V_hat": V_hat, "Gamma_max_per_dk": g.value}
 
 
