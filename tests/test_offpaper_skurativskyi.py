@@ -11,6 +11,12 @@ import pytest
 from landau.errors import LandauError
 from landau.scenes import run_scene
 
+def _static_equilibrium(p):
+    """X₀ from k X₀ + k_I (X₀ − x_I)^{n₁} = 0 at the working precision (the cart pressed on the obstacle)."""
+    return mpmath.findroot(lambda X: p["k"] * X + p["kI"] * (X - p["xI"]) ** p["n1"],
+                           (p["xI"] * (1 - mpmath.mpf(10) ** -12), mpmath.mpf(0)), solver="anderson")
+
+
 # other obstacle positions and a softer contact: X0 − x_I, k_lin and the contact resonance all move
 OFF_PAPER = [{"xI": -0.003}, {"kI": 5e7, "c": 10.0}]
 
@@ -25,8 +31,7 @@ def test_grazing_harmonic_off_paper_against_mpmath(params):
     doc = run_scene("skurativskyi2019/grazing-harmonic", params)
     p = {k: mpmath.mpf(v) for k, v in doc["params"].items()}
     with mpmath.workdps(40):
-        X0 = mpmath.findroot(lambda X: p["k"] * X + p["kI"] * (X - p["xI"]) ** p["n1"],
-                             (p["xI"] * (1 - mpmath.mpf(10) ** -12), mpmath.mpf(0)), solver="anderson")
+        X0 = _static_equilibrium(p)
         A = p["xI"] - X0
 
         def residual(w):
@@ -75,3 +80,25 @@ def test_first_cascade_grazing_off_paper_is_a_named_error_or_a_located_grazing()
         return
     lo, hi = sorted((doc["params"]["gone_omega"], doc["params"]["orbit_omega"]))
     assert lo <= doc["value"] <= hi
+
+
+def test_scene_parameters_named_k_or_v_are_accepted_on_the_command_line(capsys):
+    """``landau scene run`` takes a scene's own parameter names, including the spring stiffness k of
+    this oscillator (reserved as the bifurcation parameter only in the spring–block commands).
+    Independent: the linearised grazing condition x_I = X₀ − m₀eω²/sqrt((ωc)² + Δ²),
+    Δ = k + n₁k_I(X₀ − x_I)^{n₁−1} − mω², evaluated at the returned ω with a 40-digit X₀ (to 1e-10 of
+    X₀ − x_I, the scene's brentq stops at 1e-13 rad/s)."""
+    import json
+
+    from landau.cli import main
+
+    code = main(["scene", "run", "skurativskyi2019/grazing-linear", "--param", "k=1500", "--json"])
+    doc = json.loads(capsys.readouterr().out)
+    assert code == 0 and doc["params"]["k"] == 1500.0
+    p = {k: mpmath.mpf(v) for k, v in doc["params"].items()}
+    w = mpmath.mpf(doc["value"])
+    with mpmath.workdps(40):
+        X0 = _static_equilibrium(p)
+        delta = p["k"] + p["n1"] * p["kI"] * (X0 - p["xI"]) ** (p["n1"] - 1) - p["m"] * w ** 2
+        trough = X0 - p["m0e"] * w ** 2 / mpmath.sqrt((w * p["c"]) ** 2 + delta ** 2)
+    assert float(trough - p["xI"]) == pytest.approx(0.0, abs=1e-10 * float(X0 - p["xI"]))

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
-from typing import Sequence
+from typing import Mapping, Sequence
 
 from landau.errors import InputError
 from landau.system import SpringBlock
@@ -43,12 +43,14 @@ def split_assignment(item: str, option: str, rhs: str, seen) -> tuple[str, str]:
     return name, val
 
 
-def parse_params(items: Sequence[str]) -> dict[str, float]:
+def parse_params(items: Sequence[str], reserved: Mapping[str, str] = NOT_PARAMS) -> dict[str, float]:
+    """``--param NAME=VALUE`` items as finite floats; a name in ``reserved`` (default: the spring–block
+    commands' V, k and v) is an InputError with its explanation."""
     out: dict[str, float] = {}
     for item in items:
         name, val = split_assignment(item, "--param", "VALUE", out)
-        if name in NOT_PARAMS:
-            raise InputError(f"--param {name}: {NOT_PARAMS[name]}")
+        if name in reserved:
+            raise InputError(f"--param {name}: {reserved[name]}")
         try:
             x = float(val)
         except ValueError:
