@@ -81,10 +81,11 @@ def radau_at(af, aj, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_i
 
 @nb.njit(cache=True)
 def rosenbrock_at(af, aj, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir, ev_stop,
-                  rec_cap, autonomous, RA, RC, RCN, RD, RM, RE, EVBUF, EVDIR):
+                  rec_cap, autonomous, one_step, RA, RC, RCN, RD, RM, RE, EVBUF, EVDIR):
     """:func:`~landau.verify.hybrid.rosenbrock.rosenbrock_core` with (f, J) given by address."""
     return rosenbrock_core(fun_at(af), jac_at(aj), t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx,
-                           ev_val, ev_dir, ev_stop, rec_cap, autonomous, RA, RC, RCN, RD, RM, RE, EVBUF, EVDIR)
+                           ev_val, ev_dir, ev_stop, rec_cap, autonomous, one_step, RA, RC, RCN, RD, RM, RE, EVBUF,
+                           EVDIR)
 
 
 @nb.njit(cache=True)

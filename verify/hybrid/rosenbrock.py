@@ -47,11 +47,12 @@ import numba as nb
 import numpy as np
 from numba import types
 
+from landau.verify.hybrid.compiled import _Collocation, _CompiledFactory, _CompiledStepper
 from landau.verify.hybrid.crossing import cubic, cubic_crossing
 from landau.verify.hybrid.radau import FUN_T, JAC_T, STATUS, _lu, _poly, _rms, _solve
 
 __all__ = ["RODAS4_GAMMA", "RODAS4_A", "RODAS4_C", "RODAS4_CNODES", "RODAS4_D", "RODAS4_M", "RODAS4_E",
-           "STATUS", "rosenbrock_core", "tableau_classical"]
+           "STATUS", "rosenbrock_core", "tableau_classical", "CompiledRODAS4", "RODAS4Solver"]
 
 #: RODAS4 (Hairer & Wanner 1996, Sec. VI.4), transformed coefficients: γ, a_ij, C_ij, c_i, d_i
 RODAS4_GAMMA = 0.25
@@ -136,10 +137,11 @@ I64 = types.int64
 
 
 @nb.njit(types.Tuple((I64, F64, A1, I64[::1], A1, A2, A1, A2, F64, A2))(
-    FUN_T, JAC_T, F64, A1, F64, A1, F64, A1, F64, F64, I64, I64, F64, I64, I64, I64, I64, A2, A2, A1, A1, A1,
-    A1, A2, A1), cache=True)
+    FUN_T, JAC_T, F64, A1, F64, A1, F64, A1, F64, F64, I64, I64, F64, I64, I64, I64, I64, I64, A2, A2, A1, A1,
+    A1, A1, A2, A1), cache=True)
 def rosenbrock_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
-                    ev_idx, ev_val, ev_dir, ev_stop, rec_cap, autonomous, RA, RC, RCN, RD, RM, RE, EVBUF, EVDIR):
+                    ev_idx, ev_val, ev_dir, ev_stop, rec_cap, autonomous, one_step, RA, RC, RCN, RD, RM, RE, EVBUF,
+                    EVDIR):
     """Integrate from t0 to t_end with a Rosenbrock method (RODAS4 by default).
 
     Returns (status, t, y, counters, ev_t, ev_y, rec_t, rec_y, h, Q) as
@@ -147,7 +149,8 @@ def rosenbrock_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_st
     f evaluations, Jacobians, LU decompositions, 0, events, recorded steps]; ``h`` is the
     next step size and ``Q`` (3 × n) the last accepted step's Hermite cubic
     y(t_old + x h_old) = y_old + Σ_j Q_j x^{j+1}.  ``autonomous = 0`` adds the h dᵢ ∂f/∂t
-    term (∂f/∂t by a forward difference, one more evaluation per step).  ``RA``/``RC``
+    term (∂f/∂t by a forward difference, one more evaluation per step); ``one_step = 1`` returns
+    after the first accepted step (status 0).  ``RA``/``RC``
     (s × s), ``RCN``, ``RD``, ``RM``, ``RE`` (s) are the transformed coefficients.
     """
     n = y0.shape[0]
@@ -342,6 +345,50 @@ def rosenbrock_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_st
         err_old = max(err_norm, 1e-10)
         h = min(h * fac, max_step)
         rejected = False
+        if one_step == 1:
+            break
     ne = min(cnt[6], EVBUF.shape[0])
     return (status, t, y, cnt, EVBUF[:ne, 0].copy(), EVBUF[:ne, 1:].copy(), rec_t[:cnt[7]].copy(),
             rec_y[:cnt[7]].copy(), h, Q)
+
+
+# --------------------------------------------------------------------------------------------
+# the stepper contract of landau.verify.hybrid.steppers over a compiled kernel
+class RODAS4Solver(_CompiledStepper):
+    """scipy ``OdeSolver`` members over :func:`rosenbrock_core` (one accepted step per call;
+    dense output: the step's cubic Hermite interpolant)."""
+
+    method = "RODAS4"
+
+    def _advance(self):
+        from landau.verify.hybrid.fastcall import addresses, rosenbrock_at
+
+        n = len(self.y)
+        k = self.kernel
+        af, aj = addresses(k.fun, k.jac)
+        evbuf, evdir = np.empty((1, n + 1)), np.empty(1)
+        h0 = min(self.h, self.max_step, self.t_bound - self.t)
+        st, t, y, cnt, *_, h_next, Q = rosenbrock_at(
+            af, aj, self.t, np.ascontiguousarray(self.y), self.t_bound, k.p, self.rtol, self.atol, h0,
+            self.max_step, 500, -1, 0.0, 0, 0, 0, 0, 1, RODAS4_A, RODAS4_C, RODAS4_CNODES, RODAS4_D, RODAS4_M,
+            RODAS4_E, evbuf, evdir)
+        self.nfev += int(cnt[2]) - 1  # the core evaluates f at its start: already counted
+        self.njev += int(cnt[3])
+        self.nlu += int(cnt[4])
+        self.nrejected += int(cnt[1])
+        self.h = float(h_next)
+        if cnt[0] == 0:
+            why = STATUS[int(st)] if st < 0 else "no accepted step"
+            return f"compiled RODAS4: {why} at t = {self.t:.12g}"
+        self._dense = _Collocation(self.t, t - self.t, self.y.copy(), Q.copy())
+        self.t_old, self.t, self.y = self.t, float(t), y.copy()
+        return None
+
+
+@dataclass(frozen=True)
+class CompiledRODAS4(_CompiledFactory):
+    """Stepper factory: compiled RODAS4 (Rosenbrock, order 4, L-stable, stiffly accurate) with
+    a cubic Hermite dense output; needs the kernel's Jacobian."""
+
+    _solver = RODAS4Solver
+    _needs_jac = True

@@ -197,7 +197,7 @@ def integrate(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol:
         # eq. (4) is autonomous (the loading enters through ξ = X/ℓ in the co-moving frame): no ∂f/∂t
         st, t, y, cnt, et, ey, rt, ry, _, _ = rosenbrock_at(
             af, aj, t0, y0, t1, model.p, float(rtol), at, float(h0), float(ms), int(max_steps), int(event_index),
-            float(event_value), int(event_direction), int(stop_after), int(record), 1, RODAS4_A, RODAS4_C,
+            float(event_value), int(event_direction), int(stop_after), int(record), 1, 0, RODAS4_A, RODAS4_C,
             RODAS4_CNODES, RODAS4_D, RODAS4_M, RODAS4_E, evbuf, evdir)
     else:
         st, t, y, cnt, et, ey, rt, ry, _, _ = radau_at(af, aj, t0, y0, t1, model.p, float(rtol), at, float(h0),
