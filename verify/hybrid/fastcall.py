@@ -10,6 +10,12 @@ function values inside compiled code, so a call costs what its array arguments c
 The addresses stay valid as long as the :class:`FunctionPointer` objects that produced them
 are alive; :func:`addresses` returns them from the same cache as
 :func:`landau.verify.hybrid.radau.pointers`, which keeps them for the life of the process.
+
+The entry points are compiled on first use and cached on disk.  numba's cache of a function
+is invalidated by changes to *its own* source file only: after editing a core these wrap
+(:mod:`~landau.verify.hybrid.radau`, :mod:`~landau.verify.hybrid.rosenbrock`,
+:mod:`~landau.verify.hybrid.collocation`), delete this module's cache files
+(``__pycache__/fastcall*.nbi``, ``*.nbc``) in a development checkout.
 """
 
 from __future__ import annotations
@@ -63,12 +69,6 @@ def addresses(fun, jac) -> tuple[int, int]:
     """
     f, j = pointers(fun, jac)
     return f.__wrapper_address__(), j.__wrapper_address__()
-
-
-_I = types.int64
-_F = types.float64
-_A1 = types.float64[::1]
-_A2 = types.float64[:, ::1]
 
 
 @nb.njit(cache=True)

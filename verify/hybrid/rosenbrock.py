@@ -45,11 +45,10 @@ from dataclasses import dataclass
 
 import numba as nb
 import numpy as np
-from numba import types
 
 from landau.verify.hybrid.compiled import _Collocation, _CompiledFactory, _CompiledStepper
 from landau.verify.hybrid.crossing import cubic, cubic_crossing
-from landau.verify.hybrid.radau import FUN_T, JAC_T, STATUS, _lu, _poly, _rms, _solve
+from landau.verify.hybrid.radau import STATUS, _lu, _poly, _rms, _solve
 
 __all__ = ["RODAS4_GAMMA", "RODAS4_A", "RODAS4_C", "RODAS4_CNODES", "RODAS4_D", "RODAS4_M", "RODAS4_E",
            "STATUS", "rosenbrock_core", "tableau_classical", "CompiledRODAS4", "RODAS4Solver"]
@@ -130,15 +129,7 @@ def tableau_classical(gamma: float = RODAS4_GAMMA, A=RODAS4_A, C=RODAS4_C, m=ROD
     return ClassicalTableau(np.asarray(A) @ G, G, np.asarray(m) @ G, (np.asarray(m) - np.asarray(e)) @ G)
 
 
-F64 = types.float64
-A1 = types.float64[::1]
-A2 = types.float64[:, ::1]
-I64 = types.int64
-
-
-@nb.njit(types.Tuple((I64, F64, A1, I64[::1], A1, A2, A1, A2, F64, A2))(
-    FUN_T, JAC_T, F64, A1, F64, A1, F64, A1, F64, F64, I64, I64, F64, I64, I64, I64, I64, I64, A2, A2, A1, A1,
-    A1, A1, A2, A1), cache=True)
+@nb.njit(cache=True)
 def rosenbrock_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                     ev_idx, ev_val, ev_dir, ev_stop, rec_cap, autonomous, one_step, RA, RC, RCN, RD, RM, RE, EVBUF,
                     EVDIR):
