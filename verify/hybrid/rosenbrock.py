@@ -3,10 +3,14 @@
 RODAS4 (Hairer & Wanner, *Solving ODEs II*, Sec. VI.4; coefficients of their code RODAS,
 ``METH = 1``) is a 6-stage, order-4, L-stable, stiffly accurate Rosenbrock method with an
 embedded order-3 solution.  One step costs one Jacobian, one LU of the n×n matrix
-(1/(hγ))·I − J and six right-hand sides — no Newton iteration — so at loose tolerances it
-is much cheaper per step than the Radau IIA of :mod:`landau.verify.hybrid.radau`
-(a 3n×3n LU and several Newton sweeps of three stages each), while its higher-order
-sibling wins at tight tolerances.
+(1/(hγ))·I − J and six right-hand sides — no Newton iteration — about half the cost of a
+step of the Radau IIA of :mod:`landau.verify.hybrid.radau` (a 3n×3n LU and two or more
+Newton sweeps of three stages each) on the 3-state spring–block.  Being of order 4 and
+linearly implicit, it is less accurate per step: on the stick–slip cycle of Putelat et al.
+(2010), Fig. 3, it takes as many steps as the Radau IIA at the same tolerance for a 20–40
+times larger error at the end of a period, so there the Radau IIA is cheaper at equal error
+(``benchmarks/run.py --only springblock``); it pays on problems whose stiffness is mild
+or whose Jacobian is expensive to factor in 3n×3n form.
 
 The method is written in the "transformed" variables of Hairer & Wanner (Sec. IV.7,
 "implementation of Rosenbrock-type methods"): with uᵢ = Σⱼ γᵢⱼ kⱼ,
