@@ -9,8 +9,7 @@ Newton sweeps of three stages each) on the 3-state spring–block.  Being of ord
 linearly implicit, it is less accurate per step: on the stick–slip cycle of Putelat et al.
 (2010), Fig. 3, it takes as many steps as the Radau IIA at the same tolerance for a 20–40
 times larger error at the end of a period, so there the Radau IIA is cheaper at equal error
-(``benchmarks/run.py --only springblock``); it pays on problems whose stiffness is mild
-or whose Jacobian is expensive to factor in 3n×3n form.
+(``benchmarks/run.py --only springblock``).
 
 The method is written in the "transformed" variables of Hairer & Wanner (Sec. IV.7,
 "implementation of Rosenbrock-type methods"): with uᵢ = Σⱼ γᵢⱼ kⱼ,
