@@ -114,10 +114,12 @@ def test_hopf_c1_off_paper_is_the_slope_of_the_branch(law, Fneg, what):
 
 # ------------------------------------------------------------------ two blocks: an independent event map
 
-def _two_block_map_ivp(d, V, alpha, beta, Fneg, margins=None):
+def _two_block_map_ivp(d, V, alpha, beta, Fneg, margins=None, peak1=False):
     """Galvanetto's map d → d' (Sec. 2.2) by solve_ivp: from the end of the global stick phase d
     to the next one, both blocks' modes s/n/p switched at located events.  ``margins`` collects
-    K + F_s at every r = 0 landing from r < 0."""
+    K + F_s at every r = 0 landing from r < 0.  ``peak1``: return instead the maximum of r₁ in the
+    first phase with both blocks slipping (r < 0), block 1's r₁ = 0 not stopping it (the r < 0
+    branch continued): it changes sign where that phase grazes block 1's sticking region."""
     Fs = (1.0, beta)
     F = {"n": Fneg, "p": lambda r: -Fneg(-r)}
     K = lambda y, i: y[i] + alpha * (y[i] - y[1 - i])
@@ -130,6 +132,15 @@ def _two_block_map_ivp(d, V, alpha, beta, Fneg, margins=None):
         def rhs(t, y, m=tuple(modes)):
             a = [0.0 if m[i] == "s" else -K(y, i) + Fs[i] * F[m[i]](y[2 + i] - V) for i in (0, 1)]
             return [y[2], y[3], a[0], a[1]]
+        if peak1 and modes == ["n", "n"]:
+            peak = lambda t, y: rhs(t, y)[2]          # ṙ₁ = 0 from above: a maximum of r₁
+            peak.terminal, peak.direction = True, -1
+            land2 = lambda t, y: y[3] - V              # block 2 reaches the belt speed first
+            land2.terminal, land2.direction = True, 1
+            s = solve_ivp(rhs, (t, t + 400), y, events=[peak, land2], **IVP)
+            if not s.t_events[0].size:
+                raise RuntimeError("no maximum of r1 while both blocks slip")
+            return s.y_events[0][0][2] - V
         evs = []
         for i in (0, 1):
             if modes[i] == "s":
@@ -225,3 +236,58 @@ def test_fig12_sequence_off_paper_period_doubling_against_solve_ivp_map():
         slope = (_two_block_map_ivp(dstar + h, 0.25, 1.2, beta, Fneg)
                  - _two_block_map_ivp(dstar - h, 0.25, 1.2, beta, Fneg)) / (2 * h)
         assert (slope > -1.0) == above
+
+
+# ------------------------------------------------------------------ grazing-sliding (Fig. 15 type)
+
+def _ivp_period_two_at_kink(beta, V, alpha, Fneg, d_guess, w=2e-3):
+    """G(β) = f²(d_k) − d_k with both the kink d_k (root of the peak of r₁ in the first phase with
+    both blocks slipping, Brent within ±w of ``d_guess``) and the map f from the solve_ivp map."""
+    dk = brentq(lambda d: _two_block_map_ivp(d, V, alpha, beta, Fneg, peak1=True), d_guess - w, d_guess + w,
+                xtol=1e-14)
+    d1 = _two_block_map_ivp(dk, V, alpha, beta, Fneg)
+    return _two_block_map_ivp(d1, V, alpha, beta, Fneg) - dk, dk
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("law,Fneg", [(KineticFriction(3.5, 0.0), lambda r: 1.0 / (1 - 3.5 * r)), EXP[:2]],
+                         ids=["eq7-g3.5", "user-exp"])
+def test_grazing_sliding_off_paper_against_solve_ivp(law, Fneg):
+    # derived search: upward from the border collision for the first root of f²(d_k) − d_k, refined
+    # on the period-2 point's grazing function.  Independently (solve_ivp map, kink from the peak
+    # of r₁): (1) the kink at β* is the located period-2 point (1e-9: the peak is integrated to
+    # ~1e-12 and its slope in d is ~10, Brent to 1e-14); (2) G(β*) ≈ 0 to 1e-6 (G's slope in β is
+    # ~1 and f² has a square-root branch right of the kink, so a 1e-12 error in d_k can show as
+    # ~1e-6); (3) G changes sign across β* ± 3e-5 (|G| ≈ 3e-5 there, well above that error).
+    loc = B.grazing_sliding(law=law)
+    bstar, d = loc.value, loc.details["d"]
+    g0, dk = _ivp_period_two_at_kink(bstar, 0.25, 1.2, Fneg, d)
+    assert dk == pytest.approx(d, abs=1e-9)
+    assert abs(g0) < 1e-6
+    below, _ = _ivp_period_two_at_kink(bstar - 3e-5, 0.25, 1.2, Fneg, d)
+    above, _ = _ivp_period_two_at_kink(bstar + 3e-5, 0.25, 1.2, Fneg, d)
+    assert np.sign(below) != np.sign(above) and abs(below) > 1e-5 and abs(above) > 1e-5
+    assert loc.value > B.border_collision(law=law).value
+
+
+# ------------------------------------------------------------------ no bifurcation in the derived range
+
+def test_one_block_type_II_absent_is_a_named_error_with_the_range():
+    # c = 0.1 with γ = 2, δ = 0.1: the derived range is V in [10⁻² v_w, 10⁴ v_w] (v_w = 1/γ); the
+    # locator says that type II sliding does not exist there, naming the range, instead of asking
+    # for a bracket.  Independently (solve_ivp margin), the margin K + F_s has the same sign at
+    # both ends of that range.
+    law, Fneg, _ = EQ7_G2
+    with pytest.raises(B.NoBifurcationError) as err:
+        B.one_block_sliding("II", c=0.1, law=law)
+    msg = str(err.value)
+    assert "[0.005, 5000]" in msg and "bracket" not in msg
+    ends = [_ivp_margin(Fneg, V, "II", c=0.1) for V in (0.005, 5000.0)]
+    assert np.sign(ends[0]) == np.sign(ends[1])
+
+
+def test_multi_sliding_needs_a_periodic_start_and_says_so():
+    # at γ = 11 (V = 0.05, α = 1.2, β = 2, Fig. 16's initial condition) the map's attractor is not
+    # periodic: the locator, which follows a periodic orbit, raises the named error with the start
+    with pytest.raises(B.NoBifurcationError, match="gamma = 11"):
+        B.multi_sliding(gamma=11.0)

@@ -370,8 +370,11 @@ def two_block_sliding(kind: str, alpha: float = 1.2, beta: float = 1.3, gamma: f
         d0 = float(orb[0]) if d0 is None else d0
         if period is None:
             if per is None:
-                raise InputError(f"two-block type {kind} sliding: the map's attractor at V = {bracket[0]:.6g} is not "
-                                 "periodic (period <= 8); give period and bracket")
+                raise NoBifurcationError(
+                    f"two-block type {kind} sliding: the test function changes sign for V in [{bracket[0]:.6g}, "
+                    f"{bracket[1]:.6g}], but the map's attractor at V = {bracket[0]:.6g} is not periodic (period <= 8): "
+                    "the sliding happens on a non-periodic attractor, not at a point of a periodic orbit "
+                    "(pass period= to follow a periodic orbit of that period)")
             period = per
     warm = _Warm(d0)
 
@@ -821,8 +824,9 @@ def multi_sliding(bracket=None, V=0.05, alpha=1.2, beta=2.0, delta=None, stepper
     bracket : search interval in γ.  Default derived from the model: the map's attractor at the
         start ``gamma`` (from ``d0``; 80 iterations, DOP853 at rtol 1e-8) gives the period n of the
         orbit (period detection as in :func:`two_block_sliding`, n ≤ 8); that periodic point is
-        continued in γ (warm-started secant) to both sides with steps 10⁻⁴·γ·2ᵏ up to γ/2, and the
-        first sign change of H brackets the multi-sliding point.
+        continued in γ (warm-started secant) to both sides with steps 10⁻⁴·γ·2ᵏ (at most 10⁻²·γ) up
+        to 0.2·γ away, as long as it moves by less than 5 % of the map's domain (:func:`d_range`)
+        per step; the first sign change of H brackets the multi-sliding point.
     V, alpha, beta : belt velocity, inter-block stiffness, block 2's static level (Fig. 16: 0.05,
         1.2, 2).
     delta : δ of the default law, eq. (7) (default 0).
@@ -863,45 +867,55 @@ def multi_sliding(bracket=None, V=0.05, alpha=1.2, beta=2.0, delta=None, stepper
 
     def H(g):
         p = params(g)
-        pp = periodic_point(p, warm.d, period, stepper)
+        # a secant from a warm start converges in < 10 steps; 20 bounds the cost where the orbit is lost
+        pp = periodic_point(p, warm.d, period, stepper, maxiter=20)
         warm.d = pp.d
         return _multi_sliding_test(p, pp.d, period, stepper)
 
     if bracket is None:
-        bracket = _continuation_scan(H, warm, gamma0, 0.5 * gamma0, "multi-sliding")
+        lo, hi = d_range(params(gamma0))
+        bracket = _continuation_scan(H, warm, gamma0, 0.2 * gamma0, "multi-sliding", 0.05 * (hi - lo))
     g, res, n, sec = _locate(H, bracket)
     return Located("multi-sliding", "gamma", g, res, n, sec,
                    {"d": warm.d, "period": period, "bracket": tuple(map(float, bracket))})
 
 
-def _continuation_scan(H, warm: _Warm, x0: float, limit: float, what: str) -> tuple[float, float]:
+def _continuation_scan(H, warm: _Warm, x0: float, limit: float, what: str, max_jump: float) -> tuple[float, float]:
     """Bracket of a sign change of H (evaluated on a periodic point warm-started from ``warm.d``)
-    next to x0: the point is continued to both sides, x0 ± 10⁻⁴|x0|·2ᵏ up to ``limit``; a side ends
-    where the orbit is lost (the periodic point does not converge or the map is undefined)."""
+    next to x0.  The point is followed to both sides of x0 in steps 10⁻⁴|x0|·2ᵏ, at most 10⁻²|x0|,
+    up to distance ``limit``; a side ends where the orbit is lost: the periodic point does not
+    converge, the map is undefined, or the point jumps by more than ``max_jump`` in one step (the
+    secant has found another orbit)."""
     h0 = H(x0)
     if h0 == 0.0:
         return x0, x0
     reached = {-1: (x0, warm.d), +1: (x0, warm.d)}   # the last point followed on each side
-    step = 1e-4 * abs(x0)
-    while step <= limit and reached:
+    ends = {-1: None, +1: None}                      # where a side was lost
+    dist, step = 0.0, 1e-4 * abs(x0)
+    while reached and dist < limit:
+        dist = min(dist + step, limit)
         for side in list(reached):
             xp, dp = reached[side]
-            x = x0 + side * step
+            x = x0 + side * dist
             warm.d = dp
             try:
                 h = H(x)
+                if abs(warm.d - dp) > max_jump:
+                    raise MapUndefined("the periodic point jumped")
             except (MapUndefined, IntegratorError, LandauError):
+                ends[side] = xp
                 del reached[side]
                 continue
             if np.sign(h) != np.sign(h0):
                 return (xp, x) if xp < x else (x, xp)
             reached[side] = (x, warm.d)
-        step *= 2
-    ends = [x0 - step / 2 if -1 in reached else None, x0 + step / 2 if +1 in reached else None]
+        step = min(2 * step, 1e-2 * abs(x0))
+    lo = ends[-1] if ends[-1] is not None else x0 - limit
+    hi = ends[+1] if ends[+1] is not None else x0 + limit
     raise NoBifurcationError(f"{what}: the test function does not change sign along the periodic orbit followed "
-                             f"from {x0:.8g} (to {'the limit' if ends[0] else 'where it was lost'} below, "
-                             f"{'the limit' if ends[1] else 'where it was lost'} above, within "
-                             f"[{x0 - limit:.8g}, {x0 + limit:.8g}]); the bifurcation does not exist on that orbit")
+                             f"from {x0:.8g} over [{lo:.8g}, {hi:.8g}] (searched within [{x0 - limit:.8g}, "
+                             f"{x0 + limit:.8g}]; the orbit was lost at an end inside that range); the "
+                             "bifurcation does not exist on that orbit")
 
 
 # ----------------------------------------------------------------- damped one block (Sec. 4.2)
