@@ -745,7 +745,9 @@ def grazing_sliding(bracket=None, V=0.25, alpha=1.2, gamma=None, delta=None, ste
         border collision (:func:`border_collision`, the previous zero of G, where the first
         period-2 orbit leaves the kink) with steps 10⁻⁴·2ᵏ up to 0.5; its first sign change is a
         root of G (a jump of f is rejected: |G| < 10⁻⁶ at the coarse root), around which H is
-        bracketed with widths 10⁻⁶·4ᵏ.
+        bracketed with widths 10⁻⁶·4ᵏ.  Where the period-2 point does not converge (next to the
+        kink f² has a square-root branch on one side) the root is refined on G itself at full
+        precision (``details["test"]`` says which).
     V, alpha : belt velocity and inter-block stiffness (Fig. 15: as Fig. 12, 0.25 and 1.2).
     gamma, delta : parameters of the default law, eq. (7) (defaults γ = 3, δ = 0).
     stepper : mode integrator (default DOP853, rtol 1e-11).
@@ -775,6 +777,7 @@ def grazing_sliding(bracket=None, V=0.25, alpha=1.2, gamma=None, delta=None, ste
         warm.d = pp.d
         return kink_function(p, pp.d, stepper)
 
+    coarse = None
     if bracket is None:
         bc = border_collision(None, V, alpha, law=law)
         scan_st = default_stepper(SCAN_RTOL)
@@ -788,10 +791,24 @@ def grazing_sliding(bracket=None, V=0.25, alpha=1.2, gamma=None, delta=None, ste
                                      f"[{bc.value:.8g}, {bc.value + 0.5:.8g}]")
         if d0 is None:
             warm.d = kwarm.d
-        bracket = _grow_bracket(H, coarse, 1e-6, 1e-2, "grazing-sliding")
-    b, res, n, sec = _locate(H, bracket)
+    try:
+        if coarse is not None:
+            bracket = _grow_bracket(H, coarse, 1e-6, 1e-2, "grazing-sliding")
+        b, res, n, sec = _locate(H, bracket)
+        test = "max r1 at the period-2 point"
+    except (MapUndefined, IntegratorError, LandauError) as err:
+        # the secant for the period-2 point can fail next to the kink, where f² has a square-root
+        # branch on one side: the root is then refined on f²(d_k) − d_k itself (the kink at full
+        # precision), which needs no periodic point
+        if coarse is None:
+            raise err
+        kwarm = _Warm(warm.d)
+        G = _kink_test(V, alpha, law, stepper, kwarm, _period_two_at_kink_test)
+        bracket = _grow_bracket(G, coarse, 1e-6, 1e-2, "grazing-sliding")
+        b, res, n, sec = _locate(G, bracket)
+        warm.d, test = kwarm.d, "f2(d_k) - d_k"
     return Located("grazing-sliding", "beta", b, res, n, sec,
-                   {"d": warm.d, "grazing_block": 1, "bracket": tuple(map(float, bracket))})
+                   {"d": warm.d, "grazing_block": 1, "bracket": tuple(map(float, bracket)), "test": test})
 
 
 def _multi_sliding_test(p, d, period, stepper) -> float:
