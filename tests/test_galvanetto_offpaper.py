@@ -114,12 +114,15 @@ def test_hopf_c1_off_paper_is_the_slope_of_the_branch(law, Fneg, what):
 
 # ------------------------------------------------------------------ two blocks: an independent event map
 
-def _two_block_map_ivp(d, V, alpha, beta, Fneg, margins=None, peak1=False):
+def _two_block_map_ivp(d, V, alpha, beta, Fneg, margins=None, peak1=False, kmin2=None):
     """Galvanetto's map d → d' (Sec. 2.2) by solve_ivp: from the end of the global stick phase d
     to the next one, both blocks' modes s/n/p switched at located events.  ``margins`` collects
     K + F_s at every r = 0 landing from r < 0.  ``peak1``: return instead the maximum of r₁ in the
     first phase with both blocks slipping (r < 0), block 1's r₁ = 0 not stopping it (the r < 0
-    branch continued): it changes sign where that phase grazes block 1's sticking region."""
+    branch continued): it changes sign where that phase grazes block 1's sticking region.
+    ``kmin2`` (a list): block 2, stuck while block 1 slips with r₁ > 0, does not leave at K₂ = −β
+    (that guard removed, the stick phase continued) and K₂ + β at each minimum of K₂ there is
+    collected."""
     Fs = (1.0, beta)
     F = {"n": Fneg, "p": lambda r: -Fneg(-r)}
     K = lambda y, i: y[i] + alpha * (y[i] - y[1 - i])
@@ -142,9 +145,12 @@ def _two_block_map_ivp(d, V, alpha, beta, Fneg, margins=None, peak1=False):
                 raise RuntimeError("no maximum of r1 while both blocks slip")
             return s.y_events[0][0][2] - V
         evs = []
+        watch = kmin2 is not None and modes == ["p", "s"]
         for i in (0, 1):
             if modes[i] == "s":
                 for side, sgn in (("n", 1), ("p", -1)):
+                    if watch and side == "p":
+                        continue
                     e = (lambda t, y, i=i, sgn=sgn: K(y, i) - sgn * Fs[i])
                     e.terminal, e.direction = True, sgn
                     evs.append((e, i, side))
@@ -152,7 +158,11 @@ def _two_block_map_ivp(d, V, alpha, beta, Fneg, margins=None, peak1=False):
                 e = (lambda t, y, i=i: y[2 + i] - V)
                 e.terminal, e.direction = True, 1 if modes[i] == "n" else -1
                 evs.append((e, i, "r"))
-        s = solve_ivp(rhs, (t, t + 400), y, events=[e for e, _, _ in evs], **IVP)
+        kdot2 = lambda t, y: (1 + alpha) * y[3] - alpha * y[2]   # dK₂/dt while block 2 sticks
+        kdot2.direction = 1                                         # from − to +: a minimum of K₂
+        s = solve_ivp(rhs, (t, t + 400), y, events=[e for e, _, _ in evs] + ([kdot2] if watch else []), **IVP)
+        if watch:
+            kmin2.extend(K(ye, 1) + beta for ye in s.y_events[len(evs)])
         hit = [(s.t_events[k][0], k) for k in range(len(evs)) if s.t_events[k].size and s.t_events[k][0] > t + 1e-12]
         if not hit:
             raise RuntimeError("no event")
@@ -250,24 +260,28 @@ def _ivp_period_two_at_kink(beta, V, alpha, Fneg, d_guess, w=2e-3):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("law,Fneg", [(KineticFriction(3.5, 0.0), lambda r: 1.0 / (1 - 3.5 * r)), EXP[:2]],
-                         ids=["eq7-g3.5", "user-exp"])
-def test_grazing_sliding_off_paper_against_solve_ivp(law, Fneg):
+@pytest.mark.parametrize("alpha,law,Fneg", [(1.2, KineticFriction(3.5, 0.0), lambda r: 1.0 / (1 - 3.5 * r)),
+                                            (1.2, *EXP[:2]),
+                                            (1.0, KineticFriction(3.0, 0.0), lambda r: 1.0 / (1 - 3.0 * r))],
+                         ids=["eq7-g3.5", "user-exp", "alpha1-refined-on-G"])
+def test_grazing_sliding_off_paper_against_solve_ivp(alpha, law, Fneg):
     # derived search: upward from the border collision for the first root of f²(d_k) − d_k, refined
     # on the period-2 point's grazing function.  Independently (solve_ivp map, kink from the peak
     # of r₁): (1) the kink at β* is the located period-2 point (1e-9: the peak is integrated to
     # ~1e-12 and its slope in d is ~10, Brent to 1e-14); (2) G(β*) ≈ 0 to 1e-6 (G's slope in β is
     # ~1 and f² has a square-root branch right of the kink, so a 1e-12 error in d_k can show as
     # ~1e-6); (3) G changes sign across β* ± 3e-5 (|G| ≈ 3e-5 there, well above that error).
-    loc = B.grazing_sliding(law=law)
+    # With α = 1 the period-2 secant does not converge next to the kink and the root is refined on
+    # G itself.
+    loc = B.grazing_sliding(alpha=alpha, law=law)
     bstar, d = loc.value, loc.details["d"]
-    g0, dk = _ivp_period_two_at_kink(bstar, 0.25, 1.2, Fneg, d)
+    g0, dk = _ivp_period_two_at_kink(bstar, 0.25, alpha, Fneg, d)
     assert dk == pytest.approx(d, abs=1e-9)
     assert abs(g0) < 1e-6
-    below, _ = _ivp_period_two_at_kink(bstar - 3e-5, 0.25, 1.2, Fneg, d)
-    above, _ = _ivp_period_two_at_kink(bstar + 3e-5, 0.25, 1.2, Fneg, d)
+    below, _ = _ivp_period_two_at_kink(bstar - 3e-5, 0.25, alpha, Fneg, d)
+    above, _ = _ivp_period_two_at_kink(bstar + 3e-5, 0.25, alpha, Fneg, d)
     assert np.sign(below) != np.sign(above) and abs(below) > 1e-5 and abs(above) > 1e-5
-    assert loc.value > B.border_collision(law=law).value
+    assert loc.value > B.border_collision(alpha=alpha, law=law).value
 
 
 # ------------------------------------------------------------------ no bifurcation in the derived range
@@ -291,3 +305,4 @@ def test_multi_sliding_needs_a_periodic_start_and_says_so():
     # periodic: the locator, which follows a periodic orbit, raises the named error with the start
     with pytest.raises(B.NoBifurcationError, match="gamma = 11"):
         B.multi_sliding(gamma=11.0)
+
