@@ -842,7 +842,7 @@ def multi_sliding(bracket=None, V=0.05, alpha=1.2, beta=2.0, delta=None, stepper
         start ``gamma`` (from ``d0``; 80 iterations, DOP853 at rtol 1e-8) gives the period n of the
         orbit (period detection as in :func:`two_block_sliding`, n ≤ 8); that periodic point is
         continued in γ (warm-started secant) to both sides with steps 10⁻⁴·γ·2ᵏ (at most 10⁻²·γ) up
-        to 0.2·γ away, as long as it moves by less than 5 % of the map's domain (:func:`d_range`)
+        to 0.2·γ away, as long as it moves by less than 1 % of the map's domain (:func:`d_range`)
         per step; the first sign change of H brackets the multi-sliding point.
     V, alpha, beta : belt velocity, inter-block stiffness, block 2's static level (Fig. 16: 0.05,
         1.2, 2).
@@ -891,7 +891,7 @@ def multi_sliding(bracket=None, V=0.05, alpha=1.2, beta=2.0, delta=None, stepper
 
     if bracket is None:
         lo, hi = d_range(params(gamma0))
-        bracket = _continuation_scan(H, warm, gamma0, 0.2 * gamma0, "multi-sliding", 0.05 * (hi - lo))
+        bracket = _continuation_scan(H, warm, gamma0, 0.2 * gamma0, "multi-sliding", 0.01 * (hi - lo))
     g, res, n, sec = _locate(H, bracket)
     return Located("multi-sliding", "gamma", g, res, n, sec,
                    {"d": warm.d, "period": period, "bracket": tuple(map(float, bracket))})
@@ -902,7 +902,17 @@ def _continuation_scan(H, warm: _Warm, x0: float, limit: float, what: str, max_j
     next to x0.  The point is followed to both sides of x0 in steps 10⁻⁴|x0|·2ᵏ, at most 10⁻²|x0|,
     up to distance ``limit``; a side ends where the orbit is lost: the periodic point does not
     converge, the map is undefined, or the point jumps by more than ``max_jump`` in one step (the
-    secant has found another orbit)."""
+    secant has found another orbit); where it is lost after a step longer than 10⁻⁴|x0| the step is
+    halved back towards the last point followed until that resolution."""
+    def follow(x, dp):
+        """H at x on the orbit continued from the point dp, or None where it is lost."""
+        warm.d = dp
+        try:
+            h = H(x)
+        except (MapUndefined, IntegratorError, LandauError):
+            return None
+        return h if abs(warm.d - dp) <= max_jump else None
+
     h0 = H(x0)
     if h0 == 0.0:
         return x0, x0
@@ -914,16 +924,26 @@ def _continuation_scan(H, warm: _Warm, x0: float, limit: float, what: str, max_j
         for side in list(reached):
             xp, dp = reached[side]
             x = x0 + side * dist
-            warm.d = dp
-            try:
-                h = H(x)
-                if abs(warm.d - dp) > max_jump:
-                    raise MapUndefined("the periodic point jumped")
-            except (MapUndefined, IntegratorError, LandauError):
+            h = follow(x, dp)
+            # the orbit lost after a long step: halve back towards the last point followed (a sign
+            # change may lie just before the orbit ends, as at Fig. 16's multi-sliding)
+            lost = x
+            while h is None and abs(lost - xp) > 1e-4 * abs(x0):
+                mid = 0.5 * (xp + lost)
+                hm = follow(mid, dp)
+                if hm is None:
+                    lost = mid
+                elif np.sign(hm) != np.sign(h0):
+                    x, h = mid, hm            # the sign change lies between xp and mid
+                else:
+                    xp, dp = mid, warm.d      # still followed, same sign: go on from there
+            if h is None:
                 ends[side] = xp
                 del reached[side]
                 continue
             if np.sign(h) != np.sign(h0):
+                if xp < x:
+                    warm.d = dp     # the root search starts at the lower end, on the orbit followed
                 return (xp, x) if xp < x else (x, xp)
             reached[side] = (x, warm.d)
         step = min(2 * step, 1e-2 * abs(x0))
