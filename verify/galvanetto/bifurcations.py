@@ -20,6 +20,13 @@ Test functions (r = Ẋ − V, K the spring force, F_s the static level):
 * fold / border collision of the map: fⁿ(d_k) − d_k = 0 at the kink d_k(β);
 * period doubling: f'(d*) + 1 = 0 at the fixed point (central differences with Richardson
   extrapolation).
+
+Without a ``bracket`` every locator derives its search interval from the model, never from a
+published value: the law's weakening velocity (sliding points in V), the Hopf point c₁ (c₂), a β
+scan from equal static levels (the fold) and, upward from each bifurcation, the next one of the
+Fig. 12 sequence and the grazing-sliding (the next period-2 orbit through the kink), and the
+periodic attractor at the start γ followed in γ (multi-sliding).  When the test function does not
+change sign there, :class:`NoBifurcationError` names the range searched.
 """
 
 from __future__ import annotations
