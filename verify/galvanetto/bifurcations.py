@@ -920,7 +920,11 @@ def _continuation_scan(H, warm: _Warm, x0: float, limit: float, what: str, max_j
             return None
         return h if abs(warm.d - dp) <= max_jump else None
 
-    h0 = H(x0)
+    h0 = follow(x0, warm.d)
+    if h0 is None:
+        raise NoBifurcationError(f"{what}: the periodic orbit of the attractor at {x0:.8g} cannot be followed (its "
+                                 "periodic point does not converge at full precision or the test function is "
+                                 "undefined on it)")
     if h0 == 0.0:
         return x0, x0
     reached = {-1: (x0, warm.d), +1: (x0, warm.d)}   # the last point followed on each side
