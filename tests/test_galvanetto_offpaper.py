@@ -339,6 +339,7 @@ MULTI_SETS = [
     # (V, α, β, δ, start γ, start d: None = Fig. 16's initial condition) — off Fig. 16's set
     # (V = 0.05, α = 1.2, β = 2, δ = 0); the start γ is where the map's attractor is periodic
     pytest.param(0.052, 1.2, 2.0, 0.0, 10.19, None, id="V0.052"),
+    pytest.param(0.055, 1.2, 2.0, 0.0, 9.75, None, id="V0.055"),
 ]
 
 
