@@ -4,7 +4,9 @@
 stepper that has dense output (see :mod:`landau.verify.hybrid.steppers`), scans the mode's
 guards on every step (:mod:`landau.verify.hybrid.locate`; when no trajectory is recorded, a
 step is first screened on its cubic Hermite interpolant and the dense output is built only
-where a guard may cross), applies the earliest switching
+where a guard may cross; with a compiled stepper that offers ``run_quiet`` and a mode whose
+guards are all affine, the quiet steps run in one compiled call, tested on the stepper's own
+dense output), applies the earliest switching
 transition at its root (taken on the new side of the guard), logs every event, and
 watches for Zeno accumulation (:mod:`landau.verify.hybrid.zeno`).
 
@@ -63,8 +65,10 @@ class EngineOptions:
     screen: when not recording, first sample the guards on each step's cubic Hermite
         interpolant with an error bound and build the dense output only for steps where that
         could trigger the scan (:class:`~landau.verify.hybrid.locate.HermiteScreen`): the same
-        events, without the dense output's extra stages on quiet steps.  False: scan every
-        step on the dense output.
+        events, without the dense output's extra stages on quiet steps; with a stepper that
+        has ``run_quiet`` and a mode whose guards declare ``affine``, the same scan test on the
+        stepper's dense output inside its compiled loop).  False: scan every step on the
+        dense output.
     """
 
     samples: int = 4
