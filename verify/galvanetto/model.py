@@ -24,6 +24,7 @@ rᵢ < 0: grazing of the stick surface), ``rmin{i}`` (a minimum while rᵢ > 0),
 
 from __future__ import annotations
 
+import functools
 import itertools
 from dataclasses import dataclass, replace
 
@@ -206,38 +207,42 @@ def _kernel_factory(p: StickSlipParams, code: str):
     """A function building (once, on first call) the compiled field of mode ``code``.
 
     The law's branches enter symbolically and every number as a kernel parameter, so one
-    compiled source serves all parameter values of a law.
+    compiled source serves all parameter values of a law (:func:`_mode_kernel`).
     """
-    import functools
 
     @functools.lru_cache(maxsize=None)
     def build():
-        import sympy as sp
-
-        from landau.kernels import generate_kernel
-        from landau.laws.kinetic import DELTA, GAMMA, R
-
-        n = p.n
-        xs, vs = sp.symbols(f"x1:{n + 1}"), sp.symbols(f"v1:{n + 1}")
-        V, c, a, F1, F2 = sp.symbols("V c alpha F1 F2")
-        F = (F1, F2)
-        K = [xs[0] + c * vs[0]] if n == 1 else [xs[i] + a * (xs[i] - xs[1 - i]) + c * vs[i] for i in range(2)]
-        dx, dv = [], []
-        for i, ch in enumerate(code):
-            if ch == "s":
-                dx.append(V if n == 1 else vs[i])
-                dv.append(sp.Integer(0))
-            else:
-                br = p.law.branch("neg" if ch == "n" else "pos", symbolic=True)
-                dx.append(vs[i])
-                dv.append(-K[i] + F[i] * br.subs(R, vs[i] - V))
-        params = [V, c, a, F1, F2, GAMMA, DELTA]
-        Fs = p.Fs + (1.0,) * (2 - n)
-        values = [p.V, p.c, p.alpha, *Fs, p.law.gamma, p.law.delta]
-        return generate_kernel([*xs, *vs], dx + dv, params, values, jacobian=False,
-                               name=f"galvanetto{n}-{code}")
+        Fs = p.Fs + (1.0,) * (2 - p.n)
+        values = np.array([p.V, p.c, p.alpha, *Fs, p.law.gamma, p.law.delta])
+        return replace(_mode_kernel(p.law.neg_expr, p.law.pos_expr, p.n, code), p=values)
 
     return build
+
+
+@functools.lru_cache(maxsize=64)
+def _mode_kernel(neg_expr, pos_expr, n: int, code: str):
+    """The generated kernel of mode ``code`` for a law with these branches; parameters
+    p = (V, c, α, F_s1, F_s2, γ, δ) (its ``p`` holds placeholders)."""
+    import sympy as sp
+
+    from landau.kernels import generate_kernel
+    from landau.laws.kinetic import DELTA, GAMMA, R
+
+    xs, vs = sp.symbols(f"x1:{n + 1}"), sp.symbols(f"v1:{n + 1}")
+    V, c, a, F1, F2 = sp.symbols("V c alpha F1 F2")
+    F = (F1, F2)
+    K = [xs[0] + c * vs[0]] if n == 1 else [xs[i] + a * (xs[i] - xs[1 - i]) + c * vs[i] for i in range(2)]
+    dx, dv = [], []
+    for i, ch in enumerate(code):
+        if ch == "s":
+            dx.append(V if n == 1 else vs[i])
+            dv.append(sp.Integer(0))
+        else:
+            dx.append(vs[i])
+            dv.append(-K[i] + F[i] * (neg_expr if ch == "n" else pos_expr).subs(R, vs[i] - V))
+    params = [V, c, a, F1, F2, GAMMA, DELTA]
+    return generate_kernel([*xs, *vs], dx + dv, params, [1.0] * len(params), jacobian=False,
+                           name=f"galvanetto{n}-{code}")
 
 
 def _accel_fun(p: StickSlipParams, i: int, ch: str):
