@@ -19,7 +19,9 @@ def contact_force(x, v, p):
     if d <= 0.0:
         return 0.0
     sv = 1.0 if v > 0 else (-1.0 if v < 0 else 0.0)
-    f = d ** p[IN1] + p[IB] * d ** p[IN2] * sv * abs(v) ** p[IN3]
+    dn1 = d ** p[IN1]
+    dn2 = dn1 if p[IN2] == p[IN1] else d ** p[IN2]  # one power routine when n₁ = n₂ (the paper's)
+    f = dn1 + p[IB] * dn2 * sv * abs(v) ** p[IN3]
     return p[IKI] * f if f > 0.0 else 0.0
 
 
@@ -43,11 +45,16 @@ def accel_grad(t, x, v, p):
         av = abs(v)
         sv = 1.0 if v > 0 else (-1.0 if v < 0 else 0.0)
         pw = av ** p[IN3]
-        f = d ** p[IN1] + p[IB] * d ** p[IN2] * sv * pw
+        same = p[IN2] == p[IN1]
+        dn1 = d ** p[IN1]
+        dn2 = dn1 if same else d ** p[IN2]
+        f = dn1 + p[IB] * dn2 * sv * pw
         if f > 0.0:
-            dx -= p[IKI] * (p[IN1] * d ** (p[IN1] - 1.0) + p[IB] * p[IN2] * d ** (p[IN2] - 1.0) * sv * pw)
+            dm1 = d ** (p[IN1] - 1.0)
+            dm2 = dm1 if same else d ** (p[IN2] - 1.0)
+            dx -= p[IKI] * (p[IN1] * dm1 + p[IB] * p[IN2] * dm2 * sv * pw)
             avf = max(av, p[IVF])
-            dv -= p[IKI] * p[IB] * d ** p[IN2] * p[IN3] * avf ** (p[IN3] - 1.0)
+            dv -= p[IKI] * p[IB] * dn2 * p[IN3] * avf ** (p[IN3] - 1.0)
     return dx / p[IM], dv / p[IM]
 
 
@@ -99,10 +106,14 @@ def accel_partials(t, x, v, p):
     if d > 0.0:
         sv = 1.0 if v > 0 else (-1.0 if v < 0 else 0.0)
         pw = abs(v) ** p[IN3]
-        dn2 = d ** p[IN2]
-        f = d ** p[IN1] + p[IB] * dn2 * sv * pw
+        same = p[IN2] == p[IN1]
+        dn1 = d ** p[IN1]
+        dn2 = dn1 if same else d ** p[IN2]
+        f = dn1 + p[IB] * dn2 * sv * pw
         if f > 0.0:
             a -= p[IKI] * f
-            ax -= p[IKI] * (p[IN1] * d ** (p[IN1] - 1.0) + p[IB] * p[IN2] * d ** (p[IN2] - 1.0) * sv * pw)
+            dm1 = d ** (p[IN1] - 1.0)
+            dm2 = dm1 if same else d ** (p[IN2] - 1.0)
+            ax -= p[IKI] * (p[IN1] * dm1 + p[IB] * p[IN2] * dm2 * sv * pw)
             kap = p[IKI] * p[IB] * dn2 / m
     return a / m, ax / m, av, kap
