@@ -55,6 +55,11 @@ ULD = np.finfo(np.longdouble).eps / 2
 U80 = 2.0 ** -64
 #: whether the platform's long double is wider than float64 (x86: 64-bit mantissa)
 EXTENDED = np.finfo(np.longdouble).eps < 1e-18 and platform.machine().lower() in ("x86_64", "amd64", "i386", "i686")
+#: whether evaluate_proven refines doubtful points with the compensated float64 loop first
+COMPENSATE = True
+#: fewest doubtful points for which evaluate_proven compiles the compensated loop (when its
+#: object file is not cached): below, the extended loop alone refines them
+COMPENSATED_MIN_POINTS = 2_000
 #: points per chunk of the compiled loop handed to one thread
 CHUNK = 65_536
 
@@ -131,6 +136,10 @@ class _IREmitter:
     def pow(self, a, b):
         return self._intrinsic("pow", f"{self.T} {a}", f"{self.T} {b}")
 
+    def fma(self, a, b, c):
+        """a·b + c with one rounding."""
+        return self._intrinsic("fma", f"{self.T} {a}", f"{self.T} {b}", f"{self.T} {c}")
+
     def call(self, fname: str, a):
         f = _FUNCS[fname]
         if f.startswith("llvm."):
@@ -152,7 +161,7 @@ class _IREmitter:
             elif ".powi." in f:
                 out.append(f"declare {self.T} @{f}({self.T}, i32)")
             else:
-                n_args = 2 if (".copysign." in f or ".pow." in f) else 1
+                n_args = 3 if ".fma." in f else 2 if (".copysign." in f or ".pow." in f) else 1
                 out.append(f"declare {self.T} @{f}(" + ", ".join([self.T] * n_args) + ")")
         return out
 
@@ -222,6 +231,27 @@ class _IR80Emitter(_IREmitter):
                 n_args = 2 if (".copysign." in f or ".pow." in f) else 1
                 out.append(f"declare {self.T} @{f}(" + ", ".join([self.T] * n_args) + ")")
         return out
+
+
+class _IR80LaneEmitter(_IR80Emitter):
+    """x87 extended-precision scalars (registers %x…) written into another emitter's lines: one
+    lane of the compensated loop's library-function corrections."""
+
+    def __init__(self, lines: list[str]):
+        super().__init__()
+        self.lines = lines
+
+    def _new(self, code: str) -> str:
+        self.n += 1
+        name = f"%x{self.n}"
+        self.lines.append(f"  {name} = {code}")
+        return name
+
+
+def _quick_two_sum(E, a, b) -> tuple[object, object]:
+    """(s, e) with s + e = a + b exactly, for |a| ≥ |b| (Dekker 1971)."""
+    s = E.add(a, b)
+    return s, E.add(b, E.neg(E.add(s, E.neg(a))))
 
 
 # --------------------------------------------------------------------------------------------
@@ -311,6 +341,7 @@ class BoundedKernel:
         self.consts = tuple(consts)
         self._lock = threading.Lock()
         self._fn64: dict[tuple, tuple] = {}
+        self._paths: dict[tuple, object] = {}
 
     @staticmethod
     def _lower(node, slot, push) -> int:
@@ -455,6 +486,146 @@ class BoundedKernel:
             res.append((vals_fwd[out], bound if bound is not None else E.const(0.0)))
         return res
 
+    # --- compensated float64: the rounding errors themselves, propagated to the outputs -------
+    def _local_error(self, E, X, op: _Op, vals: list, t, dref) -> tuple[object, object]:
+        """(δ, ρ): the rounding error δ = exact(op(computed args)) − t the operation commits, as
+        computed, and a bound ρ on |error of δ| (None: δ is exactly 0 / ρ is 0).
+
+        +, ×, x² by error-free transformations (TwoSum; TwoProd with a fused multiply-add),
+        1/x and √x from their exact fma residuals, integer powers in double-double, library
+        functions and fractional powers in x87 extended precision (lane by lane)."""
+        k, a = op.kind, [vals[i] for i in op.args]
+        one = E.const(1.0)
+        if k == "const":
+            if op.param[1]:
+                return None, None
+            d = dref(op.param[0])
+            return d, E.mul(E.abs(d), E.const(U64))
+        if k == "add":
+            bb = E.add(t, E.neg(a[0]))
+            d = E.add(E.add(a[0], E.neg(E.add(t, E.neg(bb)))), E.add(a[1], E.neg(bb)))
+            return d, None
+        if k in ("mul", "sq"):
+            return E.fma(a[0], a[-1], E.neg(t)), None
+        if k == "inv":
+            d = E.mul(E.fma(E.neg(t), a[0], one), t)
+            return d, E.mul(E.abs(d), E.const(4 * U64))
+        if k == "func" and op.param == "sqrt":
+            d = E.div(E.fma(E.neg(t), t, a[0]), E.add(t, t))
+            return d, E.mul(E.abs(d), E.const(4 * U64))
+        if k == "func" and op.param == "Abs":
+            return None, None
+        if k == "powi":
+            n = op.param
+            hi, lo = self._dd_powi(E, a[0], abs(n))
+            if n < 0:
+                q = E.div(one, hi)
+                r = E.fma(E.neg(q), hi, one) if lo is None else E.add(E.fma(E.neg(q), hi, one), E.neg(E.mul(q, lo)))
+                hi, lo = _quick_two_sum(E, q, E.mul(r, q))
+            d = E.add(E.add(hi, E.neg(t)), lo) if lo is not None else E.add(hi, E.neg(t))
+            return d, E.mul(E.abs(t), E.const((8 * abs(n) + 8) * U64 * U64))
+        # library functions and fractional powers: in x87 extended precision, lane by lane
+        T80 = X.T
+        dv, zv = "poison", "poison"
+        for lane in range(E.lanes):
+            args80 = []
+            for x in a:
+                xs = E._new(f"extractelement {E.T} {x}, i32 {lane}")
+                args80.append(X._new(f"fpext double {xs} to {T80}"))
+            z = None
+            if k == "powf" and float(2 * op.param).is_integer():
+                m = int(abs(2 * op.param))
+                y = X.powi(X.call("sqrt", args80[0]), m) if m % 2 else X.powi(args80[0], m // 2)
+                if op.param < 0:
+                    y = X.div(X.const(1.0), y)
+            elif k in ("powf", "powx"):
+                p80 = X.const(op.param) if k == "powf" else args80[1]
+                z = X.mul(p80, X.call("log", args80[0]))
+                y = X.call("exp", z)
+            else:
+                y = X.call(op.param, args80[0])
+            ts = E._new(f"extractelement {E.T} {t}, i32 {lane}")
+            diff = X.add(y, X.neg(X._new(f"fpext double {ts} to {T80}")))
+            dv = E._new(f"insertelement {E.T} {dv}, double {X._new(f'fptrunc {T80} {diff} to double')}, i32 {lane}")
+            if z is not None:
+                zv = E._new(f"insertelement {E.T} {zv}, double {X._new(f'fptrunc {T80} {z} to double')}, i32 {lane}")
+        if k == "powf" and float(2 * op.param).is_integer():
+            scale = E.const((2 * abs(2 * op.param) + 8) * U80)
+        elif k in ("powf", "powx"):
+            # log, ×, exp each within a few ulps of 2^-64; the product's error is amplified by |z|
+            scale = E.mul(E.const(4 * U80), E.add(E.const(4.0), E.abs(zv)))
+        else:
+            scale = E.const(16 * U80)
+        return dv, E.mul(E.abs(t), scale)
+
+    @staticmethod
+    def _dd_powi(E, x, n: int) -> tuple[object, object]:
+        """x**n (n ≥ 1) in double-double by binary powering: (hi, lo), lo None when exact."""
+        def mul(p, q):
+            h = E.mul(p[0], q[0])
+            e = E.fma(p[0], q[0], E.neg(h))
+            if p[1] is not None:
+                e = E.add(e, E.mul(p[1], q[0]))
+            if q[1] is not None:
+                e = E.add(e, E.mul(p[0], q[1]))
+            return _quick_two_sum(E, h, e)
+
+        result, base = None, (x, None)
+        while n:
+            if n & 1:
+                result = base if result is None else mul(result, base)
+            n >>= 1
+            if n:
+                base = mul(base, base)
+        return result
+
+    def _compensated_program(self, E, X, vals: list, dref) -> list[tuple]:
+        """Forward sweep, then per output one reverse sweep accumulating the first-order bound
+        (as :meth:`_program`), the correction Σ g_t δ_t, Σ |g_t δ_t| and Σ |g_t| ρ_t."""
+        self._forward(E, vals)
+        n_in = self._n_in
+        local: dict[int, tuple] = {}
+        errs: dict[int, tuple] = {}
+        zero = E.const(0.0)
+        res = []
+        for out in self._outs:
+            if out < n_in:
+                res.append((vals[out], zero, zero, zero, zero))
+                continue
+            cone, stack = set(), [out]
+            while stack:
+                s = stack.pop()
+                if s in cone or s < n_in:
+                    continue
+                cone.add(s)
+                stack.extend(self._ops[s - n_in].args)
+            contrib: dict[int, list] = {out: [E.const(1.0)]}
+            bound, corr, sgd, rho = zero, zero, zero, zero
+            for s in sorted(cone, reverse=True):
+                op = self._ops[s - n_in]
+                terms = contrib.pop(s)
+                g = terms[0]
+                for x in terms[1:]:
+                    g = E.add(g, x)
+                if s not in local:
+                    local[s] = self._local(E, op, vals, vals[s])
+                    errs[s] = self._local_error(E, X, op, vals, vals[s], dref)
+                partials, rnd = local[s]
+                delta, rs = errs[s]
+                ag = E.abs(g)
+                if rnd is not None:
+                    bound = E.add(bound, E.mul(ag, rnd))
+                if delta is not None:
+                    corr = E.fma(g, delta, corr)
+                    sgd = E.add(sgd, E.abs(E.mul(g, delta)))
+                if rs is not None:
+                    rho = E.add(rho, E.mul(ag, rs))
+                for arg, d in zip(op.args, partials):
+                    if arg >= n_in:
+                        contrib.setdefault(arg, []).append(g if d == E.const(1.0) else E.mul(g, d))
+            res.append((vals[out], bound, corr, sgd, rho))
+        return res
+
     # --- float64: LLVM IR compiled with llvmlite -------------------------------------------
     def ir(self, varying: Sequence[bool]) -> str:
         """The float64 loop as LLVM IR, LANES points per iteration:
@@ -531,6 +702,58 @@ class BoundedKernel:
             "  %i = phi i64 [0, %entry], [%inext, %loop]",
             "\n".join(E.lines), *store,
             "  %inext = add i64 %i, 1", "  %more = icmp slt i64 %inext, %n",
+            "  br i1 %more, label %loop, label %exit", "exit:", "  ret void", "}", "",
+            "attributes #0 = { nounwind willreturn memory(none) }", ""])
+
+    def ir_compensated(self, varying: Sequence[bool]) -> str:
+        """The compensated float64 loop as LLVM IR, LANES points per iteration:
+        ``void kernel(i64 n, ptr A, ptr C, ptr D, double U, ptr V, ptr R)`` with inputs as in
+        :meth:`ir`, constants ``C`` and their rounding errors ``D``; writes the corrected values
+        ``V`` and their relative bounds ``R`` (see :meth:`compensated`)."""
+        E = _IREmitter()
+        T, L = E.T, E.lanes
+        X = _IR80LaneEmitter(E.lines)
+        head, vals = [], []
+
+        def splat(name: str, scalar: str) -> list[str]:
+            return [f"  %{name}_1 = insertelement {T} poison, double {scalar}, i32 0",
+                    f"  %{name} = shufflevector {T} %{name}_1, {T} poison, <{L} x i32> zeroinitializer"]
+
+        for k in range(self._n_in):
+            head += [f"  %pa{k} = getelementptr ptr, ptr %A, i64 {k}", f"  %A{k} = load ptr, ptr %pa{k}"]
+            if varying[k]:
+                E.lines += [f"  %px{k} = getelementptr double, ptr %A{k}, i64 %i", f"  %a{k} = load {T}, ptr %px{k}, align 8"]
+            else:
+                head += [f"  %s{k} = load double, ptr %A{k}", *splat(f"a{k}", f"%s{k}")]
+            vals.append(f"%a{k}")
+        for j, c in enumerate(self.consts):
+            head += [f"  %pc{j} = getelementptr double, ptr %C, i64 {j}", f"  %sc{j} = load double, ptr %pc{j}",
+                     *splat(f"c{j}", f"%sc{j}")]
+            head += [f"  %pd{j} = getelementptr double, ptr %D, i64 {j}", f"  %sd{j} = load double, ptr %pd{j}",
+                     *splat(f"d{j}", f"%sd{j}")]
+        head += splat("U", "%u")
+        res = self._compensated_program(E, X, vals, lambda j: f"%d{j}")
+        store = []
+        for j, (v, b, corr, sgd, rho) in enumerate(res):
+            vc = E.add(v, corr)
+            b1 = E.mul(b, "%U")
+            # rounding of the sum, the inexact corrections, an allowance of 2^-10 of the correction
+            # for the float64 sensitivities, and 2^10 (b1/|v|)·b1 for the second-order terms
+            tot = E.add(E.add(E.mul("%U", E.abs(vc)), rho),
+                        E.add(E.mul(E.const(2.0 ** -10), sgd), E.div(E.mul(E.const(2.0 ** 10), E.mul(b1, b1)), E.abs(v))))
+            rel = E.div(tot, E.abs(vc))
+            store += [f"  %o{j} = mul i64 %n, {j}", f"  %oi{j} = add i64 %o{j}, %i",
+                      f"  %pv{j} = getelementptr double, ptr %V, i64 %oi{j}", f"  store {T} {vc}, ptr %pv{j}, align 8",
+                      f"  %pr{j} = getelementptr double, ptr %R, i64 %oi{j}", f"  store {T} {rel}, ptr %pr{j}, align 8"]
+        decl = sorted(set(E.declarations()) | set(X.declarations()))
+        return "\n".join([
+            *decl, "",
+            "define void @kernel(i64 %n, ptr noalias %A, ptr noalias %C, ptr noalias %D, double %u, ptr noalias %V, "
+            "ptr noalias %R) {",
+            "entry:", *head, "  br label %loop", "loop:",
+            "  %i = phi i64 [0, %entry], [%inext, %loop]",
+            "\n".join(E.lines), *store,
+            f"  %inext = add i64 %i, {L}", "  %more = icmp slt i64 %inext, %n",
             "  br i1 %more, label %loop, label %exit", "exit:", "  ret void", "}", "",
             "attributes #0 = { nounwind willreturn memory(none) }", ""])
 
@@ -652,12 +875,89 @@ class BoundedKernel:
         return V, R
 
 
+    # --- compensated float64: the tail of the points whose float64 bound is too large --------
+    def compiled_compensated(self, varying: Sequence[bool]) -> Callable:
+        """The compiled compensated loop for ``varying`` (a ctypes function), compiled on first use."""
+        key = ("comp", *(bool(x) for x in varying))
+        with self._lock:
+            if key not in self._fn64:
+                self._fn64[key] = _jit(self.ir_compensated(key[1:]), extended=True)
+        return self._fn64[key][0]
+
+    def compensated_ready(self, varying: Sequence[bool]) -> bool:
+        """Whether :meth:`compensated` for ``varying`` costs no compilation (compiled in this
+        process, or its object file is in the disk cache)."""
+        key = ("comp", *(bool(x) for x in varying))
+        with self._lock:
+            if key in self._fn64:
+                return True
+            path = self._paths.get(key, False)
+        if path is False:
+            try:
+                path = _object_path(self.ir_compensated(key[1:]))
+            except Exception:
+                path = None
+            self._paths[key] = path      # writing the IR takes ~10 ms: once per process
+        return path is not None and path.exists()
+
+    def compensated(self, *vals) -> tuple[np.ndarray, np.ndarray]:
+        """The program in float64 with its own rounding errors added back (x86 only).
+
+        Every operation's rounding error δ_t is computed — exactly for +, −, ×, x² (error-free
+        transformations: TwoSum, TwoProd with a fused multiply-add), from exact fma residuals for
+        1/x and √x, in double-double for integer powers, in x87 extended precision for library
+        functions and fractional powers — and the first-order correction Σ_t (∂out/∂t) δ_t is
+        added to the value (Langlois 2001).  Its bound: what the corrections leave (their own
+        errors), an allowance of 2^-10 of Σ|∂out/∂t·δ_t| for the float64 sensitivities, and
+        2^10·b²/|value| for the second-order terms, b the first-order bound of the uncorrected
+        value — so about ten more digits than float64 where the float64 bound is large because
+        of cancelling terms.
+
+        Returns
+        -------
+        values, rel_bound : numpy.ndarray
+            Shape ``(n_outputs, n)``.
+
+        References
+        ----------
+        Langlois, P. (2001), "Automatic linear correction of rounding errors", BIT 41(3), 515–539.
+        Ogita, T., Rump, S. M., Oishi, S. (2005), "Accurate sum and dot product", SIAM J. Sci.
+        Comput. 26(6), 1955–1988 (TwoSum, TwoProd).
+        """
+        arrs = [_flat(v) for v in vals]
+        n = max((a.size for a in arrs), default=1)
+        if any(a.size not in (1, n) for a in arrs):
+            raise ValueError("inputs must have one element or a common length")
+        fn = self.compiled_compensated([a.size > 1 for a in arrs])
+        C = np.array([float(c) for c in self.consts] or [0.0], dtype=np.float64)
+        D = np.array([float(Fraction(int(c.p), int(c.q)) - Fraction(float(c))) for c in self.consts] or [0.0])
+        if n == 0:
+            return np.empty((self.n_out, 0)), np.empty((self.n_out, 0))
+        size = n
+        if n % LANES:
+            n = n + LANES - n % LANES
+            arrs = [a if a.size == 1 else np.concatenate([a, np.full(n - size, a[-1])]) for a in arrs]
+        V = np.empty((self.n_out, n))
+        R = np.empty((self.n_out, n))
+        ptrs = (ctypes.c_void_p * len(arrs))(*[a.ctypes.data for a in arrs])
+        fn(n, ptrs, C.ctypes.data, D.ctypes.data, U64, V.ctypes.data, R.ctypes.data)
+        return V[:, :size], R[:, :size]
+
 def _flat(v) -> np.ndarray:
     """A contiguous float64 vector; an array broadcast from one value (all strides 0) as that value."""
     a = np.asarray(v, dtype=np.float64)
     if a.ndim and a.size and not any(a.strides):
         return np.ascontiguousarray(a.reshape(-1)[:1])
     return np.ascontiguousarray(np.ravel(a))
+
+
+def _refine(V, R, bad, todo, Vt, Rt, tol) -> None:
+    """Take the refined values ``Vt``, ``Rt`` at points ``todo`` where they are better proven."""
+    for j in range(V.shape[0]):
+        use = bad[j, todo] & (Rt[j] < R[j, todo])
+        V[j, todo] = np.where(use, Vt[j], V[j, todo])
+        R[j, todo] = np.where(use, Rt[j], R[j, todo])
+        bad[j, todo] = ~(Rt[j] <= tol) & bad[j, todo]
 
 
 def evaluate_proven(kernel: BoundedKernel, vals: Sequence, tol: float, workers: int = 1,
@@ -689,19 +989,25 @@ def evaluate_proven(kernel: BoundedKernel, vals: Sequence, tol: float, workers: 
         Where the value is not proven to ``tol`` (the caller evaluates those another way).
     """
     V, R = kernel(*vals, workers=workers)
+    varying = [np.size(v) > 1 and any(np.asarray(v).strides) for v in vals]
     bad = ~(R <= tol)
     no_hopf = np.zeros(V.shape[1], dtype=bool)
     for j in range(min(2, V.shape[0])):
         no_hopf |= (V[j] < 0) & (R[j] < 0.5)
     todo = np.flatnonzero(bad.any(axis=0) & ~no_hopf)
+    if not (todo.size and EXTENDED):
+        pass
+    elif COMPENSATE and (todo.size >= COMPENSATED_MIN_POINTS or kernel.compensated_ready(varying)):
+        # (one doubtful point taken twice: the loop compiled for varying inputs serves it)
+        idx = todo if todo.size > 1 else np.repeat(todo, 2)
+        sub = [np.ravel(v)[idx] if vary else np.ravel(v)[:1] for v, vary in zip(vals, varying)]
+        Vc, Rc = kernel.compensated(*sub)
+        _refine(V, R, bad, todo, Vc[:, :todo.size], Rc[:, :todo.size], tol)
+        todo = np.flatnonzero(bad.any(axis=0) & ~no_hopf)
     if todo.size and EXTENDED:
-        sub = [np.ravel(v)[todo] if np.size(v) > 1 and any(np.asarray(v).strides) else np.ravel(v)[:1] for v in vals]
+        sub = [np.ravel(v)[todo] if vary else np.ravel(v)[:1] for v, vary in zip(vals, varying)]
         Ve, Re = kernel.extended(*sub)
-        for j in range(V.shape[0]):
-            use = bad[j, todo] & (Re[j] < R[j, todo])
-            V[j, todo] = np.where(use, Ve[j].astype(np.float64), V[j, todo])
-            R[j, todo] = np.where(use, Re[j].astype(np.float64), R[j, todo])
-            bad[j, todo] = ~(Re[j] <= tol) & bad[j, todo]
+        _refine(V, R, bad, todo, Ve.astype(np.float64), Re, tol)
     if sign_only:
         bad &= ~(R < 0.5)
     bad[:, no_hopf] = False
