@@ -26,7 +26,9 @@ Sections (``--only``):
   driven by a ``solve_ivp`` loop with the guards as terminal events.
 * ``lambda`` — Λ(V) of every built-in one-state law: throughput of ``Derivation.evaluate``
   on one thread against ``sympy.lambdify(cse=True)`` of the same expression, the first call,
-  and the error of 1000 points against 50-digit mpmath.
+  and the error of 1000 points against 50-digit mpmath; ``x87-tail-only`` is the engine with
+  the compensated float64 refinement switched off (doubtful points refined in x87 extended
+  precision only), measured in the same run.
 * ``derive`` — derivation + compile CPU time of Dieterich-type laws with 1…6 state
   variables (fresh interpreter each), with the growth exponent; ``--baseline-derive`` adds the
   direct routes (numeric conversion of symbolic pivots, Berkowitz determinant) for comparison.

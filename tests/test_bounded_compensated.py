@@ -28,6 +28,7 @@ def compensated_route(monkeypatch):
     """Derivation.evaluate takes the bounded program and its compensated pass on any grid."""
     monkeypatch.setattr(landau.multiscale, "BOUNDED_MIN_POINTS", 0)
     monkeypatch.setattr(landau.bounded, "COMPENSATED_MIN_POINTS", 0)
+    monkeypatch.setattr(landau.bounded, "COMPENSATED_CACHED_MIN_POINTS", 0)
 
 
 def _rel_err(got, want) -> float:
@@ -116,6 +117,8 @@ def test_spinodal_1000_points_within_1e_10(compensated_route):
     d = derive(SpringBlock(get_law("spinodal")), ["Lambda"])
     Vs = _velocities("spinodal", 800, 50)
     got = d.evaluate(Vs, {}, ["kc", "Lambda"])
+    kernel = d._compiled[("bounded", ("Lambda",))]
+    assert any(key[0] == "comp" for key in kernel._fn64)      # the compensated pass ran
     worst, checked = 0.0, 0
     for i, V0 in enumerate(Vs):
         if not np.isfinite(got["kc"][i]):
