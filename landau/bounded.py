@@ -18,11 +18,20 @@ elsewhere it stays within one to three orders of magnitude of the actual error.
 
 The float64 loop is generated as LLVM IR and compiled with llvmlite (numba's code
 generator, already a dependency) — numba's own front end takes seconds to type a few
-thousand scalar statements, LLVM a fraction of that.  The machine code is cached on disk
-(``landau.cache.cache_dir()/kernels``, named by a hash of the IR and the CPU).  The same
-program is also generated in the x87 80-bit extended type (x86 only: 2048 times finer than
-float64, one point per iteration, the bound swept in double), which
-:meth:`BoundedKernel.extended` runs on the points whose float64 bound is too large.
+thousand scalar statements, LLVM a fraction of that.  Library functions (exp, log, pow, …)
+come from glibc's vector math library (libmvec, four doubles per call, within 4 ulps — the
+bound counts them so) where it is available, else from libm lane by lane (within 1 ulp).  The
+machine code is cached on disk (``landau.cache.cache_dir()/kernels``, named by a hash of the IR
+and the CPU).
+
+Points whose float64 bound is too large are refined, first by the compensated program
+(:meth:`BoundedKernel.compensated`): the same float64 program computes the rounding error
+each operation commits — exactly for +, −, × by error-free transformations (TwoSum, TwoProd
+with a fused multiply-add), in x87 extended precision for library functions — and adds the
+first-order correction Σ_t (∂out/∂t)·δ_t back (Langlois 2001), gaining about ten digits where
+float64 lost them to cancelling terms; then, for what is still unproven, by the program in the
+x87 80-bit extended type (x86 only: 2048 times finer than float64, one point per iteration,
+the bound swept in double, :meth:`BoundedKernel.extended`).
 
 References
 ----------
@@ -30,6 +39,9 @@ Linnainmaa, S. (1976), "Taylor expansion of the accumulated rounding error", BIT
 146–160.
 Higham, N. J. (2002), *Accuracy and Stability of Numerical Algorithms*, 2nd ed., SIAM,
 Sec. 3.3 (running error analysis).
+Langlois, P. (2001), "Automatic linear correction of rounding errors", BIT 41(3), 515–539.
+Ogita, T., Rump, S. M., Oishi, S. (2005), "Accurate sum and dot product", SIAM J. Sci.
+Comput. 26(6), 1955–1988 (TwoSum, TwoProd).
 """
 
 from __future__ import annotations
@@ -55,6 +67,15 @@ ULD = np.finfo(np.longdouble).eps / 2
 U80 = 2.0 ** -64
 #: whether the platform's long double is wider than float64 (x86: 64-bit mantissa)
 EXTENDED = np.finfo(np.longdouble).eps < 1e-18 and platform.machine().lower() in ("x86_64", "amd64", "i386", "i686")
+#: whether evaluate_proven refines doubtful points with the compensated float64 loop first
+COMPENSATE = True
+#: fewest doubtful points for which evaluate_proven compiles the compensated loop (0.4–0.9 s,
+#: about what the extended loop takes for 1e5 points) when its machine code is not cached
+COMPENSATED_MIN_POINTS = 50_000
+#: fewest doubtful points for which evaluate_proven uses the compensated loop when its machine
+#: code is cached (finding out costs writing its IR, ~10 ms, what the extended loop takes for
+#: ~2000 points)
+COMPENSATED_CACHED_MIN_POINTS = 2_000
 #: points per chunk of the compiled loop handed to one thread
 CHUNK = 65_536
 
@@ -77,17 +98,55 @@ def _hex(x: float) -> str:
 LANES = 4
 
 
-class _IREmitter:
-    """LLVM IR on vectors of LANES doubles (one basic block); library functions without a
-    vector form are called lane by lane."""
+#: sympy function -> glibc's vector math library (libmvec) function on 4 doubles (AVX2)
+_MVEC = {"exp": "_ZGVdN4v_exp", "log": "_ZGVdN4v_log", "sin": "_ZGVdN4v_sin", "cos": "_ZGVdN4v_cos",
+         "asinh": "_ZGVdN4v_asinh", "atan": "_ZGVdN4v_atan", "tanh": "_ZGVdN4v_tanh",
+         "sinh": "_ZGVdN4v_sinh", "cosh": "_ZGVdN4v_cosh", "pow": "_ZGVdN4vv_pow"}
+#: the accuracy glibc states for its vector math functions (ulps)
+MVEC_ULPS = 4.0
+_mvec_state: list = []
 
-    def __init__(self, lanes: int = LANES):
+
+def _mvec_available() -> bool:
+    """Whether glibc's libmvec is loaded with every function of :data:`_MVEC` and the CPU has
+    AVX2 (its 4-double variants): the compiled float64 loops then call it instead of scalar libm."""
+    if not _mvec_state:
+        ok = False
+        if platform.system() == "Linux" and platform.machine().lower() in ("x86_64", "amd64"):
+            try:
+                import ctypes.util
+
+                import llvmlite.binding as llvm
+
+                name = ctypes.util.find_library("mvec") or "libmvec.so.1"
+                lib = ctypes.CDLL(name, mode=ctypes.RTLD_GLOBAL)
+                ok = all(hasattr(lib, f) for f in _MVEC.values()) and \
+                    llvm.get_host_cpu_features().get("avx2", False)
+                if ok:
+                    llvm.load_library_permanently(lib._name if "/" in lib._name else name)
+            except Exception:          # no glibc, no libmvec: scalar libm, lane by lane
+                ok = False
+        _mvec_state.append(ok)
+    return _mvec_state[0]
+
+
+class _IREmitter:
+    """LLVM IR on vectors of LANES doubles (one basic block); library functions from glibc's
+    vector math library where ``mvec`` (and it is available), else lane by lane."""
+
+    #: error of a library function, in ulps (glibc's scalar functions: within one ulp)
+    lib_ulps = 1.0
+
+    def __init__(self, lanes: int = LANES, mvec: bool = False):
         self.lines: list[str] = []
         self.n = 0
         self.used: set[str] = set()
         self.lanes = lanes
         self.T = f"<{lanes} x double>"
         self.sfx = f"v{lanes}f64"
+        self.mvec = bool(mvec and lanes == 4 and _mvec_available())
+        if self.mvec:
+            self.lib_ulps = MVEC_ULPS
 
     def _new(self, code: str) -> str:
         self.n += 1
@@ -129,10 +188,20 @@ class _IREmitter:
         return self._intrinsic("powi", f"{self.T} {a}", f"i32 {n}", extra=".i32")
 
     def pow(self, a, b):
+        if self.mvec:
+            self.used.add(_MVEC["pow"])
+            return self._new(f"call {self.T} @{_MVEC['pow']}({self.T} {a}, {self.T} {b})")
         return self._intrinsic("pow", f"{self.T} {a}", f"{self.T} {b}")
+
+    def fma(self, a, b, c):
+        """a·b + c with one rounding."""
+        return self._intrinsic("fma", f"{self.T} {a}", f"{self.T} {b}", f"{self.T} {c}")
 
     def call(self, fname: str, a):
         f = _FUNCS[fname]
+        if self.mvec and fname in _MVEC:
+            self.used.add(_MVEC[fname])
+            return self._new(f"call {self.T} @{_MVEC[fname]}({self.T} {a})")
         if f.startswith("llvm."):
             return self._intrinsic(f.split(".")[1], f"{self.T} {a}")
         self.used.add(f)
@@ -146,13 +215,15 @@ class _IREmitter:
     def declarations(self) -> list[str]:
         out = []
         for f in sorted(self.used):
-            if not f.startswith("llvm."):
+            if f.startswith("_ZGV"):
+                out.append(f"declare {self.T} @{f}(" + ", ".join([self.T] * (2 if "vv_" in f else 1)) + ") #0")
+            elif not f.startswith("llvm."):
                 # a library function without side effects (errno is not read): calls can be shared
                 out.append(f"declare double @{f}(double) #0")
             elif ".powi." in f:
                 out.append(f"declare {self.T} @{f}({self.T}, i32)")
             else:
-                n_args = 2 if (".copysign." in f or ".pow." in f) else 1
+                n_args = 3 if ".fma." in f else 2 if (".copysign." in f or ".pow." in f) else 1
                 out.append(f"declare {self.T} @{f}(" + ", ".join([self.T] * n_args) + ")")
         return out
 
@@ -222,6 +293,27 @@ class _IR80Emitter(_IREmitter):
                 n_args = 2 if (".copysign." in f or ".pow." in f) else 1
                 out.append(f"declare {self.T} @{f}(" + ", ".join([self.T] * n_args) + ")")
         return out
+
+
+class _IR80LaneEmitter(_IR80Emitter):
+    """x87 extended-precision scalars (registers %x…) written into another emitter's lines: one
+    lane of the compensated loop's library-function corrections."""
+
+    def __init__(self, lines: list[str]):
+        super().__init__()
+        self.lines = lines
+
+    def _new(self, code: str) -> str:
+        self.n += 1
+        name = f"%x{self.n}"
+        self.lines.append(f"  {name} = {code}")
+        return name
+
+
+def _quick_two_sum(E, a, b) -> tuple[object, object]:
+    """(s, e) with s + e = a + b exactly, for |a| ≥ |b| (Dekker 1971)."""
+    s = E.add(a, b)
+    return s, E.add(b, E.neg(E.add(s, E.neg(a))))
 
 
 # --------------------------------------------------------------------------------------------
@@ -311,6 +403,7 @@ class BoundedKernel:
         self.consts = tuple(consts)
         self._lock = threading.Lock()
         self._fn64: dict[tuple, tuple] = {}
+        self._paths: dict[tuple, object] = {}
 
     @staticmethod
     def _lower(node, slot, push) -> int:
@@ -382,10 +475,11 @@ class BoundedKernel:
         if k == "powi":
             n = op.param
             return [E.mul(E.const(n), E.div(t, a[0]))], E.mul(E.const(abs(n) + 1), at)
+        lib = E.const(2.0 * E.lib_ulps)          # a library function: within lib_ulps ulps
         if k == "powf":
-            return [E.mul(E.const(op.param), E.div(t, a[0]))], E.mul(two, at)
+            return [E.mul(E.const(op.param), E.div(t, a[0]))], E.mul(lib, at)
         if k == "powx":
-            return [E.div(E.mul(a[1], t), a[0]), E.mul(t, E.call("log", a[0]))], E.mul(two, at)
+            return [E.div(E.mul(a[1], t), a[0]), E.mul(t, E.call("log", a[0]))], E.mul(lib, at)
         f, x = op.param, a[0]
         if f == "sqrt":
             return [E.div(E.const(0.5), t)], at
@@ -409,7 +503,7 @@ class BoundedKernel:
             d = E.call("cosh", x)
         else:  # cosh
             d = E.call("sinh", x)
-        return [d], E.mul(two, at)
+        return [d], E.mul(lib, at)
 
     def _program(self, E, vals: list, B=None, convert=None) -> list[tuple[object, object]]:
         """Forward sweep with emitter ``E``, then one reverse sweep per output with emitter
@@ -455,13 +549,163 @@ class BoundedKernel:
             res.append((vals_fwd[out], bound if bound is not None else E.const(0.0)))
         return res
 
+    # --- compensated float64: the rounding errors themselves, propagated to the outputs -------
+    def _local_error(self, E, X, op: _Op, vals: list, t, dref, varying: bool = True) -> tuple[object, object]:
+        """(δ, ρ): the rounding error δ = exact(op(computed args)) − t the operation commits, as
+        computed, and a bound ρ on |error of δ| (None: δ is exactly 0 / ρ is 0).
+
+        +, ×, x² by error-free transformations (TwoSum; TwoProd with a fused multiply-add),
+        1/x and √x from their exact fma residuals, integer powers in double-double, library
+        functions and fractional powers in x87 extended precision (lane by lane; once where
+        the operation does not vary from lane to lane)."""
+        k, a = op.kind, [vals[i] for i in op.args]
+        one = E.const(1.0)
+        if k == "const":
+            if op.param[1]:
+                return None, None
+            d = dref(op.param[0])
+            return d, E.mul(E.abs(d), E.const(U64))
+        if k == "add":
+            bb = E.add(t, E.neg(a[0]))
+            d = E.add(E.add(a[0], E.neg(E.add(t, E.neg(bb)))), E.add(a[1], E.neg(bb)))
+            return d, None
+        if k in ("mul", "sq"):
+            return E.fma(a[0], a[-1], E.neg(t)), None
+        if k == "inv":
+            d = E.mul(E.fma(E.neg(t), a[0], one), t)
+            return d, E.mul(E.abs(d), E.const(4 * U64))
+        if k == "func" and op.param == "sqrt":
+            d = E.div(E.fma(E.neg(t), t, a[0]), E.add(t, t))
+            return d, E.mul(E.abs(d), E.const(4 * U64))
+        if k == "func" and op.param == "Abs":
+            return None, None
+        if k == "powi":
+            n = op.param
+            hi, lo = self._dd_powi(E, a[0], abs(n))
+            if n < 0:
+                q = E.div(one, hi)
+                r = E.fma(E.neg(q), hi, one) if lo is None else E.add(E.fma(E.neg(q), hi, one), E.neg(E.mul(q, lo)))
+                hi, lo = _quick_two_sum(E, q, E.mul(r, q))
+            d = E.add(E.add(hi, E.neg(t)), lo) if lo is not None else E.add(hi, E.neg(t))
+            return d, E.mul(E.abs(t), E.const((8 * abs(n) + 8) * U64 * U64))
+        # library functions and fractional powers: in x87 extended precision, lane by lane
+        T80 = X.T
+        dv, zv = "poison", "poison"
+        for lane in range(E.lanes if varying else 1):
+            args80 = []
+            for x in a:
+                xs = E._new(f"extractelement {E.T} {x}, i32 {lane}")
+                args80.append(X._new(f"fpext double {xs} to {T80}"))
+            z = None
+            if k == "powf" and float(2 * op.param).is_integer():
+                m = int(abs(2 * op.param))
+                y = X.powi(X.call("sqrt", args80[0]), m) if m % 2 else X.powi(args80[0], m // 2)
+                if op.param < 0:
+                    y = X.div(X.const(1.0), y)
+            elif k in ("powf", "powx"):
+                p80 = X.const(op.param) if k == "powf" else args80[1]
+                z = X.mul(p80, X.call("log", args80[0]))
+                y = X.call("exp", z)
+            else:
+                y = X.call(op.param, args80[0])
+            ts = E._new(f"extractelement {E.T} {t}, i32 {lane}")
+            diff = X.add(y, X.neg(X._new(f"fpext double {ts} to {T80}")))
+            dv = E._new(f"insertelement {E.T} {dv}, double {X._new(f'fptrunc {T80} {diff} to double')}, i32 {lane}")
+            if z is not None:
+                zv = E._new(f"insertelement {E.T} {zv}, double {X._new(f'fptrunc {T80} {z} to double')}, i32 {lane}")
+        if not varying:
+            dv = E._new(f"shufflevector {E.T} {dv}, {E.T} poison, <{E.lanes} x i32> zeroinitializer")
+            if zv != "poison":
+                zv = E._new(f"shufflevector {E.T} {zv}, {E.T} poison, <{E.lanes} x i32> zeroinitializer")
+        if k == "powf" and float(2 * op.param).is_integer():
+            scale = E.const((2 * abs(2 * op.param) + 8) * U80)
+        elif k in ("powf", "powx"):
+            # log, ×, exp each within a few ulps of 2^-64; the product's error is amplified by |z|
+            scale = E.mul(E.const(4 * U80), E.add(E.const(4.0), E.abs(zv)))
+        else:
+            scale = E.const(16 * U80)
+        return dv, E.mul(E.abs(t), scale)
+
+    @staticmethod
+    def _dd_powi(E, x, n: int) -> tuple[object, object]:
+        """x**n (n ≥ 1) in double-double by binary powering: (hi, lo), lo None when exact."""
+        def mul(p, q):
+            h = E.mul(p[0], q[0])
+            e = E.fma(p[0], q[0], E.neg(h))
+            if p[1] is not None:
+                e = E.add(e, E.mul(p[1], q[0]))
+            if q[1] is not None:
+                e = E.add(e, E.mul(p[0], q[1]))
+            return _quick_two_sum(E, h, e)
+
+        result, base = None, (x, None)
+        while n:
+            if n & 1:
+                result = base if result is None else mul(result, base)
+            n >>= 1
+            if n:
+                base = mul(base, base)
+        return result
+
+    def _compensated_program(self, E, X, vals: list, dref, varying: Sequence[bool],
+                             outputs: Sequence[int]) -> list[tuple]:
+        """Forward sweep, then per output in ``outputs`` one reverse sweep accumulating the
+        first-order bound (as :meth:`_program`), the correction Σ g_t δ_t, Σ |g_t δ_t| and
+        Σ |g_t| ρ_t."""
+        self._forward(E, vals)
+        n_in = self._n_in
+        vary = [bool(v) for v in varying]
+        for op in self._ops:
+            vary.append(any(vary[i] for i in op.args))
+        local: dict[int, tuple] = {}
+        errs: dict[int, tuple] = {}
+        zero = E.const(0.0)
+        res = []
+        for out in (self._outs[j] for j in outputs):
+            if out < n_in:
+                res.append((vals[out], zero, zero, zero, zero))
+                continue
+            cone, stack = set(), [out]
+            while stack:
+                s = stack.pop()
+                if s in cone or s < n_in:
+                    continue
+                cone.add(s)
+                stack.extend(self._ops[s - n_in].args)
+            contrib: dict[int, list] = {out: [E.const(1.0)]}
+            bound, corr, sgd, rho = zero, zero, zero, zero
+            for s in sorted(cone, reverse=True):
+                op = self._ops[s - n_in]
+                terms = contrib.pop(s)
+                g = terms[0]
+                for x in terms[1:]:
+                    g = E.add(g, x)
+                if s not in local:
+                    local[s] = self._local(E, op, vals, vals[s])
+                    errs[s] = self._local_error(E, X, op, vals, vals[s], dref, vary[s])
+                partials, rnd = local[s]
+                delta, rs = errs[s]
+                ag = E.abs(g)
+                if rnd is not None:
+                    bound = E.add(bound, E.mul(ag, rnd))
+                if delta is not None:
+                    corr = E.fma(g, delta, corr)
+                    sgd = E.add(sgd, E.abs(E.mul(g, delta)))
+                if rs is not None:
+                    rho = E.add(rho, E.mul(ag, rs))
+                for arg, d in zip(op.args, partials):
+                    if arg >= n_in:
+                        contrib.setdefault(arg, []).append(g if d == E.const(1.0) else E.mul(g, d))
+            res.append((vals[out], bound, corr, sgd, rho))
+        return res
+
     # --- float64: LLVM IR compiled with llvmlite -------------------------------------------
     def ir(self, varying: Sequence[bool]) -> str:
         """The float64 loop as LLVM IR, LANES points per iteration:
         ``void kernel(i64 n, ptr A, ptr C, double U, ptr V, ptr R)`` (n a multiple of LANES);
         input k is ``A[k][i]`` where ``varying[k]`` else ``A[k][0]``; output j goes to
         ``V[j*n + i]``, its relative bound to ``R[j*n + i]``."""
-        E = _IREmitter()
+        E = _IREmitter(mvec=True)
         T, L = E.T, E.lanes
         n_in = self._n_in
         head, vals = [], []
@@ -531,6 +775,58 @@ class BoundedKernel:
             "  %i = phi i64 [0, %entry], [%inext, %loop]",
             "\n".join(E.lines), *store,
             "  %inext = add i64 %i, 1", "  %more = icmp slt i64 %inext, %n",
+            "  br i1 %more, label %loop, label %exit", "exit:", "  ret void", "}", "",
+            "attributes #0 = { nounwind willreturn memory(none) }", ""])
+
+    def ir_compensated(self, varying: Sequence[bool], outputs: Sequence[int]) -> str:
+        """The compensated float64 loop for the outputs ``outputs`` as LLVM IR, LANES points per
+        iteration: ``void kernel(i64 n, ptr A, ptr C, ptr D, double U, ptr V, ptr R)`` with
+        inputs as in :meth:`ir`, constants ``C`` and their rounding errors ``D``; writes the
+        corrected values ``V`` and their relative bounds ``R`` (see :meth:`compensated`)."""
+        E = _IREmitter(mvec=True)
+        T, L = E.T, E.lanes
+        X = _IR80LaneEmitter(E.lines)
+        head, vals = [], []
+
+        def splat(name: str, scalar: str) -> list[str]:
+            return [f"  %{name}_1 = insertelement {T} poison, double {scalar}, i32 0",
+                    f"  %{name} = shufflevector {T} %{name}_1, {T} poison, <{L} x i32> zeroinitializer"]
+
+        for k in range(self._n_in):
+            head += [f"  %pa{k} = getelementptr ptr, ptr %A, i64 {k}", f"  %A{k} = load ptr, ptr %pa{k}"]
+            if varying[k]:
+                E.lines += [f"  %px{k} = getelementptr double, ptr %A{k}, i64 %i", f"  %a{k} = load {T}, ptr %px{k}, align 8"]
+            else:
+                head += [f"  %s{k} = load double, ptr %A{k}", *splat(f"a{k}", f"%s{k}")]
+            vals.append(f"%a{k}")
+        for j, c in enumerate(self.consts):
+            head += [f"  %pc{j} = getelementptr double, ptr %C, i64 {j}", f"  %sc{j} = load double, ptr %pc{j}",
+                     *splat(f"c{j}", f"%sc{j}")]
+            head += [f"  %pd{j} = getelementptr double, ptr %D, i64 {j}", f"  %sd{j} = load double, ptr %pd{j}",
+                     *splat(f"d{j}", f"%sd{j}")]
+        head += splat("U", "%u")
+        res = self._compensated_program(E, X, vals, lambda j: f"%d{j}", varying, outputs)
+        store = []
+        for j, (v, b, corr, sgd, rho) in enumerate(res):
+            vc = E.add(v, corr)
+            b1 = E.mul(b, "%U")
+            # rounding of the sum, the inexact corrections, an allowance of 2^-10 of the correction
+            # for the float64 sensitivities, and 2^10 (b1/|v|)·b1 for the second-order terms
+            tot = E.add(E.add(E.mul("%U", E.abs(vc)), rho),
+                        E.add(E.mul(E.const(2.0 ** -10), sgd), E.div(E.mul(E.const(2.0 ** 10), E.mul(b1, b1)), E.abs(v))))
+            rel = E.div(tot, E.abs(vc))
+            store += [f"  %o{j} = mul i64 %n, {j}", f"  %oi{j} = add i64 %o{j}, %i",
+                      f"  %pv{j} = getelementptr double, ptr %V, i64 %oi{j}", f"  store {T} {vc}, ptr %pv{j}, align 8",
+                      f"  %pr{j} = getelementptr double, ptr %R, i64 %oi{j}", f"  store {T} {rel}, ptr %pr{j}, align 8"]
+        decl = sorted(set(E.declarations()) | set(X.declarations()))
+        return "\n".join([
+            *decl, "",
+            "define void @kernel(i64 %n, ptr noalias %A, ptr noalias %C, ptr noalias %D, double %u, ptr noalias %V, "
+            "ptr noalias %R) {",
+            "entry:", *head, "  br label %loop", "loop:",
+            "  %i = phi i64 [0, %entry], [%inext, %loop]",
+            "\n".join(E.lines), *store,
+            f"  %inext = add i64 %i, {L}", "  %more = icmp slt i64 %inext, %n",
             "  br i1 %more, label %loop, label %exit", "exit:", "  ret void", "}", "",
             "attributes #0 = { nounwind willreturn memory(none) }", ""])
 
@@ -652,6 +948,88 @@ class BoundedKernel:
         return V, R
 
 
+    # --- compensated float64: the tail of the points whose float64 bound is too large --------
+    def _comp_key(self, varying: Sequence[bool], outputs: Sequence[int] | None) -> tuple:
+        outs = tuple(range(self.n_out)) if outputs is None else tuple(int(j) for j in outputs)
+        return ("comp", tuple(bool(x) for x in varying), outs)
+
+    def compiled_compensated(self, varying: Sequence[bool], outputs: Sequence[int] | None = None) -> Callable:
+        """The compiled compensated loop for ``varying`` and ``outputs`` (default all; a ctypes
+        function), compiled on first use."""
+        key = self._comp_key(varying, outputs)
+        with self._lock:
+            if key not in self._fn64:
+                self._fn64[key] = _jit(self.ir_compensated(*key[1:]), extended=True)
+        return self._fn64[key][0]
+
+    def compensated_ready(self, varying: Sequence[bool], outputs: Sequence[int] | None = None) -> bool:
+        """Whether :meth:`compensated` for ``varying`` and ``outputs`` costs no compilation
+        (compiled in this process, or its object file is in the disk cache)."""
+        key = self._comp_key(varying, outputs)
+        with self._lock:
+            if key in self._fn64:
+                return True
+            path = self._paths.get(key, False)
+        if path is False:
+            try:
+                path = _object_path(self.ir_compensated(*key[1:]))
+            except Exception:
+                path = None
+            self._paths[key] = path      # writing the IR takes ~10 ms: once per process
+        return path is not None and path.exists()
+
+    def compensated(self, *vals, outputs: Sequence[int] | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """The program in float64 with its own rounding errors added back (x86 only).
+
+        Every operation's rounding error δ_t is computed — exactly for +, −, ×, x² (error-free
+        transformations: TwoSum, TwoProd with a fused multiply-add), from exact fma residuals for
+        1/x and √x, in double-double for integer powers, in x87 extended precision for library
+        functions and fractional powers — and the first-order correction Σ_t (∂out/∂t) δ_t is
+        added to the value (Langlois 2001).  Its bound: what the corrections leave (their own
+        errors), an allowance of 2^-10 of Σ|∂out/∂t·δ_t| for the float64 sensitivities, and
+        2^10·b²/|value| for the second-order terms, b the first-order bound of the uncorrected
+        value — so about ten more digits than float64 where the float64 bound is large because
+        of cancelling terms.
+
+        Parameters
+        ----------
+        *vals : float or array_like
+            One value per input, as for calling the kernel.
+        outputs : sequence of int, optional
+            Which outputs to compute (default all).
+
+        Returns
+        -------
+        values, rel_bound : numpy.ndarray
+            Shape ``(len(outputs), n)``.
+
+        References
+        ----------
+        Langlois, P. (2001), "Automatic linear correction of rounding errors", BIT 41(3), 515–539.
+        Ogita, T., Rump, S. M., Oishi, S. (2005), "Accurate sum and dot product", SIAM J. Sci.
+        Comput. 26(6), 1955–1988 (TwoSum, TwoProd).
+        """
+        arrs = [_flat(v) for v in vals]
+        n = max((a.size for a in arrs), default=1)
+        if any(a.size not in (1, n) for a in arrs):
+            raise ValueError("inputs must have one element or a common length")
+        key = self._comp_key([a.size > 1 for a in arrs], outputs)
+        fn = self.compiled_compensated(*key[1:])
+        n_out = len(key[2])
+        C = np.array([float(c) for c in self.consts] or [0.0], dtype=np.float64)
+        D = np.array([float(Fraction(int(c.p), int(c.q)) - Fraction(float(c))) for c in self.consts] or [0.0])
+        if n == 0:
+            return np.empty((n_out, 0)), np.empty((n_out, 0))
+        size = n
+        if n % LANES:
+            n = n + LANES - n % LANES
+            arrs = [a if a.size == 1 else np.concatenate([a, np.full(n - size, a[-1])]) for a in arrs]
+        V = np.empty((n_out, n))
+        R = np.empty((n_out, n))
+        ptrs = (ctypes.c_void_p * len(arrs))(*[a.ctypes.data for a in arrs])
+        fn(n, ptrs, C.ctypes.data, D.ctypes.data, U64, V.ctypes.data, R.ctypes.data)
+        return V[:, :size], R[:, :size]
+
 def _flat(v) -> np.ndarray:
     """A contiguous float64 vector; an array broadcast from one value (all strides 0) as that value."""
     a = np.asarray(v, dtype=np.float64)
@@ -660,12 +1038,32 @@ def _flat(v) -> np.ndarray:
     return np.ascontiguousarray(np.ravel(a))
 
 
+def _refine(V, R, bad, todo, Vt, Rt, tol, rows: Sequence[int] | None = None) -> None:
+    """Take the refined values ``Vt``, ``Rt`` of outputs ``rows`` (default all) at points
+    ``todo`` where they are better proven."""
+    for i, j in enumerate(range(V.shape[0]) if rows is None else rows):
+        use = bad[j, todo] & (Rt[i] < R[j, todo])
+        V[j, todo] = np.where(use, Vt[i], V[j, todo])
+        R[j, todo] = np.where(use, Rt[i], R[j, todo])
+        bad[j, todo] = ~(Rt[i] <= tol) & bad[j, todo]
+
+
+def _subset(vals: Sequence, varying: Sequence[bool], idx: np.ndarray) -> list[np.ndarray]:
+    """The inputs at points ``idx`` (an input that does not vary: its one value)."""
+    return [np.ravel(v)[idx] if vary else np.array([np.asarray(v, dtype=np.float64).flat[0]])
+            for v, vary in zip(vals, varying)]
+
+
 def evaluate_proven(kernel: BoundedKernel, vals: Sequence, tol: float, workers: int = 1,
                     sign_only: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """Values of ``kernel``'s outputs, each proven to ``tol`` relative where possible.
 
-    float64 first (compiled); points whose bound exceeds ``tol`` again in long double with
-    its own bound (when the platform's long double is wider than float64).  The first two
+    float64 first (compiled); points whose bound exceeds ``tol`` are refined by the
+    compensated float64 program (:meth:`BoundedKernel.compensated`; compiled when there are at
+    least :data:`COMPENSATED_MIN_POINTS` of them, used from the disk cache when there are at
+    least :data:`COMPENSATED_CACHED_MIN_POINTS`), then what is
+    still unproven again in long double with its own bound (both when the platform's long
+    double is the x87 extended type).  The first two
     outputs are taken to be k_c and ω_c²: a point where either is negative beyond doubt has no
     Hopf point and is not refined.
 
@@ -689,19 +1087,27 @@ def evaluate_proven(kernel: BoundedKernel, vals: Sequence, tol: float, workers: 
         Where the value is not proven to ``tol`` (the caller evaluates those another way).
     """
     V, R = kernel(*vals, workers=workers)
+    varying = [np.size(v) > 1 and any(np.asarray(v).strides) for v in vals]
     bad = ~(R <= tol)
     no_hopf = np.zeros(V.shape[1], dtype=bool)
     for j in range(min(2, V.shape[0])):
         no_hopf |= (V[j] < 0) & (R[j] < 0.5)
     todo = np.flatnonzero(bad.any(axis=0) & ~no_hopf)
+    if not (todo.size and EXTENDED):
+        pass
+    elif COMPENSATE and (todo.size >= COMPENSATED_MIN_POINTS or (
+            todo.size >= COMPENSATED_CACHED_MIN_POINTS
+            and kernel.compensated_ready(varying, [j for j in range(V.shape[0]) if bad[j, todo].any()]))):
+        # only the outputs that are doubtful somewhere; one doubtful point is taken twice (the
+        # loop compiled for varying inputs serves it)
+        outs = [j for j in range(V.shape[0]) if bad[j, todo].any()]
+        idx = todo if todo.size > 1 else np.repeat(todo, 2)
+        Vc, Rc = kernel.compensated(*_subset(vals, varying, idx), outputs=outs)
+        _refine(V, R, bad, todo, Vc[:, :todo.size], Rc[:, :todo.size], tol, outs)
+        todo = np.flatnonzero(bad.any(axis=0) & ~no_hopf)
     if todo.size and EXTENDED:
-        sub = [np.ravel(v)[todo] if np.size(v) > 1 and any(np.asarray(v).strides) else np.ravel(v)[:1] for v in vals]
-        Ve, Re = kernel.extended(*sub)
-        for j in range(V.shape[0]):
-            use = bad[j, todo] & (Re[j] < R[j, todo])
-            V[j, todo] = np.where(use, Ve[j].astype(np.float64), V[j, todo])
-            R[j, todo] = np.where(use, Re[j].astype(np.float64), R[j, todo])
-            bad[j, todo] = ~(Re[j] <= tol) & bad[j, todo]
+        Ve, Re = kernel.extended(*_subset(vals, varying, todo))
+        _refine(V, R, bad, todo, Ve.astype(np.float64), Re, tol)
     if sign_only:
         bad &= ~(R < 0.5)
     bad[:, no_hopf] = False

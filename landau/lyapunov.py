@@ -194,6 +194,36 @@ def equilibrium_floats(system: DynamicalSystem, pc, vals: Mapping[sp.Symbol, Any
             eq.append(float("nan"))
     return eq
 
+def _check_dps(dps: int) -> None:
+    if dps < 30:
+        raise InputError(f"dps must be >= 30 for the Kuznetsov check, got {dps}")
+
+
+def _critical_pair(system: DynamicalSystem, values, jets, p_c, omega_c, dps: int, relocate: bool, max_order: int):
+    """At the working precision: the numeric parameter values, the jets to ``max_order``, the
+    (re-located) Hopf parameter p_c, the Jacobian A and derivative tensors there, ω and
+    Kuznetsov's critical eigenvectors q (⟨q, q⟩ = 1) and p̄ (⟨p, q⟩ = p̄ᵀq = 1).  Raises
+    NoHopfError where the critical eigenvalue is not on the imaginary axis."""
+    vals = numeric_values(system, values)
+    nj = _NumericJets(system, jets or Jets(system), vals, max_order=max_order)
+    n = nj.n
+    pc = _relocate(nj, p_c, omega_c, mpmath.mpf(10) ** (-(dps - 8))) if relocate else mpmath.mpf(p_c)
+    A, _, tens = nj.at(pc)
+    ev, EL, ER = mpmath.eig(A, left=True, right=True)
+    lam_c = _critical_eig(A, omega_c)
+    i_c = min(range(n), key=lambda i: abs(ev[i] - lam_c))
+    lam = ev[i_c]
+    if abs(mpmath.re(lam)) > mpmath.mpf(10) ** (-(dps // 2)) * abs(lam):
+        raise NoHopfError(f"not a Hopf point: critical eigenvalue {complex(lam)} at p = {float(pc):.10g}")
+    q = [ER[i, i_c] for i in range(n)]
+    qn = mpmath.sqrt(sum(abs(z) ** 2 for z in q))
+    q = [z / qn for z in q]                       # ⟨q, q⟩ = 1
+    wl = [EL[i_c, j] for j in range(n)]           # w A = iω w, i.e. p̄ᵀ ∝ w
+    wq = sum(a * b for a, b in zip(wl, q))
+    pbar = [a / wq for a in wl]                   # ⟨p, q⟩ = p̄ᵀ q = 1
+    return vals, nj, pc, A, tens, mpmath.im(lam), q, pbar
+
+
 def first_lyapunov(system: DynamicalSystem, values: Mapping[sp.Symbol | str, Any], p_c: float, *,
                    omega_c: float | None = None, jets: Jets | None = None, dps: int = DEFAULT_DPS,
                    relocate: bool = True, rel_step: float = 1e-5) -> HopfResult:
@@ -233,27 +263,10 @@ def first_lyapunov(system: DynamicalSystem, values: Mapping[sp.Symbol | str, Any
     Kuznetsov, Yu. A. (2004). Elements of Applied Bifurcation Theory, 3rd ed., Springer,
     eqs (3.20), (5.39).
     """
-    if dps < 30:
-        raise InputError(f"dps must be >= 30 for the Kuznetsov check, got {dps}")
+    _check_dps(dps)
     with mpmath.workdps(dps):
-        vals = numeric_values(system, values)
-        nj = _NumericJets(system, jets or Jets(system), vals)
+        vals, nj, pc, A, tens, om, q, pbar = _critical_pair(system, values, jets, p_c, omega_c, dps, relocate, 3)
         n = nj.n
-        pc = _relocate(nj, p_c, omega_c, mpmath.mpf(10) ** (-(dps - 8))) if relocate else mpmath.mpf(p_c)
-        A, _, tens = nj.at(pc)
-        ev, EL, ER = mpmath.eig(A, left=True, right=True)
-        lam_c = _critical_eig(A, omega_c)
-        i_c = min(range(n), key=lambda i: abs(ev[i] - lam_c))
-        lam = ev[i_c]
-        om = mpmath.im(lam)
-        if abs(mpmath.re(lam)) > mpmath.mpf(10) ** (-(dps // 2)) * abs(lam):
-            raise NoHopfError(f"not a Hopf point: critical eigenvalue {complex(lam)} at p = {float(pc):.10g}")
-        q = [ER[i, i_c] for i in range(n)]
-        qn = mpmath.sqrt(sum(abs(z) ** 2 for z in q))
-        q = [z / qn for z in q]                       # ⟨q, q⟩ = 1
-        wl = [EL[i_c, j] for j in range(n)]           # w A = iω w, i.e. p̄ᵀ ∝ w
-        wq = sum(a * b for a, b in zip(wl, q))
-        pbar = [a / wq for a in wl]                   # ⟨p, q⟩ = p̄ᵀ q = 1
         # residual checks: the eigen-solver, not an assumption, supplies q and p
         res_q = max(abs(sum(A[i, j] * q[j] for j in range(n)) - 1j * om * q[i]) for i in range(n))
         res_p = max(abs(sum(pbar[i] * A[i, j] for i in range(n)) - 1j * om * pbar[j]) for j in range(n))
@@ -484,26 +497,9 @@ def lyapunov_coefficients(system: DynamicalSystem, values: Mapping[sp.Symbol | s
     Kuznetsov, Yu. A. (1999). Numerical normalization techniques for all codim 2 bifurcations
     of equilibria in ODE's. SIAM J. Numer. Anal. 36, 1104–1124, §7 (generalised Hopf).
     """
-    if dps < 30:
-        raise InputError(f"dps must be >= 30 for the Kuznetsov check, got {dps}")
+    _check_dps(dps)
     with mpmath.workdps(dps):
-        vals = numeric_values(system, values)
-        nj = _NumericJets(system, jets or Jets(system), vals, max_order=5)
-        n = nj.n
-        pc = _relocate(nj, p_c, omega_c, mpmath.mpf(10) ** (-(dps - 8))) if relocate else mpmath.mpf(p_c)
-        A, _, tens = nj.at(pc)
-        ev, EL, ER = mpmath.eig(A, left=True, right=True)
-        lam_c = _critical_eig(A, omega_c)
-        i_c = min(range(n), key=lambda i: abs(ev[i] - lam_c))
-        om = mpmath.im(ev[i_c])
-        if abs(mpmath.re(ev[i_c])) > mpmath.mpf(10) ** (-(dps // 2)) * abs(ev[i_c]):
-            raise NoHopfError(f"not a Hopf point: critical eigenvalue {complex(ev[i_c])} at p = {float(pc):.10g}")
-        q = [ER[i, i_c] for i in range(n)]
-        qn = mpmath.sqrt(sum(abs(z) ** 2 for z in q))
-        q = [z / qn for z in q]
-        wl = [EL[i_c, j] for j in range(n)]
-        wq = sum(a * b for a, b in zip(wl, q))
-        pbar = [a / wq for a in wl]
+        vals, nj, pc, A, tens, om, q, pbar = _critical_pair(system, values, jets, p_c, omega_c, dps, relocate, 5)
         c1, c2 = _kuznetsov_c1_c2(A, {m: tens[m] for m in (2, 3, 4, 5)}, q, pbar, om)
         # dλ/dp (complex) from the eigenvalues: central differences at h and 2h, one Richardson step
         h = abs(pc) * mpmath.mpf(rel_step) if pc != 0 else mpmath.mpf(rel_step)

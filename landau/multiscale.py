@@ -694,8 +694,10 @@ class Derivation:
         closed-form Hopf line, k_c, ω_c² and the coefficients are one compiled program that
         computes a first-order bound of its own round-off at every point
         (:mod:`landau.bounded`); where the bound exceeds 1e-10 (cancellation near an extremum
-        of μ_ss, inertia-free limits, Λ ≡ 0 at M = 0) the program runs again in 80-bit extended
-        precision with its own bound, whose value is used where it is proven to 1e-10 (laws
+        of μ_ss, inertia-free limits, Λ ≡ 0 at M = 0) the rounding errors of the program are
+        computed and added back (compensated float64, with its own bound), then what is still
+        unproven runs again in 80-bit extended precision with its own bound; a value is used
+        where it is proven to 1e-10 (laws
         whose formulas the program cannot express use a float32 screen instead).  What is still doubtful is taken from
         the exactly cancelled form when the law's derivatives are rational in V
         (:mod:`landau.rational`: Dieterich, Ruina, modified Dieterich), else re-evaluated at 50

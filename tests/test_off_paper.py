@@ -103,12 +103,13 @@ def test_putelat_modified_dieterich_vm_off_paper(c):
     assert doc["value"] == pytest.approx((p["b"] / p["a"] - 1) * p["V_s"] / c, rel=1e-8)
 
 
+@pytest.mark.parametrize("scene,sign", [("putelat2010/spinodal-V_m", 1), ("putelat2010/spinodal-V_M", -1)])
 @pytest.mark.parametrize("c", [3e-4, 2e-3])
-def test_putelat_spinodal_vm_off_paper(c):
-    """Local minimum of μ_ss of the spinodal law (37)–(38) at other c against a 40-digit root of dμ_ss/dV
-    (mpmath differentiation of μ_ss(V) = a asinh(V (c + φ_ss(1 + V_* t_ss/L))^{b/a} e^{a_v/a}/(2V_*)),
-    φ_ss = 1/(1 + V t_ss/L)), to 1e-8."""
-    doc = run_scene("putelat2010/spinodal-V_m", {"c": c})
+def test_putelat_spinodal_vm_off_paper(c, scene, sign):
+    """Local minimum V_m (and maximum V_M) of μ_ss of the spinodal law (37)–(38) at other c against a
+    40-digit root of dμ_ss/dV (mpmath differentiation of μ_ss(V) = a asinh(V (c + φ_ss(1 + V_* t_ss/L))^{b/a}
+    e^{a_v/a}/(2V_*)), φ_ss = 1/(1 + V t_ss/L)), to 1e-8; the second derivative's sign tells which."""
+    doc = run_scene(scene, {"c": c})
     p = {k: mpmath.mpf(v) for k, v in doc["params"].items()}
     with mpmath.workdps(40):
         def mu_ss(V):
@@ -116,4 +117,6 @@ def test_putelat_spinodal_vm_off_paper(c):
             return p["a"] * mpmath.asinh(V * (p["c"] + phi * (1 + p["V_s"] * p["t_ss"] / p["L"])) ** (p["b"] / p["a"])
                                          * mpmath.exp(p["a_v"] / p["a"]) / (2 * p["V_s"]))
         ref = mpmath.findroot(lambda lv: mpmath.diff(lambda x: mu_ss(mpmath.exp(x)), lv), mpmath.log(doc["value"]))
+        curvature = mpmath.diff(lambda x: mu_ss(mpmath.exp(x)), ref, 2)
     assert doc["value"] == pytest.approx(float(mpmath.exp(ref)), rel=1e-8)
+    assert sign * curvature > 0

@@ -14,7 +14,7 @@ from scipy.linalg import expm
 
 from landau.errors import InputError
 from landau.scenes import run_scene
-from landau.laws.regularised import RegularisedFriction
+from landau.laws.velocity import regularised_coulomb
 from landau.verify.skurativskyi import approx
 from landau.verify.skurativskyi.analysis import attractor, redundancy, tsallis_q
 from landau.verify.skurativskyi.model import PAPER, Params, saltation_matrix
@@ -23,15 +23,19 @@ from landau.verify.skurativskyi.simulate import run
 
 # ------------------------------------------------------------------ friction law
 def test_regularised_friction_and_coulomb_limit():
-    F = RegularisedFriction()
+    # F_R of eq. (1) with the identified c, T, eps of Sec. 2 (the model's default law)
+    F = regularised_coulomb()
+    assert PAPER.friction.defaults() == F.defaults() == {"c": 6.6511, "T": 0.63133, "eps": 1e-6}
     v = 1e-3
     assert F(v) == pytest.approx(6.6511 * v + 0.63133 * v / math.sqrt(v * v + 1e-12), rel=1e-15)
     # ε → 0: far from v = 0 the regularised force tends to c v + T sgn v with error ~ T ε²/(2v²)
-    assert F(-1e-2) == pytest.approx(F.coulomb()(-1e-2), abs=0.63133 * 1e-8)
-    assert np.isnan(F.coulomb()(0.0))  # set-valued at v = 0
+    coulomb_limit = F.with_defaults(eps=0.0)
+    assert F(-1e-2) == pytest.approx(coulomb_limit(-1e-2), abs=0.63133 * 1e-8)
+    assert coulomb_limit(-1e-2) == pytest.approx(-6.6511e-2 - 0.63133, rel=1e-15)
+    assert np.isnan(coulomb_limit(0.0))  # set-valued at v = 0
     assert F.slope(0.0) == pytest.approx(6.6511 + 0.63133 / 1e-6, rel=1e-12)
     with pytest.raises(InputError):
-        RegularisedFriction(T=-1.0)
+        Params(T=-1.0)
 
 
 # ------------------------------------------------------------------ Sec. 5 closed forms

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
-from typing import Sequence
+from typing import Mapping, Sequence
 
 from landau.errors import InputError
 from landau.system import SpringBlock
@@ -31,17 +31,26 @@ NOT_PARAMS = {
 }
 
 
-def parse_params(items: Sequence[str]) -> dict[str, float]:
+def split_assignment(item: str, option: str, rhs: str, seen) -> tuple[str, str]:
+    """``NAME=RHS`` of a repeatable option split at the first '=' (name stripped); InputError
+    when there is no '=' or the name is already in ``seen``."""
+    if "=" not in item:
+        raise InputError(f"{option} {item!r}: expected NAME={rhs}")
+    name, val = item.split("=", 1)
+    name = name.strip()
+    if name in seen:
+        raise InputError(f"{option} {name} is given twice")
+    return name, val
+
+
+def parse_params(items: Sequence[str], reserved: Mapping[str, str] = NOT_PARAMS) -> dict[str, float]:
+    """``--param NAME=VALUE`` items as finite floats; a name in ``reserved`` (default: the spring–block
+    commands' V, k and v) is an InputError with its explanation."""
     out: dict[str, float] = {}
     for item in items:
-        if "=" not in item:
-            raise InputError(f"--param {item!r}: expected NAME=VALUE")
-        name, val = item.split("=", 1)
-        name = name.strip()
-        if name in NOT_PARAMS:
-            raise InputError(f"--param {name}: {NOT_PARAMS[name]}")
-        if name in out:
-            raise InputError(f"--param {name} is given twice")
+        name, val = split_assignment(item, "--param", "VALUE", out)
+        if name in reserved:
+            raise InputError(f"--param {name}: {reserved[name]}")
         try:
             x = float(val)
         except ValueError:
@@ -105,12 +114,7 @@ def resolve_law(args) -> tuple[FrictionLaw, dict[str, float]]:
             raise InputError("an inline law needs both --mu and at least one --state NAME=RATE")
         states = {}
         for item in args.state:
-            if "=" not in item:
-                raise InputError(f"--state {item!r}: expected NAME=RATE")
-            name, rate = item.split("=", 1)
-            name = name.strip()
-            if name in states:
-                raise InputError(f"--state {name} is given twice")
+            name, rate = split_assignment(item, "--state", "RATE", states)
             states[name] = rate
         law_params = {k: v for k, v in params.items() if k not in SYSTEM_PARAMS}
         if args.law is not None and (not args.law.strip() or len(args.law) > 100):

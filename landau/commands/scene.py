@@ -35,7 +35,7 @@ def run(args) -> dict:
         raise InputError("'scene run --all' takes no name")
     if not args.all and not args.names:
         raise InputError("'scene run' needs a scene name, a pattern or --all (see 'landau scene list')")
-    overrides = parse_params(args.param)
+    overrides = parse_params(args.param, reserved={})  # a scene's own names (k, v, ...) are checked by the scene
     if not args.all and len(args.names) == 1 and not _is_pattern(args.names[0]):
         doc = run_scene(args.names[0], overrides)
         if doc.get("agrees") is False and doc.get("at_defaults"):

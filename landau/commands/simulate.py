@@ -19,7 +19,10 @@ Models (defaults: the published parameters):
   (default 0.42, above the Hopf point) or your law ``--friction EXPR`` with its ``--param`` values,
   started near the slip equilibrium;
 * ``forced-oscillator`` — the forced cart with Hertz contact of Skurativskyi, Kudra,
-  Witkowski & Awrejcewicz (2019), identified parameters, started at rest.
+  Witkowski & Awrejcewicz (2019), identified parameters, started at rest; its friction is the
+  paper's regularised Coulomb law (c, T, eps by ``--param``) or yours, ``--friction EXPR`` in
+  the sliding velocity ``v`` [N] with its parameters by ``--param`` (the notes give the
+  linearised grazing estimate of their Sec. 5 for that law).
 
 The output format follows each ``--out`` suffix: ``.csv`` (header ``t [s], name [unit]...``),
 ``.npz`` or ``.png`` (time series and phase portrait).  Exit 1 when the integrator fails.
@@ -52,7 +55,7 @@ RECORD = 1_000_000
 def configure(p) -> None:
     p.add_argument("model", help=f"one of {', '.join(MODELS)}")
     add_law_arguments(p)  # positional LAW after MODEL (spring-block only), --mu, --state, --param
-    add_friction_arguments(p)  # --friction EXPR, --friction-neg, --friction-name (impact-oscillator)
+    add_friction_arguments(p)  # --friction EXPR, --friction-neg, --friction-name (impact and forced oscillators)
     p.add_argument("--law", dest="law_option", default=None, metavar="NAME",
                    help="spring-block: built-in law (same as the positional LAW; default dieterich)")
     p.add_argument("--V", default=None, help="spring-block: driving velocity in m/s (default 1e-4); "
@@ -258,22 +261,37 @@ def _impact_oscillator(args, t_end: float):
 
 
 def _forced_oscillator(args, t_end: float):
-    from landau.verify.skurativskyi.model import Params
+    from landau.commands.common import velocity_law_from_args
+    from landau.laws.velocity import regularised_coulomb
+    from landau.verify.skurativskyi.approx import grazing_linear, static_equilibrium
+    from landau.verify.skurativskyi.model import MECHANICAL, Params
     from landau.verify.skurativskyi.simulate import run
 
     name = "forced-oscillator"
     _no_law(args, name)
     over = parse_params(args.param)
-    _only_known(over, Params.names(), name)
-    p = Params().with_(**over)
+    # the friction F_R(v) [N]: the paper's regularised Coulomb law (c, T, eps by --param) or --friction
+    law = velocity_law_from_args(args, regularised_coulomb(), over, quantity="force")
+    _only_known(over, list(MECHANICAL) + [q.name for q in law.parameters], name)
+    p = Params(friction=law).with_(**over)
     if p.xI < 0:  # the springs press the cart on the obstacle: rest is the static equilibrium in contact
         y0, note = None, "starts at rest at the static equilibrium (in contact)"
     else:  # the obstacle is not touched at rest
         y0, note = np.zeros(2), "starts at rest at x = 0 (free of the obstacle)"
     r = run(p, t_end / p.period, y0=y0, record=RECORD)
     sim = replace(r.simulation(), model=name)
-    used = {k: getattr(p, k) for k in Params.names()}
-    return sim, used, {"x": "m", "xdot": "m/s"}, [note]
+    used = {"friction": law.name, **p.values()}
+    neg = "the odd extension -F(-v)" if law.negative is None else str(law.branch(-1))
+    notes = [note, f"friction F_R(v) = {law.branch(1)} [N] for v > 0, {neg} for v < 0"]
+    if p.xI < 0:
+        # the Sec. 5 estimate of the first grazing, damped with the law's viscous coefficient
+        try:
+            notes.append(f"linearised grazing estimate (Skurativskyi et al. 2019, Sec. 5, eq. 4) with X0 = "
+                         f"{static_equilibrium(p):.6g} m and the law's viscous coefficient "
+                         f"{p.linear_damping:.6g} N s/m: omega = {grazing_linear(p):.6g} rad/s")
+        except InputError as exc:
+            notes.append(f"no linearised grazing estimate: {exc}")
+    return sim, used, {"x": "m", "xdot": "m/s"}, notes
 
 
 def simulate_model(args):

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 
+from landau.errors import InputError
 from landau.multiscale import Derivation
 from landau.scenes import Scene, register
 from landau.system import SpringBlock
@@ -31,13 +32,26 @@ def _params(p: dict) -> dict:
     return q
 
 
+def _v_hat(q: dict) -> float:
+    """Inertial crossover velocity V̂ = sqrt(aσL/M) (eq. 31): the velocity scale of the transitions."""
+    return math.sqrt(q["a"] * q["sigma"] * q["L"] / q["M"])
+
+
+def _c_crit(q: dict) -> float:
+    """c_crit = (b/a − 1) V_* / V̂ (Sec. 4.1): the residual-strength scale of c*."""
+    return (q["b"] / q["a"] - 1) * q["V_s"] / _v_hat(q)
+
+
 def _codim2(law: str, index: int, what: str = "V"):
     def compute(p: dict) -> dict:
         from landau.transition import codim2_points
 
-        pts = codim2_points(_derivation(law), 1e-9, 1e-1, _params(p))
+        q = _params(p)
+        # V window from the law's velocity scale: the published V* lie within 1e-2..2 V̂ (eq. 31)
+        pts = codim2_points(_derivation(law), 1e-5 * _v_hat(q), 1e2 * _v_hat(q), q)
         if len(pts) <= index:
-            return {"value": float("nan"), "n_points": len(pts)}
+            raise InputError(f"{law}: Λ changes sign {len(pts)} time(s) on the Hopf line for "
+                             f"{1e-5 * _v_hat(q):.3g} < V < {1e2 * _v_hat(q):.3g} m/s; no point number {index + 1}")
         pt = pts[index]
         return {"value": getattr(pt, what), "V": pt.V, "kc": pt.kc, "omega_c": pt.omega_c,
                 "sign_below": pt.sign_below, "sign_above": pt.sign_above, "n_points": len(pts)}
@@ -50,18 +64,18 @@ def _c_star(what: str):
 
         q = _params(p)
         q.pop("c", None)
-        cs = critical_parameter(_derivation("modified-dieterich"), "c", 1e-4, 2e-3, q)
+        # c window from the closed-form scale c_crit (Sec. 4.1); c* ≈ 1.25 c_crit for Table 1
+        cs = critical_parameter(_derivation("modified-dieterich"), "c", _c_crit(q) / 8, 3 * _c_crit(q), q)
         if not cs:
-            return {"value": float("nan")}
+            raise InputError(f"modified-dieterich: no critical residual strength c* in "
+                             f"[{_c_crit(q) / 8:.3g}, {3 * _c_crit(q):.3g}] for these parameters")
         return {"value": cs[0].value if what == "c" else cs[0].V_ext, "c_star": cs[0].value, "V_m": cs[0].V_ext}
     return compute
 
 
 def _spinodal_c_crit(p: dict) -> dict:
     # Sec. 4.1: c_crit = (b/a − 1) V_* / sqrt(Laσ/M), the c for which V_m ≈ V̂ (inertia matters for c < c_crit)
-    sigma = p["M"] * p["g"]
-    val = (p["b"] / p["a"] - 1) * p["V_s"] / math.sqrt(p["L"] * p["a"] * sigma / p["M"])
-    return {"value": val}
+    return {"value": _c_crit(_params(p))}
 
 
 def _spinodal_critical_c(p: dict) -> dict:
@@ -69,16 +83,19 @@ def _spinodal_critical_c(p: dict) -> dict:
 
     q = _params(p)
     q.pop("c", None)
-    cs = critical_parameter(_derivation("spinodal"), "c", 2e-4, 2e-3, q, n=12)
-    return {"value": cs[0].value if cs else float("nan"), "V_m": cs[0].V_ext if cs else float("nan")}
+    cs = critical_parameter(_derivation("spinodal"), "c", _c_crit(q) / 4, 3 * _c_crit(q), q, n=12)
+    if not cs:
+        raise InputError(f"spinodal: no critical residual strength c* in "
+                         f"[{_c_crit(q) / 4:.3g}, {3 * _c_crit(q):.3g}] for these parameters")
+    return {"value": cs[0].value, "V_m": cs[0].V_ext}
 
 
 def _gamma_max_velocity(p: dict) -> dict:
     from landau.amplitude import growth_rate_max
 
     q = _params(p)
-    g = growth_rate_max(_derivation("dieterich"), q)
-    V_hat = math.sqrt(q["a"] * q["sigma"] * q["L"] / q["M"])
+    V_hat = _v_hat(q)
+    g = growth_rate_max(_derivation("dieterich"), q, 1e-4 * V_hat, 1e2 * V_hat)  # window on the scale V̂
     return {"value": g.V / V_hat, "V": g.V, "V_hat": V_hat, "Gamma_max_per_dk": g.value}
 
 

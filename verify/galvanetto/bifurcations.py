@@ -20,6 +20,13 @@ Test functions (r = Ẋ − V, K the spring force, F_s the static level):
 * fold / border collision of the map: fⁿ(d_k) − d_k = 0 at the kink d_k(β);
 * period doubling: f'(d*) + 1 = 0 at the fixed point (central differences with Richardson
   extrapolation).
+
+Without a ``bracket`` every locator derives its search interval from the model, never from a
+published value: the law's weakening velocity (sliding points in V), the Hopf point c₁ (c₂), a β
+scan from equal static levels (the fold) and, upward from each bifurcation, the next one of the
+Fig. 12 sequence and the grazing-sliding (the next period-2 orbit through the kink), and the
+periodic attractor at the start γ followed in γ (multi-sliding).  When the test function does not
+change sign there, :class:`NoBifurcationError` names the range searched.
 """
 
 from __future__ import annotations
@@ -38,6 +45,11 @@ from landau.laws.kinetic import KineticFriction, resolve_kinetic_law
 from landau.verify.galvanetto.model import K_of, StickSlipParams, _make_rhs, one_block, two_blocks
 
 XTOL = 1e-12
+
+
+class NoBifurcationError(InputError):
+    """The test function of a locator does not change sign in the search range derived from the
+    model: the bifurcation does not exist there for these parameters (the message gives the range)."""
 
 
 @dataclass(frozen=True)
@@ -161,7 +173,7 @@ def scan_bracket(H: Callable[[float], float], grid, what: str) -> tuple[float, f
 
     Raises
     ------
-    InputError
+    NoBifurcationError
         No sign change on the grid (the bifurcation is not in the range for these parameters).
     """
     prev = None
@@ -180,9 +192,9 @@ def scan_bracket(H: Callable[[float], float], grid, what: str) -> tuple[float, f
         if prev is not None and np.sign(h) != np.sign(prev[1]):
             return prev[0], x
         prev = (x, h)
-    raise InputError(f"{what}: the test function does not change sign for the parameter in "
-                     f"[{float(grid[0]):.6g}, {float(grid[-1]):.6g}]; the bifurcation is not in that range "
-                     "for these parameters (give a bracket)")
+    raise NoBifurcationError(f"{what}: the test function does not change sign for the parameter in "
+                             f"[{float(grid[0]):.6g}, {float(grid[-1]):.6g}] (the range derived from the model); "
+                             "the bifurcation does not exist in that range for these parameters")
 
 
 def _locate(H, bracket, xtol: float = XTOL):
@@ -365,8 +377,11 @@ def two_block_sliding(kind: str, alpha: float = 1.2, beta: float = 1.3, gamma: f
         d0 = float(orb[0]) if d0 is None else d0
         if period is None:
             if per is None:
-                raise InputError(f"two-block type {kind} sliding: the map's attractor at V = {bracket[0]:.6g} is not "
-                                 "periodic (period <= 8); give period and bracket")
+                raise NoBifurcationError(
+                    f"two-block type {kind} sliding: the test function changes sign for V in [{bracket[0]:.6g}, "
+                    f"{bracket[1]:.6g}], but the map's attractor at V = {bracket[0]:.6g} is not periodic (period <= 8): "
+                    "the sliding happens on a non-periodic attractor, not at a point of a periodic orbit "
+                    "(pass period= to follow a periodic orbit of that period)")
             period = per
     warm = _Warm(d0)
 
@@ -560,7 +575,7 @@ def _fold_scan(V, alpha, law) -> tuple[float, float]:
             if left < 0.0 and right > 1.0:
                 return prev[0], beta
         prev = (beta, h)
-    raise InputError(f"discontinuous fold: no fold of Galvanetto's case (3) for beta in (1, {betas[-1]:.3g}] "
+    raise NoBifurcationError(f"discontinuous fold: no fold of Galvanetto's case (3) for beta in (1, {betas[-1]:.3g}] "
                      f"at V = {V:g}, alpha = {alpha:g}, {law!r}")
 
 
@@ -585,23 +600,70 @@ def discontinuous_fold(bracket=None, V=0.25, alpha=1.2, gamma=None, delta=None, 
     ----------
     U. Galvanetto, J. Sound Vib. 276 (2004) 121–139, Sec. 2.2 and 4.2, Figs 12, 13.
     """
-    law = resolve_kinetic_law(law, gamma, delta)
-    return _memo('fold', V, alpha, law, bracket, stepper,
-                 lambda: _discontinuous_fold(bracket, V, alpha, stepper, law))
+    return _sequence_point("fold", bracket, V, alpha, gamma, delta, stepper, law)
 
 
-def _discontinuous_fold(bracket, V, alpha, stepper, law) -> Located:
-    if bracket is None:
-        bracket = _fold_scan(V, alpha, law)
-    warm = _Warm(None)
-
+def _kink_test(V, alpha, law, stepper, warm: _Warm, test) -> Callable[[float], float]:
+    """H(β) = test(p, d_k, stepper) at the kink d_k of the two blocks' map at static level β (found
+    from the previous kink ``warm.d``, which is updated)."""
     def H(beta):
         p = fig12_params(beta, V, alpha, law=law)
-        warm.d = kink(p, warm.d, stepper)
-        return f_n(p, warm.d, 1, stepper) - warm.d
+        warm.d = dk = kink(p, warm.d, stepper)
+        return test(p, dk, stepper)
+    return H
 
+
+def _fold_test(p, dk, stepper):
+    """f(d_k) − d_k: a fixed point of f at the kink."""
+    return f_n(p, dk, 1, stepper) - dk
+
+
+def _period_doubling_test(p, dk, stepper):
+    """(slope of f at the fixed point left of the kink) + 1."""
+    pp = fixed_point_beside_kink(p, dk, -1, stepper)
+    return map_slope(p, pp.d, 1, stepper, h=min(2e-5, (dk - pp.d) / 3)) + 1.0
+
+
+def _period_two_at_kink_test(p, dk, stepper):
+    """f²(d_k) − d_k: a period-2 orbit through the kink."""
+    return f_n(p, dk, 2, stepper) - dk
+
+
+def _crisis_test(p, dk, stepper):
+    """f²(d_k) − u, u the unstable fixed point right of the kink."""
+    u = fixed_point_beside_kink(p, dk, +1, stepper).d
+    return f_n(p, dk, 2, stepper) - u
+
+
+#: the Fig. 12 sequence: name -> (test function at the kink, the bifurcation its default search
+#: starts above (None: the fold's own scan), its name in messages)
+_SEQUENCE = {
+    "fold": (_fold_test, None, "discontinuous fold"),
+    "period-doubling": (_period_doubling_test, "fold", "period doubling"),
+    "border-collision": (_period_two_at_kink_test, "period-doubling", "border collision"),
+    "crisis": (_crisis_test, "border-collision", "boundary crisis"),
+}
+
+
+def _sequence_point(name, bracket, V, alpha, gamma, delta, stepper, law) -> Located:
+    """One bifurcation of the Fig. 12 sequence (see :data:`_SEQUENCE`), memoised per parameter set."""
+    law = resolve_kinetic_law(law, gamma, delta)
+    return _memo(name, V, alpha, law, bracket, stepper, lambda: _chained(name, bracket, V, alpha, stepper, law))
+
+
+def _chained(name, bracket, V, alpha, stepper, law) -> Located:
+    test, previous, what = _SEQUENCE[name]
+    warm = _Warm(None)
+    H = _kink_test(V, alpha, law, stepper, warm, test)
+    if bracket is None:
+        if previous is None:
+            bracket = _fold_scan(V, alpha, law)
+        else:
+            prev = _sequence_point(previous, None, V, alpha, None, None, None, law)
+            warm.d = prev.details["d_kink"]
+            bracket = _chain_scan(H, prev.value, what)
     b, res, n, sec = _locate(H, bracket)
-    return Located("fold", "beta", b, res, n, sec, {"d_kink": float(warm.d), "bracket": tuple(map(float, bracket))})
+    return Located(name, "beta", b, res, n, sec, {"d_kink": float(warm.d), "bracket": tuple(map(float, bracket))})
 
 
 #: the Fig. 12 sequence located with the default stepper and derived brackets, per parameter set
@@ -628,28 +690,7 @@ def period_doubling(bracket=None, V=0.25, alpha=1.2, gamma=None, delta=None, ste
     is born at the kink with the left slope in (−1, 0)); other parameters as
     :func:`discontinuous_fold`.
     """
-    law = resolve_kinetic_law(law, gamma, delta)
-    return _memo('period-doubling', V, alpha, law, bracket, stepper,
-                 lambda: _period_doubling(bracket, V, alpha, stepper, law))
-
-
-def _period_doubling(bracket, V, alpha, stepper, law) -> Located:
-    warm = _Warm(None)
-
-    def H(beta, stepper=stepper):
-        p = fig12_params(beta, V, alpha, law=law)
-        dk = kink(p, warm.d, stepper)
-        warm.d = dk
-        pp = fixed_point_beside_kink(p, dk, -1, stepper)
-        return map_slope(p, pp.d, 1, stepper, h=min(2e-5, (dk - pp.d) / 3)) + 1.0
-
-    if bracket is None:
-        fold = discontinuous_fold(None, V, alpha, law=law)
-        warm.d = fold.details["d_kink"]
-        bracket = _chain_scan(H, fold.value, "period doubling")
-    b, res, n, sec = _locate(H, bracket)
-    return Located("period-doubling", "beta", b, res, n, sec,
-                   {"d_kink": float(warm.d), "bracket": tuple(map(float, bracket))})
+    return _sequence_point("period-doubling", bracket, V, alpha, gamma, delta, stepper, law)
 
 
 def border_collision(bracket=None, V=0.25, alpha=1.2, gamma=None, delta=None, stepper=None, *,
@@ -659,26 +700,7 @@ def border_collision(bracket=None, V=0.25, alpha=1.2, gamma=None, delta=None, st
     The default ``bracket`` is searched upward from the period doubling (where the period-2 orbit
     is born); other parameters as :func:`discontinuous_fold`.
     """
-    law = resolve_kinetic_law(law, gamma, delta)
-    return _memo('border-collision', V, alpha, law, bracket, stepper,
-                 lambda: _border_collision(bracket, V, alpha, stepper, law))
-
-
-def _border_collision(bracket, V, alpha, stepper, law) -> Located:
-    warm = _Warm(None)
-
-    def H(beta):
-        p = fig12_params(beta, V, alpha, law=law)
-        warm.d = kink(p, warm.d, stepper)
-        return f_n(p, warm.d, 2, stepper) - warm.d
-
-    if bracket is None:
-        pd = period_doubling(None, V, alpha, law=law)
-        warm.d = pd.details["d_kink"]
-        bracket = _chain_scan(H, pd.value, "border collision")
-    b, res, n, sec = _locate(H, bracket)
-    return Located("border-collision", "beta", b, res, n, sec,
-                   {"d_kink": float(warm.d), "bracket": tuple(map(float, bracket))})
+    return _sequence_point("border-collision", bracket, V, alpha, gamma, delta, stepper, law)
 
 
 def boundary_crisis(bracket=None, V=0.25, alpha=1.2, gamma=None, delta=None, stepper=None, *,
@@ -690,76 +712,258 @@ def boundary_crisis(bracket=None, V=0.25, alpha=1.2, gamma=None, delta=None, ste
     it collides with u when f²(d_k) = u: H(β) = f²(d_k) − u.  The default ``bracket`` is
     searched upward from the border collision; other parameters as :func:`discontinuous_fold`.
     """
-    law = resolve_kinetic_law(law, gamma, delta)
-    return _memo('crisis', V, alpha, law, bracket, stepper,
-                 lambda: _boundary_crisis(bracket, V, alpha, stepper, law))
+    return _sequence_point("crisis", bracket, V, alpha, gamma, delta, stepper, law)
 
 
-def _boundary_crisis(bracket, V, alpha, stepper, law) -> Located:
-    warm = _Warm(None)
+def _grow_bracket(H, x0: float, w0: float, limit: float, what: str) -> tuple[float, float]:
+    """A sign change of H around x0: [x0 − w, x0 + w] with w = w0·4ᵏ up to ``limit`` (the sides are
+    tried separately, so one undefined side does not stop the other)."""
+    h0 = H(x0)
+    if h0 == 0.0:
+        return x0, x0
+    w = w0
+    while w <= limit:
+        for x in (x0 - w, x0 + w):
+            try:
+                if np.sign(H(x)) != np.sign(h0):
+                    return (x, x0) if x < x0 else (x0, x)
+            except (MapUndefined, IntegratorError, LandauError):
+                pass
+        w *= 4
+    raise NoBifurcationError(f"{what}: the test function does not change sign for the parameter in "
+                             f"[{x0 - limit:.8g}, {x0 + limit:.8g}] (around the coarse root {x0:.8g})")
 
-    def H(beta):
-        p = fig12_params(beta, V, alpha, law=law)
-        warm.d = dk = kink(p, warm.d, stepper)
-        u = fixed_point_beside_kink(p, dk, +1, stepper).d
-        return f_n(p, dk, 2, stepper) - u
 
-    if bracket is None:
-        bc = border_collision(None, V, alpha, law=law)
-        warm.d = bc.details["d_kink"]
-        bracket = _chain_scan(H, bc.value, "boundary crisis")
-    b, res, n, sec = _locate(H, bracket)
-    return Located("crisis", "beta", b, res, n, sec, {"d_kink": float(warm.d), "bracket": tuple(map(float, bracket))})
-
-
-def grazing_sliding(bracket=(1.7652, 1.7656), V=0.25, alpha=1.2, gamma=None, delta=None, stepper=None,
-                    d0: float = -0.0858, *, law: KineticFriction | None = None) -> Located:
-    """β* of Fig. 15: on the period-2 attractor, the slip phase of block 1 that follows the
-    start of block 2's slip grazes block 1's sticking region (max r₁ = 0 at K₁ = F_s1).
+def grazing_sliding(bracket=None, V=0.25, alpha=1.2, gamma=None, delta=None, stepper=None,
+                    d0: float | None = None, *, law: KineticFriction | None = None) -> Located:
+    """β* of Fig. 15: a period-2 orbit of the map passes through the kink d_k, i.e. one of its
+    slip phases of block 1 (the first with both blocks slipping) grazes block 1's sticking region
+    (max r₁ = 0 at K₁ = F_s1).
 
     What the computation shows (the paper's text says block 2): for β > β* that phase
     contains a short stick phase of *block 1* (duration growing like sqrt(β − β*)), for
     β < β* it does not; block 2's stick phases keep their length.  H(β) = max r₁ in that
     phase (continued through r₁ = 0, :func:`kink_function`) at the period-2 point.
+
+    Parameters
+    ----------
+    bracket : search interval in β.  Default derived from the model: G(β) = f²(d_k) − d_k (zero when
+        a period-2 orbit passes through the kink; DOP853 at rtol 1e-8) is scanned upward from the
+        border collision (:func:`border_collision`, the previous zero of G, where the first
+        period-2 orbit leaves the kink) with steps 10⁻⁴·2ᵏ up to 0.5; its first sign change is a
+        root of G (a jump of f is rejected: |G| < 10⁻⁶ at the coarse root), around which H is
+        bracketed with widths 10⁻⁶·4ᵏ.  Where the period-2 point does not converge (next to the
+        kink f² has a square-root branch on one side) the root is refined on G itself at full
+        precision (``details["test"]`` says which).
+    V, alpha : belt velocity and inter-block stiffness (Fig. 15: as Fig. 12, 0.25 and 1.2).
+    gamma, delta : parameters of the default law, eq. (7) (defaults γ = 3, δ = 0).
+    stepper : mode integrator (default DOP853, rtol 1e-11).
+    d0 : start of the period-2 point (default: the kink at the bracket's coarse root).
+    law : the kinetic law (default eq. (7) with ``gamma``, ``delta``).
+
+    Returns
+    -------
+    Located
+        ``details``: the period-2 point ``d`` (the kink), the grazing block, the bracket.
+
+    Raises
+    ------
+    NoBifurcationError
+        G has no root in the derived range.
+
+    References
+    ----------
+    U. Galvanetto, J. Sound Vib. 276 (2004) 121–139, Sec. 4.2, Fig. 15.
     """
+    law = resolve_kinetic_law(law, gamma, delta)
     warm = _Warm(d0)
 
-    law = resolve_kinetic_law(law, gamma, delta)
     def H(beta):
         p = fig12_params(beta, V, alpha, law=law)
         pp = periodic_point(p, warm.d, 2, stepper)
         warm.d = pp.d
         return kink_function(p, pp.d, stepper)
 
-    b, res, n, sec = _root(H, *bracket)
-    return Located("grazing-sliding", "beta", b, res, n, sec, {"d": warm.d, "grazing_block": 1})
+    coarse = None
+    if bracket is None:
+        bc = border_collision(None, V, alpha, law=law)
+        scan_st = default_stepper(SCAN_RTOL)
+        kwarm = _Warm(bc.details["d_kink"])
+        G = _kink_test(V, alpha, law, scan_st, kwarm, _period_two_at_kink_test)
+        a, b = _chain_scan(G, bc.value, "grazing-sliding (period-2 orbit through the kink)")
+        coarse = brentq(G, a, b, xtol=1e-9, rtol=1e-15) if a != b else a
+        if not abs(G(coarse)) < 1e-6:
+            raise NoBifurcationError(f"grazing-sliding: f²(d_k) − d_k jumps across 0 at beta = {coarse:.8g} "
+                                     f"(f is discontinuous there, no orbit grazes); searched beta in "
+                                     f"[{bc.value:.8g}, {bc.value + 0.5:.8g}]")
+        if d0 is None:
+            warm.d = kwarm.d
+    try:
+        if coarse is not None:
+            bracket = _grow_bracket(H, coarse, 1e-6, 1e-2, "grazing-sliding")
+        b, res, n, sec = _locate(H, bracket)
+        test = "max r1 at the period-2 point"
+    except (MapUndefined, IntegratorError, LandauError) as err:
+        # the secant for the period-2 point can fail next to the kink, where f² has a square-root
+        # branch on one side: the root is then refined on f²(d_k) − d_k itself (the kink at full
+        # precision), which needs no periodic point
+        if coarse is None:
+            raise err
+        kwarm = _Warm(warm.d)
+        G = _kink_test(V, alpha, law, stepper, kwarm, _period_two_at_kink_test)
+        bracket = _grow_bracket(G, coarse, 1e-6, 1e-2, "grazing-sliding")
+        b, res, n, sec = _locate(G, bracket)
+        warm.d, test = kwarm.d, "f2(d_k) - d_k"
+    return Located("grazing-sliding", "beta", b, res, n, sec,
+                   {"d": warm.d, "grazing_block": 1, "bracket": tuple(map(float, bracket)), "test": test})
 
 
-def multi_sliding(bracket=(10.745, 10.756), V=0.05, alpha=1.2, beta=2.0, delta=None, stepper=None,
-                  d0: float = 0.19664, *,
-                  law: KineticFriction | None = None) -> Located:
+def _multi_sliding_test(p, d, period, stepper) -> float:
+    """min K₂ + β over the stick phases of block 2 entered from 'ps' along the orbit of d (the
+    guard K₂ = −β made transparent to continue the stick phase)."""
+    virt = frozenset({"K2=-Fs"})
+    for _ in range(period):
+        ms = two_block_map(p, d, stepper, sections=True, transparent=virt)
+        mins = [K_of(p, e.y)[1] + p.beta for e in ms.events if e.guard == "Kmin2" and e.from_mode == "ps"]
+        if mins:
+            return min(mins)
+        d = ms.d1
+    raise MapUndefined("no stick phase of block 2 during an r1 > 0 slip")
+
+
+#: Fig. 16: γ and the caption's initial condition d of the figure's periodic orbit
+FIG16_GAMMA, FIG16_D0 = 10.756, 0.1969494
+
+
+def multi_sliding(bracket=None, V=0.05, alpha=1.2, beta=2.0, delta=None, stepper=None,
+                  d0: float | None = None, *, law: KineticFriction | None = None,
+                  gamma: float | None = None) -> Located:
     """γ of Fig. 16: during a stick phase of block 2 (block 1 slipping with r₁ > 0) the
     minimum of K₂ touches −β, so a slip phase of block 2 with r₂ > 0 is born from the stick
-    phase.  H = min K₂ + β in that stick phase (guard made transparent to continue it)."""
+    phase.  H = min K₂ + β in that stick phase (guard made transparent to continue it),
+    on a periodic orbit of the map.
+
+    Parameters
+    ----------
+    bracket : search interval in γ.  Default derived from the model: the map's attractor at the
+        start ``gamma`` (from ``d0``; 80 iterations, DOP853 at rtol 1e-8) gives the period n of the
+        orbit (period detection as in :func:`two_block_sliding`, n ≤ 8); that periodic point is
+        continued in γ (warm-started secant) to both sides with steps 10⁻⁴·γ·2ᵏ (at most 10⁻²·γ) up
+        to 0.2·γ away, as long as it moves by less than 1 % of the map's domain (:func:`d_range`)
+        per step; the first sign change of H brackets the multi-sliding point.
+    V, alpha, beta : belt velocity, inter-block stiffness, block 2's static level (Fig. 16: 0.05,
+        1.2, 2).
+    delta : δ of the default law, eq. (7) (default 0).
+    stepper : mode integrator (default DOP853, rtol 1e-11).
+    d0 : start of the attractor iteration (default: Fig. 16's initial condition d ≈ 0.1969494).
+    law : the kinetic law; its parameter γ is the one varied (default eq. (7) with ``delta``).
+    gamma : γ where the search starts (default: the given law's γ, or Fig. 16's γ = 10.756 with the
+        default law).
+
+    Returns
+    -------
+    Located
+        ``details``: the periodic point ``d``, its ``period``, the bracket.
+
+    Raises
+    ------
+    NoBifurcationError
+        The attractor at the start is not periodic, or H does not change sign along the continued
+        orbit in the derived range (the message gives it).
+
+    References
+    ----------
+    U. Galvanetto, J. Sound Vib. 276 (2004) 121–139, Sec. 4.3, Fig. 16.
+    """
+    given_law = law is not None
     law = resolve_kinetic_law(law, None, delta)
-    warm = _Warm(d0)
-    virt = frozenset({"K2=-Fs"})
+    gamma0 = float(gamma if gamma is not None else (law.gamma if given_law else FIG16_GAMMA))
+    d0 = FIG16_D0 if d0 is None else float(d0)
+    params = lambda g: two_blocks(V, alpha, beta, law=replace(law, gamma=float(g)))
 
-    def H(gamma):
-        p = two_blocks(V, alpha, beta, law=replace(law, gamma=float(gamma)))
-        pp = periodic_point(p, warm.d, 2, stepper)
+    start = gamma0 if bracket is None else float(bracket[0])
+    orb, period = attractor(params(start), d0, 80, 8, default_stepper(SCAN_RTOL), tol=1e-6)
+    if period is None:
+        raise NoBifurcationError(f"multi-sliding: the map's attractor at gamma = {start:g} from d0 = {d0:g} is "
+                                 "not periodic (period <= 8); the multi-sliding point is searched along a "
+                                 "periodic orbit (start from another gamma or d0)")
+    warm = _Warm(float(orb[0]))
+
+    def H(g):
+        p = params(g)
+        # a secant from a warm start converges in < 10 steps; 20 bounds the cost where the orbit is lost
+        pp = periodic_point(p, warm.d, period, stepper, maxiter=20)
         warm.d = pp.d
-        d = pp.d
-        for _ in range(2):
-            ms = two_block_map(p, d, stepper, sections=True, transparent=virt)
-            mins = [K_of(p, e.y)[1] + p.beta for e in ms.events if e.guard == "Kmin2" and e.from_mode == "ps"]
-            if mins:
-                return min(mins)
-            d = ms.d1
-        raise MapUndefined("no stick phase of block 2 during an r1 > 0 slip")
+        return _multi_sliding_test(p, pp.d, period, stepper)
 
-    g, res, n, sec = _root(H, *bracket)
-    return Located("multi-sliding", "gamma", g, res, n, sec, {"d": warm.d})
+    if bracket is None:
+        lo, hi = d_range(params(gamma0))
+        bracket = _continuation_scan(H, warm, gamma0, 0.2 * gamma0, "multi-sliding", 0.01 * (hi - lo))
+    g, res, n, sec = _locate(H, bracket)
+    return Located("multi-sliding", "gamma", g, res, n, sec,
+                   {"d": warm.d, "period": period, "bracket": tuple(map(float, bracket))})
+
+
+def _continuation_scan(H, warm: _Warm, x0: float, limit: float, what: str, max_jump: float) -> tuple[float, float]:
+    """Bracket of a sign change of H (evaluated on a periodic point warm-started from ``warm.d``)
+    next to x0.  The point is followed to both sides of x0 in steps 10⁻⁴|x0|·2ᵏ, at most 10⁻²|x0|,
+    up to distance ``limit``; a side ends where the orbit is lost: the periodic point does not
+    converge, the map is undefined, or the point jumps by more than ``max_jump`` in one step (the
+    secant has found another orbit); where it is lost after a step longer than 10⁻⁴|x0| the step is
+    halved back towards the last point followed until that resolution."""
+    def follow(x, dp):
+        """H at x on the orbit continued from the point dp, or None where it is lost."""
+        warm.d = dp
+        try:
+            h = H(x)
+        except (MapUndefined, IntegratorError, LandauError):
+            return None
+        return h if abs(warm.d - dp) <= max_jump else None
+
+    h0 = follow(x0, warm.d)
+    if h0 is None:
+        raise NoBifurcationError(f"{what}: the periodic orbit of the attractor at {x0:.8g} cannot be followed (its "
+                                 "periodic point does not converge at full precision or the test function is "
+                                 "undefined on it)")
+    if h0 == 0.0:
+        return x0, x0
+    reached = {-1: (x0, warm.d), +1: (x0, warm.d)}   # the last point followed on each side
+    ends = {-1: None, +1: None}                      # where a side was lost
+    dist, step = 0.0, 1e-4 * abs(x0)
+    while reached and dist < limit:
+        dist = min(dist + step, limit)
+        for side in list(reached):
+            xp, dp = reached[side]
+            x = x0 + side * dist
+            h = follow(x, dp)
+            # the orbit lost after a long step: halve back towards the last point followed (a sign
+            # change may lie just before the orbit ends, as at Fig. 16's multi-sliding)
+            lost = x
+            while h is None and abs(lost - xp) > 1e-4 * abs(x0):
+                mid = 0.5 * (xp + lost)
+                hm = follow(mid, dp)
+                if hm is None:
+                    lost = mid
+                elif np.sign(hm) != np.sign(h0):
+                    x, h = mid, hm            # the sign change lies between xp and mid
+                else:
+                    xp, dp = mid, warm.d      # still followed, same sign: go on from there
+            if h is None:
+                ends[side] = xp
+                del reached[side]
+                continue
+            if np.sign(h) != np.sign(h0):
+                if xp < x:
+                    warm.d = dp     # the root search starts at the lower end, on the orbit followed
+                return (xp, x) if xp < x else (x, xp)
+            reached[side] = (x, warm.d)
+        step = min(2 * step, 1e-2 * abs(x0))
+    lo = ends[-1] if ends[-1] is not None else x0 - limit
+    hi = ends[+1] if ends[+1] is not None else x0 + limit
+    raise NoBifurcationError(f"{what}: the test function does not change sign along the periodic orbit followed "
+                             f"from {x0:.8g} over [{lo:.8g}, {hi:.8g}] (searched within [{x0 - limit:.8g}, "
+                             f"{x0 + limit:.8g}]; the orbit was lost at an end inside that range); the "
+                             "bifurcation does not exist on that orbit")
 
 
 # ----------------------------------------------------------------- damped one block (Sec. 4.2)

@@ -24,6 +24,7 @@ rᵢ < 0: grazing of the stick surface), ``rmin{i}`` (a minimum while rᵢ > 0),
 
 from __future__ import annotations
 
+import functools
 import itertools
 from dataclasses import dataclass, replace
 
@@ -95,16 +96,6 @@ def one_block(V: float, gamma: float | None = None, delta: float | None = None, 
     law : KineticFriction, optional
         The kinetic friction law (default eq. (7) with ``gamma``, ``delta``); e.g.
         ``KineticFriction.from_expression("(1 - delta)*exp(gamma*r) + delta")``.
-
-    Returns
-    -------
-    StickSlipParams
-        Input of :func:`build_model`.
-
-    References
-    ----------
-    Galvanetto, U. (2004), "Sliding bifurcations in the dynamics of mechanical systems with dry
-    friction — remarks for engineers and applied scientists", J. Sound Vib. 276, 121–139, eqs (3a), (4a), (7).
     """
     return StickSlipParams(V=V, gamma=gamma, delta=delta, c=c, n=1, law=law)
 
@@ -127,7 +118,13 @@ def two_blocks(V: float, alpha: float = 1.2, beta: float = 1.3, gamma: float | N
         Residual kinetic friction level δ in [0, 1] (default 0).
     law : KineticFriction, optional
         The kinetic friction law (default eq. (7) with ``gamma``, ``delta``).
+    """
+    return StickSlipParams(V=V, gamma=gamma, delta=delta, alpha=alpha, beta=beta, n=2, law=law)
 
+
+def _parameters_doc_tail(equations: str) -> str:
+    """The Returns and References sections shared by :func:`one_block` and :func:`two_blocks`."""
+    return f"""
     Returns
     -------
     StickSlipParams
@@ -136,9 +133,12 @@ def two_blocks(V: float, alpha: float = 1.2, beta: float = 1.3, gamma: float | N
     References
     ----------
     Galvanetto, U. (2004), "Sliding bifurcations in the dynamics of mechanical systems with dry
-    friction — remarks for engineers and applied scientists", J. Sound Vib. 276, 121–139, eqs (3b), (4b), (7), (8b).
+    friction — remarks for engineers and applied scientists", J. Sound Vib. 276, 121–139, eqs {equations}.
     """
-    return StickSlipParams(V=V, gamma=gamma, delta=delta, alpha=alpha, beta=beta, n=2, law=law)
+
+
+one_block.__doc__ += _parameters_doc_tail("(3a), (4a), (7)")
+two_blocks.__doc__ += _parameters_doc_tail("(3b), (4b), (7), (8b)")
 
 
 #: relative width of the band outside ±F_s where a landing block whose spring force moves into
@@ -148,10 +148,16 @@ CORNER_TOL = 1e-6
 
 def K_of(p: StickSlipParams, y):
     """Spring(+damper) force Kᵢ on each block; works on y of shape (2n,) or (2n, m)."""
+    return tuple(_K_fun(p, i)(y) for i in range(p.n))
+
+
+def _K_fun(p: StickSlipParams, i: int):
+    """y -> Kᵢ alone (a guard of one block needs only its own force)."""
+    c = p.c
     if p.n == 1:
-        return (y[0] + p.c * y[1],)
-    a = p.alpha
-    return (y[0] + a * (y[0] - y[1]) + p.c * y[2], y[1] + a * (y[1] - y[0]) + p.c * y[3])
+        return lambda y: y[0] + c * y[1]
+    a, j = p.alpha, 1 - i
+    return lambda y: y[i] + a * (y[i] - y[j]) + c * y[2 + i]
 
 
 def _make_rhs(p: StickSlipParams, code: str):
@@ -179,6 +185,64 @@ def _make_rhs(p: StickSlipParams, code: str):
         return np.array([v1, v2, a1, a2])
 
     return rhs
+
+
+def _K_weights(p: StickSlipParams, i: int) -> np.ndarray:
+    """w with Kᵢ = w·y (:func:`K_of` as a linear form)."""
+    n = p.n
+    w = np.zeros(2 * n)
+    w[i] += 1.0
+    if n == 2:
+        w[i] += p.alpha
+        w[1 - i] -= p.alpha
+    w[n + i] += p.c
+    return w
+
+
+def _affine(w, b: float) -> tuple[tuple[float, ...], float]:
+    return tuple(float(x) for x in w), float(b)
+
+
+def _kernel_factory(p: StickSlipParams, code: str):
+    """A function building (once, on first call) the compiled field of mode ``code``.
+
+    The law's branches enter symbolically and every number as a kernel parameter, so one
+    compiled source serves all parameter values of a law (:func:`_mode_kernel`).
+    """
+
+    @functools.lru_cache(maxsize=None)
+    def build():
+        Fs = p.Fs + (1.0,) * (2 - p.n)
+        values = np.array([p.V, p.c, p.alpha, *Fs, p.law.gamma, p.law.delta])
+        return replace(_mode_kernel(p.law.neg_expr, p.law.pos_expr, p.n, code), p=values)
+
+    return build
+
+
+@functools.lru_cache(maxsize=64)
+def _mode_kernel(neg_expr, pos_expr, n: int, code: str):
+    """The generated kernel of mode ``code`` for a law with these branches; parameters
+    p = (V, c, α, F_s1, F_s2, γ, δ) (its ``p`` holds placeholders)."""
+    import sympy as sp
+
+    from landau.kernels import generate_kernel
+    from landau.laws.kinetic import DELTA, GAMMA, R
+
+    xs, vs = sp.symbols(f"x1:{n + 1}"), sp.symbols(f"v1:{n + 1}")
+    V, c, a, F1, F2 = sp.symbols("V c alpha F1 F2")
+    F = (F1, F2)
+    K = [xs[0] + c * vs[0]] if n == 1 else [xs[i] + a * (xs[i] - xs[1 - i]) + c * vs[i] for i in range(2)]
+    dx, dv = [], []
+    for i, ch in enumerate(code):
+        if ch == "s":
+            dx.append(V if n == 1 else vs[i])
+            dv.append(sp.Integer(0))
+        else:
+            dx.append(vs[i])
+            dv.append(-K[i] + F[i] * (neg_expr if ch == "n" else pos_expr).subs(R, vs[i] - V))
+    params = [V, c, a, F1, F2, GAMMA, DELTA]
+    return generate_kernel([*xs, *vs], dx + dv, params, [1.0] * len(params), jacobian=False,
+                           name=f"galvanetto{n}-{code}")
 
 
 def _accel_fun(p: StickSlipParams, i: int, ch: str):
@@ -249,10 +313,13 @@ def build_model(p: StickSlipParams, sections: bool = False, transparent: frozens
                         new = "s"
                     return Jump(code[:i] + new + code[i + 1:], y, note)
 
+                w = np.zeros(2 * n)
+                w[n + i] = sgn
+                r_affine = _affine(w, -sgn * V)
                 if f"r{i + 1}=0:{ch}" not in transparent:
-                    guards.append(Guard(f"r{i + 1}=0", r_guard, land))
+                    guards.append(Guard(f"r{i + 1}=0", r_guard, land, affine=r_affine))
                 elif sections:   # the continued slip branch crosses r = 0: logged (``rzero{i}``)
-                    guards.append(Guard(f"rzero{i + 1}", r_guard))
+                    guards.append(Guard(f"rzero{i + 1}", r_guard, affine=r_affine))
                 if sections:
                     acc = _accel_fun(p, i, ch)
                     if ch == "n":
@@ -260,11 +327,11 @@ def build_model(p: StickSlipParams, sections: bool = False, transparent: frozens
                     else:
                         guards.append(Guard(f"rmin{i + 1}", lambda t, y, acc=acc: -acc(t, y)))
             else:
-                def up(t, y, i=i):
-                    return Fs[i] - K_of(p, y)[i]
+                def up(t, y, K=_K_fun(p, i), F=Fs[i]):
+                    return F - K(y)
 
-                def lo(t, y, i=i):
-                    return K_of(p, y)[i] + Fs[i]
+                def lo(t, y, K=_K_fun(p, i), F=Fs[i]):
+                    return K(y) + F
 
                 def leave(side, i=i, code=code):
                     return lambda t, y: Jump(code[:i] + side + code[i + 1:], y, "stick→slip")
@@ -275,10 +342,12 @@ def build_model(p: StickSlipParams, sections: bool = False, transparent: frozens
                         return V
                     return (1 + p.alpha) * y[n + i] - p.alpha * y[n + 1 - i]
 
+                wK = _K_weights(p, i)
                 if f"K{i + 1}=+Fs" not in transparent:
-                    guards.append(Guard(f"K{i + 1}=+Fs", up, leave("n"), rate=lambda t, y, k=kdot: -k(t, y)))
+                    guards.append(Guard(f"K{i + 1}=+Fs", up, leave("n"), rate=lambda t, y, k=kdot: -k(t, y),
+                                        affine=_affine(-wK, Fs[i])))
                 if f"K{i + 1}=-Fs" not in transparent:
-                    guards.append(Guard(f"K{i + 1}=-Fs", lo, leave("p"), rate=kdot))
+                    guards.append(Guard(f"K{i + 1}=-Fs", lo, leave("p"), rate=kdot, affine=_affine(wK, Fs[i])))
                 if sections and n == 2:
                     j = 1 - i
                     a = p.alpha
@@ -286,7 +355,9 @@ def build_model(p: StickSlipParams, sections: bool = False, transparent: frozens
                     def kdot(t, y, i=i, j=j):
                         return (1 + a) * y[n + i] - a * y[n + j]
 
-                    guards.append(Guard(f"Kmin{i + 1}", lambda t, y, f=kdot: -f(t, y)))
-                    guards.append(Guard(f"Kmax{i + 1}", kdot))
-        modes[code] = Mode(code, _make_rhs(p, code), tuple(guards))
+                    wd = np.zeros(2 * n)
+                    wd[n + i], wd[n + j] = 1 + a, -a
+                    guards.append(Guard(f"Kmin{i + 1}", lambda t, y, f=kdot: -f(t, y), affine=_affine(-wd, 0.0)))
+                    guards.append(Guard(f"Kmax{i + 1}", kdot, affine=_affine(wd, 0.0)))
+        modes[code] = Mode(code, _make_rhs(p, code), tuple(guards), kernel=_kernel_factory(p, code))
     return HybridModel(modes, name=f"galvanetto2004-{n}block")

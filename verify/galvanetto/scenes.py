@@ -122,42 +122,41 @@ def _beta_scene(fn):
 
 
 _fig12 = {"V": 0.25, "alpha": 1.2, "gamma": 3.0, "delta": 0.0}
-register(Scene(
-    name="galvanetto2004/fold", parameter="beta", units="dimensionless",
-    source=f"{SRC}, Sec. 4.2, Figs 12-13 (discontinuous fold, beta≈1.7217)",
-    compute=_beta_scene(B.discontinuous_fold), defaults={**_fig12, "lo": 0.0, "hi": 0.0},
-    published=1.7217, tolerance=_half_digit(1.7217, 4),
-    description="a fixed point of the map sits at its slope discontinuity"))
-register(Scene(
-    name="galvanetto2004/period-doubling", parameter="beta", units="dimensionless",
-    source=f"{SRC}, Sec. 4.2, Fig. 12 (period doubling, beta≈1.7231)",
-    compute=_beta_scene(B.period_doubling), defaults={**_fig12, "lo": 0.0, "hi": 0.0},
-    published=1.7231, tolerance=_half_digit(1.7231, 4),
-    description="slope of the map at the stable fixed point reaches -1"))
-register(Scene(
-    name="galvanetto2004/border-collision", parameter="beta", units="dimensionless",
-    source=f"{SRC}, Sec. 4.2, Figs 12, 14 (border collision period 2 -> chaos, beta≈1.7236)",
-    compute=_beta_scene(B.border_collision), defaults={**_fig12, "lo": 0.0, "hi": 0.0},
-    published=1.7236, tolerance=_half_digit(1.7236, 4),
-    description="the period-2 orbit reaches the slope discontinuity of the map"))
-_mid, _tol = _interval(1.7652, 1.7656)
-register(Scene(
-    name="galvanetto2004/grazing-sliding", parameter="beta", units="dimensionless",
-    source=f"{SRC}, Sec. 4.2, Fig. 15 (1.7652 < beta* < 1.7656)",
-    compute=_beta_scene(B.grazing_sliding), defaults={**_fig12, "lo": 1.7652, "hi": 1.7656},
-    published=_mid, tolerance=_tol,
-    description="period-2 attractor: a slip phase of block 1 grazes its sticking region (the paper's text "
-                "says block 2; the computation shows block 1's short stick phase)"))
+
+
+def _register_beta(name: str, fn, figure: str, published: float, tolerance: float, description: str) -> None:
+    """A scene of the Fig. 12 family (parameter β at Fig. 12's V, α, law; derived search interval)."""
+    register(Scene(
+        name=f"galvanetto2004/{name}", parameter="beta", units="dimensionless", source=f"{SRC}, Sec. 4.2, {figure}",
+        compute=_beta_scene(fn), defaults={**_fig12, "lo": 0.0, "hi": 0.0},
+        published=published, tolerance=tolerance, description=description))
+
+
+_register_beta("fold", B.discontinuous_fold, "Figs 12-13 (discontinuous fold, beta≈1.7217)",
+               1.7217, _half_digit(1.7217, 4), "a fixed point of the map sits at its slope discontinuity")
+_register_beta("period-doubling", B.period_doubling, "Fig. 12 (period doubling, beta≈1.7231)",
+               1.7231, _half_digit(1.7231, 4), "slope of the map at the stable fixed point reaches -1")
+_register_beta("border-collision", B.border_collision,
+               "Figs 12, 14 (border collision period 2 -> chaos, beta≈1.7236)",
+               1.7236, _half_digit(1.7236, 4), "the period-2 orbit reaches the slope discontinuity of the map")
+_register_beta("grazing-sliding", B.grazing_sliding, "Fig. 15 (1.7652 < beta* < 1.7656)",
+               *_interval(1.7652, 1.7656),
+               "period-2 attractor: a slip phase of block 1 grazes its sticking region (the paper's text "
+               "says block 2; the computation shows block 1's short stick phase); lo=hi=0: searched upward "
+               "from the border collision for a period-2 orbit through the map's kink")
 
 
 def _multi(p):
-    loc = B.multi_sliding(bracket=(p["lo"], p["hi"]), V=p["V"], alpha=p["alpha"], beta=p["beta"], delta=p["delta"])
+    loc = B.multi_sliding(bracket=_bracket(p), V=p["V"], alpha=p["alpha"], beta=p["beta"], delta=p["delta"],
+                          gamma=p["gamma"], d0=p["d0"])
     return _doc(loc)
 
 
 register(Scene(
     name="galvanetto2004/multi-sliding", parameter="gamma", units="dimensionless",
-    source=f"{SRC}, Sec. 4.3, Fig. 16 (gamma≈10.75265)",
-    compute=_multi, defaults={"V": 0.05, "alpha": 1.2, "beta": 2.0, "delta": 0.0, "lo": 10.745, "hi": 10.756},
+    source=f"{SRC}, Sec. 4.3, Fig. 16 (gamma≈10.75265; the figure at gamma=10.756 from d≈0.1969494)",
+    compute=_multi, defaults={"V": 0.05, "alpha": 1.2, "beta": 2.0, "delta": 0.0, "gamma": B.FIG16_GAMMA,
+                              "d0": B.FIG16_D0, "lo": 0.0, "hi": 0.0},
     published=10.75265, tolerance=1e-4 / 10.75265,
-    description="a stick phase of block 2 touches K2 = -beta: a slip phase with r2>0 is born"))
+    description="a stick phase of block 2 touches K2 = -beta: a slip phase with r2>0 is born (lo=hi=0: the "
+                "periodic attractor at gamma from d0 is followed in gamma until it happens)"))

@@ -49,6 +49,9 @@ A51, A52, A53, A54 = 19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729
 A61, A62, A63, A64, A65 = 9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656
 B1, B3, B4, B5, B6 = 35 / 384, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84
 E1, E3, E4, E5, E6, E7 = 71 / 57600, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40
+#: its continuous extension of order 4 (Hairer, Nørsett & Wanner, Solving ODEs I, II.6; CONTD5)
+D1, D3, D4 = -12715105075 / 11282082432, 87487479700 / 32700410799, -10690763975 / 1880347072
+D5, D6, D7 = 701980252875 / 199316789632, -1453857185 / 822651844, 69997945 / 29380423
 
 #: Hairer–Wanner SDIRK4 (6.16): lower-triangular A (diagonal γ), c, embedded weights b̂
 SDIRK_GAMMA = 0.25
@@ -76,6 +79,13 @@ def err_norm(err, y, ynew, rtol, atol):
 
 
 @lru_cache(maxsize=None)
+def dopri5_module(fun):
+    """The DOPRI5 template (``templates/dopri5.py``) specialised to the kernel function ``fun``:
+    ``step``, ``advance``, ``advance_into``, ``dense_coefficients`` and ``run_quiet``."""
+    return specialise(_TEMPLATES / "dopri5.py", {"fun": fun}, "dopri5")
+
+
+@lru_cache(maxsize=None)
 def dopri5_method(fun):
     """The jitted DOPRI5 step for the kernel function ``fun(t, y, p, out)``.
 
@@ -88,7 +98,7 @@ def dopri5_method(fun):
         error control; returns (ok, t_new, y_new, k7, h_used, h_next, nfev).
     """
 
-    mod = specialise(_TEMPLATES / "dopri5.py", {"fun": fun}, "dopri5")
+    mod = dopri5_module(fun)
     return mod.step, mod.advance
 
 
@@ -123,6 +133,46 @@ class _Hermite:
             return h00 * self.y0 + h10 * self.h * self.f0 + h01 * self.y1 + h11 * self.h * self.f1
         c = lambda v: v[:, None]
         return (h00 * c(self.y0) + h10 * self.h * c(self.f0) + h01 * c(self.y1) + h11 * self.h * c(self.f1))
+
+
+class _Contd5:
+    """DOPRI5's order-4 continuous extension on one step, from the coefficient rows rc (5, n)
+    of ``dense_coefficients``: y(t₀ + θh) = rc₀ + θ(rc₁ + (1−θ)(rc₂ + θ(rc₃ + (1−θ)rc₄)))."""
+
+    __slots__ = ("t0", "h", "rc")
+
+    def __init__(self, t0, h, rc):
+        self.t0, self.h, self.rc = float(t0), float(h), rc
+
+    def __call__(self, t):
+        if isinstance(t, float):
+            return _contd5_point(self.rc, (t - self.t0) / self.h)
+        x = (np.asarray(t, float) - self.t0) / self.h
+        if x.ndim == 0:
+            return _contd5_point(self.rc, float(x))
+        return _contd5_points(self.rc, np.ascontiguousarray(x))
+
+
+@njit(cache=True)
+def _contd5_point(rc, x):
+    n = rc.shape[1]
+    out = np.empty(n)
+    x1 = 1.0 - x
+    for a in range(n):
+        out[a] = rc[0, a] + x * (rc[1, a] + x1 * (rc[2, a] + x * (rc[3, a] + x1 * rc[4, a])))
+    return out
+
+
+@njit(cache=True)
+def _contd5_points(rc, xs):
+    n, m = rc.shape[1], xs.shape[0]
+    out = np.empty((n, m))
+    for k in range(m):
+        x = xs[k]
+        x1 = 1.0 - x
+        for a in range(n):
+            out[a, k] = rc[0, a] + x * (rc[1, a] + x1 * (rc[2, a] + x * (rc[3, a] + x1 * rc[4, a])))
+    return out
 
 
 class _Collocation:
@@ -214,6 +264,70 @@ class DOPRI5Solver(_CompiledStepper):
         return None
 
 
+class DOPRI5Order4Solver(DOPRI5Solver):
+    """DOPRI5 with its order-4 continuous extension as dense output (no extra stages), and
+    :meth:`run_quiet`: many steps in one compiled call while affine guards stay clear."""
+
+    method = "DOPRI5"
+
+    def __init__(self, *args):
+        super().__init__(*args)
+        n = len(self.y)
+        self._buf = (np.empty(n), np.empty(n), np.empty(n), np.empty((5, n)))
+        self._mod = dopri5_module(self.kernel.fun)
+
+    def _advance(self):
+        ynew, k7, err, K = self._buf
+        ok, tn, h, hn, nf = self._mod.advance_into(self.kernel.p, self.t, self.y, self.f, self.h, self.max_step,
+                                                    self.t_bound, self.rtol, self.atol, ynew, k7, err, K)
+        self.nfev += nf
+        if not ok:
+            return f"compiled DOPRI5: step size underflow at t = {self.t:.12g}"
+        rc = np.empty((5, len(self.y)))
+        self._mod.dense_coefficients(self.y, ynew, self.f, k7, K, h, rc)
+        self._dense = _Contd5(self.t, h, rc)
+        self.t_old, self.t, self.y, self.f = self.t, tn, ynew.copy(), k7.copy()
+        self.h = hn
+        return None
+
+    def run_quiet(self, W, b, s, g_last, dec_before, state, guard_atol, dip_factor, max_steps=100_000):
+        """Steps until one whose affine guards g = W·y + b need the engine's dense-output scan.
+
+        Each step's guards are tested on the dense output at the step fractions ``s`` and at
+        the step end with the engine's scan test
+        (:func:`landau.verify.hybrid.locate._quiet_guards`, which advances ``g_last``,
+        ``dec_before`` and ``state`` in place past every quiet step).
+
+        Returns
+        -------
+        (str or None, bool, int)
+            The error message (None on success), whether the run reached ``t_bound`` with
+            every step quiet, and the number of steps taken.  Otherwise the last step taken
+            (``t_old`` → ``t``, its ``dense_output()``) is the one to scan.
+        """
+        if self.status != "running":
+            raise RuntimeError("attempt to step on a finished or failed solver")
+        rc = np.empty((5, len(self.y)))
+        code, k = 3, 0
+        while code == 3:  # max_steps quiet steps: carry on
+            code, t_old, t, hu, hn, nf, kk = self._mod.run_quiet(
+                self.kernel.p, self.t, self.y, self.f, self.h, self.max_step, self.t_bound, self.rtol, self.atol,
+                max_steps, W, b, s, g_last, dec_before, state, guard_atol, dip_factor, rc)
+            self.nfev += nf
+            self.nsteps += kk
+            k += kk
+            self.t, self.h = t, hn
+            if kk:
+                self._dense = _Contd5(t_old, hu, rc)
+                self.t_old = t_old
+        if code == 0:
+            self.status = "failed"
+            return f"compiled DOPRI5: step size underflow at t = {self.t:.12g}", False, k
+        if self.t >= self.t_bound:
+            self.status = "finished"
+        return None, code == 2, k
+
+
 class SDIRK4Solver(_CompiledStepper):
     method = "SDIRK4"
 
@@ -293,14 +407,27 @@ class _CompiledFactory:
         k = _as_kernel(fun, self._solver.method, self._needs_jac)
         if not (0 < self.rtol < 1):
             raise InputError(f"rtol must be in (0, 1), got {self.rtol!r}")
-        return self._solver(k, t0, y0, t_bound, self.rtol, self.atol, self.first_step, self.max_step)
+        return self._solver_class()(k, t0, y0, t_bound, self.rtol, self.atol, self.first_step, self.max_step)
+
+    def _solver_class(self):
+        return self._solver
 
 
 @dataclass(frozen=True)
 class CompiledDOPRI5(_CompiledFactory):
-    """Stepper factory: compiled DOPRI5 (explicit, order 5) with a cubic Hermite dense output."""
+    """Stepper factory: compiled DOPRI5 (explicit, order 5) with a cubic Hermite dense output
+    (``dense="hermite"``) or its order-4 continuous extension (``dense="order4"``: free, and
+    accurate to the step's own error, so located event times are too; the hybrid engine then
+    runs quiet steps of modes with affine guards in one compiled call)."""
+
+    dense: str = "hermite"
 
     _solver = DOPRI5Solver
+
+    def _solver_class(self):
+        if self.dense not in ("hermite", "order4"):
+            raise InputError(f"CompiledDOPRI5: dense must be 'hermite' or 'order4', not {self.dense!r}")
+        return DOPRI5Order4Solver if self.dense == "order4" else DOPRI5Solver
 
 
 @dataclass(frozen=True)

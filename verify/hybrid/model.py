@@ -64,6 +64,9 @@ class Guard:
     slightly negative (|g| < ``EngineOptions.recover_tol``) but increasing is entered
     instead of being left at once — this resolves the Filippov corner cases where a
     transition lands, to rounding, just outside a region that the flow is entering.
+    ``affine = (w, b)`` (optional) declares that ``fun(t, y) = w·y + b``: a compiled stepper
+    that offers ``run_quiet`` (:class:`~landau.verify.hybrid.compiled.CompiledDOPRI5` with
+    ``dense="order4"``) then screens the guard inside its compiled loop.
     """
 
     name: str
@@ -71,6 +74,7 @@ class Guard:
     transition: TransitionFun | None = None
     terminal: bool = False
     rate: Callable[[float, Array], float] | None = None
+    affine: tuple[tuple[float, ...], float] | None = None
 
     def __repr__(self) -> str:
         kind = "section" if self.transition is None else "switch"
@@ -79,13 +83,19 @@ class Guard:
 
 @dataclass(frozen=True)
 class Mode:
-    """One smooth regime: a vector field and the guards that bound it."""
+    """One smooth regime: a vector field and the guards that bound it.
+
+    ``kernel`` (optional) is a function of no arguments returning the same field compiled (a
+    :class:`~landau.verify.hybrid.kernel.Kernel`, built on first use): the engine integrates
+    it instead of ``rhs`` when the stepper is a compiled one.
+    """
 
     name: str
     rhs: RHS
     guards: tuple[Guard, ...] = ()
     jac: Callable[[float, Array], Array] | None = None
     on_zeno: TransitionFun | None = None
+    kernel: Callable[[], object] | None = None
 
     def __repr__(self) -> str:
         return f"Mode({self.name!r}, guards={[g.name for g in self.guards]})"

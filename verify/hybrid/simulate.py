@@ -4,7 +4,9 @@
 stepper that has dense output (see :mod:`landau.verify.hybrid.steppers`), scans the mode's
 guards on every step (:mod:`landau.verify.hybrid.locate`; when no trajectory is recorded, a
 step is first screened on its cubic Hermite interpolant and the dense output is built only
-where a guard may cross), applies the earliest switching
+where a guard may cross; with a compiled stepper that offers ``run_quiet`` and a mode whose
+guards are all affine, the quiet steps run in one compiled call, tested on the stepper's own
+dense output), applies the earliest switching
 transition at its root (taken on the new side of the guard), logs every event, and
 watches for Zeno accumulation (:mod:`landau.verify.hybrid.zeno`).
 
@@ -63,8 +65,10 @@ class EngineOptions:
     screen: when not recording, first sample the guards on each step's cubic Hermite
         interpolant with an error bound and build the dense output only for steps where that
         could trigger the scan (:class:`~landau.verify.hybrid.locate.HermiteScreen`): the same
-        events, without the dense output's extra stages on quiet steps.  False: scan every
-        step on the dense output.
+        events, without the dense output's extra stages on quiet steps; with a stepper that
+        has ``run_quiet`` and a mode whose guards declare ``affine``, the same scan test on the
+        stepper's dense output inside its compiled loop).  False: scan every step on the
+        dense output.
     """
 
     samples: int = 4
@@ -221,19 +225,31 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                 if not np.all(np.isfinite(f0)):
                     raise IntegratorError(f"mode {mname!r}: the vector field is not finite at the initial "
                                           f"state ({f0.tolist()!r})", t=t, state=y)
-            solver = stepper(m.rhs, t, y, t_end, m.jac)
+            fun = m.kernel() if m.kernel is not None and _is_compiled(stepper) else m.rhs
+            solver = stepper(fun, t, y, t_end, m.jac)
             seg_t, seg_y = [np.array([t])], [y[:, None]]
             hit = None  # (t_hit, j, kind)
             # the Hermite screen needs the vector field at the step ends; it is off when samples
-            # are recorded for plots
-            use_screen = screen is not None and _keeps_current_f(solver)
+            # are recorded for plots.  A compiled stepper with run_quiet screens affine guards on
+            # its own dense output inside its compiled loop instead.
+            affine = _affine_guards(m) if screen is not None and hasattr(solver, "run_quiet") else None
+            use_screen = affine is None and screen is not None and _keeps_current_f(solver)
             if use_screen:
                 screen.start(solver.y, solver.f, len(guards), m.rhs)
             while hit is None:
-                msg = solver.step()
-                nsteps += 1
+                if affine is not None:
+                    msg, all_quiet, k = solver.run_quiet(*affine, nodes[:-1], g_last, dec_before, state, atol,
+                                                         screen.dip_factor)
+                    nsteps += k
+                else:
+                    msg, all_quiet = solver.step(), False
+                    nsteps += 1
                 if solver.status == "failed":
                     raise IntegratorError(f"mode {mname!r}: {msg}", t=solver.t, state=solver.y)
+                if all_quiet:
+                    nfev += solver.nfev
+                    t, y = solver.t, solver.y.copy()
+                    return finish("t_end")
                 t_old, t_new = solver.t_old, solver.t
                 probe = (screen.advance(t_old, t_new, np.asarray(solver.y, dtype=float), np.asarray(solver.f, dtype=float))
                          if use_screen else 0 if np.isfinite(solver.y).all() else -1)
@@ -360,6 +376,37 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                              f"accumulation extrapolated at t={diag.t_accumulation:.12g}"))
             mname, y = jz.mode, np.array(jz.y, dtype=float)
             monitor.reset()
+
+
+_COMPILED_FACTORY: list = []
+
+
+def _is_compiled(stepper) -> bool:
+    """Whether ``stepper`` is a compiled stepper factory (it integrates a mode's ``kernel``)."""
+    if not _COMPILED_FACTORY:
+        from landau.verify.hybrid.compiled import _CompiledFactory
+
+        _COMPILED_FACTORY.append(_CompiledFactory)
+    return isinstance(stepper, _COMPILED_FACTORY[0])
+
+
+_AFFINE: dict[int, tuple] = {}
+
+
+def _affine_guards(mode) -> tuple[np.ndarray, np.ndarray] | None:
+    """(W, b) with the mode's guards = W·y + b when every guard declares ``affine``, else None."""
+    hit = _AFFINE.get(id(mode))
+    if hit is not None and hit[0] is mode:
+        return hit[1]
+    gs = mode.guards
+    out = None
+    if gs and all(g.affine is not None for g in gs):
+        out = (np.ascontiguousarray([g.affine[0] for g in gs], dtype=float),
+               np.array([g.affine[1] for g in gs], dtype=float))
+    if len(_AFFINE) > 256:
+        _AFFINE.clear()
+    _AFFINE[id(mode)] = (mode, out)
+    return out
 
 
 def _keeps_current_f(solver) -> bool:

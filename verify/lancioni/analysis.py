@@ -168,15 +168,23 @@ def lift_off_mu(params: Mapping[str, float] | None = None, s: int = 1, span: flo
     if side == 0:
         raise NoHopfError(f"degenerate Hopf point at {h.parameter}_c={h.p_c:.8g}: no slip cycle branch")
     f = lambda m: slip_cycle(m, p, s, v, hopf=h, friction=friction, parameter=parameter).lamN_min  # noqa: E731
-    lo, hi = h.p_c + side * 1e-7 * max(1.0, abs(h.p_c)), h.p_c + side * span * max(1.0, abs(h.p_c))
-    for _ in range(40):
+    m = _root_beyond_hopf(f, h, side, span, 40, "min λ_N on the slip cycle stays positive")
+    return m, slip_cycle(m, p, s, v, hopf=h, friction=friction, parameter=parameter)
+
+
+def _root_beyond_hopf(f, h, side: int, span: float, doublings: int, failure: str) -> float:
+    """Root of ``f`` (positive next to the Hopf point ``h``) on the cycle's ``side`` of it: the window
+    starts at distance ``span``·max(1, |p_c|) and doubles until f ≤ 0 at its far end (at most
+    ``doublings`` times, else NoHopfError with ``failure``); then brentq to 1e-10."""
+    scale = max(1.0, abs(h.p_c))
+    lo, hi = h.p_c + side * 1e-7 * scale, h.p_c + side * span * scale
+    for _ in range(doublings):
         if f(hi) <= 0:
             break
         hi = h.p_c + 2 * (hi - h.p_c)
     else:
-        raise NoHopfError(f"min λ_N on the slip cycle stays positive up to {h.parameter}={hi:.6g}")
-    m = brentq(f, *sorted((lo, hi)), xtol=1e-10)
-    return m, slip_cycle(m, p, s, v, hopf=h, friction=friction, parameter=parameter)
+        raise NoHopfError(f"{failure} up to {h.parameter}={hi:.6g}")
+    return brentq(f, *sorted((lo, hi)), xtol=1e-10)
 
 
 def stick_onset_mu(params: Mapping[str, float] | None = None, s: int = 1, v: float = -1.0,
@@ -193,7 +201,8 @@ def stick_onset_mu(params: Mapping[str, float] | None = None, s: int = 1, v: flo
     v : float
         Belt velocity (m/s).
     span : float
-        The search runs from the Hopf point to this distance beyond it, on the cycle's side.
+        First distance from the Hopf point tried (relative to max(1, |p_c|); doubled until the
+        cycle reaches g_T = 0), on the cycle's side.
     friction : VelocityFriction, optional
         Friction-coefficient law (default: Coulomb μ).
     parameter : str, optional
@@ -211,7 +220,8 @@ def stick_onset_mu(params: Mapping[str, float] | None = None, s: int = 1, v: flo
     def f(m):
         c = slip_cycle(m, p, s, v, hopf=h, friction=friction, parameter=parameter)
         return c.gT_min if s > 0 else -c.gT_max
-    m = brentq(f, *sorted((h.p_c + side * 1e-7, h.p_c + side * span)), xtol=1e-10)
+    # the window starts at the Hopf point (model) and is doubled until the cycle reaches g_T = 0
+    m = _root_beyond_hopf(f, h, side, span, 8, "the slip cycle does not reach g_T = 0")
     return m, slip_cycle(m, p, s, v, hopf=h, friction=friction, parameter=parameter)
 
 
@@ -267,7 +277,7 @@ def hopf_by_simulation(params: Mapping[str, float] | None = None, delta: float =
 class FlightOnset:
     mu: float                 # bisection midpoint
     bracket: tuple[float, float]
-    lamN_min_below: float     # min λ_N on the stick–slip attractor at the lower bracket end
+    lamN_min_below: float     # min λ_N on the stick–slip attractor at the final lower bracket end
     evaluations: int
 
     def __repr__(self) -> str:
@@ -282,12 +292,16 @@ def _attractor(mu, y0, mode, p, t_end, eN=0.0):
     return cm, sol
 
 
-def flight_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[float, float] = (0.44, 0.46),
+def flight_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[float, float] | None = None,
                     xtol: float = 1e-5, t_end: float = 16.0, t_keep: float = 4.0) -> FlightOnset:
     """μ where free flight first appears on the stick–slip attractor (set 2: paper ≈ 0.453).
 
     Bisection on "a lift-off happens in the last ``t_keep`` s", each run started from the
-    attractor at the lower end (found from the slip equilibrium + 0.05 rad).  Belt v = −1,
+    attractor at the lower end (found from the slip equilibrium + 0.05 rad).  Without a
+    ``bracket`` the window comes from the model: it starts at the stick onset
+    (:func:`stick_onset_mu`, below which the attractor is the contact slip cycle) and its upper
+    end moves up in doubling steps (from 5 % of that μ) until the attractor flies.
+    ``lamN_min_below`` is min λ_N on the attractor at the final lower end.  Belt v = −1,
     g = 10: 0.44986.  Why not 0.453 (numbers from :mod:`landau.verify.lancioni.flight_onset`):
 
     * Not g: g = 9.81 gives 0.4418 (and moves the Hopf point to 0.3541).
@@ -310,21 +324,30 @@ def flight_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[fl
       we keep |v| = 1 (the amplitude of the Fig. 6 belt) and report the difference.
     """
     p = S.resolve(params)
-    lo, hi = map(float, bracket)
+    derived = bracket is None
+    lo, hi = (stick_onset_mu(p)[0], 0.0) if derived else map(float, bracket)
     cm = build(lo, 0.0, p)
     y0 = slip_state(cm.mech, S.equilibrium_phi(p, lo, 1) + 0.05)
     cm, sol = _attractor(lo, y0, None, p, t_end)
     start = (sol.y, sol.mode)
 
+    def run(m):
+        return _attractor(m, start[0], start[1], p, t_end)[1]
+
     def flies(m):
-        _, s = _attractor(m, start[0], start[1], p, t_end)
-        return any(e.guard == "lift-off" and e.t > t_end - t_keep for e in s.events)
-    if flies(lo) or not flies(hi):
-        raise NoHopfError(f"free-flight onset not bracketed by [{lo}, {hi}]")
-    t, y, modes = sol.trajectory()
-    k = (t > t_end - t_keep) & np.array([m in ("stick", "slip+", "slip-") for m in modes])
-    lam = min(float(np.min(cm.forces(m, tt, y[:, i])[1])) for i, (tt, m) in enumerate(zip(t, modes)) if k[i])
+        return any(e.guard == "lift-off" and e.t > t_end - t_keep for e in run(m).events)
     n = 2
+    if derived:
+        step = 0.05 * lo
+        for _ in range(6):
+            hi = lo + step
+            if flies(hi):
+                break
+            lo, step, n = hi, 2 * step, n + 1
+        else:
+            raise NoHopfError(f"no free flight on the stick-slip attractor up to mu={hi:.6g}")
+    elif flies(lo) or not flies(hi):
+        raise NoHopfError(f"free-flight onset not bracketed by [{lo}, {hi}]")
     while hi - lo > xtol:
         mid = 0.5 * (lo + hi)
         n += 1
@@ -332,6 +355,10 @@ def flight_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[fl
             hi = mid
         else:
             lo = mid
+    cm, sol = _attractor(lo, start[0], start[1], p, t_end)
+    t, y, modes = sol.trajectory()
+    k = (t > t_end - t_keep) & np.array([m in ("stick", "slip+", "slip-") for m in modes])
+    lam = min(float(np.min(cm.forces(m, tt, y[:, i])[1])) for i, (tt, m) in enumerate(zip(t, modes)) if k[i])
     return FlightOnset(0.5 * (lo + hi), (lo, hi), lam, n)
 
 
@@ -345,36 +372,53 @@ class PainleveOnset:
         return f"PainleveOnset(mu={self.mu:.6f}, bracket=[{self.bracket[0]:.6f}, {self.bracket[1]:.6f}])"
 
 
-def painleve_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[float, float] = (0.64, 0.65),
+def painleve_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[float, float] | None = None,
                       xtol: float = 1e-5, t_end: float = 13.0) -> PainleveOnset:
     """Smallest μ where the detached (flight–slip–stick) attractor of set 1 (e_N = 0) meets a
     Painlevé situation: the slip phase reaches D₊ = G_NN − μG_NT = 0 (the engine raises
     :class:`~verify.lancioni.contact.PainleveError`).  The paper reports a change of motion type at
     μ ≈ 0.6450 (free flight–stick–slip below, free flight–stick above) — where our model stops
     with a Painlevé situation instead of choosing a continuation silently.
+
+    The attractor is reached from the slip equilibrium + 0.05 rad at 1.1 × the lift-off μ
+    (:func:`lift_off_mu`: above it the slip cycle is gone and the motion detaches).  Without a
+    ``bracket`` the window comes from the model: its lower end starts there and its upper end
+    moves up in doubling steps (from 5 % of that μ) until a Painlevé situation is met.
     """
     from landau.verify.lancioni.contact import PainleveError
     p = S.resolve(params)
-    lo, hi = map(float, bracket)
-    y = np.array([0.38, 0.929, 0.0, 0.0])
-    _, sol = _attractor(0.45, y, None, p, t_end)
-    _, sol = _attractor(lo, sol.y, sol.mode, p, t_end)
-    start = (sol.y, sol.mode)
+    mu0 = 1.1 * lift_off_mu(p)[0]
+    cm = build(mu0, 0.0, p)
+    _, sol = _attractor(mu0, slip_state(cm.mech, S.equilibrium_phi(p, mu0, 1) + 0.05), None, p, t_end)
     msg = ""
 
-    def hits(m):
+    def hits(m, start):
         nonlocal msg
         try:
-            _attractor(m, start[0], start[1], p, t_end)
-            return False
+            return False, _attractor(m, start[0], start[1], p, t_end)[1]
         except PainleveError as exc:
             msg = str(exc)
-            return True
-    if hits(lo) or not hits(hi):
+            return True, None
+    if bracket is None:
+        lo, step = mu0, 0.05 * mu0
+        for _ in range(6):
+            hit, nxt = hits(lo + step, (sol.y, sol.mode))
+            if hit:
+                break
+            lo, step, sol = lo + step, 2 * step, nxt
+        else:
+            raise NoHopfError(f"no Painlevé situation on the detached attractor up to mu={lo:.6g}")
+        hi = lo + step
+    else:
+        lo, hi = map(float, bracket)
+        _, sol = _attractor(lo, sol.y, sol.mode, p, t_end)
+    start = (sol.y, sol.mode)
+    hits_from_start = lambda m: hits(m, start)[0]  # noqa: E731
+    if bracket is not None and (hits_from_start(lo) or not hits_from_start(hi)):
         raise NoHopfError(f"Painlevé onset not bracketed by [{lo}, {hi}]")
     while hi - lo > xtol:
         mid = 0.5 * (lo + hi)
-        if hits(mid):
+        if hits_from_start(mid):
             hi = mid
         else:
             lo = mid

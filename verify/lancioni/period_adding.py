@@ -64,6 +64,7 @@ from typing import Mapping
 import numpy as np
 from scipy.optimize import brentq
 
+from landau.errors import NoHopfError
 from landau.verify.hybrid import DOP853Stepper, simulate
 from landau.verify.lancioni.contact import Section, default_options
 from landau.verify.lancioni.model import ConstantBelt, build, slip_state
@@ -182,14 +183,44 @@ def exit_orbit(mu: float, params: Mapping[str, float] | None = None, t_end: floa
                      float(t_end))
 
 
-def end_of_stick_orbit(params: Mapping[str, float] | None = None, bracket: tuple[float, float] = (0.3895, 0.38965),
+def stick_orbit_window(params: Mapping[str, float] | None = None) -> tuple[float, float]:
+    """The μ interval searched for the end of the stick orbit, derived from the model.
+
+    The detached stick orbit lives below the Hopf point μ_c of the slip equilibrium (computed by
+    :func:`landau.verify.lancioni.slip.slip_hopf`): the upper end is μ_c, the lower end
+    μ_c(1 − 0.02·2^k), the first k = 0, 1, … (at most 5) where the orbit through P no longer
+    sticks again; :func:`end_of_stick_orbit` checks both ends.
+
+    Parameters
+    ----------
+    params : mapping, optional
+        Mechanical parameters (default: set 1).
+
+    Returns
+    -------
+    tuple of float
+        (lo, hi).
+    """
+    from landau.verify.lancioni.slip import slip_hopf
+    hi = float(slip_hopf(params, s=1).p_c)
+    for k in range(6):
+        lo = hi * (1 - 0.02 * 2 ** k)
+        if exit_orbit(lo, params, 3.0).period == 0:
+            return lo, hi
+    raise NoHopfError(f"the orbit through the stick exit P still sticks at mu={lo:.6g} (Hopf point {hi:.6g})")
+
+
+def end_of_stick_orbit(params: Mapping[str, float] | None = None, bracket: tuple[float, float] | None = None,
                        xtol: float = 1e-10, stick_tol: float = 0.0,
                        stick_tol_reset: str = "project") -> tuple[float, tuple[tuple[float, int], ...]]:
     """μ where the orbit through P stops sticking again (bisection); also every (μ, period) seen.
 
-    Period 1 at the top of ``bracket`` and no further stick at the bottom are checked; a
-    period other than 0 or 1 met anywhere is returned in the list (a cascade would show there).
+    Period 1 at the top of ``bracket`` (default: :func:`stick_orbit_window`, from the model) and
+    no further stick at the bottom are checked; a period other than 0 or 1 met anywhere is
+    returned in the list (a cascade would show there).
     """
+    if bracket is None:
+        bracket = stick_orbit_window(params)
     lo, hi = map(float, bracket)
     seen = []
 
@@ -198,7 +229,7 @@ def end_of_stick_orbit(params: Mapping[str, float] | None = None, bracket: tuple
         seen.append((m, r.period))
         return r.period
     if period(hi) != 1 or period(lo) != 0:
-        raise ValueError(f"bracket {bracket} does not enclose the end of the period-1 stick orbit: {seen}")
+        raise NoHopfError(f"bracket {bracket} does not enclose the end of the period-1 stick orbit: {seen}")
     while hi - lo > xtol:
         mid = 0.5 * (lo + hi)
         if period(mid) == 0:
@@ -303,13 +334,16 @@ class PeriodAdding:
 
 
 def period_adding_steps(params: Mapping[str, float] | None = None, n_steps: int = 3,
-                        bracket: tuple[float, float] = (0.3895, PAPER_STEP), xtol: float = 1e-10) -> PeriodAdding:
-    """End of the stick orbit through P and any period-adding steps met on a scan of ``bracket``.
+                        bracket: tuple[float, float] | None = None, xtol: float = 1e-10) -> PeriodAdding:
+    """End of the stick orbit through P and any period-adding steps met on a scan of ``bracket``
+    (default: :func:`stick_orbit_window`, from the Hopf point of the model).
 
     Scan: 24 points approaching the end geometrically from above (down to 1e-9 from it) plus
     the bisection points.  A step is a μ where the period of the orbit through P exceeds 1
     (at most ``n_steps`` reported).  For eq. (1) none exist (module docstring).
     """
+    if bracket is None:
+        bracket = stick_orbit_window(params)
     mu_end, seen = end_of_stick_orbit(params, bracket, xtol)
     seen = list(seen)
     for k in range(24):

@@ -18,6 +18,11 @@ two estimates of the first grazing frequency.
     the branch of eq. (6) (cos α > 0): 17.283 rad/s.
   The simulated first detachment, ≈ 14.05 rad/s, lies between 12.789 and 15.657 (as the
   paper says: the linear estimate is too high, the harmonic-balance one too low).
+
+The damping c of both estimates is the friction law's viscous coefficient lim F_R(v)/v
+(:attr:`Params.linear_damping`; c of eq. (1) for the paper's law): the paper writes F_R as
+c ẏ plus the dry part T sgn ẏ and drops the latter as a small nonlinear term, and any law
+of the model is split the same way (e.g. c v + T tanh(v/ε) also gives c).
 """
 
 from __future__ import annotations
@@ -74,9 +79,10 @@ def contact_resonance(p: Params) -> float:
 def linear_solution(p: Params, omega: float | None = None) -> LinearSolution:
     om = p.omega if omega is None else float(omega)
     X0 = static_equilibrium(p)
+    c = p.linear_damping
     D = contact_stiffness(p) - p.m * om ** 2
-    den = (om * p.c) ** 2 + D ** 2
-    return LinearSolution(om, X0, p.m0e * om ** 2 * D / den, -p.c * p.m0e * om ** 3 / den, D)
+    den = (om * c) ** 2 + D ** 2
+    return LinearSolution(om, X0, p.m0e * om ** 2 * D / den, -c * p.m0e * om ** 3 / den, D)
 
 
 def grazing_linear(p: Params, bracket: tuple[float, float] | None = None) -> float:
@@ -99,7 +105,8 @@ def _harmonic_residual(p: Params, om: float, sign: float, trough: bool = False) 
     X0 = static_equilibrium(p)
     A = X0 - p.xI if trough else p.xI - X0
     F = p.m0e * om ** 2
-    s = p.c * A * om / F
+    c = p.linear_damping
+    s = c * A * om / F
     if abs(s) > 1:
         return math.nan
     cos_a = sign * math.sqrt(1 - s * s)
@@ -137,11 +144,12 @@ def harmonic_amplitude(p: Params, omega: float) -> tuple[float, float]:
     A cos α = 3.6833e-6, A sin α = 3.5707e-10)."""
     X0 = static_equilibrium(p)
     F = p.m0e * omega ** 2
+    c = p.linear_damping
 
     def res(A):
-        s = p.c * A * omega / F
+        s = c * A * omega / F
         cos_a = math.sqrt(max(0.0, 1 - s * s))
         return -p.m * A * omega ** 2 + p.k * (A + X0) + p.kI * max(A + X0 - p.xI, 0.0) ** p.n1 - F * cos_a
 
     A = brentq(res, 0.0, 1e-2, xtol=1e-18, rtol=1e-14)
-    return A, math.asin(p.c * A * omega / F)
+    return A, math.asin(c * A * omega / F)

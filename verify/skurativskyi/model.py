@@ -1,7 +1,7 @@
 """The forced impacting oscillator of Skurativskyi et al. (2019), eq. (1).
 
     m ẍ + k x + F_R(ẋ) + F_I(x, ẋ) = m₀e ω² sin ωt,
-    F_R = c ẋ + T ẋ/sqrt(ẋ² + ε²)                                  (laws/regularised.py)
+    F_R = c ẋ + T ẋ/sqrt(ẋ² + ε²)          (the default law: landau.laws.velocity.regularised_coulomb)
     F_I = k_I f   if x − x_I ≥ 0 and f ≥ 0, else 0,
     f   = (x − x_I)^{n₁} + b (x − x_I)^{n₂} sgn(ẋ) |ẋ|^{n₃}.
 
@@ -25,63 +25,184 @@ compiled integrator (:mod:`landau.verify.skurativskyi.rk`) ends steps exactly on
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, fields
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
-from numba import njit
 
 from landau.errors import InputError
+from landau.laws.velocity import VelocityFriction, regularised_coulomb
 
 SOURCE = "Skurativskyi, Kudra, Witkowski, Awrejcewicz 2019, Nonlinear Dyn. 98:1795-1806"
 
-# indices into the packed parameter vector used by the compiled kernels
-IM, IM0E, IEPS, IN1, IN2, IN3, IK, IC, IT, IKI, IB, IXI, IOM = range(13)
+# indices into the packed parameter vector used by the compiled kernels; the friction law's
+# parameters follow from ILAW on (then F(0), F'(0)), see :mod:`landau.verify.skurativskyi.friction`
+IM, IM0E, IVF, IN1, IN2, IN3, IK, IKI, IB, IXI, IOM = range(11)
+ILAW = 11
+
+#: |ẋ| [m/s] at which the unbounded slope |ẋ|^{n₃−1} of the Hertz damping is frozen in the
+#: variational equation (the ε = 1e-6 m/s of the paper's law; with the paper's law its own ε
+#: is used, see :attr:`Params.velocity_floor`)
+V_FLOOR = 1e-6
+
+#: the mechanical parameters of eq. (1) (the friction's live in its law)
+MECHANICAL = ("m", "m0e", "n1", "n2", "n3", "k", "kI", "b", "xI", "omega")
 
 
-@dataclass(frozen=True)
+
+@dataclass(frozen=True, init=False)
 class Params:
-    """Model parameters of eq. (1); defaults are the identified set of Sec. 2 (SI units)."""
+    """Parameters of eq. (1); defaults are the identified set of Sec. 2 (SI units).
 
-    m: float = 8.735            # kg, cart mass (measured)
-    m0e: float = 0.01805        # kg m, unbalance (measured)
-    eps: float = 1e-6           # m/s, regularisation of sgn
-    n1: float = 1.5             # Hertz exponent (fixed)
-    n2: float = 1.5
-    n3: float = 0.18667
-    k: float = 1418.9           # N/m
-    c: float = 6.6511           # N s/m
-    T: float = 0.63133          # N
-    kI: float = 2.3983e8        # N/m^{3/2}
-    b: float = 0.8485           # (s/m)^{n3}
-    xI: float = -2.086e-3       # m, obstacle position
-    omega: float = 16.0         # rad/s, forcing frequency
+    The friction F_R(ẋ) is a :class:`~landau.laws.velocity.VelocityFriction` (``friction``;
+    default the paper's regularised Coulomb law c ẋ + T ẋ/sqrt(ẋ² + ε²),
+    :func:`~landau.laws.velocity.regularised_coulomb`); its parameters live in the law.  For
+    convenience ``Params(c=..., T=..., eps=...)``, ``with_(T=...)`` and ``p.c``, ``p.T``,
+    ``p.eps`` set and read the law's parameters of those names (any law parameter works in
+    ``with_``).
+
+    Parameters
+    ----------
+    m : float
+        Cart mass [kg] (8.735).
+    m0e : float
+        Unbalance [kg m] (0.01805).
+    n1, n2, n3 : float
+        Hertz exponents (1.5, 1.5, 0.18667).
+    k : float
+        Spring stiffness [N/m] (1418.9).
+    kI : float
+        Contact stiffness [N/m^{3/2}] (2.3983e8).
+    b : float
+        Hertz damping coefficient [(s/m)^{n₃}] (0.8485).
+    xI : float
+        Obstacle position [m] (−2.086e-3).
+    omega : float
+        Forcing frequency [rad/s] (16).
+    friction : VelocityFriction, optional
+        F_R(ẋ) [N], continuous through ẋ = 0.
+    c, T, eps : float, optional
+        Values of the law's parameters of these names.
+
+    References
+    ----------
+    Skurativskyi, S., Kudra, G., Witkowski, K. & Awrejcewicz, J. (2019), Nonlinear Dyn. 98,
+    1795–1806, eq. (1) and Sec. 2.
+    """
+
+    m: float
+    m0e: float
+    n1: float
+    n2: float
+    n3: float
+    k: float
+    kI: float
+    b: float
+    xI: float
+    omega: float
+    friction: VelocityFriction
+
+    def __init__(self, m: float = 8.735, m0e: float = 0.01805, eps: float | None = None, n1: float = 1.5,
+                 n2: float = 1.5, n3: float = 0.18667, k: float = 1418.9, c: float | None = None,
+                 T: float | None = None, kI: float = 2.3983e8, b: float = 0.8485, xI: float = -2.086e-3,
+                 omega: float = 16.0, friction: VelocityFriction | None = None) -> None:
+        law = _paper_law() if friction is None else friction
+        own = {k_: v for k_, v in (("c", c), ("T", T), ("eps", eps)) if v is not None}
+        if own:
+            law = _with_law_values(law, own)
+        for name, val in (("m", m), ("m0e", m0e), ("n1", n1), ("n2", n2), ("n3", n3), ("k", k), ("kI", kI),
+                          ("b", b), ("xI", xI), ("omega", omega)):
+            try:
+                val = float(val)
+            except (TypeError, ValueError):
+                raise InputError(f"Skurativskyi model: {name} must be a number (got {val!r})") from None
+            object.__setattr__(self, name, val)
+        object.__setattr__(self, "friction", law)
+        self.__post_init__()
 
     def __post_init__(self) -> None:
         for name in ("m", "k", "kI", "n1", "n2", "n3", "omega"):
             val = getattr(self, name)
             if not (np.isfinite(val) and val > 0):
                 raise InputError(f"Skurativskyi model: {name} must be a positive number (got {val!r})")
-        for name in ("m0e", "eps", "c", "T", "b"):
+        for name in ("m0e", "b"):
             val = getattr(self, name)
             if not (np.isfinite(val) and val >= 0):
                 raise InputError(f"Skurativskyi model: {name} must be >= 0 (got {val!r})")
         if not np.isfinite(self.xI):
             raise InputError("Skurativskyi model: xI must be finite")
-        if self.eps == 0:
-            raise InputError("Skurativskyi model: eps = 0 is the set-valued Coulomb limit; "
-                             "the simulator needs the regularised law (eps > 0)")
+        from landau.verify.skurativskyi.friction import check_regularised
+        check_regularised(self.friction)
+        if self.friction.name == "regularised-coulomb":  # the paper's law: c, T, eps are magnitudes
+            for name, val in self.friction.defaults().items():
+                if not val >= 0:
+                    raise InputError(f"Skurativskyi model: {name} must be >= 0 (got {val!r})")
+
+    # ------------------------------------------------------------------ the law's parameters
+    def _law_value(self, name: str) -> float:
+        try:
+            return self.friction.defaults()[name]
+        except KeyError:
+            raise AttributeError(f"the friction law {self.friction.name!r} has no parameter {name!r}") from None
+
+    @property
+    def c(self) -> float:
+        """The friction law's parameter ``c`` (viscous coefficient of the paper's law) [N s/m]."""
+        return self._law_value("c")
+
+    @property
+    def T(self) -> float:
+        """The friction law's parameter ``T`` (rolling resistance of the paper's law) [N]."""
+        return self._law_value("T")
+
+    @property
+    def eps(self) -> float:
+        """The friction law's parameter ``eps`` (regularisation of sgn ẋ in the paper's law) [m/s]."""
+        return self._law_value("eps")
+
+    @property
+    def linear_damping(self) -> float:
+        """The law's viscous coefficient lim F(v)/v, v → ∞ [N s/m] (c for the paper's law): the
+        damping of the linearised solution and harmonic balance of Sec. 5
+        (:func:`landau.verify.skurativskyi.friction.viscous_coefficient`)."""
+        from landau.verify.skurativskyi.friction import viscous_coefficient
+        return viscous_coefficient(self.friction)
+
+    @property
+    def velocity_floor(self) -> float:
+        """|ẋ| [m/s] below which the slope of the Hertz damping is frozen in the variational
+        equation: ε of the paper's law (as in eq. (1) written by hand), else :data:`V_FLOOR`."""
+        if self.friction.name == "regularised-coulomb":
+            return self.eps
+        return V_FLOOR
 
     def packed(self) -> np.ndarray:
-        return np.array([self.m, self.m0e, self.eps, self.n1, self.n2, self.n3, self.k, self.c, self.T,
-                         self.kI, self.b, self.xI, self.omega], dtype=float)
+        """The parameter vector of the compiled kernels (indices IM … IOM, then the law's entries)."""
+        from landau.verify.skurativskyi.friction import packed_values
+        head = [self.m, self.m0e, self.velocity_floor, self.n1, self.n2, self.n3, self.k, self.kI, self.b, self.xI, self.omega]
+        return np.array(head + packed_values(self.friction), dtype=float)
 
     def with_(self, **kw) -> "Params":
-        d = asdict(self)
-        unknown = set(kw) - set(d)
+        """A copy with some parameters changed: mechanical ones, ``friction`` (a law) or any
+        parameter of the friction law by name.
+
+        Returns
+        -------
+        Params
+        """
+        d = {name: getattr(self, name) for name in MECHANICAL}
+        law = kw.pop("friction", self.friction)
+        law_names = {p.name for p in law.parameters}
+        unknown = set(kw) - set(d) - law_names
         if unknown:
-            raise InputError(f"unknown parameter(s) {sorted(unknown)} (known: {sorted(d)})")
-        d.update({k: float(v) for k, v in kw.items()})
-        return Params(**d)
+            raise InputError(f"unknown parameter(s) {sorted(unknown)} (known: {sorted(set(d) | law_names)})")
+        own = {k_: float(v) for k_, v in kw.items() if k_ in law_names and k_ not in d}
+        d.update({k_: float(v) for k_, v in kw.items() if k_ in d})
+        if own:
+            law = _with_law_values(law, own)
+        return Params(**d, friction=law)
 
     @property
     def period(self) -> float:
@@ -89,87 +210,102 @@ class Params:
 
     @classmethod
     def names(cls) -> list[str]:
-        return [f.name for f in fields(cls)]
+        """The parameter names of the paper's model: the mechanical ones and the paper's law's (c, T, eps)."""
+        return ["m", "m0e", "eps", "n1", "n2", "n3", "k", "c", "T", "kI", "b", "xI", "omega"]
+
+    def parameter_names(self) -> list[str]:
+        """The mechanical parameters and this law's parameters."""
+        return list(MECHANICAL) + [p.name for p in self.friction.parameters]
+
+    def values(self) -> dict[str, float]:
+        """Every parameter's value: the mechanical ones, then the law's."""
+        return {**{n: getattr(self, n) for n in MECHANICAL}, **self.friction.defaults()}
+
+    def __repr__(self) -> str:
+        mech = ", ".join(f"{n}={getattr(self, n)!r}" for n in MECHANICAL)
+        return f"Params({mech}, friction={self.friction!r})"
+
+
+def _with_law_values(law: VelocityFriction, values: dict) -> VelocityFriction:
+    unknown = sorted(set(values) - {p.name for p in law.parameters})
+    if unknown:
+        raise InputError(f"the friction law {law.name!r} has no parameter(s) {', '.join(unknown)} "
+                         f"(its parameters: {', '.join(p.name for p in law.parameters) or 'none'})")
+    return law.with_defaults(**{k_: float(v) for k_, v in values.items()})
+
+
+@lru_cache(maxsize=None)
+def _paper_law() -> VelocityFriction:
+    """The identified law of Sec. 2 (one object)."""
+    return regularised_coulomb()
 
 
 PAPER = Params()
 
 
-@njit(cache=True)
-def contact_force(x, v, p):
-    """F_I(x, ẋ) of eq. (1)."""
-    d = x - p[IXI]
-    if d <= 0.0:
-        return 0.0
-    sv = 1.0 if v > 0 else (-1.0 if v < 0 else 0.0)
-    f = d ** p[IN1] + p[IB] * d ** p[IN2] * sv * abs(v) ** p[IN3]
-    return p[IKI] * f if f > 0.0 else 0.0
+# ------------------------------------------------------------------ compiled field per law
+@lru_cache(maxsize=None)
+def _compiled(key) -> SimpleNamespace:
+    from landau.verify.hybrid.specialise import specialise
+    from landau.verify.skurativskyi.friction import compile_friction
+
+    law = _LAWS[key]
+    fr = compile_friction(law, ILAW)
+    mod = specialise(Path(__file__).parent / "templates" / "field.py",
+                     {"friction": fr.friction, "friction_slope": fr.friction_slope,
+                      "friction_derivative": fr.friction_derivative,
+                      "subtract_friction": fr.subtract_friction}, "skurativskyi_field")
+    return SimpleNamespace(friction=fr, **{n: getattr(mod, n) for n in _KERNELS})
 
 
-@njit(cache=True)
-def accel(t, x, v, p):
-    """ẍ from eq. (1)."""
-    eps = p[IEPS]
-    fr = p[IC] * v + p[IT] * v / np.sqrt(v * v + eps * eps)
-    om = p[IOM]
-    return (p[IM0E] * om * om * np.sin(om * t) - p[IK] * x - fr - contact_force(x, v, p)) / p[IM]
+_LAWS: dict = {}
+#: the compiled functions of the field (signatures as documented in ``templates/field.py``)
+_KERNELS = ("contact_force", "accel", "accel_grad", "accel_partials", "rhs", "rhs2", "rhs4")
 
 
-@njit(cache=True)
-def accel_grad(t, x, v, p):
-    """(∂ẍ/∂x, ∂ẍ/∂ẋ).  The |ẋ|^{n₃−1} slope of the Hertz damping is unbounded at ẋ = 0; it
-    is evaluated with |ẋ| floored at ε (in the variational equation the tangent crosses ẋ = 0
-    in an integrable way: the slope is O(|ẋ|^{−0.81}); the floor keeps it finite)."""
-    eps = p[IEPS]
-    s = v * v + eps * eps
-    dfr = p[IC] + p[IT] * eps * eps / (s * np.sqrt(s))
-    dx = -p[IK]
-    dv = -dfr
-    d = x - p[IXI]
-    if d > 0.0:
-        av = abs(v)
-        sv = 1.0 if v > 0 else (-1.0 if v < 0 else 0.0)
-        pw = av ** p[IN3]
-        f = d ** p[IN1] + p[IB] * d ** p[IN2] * sv * pw
-        if f > 0.0:
-            dx -= p[IKI] * (p[IN1] * d ** (p[IN1] - 1.0) + p[IB] * p[IN2] * d ** (p[IN2] - 1.0) * sv * pw)
-            avf = max(av, eps)
-            dv -= p[IKI] * p[IB] * d ** p[IN2] * p[IN3] * avf ** (p[IN3] - 1.0)
-    return dx / p[IM], dv / p[IM]
+def compiled_field(law: VelocityFriction | Params | None = None) -> SimpleNamespace:
+    """The compiled field of eq. (1) with the friction of ``law`` (a law, or a :class:`Params`
+    whose law is taken; default: the paper's).
+
+    The friction term and its slope are generated from the law's symbolic branches
+    (:mod:`landau.verify.skurativskyi.friction`) and inlined by numba into ``accel``,
+    ``accel_grad``, ``accel_partials``, ``rhs`` (``rhs2``, ``rhs4``) and ``contact_force``
+    — the functions the compiled integrators call, all of signature ``(t, …, p)`` with ``p``
+    = :meth:`Params.packed`.  One compilation per law expression (parameter values live in
+    ``p``), cached on disk across processes.
+
+    Parameters
+    ----------
+    law : VelocityFriction or Params, optional
+
+    Returns
+    -------
+    types.SimpleNamespace
+        ``friction`` (:class:`~landau.verify.skurativskyi.friction.CompiledFriction`) and the
+        numba functions named above.
+    """
+    if isinstance(law, Params):
+        law = law.friction
+    law = _paper_law() if law is None else law
+    from landau.verify.skurativskyi.friction import check_regularised, law_key
+    check_regularised(law)
+    key = law_key(law)
+    _LAWS.setdefault(key, law)
+    return _compiled(key)
 
 
-@njit(cache=True)
-def rhs2(t, y, p, out):
-    """State (x, ẋ)."""
-    out[0] = y[1]
-    out[1] = accel(t, y[0], y[1], p)
-
-
-@njit(cache=True)
-def rhs(t, y, p, out):
-    """The field the compiled integrator uses: (x, ẋ) if len(y) == 2, with the variational
-    equation for one tangent vector (δx, δẋ) if len(y) == 4."""
-    if y.shape[0] == 4:
-        rhs4(t, y, p, out)
-    else:
-        rhs2(t, y, p, out)
-
-
-@njit(cache=True)
-def rhs4(t, y, p, out):
-    """State (x, ẋ, δx, δẋ): the flow and one tangent vector (variational equation)."""
-    out[0] = y[1]
-    out[1] = accel(t, y[0], y[1], p)
-    ax, av = accel_grad(t, y[0], y[1], p)
-    out[2] = y[3]
-    out[3] = ax * y[2] + av * y[3]
+def __getattr__(name: str):
+    # the paper's compiled field as module attributes (model.accel, model.rhs, …), made on first use
+    if name in _KERNELS:
+        return getattr(compiled_field(), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def field(params: Params, t: float, y) -> np.ndarray:
     """The vector field (ẋ, ẍ) in Python (for checks and the engine's guard/rate calls)."""
     p = params.packed()
     y = np.asarray(y, float)
-    return np.array([y[1], accel(float(t), float(y[0]), float(y[1]), p)])
+    return np.array([y[1], compiled_field(params).accel(float(t), float(y[0]), float(y[1]), p)])
 
 
 def saltation_matrix(params: Params, t: float, y, side_eps: float = 1e-13) -> np.ndarray:
@@ -184,31 +320,3 @@ def saltation_matrix(params: Params, t: float, y, side_eps: float = 1e-13) -> np
     if den == 0:
         raise InputError("saltation matrix undefined at a grazing point (ẋ = 0 on x = x_I)")
     return np.eye(2) + np.outer(fp - fm, n) / den
-
-
-@njit(cache=True)
-def accel_partials(t, x, v, p):
-    """ẍ and its partials split for the stiff stepper (:mod:`landau.verify.skurativskyi.sdirk`):
-    returns (a, ∂a/∂x, ∂a/∂ẋ without the Hertz damping, κ) with κ = k_I b (x − x_I)^{n₂}/m
-    when the contact force is active (else 0), so that the Hertz damping contributes
-    −κ sgn(ẋ)|ẋ|^{n₃} to ẍ — exactly linear in w = sgn(ẋ)|ẋ|^{n₃}.  Nothing is floored here."""
-    eps = p[IEPS]
-    s = v * v + eps * eps
-    rs = np.sqrt(s)
-    om = p[IOM]
-    m = p[IM]
-    a = p[IM0E] * om * om * np.sin(om * t) - p[IK] * x - p[IC] * v - p[IT] * v / rs
-    av = -(p[IC] + p[IT] * eps * eps / (s * rs)) / m
-    ax = -p[IK]
-    kap = 0.0
-    d = x - p[IXI]
-    if d > 0.0:
-        sv = 1.0 if v > 0 else (-1.0 if v < 0 else 0.0)
-        pw = abs(v) ** p[IN3]
-        dn2 = d ** p[IN2]
-        f = d ** p[IN1] + p[IB] * dn2 * sv * pw
-        if f > 0.0:
-            a -= p[IKI] * f
-            ax -= p[IKI] * (p[IN1] * d ** (p[IN1] - 1.0) + p[IB] * p[IN2] * d ** (p[IN2] - 1.0) * sv * pw)
-            kap = p[IKI] * p[IB] * dn2 / m
-    return a / m, ax / m, av, kap

@@ -21,12 +21,29 @@ from landau.errors import IntegratorError, InputError
 from landau.verify.hybrid import Event, EventLog, Guard, HybridModel, Jump, Mode
 from landau.verify.hybrid.result import Simulation, Status
 from landau.verify.skurativskyi import rk as R
-from landau.verify.skurativskyi.model import Params, rhs
-from landau.verify.skurativskyi.sdirk import sdirk_step
+from landau.verify.skurativskyi.model import IN3, Params, compiled_field
 
-#: the compiled event-driven loop built for eq. (1): DOPRI5 over the field ``rhs``, stick phases by
-#: the SDIRK4 built for the same field (:func:`landau.verify.skurativskyi.rk.switching_integrator`)
-_integrate, _integrate_mixed = R.switching_integrator(rhs, sdirk_step)
+
+def integrators(params: Params):
+    """The compiled event-driven loops for eq. (1) with the friction law of ``params``: DOPRI5
+    over the field ``rhs`` generated for that law, stick phases by the SDIRK4 built for the same
+    field (:func:`landau.verify.skurativskyi.rk.switching_integrator`,
+    :func:`landau.verify.skurativskyi.sdirk.cusp_sdirk_method`).  Built once per law
+    expression (values are in ``params.packed()``) and cached on disk.
+
+    Parameters
+    ----------
+    params : Params
+
+    Returns
+    -------
+    (integrate, integrate_mixed)
+    """
+    from landau.verify.skurativskyi.sdirk import cusp_sdirk_method
+
+    k = compiled_field(params)
+    _, sdirk_step = cusp_sdirk_method(k.accel_partials, k.accel_grad, IN3)
+    return R.switching_integrator(k.rhs, sdirk_step)
 
 #: default tolerances of the fast path: event/bifurcation locations converge at rtol ≲ 1e-8
 #: (at rtol 1e-6 they move by ~0.01 rad/s); atol in m and m/s (the cart moves by mm at mm/s–cm/s): by default
@@ -181,7 +198,8 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
         y = y0.copy()
     t_end = t0 + n_periods * P if float(n_periods) != int(n_periods) else t0 + int(n_periods) * P
     n_st = int(n_periods) + 2 if strobe else 1
-    out = _integrate_mixed(p, float(t0), y, float(t_end), float(rtol), at, 1e-5, P / 20, params.xI, True,
+    _, integrate_mixed = integrators(params)
+    out = integrate_mixed(p, float(t0), y, float(t_end), float(rtol), at, 1e-5, P / 20, params.xI, True,
                             float(t0), P if strobe or lyapunov else 0.0, n_st, lyapunov, max_events, max_steps,
                             *METHODS[method], int(record))
     (t, yend, status, ev_t, ev_k, ev_v, st_t, st_y, ly, nly, nsteps, nfev, nrej, mism, nstiff,
@@ -199,7 +217,7 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
 def hybrid_model(params: Params) -> HybridModel:
     """Eq. (1) as an engine model: modes ``free``/``contact`` switching at x = x_I (the state is
     kept, the field is continuous there; the transition only relabels the mode)."""
-    fld = R.CompiledField(rhs, params.packed())
+    fld = R.CompiledField(compiled_field(params).rhs, params.packed())
     xI = params.xI
 
     def to_contact(t, y):

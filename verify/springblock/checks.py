@@ -125,6 +125,22 @@ def find_cycle(model: SpringBlockModel, amplitude_guess: float, *, rtol: float =
     return shoot(model, z, rtol=rtol, tol=1e-10)
 
 
+def _check_point(law: FrictionLaw, V: float, eps2: float, params, prediction, expected: Criticality):
+    """(prediction, k, model, predicted amplitude) at ε² on the side of k_c where the cycle exists:
+    k = k_c(1 − ε²) for a supercritical point, k_c(1 + ε²) for a subcritical one.  Raises
+    InputError for ε² outside (0, 1) or a point of the other criticality."""
+    if not (0 < eps2 < 1):
+        raise InputError(f"eps2 must be in (0, 1), got {eps2!r}")
+    pr = prediction or predict(law, V, params)
+    if pr.criticality != expected:
+        other = "subcritical_check" if expected == Criticality.SUPERCRITICAL else "supercritical_check"
+        raise InputError(f"law {law.name!r} at V = {V:g} m/s is {pr.criticality} (Lambda = {pr.Lambda:.4g}): "
+                         f"use {other}, or landau.check, which picks the procedure itself")
+    k = pr.kc * (1 - eps2 if expected == Criticality.SUPERCRITICAL else 1 + eps2)
+    model = SpringBlockModel.build(law, V, k, params)
+    return pr, k, model, pr.amplitude(k)
+
+
 def supercritical_check(law: FrictionLaw, V: float, eps2: float, params: Mapping[str, float] | None = None,
                         *, tolerance: float = AMPLITUDE_TOLERANCE, prediction: HopfResult | None = None) -> PointCheck:
     """Limit cycle at k = k_c(1 − ε²) vs C·sqrt(k_c − k) and the predicted frequency.
@@ -159,15 +175,7 @@ def supercritical_check(law: FrictionLaw, V: float, eps2: float, params: Mapping
     Putelat, T., Dawes, J. H. P. & Willis, J. R. (2010), "Regimes of frictional sliding of a
     spring–block system", J. Mech. Phys. Solids 58(1), 27–53, eqs (4), (23).
     """
-    if not (0 < eps2 < 1):
-        raise InputError(f"eps2 must be in (0, 1), got {eps2!r}")
-    pr = prediction or predict(law, V, params)
-    if pr.criticality != Criticality.SUPERCRITICAL:
-        raise InputError(f"law {law.name!r} at V = {V:g} m/s is {pr.criticality} (Lambda = {pr.Lambda:.4g}): "
-                         "use subcritical_check, or landau.check, which picks the procedure itself")
-    k = pr.kc * (1 - eps2)
-    model = SpringBlockModel.build(law, V, k, params)
-    A = pr.amplitude(k)
+    pr, k, model, A = _check_point(law, V, eps2, params, prediction, Criticality.SUPERCRITICAL)
     orbit = find_cycle(model, A)
     amp = 0.5 * (orbit.x_max - orbit.x_min)
     rel = _rel(amp, A)
@@ -266,15 +274,7 @@ def subcritical_check(law: FrictionLaw, V: float, eps2: float, params: Mapping[s
     Putelat, T., Dawes, J. H. P. & Willis, J. R. (2010), "Regimes of frictional sliding of a
     spring–block system", J. Mech. Phys. Solids 58(1), 27–53, eqs (4), (23).
     """
-    if not (0 < eps2 < 1):
-        raise InputError(f"eps2 must be in (0, 1), got {eps2!r}")
-    pr = prediction or predict(law, V, params)
-    if pr.criticality != Criticality.SUBCRITICAL:
-        raise InputError(f"law {law.name!r} at V = {V:g} m/s is {pr.criticality} (Lambda = {pr.Lambda:.4g}): "
-                         "use supercritical_check, or landau.check, which picks the procedure itself")
-    k = pr.kc * (1 + eps2)
-    model = SpringBlockModel.build(law, V, k, params)
-    A = pr.amplitude(k)
+    pr, k, model, A = _check_point(law, V, eps2, params, prediction, Criticality.SUBCRITICAL)
     detail: dict = {}
     unstable = None
     try:

@@ -105,9 +105,21 @@ def plot_fig12(c: float, folds: list[FoldPoint], v_star: float, path: Path) -> P
     return out
 
 
-def codim2(name: str, params: dict, V_lo: float, V_hi: float):
-    """(V* from periodic orbits, V* from the engine's Λ = 0)."""
+def codim2(name: str, params: dict, V_lo: float | None = None, V_hi: float | None = None):
+    """(V* from periodic orbits, V* from the engine's Λ = 0) in [V_lo, V_hi]; without a window it
+    comes from the model: the engine's first Λ = 0 point over 1e-5..1e2 V̂ (V̂ = sqrt(aσL/M),
+    Putelat et al. 2010, eq. 31), ∓ 10 %."""
     law = get_law(name)
+    if V_lo is None or V_hi is None:
+        from landau.multiscale import Derivation
+        from landau.system import SpringBlock
+        from landau.transition import codim2_points
+        q = SpringBlock(law).resolve(params)
+        v_hat = float(np.sqrt(q["a"] * q["sigma"] * q["L"] / q["M"]))
+        pts = codim2_points(Derivation(SpringBlock(law)), 1e-5 * v_hat, 1e2 * v_hat, params)
+        if not pts:
+            raise NoHopfError(f"{name}: Λ does not change sign on the Hopf line for {params}")
+        V_lo, V_hi = 0.9 * pts[0].V, 1.1 * pts[0].V
 
     def make(V):
         return SpringBlockModel.build(law, V, predict(law, V, params).kc, params)
@@ -141,9 +153,8 @@ def main(argv=None) -> int:
         plot_branch(br, out / f"fig11_c{c:g}.png", f"Fig. 11 (spinodal, c = {c:g}): cycles vs V at kappa = 1e-3")
         doc[f"fig11_c{c:g}"] = {"hopf_V": br.hopf_equilibrium, "folds_V": [f.parameter for f in br.folds]}
         print(c, doc[f"fig11_c{c:g}"], flush=True)
-    for name, params, lo, hi in (("dieterich", {}, 1.5e-4, 3e-4), ("modified-dieterich", {"c": 3e-4}, 1e-3, 1.25e-3),
-                                 ("spinodal", {"c": 3e-4}, 1e-3, 1.25e-3)):
-        pt, ve = codim2(name, params, lo, hi)
+    for name, params in (("dieterich", {}), ("modified-dieterich", {"c": 3e-4}), ("spinodal", {"c": 3e-4})):
+        pt, ve = codim2(name, params)
         doc[f"codim2_{name}"] = {"V_orbits": pt.V, "k": pt.k, "V_engine": ve, "rel_diff": pt.V / ve - 1}
         print(name, doc[f"codim2_{name}"], flush=True)
     folds = fig12_fold_curve(3e-4, branches[3e-4])
