@@ -173,29 +173,8 @@ def _poly(y0, Q, x, i):
     return y0[i] + x * (Q[0, i] + x * (Q[1, i] + x * Q[2, i]))
 
 
-def _compiled_at_first_call(signature):
-    """``numba.njit(signature, cache=True)``, compiled (or loaded from numba's disk cache) at the
-    first call instead of at import: importing the simulation layer stays cheap for commands
-    that never integrate.  Arguments are converted to ``signature`` as with an eager ``njit``."""
-    def wrap(fn):
-        dispatcher = nb.njit(cache=True)(fn)
-        ready = []
-
-        def call(*args):
-            if not ready:
-                dispatcher.compile(signature)
-                dispatcher.disable_compile()
-                ready.append(True)
-            return dispatcher(*args)
-
-        call.__doc__, call.__name__, call.__wrapped__ = fn.__doc__, fn.__name__, fn
-        call.dispatcher = dispatcher
-        return call
-    return wrap
-
-
-@_compiled_at_first_call(types.Tuple((I64, F64, A1, I64[::1], A1, A2, A1, A2, F64, A2))(
-    FUN_T, JAC_T, F64, A1, F64, A1, F64, A1, F64, F64, I64, I64, F64, I64, I64, I64, A2, A2, A2, A1))
+@nb.njit(types.Tuple((I64, F64, A1, I64[::1], A1, A2, A1, A2, F64, A2))(
+    FUN_T, JAC_T, F64, A1, F64, A1, F64, A1, F64, F64, I64, I64, F64, I64, I64, I64, A2, A2, A2, A1), cache=True)
 def radau_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                ev_idx, ev_val, ev_dir, ev_stop, rec_cap, AR, VI, EVBUF, EVDIR):
     """Integrate from t0 to t_end.  Returns (status, t, y, counters, ev_t, ev_y, rec_t, rec_y, h, Q).
