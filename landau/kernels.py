@@ -284,3 +284,148 @@ def compile_source(src: str, name: str = "kernel") -> CompiledSource:
     out = CompiledSource(src, fun, jac, fun_py, jac_py)
     _COMPILED[src] = out
     return out
+
+
+# --------------------------------------------------------------------------------------------
+# parameter-only subexpressions, evaluated once per parameter set instead of once per call
+@dataclass(frozen=True)
+class HoistedField:
+    """A field whose parameter-only subexpressions are replaced by derived parameters.
+
+    Attributes
+    ----------
+    field : list of sympy expressions
+        The field, in the original states, parameters and the symbols ``derived``; every
+        subexpression left in it depends on a state (or time), apart from single symbols
+        and numbers.
+    derived : tuple of sympy Symbol
+        The derived parameters, to be appended to the parameter vector in this order.
+    values : tuple of sympy expressions
+        Their definitions in terms of the original parameters.
+    """
+
+    field: list
+    derived: tuple
+    values: tuple
+
+
+def hoist_parameters(field: Sequence[sp.Expr], params: Sequence[sp.Symbol], prefix: str = "hoisted") -> HoistedField:
+    """Replace the parameter-only subexpressions of ``field`` by derived parameters.
+
+    A generated kernel evaluates its whole expression at every call: ``log`` of a parameter,
+    a product or quotient of parameters, are recomputed although they never change during an
+    integration.  This pass walks each expression once, bottom-up; a subexpression whose free
+    symbols are all parameters (and which is not a single symbol or number) becomes a new
+    symbol, and in a sum or product the parameter-only terms (factors) are gathered into one
+    such symbol, e.g. ``q1*(w + log(q8) - log(q4))`` → ``q1*(w + d0)`` with
+    ``d0 = log(q8) - log(q4)``.  The field is otherwise unchanged (no expansion, no
+    re-association of state-dependent terms), so its rounding differs from the original only
+    in the order in which parameter terms are combined.
+
+    Parameters
+    ----------
+    field : sequence of sympy expressions
+        The field f(t, y; p).
+    params : sequence of sympy Symbol
+        The parameters (every other free symbol counts as a state or time).
+    prefix : str
+        Stem of the derived symbols' names (``prefix0``, ``prefix1``, …; lengthened with
+        underscores if it clashes with a symbol of the field).
+
+    Returns
+    -------
+    HoistedField
+        Evaluate ``values`` with :func:`derived_parameter_function` and append them to the
+        parameter vector of a kernel generated for ``params + derived``.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> x, a, b = sp.symbols("x a b", positive=True)
+    >>> h = hoist_parameters([sp.exp(-x) * (sp.log(a) + x) / b], [a, b])
+    >>> h.field, h.values
+    ([hoisted1*(hoisted0 + x)*exp(-x)], (log(a), 1/b))
+    """
+    pset = set(params)
+    exprs = [as_expr(e) for e in field]
+    taken = {s.name for e in exprs for s in e.free_symbols} | {s.name for s in params}
+    while any(nm.startswith(prefix) for nm in taken):
+        prefix = "_" + prefix if not prefix.startswith("__") else prefix + "_"
+        if prefix.startswith("___"):
+            raise InputError("no free name for the derived parameters")
+    table: dict[sp.Expr, sp.Symbol] = {}
+
+    def symbol_for(e):
+        s = table.get(e)
+        if s is None:
+            assume = {"positive": True} if e.is_positive else {"real": True} if e.is_real else {}
+            s = table[e] = sp.Symbol(f"{prefix}{len(table)}", **assume)
+        return s
+
+    def constant(e):
+        return e.free_symbols <= pset
+
+    def walk(e):
+        if not e.args or isinstance(e, (sp.Number, sp.NumberSymbol)):
+            return e
+        if constant(e):
+            return symbol_for(e)
+        if e.is_Add or e.is_Mul:
+            const = [a for a in e.args if constant(a)]
+            rest = [walk(a) for a in e.args if not constant(a)]
+            if len(const) == 1 and (not const[0].args or const[0].is_Number):
+                return e.func(const[0], *rest)
+            if const:
+                return e.func(symbol_for(e.func(*const)), *rest)
+            return e.func(*rest)
+        return e.func(*[walk(a) for a in e.args])
+
+    out = [walk(e) for e in exprs]
+    derived = tuple(table.values())
+    return HoistedField(out, derived, tuple(table))
+
+
+class DerivedParameters:
+    """``full = dp(base)``: a parameter vector extended by the derived parameters of a
+    :class:`HoistedField`, evaluated once (plain Python, ``math`` functions).
+
+    The source (``def derived(p, out)``) passes the whitelist of :func:`check_source` and is
+    executed like a kernel source (:mod:`landau.verify.jitcache`), not compiled: it runs once
+    per parameter set.
+
+    Parameters
+    ----------
+    params : sequence of sympy Symbol
+        The base parameters, in the order of the vector ``base``.
+    values : sequence of sympy expressions
+        The derived parameters in terms of ``params`` (:attr:`HoistedField.values`).
+    """
+
+    def __init__(self, params: Sequence[sp.Symbol], values: Sequence[sp.Expr]):
+        self.nbase = len(params)
+        self.nderived = len(values)
+        ren = {s: sp.Symbol(f"q{i}", **s.assumptions0) for i, s in enumerate(params)}
+        pr = _Printer({"fully_qualified_modules": True})
+        lines = ["def derived(p, out):", *(f"    q{i} = p[{i}]" for i in range(self.nbase))]
+        lines += [f"    out[{j}] = {pr.doprint(sp.sympify(v).xreplace(ren))}" for j, v in enumerate(values)]
+        if not values:
+            lines.append("    out[:] = 0.0")
+        self.source = "\n".join(lines) + "\n"
+        check_source(self.source)
+        self._fn = load_generated(self.source, {"math": math}, ALLOWED_BUILTINS)["derived"]
+        self._labels = [str(v) for v in values]
+
+    def __call__(self, base) -> np.ndarray:
+        base = [float(b) for b in base]
+        if len(base) != self.nbase:
+            raise InputError(f"{len(base)} parameter values for {self.nbase} parameters")
+        out = [0.0] * self.nderived
+        try:
+            self._fn(base, out)
+        except (ValueError, ZeroDivisionError, OverflowError) as exc:
+            raise InputError(f"a parameter combination of the field cannot be evaluated ({exc}): "
+                             f"check the parameter values {base}") from None
+        bad = [lab for lab, x in zip(self._labels, out) if not math.isfinite(x)]
+        if bad:
+            raise InputError(f"parameter combination(s) {bad} of the field are not finite at {base}")
+        return np.ascontiguousarray(base + out, dtype=float)
