@@ -354,16 +354,24 @@ def hoist_parameters(field: Sequence[sp.Expr], params: Sequence[sp.Symbol], pref
         if prefix.startswith("___"):
             raise InputError("no free name for the derived parameters")
     table: dict[sp.Expr, sp.Symbol] = {}
+    const_memo: dict[sp.Basic, bool] = {}
 
     def symbol_for(e):
         s = table.get(e)
         if s is None:
-            assume = {"positive": True} if e.is_positive else {"real": True} if e.is_real else {}
-            s = table[e] = sp.Symbol(f"{prefix}{len(table)}", **assume)
+            # real, without asking sympy's assumptions about e (slow): the kernel is real arithmetic
+            s = table[e] = sp.Symbol(f"{prefix}{len(table)}", real=True)
         return s
 
     def constant(e):
-        return e.free_symbols <= pset
+        hit = const_memo.get(e)
+        if hit is None:
+            if not e.args:
+                hit = e in pset or not e.free_symbols
+            else:
+                hit = all([constant(a) for a in e.args])
+            const_memo[e] = hit
+        return hit
 
     def walk(e):
         if not e.args or isinstance(e, (sp.Number, sp.NumberSymbol)):
@@ -385,6 +393,36 @@ def hoist_parameters(field: Sequence[sp.Expr], params: Sequence[sp.Symbol], pref
     return HoistedField(out, derived, tuple(table))
 
 
+def derived_parameter_source(params: Sequence[sp.Symbol], values: Sequence[sp.Expr]) -> str:
+    """Python source of ``derived(p, out)``: ``out[j] = values[j](p)`` (parameters renamed q_i).
+
+    Checked by :func:`check_source`, and kept in the disk cache of derivations like the
+    kernel sources (printing it would otherwise be most of the cost of a warm start).
+    """
+    ren = {s: sp.Symbol(f"q{i}", **s.assumptions0) for i, s in enumerate(params)}
+    vals = [sp.sympify(v).xreplace(ren) for v in values]
+    from landau import cache
+
+    key = cache.make_key("derived-parameters", _generator_fingerprint(), sp.__version__, len(params),
+                         sp.srepr(tuple(vals)))
+    src = cache.get("derived-parameters", key)
+    if isinstance(src, str):
+        try:
+            check_source(src)
+            return src
+        except (InputError, SyntaxError):
+            pass
+    pr = _Printer({"fully_qualified_modules": True})
+    lines = ["def derived(p, out):", *(f"    q{i} = p[{i}]" for i in range(len(params)))]
+    lines += [f"    out[{j}] = {pr.doprint(v)}" for j, v in enumerate(vals)]
+    if not vals:
+        lines.append("    out[:] = 0.0")
+    src = "\n".join(lines) + "\n"
+    check_source(src)
+    cache.put("derived-parameters", key, src)
+    return src
+
+
 class DerivedParameters:
     """``full = dp(base)``: a parameter vector extended by the derived parameters of a
     :class:`HoistedField`, evaluated once (plain Python, ``math`` functions).
@@ -404,16 +442,9 @@ class DerivedParameters:
     def __init__(self, params: Sequence[sp.Symbol], values: Sequence[sp.Expr]):
         self.nbase = len(params)
         self.nderived = len(values)
-        ren = {s: sp.Symbol(f"q{i}", **s.assumptions0) for i, s in enumerate(params)}
-        pr = _Printer({"fully_qualified_modules": True})
-        lines = ["def derived(p, out):", *(f"    q{i} = p[{i}]" for i in range(self.nbase))]
-        lines += [f"    out[{j}] = {pr.doprint(sp.sympify(v).xreplace(ren))}" for j, v in enumerate(values)]
-        if not values:
-            lines.append("    out[:] = 0.0")
-        self.source = "\n".join(lines) + "\n"
-        check_source(self.source)
+        self.source = derived_parameter_source(params, values)
         self._fn = load_generated(self.source, {"math": math}, ALLOWED_BUILTINS)["derived"]
-        self._labels = [str(v) for v in values]
+        self._values = tuple(values)
 
     def __call__(self, base) -> np.ndarray:
         base = [float(b) for b in base]
@@ -425,7 +456,7 @@ class DerivedParameters:
         except (ValueError, ZeroDivisionError, OverflowError) as exc:
             raise InputError(f"a parameter combination of the field cannot be evaluated ({exc}): "
                              f"check the parameter values {base}") from None
-        bad = [lab for lab, x in zip(self._labels, out) if not math.isfinite(x)]
+        bad = [str(v) for v, x in zip(self._values, out) if not math.isfinite(x)]
         if bad:
             raise InputError(f"parameter combination(s) {bad} of the field are not finite at {base}")
         return np.ascontiguousarray(base + out, dtype=float)
