@@ -13,9 +13,12 @@ positive and O(1) over stick phases where v falls by tens of decades:
 
 so that steady sliding is the origin.  The right-hand side is written from the symbolic
 law (logs of products expanded so that ln v = ln V + w is never formed from an underflowed
-v); it and its exact Jacobian are then generated and compiled by :mod:`landau.kernels`
-(common-subexpression elimination, the whitelist of generated syntax, numba through the
-cross-process code cache).  The dimensionless parameters of the paper (eq. 6) are
+v); its parameter-only subexpressions (the logarithms of parameters that this expansion
+produces, products and quotients of parameters) become derived entries of the parameter vector,
+computed once per model (:func:`landau.kernels.hoist_parameters`), so that a call of the
+compiled field does only state-dependent work; the field and its exact Jacobian are then
+generated and compiled by :mod:`landau.kernels` (common-subexpression elimination, the
+whitelist of generated syntax, numba through the cross-process code cache).  The dimensionless parameters of the paper (eq. 6) are
 m = M V_*²/(σL) and κ = kL/σ (σ = Mg); :meth:`SpringBlockModel.from_dimensionless`
 builds the model from (m, κ, V/V_*).
 """
