@@ -14,6 +14,12 @@ is what the compiled steppers of :mod:`landau.verify.hybrid.compiled` take: the
 simulation layer itself never imports sympy — kernels are made here, on the derivation
 side, and handed over as numba callables.
 
+A field whose parameters enter through functions of the parameters alone (``log(L)``,
+``V/(M*L**2)``) can first go through :func:`hoist_parameters`: those subexpressions become
+derived parameters, appended to the parameter vector once per parameter set by
+:class:`DerivedParameters`, and the kernel then does only state-dependent work at each call
+(the spring–block model of :mod:`landau.verify.springblock.model` does this).
+
 Only expressions built by sympy (from a law parsed by :mod:`landau.laws.parse` or written
 in code) reach this module; user strings never reach ``exec``.
 """
