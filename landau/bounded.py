@@ -310,6 +310,64 @@ class _IR80LaneEmitter(_IR80Emitter):
         return name
 
 
+#: largest |k| for which x**(k g) is computed as (x**g)**k (its bound grows with |k|)
+POWER_SHARE_MAX = 8
+
+
+def _power_plan(exprs: Sequence[sp.Basic]) -> dict:
+    """Which non-integer powers are computed from another power of the same base.
+
+    Powers x**e_i of one base whose exponents are integer multiples k_i of one exponent g
+    (|k_i| ≤ :data:`POWER_SHARE_MAX`; e.g. x**(b/a), x**(2b/a), x**(3b/a)) become (x**g)**k_i:
+    one library ``pow`` (and, in the compensated program, one extended-precision exp and log
+    per lane) instead of one per exponent, the rest integer powers, whose rounding errors the
+    compensated program computes exactly.  Half-integer powers x**(n/2) become sqrt(x)**n
+    (correctly rounded square root, no library ``pow``).
+
+    Parameters
+    ----------
+    exprs : sequence of sympy.Basic
+        Every expression the program is built from.
+
+    Returns
+    -------
+    dict
+        Power -> (root power x**g, k); the roots themselves are not keys.
+    """
+    by_base: dict[sp.Basic, dict] = {}
+    for e in exprs:
+        for node in sp.preorder_traversal(e):
+            if node.is_Pow and not node.exp.is_Integer:
+                by_base.setdefault(node.base, {})[node.exp] = node
+    plan: dict = {}
+    for base, nodes in by_base.items():
+        rest = sorted(nodes, key=sp.default_sort_key)
+        while rest:
+            e0 = rest.pop(0)
+            if e0.is_Rational and e0.q == 2:        # x**(n/2) = sqrt(x)**n
+                g = sp.Rational(1, 2)
+                ks = {e: int(2 * e) for e in [e0, *rest] if e.is_Rational and e.q == 2}
+            else:
+                ratios = {e: e / e0 for e in [e0, *rest]}
+                ratios = {e: r for e, r in ratios.items() if r.is_Rational}
+                den = 1
+                for r in ratios.values():
+                    den = sp.ilcm(den, r.q)
+                g = e0 / den
+                ks = {e: int(r * den) for e, r in ratios.items()}
+                if sum(k < 0 for k in ks.values()) > sum(k > 0 for k in ks.values()):
+                    g, ks = -g, {e: -k for e, k in ks.items()}
+            ks = {e: k for e, k in ks.items() if abs(k) <= POWER_SHARE_MAX}
+            rest = [e for e in rest if e not in ks]
+            root = sp.Pow(base, g)
+            if not (root.is_Pow and root.base == base and root.exp == g):
+                continue                            # sympy rewrote the root: leave the powers alone
+            for e, k in ks.items():
+                if k != 1:
+                    plan[nodes[e]] = (root, k)
+    return plan
+
+
 def _quick_two_sum(E, a, b) -> tuple[object, object]:
     """(s, e) with s + e = a + b exactly, for |a| ≥ |b| (Dekker 1971)."""
     s = E.add(a, b)
@@ -368,6 +426,9 @@ class BoundedKernel:
             ops.append(op)
             return n_in + len(ops) - 1
 
+        # powers of one base whose exponents are integer multiples of one exponent g share one
+        # pow call: x**(k g) = (x**g)**k (and x**(n/2) = sqrt(x)**n), see _power_plan
+        plan = _power_plan([as_expr(o) for o in outputs] + [as_expr(d) for d in definitions.values()])
         for o in outputs:
             stack = [(as_expr(o), False)]
             while stack:
@@ -394,9 +455,13 @@ class BoundedKernel:
                     continue
                 if not done:
                     stack.append((cur, True))
-                    stack.extend((a, False) for a in cur.args if a not in slot)
+                    stack.extend((a, False) for a in ((plan[cur][0],) if cur in plan else cur.args) if a not in slot)
                     continue
-                slot[cur] = self._lower(cur, slot, push)
+                if cur in plan:
+                    root, k = plan[cur]
+                    slot[cur] = self._lower_powi(slot[root], k, push)
+                else:
+                    slot[cur] = self._lower(cur, slot, push)
         self._ops = ops
         self._n_in = n_in
         self._outs = [slot[as_expr(o)] for o in outputs]
@@ -404,6 +469,17 @@ class BoundedKernel:
         self._lock = threading.Lock()
         self._fn64: dict[tuple, tuple] = {}
         self._paths: dict[tuple, object] = {}
+
+    @staticmethod
+    def _lower_powi(x: int, n: int, push) -> int:
+        """The operation x**n (n a nonzero integer) of the value in slot ``x``."""
+        if n == 1:
+            return x
+        if n == -1:
+            return push(_Op("inv", (x,)))
+        if n == 2:
+            return push(_Op("sq", (x,)))
+        return push(_Op("powi", (x,), n))
 
     @staticmethod
     def _lower(node, slot, push) -> int:
@@ -416,12 +492,7 @@ class BoundedKernel:
         if node.is_Pow:
             x, p = slot[node.base], node.exp
             if p.is_Integer:
-                n = int(p)
-                if n == -1:
-                    return push(_Op("inv", (x,)))
-                if n == 2:
-                    return push(_Op("sq", (x,)))
-                return push(_Op("powi", (x,), n))
+                return BoundedKernel._lower_powi(x, int(p), push)
             if p == sp.Rational(1, 2):
                 return push(_Op("func", (x,), "sqrt"))
             if p.is_Rational and _exact_in_float(p):
