@@ -95,24 +95,32 @@ def _hex(x: float) -> str:
     return "0x%016X" % struct.unpack(">Q", struct.pack(">d", float(x)))[0]
 
 
-#: points per iteration of the compiled loop (4 doubles: one AVX2 register)
+#: points per iteration of the compiled loops where glibc's vector math library is not used
+#: (4 doubles: one AVX2 register); with it, as many as its widest variant the CPU runs takes
+#: (:func:`loop_lanes`)
 LANES = 4
 
-
-#: sympy function -> glibc's vector math library (libmvec) function on 4 doubles (AVX2)
-_MVEC = {"exp": "_ZGVdN4v_exp", "log": "_ZGVdN4v_log", "sin": "_ZGVdN4v_sin", "cos": "_ZGVdN4v_cos",
-         "asinh": "_ZGVdN4v_asinh", "atan": "_ZGVdN4v_atan", "tanh": "_ZGVdN4v_tanh",
-         "sinh": "_ZGVdN4v_sinh", "cosh": "_ZGVdN4v_cosh", "pow": "_ZGVdN4vv_pow"}
+#: libmvec variants: doubles per call -> (name prefix, the CPU feature it needs)
+_MVEC_ISA = {8: ("_ZGVeN8", "avx512f"), 4: ("_ZGVdN4", "avx2")}
+#: sympy function -> libmvec function (after the prefix)
+_MVEC_FUNCS = {"exp": "v_exp", "log": "v_log", "sin": "v_sin", "cos": "v_cos", "asinh": "v_asinh",
+               "atan": "v_atan", "tanh": "v_tanh", "sinh": "v_sinh", "cosh": "v_cosh", "pow": "vv_pow"}
 #: the accuracy glibc states for its vector math functions (ulps)
 MVEC_ULPS = 4.0
 _mvec_state: list = []
 
 
-def _mvec_available() -> bool:
-    """Whether glibc's libmvec is loaded with every function of :data:`_MVEC` and the CPU has
-    AVX2 (its 4-double variants): the compiled float64 loops then call it instead of scalar libm."""
+def _mvec_names(lanes: int) -> dict[str, str]:
+    """sympy function -> glibc's vector math library (libmvec) function on ``lanes`` doubles."""
+    return {k: _MVEC_ISA[lanes][0] + v for k, v in _MVEC_FUNCS.items()}
+
+
+def _mvec_lanes() -> int:
+    """Doubles per call of the widest libmvec variant that is loaded with every function of
+    :data:`_MVEC_FUNCS` and that the CPU runs (8: AVX-512, 4: AVX2; 0: none): the compiled
+    float64 loops then call it instead of scalar libm."""
     if not _mvec_state:
-        ok = False
+        lanes = 0
         if platform.system() == "Linux" and platform.machine().lower() in ("x86_64", "amd64"):
             try:
                 import ctypes.util
@@ -121,31 +129,48 @@ def _mvec_available() -> bool:
 
                 name = ctypes.util.find_library("mvec") or "libmvec.so.1"
                 lib = ctypes.CDLL(name, mode=ctypes.RTLD_GLOBAL)
-                ok = all(hasattr(lib, f) for f in _MVEC.values()) and \
-                    llvm.get_host_cpu_features().get("avx2", False)
-                if ok:
+                features = llvm.get_host_cpu_features()
+                for n, (_, feature) in _MVEC_ISA.items():
+                    if features.get(feature, False) and all(hasattr(lib, f) for f in _mvec_names(n).values()):
+                        lanes = n
+                        break
+                if lanes:
                     llvm.load_library_permanently(lib._name if "/" in lib._name else name)
             except Exception:          # no glibc, no libmvec: scalar libm, lane by lane
-                ok = False
-        _mvec_state.append(ok)
+                lanes = 0
+        _mvec_state.append(lanes)
     return _mvec_state[0]
 
 
+def _mvec_available() -> bool:
+    """Whether the compiled float64 loops call glibc's vector math library."""
+    return _mvec_lanes() > 0
+
+
+def loop_lanes() -> int:
+    """Points per iteration of the compiled float64 loops: the width of the libmvec variant in
+    use (8 doubles with AVX-512 — twice the points per instruction, and 32 vector registers for
+    a program of a few thousand operations), else :data:`LANES`."""
+    return _mvec_lanes() or LANES
+
+
 class _IREmitter:
-    """LLVM IR on vectors of LANES doubles (one basic block); library functions from glibc's
+    """LLVM IR on vectors of :func:`loop_lanes` doubles (one basic block); library functions from glibc's
     vector math library where ``mvec`` (and it is available), else lane by lane."""
 
     #: error of a library function, in ulps (glibc's scalar functions: within one ulp)
     lib_ulps = 1.0
 
-    def __init__(self, lanes: int = LANES, mvec: bool = False):
+    def __init__(self, lanes: int | None = None, mvec: bool = False):
+        lanes = loop_lanes() if lanes is None else lanes
         self.lines: list[str] = []
         self.n = 0
         self.used: set[str] = set()
         self.lanes = lanes
         self.T = f"<{lanes} x double>"
         self.sfx = f"v{lanes}f64"
-        self.mvec = bool(mvec and lanes == 4 and _mvec_available())
+        self.mvec = bool(mvec and lanes == _mvec_lanes())
+        self._mvec = _mvec_names(lanes) if self.mvec else {}
         if self.mvec:
             self.lib_ulps = MVEC_ULPS
 
@@ -190,8 +215,8 @@ class _IREmitter:
 
     def pow(self, a, b):
         if self.mvec:
-            self.used.add(_MVEC["pow"])
-            return self._new(f"call {self.T} @{_MVEC['pow']}({self.T} {a}, {self.T} {b})")
+            self.used.add(self._mvec["pow"])
+            return self._new(f"call {self.T} @{self._mvec['pow']}({self.T} {a}, {self.T} {b})")
         return self._intrinsic("pow", f"{self.T} {a}", f"{self.T} {b}")
 
     def fma(self, a, b, c):
@@ -200,9 +225,9 @@ class _IREmitter:
 
     def call(self, fname: str, a):
         f = _FUNCS[fname]
-        if self.mvec and fname in _MVEC:
-            self.used.add(_MVEC[fname])
-            return self._new(f"call {self.T} @{_MVEC[fname]}({self.T} {a})")
+        if self.mvec and fname in self._mvec:
+            self.used.add(self._mvec[fname])
+            return self._new(f"call {self.T} @{self._mvec[fname]}({self.T} {a})")
         if f.startswith("llvm."):
             return self._intrinsic(f.split(".")[1], f"{self.T} {a}")
         self.used.add(f)
@@ -796,8 +821,8 @@ class BoundedKernel:
 
     # --- float64: LLVM IR compiled with llvmlite -------------------------------------------
     def ir(self, varying: Sequence[bool]) -> str:
-        """The float64 loop as LLVM IR, LANES points per iteration:
-        ``void kernel(i64 n, ptr A, ptr C, double U, ptr V, ptr R)`` (n a multiple of LANES);
+        """The float64 loop as LLVM IR, :func:`loop_lanes` points per iteration:
+        ``void kernel(i64 n, ptr A, ptr C, double U, ptr V, ptr R)`` (n a multiple of them);
         input k is ``A[k][i]`` where ``varying[k]`` else ``A[k][0]``; output j goes to
         ``V[j*n + i]``, its relative bound to ``R[j*n + i]``."""
         E = _IREmitter(mvec=True)
@@ -874,7 +899,7 @@ class BoundedKernel:
             "attributes #0 = { nounwind willreturn memory(none) }", ""])
 
     def ir_compensated(self, varying: Sequence[bool], outputs: Sequence[int]) -> str:
-        """The compensated float64 loop for the outputs ``outputs`` as LLVM IR, LANES points per
+        """The compensated float64 loop for the outputs ``outputs`` as LLVM IR, :func:`loop_lanes` points per
         iteration: ``void kernel(i64 n, ptr A, ptr C, ptr D, double U, ptr V, ptr R)`` with
         inputs as in :meth:`ir`, constants ``C`` and their rounding errors ``D``; writes the
         corrected values ``V`` and their relative bounds ``R`` (see :meth:`compensated`)."""
@@ -927,7 +952,7 @@ class BoundedKernel:
 
     # --- fused: float64 with its bound, compensated where a group of points is doubtful --------
     def ir_fused(self, varying: Sequence[bool]) -> str:
-        """The float64 loop and the compensated loop in one, as LLVM IR, LANES points per
+        """The float64 loop and the compensated loop in one, as LLVM IR, :func:`loop_lanes` points per
         iteration: ``void kernel(i64 n, ptr A, ptr C, ptr D, double U, double tol, ptr V, ptr R)``
         (arguments as in :meth:`ir_compensated`).
 
@@ -1128,7 +1153,7 @@ class BoundedKernel:
 
     def fused(self, *vals, tol: float, workers: int = 1) -> tuple[np.ndarray, np.ndarray]:
         """Values and relative bounds as from calling the kernel, with the compensated pass
-        (:meth:`compensated`) run in the same loop for the groups of :data:`LANES` points where
+        (:meth:`compensated`) run in the same loop for the groups of :func:`loop_lanes` points where
         a bound exceeds ``tol`` (x86 only).
 
         Parameters
@@ -1158,15 +1183,16 @@ class BoundedKernel:
 
     def _run(self, arrs: list, call: Callable, workers: int) -> tuple[np.ndarray, np.ndarray]:
         """Run a compiled loop over the broadcast inputs ``arrs`` (padded to a multiple of
-        LANES), in chunks on ``workers`` threads: ``call(n, ptrs, V, R)``."""
+        :func:`loop_lanes`), in chunks on ``workers`` threads: ``call(n, ptrs, V, R)``."""
         n = max((a.size for a in arrs), default=1)
         if any(a.size not in (1, n) for a in arrs):
             raise ValueError("inputs must have one element or a common length")
         if n == 0:
             return np.empty((self.n_out, 0)), np.empty((self.n_out, 0))
         size = n
-        if n % LANES:                   # the loop takes LANES points at a time: pad with the last point
-            n = n + LANES - n % LANES
+        lanes = loop_lanes()
+        if n % lanes:                   # the loop takes `lanes` points at a time: pad with the last point
+            n = n + lanes - n % lanes
             arrs = [a if a.size == 1 else np.concatenate([a, np.full(n - size, a[-1])]) for a in arrs]
         V = np.empty((self.n_out, n))
         R = np.empty((self.n_out, n))
@@ -1252,8 +1278,9 @@ class BoundedKernel:
         if n == 0:
             return np.empty((self.n_out, 0)), np.empty((self.n_out, 0))
         size = n
-        if n % LANES:                   # the loop takes LANES points at a time: pad with the last point
-            n = n + LANES - n % LANES
+        lanes = loop_lanes()
+        if n % lanes:                   # the loop takes `lanes` points at a time: pad with the last point
+            n = n + lanes - n % lanes
             arrs = [a if a.size == 1 else np.concatenate([a, np.full(n - size, a[-1])]) for a in arrs]
         V = np.empty((self.n_out, n))
         R = np.empty((self.n_out, n))
@@ -1380,8 +1407,9 @@ class BoundedKernel:
         if n == 0:
             return np.empty((n_out, 0)), np.empty((n_out, 0))
         size = n
-        if n % LANES:
-            n = n + LANES - n % LANES
+        lanes = loop_lanes()
+        if n % lanes:
+            n = n + lanes - n % lanes
             arrs = [a if a.size == 1 else np.concatenate([a, np.full(n - size, a[-1])]) for a in arrs]
         V = np.empty((n_out, n))
         R = np.empty((n_out, n))
