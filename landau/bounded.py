@@ -967,13 +967,22 @@ class BoundedKernel:
         iteration: ``void kernel(i64 n, ptr A, ptr C, ptr D, double U, double tol, ptr V, ptr R)``
         (arguments as in :meth:`ir_compensated`).
 
-        Every iteration runs the float64 program with its first-order bound (:meth:`ir`) and
-        stores values and relative bounds; where a relative bound of the iteration's points
-        exceeds ``tol`` (or is NaN), the rounding errors are computed and added back as in
-        :meth:`compensated`, reusing the float64 values and sensitivities, and a point's output
-        takes the compensated value where its own bound exceeds ``tol`` and the compensated
-        bound is smaller.  Operations that do not vary from point to point (and their rounding
-        errors) are computed once, before the loop."""
+        Every iteration runs the float64 program with its first-order bound b (:meth:`ir`) and
+        stores values and relative bounds.  Where a relative bound of the iteration's points
+        exceeds ``tol`` (or is NaN), the rounding errors δ_t are computed as in
+        :meth:`compensated` and their first-order effect is propagated forward,
+        e_t = Σ ∂t/∂arg·e_arg + δ_t (Langlois 2001), from the float64 values and partial
+        derivatives already at hand; a point's output takes the compensated value v + e where
+        its own bound exceeds ``tol`` and the compensated bound is smaller.  That bound: the
+        rounding of v + e, the error of the δ computed in extended precision (summed in the
+        float64 sweep), (2^-10 + 2^-49)·b·u for the float64 sensitivities and the residual
+        errors of the error-free transformations (each |δ_t| is within the rounding error b
+        counts, so Σ|∂out/∂t·δ_t| ≤ b·u), and 2^10 (b·u)²/|v| for the second-order terms.
+        The δ computed lane by lane in extended precision (library functions, fractional
+        powers) are left out where the share of b they account for is below 2^-4 ``tol``·|v|
+        for every doubtful output of the iteration; that share then stays in the bound.
+        Operations that do not vary from point to point (and their rounding errors) are
+        computed once, before the loop."""
         E = _IREmitter(mvec=True)
         T, L = E.T, E.lanes
         X = _IR80LaneEmitter(E.lines)
