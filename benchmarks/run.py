@@ -18,7 +18,7 @@ Sections (``--only``):
   and the order-5 Radau IIA called the way it was before kernels were passed by address)
   against ``solve_ivp`` Radau/BDF/LSODA with the generated right-hand side and Jacobian as plain
   Python and as numba-compiled functions, SUNDIALS CVODE (BDF, compiled f and J, scikit-sundae)
-  and LSODA with a compiled right-hand side (numbalsoda).
+  and, where installed, LSODA with a compiled right-hand side (numbalsoda).
 * ``forced`` — Skurativskyi et al. (2019) eq. (1) at ω = 16 (20 periods) and ω = 15 (2 periods):
   the toolkit with its impact log against CVODE and LSODA (compiled, without events) and
   ``solve_ivp`` DOP853 with the contact event.
