@@ -191,7 +191,14 @@ def integrate_mixed(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0
             q1 = 3 * dx - 2 * m0 - m1
             q2 = -2 * dx + m0 + m1
             sgn = -1.0 if contact else 1.0
-            s_star = cubic_crossing(g0, m0, q1, q2, 0.0, sgn, False)
+            # |g(s) − g₀| ≤ |m₀| + |q₁| + |q₂| on [0, 1]: a step that stays inside by more than
+            # that bound (plus a rounding margin) cannot cross, and cubic_crossing would return
+            # −1; skipping it changes no step
+            bnd = abs(m0) + abs(q1) + abs(q2)
+            if g0 * sgn + bnd + 1e-12 * (abs(g0) + bnd) < 0.0:
+                s_star = -1.0
+            else:
+                s_star = cubic_crossing(g0, m0, q1, q2, 0.0, sgn, False)
             if s_star <= 0.0 and (ynew[0] - xI) * sgn > 0.0:
                 s_star = 1.0  # defensive: the end state is outside
             if s_star > 0.0:
