@@ -14,7 +14,7 @@ from landau.verify.hybrid.compiled import (A21, A31, A32, A41, A42, A43, A51, A5
                                            A65, B1, B3, B4, B5, B6, C2, C3, C4, C5, E1, E3, E4, E5, E6, E7)
 from landau.verify.hybrid.compiled import err_norm as _err_norm
 from landau.verify.hybrid.crossing import cubic_crossing
-from landau.verify.skurativskyi.rk import MAX_EVENTS, MAX_STEPS, OK, STEP_TOO_SMALL
+from landau.verify.skurativskyi.rk import MAX_EVENTS, MAX_STEPS, OK, STEP_TOO_SMALL, borrowed
 
 #: loose tolerances (rtol ≥ LOOSE_RTOL) take explicit steps with PI step-size control and no
 #: growth right after a rejection (Hairer, Nørsett & Wanner, Solving ODEs I, II.4; their code
@@ -109,14 +109,19 @@ def integrate_mixed(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0
     :mod:`landau.verify.skurativskyi.sdirk`, any other by DOPRI5 (``v_stiff`` ≤ 0: DOPRI5 only).
     See the module docstring.  Returns a tuple (see :func:`landau.verify.skurativskyi.simulate.run`)."""
     n = y0.shape[0]
-    y = y0.copy()
+    # the state, the stage buffers and the parameter vectors are used through borrowed views
+    # (no reference count: rk.borrowed); their owners ``own``, ``y0``… stay alive to the end
+    own = np.empty((13, n))
+    own[0, :] = y0
+    y = borrowed(own[0])
+    k1, ynew, k7, err = borrowed(own[1]), borrowed(own[2]), borrowed(own[3]), borrowed(own[4])
+    yt, k2, k3, k4 = borrowed(own[5]), borrowed(own[6]), borrowed(own[7]), borrowed(own[8])
+    k5, k6 = borrowed(own[9]), borrowed(own[10])
+    p_own, atol_own = p, atol
+    p, atol = borrowed(p_own), borrowed(atol_own)
     t = t0
-    k1 = np.empty(n)
     _fun(t, y, p, k1)
     nfev = 1
-    ynew = np.empty(n)
-    k7 = np.empty(n)
-    err = np.empty(n)
     ev_t = np.empty(max_events)
     ev_k = np.empty(max_events, np.int64)
     ev_v = np.empty(max_events)
@@ -154,7 +159,6 @@ def integrate_mixed(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0
     loose = rtol >= LOOSE_RTOL
     low = rtol >= LOW_ORDER_RTOL
     pi_beta = (PI_BETA_BS if low else PI_BETA_DP) if loose else 0.0
-    yt, k2, k3, k4, k5, k6 = np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n)
     while True:
         # stroboscopic sample at the current time?
         if ts <= t_end and abs(t - ts) <= 1e-13 * max(1.0, abs(ts)):
@@ -284,7 +288,10 @@ def integrate_mixed(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0
             contact = not contact
             h_next = max(h_next, h_free)
         h = h_next
-    return (t, y, status, ev_t[:nev].copy(), ev_k[:nev].copy(), ev_v[:nev].copy(), st_t[:nst].copy(),
+    y_end = y.copy()
+    if p_own.shape[0] < 0 or atol_own.shape[0] < 0:  # keeps the owners alive past the loop
+        y_end[0] = own[0, 0]
+    return (t, y_end, status, ev_t[:nev].copy(), ev_k[:nev].copy(), ev_v[:nev].copy(), st_t[:nst].copy(),
             st_y[:nst].copy(), lyap, nly, nsteps, nfev, nrej, max_mismatch, nstiff, rec_t[:nrec].copy(),
             rec_y[:nrec].copy(), rec_f[:nrec].copy())
 
