@@ -8,7 +8,8 @@ SDIRK4 of :mod:`landau.verify.skurativskyi.sdirk`.  Its ``integrate_mixed`` (the
 of :func:`landau.verify.skurativskyi.simulate.run`) takes every step that starts with |ẋ|
 below a threshold (stick: the cart rests on the obstacle or on the track, |ẋ| ~ 1e-9…1e-6
 m/s) with the L-stable SDIRK4 (stage equations solved as scalar monotone equations, robust on
-the |ẋ|^{n₃} cusp) and all other steps with the DOPRI5 of :mod:`landau.verify.hybrid.compiled`;
+the |ẋ|^{n₃} cusp) and all other steps with DOPRI5 (the arithmetic of the DOPRI5 of
+:mod:`landau.verify.hybrid.compiled`, term for term);
 ``integrate`` is the explicit path alone.  Event location (the compiled locator of
 :mod:`landau.verify.hybrid.crossing`), stroboscopic clipping and tangent renormalisation are
 the same for both steppers.
@@ -52,6 +53,12 @@ No saltation is needed: the field is continuous across x = x_I (see ``model``).
 
 Stroboscopic samples t = t₀ + i·2π/ω are step ends (steps are clipped onto them); with the
 4-D variational system the tangent vector is renormalised there (top Lyapunov exponent).
+
+Speed (not the arithmetic): the field and the steps are inlined into the loop, the stage
+vectors are preallocated, and the loop works on views without numba's atomic reference
+counts (:func:`borrowed`).  Measured at ω = 16, 20 periods from rest (2 shared cores): 3.9 →
+2.0 ms at rtol 1e-5, 4.9 → 2.5 ms at 1e-6, 7.6 → 3.9 ms at 1e-7 — every step, event and
+final state unchanged to the bit.
 """
 
 from __future__ import annotations
@@ -68,7 +75,6 @@ from numba.extending import intrinsic
 from dataclasses import dataclass
 
 from landau.verify.hybrid import compiled as _compiled
-from landau.verify.hybrid.compiled import dopri5_method
 from landau.verify.hybrid.kernel import Kernel
 from landau.verify.hybrid.specialise import specialise
 
@@ -128,9 +134,8 @@ def switching_integrator(fun, stiff_step):
     (integrate, integrate_mixed)
         The jitted loops documented below (the module docstring describes the method).
     """
-    dp_step, _ = dopri5_method(fun)
     mod = specialise(Path(__file__).parent / "templates" / "switching.py",
-                     {"fun": fun, "dp_step": dp_step, "stiff_step": stiff_step}, "switching")
+                     {"fun": fun, "stiff_step": stiff_step}, "switching")
     return mod.integrate, mod.integrate_mixed
 
 

@@ -1,8 +1,8 @@
 """Template: the event-driven DOPRI5/stick-stepper loop of landau.verify.skurativskyi.rk over a
 second-order field (see landau.verify.hybrid.specialise for how templates are bound).
 
-Free names: ``fun(t, y, p, out)`` (the field), ``dp_step`` (the DOPRI5 step specialised to the
-same field), ``stiff_step`` (the stick-phase step), ``jit`` (the numba decorator).
+Free names: ``fun(t, y, p, out)`` (the field, a numba function: it is inlined), ``stiff_step``
+(the stick-phase step), ``jit`` (the numba decorator).
 """
 
 import math
