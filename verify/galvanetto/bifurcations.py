@@ -24,9 +24,10 @@ Test functions (r = Ẋ − V, K the spring force, F_s the static level):
 Without a ``bracket`` every locator derives its search interval from the model, never from a
 published value: the law's weakening velocity (sliding points in V), the Hopf point c₁ (c₂), a β
 scan from equal static levels (the fold) and, upward from each bifurcation, the next one of the
-Fig. 12 sequence and the grazing-sliding (the next period-2 orbit through the kink), and the
-periodic attractor at the start γ followed in γ (multi-sliding).  When the test function does not
-change sign there, :class:`NoBifurcationError` names the range searched.
+Fig. 12 sequence and the grazing-sliding (the next period-2 orbit through the kink), and for the
+multi-sliding the periodic windows of the map's attractor in a γ scan over the law's weakening
+velocity (10·V down to V), whose orbits are followed in γ.  When the test function does not change
+sign there, :class:`NoBifurcationError` names the range searched.
 """
 
 from __future__ import annotations
@@ -917,7 +918,7 @@ def multi_sliding(bracket=None, V=0.05, alpha=1.2, beta=2.0, delta=None, stepper
 
         Lower periods first: their continuation costs fewer map evaluations per step, and where
         several periodic attractors have a multi-sliding point (at Fig. 16's parameters also a
-        period-3 orbit, at γ ≈ 10.2763) the selection is fixed by a rule of the model's orbits,
+        period-3 orbit, at γ ≈ 10.276) the selection is fixed by a rule of the model's orbits,
         not by the grid.
 
     Returns
