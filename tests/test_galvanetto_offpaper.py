@@ -14,6 +14,7 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
+from landau.errors import InputError
 from landau.laws.kinetic import KineticFriction
 from landau.verify.galvanetto import bifurcations as B
 
@@ -305,6 +306,19 @@ def test_multi_sliding_needs_a_periodic_start_and_says_so():
     # periodic: the locator, which follows a periodic orbit, raises the named error with the start
     with pytest.raises(B.NoBifurcationError, match="gamma = 11"):
         B.multi_sliding(gamma=11.0)
+
+
+
+def test_multi_sliding_derived_range_is_the_weakening_velocity_band():
+    # eq. (7): v_w = 1/γ, so v_w from 10·V down to V is γ in [1/(10V), 1/V] (closed form); for
+    # F_k = exp(γ r) on r < 0, v_w = ln 2/γ: [ln 2/(10V), ln 2/V]; V <= 0 is refused by name
+    for V in (0.05, 0.055):
+        lo, hi = B._multi_sliding_range(KineticFriction(3.0, 0.0), V)
+        assert lo == pytest.approx(0.1 / V, rel=1e-9) and hi == pytest.approx(1.0 / V, rel=1e-9)
+    lo, hi = B._multi_sliding_range(KineticFriction.from_expression("exp(gamma*r)", gamma=2.0), 0.05)
+    assert lo == pytest.approx(np.log(2) / 0.5, rel=1e-9) and hi == pytest.approx(np.log(2) / 0.05, rel=1e-9)
+    with pytest.raises(InputError, match="belt velocity"):
+        B.multi_sliding(V=0.0)
 
 
 

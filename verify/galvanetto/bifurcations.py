@@ -843,12 +843,18 @@ def _multi_sliding_range(law, V: float) -> tuple[float, float]:
     """The γ range of the derived multi-sliding search: from the γ at which the law's weakening velocity
     (:meth:`KineticFriction.weakening_velocity`, 1/γ for eq. (7)) is ``MS_SCAN_DECADE``·V down to the γ
     at which it equals V (γ is taken as an inverse velocity scale, v_w ∝ 1/γ, as in eq. (7))."""
+    if not (np.isfinite(V) and V > 0):
+        raise InputError(f"multi-sliding: the belt velocity V = {V!r} must be positive and finite")
     vs = _velocity_scale(law)
     if not law.gamma > 0:
         raise InputError(f"multi-sliding: the law's gamma = {law.gamma!r} must be positive (it scales the "
                          "weakening velocity that sets the derived search range)")
     c = vs * law.gamma              # v_w(γ) = c/γ
     return c / (MS_SCAN_DECADE * V), c / V
+
+
+#: the periodic windows found by the derived multi-sliding scan, per model and d0
+_WINDOW_CACHE: dict = {}
 
 
 def _multi_sliding_windows(params, grid, d0: float, scan_st) -> list[dict]:
@@ -925,7 +931,8 @@ def multi_sliding(bracket=None, V=0.05, alpha=1.2, beta=2.0, delta=None, stepper
     -------
     Located
         ``details``: the periodic point ``d``, its ``period``, the bracket; for the derived
-        start also ``start_gamma``, the ``slope`` (fⁿ)'(d*) and the γ ``range`` scanned.
+        start also ``start_gamma``, the ``slope`` (fⁿ)'(d*), the γ ``range`` scanned and
+        ``windows_tried`` (the number of windows followed, the successful one included).
 
     Raises
     ------
@@ -959,7 +966,15 @@ def multi_sliding(bracket=None, V=0.05, alpha=1.2, beta=2.0, delta=None, stepper
     g_lo, g_hi = _multi_sliding_range(law, V)
     t0 = time.perf_counter()
     n = int(np.ceil(np.log(g_hi / g_lo) / np.log1p(MS_SCAN_STEP)))
-    windows = _multi_sliding_windows(params, g_lo * (g_hi / g_lo) ** (np.arange(n + 1) / n), d0, scan_st)
+    # the scan depends on the model and d0 only (its integrator is fixed): reused by calls that differ in
+    # the stepper of the root (convergence checks) or repeat the search
+    key = (float(V), float(alpha), float(beta), law, d0)
+    windows = _WINDOW_CACHE.get(key)
+    if windows is None:
+        if len(_WINDOW_CACHE) > 16:
+            _WINDOW_CACHE.clear()
+        windows = _WINDOW_CACHE[key] = _multi_sliding_windows(
+            params, g_lo * (g_hi / g_lo) ** (np.arange(n + 1) / n), d0, scan_st)
     tried = []
     for w in sorted(windows, key=lambda w: (w["period"], abs(w["H"]))):
         try:
