@@ -907,7 +907,9 @@ def multi_sliding(bracket=None, V=0.05, alpha=1.2, beta=2.0, delta=None, stepper
         as in :func:`two_block_sliding`); that periodic point is continued in γ (warm-started
         secant) to both sides with steps 10⁻⁴·γ·2ᵏ (at most 10⁻²·γ) up to 0.2·γ away, as long as it
         moves by less than 1 % of the map's domain per step; the first sign change of H brackets
-        the multi-sliding point.  Default (with no ``bracket``) derived from the model:
+        the multi-sliding point (Fig. 16's start is ``gamma=10.756, d0=0.1969494``: from d = 0
+        the attractor at γ = 10.756 is not periodic).  Default (with no ``bracket``) derived from
+        the model:
 
         1. γ is scanned on a geometric grid (neighbours 2 % apart) from the γ where the law's
            weakening velocity (1/γ for eq. (7)) is 10·V to the γ where it equals V
