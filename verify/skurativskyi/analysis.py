@@ -279,9 +279,12 @@ class WindowEntry:
 
 def sweep_to_window(start: float, period: int = 7, impacts: int = 14, params: Params = PAPER, rtol: float = RTOL,
                     step: float = 0.0025, max_stride: int = 32, settle: int = 3, n_first: int = 100, n_step: int = 50,
-                    n_keep: int | None = None, stop: float | None = None, section_tol: float = 1e-6) -> WindowEntry:
-    """Continue the attractor upward in ω from ``start`` until it first is a periodic orbit of
-    section period ``period`` with ``impacts`` impacts per ``period`` forcing periods.
+                    n_keep: int | None = None, stop: float | None = None, section_tol: float = 1e-6,
+                    y0=None) -> WindowEntry:
+    """Continue the attractor upward in ω from ``start`` until it enters a periodic orbit of
+    section period ``period`` with ``impacts`` impacts per ``period`` forcing periods (the first
+    point with that signature after one without it: a sweep that starts on such an orbit first
+    leaves it, so a sweep resumed from a window's orbit finds the next window).
 
     Every ω is a multiple of ``step`` (the grid does not depend on ``start``).  The sweep moves
     one ``step`` at a time, except along a settled periodic orbit (the last ``settle`` points
@@ -295,15 +298,14 @@ def sweep_to_window(start: float, period: int = 7, impacts: int = 14, params: Pa
     the same settled orbit (a stride skips only stretches that begin and end on it).
 
     Each point: ``n_step`` transient periods from the previous attractor (``n_first`` at the first
-    point, from rest at X₀), then ``n_keep`` observed periods (default 4·``period``, a multiple of
+    point, from ``y0`` — a state at phase 0 — or from rest at X₀), then ``n_keep`` observed periods (default 4·``period``, a multiple of
     the period; the section period is searched up to ``n_keep``/2 with ``section_tol`` [m]) —
     the paper's sweep protocol (100 / 50 transient periods, Sec. 4).
 
     Raises :class:`~landau.errors.InputError` when the window is not met below ``stop`` (default
     2·start); when, after a settled orbit with two or more impacts per period, the sweep settles
     on the single-impact period-1 orbit (the impact count has come down through the whole
-    grazing cascade, Fig. 3b, without meeting the window); or when the sweep starts inside the
-    window."""
+    grazing cascade, Fig. 3b, without meeting the window)."""
     if not (step > 0 and start > 0 and period >= 1 and impacts >= 1 and max_stride >= 1 and settle >= 1):
         raise InputError("sweep_to_window needs start > 0, step > 0, and period, impacts, max_stride, settle >= 1")
     n_keep = 4 * period if n_keep is None else int(n_keep)
@@ -317,11 +319,9 @@ def sweep_to_window(start: float, period: int = 7, impacts: int = 14, params: Pa
     def signature(a: Attractor) -> tuple[int, int]:
         return section_period(a, section_tol, n_keep // 2), int(round(a.impacts_per_period * n_keep))
 
-    a = attractor(grid(j0), None, n_first, n_keep, params, rtol)
+    a = attractor(grid(j0), y0, n_first, n_keep, params, rtol)
     kept = [(j0, a.y_end, signature(a))]       # (grid index, state at phase 0, signature)
     points, periods = 1, n_first + n_keep
-    if kept[0][2] == target:
-        raise InputError(f"the sweep starts inside the period-{period} window (ω = {grid(j0)}); start lower")
     stride, many = 1, False                    # many: a settled orbit with >= 2 impacts per period was passed
     while True:
         j, y, sig0 = kept[-1]
@@ -335,7 +335,7 @@ def sweep_to_window(start: float, period: int = 7, impacts: int = 14, params: Pa
             stride //= 2                       # the attractor changed inside the stride: try half of it
             continue
         kept.append((j + stride, a.y_end, sig))
-        if sig == target:
+        if sig == target and kept[-2][2] != target:
             prev = kept[-2]
             path = tuple((grid(i), s[0], s[1] / n_keep) for i, _, s in kept)
             return WindowEntry(grid(j + stride), grid(prev[0]), a.y_end.copy(), prev[2][0], period, impacts,
