@@ -72,14 +72,16 @@ def test_first_detachment_off_paper(params):
 def test_first_cascade_grazing_off_paper_is_a_located_grazing(params):
     """The cascade scene derives its bracket from the model: an up-sweep from the first detachment
     to the first period-7 orbit with 14 impacts whose lower edge is a grazing (at k = 1500 the sweep
-    first meets a period-7 window inside the chaotic band whose orbit ends without grazing, which it
-    passes over).  Checked independently at rtol 1e-10 instead of 1e-8, continuing the returned orbit
+    first meets a period-7 window inside the chaotic band, at 21.0025, whose orbit ends without
+    grazing — the straight-line zero of its margin lies 0.26 rad/s away —, and passes over it).  Checked independently at rtol 1e-10 instead of 1e-8, continuing the returned orbit
     (``y_orbit``): 1e-3 rad/s above the located point it is still the period-7 orbit with 14 impacts,
     1e-3 below it is gone (1e-3 is 10 bisection tolerances and twice the largest shift of this edge
     measured between integration tolerances, 5e-4 from rtol 1e-7 to 1e-8); and the free-flight margin
-    of that orbit, sampled at rtol 1e-10 at 1e-3 and 2e-3 above, extrapolates linearly to zero at the
-    located point (within 5e-4 rad/s, the curvature of the margin over these 2e-3): a maximum touches
-    x = x_I there — a grazing, not a fold or a crisis, where the orbit would end with a finite margin."""
+    x_I − max x of that orbit, sampled at rtol 1e-10 at 1e-4 and 2e-4 above the bracket, extrapolates
+    linearly to zero at the located point within the bisection tolerance 1e-4 rad/s (measured 3e-5:
+    the margin grows by ~45 µm per 1e-3 rad/s and bends over within ~5e-4 of the edge, so the samples
+    stay close): a maximum touches x = x_I there — a grazing, not a fold or a crisis, where the orbit
+    would end with a finite margin."""
     import numpy as np
 
     from landau.verify.skurativskyi.analysis import attractor, section_period
@@ -108,13 +110,13 @@ def test_first_cascade_grazing_off_paper_is_a_located_grazing(params):
     assert kept
     assert not orbit7(doc["lo"] - d)[1]
     g = []
-    for w in (doc["hi"] + d, doc["hi"] + 2 * d):
-        a = attractor(w, above.y_end, 100, 7, q, rtol=1e-10)
-        g.append(maxima(w, a.y_end, 7, 200, params=q, rtol=1e-10).margin)
-    assert 0 < g[0] < g[1]                          # a free maximum approaches x_I towards the edge
-    root = doc["hi"] + d - g[0] * d / (g[1] - g[0])
-    print(params, doc["value"], g, root)
-    assert root == pytest.approx(doc["value"], abs=5e-4), (g, root)
+    for w in (doc["hi"] + 1e-4, doc["hi"] + 2e-4):
+        m = maxima(w, attractor(w, above.y_end, 100, 7, q, rtol=1e-10).y_end, 7, 200, params=q, rtol=1e-10)
+        assert m.impacts_per_period * 7 == pytest.approx(14)
+        g.append(m.margin)
+    assert 0 < g[0] < g[1]                          # the free maximum approaches x_I towards the edge
+    root = doc["hi"] + 1e-4 - g[0] * 1e-4 / (g[1] - g[0])
+    assert root == pytest.approx(doc["value"], abs=1e-4), (g, root)
 
 
 def test_scene_parameters_named_k_or_v_are_accepted_on_the_command_line(capsys):
