@@ -123,3 +123,11 @@ def test_sweep_to_window_bad_input_and_no_window():
         sweep_to_window(20.58, 7, 14, n_keep=30)
     with pytest.raises(InputError, match="no period-7"):   # the band has no period-7 orbit below 20.59
         sweep_to_window(20.58, 7, 14, stop=20.59)
+
+
+def test_cascade_scene_bracket_is_both_or_neither():
+    from landau.scenes import run_scene
+    with pytest.raises(InputError, match="both"):
+        run_scene("skurativskyi2019/first-cascade-grazing", {"orbit_omega": 20.6})
+    with pytest.raises(InputError, match="step"):
+        run_scene("skurativskyi2019/first-cascade-grazing", {"step": 0.0})
