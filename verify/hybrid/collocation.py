@@ -38,9 +38,9 @@ import numba as nb
 import numpy as np
 from numpy.polynomial import polynomial as P
 
-from landau.verify.hybrid.radau import NEWTON_MAXITER, _lu, _rms, _solve
+from landau.verify.hybrid.stiffdriver import EPS, _lu, _poly, _rms, _solve, make_driver
 
-__all__ = ["RadauTableau", "radau_tableau", "collocation_core"]
+__all__ = ["RadauTableau", "radau_tableau", "collocation_core", "radau_drive", "workspace", "NEWTON_MAXITER"]
 
 
 @dataclass(frozen=True)
@@ -99,13 +99,192 @@ def radau_tableau(s: int) -> RadauTableau:
     return RadauTableau(s, A, c, 1.0 / gamma0, e, vinv)
 
 
+#: Newton sweeps of the simplified iteration before a step is declared failed
+NEWTON_MAXITER = 7
+
+
 @nb.njit(cache=True)
-def _poly_s(y0, Q, x, i):
-    s = Q.shape[0]
-    acc = 0.0
-    for j in range(s - 1, -1, -1):
-        acc = x * (acc + Q[j, i])
-    return y0[i] + acc
+def _attempt(fun, jac, t, y, f0, h, p, rtol, atol, rejected, t_old, y_old, h_old, Q, ynew, cnt, W):
+    """One Radau IIA step (the ``attempt`` of :func:`landau.verify.hybrid.stiffdriver.make_driver`).
+
+    The stage increments Z solve Z = h(A ⊗ I)F(y + Z) by simplified Newton on I − h(A⊗J),
+    started from the previous step's collocation polynomial.  With ``W``'s ``full_retry``, a
+    failed iteration is retried at the same h with the stage Jacobians J(Y_b) in
+    I − h(A ⊗ I)·diag(J(Y_b)) (needed when the Jacobian changes by orders of magnitude within a
+    step: ẇ ∝ e^{−w} as v → 0); without it, h is halved.  Error estimate: (μ/h·I − J)⁻¹(f₀ +
+    Σ eᵢZᵢ/h), filtered once more through f when the previous attempt was rejected (Hairer &
+    Wanner 1996, IV.8); ``f0_first`` sums the terms onto f₀ (the order of the first order-5
+    code, kept so that its results do not change in the last bit).
+    """
+    AR, CN, EE, mu, VI, full_retry, f0_first, newton_tol, J, Mf, Mr, pivF, pivR, Z, F, JB, R, ytmp, scale, \
+        err, ZE, use_full = W
+    n = y.shape[0]
+    s = AR.shape[0]
+    N = s * n
+    jac(t, y, p, J)
+    cnt[3] += 1
+    for a in range(s):
+        for b in range(s):
+            for i in range(n):
+                for j in range(n):
+                    Mf[a * n + i, b * n + j] = -h * AR[a, b] * J[i, j]
+    for i in range(N):
+        Mf[i, i] += 1.0
+    ok = _lu(Mf, pivF)
+    cnt[4] += 1
+    # Newton start: extrapolate the previous collocation polynomial
+    for a in range(s):
+        for i in range(n):
+            if cnt[0] > 0:
+                x = (t + CN[a] * h - t_old) / h_old
+                Z[a, i] = _poly(y_old, Q, x, i) - y[i]
+            else:
+                Z[a, i] = 0.0
+    full = use_full[0] == 1
+    converged = False
+    dW_old = -1.0
+    rate = -1.0
+    n_iter = 0
+    if ok:
+        for it in range(3 * NEWTON_MAXITER if full else NEWTON_MAXITER):
+            n_iter = min(it + 1, NEWTON_MAXITER)
+            finite = True
+            for a in range(s):
+                for i in range(n):
+                    ytmp[i] = y[i] + Z[a, i]
+                fa = F[a]
+                fun(t + CN[a] * h, ytmp, p, fa)
+                cnt[2] += 1
+                for i in range(n):
+                    if not math.isfinite(fa[i]):
+                        finite = False
+            if not finite:
+                break
+            if full:
+                for b in range(s):
+                    for i in range(n):
+                        ytmp[i] = y[i] + Z[b, i]
+                    jac(t + CN[b] * h, ytmp, p, JB[b])
+                    cnt[3] += 1
+                for a in range(s):
+                    for b in range(s):
+                        for i in range(n):
+                            for j in range(n):
+                                Mf[a * n + i, b * n + j] = -h * AR[a, b] * JB[b, i, j]
+                for i in range(N):
+                    Mf[i, i] += 1.0
+                if not _lu(Mf, pivF):
+                    break
+                cnt[4] += 1
+            for a in range(s):
+                for i in range(n):
+                    acc = -Z[a, i]
+                    for b in range(s):
+                        acc += h * AR[a, b] * F[b, i]
+                    R[a * n + i] = acc
+            _solve(Mf, pivF, R)
+            dW = 0.0
+            for a in range(s):
+                for i in range(n):
+                    sc = atol[i] + abs(y[i] + Z[a, i]) * rtol
+                    r = R[a * n + i] / sc
+                    dW += r * r
+                    Z[a, i] += R[a * n + i]
+            dW = math.sqrt(dW / N)
+            if dW_old > 0:
+                rate = dW / dW_old
+            if full:
+                if (rate >= 1.0 and it >= 4) or it >= 3 * NEWTON_MAXITER - 1:
+                    break
+                if dW < newton_tol and rate < 1.0:
+                    converged = True
+                    break
+                dW_old = dW
+                continue
+            if rate >= 1.0 or (rate > 0 and rate ** (NEWTON_MAXITER - it) / (1 - rate) * dW > newton_tol):
+                break
+            if dW == 0.0 or (rate > 0 and rate / (1 - rate) * dW < newton_tol):
+                converged = True
+                break
+            dW_old = dW
+    if not converged:
+        cnt[5] += 1
+        if full_retry and not full:
+            use_full[0] = 1
+            return 1.0, 0.0, 0.0
+        return 0.5, 0.0, 0.0
+    for i in range(n):
+        ynew[i] = y[i] + Z[s - 1, i]
+    # embedded error estimate: (μ/h I − J)⁻¹ (f0 + Σ e_a Z_a / h)
+    for i in range(n):
+        for j in range(n):
+            Mr[i, j] = -J[i, j]
+        Mr[i, i] += mu / h
+    _lu(Mr, pivR)
+    cnt[4] += 1
+    for i in range(n):
+        if f0_first:
+            acc = f0[i]
+            for a in range(s):
+                acc += EE[a] * Z[a, i] / h
+            err[i] = acc
+            ZE[i] = acc - f0[i]
+        else:
+            acc = 0.0
+            for a in range(s):
+                acc += EE[a] * Z[a, i] / h
+            ZE[i] = acc
+            err[i] = f0[i] + acc
+        scale[i] = atol[i] + max(abs(y[i]), abs(ynew[i])) * rtol
+    _solve(Mr, pivR, err)
+    err_norm = _rms(err, scale)
+    if rejected and err_norm > 1.0:
+        for i in range(n):
+            ytmp[i] = y[i] + err[i]
+        fun(t, ytmp, p, err)
+        cnt[2] += 1
+        for i in range(n):
+            err[i] += ZE[i]
+        _solve(Mr, pivR, err)
+        err_norm = _rms(err, scale)
+    return 0.0, err_norm, 0.9 * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter)
+
+
+@nb.njit(cache=True)
+def _accept(y, ynew, f0, fnew, h, Q, W):
+    """The step's collocation polynomial Q = V⁻¹Z; the next step starts with simplified Newton."""
+    VI, Z, use_full = W[4], W[13], W[21]  # positions in the tuple of :func:`workspace`
+    s, n = Z.shape
+    for j in range(s):
+        for i in range(n):
+            acc = 0.0
+            for a in range(s):
+                acc += VI[j, a] * Z[a, i]
+            Q[j, i] = acc
+    use_full[0] = 0
+
+
+#: the step loop of :mod:`landau.verify.hybrid.stiffdriver` bound to the Radau IIA step
+radau_drive = make_driver(_attempt, _accept)
+
+
+@nb.njit(cache=True)
+def workspace(n, AR, CN, EE, mu, VI, rtol, full_retry, f0_first):
+    """Coefficients and work arrays of :func:`_attempt` for n components and the tableau
+    (AR, CN, EE, mu, VI) (:class:`RadauTableau`).
+
+    ``full_retry``: retry a failed Newton iteration with the stage Jacobians before halving h;
+    ``f0_first``: the summation order of the error estimate (:func:`_attempt`).  The tuple is
+    (AR, CN, EE, mu, VI, full_retry, f0_first, newton_tol, J, M (sn × sn), M (n × n), pivots,
+    pivots, Z, F, stage Jacobians, residual, y, scale, err, ZE, full-Newton flag).
+    """
+    s = AR.shape[0]
+    N = s * n
+    newton_tol = max(10 * EPS / rtol, min(0.03, rtol ** 0.5))
+    return (AR, CN, EE, mu, VI, full_retry, f0_first, newton_tol, np.empty((n, n)), np.empty((N, N)),
+            np.empty((n, n)), np.empty(N, dtype=np.int64), np.empty(n, dtype=np.int64), np.zeros((s, n)),
+            np.empty((s, n)), np.empty((s, n, n)), np.empty(N), np.empty(n), np.empty(n), np.empty(n), np.empty(n),
+            np.zeros(1, dtype=np.int64))
 
 
 @nb.njit(cache=True)
@@ -119,187 +298,7 @@ def collocation_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_s
     """
     n = y0.shape[0]
     s = AR.shape[0]
-    N = s * n
-    cnt = np.zeros(8, dtype=np.int64)
-    y = y0.copy()
-    t = t0
-    f0 = np.empty(n)
-    fun(t, y, p, f0)
-    cnt[2] += 1
-    J = np.empty((n, n))
-    Mf = np.empty((N, N))
-    Mr = np.empty((n, n))
-    pivF = np.empty(N, dtype=np.int64)
-    pivR = np.empty(n, dtype=np.int64)
-    Z = np.zeros((s, n))
-    F = np.empty((s, n))
-    R = np.empty(N)
-    ytmp = np.empty(n)
-    ynew = np.empty(n)
-    scale = np.empty(n)
-    err = np.empty(n)
-    ZE = np.empty(n)
-    Q = np.zeros((s, n))
-    Qprev = np.zeros((s, n))
-    yprev = np.empty(n)
-    have_prev = False
-    tprev = 0.0
-    hprev = 1.0
-    EPS = 2.220446049250313e-16
-    newton_tol = max(10 * EPS / rtol, min(0.03, rtol ** 0.5))
-    expo = 1.0 / (s + 1)
-    h = min(h0, max_step, t_end - t0)
-    err_old = -1.0
-    h_old = -1.0
-    rejected = False
-    status = 0
-    for i in range(n):
-        if not math.isfinite(y[i]) or not math.isfinite(f0[i]):
-            status = -3
-            t_end = t
-    while t < t_end:
-        if cnt[0] + cnt[1] >= max_steps:
-            status = -2
-            break
-        if h > t_end - t:
-            h = t_end - t
-        if h < 10 * EPS * max(abs(t), 1e-300) or h <= 0.0:
-            status = -1
-            break
-        jac(t, y, p, J)
-        cnt[3] += 1
-        for a in range(s):
-            for b in range(s):
-                hab = -h * AR[a, b]
-                for i in range(n):
-                    for j in range(n):
-                        Mf[a * n + i, b * n + j] = hab * J[i, j]
-        for i in range(N):
-            Mf[i, i] += 1.0
-        ok = _lu(Mf, pivF)
-        cnt[4] += 1
-        for a in range(s):
-            for i in range(n):
-                if have_prev:
-                    x = (t + CN[a] * h - tprev) / hprev
-                    Z[a, i] = _poly_s(yprev, Qprev, x, i) - y[i]
-                else:
-                    Z[a, i] = 0.0
-        converged = False
-        dW_old = -1.0
-        rate = -1.0
-        n_iter = 0
-        if ok:
-            for it in range(NEWTON_MAXITER):
-                n_iter = it + 1
-                finite = True
-                for a in range(s):
-                    for i in range(n):
-                        ytmp[i] = y[i] + Z[a, i]
-                    fa = F[a]
-                    fun(t + CN[a] * h, ytmp, p, fa)
-                    cnt[2] += 1
-                    for i in range(n):
-                        if not math.isfinite(fa[i]):
-                            finite = False
-                if not finite:
-                    break
-                for a in range(s):
-                    for i in range(n):
-                        acc = -Z[a, i]
-                        for b in range(s):
-                            acc += h * AR[a, b] * F[b, i]
-                        R[a * n + i] = acc
-                _solve(Mf, pivF, R)
-                dW = 0.0
-                for a in range(s):
-                    for i in range(n):
-                        sc = atol[i] + abs(y[i] + Z[a, i]) * rtol
-                        r = R[a * n + i] / sc
-                        dW += r * r
-                        Z[a, i] += R[a * n + i]
-                dW = math.sqrt(dW / N)
-                if dW_old > 0:
-                    rate = dW / dW_old
-                if rate >= 1.0 or (rate > 0 and rate ** (NEWTON_MAXITER - it) / (1 - rate) * dW > newton_tol):
-                    break
-                if dW == 0.0 or (rate > 0 and rate / (1 - rate) * dW < newton_tol):
-                    converged = True
-                    break
-                dW_old = dW
-        if not converged:
-            cnt[5] += 1
-            cnt[1] += 1
-            h *= 0.5
-            rejected = True
-            continue
-        for i in range(n):
-            ynew[i] = y[i] + Z[s - 1, i]
-        for i in range(n):
-            for j in range(n):
-                Mr[i, j] = -J[i, j]
-            Mr[i, i] += mu / h
-        _lu(Mr, pivR)
-        cnt[4] += 1
-        for i in range(n):
-            acc = 0.0
-            for a in range(s):
-                acc += EE[a] * Z[a, i] / h
-            ZE[i] = acc
-            err[i] = f0[i] + acc
-            scale[i] = atol[i] + max(abs(y[i]), abs(ynew[i])) * rtol
-        _solve(Mr, pivR, err)
-        err_norm = _rms(err, scale)
-        if rejected and err_norm > 1.0:
-            for i in range(n):
-                ytmp[i] = y[i] + err[i]
-            fun(t, ytmp, p, err)
-            cnt[2] += 1
-            for i in range(n):
-                err[i] += ZE[i]
-            _solve(Mr, pivR, err)
-            err_norm = _rms(err, scale)
-        if not math.isfinite(err_norm):
-            cnt[1] += 1
-            h *= 0.25
-            rejected = True
-            continue
-        safety = 0.9 * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter)
-        if err_norm > 1.0:
-            h *= max(0.2, safety * err_norm ** -expo)
-            cnt[1] += 1
-            rejected = True
-            continue
-        cnt[0] += 1
-        for j in range(s):
-            for i in range(n):
-                acc = 0.0
-                for a in range(s):
-                    acc += VI[j, a] * Z[a, i]
-                Q[j, i] = acc
-        for i in range(n):
-            yprev[i] = y[i]
-        for j in range(s):
-            for i in range(n):
-                Qprev[j, i] = Q[j, i]
-        tprev = t
-        hprev = h
-        have_prev = True
-        t = t + h
-        for i in range(n):
-            y[i] = ynew[i]
-        fun(t, y, p, f0)
-        cnt[2] += 1
-        if err_old > 0 and err_norm > 0:
-            mult = h / h_old * (err_old / err_norm) ** expo
-        else:
-            mult = 1.0
-        fac = min(1.0, mult) * (err_norm ** -expo if err_norm > 0 else 10.0)
-        fac = min(10.0, safety * fac)
-        if rejected:
-            fac = min(1.0, fac)
-        h_old = h
-        err_old = max(err_norm, 1e-10)
-        h = min(h * fac, max_step)
-        rejected = False
-    return status, t, y, cnt
+    W = workspace(n, AR, CN, EE, mu, VI, rtol, False, False)
+    out = radau_drive(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, -1, 0.0, 0, 0, 0, 0,
+                      1.0 / (s + 1), 10.0, False, np.zeros((s, n)), W, np.empty((1, n + 1)), np.empty(1))
+    return out[0], out[1], out[2], out[3]
