@@ -19,6 +19,10 @@ controller with exponent 1/(s + 1).
 At tolerances where the 3-stage method needs hundreds of steps per period, the order-9
 method takes a fraction of them; it has no event location (the order-5 method keeps that).
 
+The step (:func:`_attempt`) and the collocation polynomial (:func:`_accept`) serve the
+order-5 method of :mod:`landau.verify.hybrid.radau` too; the step loop around them is the
+one shared by the compiled stiff integrators (:mod:`landau.verify.hybrid.stiffdriver`).
+
 References
 ----------
 Hairer, E., Wanner, G. (1996). Solving Ordinary Differential Equations II, 2nd ed.,

@@ -7,14 +7,22 @@ eigen-decomposition of the classical code.  Error estimate and step-size control
 the standard radau5 recipe (embedded estimate (μ/h·I − J)⁻¹(f₀ + Σ eᵢZᵢ/h), predictive
 Gustafsson controller), dense output is the collocation polynomial.
 
+The step (stage solve, error estimate, collocation polynomial) is the s-stage Radau IIA of
+:mod:`landau.verify.hybrid.collocation` with this module's closed-form coefficients; the
+step loop — set-up, step-size control, event location, recording — is the one shared by the
+compiled stiff integrators (:mod:`landau.verify.hybrid.stiffdriver`).  What is particular to
+this method is here: its coefficients, and the retry of a failed Newton iteration with the
+stage Jacobians before the step is halved.
+
 Everything runs inside one ``numba`` function compiled once (cached on disk) that calls
 the right-hand side and Jacobian through first-class function pointers of signature
 ``f(t, y, p, out)`` / ``jac(t, y, p, out)`` — a new friction law compiles only its own
 two small functions.
 
 Crossings of ``y[ev_idx] = ev_val`` are located on the dense output (the collocation cubic,
-by the compiled event locator of :mod:`landau.verify.hybrid.crossing`) and recorded; the run can stop after a number of crossings in a
-chosen direction (Poincaré returns).  Accepted steps may be recorded for plots.
+by the compiled event locator of :mod:`landau.verify.hybrid.crossing`) and recorded; the run
+can stop after a number of crossings in a chosen direction (Poincaré returns).  Accepted steps
+may be recorded for plots.
 """
 
 from __future__ import annotations

@@ -27,6 +27,10 @@ stage, so it costs nothing); crossings of one component are located on it with t
 event locator of :mod:`landau.verify.hybrid.crossing`, exactly as the Radau IIA does on its
 collocation polynomial.
 
+The step loop — set-up, step-size control, event location, recording — is the one shared
+by the compiled stiff integrators (:mod:`landau.verify.hybrid.stiffdriver`); this module
+holds the coefficients, the step (:func:`_attempt`) and the Hermite interpolant (:func:`_accept`).
+
 :func:`rosenbrock_core` has the calling convention and the return value of
 :func:`landau.verify.hybrid.radau.radau_core` (with ``Q`` the Hermite cubic's coefficients),
 so a caller switches method by switching function; :class:`CompiledRODAS4` is the
