@@ -19,9 +19,11 @@ controller with exponent 1/(s + 1).
 At tolerances where the 3-stage method needs hundreds of steps per period, the order-9
 method takes a fraction of them; it has no event location (the order-5 method keeps that).
 
-The step (:func:`_attempt`) and the collocation polynomial (:func:`_accept`) serve the
-order-5 method of :mod:`landau.verify.hybrid.radau` too; the step loop around them is the
-one shared by the compiled stiff integrators (:mod:`landau.verify.hybrid.stiffdriver`).
+:func:`radau_iia_core` is the integrator of any s, with event location and recording;
+:func:`landau.verify.hybrid.radau.radau_core` is it for s = 3 with the closed-form coefficients,
+and :func:`collocation_core` for any s without events.  Its set-up, step-size control, event
+location and recording are the pieces shared by the compiled stiff integrators
+(:mod:`landau.verify.hybrid.stiffdriver`).
 
 References
 ----------
@@ -42,9 +44,10 @@ import numba as nb
 import numpy as np
 from numpy.polynomial import polynomial as P
 
-from landau.verify.hybrid.stiffdriver import EPS, _lu, _poly, _rms, _solve, make_driver
+from landau.verify.hybrid.stiffdriver import (EPS, _crossings, _finish, _guard, _lu, _next_size, _poly, _record,
+                                              _retry_size, _rms, _solve, _start)
 
-__all__ = ["RadauTableau", "radau_tableau", "collocation_core", "radau_drive", "workspace", "NEWTON_MAXITER"]
+__all__ = ["RadauTableau", "radau_tableau", "radau_iia_core", "collocation_core", "NEWTON_MAXITER"]
 
 
 @dataclass(frozen=True)
@@ -108,187 +111,229 @@ NEWTON_MAXITER = 7
 
 
 @nb.njit(cache=True)
-def _attempt(fun, jac, t, y, f0, h, p, rtol, atol, rejected, t_old, y_old, h_old, Q, ynew, cnt, W):
-    """One Radau IIA step (the ``attempt`` of :func:`landau.verify.hybrid.stiffdriver.make_driver`).
+def radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir, ev_stop,
+                   rec_cap, AR, CN, EE, mu, VI, full_retry, f0_first, EVBUF, EVDIR):
+    """Integrate from t0 to t_end with the s-stage Radau IIA given by ``AR`` (s × s), nodes ``CN``,
+    error weights ``EE``, ``mu`` = 1/γ₀ and ``VI`` (:class:`RadauTableau`).
 
     The stage increments Z solve Z = h(A ⊗ I)F(y + Z) by simplified Newton on I − h(A⊗J),
-    started from the previous step's collocation polynomial.  With ``W``'s ``full_retry``, a
-    failed iteration is retried at the same h with the stage Jacobians J(Y_b) in
-    I − h(A ⊗ I)·diag(J(Y_b)) (needed when the Jacobian changes by orders of magnitude within a
-    step: ẇ ∝ e^{−w} as v → 0); without it, h is halved.  Error estimate: (μ/h·I − J)⁻¹(f₀ +
-    Σ eᵢZᵢ/h), filtered once more through f when the previous attempt was rejected (Hairer &
+    started from the previous step's collocation polynomial.  With ``full_retry``, a failed
+    iteration is retried at the same h with the stage Jacobians J(Y_b) in
+    I − h(A ⊗ I)·diag(J(Y_b)) (needed when the Jacobian changes by orders of magnitude within
+    a step: ẇ ∝ e^{−w} as v → 0); without it, h is halved.  Error estimate:
+    (μ/h·I − J)⁻¹(f₀ + Σ eᵢZᵢ/h), filtered once more through f after a rejection (Hairer &
     Wanner 1996, IV.8); ``f0_first`` sums the terms onto f₀ (the order of the first order-5
-    code, kept so that its results do not change in the last bit).
+    code, kept so that its results do not change in the last bit).  The step loop is made of
+    the pieces of :mod:`landau.verify.hybrid.stiffdriver`.
+
+    Returns (status, t, y, counters, ev_t, ev_y, rec_t, rec_y, h, Q) as
+    :func:`landau.verify.hybrid.radau.radau_core` does; crossings need the cubic of s = 3.
     """
-    AR, CN, EE, mu, VI, full_retry, f0_first, newton_tol, J, Mf, Mr, pivF, pivR, Z, F, JB, R, ytmp, scale, \
-        err, ZE, use_full = W
-    n = y.shape[0]
+    n = y0.shape[0]
     s = AR.shape[0]
     N = s * n
-    jac(t, y, p, J)
-    cnt[3] += 1
-    for a in range(s):
-        for b in range(s):
+    y, f0, cnt, rec_t, rec_y, h, status, t_end = _start(fun, t0, y0, t_end, p, h0, max_step, rec_cap)
+    t = t0
+    J = np.empty((n, n))
+    Mf = np.empty((N, N))
+    Mr = np.empty((n, n))
+    pivF = np.empty(N, dtype=np.int64)
+    pivR = np.empty(n, dtype=np.int64)
+    Z = np.zeros((s, n))
+    F = np.empty((s, n))
+    JB = np.empty((s, n, n))
+    R = np.empty(N)
+    ytmp = np.empty(n)
+    ynew = np.empty(n)
+    scale = np.empty(n)
+    err = np.empty(n)
+    ZE = np.empty(n)
+    Q = np.zeros((s, n))
+    Qprev = np.zeros((s, n))
+    yprev = np.empty(n)
+    have_prev = False
+    tprev = 0.0
+    hprev = 1.0
+    newton_tol = max(10 * EPS / rtol, min(0.03, rtol ** 0.5))
+    expo = 1.0 / (s + 1)
+    use_full = False
+    err_old = -1.0
+    h_old = -1.0
+    rejected = False
+    nev_dir = 0
+    while t < t_end:
+        status, h = _guard(cnt[0] + cnt[1], max_steps, t, t_end, h)
+        if status != 0:
+            break
+        jac(t, y, p, J)
+        cnt[3] += 1
+        for a in range(s):
+            for b in range(s):
+                for i in range(n):
+                    for j in range(n):
+                        Mf[a * n + i, b * n + j] = -h * AR[a, b] * J[i, j]
+        for i in range(N):
+            Mf[i, i] += 1.0
+        ok = _lu(Mf, pivF)
+        cnt[4] += 1
+        # Newton start: extrapolate the previous collocation polynomial
+        for a in range(s):
             for i in range(n):
-                for j in range(n):
-                    Mf[a * n + i, b * n + j] = -h * AR[a, b] * J[i, j]
-    for i in range(N):
-        Mf[i, i] += 1.0
-    ok = _lu(Mf, pivF)
-    cnt[4] += 1
-    # Newton start: extrapolate the previous collocation polynomial
-    for a in range(s):
-        for i in range(n):
-            if cnt[0] > 0:
-                x = (t + CN[a] * h - t_old) / h_old
-                Z[a, i] = _poly(y_old, Q, x, i) - y[i]
-            else:
-                Z[a, i] = 0.0
-    full = use_full[0] == 1
-    converged = False
-    dW_old = -1.0
-    rate = -1.0
-    n_iter = 0
-    if ok:
-        for it in range(3 * NEWTON_MAXITER if full else NEWTON_MAXITER):
-            n_iter = min(it + 1, NEWTON_MAXITER)
-            finite = True
-            for a in range(s):
-                for i in range(n):
-                    ytmp[i] = y[i] + Z[a, i]
-                fa = F[a]
-                fun(t + CN[a] * h, ytmp, p, fa)
-                cnt[2] += 1
-                for i in range(n):
-                    if not math.isfinite(fa[i]):
-                        finite = False
-            if not finite:
-                break
-            if full:
-                for b in range(s):
-                    for i in range(n):
-                        ytmp[i] = y[i] + Z[b, i]
-                    jac(t + CN[b] * h, ytmp, p, JB[b])
-                    cnt[3] += 1
+                if have_prev:
+                    x = (t + CN[a] * h - tprev) / hprev
+                    Z[a, i] = _poly(yprev, Qprev, x, i) - y[i]
+                else:
+                    Z[a, i] = 0.0
+        converged = False
+        dW_old = -1.0
+        rate = -1.0
+        n_iter = 0
+        if ok:
+            for it in range(3 * NEWTON_MAXITER if use_full else NEWTON_MAXITER):
+                n_iter = min(it + 1, NEWTON_MAXITER)
+                finite = True
                 for a in range(s):
+                    for i in range(n):
+                        ytmp[i] = y[i] + Z[a, i]
+                    fa = F[a]
+                    fun(t + CN[a] * h, ytmp, p, fa)
+                    cnt[2] += 1
+                    for i in range(n):
+                        if not math.isfinite(fa[i]):
+                            finite = False
+                if not finite:
+                    break
+                if use_full:
                     for b in range(s):
                         for i in range(n):
-                            for j in range(n):
-                                Mf[a * n + i, b * n + j] = -h * AR[a, b] * JB[b, i, j]
-                for i in range(N):
-                    Mf[i, i] += 1.0
-                if not _lu(Mf, pivF):
+                            ytmp[i] = y[i] + Z[b, i]
+                        jac(t + CN[b] * h, ytmp, p, JB[b])
+                        cnt[3] += 1
+                    for a in range(s):
+                        for b in range(s):
+                            for i in range(n):
+                                for j in range(n):
+                                    Mf[a * n + i, b * n + j] = -h * AR[a, b] * JB[b, i, j]
+                    for i in range(N):
+                        Mf[i, i] += 1.0
+                    if not _lu(Mf, pivF):
+                        break
+                    cnt[4] += 1
+                for a in range(s):
+                    for i in range(n):
+                        acc = -Z[a, i]
+                        for b in range(s):
+                            acc += h * AR[a, b] * F[b, i]
+                        R[a * n + i] = acc
+                _solve(Mf, pivF, R)
+                dW = 0.0
+                for a in range(s):
+                    for i in range(n):
+                        sc = atol[i] + abs(y[i] + Z[a, i]) * rtol
+                        r = R[a * n + i] / sc
+                        dW += r * r
+                        Z[a, i] += R[a * n + i]
+                dW = math.sqrt(dW / N)
+                if dW_old > 0:
+                    rate = dW / dW_old
+                if use_full:
+                    if (rate >= 1.0 and it >= 4) or it >= 3 * NEWTON_MAXITER - 1:
+                        break
+                    if dW < newton_tol and rate < 1.0:
+                        converged = True
+                        break
+                    dW_old = dW
+                    continue
+                if rate >= 1.0 or (rate > 0 and rate ** (NEWTON_MAXITER - it) / (1 - rate) * dW > newton_tol):
                     break
-                cnt[4] += 1
-            for a in range(s):
-                for i in range(n):
-                    acc = -Z[a, i]
-                    for b in range(s):
-                        acc += h * AR[a, b] * F[b, i]
-                    R[a * n + i] = acc
-            _solve(Mf, pivF, R)
-            dW = 0.0
-            for a in range(s):
-                for i in range(n):
-                    sc = atol[i] + abs(y[i] + Z[a, i]) * rtol
-                    r = R[a * n + i] / sc
-                    dW += r * r
-                    Z[a, i] += R[a * n + i]
-            dW = math.sqrt(dW / N)
-            if dW_old > 0:
-                rate = dW / dW_old
-            if full:
-                if (rate >= 1.0 and it >= 4) or it >= 3 * NEWTON_MAXITER - 1:
-                    break
-                if dW < newton_tol and rate < 1.0:
+                if dW == 0.0 or (rate > 0 and rate / (1 - rate) * dW < newton_tol):
                     converged = True
                     break
                 dW_old = dW
-                continue
-            if rate >= 1.0 or (rate > 0 and rate ** (NEWTON_MAXITER - it) / (1 - rate) * dW > newton_tol):
-                break
-            if dW == 0.0 or (rate > 0 and rate / (1 - rate) * dW < newton_tol):
-                converged = True
-                break
-            dW_old = dW
-    if not converged:
-        cnt[5] += 1
-        if full_retry and not full:
-            use_full[0] = 1
-            return 1.0, 0.0, 0.0
-        return 0.5, 0.0, 0.0
-    for i in range(n):
-        ynew[i] = y[i] + Z[s - 1, i]
-    # embedded error estimate: (μ/h I − J)⁻¹ (f0 + Σ e_a Z_a / h)
-    for i in range(n):
-        for j in range(n):
-            Mr[i, j] = -J[i, j]
-        Mr[i, i] += mu / h
-    _lu(Mr, pivR)
-    cnt[4] += 1
-    for i in range(n):
-        if f0_first:
-            acc = f0[i]
-            for a in range(s):
-                acc += EE[a] * Z[a, i] / h
-            err[i] = acc
-            ZE[i] = acc - f0[i]
-        else:
-            acc = 0.0
-            for a in range(s):
-                acc += EE[a] * Z[a, i] / h
-            ZE[i] = acc
-            err[i] = f0[i] + acc
-        scale[i] = atol[i] + max(abs(y[i]), abs(ynew[i])) * rtol
-    _solve(Mr, pivR, err)
-    err_norm = _rms(err, scale)
-    if rejected and err_norm > 1.0:
+        if not converged:
+            cnt[5] += 1
+            cnt[1] += 1
+            if use_full or not full_retry:
+                h *= 0.5
+            use_full = full_retry
+            rejected = True
+            continue
         for i in range(n):
-            ytmp[i] = y[i] + err[i]
-        fun(t, ytmp, p, err)
-        cnt[2] += 1
+            ynew[i] = y[i] + Z[s - 1, i]
+        # embedded error estimate: (μ/h I − J)⁻¹ (f0 + Σ e_a Z_a / h)
         for i in range(n):
-            err[i] += ZE[i]
+            for j in range(n):
+                Mr[i, j] = -J[i, j]
+            Mr[i, i] += mu / h
+        _lu(Mr, pivR)
+        cnt[4] += 1
+        for i in range(n):
+            if f0_first:
+                acc = f0[i]
+                for a in range(s):
+                    acc += EE[a] * Z[a, i] / h
+                err[i] = acc
+                ZE[i] = acc - f0[i]
+            else:
+                acc = 0.0
+                for a in range(s):
+                    acc += EE[a] * Z[a, i] / h
+                ZE[i] = acc
+                err[i] = f0[i] + acc
+            scale[i] = atol[i] + max(abs(y[i]), abs(ynew[i])) * rtol
         _solve(Mr, pivR, err)
         err_norm = _rms(err, scale)
-    return 0.0, err_norm, 0.9 * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter)
-
-
-@nb.njit(cache=True)
-def _accept(y, ynew, f0, fnew, h, Q, W):
-    """The step's collocation polynomial Q = V⁻¹Z; the next step starts with simplified Newton."""
-    VI, Z, use_full = W[4], W[13], W[21]  # positions in the tuple of :func:`workspace`
-    s, n = Z.shape
-    for j in range(s):
+        if rejected and err_norm > 1.0:
+            for i in range(n):
+                ytmp[i] = y[i] + err[i]
+            fun(t, ytmp, p, err)
+            cnt[2] += 1
+            for i in range(n):
+                err[i] += ZE[i]
+            _solve(Mr, pivR, err)
+            err_norm = _rms(err, scale)
+        safety = 0.9 * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter)
+        h_retry = _retry_size(h, err_norm, safety, expo)
+        if h_retry > 0.0:
+            cnt[1] += 1
+            h = h_retry
+            rejected = True
+            continue
+        # accepted: the collocation polynomial Q = V⁻¹Z is the dense output
+        cnt[0] += 1
+        use_full = False
+        for j in range(s):
+            for i in range(n):
+                acc = 0.0
+                for a in range(s):
+                    acc += VI[j, a] * Z[a, i]
+                Q[j, i] = acc
+        t_new = t + h
+        stop = False
+        if ev_idx >= 0:
+            stop, nev_dir = _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF, EVDIR)
+        # keep this step's polynomial for the next Newton start
         for i in range(n):
-            acc = 0.0
-            for a in range(s):
-                acc += VI[j, a] * Z[a, i]
-            Q[j, i] = acc
-    use_full[0] = 0
-
-
-#: the step loop of :mod:`landau.verify.hybrid.stiffdriver` bound to the Radau IIA step
-radau_drive = make_driver(_attempt, _accept)
-
-
-@nb.njit(cache=True)
-def workspace(n, AR, CN, EE, mu, VI, rtol, full_retry, f0_first):
-    """Coefficients and work arrays of :func:`_attempt` for n components and the tableau
-    (AR, CN, EE, mu, VI) (:class:`RadauTableau`).
-
-    ``full_retry``: retry a failed Newton iteration with the stage Jacobians before halving h;
-    ``f0_first``: the summation order of the error estimate (:func:`_attempt`).  The tuple is
-    (AR, CN, EE, mu, VI, full_retry, f0_first, newton_tol, J, M (sn × sn), M (n × n), pivots,
-    pivots, Z, F, stage Jacobians, residual, y, scale, err, ZE, full-Newton flag).
-    """
-    s = AR.shape[0]
-    N = s * n
-    newton_tol = max(10 * EPS / rtol, min(0.03, rtol ** 0.5))
-    return (AR, CN, EE, mu, VI, full_retry, f0_first, newton_tol, np.empty((n, n)), np.empty((N, N)),
-            np.empty((n, n)), np.empty(N, dtype=np.int64), np.empty(n, dtype=np.int64), np.zeros((s, n)),
-            np.empty((s, n)), np.empty((s, n, n)), np.empty(N), np.empty(n), np.empty(n), np.empty(n), np.empty(n),
-            np.zeros(1, dtype=np.int64))
+            yprev[i] = y[i]
+        for j in range(s):
+            for i in range(n):
+                Qprev[j, i] = Q[j, i]
+        tprev = t
+        hprev = h
+        have_prev = True
+        t = t_new
+        for i in range(n):
+            y[i] = ynew[i]
+        fun(t, y, p, f0)
+        cnt[2] += 1
+        if rec_cap > 0:
+            _record(cnt, rec_t, rec_y, t, y)
+        if stop:
+            status = 1
+            break
+        h, h_old, err_old = _next_size(h, h_old, err_norm, err_old, rejected, safety, expo, 10.0, max_step)
+        rejected = False
+    return _finish(status, t, y, cnt, EVBUF, rec_t, rec_y, h, Qprev)
 
 
 @nb.njit(cache=True)
@@ -298,11 +343,10 @@ def collocation_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_s
 
     Returns (status, t, y, counters) with the status codes of
     :data:`landau.verify.hybrid.radau.STATUS` and counters = [accepted, rejected,
-    f evaluations, Jacobians, LU decompositions, Newton failures].
+    f evaluations, Jacobians, LU decompositions, Newton failures] (:func:`radau_iia_core`
+    without event location or recording; a failed Newton iteration halves the step).
     """
     n = y0.shape[0]
-    s = AR.shape[0]
-    W = workspace(n, AR, CN, EE, mu, VI, rtol, False, False)
-    out = radau_drive(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, -1, 0.0, 0, 0, 0, 0,
-                      1.0 / (s + 1), 10.0, False, np.zeros((s, n)), W, np.empty((1, n + 1)), np.empty(1))
+    out = radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, -1, 0.0, 0, 0, 0, AR, CN,
+                         EE, mu, VI, False, False, np.empty((1, n + 1)), np.empty(1))
     return out[0], out[1], out[2], out[3]

@@ -7,12 +7,12 @@ eigen-decomposition of the classical code.  Error estimate and step-size control
 the standard radau5 recipe (embedded estimate (μ/h·I − J)⁻¹(f₀ + Σ eᵢZᵢ/h), predictive
 Gustafsson controller), dense output is the collocation polynomial.
 
-The step (stage solve, error estimate, collocation polynomial) is the s-stage Radau IIA of
-:mod:`landau.verify.hybrid.collocation` with this module's closed-form coefficients; the
-step loop — set-up, step-size control, event location, recording — is the one shared by the
-compiled stiff integrators (:mod:`landau.verify.hybrid.stiffdriver`).  What is particular to
-this method is here: its coefficients, and the retry of a failed Newton iteration with the
-stage Jacobians before the step is halved.
+The integrator is the s-stage Radau IIA of :mod:`landau.verify.hybrid.collocation` with this
+module's closed-form coefficients; its set-up, step-size control, event location and recording
+are the pieces shared by the compiled stiff integrators
+(:mod:`landau.verify.hybrid.stiffdriver`).  What is particular to this method is here: its
+coefficients, and the retry of a failed Newton iteration with the stage Jacobians before the
+step is halved.
 
 Everything runs inside one ``numba`` function compiled once (cached on disk) that calls
 the right-hand side and Jacobian through first-class function pointers of signature
@@ -33,7 +33,7 @@ import numba as nb
 import numpy as np
 from numba import types
 
-from landau.verify.hybrid.collocation import NEWTON_MAXITER, radau_drive, workspace
+from landau.verify.hybrid.collocation import NEWTON_MAXITER, radau_iia_core  # noqa: F401
 from landau.verify.hybrid.stiffdriver import STATUS, _lu, _poly, _rms, _solve  # noqa: F401  (re-exported)
 
 SQ6 = math.sqrt(6.0)
@@ -131,11 +131,8 @@ def radau_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
     crossings in direction ``ev_dir`` (±1, 0 = either).  ``h`` is the next step size and ``Q``
     the last accepted step's collocation polynomial (y(t_old + x h_old) = y_old + Σ_j Q_j x^{j+1}),
     so that a caller can drive the method one step at a time (``max_steps = 1``).  The step is
-    :func:`landau.verify.hybrid.collocation._attempt` with this module's coefficients, a failed
-    Newton iteration retried with the stage Jacobians, and the loop of
-    :mod:`landau.verify.hybrid.stiffdriver`.
+    :func:`landau.verify.hybrid.collocation.radau_iia_core` with this module's coefficients and
+    a failed Newton iteration retried with the stage Jacobians.
     """
-    n = y0.shape[0]
-    W = workspace(n, AR, _NODES, E_ERR, MU_REAL, VI, rtol, True, True)
-    return radau_drive(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
-                       ev_stop, rec_cap, 0, 0.25, 10.0, False, np.zeros((3, n)), W, EVBUF, EVDIR)
+    return radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
+                          ev_stop, rec_cap, AR, _NODES, E_ERR, MU_REAL, VI, True, True, EVBUF, EVDIR)

@@ -27,9 +27,9 @@ stage, so it costs nothing); crossings of one component are located on it with t
 event locator of :mod:`landau.verify.hybrid.crossing`, exactly as the Radau IIA does on its
 collocation polynomial.
 
-The step loop — set-up, step-size control, event location, recording — is the one shared
-by the compiled stiff integrators (:mod:`landau.verify.hybrid.stiffdriver`); this module
-holds the coefficients, the step (:func:`_attempt`) and the Hermite interpolant (:func:`_accept`).
+The set-up, step-size control, event location and recording are the pieces shared by the
+compiled stiff integrators (:mod:`landau.verify.hybrid.stiffdriver`); this module holds the
+coefficients, the step and the Hermite interpolant.
 
 :func:`rosenbrock_core` has the calling convention and the return value of
 :func:`landau.verify.hybrid.radau.radau_core` (with ``Q`` the Hermite cubic's coefficients),
@@ -54,7 +54,8 @@ import numba as nb
 import numpy as np
 
 from landau.verify.hybrid.compiled import _Collocation, _CompiledFactory, _CompiledStepper
-from landau.verify.hybrid.stiffdriver import EPS, STATUS, _lu, _rms, _solve, make_driver
+from landau.verify.hybrid.stiffdriver import (EPS, STATUS, _crossings, _finish, _guard, _lu, _next_size, _record,
+                                              _retry_size, _rms, _solve, _start)
 
 __all__ = ["RODAS4_GAMMA", "RODAS4_A", "RODAS4_C", "RODAS4_CNODES", "RODAS4_D", "RODAS4_M", "RODAS4_E",
            "STATUS", "rosenbrock_core", "tableau_classical", "CompiledRODAS4", "RODAS4Solver"]
@@ -136,85 +137,6 @@ def tableau_classical(gamma: float = RODAS4_GAMMA, A=RODAS4_A, C=RODAS4_C, m=ROD
 
 
 @nb.njit(cache=True)
-def _attempt(fun, jac, t, y, f0, h, p, rtol, atol, rejected, t_old, y_old, h_old, Q, ynew, cnt, W):
-    """One Rosenbrock step (the ``attempt`` of :func:`landau.verify.hybrid.stiffdriver.make_driver`).
-
-    ((1/(hγ)) I − J) uᵢ = f(t + cᵢh, y₀ + Σⱼ<ᵢ aᵢⱼ uⱼ) + Σⱼ<ᵢ (Cᵢⱼ/h) uⱼ + h dᵢ ∂f/∂t, one LU
-    per attempt; the Jacobian (and ∂f/∂t) is evaluated at a new point only, a rejected
-    attempt reuses it.  Fails (h·½) on a singular matrix and (h·¼) on a non-finite stage.
-    """
-    RA, RC, RCN, RD, RM, RE, autonomous, J, M, piv, U, ft, ytmp, fs, err, scale = W
-    n = y.shape[0]
-    s = RM.shape[0]
-    gam = RD[0]
-    if not rejected:
-        jac(t, y, p, J)
-        cnt[3] += 1
-        if autonomous == 0:
-            dt = math.sqrt(EPS) * max(1e-5, abs(t))
-            fun(t + dt, y, p, ft)
-            cnt[2] += 1
-            for i in range(n):
-                ft[i] = (ft[i] - f0[i]) / dt
-    fac = 1.0 / (h * gam)
-    for i in range(n):
-        for j in range(n):
-            M[i, j] = -J[i, j]
-        M[i, i] += fac
-    ok = _lu(M, piv)
-    cnt[4] += 1
-    if not ok:
-        return 0.5, 0.0, 0.0
-    for st in range(s):
-        if st == 0:
-            for i in range(n):
-                fs[i] = f0[i]
-        else:
-            for i in range(n):
-                acc = y[i]
-                for j in range(st):
-                    acc += RA[st, j] * U[j, i]
-                ytmp[i] = acc
-            fun(t + RCN[st] * h, ytmp, p, fs)
-            cnt[2] += 1
-        finite = True
-        for i in range(n):
-            acc = fs[i] + h * RD[st] * ft[i]
-            for j in range(st):
-                acc += RC[st, j] * U[j, i] / h
-            if not math.isfinite(acc):
-                finite = False
-            U[st, i] = acc
-        if not finite:
-            return 0.25, 0.0, 0.0
-        _solve(M, piv, U[st])
-    for i in range(n):
-        a = y[i]
-        e = 0.0
-        for j in range(s):
-            a += RM[j] * U[j, i]
-            e += RE[j] * U[j, i]
-        ynew[i] = a
-        err[i] = e
-        scale[i] = atol[i] + max(abs(y[i]), abs(a)) * rtol
-    return 0.0, _rms(err, scale), 0.9
-
-
-@nb.njit(cache=True)
-def _accept(y, ynew, f0, fnew, h, Q, W):
-    """The step's cubic Hermite interpolant (f at the new point is the next step's first stage)."""
-    for i in range(y.shape[0]):
-        d = ynew[i] - y[i]
-        Q[0, i] = h * f0[i]
-        Q[1, i] = 3.0 * d - h * (2.0 * f0[i] + fnew[i])
-        Q[2, i] = h * (f0[i] + fnew[i]) - 2.0 * d
-
-
-#: the step loop of :mod:`landau.verify.hybrid.stiffdriver` bound to the Rosenbrock step
-_drive = make_driver(_attempt, _accept)
-
-
-@nb.njit(cache=True)
 def rosenbrock_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                     ev_idx, ev_val, ev_dir, ev_stop, rec_cap, autonomous, one_step, RA, RC, RCN, RD, RM, RE, EVBUF,
                     EVDIR):
@@ -227,16 +149,135 @@ def rosenbrock_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_st
     y(t_old + x h_old) = y_old + Σ_j Q_j x^{j+1}.  ``autonomous = 0`` adds the h dᵢ ∂f/∂t
     term (∂f/∂t by a forward difference, one more evaluation per step); ``one_step = 1`` returns
     after the first accepted step (status 0).  ``RA``/``RC``
-    (s × s), ``RCN``, ``RD``, ``RM``, ``RE`` (s) are the transformed coefficients.  The run
-    ends (status −3) at an accepted state where f is not finite.
+    (s × s), ``RCN``, ``RD``, ``RM``, ``RE`` (s) are the transformed coefficients.
     """
     n = y0.shape[0]
     s = RM.shape[0]
-    W = (RA, RC, RCN, RD, RM, RE, autonomous, np.empty((n, n)), np.empty((n, n)), np.empty(n, dtype=np.int64),
-         np.empty((s, n)), np.zeros(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n))
-    # exponent 1/(q + 1) with q = 3, the embedded estimate's order
-    return _drive(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir, ev_stop,
-                  rec_cap, one_step, 0.25, 6.0, True, np.zeros((3, n)), W, EVBUF, EVDIR)
+    gam = RD[0]
+    y, f0, cnt, rec_t, rec_y, h, status, t_end = _start(fun, t0, y0, t_end, p, h0, max_step, rec_cap)
+    t = t0
+    J = np.empty((n, n))
+    M = np.empty((n, n))
+    piv = np.empty(n, dtype=np.int64)
+    U = np.empty((s, n))
+    ft = np.zeros(n)
+    ytmp = np.empty(n)
+    fs = np.empty(n)
+    ynew = np.empty(n)
+    fnew = np.empty(n)
+    err = np.empty(n)
+    scale = np.empty(n)
+    Q = np.zeros((3, n))
+    err_old = -1.0
+    h_old = -1.0
+    rejected = False
+    nev_dir = 0
+    need_jac = True
+    while t < t_end:
+        status, h = _guard(cnt[0] + cnt[1], max_steps, t, t_end, h)
+        if status != 0:
+            break
+        if need_jac:
+            jac(t, y, p, J)
+            cnt[3] += 1
+            if autonomous == 0:
+                dt = math.sqrt(EPS) * max(1e-5, abs(t))
+                fun(t + dt, y, p, ft)
+                cnt[2] += 1
+                for i in range(n):
+                    ft[i] = (ft[i] - f0[i]) / dt
+            need_jac = False
+        fac = 1.0 / (h * gam)
+        for i in range(n):
+            for j in range(n):
+                M[i, j] = -J[i, j]
+            M[i, i] += fac
+        ok = _lu(M, piv)
+        cnt[4] += 1
+        if not ok:
+            cnt[1] += 1
+            h *= 0.5
+            rejected = True
+            continue
+        finite = True
+        for st in range(s):
+            if st == 0:
+                for i in range(n):
+                    fs[i] = f0[i]
+            else:
+                for i in range(n):
+                    acc = y[i]
+                    for j in range(st):
+                        acc += RA[st, j] * U[j, i]
+                    ytmp[i] = acc
+                fun(t + RCN[st] * h, ytmp, p, fs)
+                cnt[2] += 1
+            for i in range(n):
+                acc = fs[i] + h * RD[st] * ft[i]
+                for j in range(st):
+                    acc += RC[st, j] * U[j, i] / h
+                if not math.isfinite(acc):
+                    finite = False
+                U[st, i] = acc
+            if not finite:
+                break
+            _solve(M, piv, U[st])
+        if not finite:
+            cnt[1] += 1
+            h *= 0.25
+            rejected = True
+            continue
+        for i in range(n):
+            a = y[i]
+            e = 0.0
+            for j in range(s):
+                a += RM[j] * U[j, i]
+                e += RE[j] * U[j, i]
+            ynew[i] = a
+            err[i] = e
+            scale[i] = atol[i] + max(abs(y[i]), abs(a)) * rtol
+        err_norm = _rms(err, scale)
+        # the embedded estimate is of order 3: exponent 1/4
+        h_retry = _retry_size(h, err_norm, 0.9, 0.25)
+        if h_retry > 0.0:
+            cnt[1] += 1
+            h = h_retry
+            rejected = True
+            continue
+        # accepted: f at the new point is the next step's first stage and the Hermite slope
+        t_new = t + h
+        fun(t_new, ynew, p, fnew)
+        cnt[2] += 1
+        cnt[0] += 1
+        fin = True
+        for i in range(n):
+            if not math.isfinite(fnew[i]):
+                fin = False
+            d = ynew[i] - y[i]
+            Q[0, i] = h * f0[i]
+            Q[1, i] = 3.0 * d - h * (2.0 * f0[i] + fnew[i])
+            Q[2, i] = h * (f0[i] + fnew[i]) - 2.0 * d
+        stop = False
+        if ev_idx >= 0:
+            stop, nev_dir = _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF, EVDIR)
+        t = t_new
+        for i in range(n):
+            y[i] = ynew[i]
+            f0[i] = fnew[i]
+        need_jac = True
+        if not fin:
+            status = -3
+            break
+        if rec_cap > 0:
+            _record(cnt, rec_t, rec_y, t, y)
+        if stop:
+            status = 1
+            break
+        h, h_old, err_old = _next_size(h, h_old, err_norm, err_old, rejected, 0.9, 0.25, 6.0, max_step)
+        rejected = False
+        if one_step == 1:
+            break
+    return _finish(status, t, y, cnt, EVBUF, rec_t, rec_y, h, Q)
 
 
 # --------------------------------------------------------------------------------------------

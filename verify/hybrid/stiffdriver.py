@@ -1,29 +1,35 @@
-"""The step loop shared by the compiled stiff integrators, and the pieces it is made of.
+"""The pieces of the step loop shared by the compiled stiff integrators.
 
-The order-5 Radau IIA (:mod:`landau.verify.hybrid.radau`), the s-stage Radau IIA
-(:mod:`landau.verify.hybrid.collocation`) and RODAS4 (:mod:`landau.verify.hybrid.rosenbrock`)
-differ only in how one step is attempted — the stage solve and the embedded error estimate —
-and in their dense output.  Everything else is here, written once:
+The s-stage Radau IIA (:mod:`landau.verify.hybrid.collocation`, whose s = 3 instance is the
+default order-5 method of :mod:`landau.verify.hybrid.radau`) and RODAS4
+(:mod:`landau.verify.hybrid.rosenbrock`) differ in how one step is attempted — the stage
+solve and the embedded error estimate — and in their dense output.  Everything else is
+here, written once:
 
-* the set-up (first evaluation of f, the check that the initial state is finite, the counters,
-  the buffers of recorded steps), the step-size guards (end of the interval, step-size
-  underflow, the step budget) and the returned tuple;
-* the rejection of a step (stage failure: the factor the method asks for; a non-finite error:
-  h/4; an error above the tolerance: h·max(0.2, safety·err^(−1/(q+1))));
-* the predictive (Gustafsson 1994) step-size controller after an accepted step, with the
-  exponent 1/(q + 1) of the estimate's order q and the method's largest growth factor;
-* crossings of ``y[ev_idx] = ev_val`` located on the accepted step's dense output when that is
-  a cubic (the compiled event locator of :mod:`landau.verify.hybrid.crossing`), with a stop
-  after a number of crossings in a chosen direction (Poincaré returns), and the recording of
-  accepted steps;
-* the small dense linear algebra (LU with partial pivoting and its solve) and the scaled RMS
-  error norm.
+* the set-up (:func:`_start`: first evaluation of f, the check that the initial state is
+  finite, the counters, the buffers of recorded steps) and the returned tuple
+  (:func:`_finish`);
+* the guards before a step (:func:`_guard`: the step budget, the end of the interval,
+  step-size underflow);
+* the error test (:func:`_retry_size`: a non-finite error retries with h/4, an error above
+  the tolerance with h·max(0.2, safety·err^(−1/(q+1)))) and the predictive (Gustafsson 1994)
+  controller after an accepted step (:func:`_next_size`), with the exponent 1/(q + 1) of the
+  estimate's order q and the method's largest growth factor;
+* crossings of ``y[ev_idx] = ev_val`` located on an accepted step's cubic dense output (the
+  compiled event locator of :mod:`landau.verify.hybrid.crossing`), with a stop after a number
+  of crossings in a chosen direction (Poincaré returns) (:func:`_crossings`), and the recording
+  of accepted steps (:func:`_record`);
+* the small dense linear algebra (LU with partial pivoting, its solve), the scaled RMS error
+  norm and the evaluation of a dense output polynomial.
 
-:func:`make_driver` binds the loop to one method's two compiled functions (``attempt`` and
-``accept``, contracts in its docstring).  numba inlines them as it does any called function;
-the bound loop is compiled as part of the method's core (``radau_core``, …), which numba caches
-on disk with it.  numba's cache of a core is invalidated only by changes to the core's own
-source file: after editing this module, delete the cache files of the cores and of
+Each method keeps its own ``while`` loop over these pieces, with its stage arrays as local
+variables: handing a method's work arrays to a shared loop (as a tuple, or as arguments of a
+function called every step) costs numba two reference-count updates per array per step,
+measured 20–120 % of a step of the 3-state spring–block.  The pieces take scalars or few arrays
+and are called once per run, once per step or only when events or recording are asked for.
+
+numba's cache of a compiled function is invalidated only by changes to its own source file:
+after editing this module, delete the cache files of the cores and of
 :mod:`landau.verify.hybrid.fastcall` (``__pycache__/*.nbi``, ``*.nbc``) in a development
 checkout.
 
@@ -44,7 +50,7 @@ import numpy as np
 
 from landau.verify.hybrid.crossing import cubic, cubic_crossing
 
-__all__ = ["EPS", "STATUS", "make_driver"]
+__all__ = ["EPS", "STATUS"]
 
 #: double-precision machine epsilon
 EPS = 2.220446049250313e-16
@@ -165,141 +171,91 @@ def _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF,
     return False, nev_dir
 
 
-def make_driver(attempt, accept):
-    """The compiled step loop bound to one method.
+@nb.njit(cache=True)
+def _start(fun, t0, y0, t_end, p, h0, max_step, rec_cap):
+    """The set-up of a run: f at the start (counted), the first step size, the counters and the
+    buffers of recorded steps (the first holding the start).
 
-    Parameters
-    ----------
-    attempt : numba function
-        ``attempt(fun, jac, t, y, f0, h, p, rtol, atol, rejected, t_old, y_old, h_old, Q, ynew,
-        cnt, W) -> (fail, err_norm, safety)``: try one step of size h from (t, y) (f0 = f(t, y));
-        write the new state into ``ynew`` and return the scaled error norm and the safety factor
-        of the step-size controller, or ``fail > 0`` (the step is retried with h·fail) when
-        the stages could not be computed.  ``rejected`` says whether the previous attempt from
-        this point was rejected; (t_old, y_old, h_old, Q) describe the last accepted step
-        (``cnt[0] > 0``).  It counts its evaluations, Jacobians, LU decompositions and
-        Newton failures in ``cnt[2:6]``; ``W`` is the method's coefficients and workspace.
-    accept : numba function
-        ``accept(y, ynew, f0, fnew, h, Q, W)``, called once a step is accepted (fnew =
-        f(t + h, ynew)): write the step's dense output y(t + xh) = y + Σ_j Q_j x^{j+1} into
-        ``Q`` and reset the method's per-step state.
-
-    Returns
-    -------
-    numba dispatcher
-        ``drive(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val,
-        ev_dir, ev_stop, rec_cap, one_step, expo, facmax, stop_nonfinite, Q, W, EVBUF, EVDIR)``
-        integrating from t0 to t_end.  It returns (status, t, y, counters, ev_t, ev_y, rec_t,
-        rec_y, h, Q) with the codes of :data:`STATUS`; counters = [accepted steps, rejected
-        steps, f evaluations, Jacobians, LU decompositions, Newton failures, events, recorded
-        steps]; ``h`` is the next step size and ``Q`` the last accepted step's dense output,
-        so that a caller can drive the method one step at a time (``max_steps = 1``, or
-        ``one_step = 1``: return after the first accepted step).  ``EVBUF`` (m × (n + 1)) /
-        ``EVDIR`` (m) receive crossings of ``y[ev_idx] = ev_val`` (``ev_idx < 0``: none; the
-        dense output must then be a cubic, ``Q`` of three rows); ``ev_stop > 0`` stops after
-        that many crossings in direction ``ev_dir`` (±1, 0 = either); ``rec_cap`` accepted
-        steps are recorded.  ``expo`` = 1/(q + 1) for an error estimate of order q, ``facmax``
-        the largest step-size growth; ``stop_nonfinite`` ends the run (status −3) at an
-        accepted state where f is not finite.
+    Returns (y, f0, cnt, rec_t, rec_y, h, status, t_end): a non-finite start gives status −3
+    and t_end = t0, so that no step is taken.
     """
+    n = y0.shape[0]
+    cnt = np.zeros(8, dtype=np.int64)
+    rec_t = np.empty(rec_cap)
+    rec_y = np.empty((rec_cap, n))
+    y = y0.copy()
+    f0 = np.empty(n)
+    fun(t0, y, p, f0)
+    cnt[2] += 1
+    h = min(h0, max_step, t_end - t0)
+    status = 0
+    for i in range(n):
+        if not math.isfinite(y[i]) or not math.isfinite(f0[i]):
+            status = -3
+            t_end = t0
+    if rec_cap > 0:
+        rec_t[0] = t0
+        rec_y[0] = y
+        cnt[7] = 1
+    return y, f0, cnt, rec_t, rec_y, h, status, t_end
 
-    @nb.njit
-    def drive(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir, ev_stop,
-              rec_cap, one_step, expo, facmax, stop_nonfinite, Q, W, EVBUF, EVDIR):
-        n = y0.shape[0]
-        cnt = np.zeros(8, dtype=np.int64)
-        rec_t = np.empty(rec_cap)
-        rec_y = np.empty((rec_cap, n))
-        y = y0.copy()
-        t = t0
-        f0 = np.empty(n)
-        fun(t, y, p, f0)
-        cnt[2] += 1
-        ynew = np.empty(n)
-        fnew = np.empty(n)
-        y_old = np.empty(n)
-        t_old = t0
-        h = min(h0, max_step, t_end - t0)
-        err_old = -1.0
-        h_old = -1.0
-        rejected = False
-        status = 0
-        nev_dir = 0
-        for i in range(n):
-            if not math.isfinite(y[i]) or not math.isfinite(f0[i]):
-                status = -3
-                t_end = t
-        if rec_cap > 0:
-            rec_t[0] = t
-            rec_y[0] = y
-            cnt[7] = 1
-        while t < t_end:
-            if cnt[0] + cnt[1] >= max_steps:
-                status = -2
-                break
-            if h > t_end - t:
-                h = t_end - t
-            if h < 10 * EPS * max(abs(t), 1e-300) or h <= 0.0:
-                status = -1
-                break
-            fail, err_norm, safety = attempt(fun, jac, t, y, f0, h, p, rtol, atol, rejected, t_old, y_old, h_old,
-                                             Q, ynew, cnt, W)
-            if fail > 0.0 or not math.isfinite(err_norm) or err_norm > 1.0:
-                cnt[1] += 1
-                rejected = True
-                if fail > 0.0:
-                    h *= fail
-                elif not math.isfinite(err_norm):
-                    h *= 0.25
-                else:
-                    h *= max(0.2, safety * err_norm ** -expo)
-                continue
-            # accepted: f at the new point is the next step's f0
-            cnt[0] += 1
-            t_new = t + h
-            fun(t_new, ynew, p, fnew)
-            cnt[2] += 1
-            accept(y, ynew, f0, fnew, h, Q, W)
-            stop = False
-            if ev_idx >= 0:
-                stop, nev_dir = _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF, EVDIR)
-            finite = True
-            for i in range(n):
-                y_old[i] = y[i]
-                y[i] = ynew[i]
-                f0[i] = fnew[i]
-                if not math.isfinite(fnew[i]):
-                    finite = False
-            t_old = t
-            t = t_new
-            if stop_nonfinite and not finite:
-                status = -3
-                break
-            if rec_cap > 0 and cnt[7] < rec_cap:
-                rec_t[cnt[7]] = t
-                for i in range(n):
-                    rec_y[cnt[7], i] = y[i]
-                cnt[7] += 1
-            if stop:
-                status = 1
-                break
-            # predictive step-size control (Gustafsson 1994)
-            if err_old > 0 and err_norm > 0:
-                mult = h / h_old * (err_old / err_norm) ** expo
-            else:
-                mult = 1.0
-            fac = min(1.0, mult) * (err_norm ** -expo if err_norm > 0 else facmax)
-            fac = min(facmax, safety * fac)
-            if rejected:
-                fac = min(1.0, fac)
-            h_old = h
-            err_old = max(err_norm, 1e-10)
-            h = min(h * fac, max_step)
-            rejected = False
-            if one_step == 1:
-                break
-        ne = min(cnt[6], EVBUF.shape[0])
-        return (status, t, y, cnt, EVBUF[:ne, 0].copy(), EVBUF[:ne, 1:].copy(), rec_t[:cnt[7]].copy(),
-                rec_y[:cnt[7]].copy(), h, Q)
 
-    return drive
+@nb.njit(cache=True)
+def _guard(steps, max_steps, t, t_end, h):
+    """(status, h) before a step: the budget of ``max_steps`` attempts (−2), h cut to the end of
+    the interval, step-size underflow (−1); status 0 to go on."""
+    if steps >= max_steps:
+        return -2, h
+    if h > t_end - t:
+        h = t_end - t
+    if h < 10 * EPS * max(abs(t), 1e-300) or h <= 0.0:
+        return -1, h
+    return 0, h
+
+
+@nb.njit(cache=True)
+def _retry_size(h, err_norm, safety, expo):
+    """The step size to retry with when the error test fails — h/4 for a non-finite error,
+    h·max(0.2, safety·err^(−expo)) above the tolerance — or −1 when the step is accepted."""
+    if not math.isfinite(err_norm):
+        return h * 0.25
+    if err_norm > 1.0:
+        return h * max(0.2, safety * err_norm ** -expo)
+    return -1.0
+
+
+@nb.njit(cache=True)
+def _next_size(h, h_old, err_norm, err_old, rejected, safety, expo, facmax, max_step):
+    """The predictive (Gustafsson 1994) controller after an accepted step of size h.
+
+    ``expo`` = 1/(q + 1) for an estimate of order q; the step grows by at most ``facmax``, and
+    not at all right after a rejection.  Returns (next h, h_old, err_old) for the next call.
+    """
+    if err_old > 0 and err_norm > 0:
+        mult = h / h_old * (err_old / err_norm) ** expo
+    else:
+        mult = 1.0
+    fac = min(1.0, mult) * (err_norm ** -expo if err_norm > 0 else facmax)
+    fac = min(facmax, safety * fac)
+    if rejected:
+        fac = min(1.0, fac)
+    return min(h * fac, max_step), h, max(err_norm, 1e-10)
+
+
+@nb.njit(cache=True)
+def _record(cnt, rec_t, rec_y, t, y):
+    """Keep the accepted step's end (t, y) while the buffers have room (count in ``cnt[7]``)."""
+    k = cnt[7]
+    if k < rec_t.shape[0]:
+        rec_t[k] = t
+        for i in range(y.shape[0]):
+            rec_y[k, i] = y[i]
+        cnt[7] += 1
+
+
+@nb.njit(cache=True)
+def _finish(status, t, y, cnt, EVBUF, rec_t, rec_y, h, Q):
+    """The tuple every core returns: (status, t, y, counters, ev_t, ev_y, rec_t, rec_y, h, Q)."""
+    ne = min(cnt[6], EVBUF.shape[0])
+    return (status, t, y, cnt, EVBUF[:ne, 0].copy(), EVBUF[:ne, 1:].copy(), rec_t[:cnt[7]].copy(),
+            rec_y[:cnt[7]].copy(), h, Q)
