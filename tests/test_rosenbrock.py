@@ -233,3 +233,15 @@ def test_shared_loop_status_codes(oscillator):
         assert (st, t) == (0, 1.0), name                                   # the end is hit exactly
         # x(1) = cos 2 at rtol 1e-8: measured errors 1e-11 (radau5), 3.7e-9 (rodas4), 3e-14 (radau9)
         assert abs(y[0] - np.cos(2.0)) < 4e-8, name
+
+
+def test_s_stage_core_refuses_events_without_a_cubic(oscillator):
+    from landau.verify.hybrid.collocation import radau_iia_core
+    from landau.verify.hybrid.radau import pointers
+
+    k, _ = oscillator
+    fun, jac = pointers(k.fun, k.jac)
+    tb = radau_tableau(5)
+    with pytest.raises(InputError, match="three stages"):
+        radau_iia_core(fun, jac, 0.0, np.array([1.0, 0.0]), 1.0, k.p, 1e-6, np.full(2, 1e-6), 1e-3, np.inf, 100, 0,
+                       0.0, 0, 0, 0, tb.A, tb.c, tb.e, tb.mu, tb.vinv, False, False, np.empty((1, 3)), np.empty(1))

@@ -44,6 +44,7 @@ import numba as nb
 import numpy as np
 from numpy.polynomial import polynomial as P
 
+from landau.errors import InputError
 from landau.verify.hybrid.stiffdriver import (EPS, _crossings, _finish, _guard, _lu, _next_size, _poly, _record,
                                               _retry_size, _rms, _solve, _start)
 
@@ -127,11 +128,18 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_ste
     the pieces of :mod:`landau.verify.hybrid.stiffdriver`.
 
     Returns (status, t, y, counters, ev_t, ev_y, rec_t, rec_y, h, Q) as
-    :func:`landau.verify.hybrid.radau.radau_core` does; crossings need the cubic of s = 3.
+    :func:`landau.verify.hybrid.radau.radau_core` does.
+
+    Raises
+    ------
+    InputError
+        When crossings are asked for (``ev_idx >= 0``) with s ≠ 3: they are located on a cubic.
     """
     n = y0.shape[0]
     s = AR.shape[0]
     N = s * n
+    if ev_idx >= 0 and s != 3:
+        raise InputError("radau_iia_core: event location needs the cubic dense output of three stages")
     y, f0, cnt, rec_t, rec_y, h, status, t_end = _start(fun, t0, y0, t_end, p, h0, max_step, rec_cap)
     t = t0
     J = np.empty((n, n))
