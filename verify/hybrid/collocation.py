@@ -45,8 +45,8 @@ import numpy as np
 from numpy.polynomial import polynomial as P
 
 from landau.errors import InputError
-from landau.verify.hybrid.stiffdriver import (EPS, _crossings, _finish, _guard, _lu, _next_size, _poly, _record,
-                                              _retry_size, _rms, _solve, _start)
+from landau.verify.hybrid.stiffdriver import (EPS, _crossings, _finish, _guard, _lu, _may_cross, _next_size, _poly,
+                                              _record, _retry_size, _rms, _solve, _start)
 
 __all__ = ["RadauTableau", "radau_tableau", "radau_iia_core", "collocation_core", "NEWTON_MAXITER"]
 
@@ -177,9 +177,10 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_ste
         cnt[3] += 1
         for a in range(s):
             for b in range(s):
+                hab = -h * AR[a, b]
                 for i in range(n):
                     for j in range(n):
-                        Mf[a * n + i, b * n + j] = -h * AR[a, b] * J[i, j]
+                        Mf[a * n + i, b * n + j] = hab * J[i, j]
         for i in range(N):
             Mf[i, i] += 1.0
         ok = _lu(Mf, pivF)
@@ -219,9 +220,10 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_ste
                         cnt[3] += 1
                     for a in range(s):
                         for b in range(s):
+                            hab = -h * AR[a, b]
                             for i in range(n):
                                 for j in range(n):
-                                    Mf[a * n + i, b * n + j] = -h * AR[a, b] * JB[b, i, j]
+                                    Mf[a * n + i, b * n + j] = hab * JB[b, i, j]
                     for i in range(N):
                         Mf[i, i] += 1.0
                     if not _lu(Mf, pivF):
@@ -318,7 +320,7 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_ste
                 Q[j, i] = acc
         t_new = t + h
         stop = False
-        if ev_idx >= 0:
+        if ev_idx >= 0 and _may_cross(y[ev_idx] - ev_val, Q[0, ev_idx], Q[1, ev_idx], Q[2, ev_idx]):
             stop, nev_dir = _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF, EVDIR)
         # keep this step's polynomial for the next Newton start
         for i in range(n):

@@ -54,8 +54,8 @@ import numba as nb
 import numpy as np
 
 from landau.verify.hybrid.compiled import _Collocation, _CompiledFactory, _CompiledStepper
-from landau.verify.hybrid.stiffdriver import (EPS, STATUS, _crossings, _finish, _guard, _lu, _next_size, _record,
-                                              _retry_size, _rms, _solve, _start)
+from landau.verify.hybrid.stiffdriver import (EPS, STATUS, _crossings, _finish, _guard, _lu, _may_cross, _next_size,
+                                              _record, _retry_size, _rms, _solve, _start)
 
 __all__ = ["RODAS4_GAMMA", "RODAS4_A", "RODAS4_C", "RODAS4_CNODES", "RODAS4_D", "RODAS4_M", "RODAS4_E",
            "STATUS", "rosenbrock_core", "tableau_classical", "CompiledRODAS4", "RODAS4Solver"]
@@ -258,7 +258,7 @@ def rosenbrock_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_st
             Q[1, i] = 3.0 * d - h * (2.0 * f0[i] + fnew[i])
             Q[2, i] = h * (f0[i] + fnew[i]) - 2.0 * d
         stop = False
-        if ev_idx >= 0:
+        if ev_idx >= 0 and _may_cross(y[ev_idx] - ev_val, Q[0, ev_idx], Q[1, ev_idx], Q[2, ev_idx]):
             stop, nev_dir = _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF, EVDIR)
         t = t_new
         for i in range(n):

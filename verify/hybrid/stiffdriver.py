@@ -17,8 +17,9 @@ here, written once:
   estimate's order q and the method's largest growth factor;
 * crossings of ``y[ev_idx] = ev_val`` located on an accepted step's cubic dense output (the
   compiled event locator of :mod:`landau.verify.hybrid.crossing`), with a stop after a number
-  of crossings in a chosen direction (Poincaré returns) (:func:`_crossings`), and the recording
-  of accepted steps (:func:`_record`);
+  of crossings in a chosen direction (Poincaré returns) (:func:`_crossings`, called on the steps
+  where :func:`_may_cross` cannot rule a sign change out), and the recording of accepted steps
+  (:func:`_record`);
 * the small dense linear algebra (LU with partial pivoting, its solve), the scaled RMS error
   norm and the evaluation of a dense output polynomial.
 
@@ -128,6 +129,15 @@ def _poly(y0, Q, x, i):
     for j in range(Q.shape[0] - 2, -1, -1):
         acc = Q[j, i] + x * acc
     return y0[i] + x * acc
+
+
+@nb.njit(cache=True)
+def _may_cross(g0, c1, c2, c3):
+    """Whether g(x) = g0 + c1 x + c2 x² + c3 x³ may change sign on [0, 1] (else :func:`_crossings`
+    would find nothing): False for g0 = 0 (a crossing starting on the surface is not one), and
+    when |g0| exceeds the cubic's largest change |c1| + |c2| + |c3| by a margin (10⁻¹²) far
+    above the rounding of its evaluation — most steps, decided with scalars only."""
+    return g0 != 0.0 and (abs(c1) + abs(c2) + abs(c3)) * (1.0 + 1e-12) >= abs(g0)
 
 
 @nb.njit(cache=True)
