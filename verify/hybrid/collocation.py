@@ -112,6 +112,31 @@ NEWTON_MAXITER = 7
 
 
 @nb.njit(cache=True)
+def _stage_jacobians(jac, t, h, y, Z, p, AR, CN, JB, ytmp, Mf, pivF, cnt):
+    """The full-Newton matrix I − h(A ⊗ I)·diag(J(Y_b)) with the stage Jacobians at the current
+    iterate, factorised in place; False when it is singular (off the hot path of the simplified
+    iteration, so kept out of its loop)."""
+    s, n = Z.shape
+    for b in range(s):
+        for i in range(n):
+            ytmp[i] = y[i] + Z[b, i]
+        jac(t + CN[b] * h, ytmp, p, JB[b])
+        cnt[3] += 1
+    for a in range(s):
+        for b in range(s):
+            hab = -h * AR[a, b]
+            for i in range(n):
+                for j in range(n):
+                    Mf[a * n + i, b * n + j] = hab * JB[b, i, j]
+    for i in range(s * n):
+        Mf[i, i] += 1.0
+    if not _lu(Mf, pivF):
+        return False
+    cnt[4] += 1
+    return True
+
+
+@nb.njit(cache=True)
 def radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir, ev_stop,
                    rec_cap, AR, CN, EE, mu, VI, full_retry, f0_first, EVBUF, EVDIR):
     """Integrate from t0 to t_end with the s-stage Radau IIA given by ``AR`` (s × s), nodes ``CN``,
@@ -212,23 +237,8 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_ste
                             finite = False
                 if not finite:
                     break
-                if use_full:
-                    for b in range(s):
-                        for i in range(n):
-                            ytmp[i] = y[i] + Z[b, i]
-                        jac(t + CN[b] * h, ytmp, p, JB[b])
-                        cnt[3] += 1
-                    for a in range(s):
-                        for b in range(s):
-                            hab = -h * AR[a, b]
-                            for i in range(n):
-                                for j in range(n):
-                                    Mf[a * n + i, b * n + j] = hab * JB[b, i, j]
-                    for i in range(N):
-                        Mf[i, i] += 1.0
-                    if not _lu(Mf, pivF):
-                        break
-                    cnt[4] += 1
+                if use_full and not _stage_jacobians(jac, t, h, y, Z, p, AR, CN, JB, ytmp, Mf, pivF, cnt):
+                    break
                 for a in range(s):
                     for i in range(n):
                         acc = -Z[a, i]
