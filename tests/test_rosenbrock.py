@@ -4,15 +4,14 @@
   order 4 and its embedded solution those up to order 3 (Hairer & Wanner 1996, IV.7,
   Table 7.1); the Radau IIA tableaux computed from their definition satisfy the simplifying
   conditions B(2s − 1) and C(s) and reproduce the radau5 constants for s = 3.
-* The stepper contract (scipy ``test_ivp``-style problems with exact solutions, cost budgets).
+* The stepper contract (scipy ``test_ivp``-style problems with exact solutions, cost budgets):
+  in ``test_steppers.py`` with the other compiled steppers.
 * Fixed steps on a nonlinear, non-autonomous problem: the error falls 2⁴ = 16-fold per halving.
 * One period of the Fig. 3 stick–slip cycle of Putelat et al. (2010) against the order-5
   Radau IIA at a tight tolerance.
 """
 
 from __future__ import annotations
-
-import dataclasses
 
 import numpy as np
 import pytest
@@ -24,10 +23,7 @@ from landau.verify.hybrid.collocation import radau_tableau
 from landau.verify.hybrid.fastcall import addresses, rosenbrock_at
 from landau.verify.hybrid.radau import A_RADAU, E_ERR, MU_REAL, VINV
 from landau.verify.hybrid.rosenbrock import (RODAS4_A, RODAS4_C, RODAS4_CNODES, RODAS4_D, RODAS4_E, RODAS4_GAMMA,
-                                             RODAS4_M, CompiledRODAS4, tableau_classical)
-from landau.verify.hybrid.steppers import ScipyStepper
-
-RTOL, ATOL, T_END, OMEGA = 1e-8, 1e-10, 10.0, 2.0
+                                             RODAS4_M, tableau_classical)
 
 
 # --------------------------------------------------------------------------------------------
@@ -80,66 +76,11 @@ def test_radau_tableaux_from_their_definition():
 
 
 # --------------------------------------------------------------------------------------------
-# stepper contract: problems of scipy's test_ivp with exact solutions
-_y, _lam = sp.symbols("y lam")
-_y1, _y2, _a, _b, _c, _d = sp.symbols("y1 y2 a b c d")
+# the stepper contract (problems with exact solutions, cost budgets): tests/test_steppers.py
 
 
-@pytest.fixture(scope="module")
-def problems():
-    decay = generate_kernel([_y], [-_lam * _y], [_lam], [1.0], name="decay")
-    linear = generate_kernel([_y1, _y2], [_a * _y1 + _b * _y2, _c * _y1 + _d * _y2], [_a, _b, _c, _d],
-                             [0.0, 1.0, -OMEGA ** 2, 0.0], name="linear")
-    stiff = dataclasses.replace(linear, p=np.array([998.0, 1998.0, -999.0, -1999.0]), name="stiff")
-    return {
-        "decay": (decay, [1.0], lambda t: np.array([np.exp(-t)])),
-        "harmonic": (linear, [1.0, 0.0], lambda t: np.array([np.cos(OMEGA * t), -OMEGA * np.sin(OMEGA * t)])),
-        "stiff": (stiff, [1.0, 0.0], lambda t: np.array([2 * np.exp(-t) - np.exp(-1000 * t),
-                                                         -np.exp(-t) + np.exp(-1000 * t)])),
-    }
-
-
-def _drive(factory, kernel, y0, exact):
-    s = factory(kernel, 0.0, y0, T_END, lambda t, y: kernel.jacobian(t, y))
-    steps, e_end, e_mid = 0, 0.0, 0.0
-    while s.status == "running":
-        assert s.step() is None
-        steps += 1
-        assert s.t_old < s.t
-        e_end = max(e_end, np.max(np.abs(s.y - exact(s.t)) / (ATOL + RTOL * np.abs(exact(s.t)))))
-        tm = 0.5 * (s.t_old + s.t)
-        e_mid = max(e_mid, np.max(np.abs(s.dense_output()(tm) - exact(tm)) / (ATOL + RTOL * np.abs(exact(tm)))))
-        assert s.dense_output()(np.array([s.t_old, tm])).shape == (len(y0), 2)
-    assert s.status == "finished" and s.t == T_END
-    return s, steps, e_end, e_mid
-
-
-#: global error in units of the local tolerance: as for the other compiled steppers
-#: (test_steppers.py: scipy's test_ivp asserts < 5 on contracting problems; the oscillator
-#: accumulates a phase error over three periods); the Hermite dense output is third order
-ERR_END = {"decay": 5.0, "harmonic": 200.0, "stiff": 5.0}
-ERR_MID = {"decay": 50.0, "harmonic": 300.0, "stiff": 300.0}
-
-
-@pytest.mark.parametrize("problem", ["decay", "harmonic", "stiff"])
-def test_rodas4_stepper_accuracy_and_cost(problems, problem):
-    kernel, y0, exact = problems[problem]
-    s, steps, e_end, e_mid = _drive(CompiledRODAS4(rtol=RTOL, atol=ATOL), kernel, y0, exact)
-    assert e_end < ERR_END[problem]
-    assert e_mid < ERR_MID[problem]
-    ref, ref_steps, _, _ = _drive(ScipyStepper("Radau", RTOL, ATOL), kernel, y0, exact)
-    # measured 0.88–0.93× scipy Radau's steps at rtol 1e-8 (errors at the end 0.3, 169, 0.36 in
-    # units of the tolerance); 1.5× catches an estimate or a controller of the wrong order
-    # (which changes the count by ≥ 2×)
-    assert steps <= 1.5 * ref_steps
-    # per attempt: stages 2–6 (stage 1 reuses f at the start), ∂f/∂t by a difference (a general
-    # kernel) and f at the new point; plus the first evaluation
-    assert s.nfev <= 7 * (steps + s.nrejected) + 1
-    assert s.njev == steps  # a rejected attempt reuses the step's Jacobian
-    if problem == "stiff":
-        assert steps < 500  # L-stable: follows the slow mode (an explicit method needs ≈ 3000)
-
-
+# --------------------------------------------------------------------------------------------
+# order
 def test_rodas4_has_order_four_with_fixed_steps():
     """Fixed steps on x'' = −x − x³/2 + cos(t)/10 (nonlinear, non-autonomous: the ∂f/∂t terms
     count): the error at t = 5 falls 16-fold per halving (order 4)."""
@@ -226,3 +167,81 @@ def test_integrate_method_choice_and_refusals(fig3):
         integrate(model, y0, (0.0, T), method="euler")
     with pytest.raises(InputError, match="radau9"):
         integrate(model, y0, (0.0, T), method="radau9", event_index=W_INDEX)
+
+
+# --------------------------------------------------------------------------------------------
+# the step loop the three stiff methods share (landau.verify.hybrid.stiffdriver)
+@pytest.fixture(scope="module")
+def oscillator():
+    x, v = sp.symbols("x v")
+    k = generate_kernel([x, v], [v, -4 * x], [], [], name="oscillator_omega2")
+    return k, addresses(k.fun, k.jac)
+
+
+def _cores(k, af, aj, y0, t_end, rtol, max_steps, ev_idx=-1, ev_dir=0, ev_stop=0, rec_cap=0):
+    """(name, status, t, y, counters, ev_t, ev_y, ev_dir) of the three compiled stiff cores."""
+    from landau.verify.hybrid.fastcall import collocation_at, radau_at
+
+    n = len(y0)
+    y0 = np.asarray(y0, dtype=float)
+    at = np.full(n, rtol)
+    out = []
+    for name in ("radau5", "rodas4", "radau9"):
+        buf, dirs = np.empty((20, n + 1)), np.zeros(20)
+        common = (af, aj, 0.0, y0, t_end, k.p, rtol, at, 1e-4, np.inf, max_steps)
+        if name == "radau5":
+            r = radau_at(*common, ev_idx, 0.0, ev_dir, ev_stop, rec_cap, A_RADAU, VINV, buf, dirs)
+        elif name == "rodas4":
+            r = rosenbrock_at(*common, ev_idx, 0.0, ev_dir, ev_stop, rec_cap, 1, 0, RODAS4_A, RODAS4_C,
+                              RODAS4_CNODES, RODAS4_D, RODAS4_M, RODAS4_E, buf, dirs)
+        elif ev_idx < 0:
+            tb = radau_tableau(5)
+            r = collocation_at(*common, tb.A, tb.c, tb.e, tb.mu, tb.vinv)
+            r = (*r, np.empty(0), np.empty((0, n)))
+        else:
+            continue
+        out.append((name, int(r[0]), r[1], r[2], r[3], r[4], r[5], dirs[:len(r[4])]))
+    return out
+
+
+def test_shared_loop_locates_crossings_on_both_dense_outputs(oscillator):
+    """x'' = −4x from (1, 0): x = cos 2t crosses 0 at t = π/4 + jπ/2, downward for even j.
+    Stopping at the second downward crossing records three crossings, on the Radau IIA's
+    collocation cubic and on RODAS4's Hermite cubic alike."""
+    k, (af, aj) = oscillator
+    runs = _cores(k, af, aj, [1.0, 0.0], 10.0, 1e-10, 10 ** 6, ev_idx=0, ev_dir=-1, ev_stop=2)
+    assert [r[0] for r in runs] == ["radau5", "rodas4"]
+    exact_t = np.pi / 4 + np.pi / 2 * np.arange(3)
+    for name, st, t, y, cnt, ev_t, ev_y, ev_d in runs:
+        assert st == 1, name                       # terminal event
+        assert cnt[6] == 3 and list(ev_d) == [-1, 1, -1], name
+        # cubic dense outputs at rtol 1e-10: measured 5e-14 s (radau5) and 8e-11 s (rodas4), ẋ
+        # within 3e-11 and 1.5e-10; the bounds leave a factor ≥ 10, a crossing located on
+        # the wrong step or a wrong dense output is off by ≥ 1e-4 s
+        assert np.max(np.abs(ev_t - exact_t)) < 1e-9, (name, ev_t - exact_t)
+        assert np.allclose(ev_y[:, 1], [-2.0, 2.0, -2.0], rtol=0.0, atol=2e-9), name   # ẋ = −2 sin 2t
+        assert ev_t[-1] <= t < ev_t[-1] + 0.1, name    # stopped at the end of that step
+
+
+def test_shared_loop_status_codes(oscillator):
+    k, (af, aj) = oscillator
+    for name, st, t, y, cnt, *_ in _cores(k, af, aj, [np.nan, 0.0], 1.0, 1e-8, 100):
+        assert (st, t, cnt[0] + cnt[1]) == (-3, 0.0, 0), name           # non-finite start: no step
+    for name, st, t, y, cnt, *_ in _cores(k, af, aj, [1.0, 0.0], 100.0, 1e-8, 5):
+        assert (st, cnt[0] + cnt[1]) == (-2, 5) and 0.0 < t < 100.0, name  # step budget
+    for name, st, t, y, cnt, *_ in _cores(k, af, aj, [1.0, 0.0], 1.0, 1e-8, 10 ** 6):
+        assert (st, t) == (0, 1.0), name                                   # the end is hit exactly
+        # x(1) = cos 2 at rtol 1e-8: measured errors 1e-11 (radau5), 3.7e-9 (rodas4), 3e-14 (radau9)
+        assert abs(y[0] - np.cos(2.0)) < 4e-8, name
+
+
+def test_s_stage_core_refuses_events_without_a_cubic(oscillator):
+    from landau.verify.hybrid.collocation import radau_iia_core
+    from landau.verify.hybrid.radau import pointers
+
+    k, _ = oscillator
+    fun, jac = pointers(k.fun, k.jac)
+    tb = radau_tableau(5)
+    with pytest.raises(InputError, match="three stages"):
+        radau_iia_core(fun, jac, 0.0, np.array([1.0, 0.0]), 1.0, k.p, 1e-6, np.full(2, 1e-6), 1e-3, np.inf, 100, 0,
+                       0.0, 0, 0, 0, tb.A, tb.c, tb.e, tb.mu, tb.vinv, False, False, np.empty((1, 3)), np.empty(1))

@@ -19,6 +19,12 @@ controller with exponent 1/(s + 1).
 At tolerances where the 3-stage method needs hundreds of steps per period, the order-9
 method takes a fraction of them; it has no event location (the order-5 method keeps that).
 
+:func:`radau_iia_core` is the integrator of any s, with event location and recording;
+:func:`landau.verify.hybrid.radau.radau_core` is it for s = 3 with the closed-form coefficients,
+and :func:`collocation_core` for any s without events.  Its set-up, step-size control, event
+location and recording are the pieces shared by the compiled stiff integrators
+(:mod:`landau.verify.hybrid.stiffdriver`).
+
 References
 ----------
 Hairer, E., Wanner, G. (1996). Solving Ordinary Differential Equations II, 2nd ed.,
@@ -38,9 +44,11 @@ import numba as nb
 import numpy as np
 from numpy.polynomial import polynomial as P
 
-from landau.verify.hybrid.radau import NEWTON_MAXITER, _lu, _rms, _solve
+from landau.errors import InputError
+from landau.verify.hybrid.stiffdriver import (EPS, _crossings, _finish, _guard, _lu, _may_cross, _next_size, _poly,
+                                              _record, _retry_size, _rms, _solve, _start)
 
-__all__ = ["RadauTableau", "radau_tableau", "collocation_core"]
+__all__ = ["RadauTableau", "radau_tableau", "radau_iia_core", "collocation_core", "NEWTON_MAXITER"]
 
 
 @dataclass(frozen=True)
@@ -99,33 +107,66 @@ def radau_tableau(s: int) -> RadauTableau:
     return RadauTableau(s, A, c, 1.0 / gamma0, e, vinv)
 
 
-@nb.njit(cache=True)
-def _poly_s(y0, Q, x, i):
-    s = Q.shape[0]
-    acc = 0.0
-    for j in range(s - 1, -1, -1):
-        acc = x * (acc + Q[j, i])
-    return y0[i] + acc
+#: Newton sweeps of the simplified iteration before a step is declared failed
+NEWTON_MAXITER = 7
 
 
 @nb.njit(cache=True)
-def collocation_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, AR, CN, EE, mu, VI):
+def _stage_jacobians(jac, t, h, y, Z, p, AR, CN, JB, ytmp, Mf, pivF, cnt):
+    """The full-Newton matrix I − h(A ⊗ I)·diag(J(Y_b)) with the stage Jacobians at the current
+    iterate, factorised in place; False when it is singular (off the hot path of the simplified
+    iteration, so kept out of its loop)."""
+    s, n = Z.shape
+    for b in range(s):
+        for i in range(n):
+            ytmp[i] = y[i] + Z[b, i]
+        jac(t + CN[b] * h, ytmp, p, JB[b])
+        cnt[3] += 1
+    for a in range(s):
+        for b in range(s):
+            hab = -h * AR[a, b]
+            for i in range(n):
+                for j in range(n):
+                    Mf[a * n + i, b * n + j] = hab * JB[b, i, j]
+    for i in range(s * n):
+        Mf[i, i] += 1.0
+    if not _lu(Mf, pivF):
+        return False
+    cnt[4] += 1
+    return True
+
+
+@nb.njit(cache=True)
+def radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir, ev_stop,
+                   rec_cap, AR, CN, EE, mu, VI, full_retry, f0_first, EVBUF, EVDIR):
     """Integrate from t0 to t_end with the s-stage Radau IIA given by ``AR`` (s × s), nodes ``CN``,
     error weights ``EE``, ``mu`` = 1/γ₀ and ``VI`` (:class:`RadauTableau`).
 
-    Returns (status, t, y, counters) with the status codes of
-    :data:`landau.verify.hybrid.radau.STATUS` and counters = [accepted, rejected,
-    f evaluations, Jacobians, LU decompositions, Newton failures].
+    The stage increments Z solve Z = h(A ⊗ I)F(y + Z) by simplified Newton on I − h(A⊗J),
+    started from the previous step's collocation polynomial.  With ``full_retry``, a failed
+    iteration is retried at the same h with the stage Jacobians J(Y_b) in
+    I − h(A ⊗ I)·diag(J(Y_b)) (needed when the Jacobian changes by orders of magnitude within
+    a step: ẇ ∝ e^{−w} as v → 0); without it, h is halved.  Error estimate:
+    (μ/h·I − J)⁻¹(f₀ + Σ eᵢZᵢ/h), filtered once more through f after a rejection (Hairer &
+    Wanner 1996, IV.8); ``f0_first`` sums the terms onto f₀ (the order of the first order-5
+    code, kept so that its results do not change in the last bit).  The step loop is made of
+    the pieces of :mod:`landau.verify.hybrid.stiffdriver`.
+
+    Returns (status, t, y, counters, ev_t, ev_y, rec_t, rec_y, h, Q) as
+    :func:`landau.verify.hybrid.radau.radau_core` does.
+
+    Raises
+    ------
+    InputError
+        When crossings are asked for (``ev_idx >= 0``) with s ≠ 3: they are located on a cubic.
     """
     n = y0.shape[0]
     s = AR.shape[0]
     N = s * n
-    cnt = np.zeros(8, dtype=np.int64)
-    y = y0.copy()
+    if ev_idx >= 0 and s != 3:
+        raise InputError("radau_iia_core: event location needs the cubic dense output of three stages")
+    y, f0, cnt, rec_t, rec_y, h, status, t_end = _start(fun, t0, y0, t_end, p, h0, max_step, rec_cap)
     t = t0
-    f0 = np.empty(n)
-    fun(t, y, p, f0)
-    cnt[2] += 1
     J = np.empty((n, n))
     Mf = np.empty((N, N))
     Mr = np.empty((n, n))
@@ -133,6 +174,7 @@ def collocation_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_s
     pivR = np.empty(n, dtype=np.int64)
     Z = np.zeros((s, n))
     F = np.empty((s, n))
+    JB = np.empty((s, n, n))
     R = np.empty(N)
     ytmp = np.empty(n)
     ynew = np.empty(n)
@@ -145,26 +187,16 @@ def collocation_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_s
     have_prev = False
     tprev = 0.0
     hprev = 1.0
-    EPS = 2.220446049250313e-16
     newton_tol = max(10 * EPS / rtol, min(0.03, rtol ** 0.5))
     expo = 1.0 / (s + 1)
-    h = min(h0, max_step, t_end - t0)
+    use_full = False
     err_old = -1.0
     h_old = -1.0
     rejected = False
-    status = 0
-    for i in range(n):
-        if not math.isfinite(y[i]) or not math.isfinite(f0[i]):
-            status = -3
-            t_end = t
+    nev_dir = 0
     while t < t_end:
-        if cnt[0] + cnt[1] >= max_steps:
-            status = -2
-            break
-        if h > t_end - t:
-            h = t_end - t
-        if h < 10 * EPS * max(abs(t), 1e-300) or h <= 0.0:
-            status = -1
+        status, h = _guard(cnt[0] + cnt[1], max_steps, t, t_end, h)
+        if status != 0:
             break
         jac(t, y, p, J)
         cnt[3] += 1
@@ -178,11 +210,12 @@ def collocation_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_s
             Mf[i, i] += 1.0
         ok = _lu(Mf, pivF)
         cnt[4] += 1
+        # Newton start: extrapolate the previous collocation polynomial
         for a in range(s):
             for i in range(n):
                 if have_prev:
                     x = (t + CN[a] * h - tprev) / hprev
-                    Z[a, i] = _poly_s(yprev, Qprev, x, i) - y[i]
+                    Z[a, i] = _poly(yprev, Qprev, x, i) - y[i]
                 else:
                     Z[a, i] = 0.0
         converged = False
@@ -190,8 +223,8 @@ def collocation_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_s
         rate = -1.0
         n_iter = 0
         if ok:
-            for it in range(NEWTON_MAXITER):
-                n_iter = it + 1
+            for it in range(3 * NEWTON_MAXITER if use_full else NEWTON_MAXITER):
+                n_iter = min(it + 1, NEWTON_MAXITER)
                 finite = True
                 for a in range(s):
                     for i in range(n):
@@ -203,6 +236,8 @@ def collocation_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_s
                         if not math.isfinite(fa[i]):
                             finite = False
                 if not finite:
+                    break
+                if use_full and not _stage_jacobians(jac, t, h, y, Z, p, AR, CN, JB, ytmp, Mf, pivF, cnt):
                     break
                 for a in range(s):
                     for i in range(n):
@@ -221,6 +256,14 @@ def collocation_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_s
                 dW = math.sqrt(dW / N)
                 if dW_old > 0:
                     rate = dW / dW_old
+                if use_full:
+                    if (rate >= 1.0 and it >= 4) or it >= 3 * NEWTON_MAXITER - 1:
+                        break
+                    if dW < newton_tol and rate < 1.0:
+                        converged = True
+                        break
+                    dW_old = dW
+                    continue
                 if rate >= 1.0 or (rate > 0 and rate ** (NEWTON_MAXITER - it) / (1 - rate) * dW > newton_tol):
                     break
                 if dW == 0.0 or (rate > 0 and rate / (1 - rate) * dW < newton_tol):
@@ -230,11 +273,14 @@ def collocation_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_s
         if not converged:
             cnt[5] += 1
             cnt[1] += 1
-            h *= 0.5
+            if use_full or not full_retry:
+                h *= 0.5
+            use_full = full_retry
             rejected = True
             continue
         for i in range(n):
             ynew[i] = y[i] + Z[s - 1, i]
+        # embedded error estimate: (μ/h I − J)⁻¹ (f0 + Σ e_a Z_a / h)
         for i in range(n):
             for j in range(n):
                 Mr[i, j] = -J[i, j]
@@ -242,11 +288,18 @@ def collocation_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_s
         _lu(Mr, pivR)
         cnt[4] += 1
         for i in range(n):
-            acc = 0.0
-            for a in range(s):
-                acc += EE[a] * Z[a, i] / h
-            ZE[i] = acc
-            err[i] = f0[i] + acc
+            if f0_first:
+                acc = f0[i]
+                for a in range(s):
+                    acc += EE[a] * Z[a, i] / h
+                err[i] = acc
+                ZE[i] = acc - f0[i]
+            else:
+                acc = 0.0
+                for a in range(s):
+                    acc += EE[a] * Z[a, i] / h
+                ZE[i] = acc
+                err[i] = f0[i] + acc
             scale[i] = atol[i] + max(abs(y[i]), abs(ynew[i])) * rtol
         _solve(Mr, pivR, err)
         err_norm = _rms(err, scale)
@@ -259,24 +312,27 @@ def collocation_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_s
                 err[i] += ZE[i]
             _solve(Mr, pivR, err)
             err_norm = _rms(err, scale)
-        if not math.isfinite(err_norm):
-            cnt[1] += 1
-            h *= 0.25
-            rejected = True
-            continue
         safety = 0.9 * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter)
-        if err_norm > 1.0:
-            h *= max(0.2, safety * err_norm ** -expo)
+        h_retry = _retry_size(h, err_norm, safety, expo)
+        if h_retry > 0.0:
             cnt[1] += 1
+            h = h_retry
             rejected = True
             continue
+        # accepted: the collocation polynomial Q = V⁻¹Z is the dense output
         cnt[0] += 1
+        use_full = False
         for j in range(s):
             for i in range(n):
                 acc = 0.0
                 for a in range(s):
                     acc += VI[j, a] * Z[a, i]
                 Q[j, i] = acc
+        t_new = t + h
+        stop = False
+        if ev_idx >= 0 and _may_cross(y[ev_idx] - ev_val, Q[0, ev_idx], Q[1, ev_idx], Q[2, ev_idx]):
+            stop, nev_dir = _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF, EVDIR)
+        # keep this step's polynomial for the next Newton start
         for i in range(n):
             yprev[i] = y[i]
         for j in range(s):
@@ -285,21 +341,32 @@ def collocation_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_s
         tprev = t
         hprev = h
         have_prev = True
-        t = t + h
+        t = t_new
         for i in range(n):
             y[i] = ynew[i]
         fun(t, y, p, f0)
         cnt[2] += 1
-        if err_old > 0 and err_norm > 0:
-            mult = h / h_old * (err_old / err_norm) ** expo
-        else:
-            mult = 1.0
-        fac = min(1.0, mult) * (err_norm ** -expo if err_norm > 0 else 10.0)
-        fac = min(10.0, safety * fac)
-        if rejected:
-            fac = min(1.0, fac)
-        h_old = h
-        err_old = max(err_norm, 1e-10)
-        h = min(h * fac, max_step)
+        if rec_cap > 0:
+            _record(cnt, rec_t, rec_y, t, y)
+        if stop:
+            status = 1
+            break
+        h, h_old, err_old = _next_size(h, h_old, err_norm, err_old, rejected, safety, expo, 10.0, max_step)
         rejected = False
-    return status, t, y, cnt
+    return _finish(status, t, y, cnt, EVBUF, rec_t, rec_y, h, Qprev)
+
+
+@nb.njit(cache=True)
+def collocation_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, AR, CN, EE, mu, VI):
+    """Integrate from t0 to t_end with the s-stage Radau IIA given by ``AR`` (s × s), nodes ``CN``,
+    error weights ``EE``, ``mu`` = 1/γ₀ and ``VI`` (:class:`RadauTableau`).
+
+    Returns (status, t, y, counters) with the status codes of
+    :data:`landau.verify.hybrid.radau.STATUS` and counters = [accepted, rejected,
+    f evaluations, Jacobians, LU decompositions, Newton failures] (:func:`radau_iia_core`
+    without event location or recording; a failed Newton iteration halves the step).
+    """
+    n = y0.shape[0]
+    out = radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, -1, 0.0, 0, 0, 0, AR, CN,
+                         EE, mu, VI, False, False, np.empty((1, n + 1)), np.empty(1))
+    return out[0], out[1], out[2], out[3]

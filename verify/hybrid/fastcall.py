@@ -14,8 +14,9 @@ are alive; :func:`addresses` returns them from the same cache as
 The entry points are compiled on first use and cached on disk.  numba's cache of a function
 is invalidated by changes to *its own* source file only: after editing a core these wrap
 (:mod:`~landau.verify.hybrid.radau`, :mod:`~landau.verify.hybrid.rosenbrock`,
-:mod:`~landau.verify.hybrid.collocation`), delete this module's cache files
-(``__pycache__/fastcall*.nbi``, ``*.nbc``) in a development checkout.
+:mod:`~landau.verify.hybrid.collocation`) or the step loop they share
+(:mod:`~landau.verify.hybrid.stiffdriver`), delete the cache files of this module and of the
+cores (``__pycache__/*.nbi``, ``*.nbc``) in a development checkout.
 """
 
 from __future__ import annotations

@@ -27,6 +27,10 @@ stage, so it costs nothing); crossings of one component are located on it with t
 event locator of :mod:`landau.verify.hybrid.crossing`, exactly as the Radau IIA does on its
 collocation polynomial.
 
+The set-up, step-size control, event location and recording are the pieces shared by the
+compiled stiff integrators (:mod:`landau.verify.hybrid.stiffdriver`); this module holds the
+coefficients, the step and the Hermite interpolant.
+
 :func:`rosenbrock_core` has the calling convention and the return value of
 :func:`landau.verify.hybrid.radau.radau_core` (with ``Q`` the Hermite cubic's coefficients),
 so a caller switches method by switching function; :class:`CompiledRODAS4` is the
@@ -50,8 +54,8 @@ import numba as nb
 import numpy as np
 
 from landau.verify.hybrid.compiled import _Collocation, _CompiledFactory, _CompiledStepper
-from landau.verify.hybrid.crossing import cubic, cubic_crossing
-from landau.verify.hybrid.radau import STATUS, _lu, _poly, _rms, _solve
+from landau.verify.hybrid.stiffdriver import (EPS, STATUS, _crossings, _finish, _guard, _lu, _may_cross, _next_size,
+                                              _record, _retry_size, _rms, _solve, _start)
 
 __all__ = ["RODAS4_GAMMA", "RODAS4_A", "RODAS4_C", "RODAS4_CNODES", "RODAS4_D", "RODAS4_M", "RODAS4_E",
            "STATUS", "rosenbrock_core", "tableau_classical", "CompiledRODAS4", "RODAS4Solver"]
@@ -150,14 +154,8 @@ def rosenbrock_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_st
     n = y0.shape[0]
     s = RM.shape[0]
     gam = RD[0]
-    cnt = np.zeros(8, dtype=np.int64)
-    rec_t = np.empty(rec_cap)
-    rec_y = np.empty((rec_cap, n))
-    y = y0.copy()
+    y, f0, cnt, rec_t, rec_y, h, status, t_end = _start(fun, t0, y0, t_end, p, h0, max_step, rec_cap)
     t = t0
-    f0 = np.empty(n)
-    fun(t, y, p, f0)
-    cnt[2] += 1
     J = np.empty((n, n))
     M = np.empty((n, n))
     piv = np.empty(n, dtype=np.int64)
@@ -170,30 +168,14 @@ def rosenbrock_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_st
     err = np.empty(n)
     scale = np.empty(n)
     Q = np.zeros((3, n))
-    EPS = 2.220446049250313e-16
-    h = min(h0, max_step, t_end - t0)
     err_old = -1.0
     h_old = -1.0
     rejected = False
-    status = 0
     nev_dir = 0
     need_jac = True
-    for i in range(n):
-        if not math.isfinite(y[i]) or not math.isfinite(f0[i]):
-            status = -3
-            t_end = t
-    if rec_cap > 0:
-        rec_t[0] = t
-        rec_y[0] = y
-        cnt[7] = 1
     while t < t_end:
-        if cnt[0] + cnt[1] >= max_steps:
-            status = -2
-            break
-        if h > t_end - t:
-            h = t_end - t
-        if h < 10 * EPS * max(abs(t), 1e-300) or h <= 0.0:
-            status = -1
+        status, h = _guard(cnt[0] + cnt[1], max_steps, t, t_end, h)
+        if status != 0:
             break
         if need_jac:
             jac(t, y, p, J)
@@ -255,14 +237,11 @@ def rosenbrock_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_st
             err[i] = e
             scale[i] = atol[i] + max(abs(y[i]), abs(a)) * rtol
         err_norm = _rms(err, scale)
-        if not math.isfinite(err_norm):
+        # the embedded estimate is of order 3: exponent 1/4
+        h_retry = _retry_size(h, err_norm, 0.9, 0.25)
+        if h_retry > 0.0:
             cnt[1] += 1
-            h *= 0.25
-            rejected = True
-            continue
-        if err_norm > 1.0:
-            h *= max(0.2, 0.9 * err_norm ** -0.25)
-            cnt[1] += 1
+            h = h_retry
             rejected = True
             continue
         # accepted: f at the new point is the next step's first stage and the Hermite slope
@@ -279,37 +258,8 @@ def rosenbrock_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_st
             Q[1, i] = 3.0 * d - h * (2.0 * f0[i] + fnew[i])
             Q[2, i] = h * (f0[i] + fnew[i]) - 2.0 * d
         stop = False
-        if ev_idx >= 0:
-            g0 = y[ev_idx] - ev_val
-            c1 = Q[0, ev_idx]
-            c2 = Q[1, ev_idx]
-            c3 = Q[2, ev_idx]
-            xa = 0.0
-            ga = g0
-            for _ in range(4):  # a cubic changes sign at most three times
-                if ga == 0.0:
-                    break
-                sgn = -1.0 if ga > 0.0 else 1.0
-                xr = cubic_crossing(g0, c1, c2, c3, xa, sgn, True)
-                if xr < 0.0:
-                    break
-                dd = 1 if sgn > 0.0 else -1
-                k = cnt[6]
-                if k < EVBUF.shape[0]:
-                    EVDIR[k] = dd
-                    EVBUF[k, 0] = t + xr * h
-                    for i in range(n):
-                        EVBUF[k, 1 + i] = _poly(y, Q, xr, i)
-                    cnt[6] += 1
-                if ev_stop > 0 and (ev_dir == 0 or dd == ev_dir):
-                    nev_dir += 1
-                    if nev_dir >= ev_stop:
-                        stop = True
-                        break
-                xa = xr
-                ga = g0 + cubic(c1, c2, c3, xr)
-                if xr >= 1.0:
-                    break
+        if ev_idx >= 0 and _may_cross(y[ev_idx] - ev_val, Q[0, ev_idx], Q[1, ev_idx], Q[2, ev_idx]):
+            stop, nev_dir = _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF, EVDIR)
         t = t_new
         for i in range(n):
             y[i] = ynew[i]
@@ -318,32 +268,16 @@ def rosenbrock_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_st
         if not fin:
             status = -3
             break
-        if rec_cap > 0 and cnt[7] < rec_cap:
-            rec_t[cnt[7]] = t
-            for i in range(n):
-                rec_y[cnt[7], i] = y[i]
-            cnt[7] += 1
+        if rec_cap > 0:
+            _record(cnt, rec_t, rec_y, t, y)
         if stop:
             status = 1
             break
-        # predictive step-size control (Gustafsson 1994), exponent 1/(q+1) with q = 3
-        if err_old > 0 and err_norm > 0:
-            mult = h / h_old * (err_old / err_norm) ** 0.25
-        else:
-            mult = 1.0
-        fac = min(1.0, mult) * (err_norm ** -0.25 if err_norm > 0 else 6.0)
-        fac = min(6.0, 0.9 * fac)
-        if rejected:
-            fac = min(1.0, fac)
-        h_old = h
-        err_old = max(err_norm, 1e-10)
-        h = min(h * fac, max_step)
+        h, h_old, err_old = _next_size(h, h_old, err_norm, err_old, rejected, 0.9, 0.25, 6.0, max_step)
         rejected = False
         if one_step == 1:
             break
-    ne = min(cnt[6], EVBUF.shape[0])
-    return (status, t, y, cnt, EVBUF[:ne, 0].copy(), EVBUF[:ne, 1:].copy(), rec_t[:cnt[7]].copy(),
-            rec_y[:cnt[7]].copy(), h, Q)
+    return _finish(status, t, y, cnt, EVBUF, rec_t, rec_y, h, Q)
 
 
 # --------------------------------------------------------------------------------------------
