@@ -778,91 +778,42 @@ class BoundedKernel:
                 base = mul(base, base)
         return result
 
-    def _compensated_program(self, E, X, vals: list, dref, varying: Sequence[bool],
-                             outputs: Sequence[int]) -> list[tuple]:
-        """Forward sweep, then per output in ``outputs`` one reverse sweep accumulating the
-        first-order bound (as :meth:`_program`), the correction Σ g_t δ_t, Σ |g_t δ_t| and
-        Σ |g_t| ρ_t."""
-        self._forward(E, vals)
-        n_in = self._n_in
-        vary = [bool(v) for v in varying]
-        for op in self._ops:
-            vary.append(any(vary[i] for i in op.args))
-        local: dict[int, tuple] = {}
-        errs: dict[int, tuple] = {}
-        zero = E.const(0.0)
-        res = []
-        for out in (self._outs[j] for j in outputs):
-            if out < n_in:
-                res.append((vals[out], zero, zero, zero, zero))
-                continue
-            cone, stack = set(), [out]
-            while stack:
-                s = stack.pop()
-                if s in cone or s < n_in:
-                    continue
-                cone.add(s)
-                stack.extend(self._ops[s - n_in].args)
-            contrib: dict[int, list] = {out: [E.const(1.0)]}
-            bound, corr, sgd, rho = zero, zero, zero, zero
-            for s in sorted(cone, reverse=True):
-                op = self._ops[s - n_in]
-                terms = contrib.pop(s)
-                g = terms[0]
-                for x in terms[1:]:
-                    g = E.add(g, x)
-                if s not in local:
-                    local[s] = self._local(E, op, vals, vals[s])
-                    errs[s] = self._local_error(E, X, op, vals, vals[s], dref, vary[s])
-                partials, rnd = local[s]
-                delta, rs = errs[s]
-                ag = E.abs(g)
-                if rnd is not None:
-                    bound = E.add(bound, E.mul(ag, rnd))
-                if delta is not None:
-                    corr = E.fma(g, delta, corr)
-                    sgd = E.add(sgd, E.abs(E.mul(g, delta)))
-                if rs is not None:
-                    rho = E.add(rho, E.mul(ag, rs))
-                for arg, d in zip(op.args, partials):
-                    if arg >= n_in:
-                        contrib.setdefault(arg, []).append(g if d == E.const(1.0) else E.mul(g, d))
-            res.append((vals[out], bound, corr, sgd, rho))
-        return res
-
     # --- float64: LLVM IR compiled with llvmlite -------------------------------------------
+    def _lane_inputs(self, E, varying: Sequence[bool], errors: bool) -> tuple[list[str], list[str]]:
+        """The loads of a vector loop's inputs, as LLVM IR: input k per point (``A[k][i]``, into
+        the loop body ``E.lines``) where ``varying[k]``, else once before the loop and splat
+        over the lanes; the constants ``C`` (and, with ``errors``, their rounding errors ``D``)
+        and the unit roundoff ``U`` splat before the loop.  Returns (lines before the loop, the
+        input values)."""
+        head, vals = [], []
+        for k in range(self._n_in):
+            head += [f"  %pa{k} = getelementptr ptr, ptr %A, i64 {k}", f"  %A{k} = load ptr, ptr %pa{k}"]
+            if varying[k]:
+                E.lines += [f"  %px{k} = getelementptr double, ptr %A{k}, i64 %i",
+                            f"  %a{k} = load {E.T}, ptr %px{k}, align 8"]
+            else:
+                head += [f"  %s{k} = load double, ptr %A{k}", *_splat(E, f"a{k}", f"%s{k}")]
+            vals.append(f"%a{k}")
+        for j in range(len(self.consts)):
+            head += [f"  %pc{j} = getelementptr double, ptr %C, i64 {j}", f"  %sc{j} = load double, ptr %pc{j}",
+                     *_splat(E, f"c{j}", f"%sc{j}")]
+            if errors:
+                head += [f"  %pd{j} = getelementptr double, ptr %D, i64 {j}", f"  %sd{j} = load double, ptr %pd{j}",
+                         *_splat(E, f"d{j}", f"%sd{j}")]
+        return head + _splat(E, "U", "%u"), vals
+
     def ir(self, varying: Sequence[bool]) -> str:
         """The float64 loop as LLVM IR, :func:`loop_lanes` points per iteration:
         ``void kernel(i64 n, ptr A, ptr C, double U, ptr V, ptr R)`` (n a multiple of them);
         input k is ``A[k][i]`` where ``varying[k]`` else ``A[k][0]``; output j goes to
         ``V[j*n + i]``, its relative bound to ``R[j*n + i]``."""
         E = _IREmitter(mvec=True)
-        T, L = E.T, E.lanes
-        n_in = self._n_in
-        head, vals = [], []
-
-        def splat(name: str, scalar: str) -> list[str]:
-            return [f"  %{name}_1 = insertelement {T} poison, double {scalar}, i32 0",
-                    f"  %{name} = shufflevector {T} %{name}_1, {T} poison, <{L} x i32> zeroinitializer"]
-
-        for k in range(n_in):
-            head += [f"  %pa{k} = getelementptr ptr, ptr %A, i64 {k}", f"  %A{k} = load ptr, ptr %pa{k}"]
-            if varying[k]:
-                E.lines += [f"  %px{k} = getelementptr double, ptr %A{k}, i64 %i", f"  %a{k} = load {T}, ptr %px{k}, align 8"]
-            else:
-                head += [f"  %s{k} = load double, ptr %A{k}", *splat(f"a{k}", f"%s{k}")]
-            vals.append(f"%a{k}")
-        for j in range(len(self.consts)):
-            head += [f"  %pc{j} = getelementptr double, ptr %C, i64 {j}", f"  %sc{j} = load double, ptr %pc{j}",
-                     *splat(f"c{j}", f"%sc{j}")]
-        head += splat("U", "%u")
+        L = E.lanes
+        head, vals = self._lane_inputs(E, varying, errors=False)
         res = self._program(E, vals)
         store = []
         for j, (v, b) in enumerate(res):
-            rel = E.div(E.mul(b, "%U"), E.abs(v))
-            store += [f"  %o{j} = mul i64 %n, {j}", f"  %oi{j} = add i64 %o{j}, %i",
-                      f"  %pv{j} = getelementptr double, ptr %V, i64 %oi{j}", f"  store {T} {v}, ptr %pv{j}, align 8",
-                      f"  %pr{j} = getelementptr double, ptr %R, i64 %oi{j}", f"  store {T} {rel}, ptr %pr{j}, align 8"]
+            store += _lane_store(E, j, v, E.div(E.mul(b, "%U"), E.abs(v)))
         text = "\n".join(E.lines)      # the program, then |value| and the relative bound of each output
         return "\n".join([
             *E.declarations(), "",
@@ -909,63 +860,12 @@ class BoundedKernel:
             "  br i1 %more, label %loop, label %exit", "exit:", "  ret void", "}", "",
             "attributes #0 = { nounwind willreturn memory(none) }", ""])
 
-    def ir_compensated(self, varying: Sequence[bool], outputs: Sequence[int]) -> str:
-        """The compensated float64 loop for the outputs ``outputs`` as LLVM IR, :func:`loop_lanes` points per
-        iteration: ``void kernel(i64 n, ptr A, ptr C, ptr D, double U, ptr V, ptr R)`` with
-        inputs as in :meth:`ir`, constants ``C`` and their rounding errors ``D``; writes the
-        corrected values ``V`` and their relative bounds ``R`` (see :meth:`compensated`)."""
-        E = _IREmitter(mvec=True)
-        T, L = E.T, E.lanes
-        X = _IR80LaneEmitter(E.lines)
-        head, vals = [], []
-
-        def splat(name: str, scalar: str) -> list[str]:
-            return [f"  %{name}_1 = insertelement {T} poison, double {scalar}, i32 0",
-                    f"  %{name} = shufflevector {T} %{name}_1, {T} poison, <{L} x i32> zeroinitializer"]
-
-        for k in range(self._n_in):
-            head += [f"  %pa{k} = getelementptr ptr, ptr %A, i64 {k}", f"  %A{k} = load ptr, ptr %pa{k}"]
-            if varying[k]:
-                E.lines += [f"  %px{k} = getelementptr double, ptr %A{k}, i64 %i", f"  %a{k} = load {T}, ptr %px{k}, align 8"]
-            else:
-                head += [f"  %s{k} = load double, ptr %A{k}", *splat(f"a{k}", f"%s{k}")]
-            vals.append(f"%a{k}")
-        for j, c in enumerate(self.consts):
-            head += [f"  %pc{j} = getelementptr double, ptr %C, i64 {j}", f"  %sc{j} = load double, ptr %pc{j}",
-                     *splat(f"c{j}", f"%sc{j}")]
-            head += [f"  %pd{j} = getelementptr double, ptr %D, i64 {j}", f"  %sd{j} = load double, ptr %pd{j}",
-                     *splat(f"d{j}", f"%sd{j}")]
-        head += splat("U", "%u")
-        res = self._compensated_program(E, X, vals, lambda j: f"%d{j}", varying, outputs)
-        store = []
-        for j, (v, b, corr, sgd, rho) in enumerate(res):
-            vc = E.add(v, corr)
-            b1 = E.mul(b, "%U")
-            # rounding of the sum, the inexact corrections, an allowance of 2^-10 of the correction
-            # for the float64 sensitivities, and 2^10 (b1/|v|)·b1 for the second-order terms
-            tot = E.add(E.add(E.mul("%U", E.abs(vc)), rho),
-                        E.add(E.mul(E.const(2.0 ** -10), sgd), E.div(E.mul(E.const(2.0 ** 10), E.mul(b1, b1)), E.abs(v))))
-            rel = E.div(tot, E.abs(vc))
-            store += [f"  %o{j} = mul i64 %n, {j}", f"  %oi{j} = add i64 %o{j}, %i",
-                      f"  %pv{j} = getelementptr double, ptr %V, i64 %oi{j}", f"  store {T} {vc}, ptr %pv{j}, align 8",
-                      f"  %pr{j} = getelementptr double, ptr %R, i64 %oi{j}", f"  store {T} {rel}, ptr %pr{j}, align 8"]
-        decl = sorted(set(E.declarations()) | set(X.declarations()))
-        return "\n".join([
-            *decl, "",
-            "define void @kernel(i64 %n, ptr noalias %A, ptr noalias %C, ptr noalias %D, double %u, ptr noalias %V, "
-            "ptr noalias %R) {",
-            "entry:", *head, "  br label %loop", "loop:",
-            "  %i = phi i64 [0, %entry], [%inext, %loop]",
-            "\n".join(E.lines), *store,
-            f"  %inext = add i64 %i, {L}", "  %more = icmp slt i64 %inext, %n",
-            "  br i1 %more, label %loop, label %exit", "exit:", "  ret void", "}", "",
-            "attributes #0 = { nounwind willreturn memory(none) }", ""])
-
     # --- fused: float64 with its bound, compensated where a group of points is doubtful --------
     def ir_fused(self, varying: Sequence[bool]) -> str:
         """The float64 loop and the compensated loop in one, as LLVM IR, :func:`loop_lanes` points per
         iteration: ``void kernel(i64 n, ptr A, ptr C, ptr D, double U, double tol, ptr V, ptr R)``
-        (arguments as in :meth:`ir_compensated`).
+        with inputs as in :meth:`ir`, constants ``C`` and their rounding errors ``D``, the unit
+        roundoff ``U``; writes values ``V`` and relative bounds ``R``.
 
         Every iteration runs the float64 program with its first-order bound b (:meth:`ir`) and
         stores values and relative bounds.  Where a relative bound of the iteration's points
@@ -987,25 +887,8 @@ class BoundedKernel:
         T, L = E.T, E.lanes
         X = _IR80LaneEmitter(E.lines)
         n_in = self._n_in
-        head, vals = [], []
-
-        def splat(name: str, scalar: str) -> list[str]:
-            return [f"  %{name}_1 = insertelement {T} poison, double {scalar}, i32 0",
-                    f"  %{name} = shufflevector {T} %{name}_1, {T} poison, <{L} x i32> zeroinitializer"]
-
-        for k in range(n_in):
-            head += [f"  %pa{k} = getelementptr ptr, ptr %A, i64 {k}", f"  %A{k} = load ptr, ptr %pa{k}"]
-            if varying[k]:
-                E.lines += [f"  %px{k} = getelementptr double, ptr %A{k}, i64 %i", f"  %a{k} = load {T}, ptr %px{k}, align 8"]
-            else:
-                head += [f"  %s{k} = load double, ptr %A{k}", *splat(f"a{k}", f"%s{k}")]
-            vals.append(f"%a{k}")
-        for j in range(len(self.consts)):
-            head += [f"  %pc{j} = getelementptr double, ptr %C, i64 {j}", f"  %sc{j} = load double, ptr %pc{j}",
-                     *splat(f"c{j}", f"%sc{j}"),
-                     f"  %pd{j} = getelementptr double, ptr %D, i64 {j}", f"  %sd{j} = load double, ptr %pd{j}",
-                     *splat(f"d{j}", f"%sd{j}")]
-        head += splat("U", "%u") + splat("TOL", "%tol")
+        head, vals = self._lane_inputs(E, varying, errors=True)
+        head += _splat(E, "TOL", "%tol")
         vary = [bool(v) for v in varying]
         for op in self._ops:
             vary.append(any(vary[i] for i in op.args))
@@ -1057,9 +940,7 @@ class BoundedKernel:
             rels.append(rel)
             bd = E._new(f"fcmp ugt {T} {rel}, %TOL")
             doubt = bd if doubt is None else E._new(f"or <{L} x i1> {doubt}, {bd}")
-            store += [f"  %o{j} = mul i64 %n, {j}", f"  %oi{j} = add i64 %o{j}, %i",
-                      f"  %pv{j} = getelementptr double, ptr %V, i64 %oi{j}", f"  store {T} {v}, ptr %pv{j}, align 8",
-                      f"  %pr{j} = getelementptr double, ptr %R, i64 %oi{j}", f"  store {T} {rel}, ptr %pr{j}, align 8"]
+            store += _lane_store(E, j, v, rel)
         any_doubt = E._new(f"call i1 @llvm.vector.reduce.or.v{L}i1(<{L} x i1> {doubt})")
         # the correction, forward: the first-order error e_t = Σ ∂t/∂arg · e_arg + δ_t of every
         # value (Langlois 2001), in its own block (in the preheader for what does not vary)
@@ -1355,35 +1236,6 @@ class BoundedKernel:
 
 
     # --- compensated float64: the tail of the points whose float64 bound is too large --------
-    def _comp_key(self, varying: Sequence[bool], outputs: Sequence[int] | None) -> tuple:
-        outs = tuple(range(self.n_out)) if outputs is None else tuple(int(j) for j in outputs)
-        return ("comp", tuple(bool(x) for x in varying), outs)
-
-    def compiled_compensated(self, varying: Sequence[bool], outputs: Sequence[int] | None = None) -> Callable:
-        """The compiled compensated loop for ``varying`` and ``outputs`` (default all; a ctypes
-        function), compiled on first use."""
-        key = self._comp_key(varying, outputs)
-        with self._lock:
-            if key not in self._fn64:
-                self._fn64[key] = _jit(self.ir_compensated(*key[1:]), extended=True)
-        return self._fn64[key][0]
-
-    def compensated_ready(self, varying: Sequence[bool], outputs: Sequence[int] | None = None) -> bool:
-        """Whether :meth:`compensated` for ``varying`` and ``outputs`` costs no compilation
-        (compiled in this process, or its object file is in the disk cache)."""
-        key = self._comp_key(varying, outputs)
-        with self._lock:
-            if key in self._fn64:
-                return True
-            path = self._paths.get(key, False)
-        if path is False:
-            try:
-                path = _object_path(self.ir_compensated(*key[1:]))
-            except Exception:
-                path = None
-            self._paths[key] = path      # writing the IR takes ~10 ms: once per process
-        return path is not None and path.exists()
-
     def compensated(self, *vals, outputs: Sequence[int] | None = None) -> tuple[np.ndarray, np.ndarray]:
         """The program in float64 with its own rounding errors added back (x86 only).
 
@@ -1391,18 +1243,18 @@ class BoundedKernel:
         transformations: TwoSum, TwoProd with a fused multiply-add), from exact fma residuals for
         1/x and √x, in double-double for integer powers, in x87 extended precision for library
         functions and fractional powers — and the first-order correction Σ_t (∂out/∂t) δ_t is
-        added to the value (Langlois 2001).  Its bound: what the corrections leave (their own
-        errors), an allowance of 2^-10 of Σ|∂out/∂t·δ_t| for the float64 sensitivities, and
-        2^10·b²/|value| for the second-order terms, b the first-order bound of the uncorrected
-        value — so about ten more digits than float64 where the float64 bound is large because
-        of cancelling terms.
+        added to the value (Langlois 2001) — about ten more digits than float64 where the
+        float64 bound is large because of cancelling terms.  This is the fused loop
+        (:meth:`fused`) with ``tol = 0``: every point is compensated, and each output takes the
+        better proven of the float64 and the compensated value, with its bound (the bound is
+        described there).
 
         Parameters
         ----------
         *vals : float or array_like
             One value per input, as for calling the kernel.
         outputs : sequence of int, optional
-            Which outputs to compute (default all).
+            Which outputs to return (default all).
 
         Returns
         -------
@@ -1415,27 +1267,25 @@ class BoundedKernel:
         Ogita, T., Rump, S. M., Oishi, S. (2005), "Accurate sum and dot product", SIAM J. Sci.
         Comput. 26(6), 1955–1988 (TwoSum, TwoProd).
         """
-        arrs = [_flat(v) for v in vals]
-        n = max((a.size for a in arrs), default=1)
-        if any(a.size not in (1, n) for a in arrs):
-            raise ValueError("inputs must have one element or a common length")
-        key = self._comp_key([a.size > 1 for a in arrs], outputs)
-        fn = self.compiled_compensated(*key[1:])
-        n_out = len(key[2])
-        C = np.array([float(c) for c in self.consts] or [0.0], dtype=np.float64)
-        D = np.array([float(Fraction(int(c.p), int(c.q)) - Fraction(float(c))) for c in self.consts] or [0.0])
-        if n == 0:
-            return np.empty((n_out, 0)), np.empty((n_out, 0))
-        size = n
-        lanes = loop_lanes()
-        if n % lanes:
-            n = n + lanes - n % lanes
-            arrs = [a if a.size == 1 else np.concatenate([a, np.full(n - size, a[-1])]) for a in arrs]
-        V = np.empty((n_out, n))
-        R = np.empty((n_out, n))
-        ptrs = (ctypes.c_void_p * len(arrs))(*[a.ctypes.data for a in arrs])
-        fn(n, ptrs, C.ctypes.data, D.ctypes.data, U64, V.ctypes.data, R.ctypes.data)
-        return V[:, :size], R[:, :size]
+        outs = list(range(self.n_out)) if outputs is None else [int(j) for j in outputs]
+        V, R = self.fused(*vals, tol=0.0)
+        return V[outs], R[outs]
+
+
+
+def _splat(E, name: str, scalar: str) -> list[str]:
+    """LLVM IR: the scalar ``scalar`` broadcast to the vector ``%name`` of ``E``'s lanes."""
+    return [f"  %{name}_1 = insertelement {E.T} poison, double {scalar}, i32 0",
+            f"  %{name} = shufflevector {E.T} %{name}_1, {E.T} poison, <{E.lanes} x i32> zeroinitializer"]
+
+
+def _lane_store(E, j: int, v: str, rel: str) -> list[str]:
+    """LLVM IR: the lanes of output ``j``'s value ``v`` to ``V[j*n + i]`` and of its relative
+    bound ``rel`` to ``R[j*n + i]``."""
+    return [f"  %o{j} = mul i64 %n, {j}", f"  %oi{j} = add i64 %o{j}, %i",
+            f"  %pv{j} = getelementptr double, ptr %V, i64 %oi{j}", f"  store {E.T} {v}, ptr %pv{j}, align 8",
+            f"  %pr{j} = getelementptr double, ptr %R, i64 %oi{j}", f"  store {E.T} {rel}, ptr %pr{j}, align 8"]
+
 
 def _flat(v) -> np.ndarray:
     """A contiguous float64 vector; an array broadcast from one value (all strides 0) as that value."""
