@@ -1176,33 +1176,8 @@ class BoundedKernel:
             raise ValueError("inputs must have one element or a common length")
         fn = self.compiled([a.size > 1 for a in arrs])
         C = np.array([float(c) for c in self.consts] or [0.0], dtype=np.float64)
-        if n == 0:
-            return np.empty((self.n_out, 0)), np.empty((self.n_out, 0))
-        size = n
-        lanes = loop_lanes()
-        if n % lanes:                   # the loop takes `lanes` points at a time: pad with the last point
-            n = n + lanes - n % lanes
-            arrs = [a if a.size == 1 else np.concatenate([a, np.full(n - size, a[-1])]) for a in arrs]
-        V = np.empty((self.n_out, n))
-        R = np.empty((self.n_out, n))
-
-        def run(lo: int, hi: int, v: np.ndarray, r: np.ndarray) -> None:
-            ptrs = (ctypes.c_void_p * len(arrs))(*[a.ctypes.data + (0 if a.size == 1 else 8 * lo) for a in arrs])
-            fn(hi - lo, ptrs, C.ctypes.data, U64, v.ctypes.data, r.ctypes.data)
-
-        if workers <= 1 or n <= CHUNK:
-            run(0, n, V, R)
-            return V[:, :size], R[:, :size]
-
-        def chunk(lo: int) -> None:
-            hi = min(lo + CHUNK, n)
-            v, r = np.empty((self.n_out, hi - lo)), np.empty((self.n_out, hi - lo))
-            run(lo, hi, v, r)
-            V[:, lo:hi], R[:, lo:hi] = v, r
-
-        with ThreadPoolExecutor(max_workers=workers) as pool:
-            list(pool.map(chunk, range(0, n, CHUNK)))
-        return V[:, :size], R[:, :size]
+        return self._run(arrs, lambda m, ptrs, v, r: fn(m, ptrs, C.ctypes.data, U64, v.ctypes.data, r.ctypes.data),
+                         workers)
 
     # --- x87 extended precision: the refinement pass -----------------------------------------
     def compiled_extended(self) -> Callable:
