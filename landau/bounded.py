@@ -635,32 +635,42 @@ class BoundedKernel:
             if out < n_in:
                 res.append((vals_fwd[out], E.const(0.0)))
                 continue
-            cone, stack = set(), [out]
-            while stack:
-                s = stack.pop()
-                if s in cone or s < n_in:
-                    continue
-                cone.add(s)
-                stack.extend(self._ops[s - n_in].args)
-            contrib: dict[int, list] = {out: [E.const(1.0)]}
             bound = None
-            for s in sorted(cone, reverse=True):
-                op = self._ops[s - n_in]
-                terms = contrib.pop(s)
-                g = terms[0]
-                for x in terms[1:]:
-                    g = E.add(g, x)
-                if s not in local:
-                    local[s] = self._local(E, op, vals, vals[s])
-                partials, rnd = local[s]
+            for s, op, g, rnd in self._reverse_sweep(E, out, vals, local):
                 if rnd is not None:
                     term = E.mul(E.abs(g), rnd)
                     bound = term if bound is None else E.add(bound, term)
-                for arg, d in zip(op.args, partials):
-                    if arg >= n_in:
-                        contrib.setdefault(arg, []).append(g if d == E.const(1.0) else E.mul(g, d))
             res.append((vals_fwd[out], bound if bound is not None else E.const(0.0)))
         return res
+
+    def _reverse_sweep(self, E, out: int, vals: list, local: dict):
+        """The operations of output ``out``'s cone in reverse order, with the adjoint of each:
+        yields (s, op, g, rnd) — g = ∂out/∂t_s (emitted in ``E``), rnd its local rounding bound
+        (None where exact); the adjoints of op's arguments are accumulated after the caller has
+        used the yielded values.  ``local`` caches :meth:`_local` per operation across outputs."""
+        n_in = self._n_in
+        cone, stack = set(), [out]
+        while stack:
+            s = stack.pop()
+            if s in cone or s < n_in:
+                continue
+            cone.add(s)
+            stack.extend(self._ops[s - n_in].args)
+        one = E.const(1.0)
+        contrib: dict[int, list] = {out: [one]}
+        for s in sorted(cone, reverse=True):
+            op = self._ops[s - n_in]
+            terms = contrib.pop(s)
+            g = terms[0]
+            for x in terms[1:]:
+                g = E.add(g, x)
+            if s not in local:
+                local[s] = self._local(E, op, vals, vals[s])
+            partials, rnd = local[s]
+            yield s, op, g, rnd
+            for arg, d in zip(op.args, partials):
+                if arg >= n_in:
+                    contrib.setdefault(arg, []).append(g if d == one else E.mul(g, d))
 
     # --- compensated float64: the rounding errors themselves, propagated to the outputs -------
     def _local_error(self, E, X, op: _Op, vals: list, t, dref, varying: bool = True) -> tuple[object, object]:
@@ -904,23 +914,7 @@ class BoundedKernel:
         for out in self._outs:
             bound, rho, bx = zero, zero, zero
             if out >= n_in:
-                cone, stack = set(), [out]
-                while stack:
-                    s = stack.pop()
-                    if s in cone or s < n_in:
-                        continue
-                    cone.add(s)
-                    stack.extend(self._ops[s - n_in].args)
-                contrib: dict[int, list] = {out: [one]}
-                for s in sorted(cone, reverse=True):
-                    op = self._ops[s - n_in]
-                    terms = contrib.pop(s)
-                    g = terms[0]
-                    for x in terms[1:]:
-                        g = E.add(g, x)
-                    if s not in local:
-                        local[s] = self._local(E, op, vals, vals[s])
-                    partials, rnd = local[s]
+                for s, op, g, rnd in self._reverse_sweep(E, out, vals, local):
                     if rnd is not None:
                         ag = E.abs(g)
                         bound = E.add(bound, E.mul(ag, rnd))
@@ -930,9 +924,6 @@ class BoundedKernel:
                             rho = E.add(rho, E.mul(ag, x87_err[s]))
                             if vary[s]:
                                 bx = E.add(bx, E.mul(ag, rnd))
-                    for arg, d in zip(op.args, partials):
-                        if arg >= n_in:
-                            contrib.setdefault(arg, []).append(g if d == one else E.mul(g, d))
             sweeps.append((vals[out], bound, rho, bx))
         store, doubt, rels = [], None, []
         for j, (v, b, _, _) in enumerate(sweeps):
