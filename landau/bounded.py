@@ -19,8 +19,10 @@ elsewhere it stays within one to three orders of magnitude of the actual error.
 The float64 loop is generated as LLVM IR and compiled with llvmlite (numba's code
 generator, already a dependency) — numba's own front end takes seconds to type a few
 thousand scalar statements, LLVM a fraction of that.  Library functions (exp, log, pow, …)
-come from glibc's vector math library (libmvec, four doubles per call, within 4 ulps — the
-bound counts them so) where it is available, else from libm lane by lane (within 1 ulp).  The
+come from glibc's vector math library (libmvec, eight doubles per call with AVX-512, else four,
+within 4 ulps — the bound counts them so) where it is available, else from libm lane by lane
+(within 1 ulp).  Powers of one base whose exponents are integer multiples of one exponent
+(x**(b/a), x**(2b/a), …) share one library ``pow``.  The
 machine code is cached on disk (``landau.cache.cache_dir()/kernels``, named by a hash of the IR
 and the CPU).
 
@@ -29,7 +31,10 @@ Points whose float64 bound is too large are refined, first by the compensated pr
 each operation commits — exactly for +, −, × by error-free transformations (TwoSum, TwoProd
 with a fused multiply-add), in x87 extended precision for library functions — and adds the
 first-order correction Σ_t (∂out/∂t)·δ_t back (Langlois 2001), gaining about ten digits where
-float64 lost them to cancelling terms; then, for what is still unproven, by the program in the
+float64 lost them to cancelling terms.  The float64 and compensated programs run as one loop
+(:meth:`BoundedKernel.fused`): the correction, propagated forward through the program, only for
+the groups of points with a doubtful output, reusing their float64 values and bound.  Then,
+for what is still unproven, the program runs in the
 x87 80-bit extended type (x86 only: 2048 times finer than float64, one point per iteration,
 the bound swept in double, :meth:`BoundedKernel.extended`).
 
@@ -69,12 +74,13 @@ U80 = 2.0 ** -64
 EXTENDED = np.finfo(np.longdouble).eps < 1e-18 and platform.machine().lower() in ("x86_64", "amd64", "i386", "i686")
 #: whether evaluate_proven refines doubtful points with the compensated float64 loop first
 COMPENSATE = True
-#: fewest doubtful points for which evaluate_proven compiles the compensated loop (0.4–0.9 s,
-#: about what the extended loop takes for 1e5 points) when its machine code is not cached
+#: fewest doubtful points for which evaluate_proven compiles the fused float64 + compensated
+#: loop (:meth:`BoundedKernel.fused`; about a second, what the extended loop takes for 1e5
+#: points) when its machine code is not cached
 COMPENSATED_MIN_POINTS = 50_000
-#: fewest doubtful points for which evaluate_proven uses the compensated loop when its machine
-#: code is cached (finding out costs writing its IR, ~10 ms, what the extended loop takes for
-#: ~2000 points)
+#: fewest points for which evaluate_proven looks for the fused loop's machine code in the disk
+#: cache (finding out costs writing its IR, ~10 ms, what the extended loop takes for ~2000
+#: points); compiled in this process, it is used for any number of points
 COMPENSATED_CACHED_MIN_POINTS = 2_000
 #: points per chunk of the compiled loop handed to one thread
 CHUNK = 65_536
@@ -94,24 +100,32 @@ def _hex(x: float) -> str:
     return "0x%016X" % struct.unpack(">Q", struct.pack(">d", float(x)))[0]
 
 
-#: points per iteration of the compiled loop (4 doubles: one AVX2 register)
+#: points per iteration of the compiled loops where glibc's vector math library is not used
+#: (4 doubles: one AVX2 register); with it, as many as its widest variant the CPU runs takes
+#: (:func:`loop_lanes`)
 LANES = 4
 
-
-#: sympy function -> glibc's vector math library (libmvec) function on 4 doubles (AVX2)
-_MVEC = {"exp": "_ZGVdN4v_exp", "log": "_ZGVdN4v_log", "sin": "_ZGVdN4v_sin", "cos": "_ZGVdN4v_cos",
-         "asinh": "_ZGVdN4v_asinh", "atan": "_ZGVdN4v_atan", "tanh": "_ZGVdN4v_tanh",
-         "sinh": "_ZGVdN4v_sinh", "cosh": "_ZGVdN4v_cosh", "pow": "_ZGVdN4vv_pow"}
+#: libmvec variants: doubles per call -> (name prefix, the CPU feature it needs)
+_MVEC_ISA = {8: ("_ZGVeN8", "avx512f"), 4: ("_ZGVdN4", "avx2")}
+#: sympy function -> libmvec function (after the prefix)
+_MVEC_FUNCS = {"exp": "v_exp", "log": "v_log", "sin": "v_sin", "cos": "v_cos", "asinh": "v_asinh",
+               "atan": "v_atan", "tanh": "v_tanh", "sinh": "v_sinh", "cosh": "v_cosh", "pow": "vv_pow"}
 #: the accuracy glibc states for its vector math functions (ulps)
 MVEC_ULPS = 4.0
 _mvec_state: list = []
 
 
-def _mvec_available() -> bool:
-    """Whether glibc's libmvec is loaded with every function of :data:`_MVEC` and the CPU has
-    AVX2 (its 4-double variants): the compiled float64 loops then call it instead of scalar libm."""
+def _mvec_names(lanes: int) -> dict[str, str]:
+    """sympy function -> glibc's vector math library (libmvec) function on ``lanes`` doubles."""
+    return {k: _MVEC_ISA[lanes][0] + v for k, v in _MVEC_FUNCS.items()}
+
+
+def _mvec_lanes() -> int:
+    """Doubles per call of the widest libmvec variant that is loaded with every function of
+    :data:`_MVEC_FUNCS` and that the CPU runs (8: AVX-512, 4: AVX2; 0: none): the compiled
+    float64 loops then call it instead of scalar libm."""
     if not _mvec_state:
-        ok = False
+        lanes = 0
         if platform.system() == "Linux" and platform.machine().lower() in ("x86_64", "amd64"):
             try:
                 import ctypes.util
@@ -120,31 +134,48 @@ def _mvec_available() -> bool:
 
                 name = ctypes.util.find_library("mvec") or "libmvec.so.1"
                 lib = ctypes.CDLL(name, mode=ctypes.RTLD_GLOBAL)
-                ok = all(hasattr(lib, f) for f in _MVEC.values()) and \
-                    llvm.get_host_cpu_features().get("avx2", False)
-                if ok:
+                features = llvm.get_host_cpu_features()
+                for n, (_, feature) in _MVEC_ISA.items():
+                    if features.get(feature, False) and all(hasattr(lib, f) for f in _mvec_names(n).values()):
+                        lanes = n
+                        break
+                if lanes:
                     llvm.load_library_permanently(lib._name if "/" in lib._name else name)
             except Exception:          # no glibc, no libmvec: scalar libm, lane by lane
-                ok = False
-        _mvec_state.append(ok)
+                lanes = 0
+        _mvec_state.append(lanes)
     return _mvec_state[0]
 
 
+def _mvec_available() -> bool:
+    """Whether the compiled float64 loops call glibc's vector math library."""
+    return _mvec_lanes() > 0
+
+
+def loop_lanes() -> int:
+    """Points per iteration of the compiled float64 loops: the width of the libmvec variant in
+    use (8 doubles with AVX-512 — twice the points per instruction, and 32 vector registers for
+    a program of a few thousand operations), else :data:`LANES`."""
+    return _mvec_lanes() or LANES
+
+
 class _IREmitter:
-    """LLVM IR on vectors of LANES doubles (one basic block); library functions from glibc's
+    """LLVM IR on vectors of :func:`loop_lanes` doubles (one basic block); library functions from glibc's
     vector math library where ``mvec`` (and it is available), else lane by lane."""
 
     #: error of a library function, in ulps (glibc's scalar functions: within one ulp)
     lib_ulps = 1.0
 
-    def __init__(self, lanes: int = LANES, mvec: bool = False):
+    def __init__(self, lanes: int | None = None, mvec: bool = False):
+        lanes = loop_lanes() if lanes is None else lanes
         self.lines: list[str] = []
         self.n = 0
         self.used: set[str] = set()
         self.lanes = lanes
         self.T = f"<{lanes} x double>"
         self.sfx = f"v{lanes}f64"
-        self.mvec = bool(mvec and lanes == 4 and _mvec_available())
+        self.mvec = bool(mvec and lanes == _mvec_lanes())
+        self._mvec = _mvec_names(lanes) if self.mvec else {}
         if self.mvec:
             self.lib_ulps = MVEC_ULPS
 
@@ -189,8 +220,8 @@ class _IREmitter:
 
     def pow(self, a, b):
         if self.mvec:
-            self.used.add(_MVEC["pow"])
-            return self._new(f"call {self.T} @{_MVEC['pow']}({self.T} {a}, {self.T} {b})")
+            self.used.add(self._mvec["pow"])
+            return self._new(f"call {self.T} @{self._mvec['pow']}({self.T} {a}, {self.T} {b})")
         return self._intrinsic("pow", f"{self.T} {a}", f"{self.T} {b}")
 
     def fma(self, a, b, c):
@@ -199,9 +230,9 @@ class _IREmitter:
 
     def call(self, fname: str, a):
         f = _FUNCS[fname]
-        if self.mvec and fname in _MVEC:
-            self.used.add(_MVEC[fname])
-            return self._new(f"call {self.T} @{_MVEC[fname]}({self.T} {a})")
+        if self.mvec and fname in self._mvec:
+            self.used.add(self._mvec[fname])
+            return self._new(f"call {self.T} @{self._mvec[fname]}({self.T} {a})")
         if f.startswith("llvm."):
             return self._intrinsic(f.split(".")[1], f"{self.T} {a}")
         self.used.add(f)
@@ -310,6 +341,70 @@ class _IR80LaneEmitter(_IR80Emitter):
         return name
 
 
+#: largest |k| for which x**(k g) is computed as (x**g)**k (its bound grows with |k|)
+POWER_SHARE_MAX = 8
+
+
+def _power_plan(exprs: Sequence[sp.Basic]) -> dict:
+    """Which non-integer powers are computed from another power of the same base.
+
+    Powers x**e_i of one base whose exponents are integer multiples k_i of one exponent g
+    (|k_i| ≤ :data:`POWER_SHARE_MAX`; e.g. x**(b/a), x**(2b/a), x**(3b/a)) become (x**g)**k_i:
+    one library ``pow`` (and, in the compensated program, one extended-precision exp and log
+    per lane) instead of one per exponent, the rest integer powers, whose rounding errors the
+    compensated program computes exactly.  Half-integer powers x**(n/2) become sqrt(x)**n
+    (correctly rounded square root, no library ``pow``).
+
+    Parameters
+    ----------
+    exprs : sequence of sympy.Basic
+        Every expression the program is built from.
+
+    Returns
+    -------
+    dict
+        Power -> (root power x**g, k); the roots themselves are not keys.
+    """
+    by_base: dict[sp.Basic, dict] = {}
+    seen: set = set()
+    stack = list(exprs)
+    while stack:                            # every distinct sub-expression once
+        node = stack.pop()
+        if node in seen:
+            continue
+        seen.add(node)
+        if node.is_Pow and not node.exp.is_Integer:
+            by_base.setdefault(node.base, {})[node.exp] = node
+        stack.extend(node.args)
+    plan: dict = {}
+    for base, nodes in by_base.items():
+        rest = sorted(nodes, key=sp.default_sort_key)
+        while rest:
+            e0 = rest.pop(0)
+            if e0.is_Rational and e0.q == 2:        # x**(n/2) = sqrt(x)**n
+                g = sp.Rational(1, 2)
+                ks = {e: int(2 * e) for e in [e0, *rest] if e.is_Rational and e.q == 2}
+            else:
+                ratios = {e: e / e0 for e in [e0, *rest]}
+                ratios = {e: r for e, r in ratios.items() if r.is_Rational}
+                den = 1
+                for r in ratios.values():
+                    den = sp.ilcm(den, r.q)
+                g = e0 / den
+                ks = {e: int(r * den) for e, r in ratios.items()}
+                if sum(k < 0 for k in ks.values()) > sum(k > 0 for k in ks.values()):
+                    g, ks = -g, {e: -k for e, k in ks.items()}
+            ks = {e: k for e, k in ks.items() if abs(k) <= POWER_SHARE_MAX}
+            rest = [e for e in rest if e not in ks]
+            root = sp.Pow(base, g)
+            if not (root.is_Pow and root.base == base and root.exp == g):
+                continue                            # sympy rewrote the root: leave the powers alone
+            for e, k in ks.items():
+                if k != 1:
+                    plan[nodes[e]] = (root, k)
+    return plan
+
+
 def _quick_two_sum(E, a, b) -> tuple[object, object]:
     """(s, e) with s + e = a + b exactly, for |a| ≥ |b| (Dekker 1971)."""
     s = E.add(a, b)
@@ -368,6 +463,9 @@ class BoundedKernel:
             ops.append(op)
             return n_in + len(ops) - 1
 
+        # powers of one base whose exponents are integer multiples of one exponent g share one
+        # pow call: x**(k g) = (x**g)**k (and x**(n/2) = sqrt(x)**n), see _power_plan
+        plan = _power_plan([as_expr(o) for o in outputs] + [as_expr(d) for d in definitions.values()])
         for o in outputs:
             stack = [(as_expr(o), False)]
             while stack:
@@ -394,9 +492,13 @@ class BoundedKernel:
                     continue
                 if not done:
                     stack.append((cur, True))
-                    stack.extend((a, False) for a in cur.args if a not in slot)
+                    stack.extend((a, False) for a in ((plan[cur][0],) if cur in plan else cur.args) if a not in slot)
                     continue
-                slot[cur] = self._lower(cur, slot, push)
+                if cur in plan:
+                    root, k = plan[cur]
+                    slot[cur] = self._lower_powi(slot[root], k, push)
+                else:
+                    slot[cur] = self._lower(cur, slot, push)
         self._ops = ops
         self._n_in = n_in
         self._outs = [slot[as_expr(o)] for o in outputs]
@@ -404,6 +506,17 @@ class BoundedKernel:
         self._lock = threading.Lock()
         self._fn64: dict[tuple, tuple] = {}
         self._paths: dict[tuple, object] = {}
+
+    @staticmethod
+    def _lower_powi(x: int, n: int, push) -> int:
+        """The operation x**n (n a nonzero integer) of the value in slot ``x``."""
+        if n == 1:
+            return x
+        if n == -1:
+            return push(_Op("inv", (x,)))
+        if n == 2:
+            return push(_Op("sq", (x,)))
+        return push(_Op("powi", (x,), n))
 
     @staticmethod
     def _lower(node, slot, push) -> int:
@@ -416,12 +529,7 @@ class BoundedKernel:
         if node.is_Pow:
             x, p = slot[node.base], node.exp
             if p.is_Integer:
-                n = int(p)
-                if n == -1:
-                    return push(_Op("inv", (x,)))
-                if n == 2:
-                    return push(_Op("sq", (x,)))
-                return push(_Op("powi", (x,), n))
+                return BoundedKernel._lower_powi(x, int(p), push)
             if p == sp.Rational(1, 2):
                 return push(_Op("func", (x,), "sqrt"))
             if p.is_Rational and _exact_in_float(p):
@@ -433,9 +541,13 @@ class BoundedKernel:
         raise ValueError(f"no bounded operation for {fname}")
 
     # --- the program, written against an emitter ---------------------------------------------
-    def _forward(self, E, vals: list) -> None:
-        """Append the value of every operation to ``vals`` (inputs already there)."""
-        for op in self._ops:
+    def _forward(self, E, vals: list, vary: Sequence[bool] | None = None, pre: list | None = None) -> None:
+        """Append the value of every operation to ``vals`` (inputs already there); with ``vary``
+        (per slot) and ``pre``, the operations that do not vary are written into ``pre`` (the
+        lines before the loop)."""
+        body = E.lines
+        for s, op in enumerate(self._ops, start=self._n_in):
+            E.lines = pre if (pre is not None and not vary[s]) else body
             k, a = op.kind, [vals[i] for i in op.args]
             if k == "const":
                 vals.append(E.cref(op.param[0]))
@@ -456,6 +568,7 @@ class BoundedKernel:
                 vals.append(E.pow(a[0], a[1]))
             else:
                 vals.append(E.call(op.param, a[0]))
+        E.lines = body
 
     def _local(self, E, op: _Op, vals: list, t) -> tuple[list, object]:
         """(∂t/∂arg for each arg, the rounding error t commits in units of u) as emitter values."""
@@ -626,6 +739,24 @@ class BoundedKernel:
             scale = E.const(16 * U80)
         return dv, E.mul(E.abs(t), scale)
 
+    def _x87_error_bound(self, E, op: _Op, vals: list, t):
+        """A float64 bound on the error of the rounding error δ that :meth:`_local_error`
+        computes in x87 extended precision (library functions, fractional powers other than
+        half-integer ones; None for the other operations, whose δ is exact or within 8u of
+        itself): the ρ of :meth:`_local_error`, with z = p·log x in float64."""
+        k = op.kind
+        if k == "powf" and float(2 * op.param).is_integer():
+            return E.mul(E.abs(t), E.const((2 * abs(2 * op.param) + 8) * U80))
+        if k in ("powf", "powx"):
+            a = [vals[i] for i in op.args]
+            p = E.const(op.param) if k == "powf" else a[1]
+            z = E.mul(p, E.call("log", a[0]))
+            # 2^-40 relative slack for z in float64 and this product
+            return E.mul(E.abs(t), E.mul(E.const(4 * U80 * (1 + 2.0 ** -40)), E.add(E.const(4.0), E.abs(z))))
+        if k == "func" and op.param not in ("sqrt", "Abs"):
+            return E.mul(E.abs(t), E.const(16 * U80))
+        return None
+
     @staticmethod
     def _dd_powi(E, x, n: int) -> tuple[object, object]:
         """x**n (n ≥ 1) in double-double by binary powering: (hi, lo), lo None when exact."""
@@ -701,8 +832,8 @@ class BoundedKernel:
 
     # --- float64: LLVM IR compiled with llvmlite -------------------------------------------
     def ir(self, varying: Sequence[bool]) -> str:
-        """The float64 loop as LLVM IR, LANES points per iteration:
-        ``void kernel(i64 n, ptr A, ptr C, double U, ptr V, ptr R)`` (n a multiple of LANES);
+        """The float64 loop as LLVM IR, :func:`loop_lanes` points per iteration:
+        ``void kernel(i64 n, ptr A, ptr C, double U, ptr V, ptr R)`` (n a multiple of them);
         input k is ``A[k][i]`` where ``varying[k]`` else ``A[k][0]``; output j goes to
         ``V[j*n + i]``, its relative bound to ``R[j*n + i]``."""
         E = _IREmitter(mvec=True)
@@ -779,7 +910,7 @@ class BoundedKernel:
             "attributes #0 = { nounwind willreturn memory(none) }", ""])
 
     def ir_compensated(self, varying: Sequence[bool], outputs: Sequence[int]) -> str:
-        """The compensated float64 loop for the outputs ``outputs`` as LLVM IR, LANES points per
+        """The compensated float64 loop for the outputs ``outputs`` as LLVM IR, :func:`loop_lanes` points per
         iteration: ``void kernel(i64 n, ptr A, ptr C, ptr D, double U, ptr V, ptr R)`` with
         inputs as in :meth:`ir`, constants ``C`` and their rounding errors ``D``; writes the
         corrected values ``V`` and their relative bounds ``R`` (see :meth:`compensated`)."""
@@ -829,6 +960,280 @@ class BoundedKernel:
             f"  %inext = add i64 %i, {L}", "  %more = icmp slt i64 %inext, %n",
             "  br i1 %more, label %loop, label %exit", "exit:", "  ret void", "}", "",
             "attributes #0 = { nounwind willreturn memory(none) }", ""])
+
+    # --- fused: float64 with its bound, compensated where a group of points is doubtful --------
+    def ir_fused(self, varying: Sequence[bool]) -> str:
+        """The float64 loop and the compensated loop in one, as LLVM IR, :func:`loop_lanes` points per
+        iteration: ``void kernel(i64 n, ptr A, ptr C, ptr D, double U, double tol, ptr V, ptr R)``
+        (arguments as in :meth:`ir_compensated`).
+
+        Every iteration runs the float64 program with its first-order bound b (:meth:`ir`) and
+        stores values and relative bounds.  Where a relative bound of the iteration's points
+        exceeds ``tol`` (or is NaN), the rounding errors δ_t are computed as in
+        :meth:`compensated` and their first-order effect is propagated forward,
+        e_t = Σ ∂t/∂arg·e_arg + δ_t (Langlois 2001), from the float64 values and partial
+        derivatives already at hand; a point's output takes the compensated value v + e where
+        its own bound exceeds ``tol`` and the compensated bound is smaller.  That bound: the
+        rounding of v + e, the error of the δ computed in extended precision (summed in the
+        float64 sweep), (2^-10 + 2^-49)·b·u for the float64 sensitivities and the residual
+        errors of the error-free transformations (each |δ_t| is within the rounding error b
+        counts, so Σ|∂out/∂t·δ_t| ≤ b·u), and 2^10 (b·u)²/|v| for the second-order terms.
+        The δ computed lane by lane in extended precision (library functions, fractional
+        powers) are left out where the share of b they account for is below 2^-4 ``tol``·|v|
+        for every doubtful output of the iteration; that share then stays in the bound.
+        Operations that do not vary from point to point (and their rounding errors) are
+        computed once, before the loop."""
+        E = _IREmitter(mvec=True)
+        T, L = E.T, E.lanes
+        X = _IR80LaneEmitter(E.lines)
+        n_in = self._n_in
+        head, vals = [], []
+
+        def splat(name: str, scalar: str) -> list[str]:
+            return [f"  %{name}_1 = insertelement {T} poison, double {scalar}, i32 0",
+                    f"  %{name} = shufflevector {T} %{name}_1, {T} poison, <{L} x i32> zeroinitializer"]
+
+        for k in range(n_in):
+            head += [f"  %pa{k} = getelementptr ptr, ptr %A, i64 {k}", f"  %A{k} = load ptr, ptr %pa{k}"]
+            if varying[k]:
+                E.lines += [f"  %px{k} = getelementptr double, ptr %A{k}, i64 %i", f"  %a{k} = load {T}, ptr %px{k}, align 8"]
+            else:
+                head += [f"  %s{k} = load double, ptr %A{k}", *splat(f"a{k}", f"%s{k}")]
+            vals.append(f"%a{k}")
+        for j in range(len(self.consts)):
+            head += [f"  %pc{j} = getelementptr double, ptr %C, i64 {j}", f"  %sc{j} = load double, ptr %pc{j}",
+                     *splat(f"c{j}", f"%sc{j}"),
+                     f"  %pd{j} = getelementptr double, ptr %D, i64 {j}", f"  %sd{j} = load double, ptr %pd{j}",
+                     *splat(f"d{j}", f"%sd{j}")]
+        head += splat("U", "%u") + splat("TOL", "%tol")
+        vary = [bool(v) for v in varying]
+        for op in self._ops:
+            vary.append(any(vary[i] for i in op.args))
+        body = E.lines
+        self._forward(E, vals, vary, head)
+        # float64: one reverse sweep per output for the first-order bound (as in ir), and the
+        # bound of the error that the correction itself carries where the rounding error of an
+        # operation is computed in extended precision only (library functions, powers)
+        one, zero = E.const(1.0), E.const(0.0)
+        local: dict[int, tuple] = {}
+        x87_err: dict[int, object] = {}
+        sweeps = []
+        for out in self._outs:
+            bound, rho, bx = zero, zero, zero
+            if out >= n_in:
+                cone, stack = set(), [out]
+                while stack:
+                    s = stack.pop()
+                    if s in cone or s < n_in:
+                        continue
+                    cone.add(s)
+                    stack.extend(self._ops[s - n_in].args)
+                contrib: dict[int, list] = {out: [one]}
+                for s in sorted(cone, reverse=True):
+                    op = self._ops[s - n_in]
+                    terms = contrib.pop(s)
+                    g = terms[0]
+                    for x in terms[1:]:
+                        g = E.add(g, x)
+                    if s not in local:
+                        local[s] = self._local(E, op, vals, vals[s])
+                    partials, rnd = local[s]
+                    if rnd is not None:
+                        ag = E.abs(g)
+                        bound = E.add(bound, E.mul(ag, rnd))
+                        if s not in x87_err:
+                            x87_err[s] = self._x87_error_bound(E, op, vals, vals[s])
+                        if x87_err[s] is not None:
+                            rho = E.add(rho, E.mul(ag, x87_err[s]))
+                            if vary[s]:
+                                bx = E.add(bx, E.mul(ag, rnd))
+                    for arg, d in zip(op.args, partials):
+                        if arg >= n_in:
+                            contrib.setdefault(arg, []).append(g if d == one else E.mul(g, d))
+            sweeps.append((vals[out], bound, rho, bx))
+        store, doubt, rels = [], None, []
+        for j, (v, b, _, _) in enumerate(sweeps):
+            rel = E.div(E.mul(b, "%U"), E.abs(v))
+            rels.append(rel)
+            bd = E._new(f"fcmp ugt {T} {rel}, %TOL")
+            doubt = bd if doubt is None else E._new(f"or <{L} x i1> {doubt}, {bd}")
+            store += [f"  %o{j} = mul i64 %n, {j}", f"  %oi{j} = add i64 %o{j}, %i",
+                      f"  %pv{j} = getelementptr double, ptr %V, i64 %oi{j}", f"  store {T} {v}, ptr %pv{j}, align 8",
+                      f"  %pr{j} = getelementptr double, ptr %R, i64 %oi{j}", f"  store {T} {rel}, ptr %pr{j}, align 8"]
+        any_doubt = E._new(f"call i1 @llvm.vector.reduce.or.v{L}i1(<{L} x i1> {doubt})")
+        # the correction, forward: the first-order error e_t = Σ ∂t/∂arg · e_arg + δ_t of every
+        # value (Langlois 2001), in its own block (in the preheader for what does not vary)
+        # The rounding errors computed in extended precision lane by lane (library functions,
+        # fractional powers) are the costly ones: they are computed only where the part of the
+        # first-order bound they account for, bx, is above 2^-4 tol for a doubtful output of
+        # the iteration's points; elsewhere their share of the bound stays in the bound.
+        fix, fixx, fix2 = [], [], []
+        E.lines = fix
+        need = None
+        for j, (v, b, rho, bx) in enumerate(sweeps):
+            big = E._new(f"fcmp ogt {T} " + E.mul(bx, "%U") + ", " + E.mul(E.const(2.0 ** -4), E.mul("%TOL", E.abs(v))))
+            nj = E._new(f"and <{L} x i1> {big}, " + E._new(f"fcmp ugt {T} {rels[j]}, %TOL"))
+            need = nj if need is None else E._new(f"or <{L} x i1> {need}, {nj}")
+        any_need = E._new(f"call i1 @llvm.vector.reduce.or.v{L}i1(<{L} x i1> {need})")
+        x87_delta: dict[int, object] = {}
+        E.lines = X.lines = fixx
+        for s, op in enumerate(self._ops, start=n_in):
+            if vary[s] and s in x87_err and x87_err[s] is not None:
+                delta, _ = self._local_error(E, X, op, vals, vals[s], lambda c: f"%d{c}", True)
+                x87_delta[s] = E._new(f"phi {T} [{delta}, %fixx], [zeroinitializer, %fix]")
+                fixx.pop()                   # the phi belongs to fix2
+                fix2.append(f"  {x87_delta[s]} = phi {T} [{delta}, %fixx], [zeroinitializer, %fix]")
+        skipped = []
+        for j, (v, b, rho, bx) in enumerate(sweeps):
+            name = f"%skip{j}"
+            fix2.append(f"  {name} = phi {T} [zeroinitializer, %fixx], [{bx}, %fix]")
+            skipped.append(name)
+        errs: dict[int, object] = {}
+        for s, op in enumerate(self._ops, start=n_in):
+            E.lines = X.lines = fix2 if vary[s] else head
+            if s in x87_delta:
+                delta = x87_delta[s]
+            else:
+                delta, _ = self._local_error(E, X, op, vals, vals[s], lambda c: f"%d{c}", vary[s])
+            partials = local[s][0] if (vary[s] and s in local) else self._local(E, op, vals, vals[s])[0]
+            e = delta
+            for arg, d in zip(op.args, partials):
+                ea = errs.get(arg)
+                if ea is None:
+                    continue
+                if d == one:
+                    e = ea if e is None else E.add(e, ea)
+                else:
+                    e = E.mul(d, ea) if e is None else E.fma(d, ea, e)
+            if e is not None:
+                errs[s] = e
+        E.lines = X.lines = fix2
+        for j, (v, b, rho, _) in enumerate(sweeps):
+            e = errs.get(self._outs[j])
+            vc = v if e is None else E.add(v, e)
+            b1 = E.mul(b, "%U")
+            rho = E.add(rho, E.mul(skipped[j], "%U"))
+            # rounding of the sum, the corrections' own error, an allowance of 2^-10 of the
+            # first-order bound (≥ Σ|∂out/∂t·δ_t|) for the float64 sensitivities and 2^-49 of it
+            # for the error-free transformations' residual errors (1/x, √x, x**n: within 8u of
+            # their δ), and 2^10 (b1/|v|)·b1 for the second-order terms
+            tot = E.add(E.add(E.mul("%U", E.abs(vc)), rho),
+                        E.add(E.mul(E.const(2.0 ** -10 + 2.0 ** -49), b1),
+                              E.div(E.mul(E.const(2.0 ** 10), E.mul(b1, b1)), E.abs(v))))
+            relc = E.div(tot, E.abs(vc))
+            better = E._new(f"fcmp olt {T} {relc}, {rels[j]}")
+            use = E._new(f"and <{L} x i1> {better}, " + E._new(f"fcmp ugt {T} {rels[j]}, %TOL"))
+            vo = E._new(f"select <{L} x i1> {use}, {T} {vc}, {T} {v}")
+            ro = E._new(f"select <{L} x i1> {use}, {T} {relc}, {T} {rels[j]}")
+            fix2 += [f"  store {T} {vo}, ptr %pv{j}, align 8", f"  store {T} {ro}, ptr %pr{j}, align 8"]
+        E.lines = body
+        decl = sorted(set(E.declarations()) | set(X.declarations())
+                      | {f"declare i1 @llvm.vector.reduce.or.v{L}i1(<{L} x i1>)"})
+        return "\n".join([
+            *decl, "",
+            "define void @kernel(i64 %n, ptr noalias %A, ptr noalias %C, ptr noalias %D, double %u, double %tol, "
+            "ptr noalias %V, ptr noalias %R) {",
+            "entry:", *head, "  br label %loop", "loop:",
+            "  %i = phi i64 [0, %entry], [%inext, %next]",
+            "\n".join(body), *store,
+            f"  br i1 {any_doubt}, label %fix, label %next", "fix:",
+            "\n".join(fix), f"  br i1 {any_need}, label %fixx, label %fix2", "fixx:",
+            "\n".join(fixx), "  br label %fix2", "fix2:",
+            "\n".join(fix2), "  br label %next", "next:",
+            f"  %inext = add i64 %i, {L}", "  %more = icmp slt i64 %inext, %n",
+            "  br i1 %more, label %loop, label %exit", "exit:", "  ret void", "}", "",
+            "attributes #0 = { nounwind willreturn memory(none) }", ""])
+
+    def compiled_fused(self, varying: Sequence[bool]) -> Callable:
+        """The compiled fused loop (:meth:`ir_fused`) for ``varying``, compiled on first use."""
+        key = ("fused", tuple(bool(x) for x in varying))
+        with self._lock:
+            if key not in self._fn64:
+                self._fn64[key] = _jit(self.ir_fused(key[1]), extended=True, doubles=2)
+        return self._fn64[key][0]
+
+    def fused_ready(self, varying: Sequence[bool], compiled_only: bool = False) -> bool:
+        """Whether :meth:`fused` for ``varying`` costs no compilation: compiled in this process,
+        or (unless ``compiled_only``) its object file is in the disk cache (writing its IR to
+        find out takes ~10 ms, once per process)."""
+        key = ("fused", tuple(bool(x) for x in varying))
+        with self._lock:
+            if key in self._fn64:
+                return True
+            if compiled_only:
+                return False
+            path = self._paths.get(key, False)
+        if path is False:
+            try:
+                path = _object_path(self.ir_fused(key[1]))
+            except Exception:
+                path = None
+            self._paths[key] = path
+        return path is not None and path.exists()
+
+    def fused(self, *vals, tol: float, workers: int = 1) -> tuple[np.ndarray, np.ndarray]:
+        """Values and relative bounds as from calling the kernel, with the compensated pass
+        (:meth:`compensated`) run in the same loop for the groups of :func:`loop_lanes` points where
+        a bound exceeds ``tol`` (x86 only).
+
+        Parameters
+        ----------
+        *vals : float or array_like
+            One value per input, as for calling the kernel.
+        tol : float
+            Relative bound above which a point's output takes the compensated value (where
+            that is better proven).
+        workers : int, optional
+            Threads for large batches.
+
+        Returns
+        -------
+        values, rel_bound : numpy.ndarray
+            Shape ``(n_outputs, n)``: the float64 value and bound where the bound is at most
+            ``tol``, else the better proven of the float64 and compensated ones.
+        """
+        arrs = [_flat(v) for v in vals]
+        if len(arrs) != self._n_in:
+            raise ValueError(f"kernel takes {self._n_in} inputs, got {len(arrs)}")
+        fn = self.compiled_fused([a.size > 1 for a in arrs])
+        C = np.array([float(c) for c in self.consts] or [0.0], dtype=np.float64)
+        D = np.array([float(Fraction(int(c.p), int(c.q)) - Fraction(float(c))) for c in self.consts] or [0.0])
+        return self._run(arrs, lambda m, ptrs, v, r: fn(m, ptrs, C.ctypes.data, D.ctypes.data, U64, float(tol),
+                                                         v.ctypes.data, r.ctypes.data), workers)
+
+    def _run(self, arrs: list, call: Callable, workers: int) -> tuple[np.ndarray, np.ndarray]:
+        """Run a compiled loop over the broadcast inputs ``arrs`` (padded to a multiple of
+        :func:`loop_lanes`), in chunks on ``workers`` threads: ``call(n, ptrs, V, R)``."""
+        n = max((a.size for a in arrs), default=1)
+        if any(a.size not in (1, n) for a in arrs):
+            raise ValueError("inputs must have one element or a common length")
+        if n == 0:
+            return np.empty((self.n_out, 0)), np.empty((self.n_out, 0))
+        size = n
+        lanes = loop_lanes()
+        if n % lanes:                   # the loop takes `lanes` points at a time: pad with the last point
+            n = n + lanes - n % lanes
+            arrs = [a if a.size == 1 else np.concatenate([a, np.full(n - size, a[-1])]) for a in arrs]
+        V = np.empty((self.n_out, n))
+        R = np.empty((self.n_out, n))
+
+        def run(lo: int, hi: int, v: np.ndarray, r: np.ndarray) -> None:
+            ptrs = (ctypes.c_void_p * len(arrs))(*[a.ctypes.data + (0 if a.size == 1 else 8 * lo) for a in arrs])
+            call(hi - lo, ptrs, v, r)
+
+        if workers <= 1 or n <= CHUNK:
+            run(0, n, V, R)
+            return V[:, :size], R[:, :size]
+
+        def chunk(lo: int) -> None:
+            hi = min(lo + CHUNK, n)
+            v, r = np.empty((self.n_out, hi - lo)), np.empty((self.n_out, hi - lo))
+            run(lo, hi, v, r)
+            V[:, lo:hi], R[:, lo:hi] = v, r
+
+        with ThreadPoolExecutor(max_workers=workers) as pool:
+            list(pool.map(chunk, range(0, n, CHUNK)))
+        return V[:, :size], R[:, :size]
 
     def compiled(self, varying: Sequence[bool]) -> Callable:
         """The compiled float64 loop for inputs that vary (arrays) or not (scalars): a ctypes
@@ -893,8 +1298,9 @@ class BoundedKernel:
         if n == 0:
             return np.empty((self.n_out, 0)), np.empty((self.n_out, 0))
         size = n
-        if n % LANES:                   # the loop takes LANES points at a time: pad with the last point
-            n = n + LANES - n % LANES
+        lanes = loop_lanes()
+        if n % lanes:                   # the loop takes `lanes` points at a time: pad with the last point
+            n = n + lanes - n % lanes
             arrs = [a if a.size == 1 else np.concatenate([a, np.full(n - size, a[-1])]) for a in arrs]
         V = np.empty((self.n_out, n))
         R = np.empty((self.n_out, n))
@@ -1021,8 +1427,9 @@ class BoundedKernel:
         if n == 0:
             return np.empty((n_out, 0)), np.empty((n_out, 0))
         size = n
-        if n % LANES:
-            n = n + LANES - n % LANES
+        lanes = loop_lanes()
+        if n % lanes:
+            n = n + lanes - n % lanes
             arrs = [a if a.size == 1 else np.concatenate([a, np.full(n - size, a[-1])]) for a in arrs]
         V = np.empty((n_out, n))
         R = np.empty((n_out, n))
@@ -1059,11 +1466,13 @@ def evaluate_proven(kernel: BoundedKernel, vals: Sequence, tol: float, workers: 
     """Values of ``kernel``'s outputs, each proven to ``tol`` relative where possible.
 
     float64 first (compiled); points whose bound exceeds ``tol`` are refined by the
-    compensated float64 program (:meth:`BoundedKernel.compensated`; compiled when there are at
-    least :data:`COMPENSATED_MIN_POINTS` of them, used from the disk cache when there are at
-    least :data:`COMPENSATED_CACHED_MIN_POINTS`), then what is
-    still unproven again in long double with its own bound (both when the platform's long
-    double is the x87 extended type).  The first two
+    compensated float64 program (:meth:`BoundedKernel.compensated`), then what is still
+    unproven again in long double with its own bound (both when the platform's long double is
+    the x87 extended type).  The float64 and compensated programs run as one loop
+    (:meth:`BoundedKernel.fused`): over all points when it is compiled already (in this
+    process, or from the disk cache for at least :data:`COMPENSATED_CACHED_MIN_POINTS`
+    points), else over the doubtful points of the float64 loop when there are at least
+    :data:`COMPENSATED_MIN_POINTS` of them (compiling it).  The first two
     outputs are taken to be k_c and ω_c²: a point where either is negative beyond doubt has no
     Hopf point and is not refined.
 
@@ -1086,24 +1495,28 @@ def evaluate_proven(kernel: BoundedKernel, vals: Sequence, tol: float, workers: 
     unproven : numpy.ndarray of bool
         Where the value is not proven to ``tol`` (the caller evaluates those another way).
     """
-    V, R = kernel(*vals, workers=workers)
     varying = [np.size(v) > 1 and any(np.asarray(v).strides) for v in vals]
+    n = max((np.size(v) for v in vals), default=1)
+    fuse = COMPENSATE and EXTENDED and (kernel.fused_ready(varying, compiled_only=True) or (
+        n >= COMPENSATED_CACHED_MIN_POINTS and kernel.fused_ready(varying)))
+    # with the fused loop at hand: float64 and, for the groups of points it leaves doubtful,
+    # the compensated pass in one loop over all points
+    V, R = kernel.fused(*vals, tol=tol, workers=workers) if fuse else kernel(*vals, workers=workers)
     bad = ~(R <= tol)
     no_hopf = np.zeros(V.shape[1], dtype=bool)
     for j in range(min(2, V.shape[0])):
         no_hopf |= (V[j] < 0) & (R[j] < 0.5)
     todo = np.flatnonzero(bad.any(axis=0) & ~no_hopf)
-    if not (todo.size and EXTENDED):
+    if not (todo.size and EXTENDED) or fuse:
         pass
-    elif COMPENSATE and (todo.size >= COMPENSATED_MIN_POINTS or (
-            todo.size >= COMPENSATED_CACHED_MIN_POINTS
-            and kernel.compensated_ready(varying, [j for j in range(V.shape[0]) if bad[j, todo].any()]))):
-        # only the outputs that are doubtful somewhere; one doubtful point is taken twice (the
-        # loop compiled for varying inputs serves it)
-        outs = [j for j in range(V.shape[0]) if bad[j, todo].any()]
+    elif COMPENSATE and todo.size >= COMPENSATED_MIN_POINTS:
+        # the doubtful points again through the fused loop (compiled now): the same float64
+        # values, compensated where doubtful
+        # (one doubtful point is taken twice: the loop compiled for varying inputs serves it)
         idx = todo if todo.size > 1 else np.repeat(todo, 2)
-        Vc, Rc = kernel.compensated(*_subset(vals, varying, idx), outputs=outs)
-        _refine(V, R, bad, todo, Vc[:, :todo.size], Rc[:, :todo.size], tol, outs)
+        Vc, Rc = kernel.fused(*_subset(vals, varying, idx), tol=tol, workers=workers)
+        V[:, todo], R[:, todo] = Vc[:, :todo.size], Rc[:, :todo.size]
+        bad[:, todo] = ~(R[:, todo] <= tol)
         todo = np.flatnonzero(bad.any(axis=0) & ~no_hopf)
     if todo.size and EXTENDED:
         Ve, Re = kernel.extended(*_subset(vals, varying, todo))
@@ -1126,7 +1539,7 @@ def _target_machine():
                                         opt=2)
 
 
-def _jit(ir: str, extended: bool = False):
+def _jit(ir: str, extended: bool = False, doubles: int = 1):
     """Compile ``ir`` (function ``kernel``) to machine code, the object file cached on disk."""
     import llvmlite.binding as llvm
 
@@ -1166,7 +1579,7 @@ def _jit(ir: str, extended: bool = False):
     engine.finalize_object()
     addr = engine.get_function_address("kernel")
     ptrs = 3 if extended else 2
-    proto = ctypes.CFUNCTYPE(None, ctypes.c_int64, *[ctypes.c_void_p] * ptrs, ctypes.c_double,
+    proto = ctypes.CFUNCTYPE(None, ctypes.c_int64, *[ctypes.c_void_p] * ptrs, *[ctypes.c_double] * doubles,
                              ctypes.c_void_p, ctypes.c_void_p)
     return proto(addr), engine
 

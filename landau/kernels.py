@@ -14,6 +14,12 @@ is what the compiled steppers of :mod:`landau.verify.hybrid.compiled` take: the
 simulation layer itself never imports sympy — kernels are made here, on the derivation
 side, and handed over as numba callables.
 
+A field whose parameters enter through functions of the parameters alone (``log(L)``,
+``V/(M*L**2)``) can first go through :func:`hoist_parameters`: those subexpressions become
+derived parameters, appended to the parameter vector once per parameter set by
+:class:`DerivedParameters`, and the kernel then does only state-dependent work at each call
+(the spring–block model of :mod:`landau.verify.springblock.model` does this).
+
 Only expressions built by sympy (from a law parsed by :mod:`landau.laws.parse` or written
 in code) reach this module; user strings never reach ``exec``.
 """
@@ -284,3 +290,179 @@ def compile_source(src: str, name: str = "kernel") -> CompiledSource:
     out = CompiledSource(src, fun, jac, fun_py, jac_py)
     _COMPILED[src] = out
     return out
+
+
+# --------------------------------------------------------------------------------------------
+# parameter-only subexpressions, evaluated once per parameter set instead of once per call
+@dataclass(frozen=True)
+class HoistedField:
+    """A field whose parameter-only subexpressions are replaced by derived parameters.
+
+    Attributes
+    ----------
+    field : list of sympy expressions
+        The field, in the original states, parameters and the symbols ``derived``; every
+        subexpression left in it depends on a state (or time), apart from single symbols
+        and numbers.
+    derived : tuple of sympy Symbol
+        The derived parameters, to be appended to the parameter vector in this order.
+    values : tuple of sympy expressions
+        Their definitions in terms of the original parameters.
+    """
+
+    field: list
+    derived: tuple
+    values: tuple
+
+
+def hoist_parameters(field: Sequence[sp.Expr], params: Sequence[sp.Symbol], prefix: str = "hoisted") -> HoistedField:
+    """Replace the parameter-only subexpressions of ``field`` by derived parameters.
+
+    A generated kernel evaluates its whole expression at every call: ``log`` of a parameter,
+    a product or quotient of parameters, are recomputed although they never change during an
+    integration.  This pass walks each expression once, bottom-up; a subexpression whose free
+    symbols are all parameters (and which is not a single symbol or number) becomes a new
+    symbol, and in a sum or product the parameter-only terms (factors) are gathered into one
+    such symbol, e.g. ``q1*(w + log(q8) - log(q4))`` → ``q1*(w + d0)`` with
+    ``d0 = log(q8) - log(q4)``.  The field is otherwise unchanged (no expansion, no
+    re-association of state-dependent terms), so its rounding differs from the original only
+    in the order in which parameter terms are combined.
+
+    Parameters
+    ----------
+    field : sequence of sympy expressions
+        The field f(t, y; p).
+    params : sequence of sympy Symbol
+        The parameters (every other free symbol counts as a state or time).
+    prefix : str
+        Stem of the derived symbols' names (``prefix0``, ``prefix1``, …; lengthened with
+        underscores if it clashes with a symbol of the field).
+
+    Returns
+    -------
+    HoistedField
+        Evaluate ``values`` with :func:`derived_parameter_function` and append them to the
+        parameter vector of a kernel generated for ``params + derived``.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> x, a, b = sp.symbols("x a b", positive=True)
+    >>> h = hoist_parameters([sp.exp(-x) * (sp.log(a) + x) / b], [a, b])
+    >>> h.field, h.values
+    ([hoisted1*(hoisted0 + x)*exp(-x)], (log(a), 1/b))
+    """
+    pset = set(params)
+    exprs = [as_expr(e) for e in field]
+    taken = {s.name for e in exprs for s in e.free_symbols} | {s.name for s in params}
+    while any(nm.startswith(prefix) for nm in taken):
+        prefix = "_" + prefix if not prefix.startswith("__") else prefix + "_"
+        if prefix.startswith("___"):
+            raise InputError("no free name for the derived parameters")
+    table: dict[sp.Expr, sp.Symbol] = {}
+    const_memo: dict[sp.Basic, bool] = {}
+
+    def symbol_for(e):
+        s = table.get(e)
+        if s is None:
+            # real, without asking sympy's assumptions about e (slow): the kernel is real arithmetic
+            s = table[e] = sp.Symbol(f"{prefix}{len(table)}", real=True)
+        return s
+
+    def constant(e):
+        hit = const_memo.get(e)
+        if hit is None:
+            if not e.args:
+                hit = e in pset or not e.free_symbols
+            else:
+                hit = all([constant(a) for a in e.args])
+            const_memo[e] = hit
+        return hit
+
+    def walk(e):
+        if not e.args or isinstance(e, (sp.Number, sp.NumberSymbol)):
+            return e
+        if constant(e):
+            return symbol_for(e)
+        if e.is_Add or e.is_Mul:
+            const = [a for a in e.args if constant(a)]
+            rest = [walk(a) for a in e.args if not constant(a)]
+            if len(const) == 1 and (not const[0].args or const[0].is_Number):
+                return e.func(const[0], *rest)
+            if const:
+                return e.func(symbol_for(e.func(*const)), *rest)
+            return e.func(*rest)
+        return e.func(*[walk(a) for a in e.args])
+
+    out = [walk(e) for e in exprs]
+    derived = tuple(table.values())
+    return HoistedField(out, derived, tuple(table))
+
+
+def derived_parameter_source(params: Sequence[sp.Symbol], values: Sequence[sp.Expr]) -> str:
+    """Python source of ``derived(p, out)``: ``out[j] = values[j](p)`` (parameters renamed q_i).
+
+    Checked by :func:`check_source`, and kept in the disk cache of derivations like the
+    kernel sources (printing it would otherwise be most of the cost of a warm start).
+    """
+    ren = {s: sp.Symbol(f"q{i}", **s.assumptions0) for i, s in enumerate(params)}
+    vals = [sp.sympify(v).xreplace(ren) for v in values]
+    from landau import cache
+
+    key = cache.make_key("derived-parameters", _generator_fingerprint(), sp.__version__, len(params),
+                         sp.srepr(tuple(vals)))
+    src = cache.get("derived-parameters", key)
+    if isinstance(src, str):
+        try:
+            check_source(src)
+            return src
+        except (InputError, SyntaxError):
+            pass
+    pr = _Printer({"fully_qualified_modules": True})
+    lines = ["def derived(p, out):", *(f"    q{i} = p[{i}]" for i in range(len(params)))]
+    lines += [f"    out[{j}] = {pr.doprint(v)}" for j, v in enumerate(vals)]
+    if not vals:
+        lines.append("    out[:] = 0.0")
+    src = "\n".join(lines) + "\n"
+    check_source(src)
+    cache.put("derived-parameters", key, src)
+    return src
+
+
+class DerivedParameters:
+    """``full = dp(base)``: a parameter vector extended by the derived parameters of a
+    :class:`HoistedField`, evaluated once (plain Python, ``math`` functions).
+
+    The source (``def derived(p, out)``) passes the whitelist of :func:`check_source` and is
+    executed like a kernel source (:mod:`landau.verify.jitcache`), not compiled: it runs once
+    per parameter set.
+
+    Parameters
+    ----------
+    params : sequence of sympy Symbol
+        The base parameters, in the order of the vector ``base``.
+    values : sequence of sympy expressions
+        The derived parameters in terms of ``params`` (:attr:`HoistedField.values`).
+    """
+
+    def __init__(self, params: Sequence[sp.Symbol], values: Sequence[sp.Expr]):
+        self.nbase = len(params)
+        self.nderived = len(values)
+        self.source = derived_parameter_source(params, values)
+        self._fn = load_generated(self.source, {"math": math}, ALLOWED_BUILTINS)["derived"]
+        self._values = tuple(values)
+
+    def __call__(self, base) -> np.ndarray:
+        base = [float(b) for b in base]
+        if len(base) != self.nbase:
+            raise InputError(f"{len(base)} parameter values for {self.nbase} parameters")
+        out = [0.0] * self.nderived
+        try:
+            self._fn(base, out)
+        except (ValueError, ZeroDivisionError, OverflowError) as exc:
+            raise InputError(f"a parameter combination of the field cannot be evaluated ({exc}): "
+                             f"check the parameter values {base}") from None
+        bad = [str(v) for v, x in zip(self._values, out) if not math.isfinite(x)]
+        if bad:
+            raise InputError(f"parameter combination(s) {bad} of the field are not finite at {base}")
+        return np.ascontiguousarray(base + out, dtype=float)

@@ -1,14 +1,14 @@
 """Skurativskyi, Kudra, Witkowski & Awrejcewicz (2019) scenes away from the paper's parameter set.
 
 The search intervals come from the model (contact resonance sqrt(k_lin/m) for the grazing estimates;
-the two grazing estimates for the first detachment), so these sets move the answers away from the
-printed numbers; each is checked against an independent computation.
+the two grazing estimates for the first detachment; an up-sweep from the first detachment for the first
+grazing of the cascade), so these sets move the answers away from the printed numbers; each is checked
+against an independent computation.
 """
 
 import mpmath
 import pytest
 
-from landau.errors import LandauError
 from landau.scenes import run_scene
 
 def _static_equilibrium(p):
@@ -68,18 +68,55 @@ def test_first_detachment_off_paper(params):
 
 
 @pytest.mark.slow
-def test_first_cascade_grazing_off_paper_is_a_named_error_or_a_located_grazing():
-    """The cascade scene follows the period-7 window from a start point that must be given
-    (``orbit_omega``, ``gone_omega``): at another obstacle position the paper's start either still
-    brackets a grazing (a value between the two given frequencies) or stops with a named error —
-    never a traceback, hang or NaN."""
-    try:
-        doc = run_scene("skurativskyi2019/first-cascade-grazing", {"xI": -0.0021})
-    except LandauError as exc:
-        assert str(exc)
-        return
-    lo, hi = sorted((doc["params"]["gone_omega"], doc["params"]["orbit_omega"]))
-    assert lo <= doc["value"] <= hi
+@pytest.mark.parametrize("params", [{"xI": -0.0021}, {"k": 1500.0}])
+def test_first_cascade_grazing_off_paper_is_a_located_grazing(params):
+    """The cascade scene derives its bracket from the model: an up-sweep from the first detachment
+    to the first period-7 orbit with 14 impacts whose lower edge is a grazing (at k = 1500 the sweep
+    first meets a period-7 window inside the chaotic band, at 21.0025, whose orbit ends without
+    grazing — the straight-line zero of its margin lies 0.26 rad/s away —, and passes over it).  Checked independently at rtol 1e-10 instead of 1e-8, continuing the returned orbit
+    (``y_orbit``): 1e-3 rad/s above the located point it is still the period-7 orbit with 14 impacts,
+    1e-3 below it is gone (1e-3 is 10 bisection tolerances and twice the largest shift of this edge
+    measured between integration tolerances, 5e-4 from rtol 1e-7 to 1e-8); and the free-flight margin
+    x_I − max x of that orbit, sampled at rtol 1e-10 at 1e-4 and 2e-4 above the bracket, extrapolates
+    linearly to zero at the located point within the bisection tolerance 1e-4 rad/s (measured 3e-5:
+    the margin grows by ~45 µm per 1e-3 rad/s and bends over within ~5e-4 of the edge, so the samples
+    stay close): a maximum touches x = x_I there — a grazing, not a fold or a crisis, where the orbit
+    would end with a finite margin."""
+    import numpy as np
+
+    from landau.verify.skurativskyi.analysis import attractor, section_period
+    from landau.verify.skurativskyi.grazing import maxima
+    from landau.verify.skurativskyi.model import PAPER
+
+    doc = run_scene("skurativskyi2019/first-cascade-grazing", params)
+    win = doc["window"]
+    assert (doc["period"], doc["impacts"], doc["kind"]) == (7, 14, "impact added")
+    assert win["gone_omega"] <= doc["lo"] < doc["hi"] <= win["orbit_omega"]
+    assert doc["hi"] - doc["lo"] <= doc["params"]["tol"]
+    assert win["orbit_omega"] - win["gone_omega"] == pytest.approx(doc["params"]["step"], rel=1e-9)
+    assert win["entered_from_period"] == 0            # the up-sweep leaves a chaotic band there
+    # the sweep started below the first detachment it located (in contact, no grazing possible)
+    assert win["sweep_start"] <= win["first_detachment"][0] < win["orbit_omega"]
+
+    q = PAPER.with_(**params)
+    y = np.array(doc["y_orbit"])
+    d = 1e-3
+
+    def orbit7(w):
+        a = attractor(w, y, 150, 84, q, rtol=1e-10)
+        return a, section_period(a, 1e-6, 24) == 7 and round(a.impacts_per_period * 7) == 14
+
+    above, kept = orbit7(doc["hi"] + d)
+    assert kept
+    assert not orbit7(doc["lo"] - d)[1]
+    g = []
+    for w in (doc["hi"] + 1e-4, doc["hi"] + 2e-4):
+        m = maxima(w, attractor(w, above.y_end, 100, 7, q, rtol=1e-10).y_end, 7, 200, params=q, rtol=1e-10)
+        assert m.impacts_per_period * 7 == pytest.approx(14)
+        g.append(m.margin)
+    assert 0 < g[0] < g[1]                          # the free maximum approaches x_I towards the edge
+    root = doc["hi"] + 1e-4 - g[0] * 1e-4 / (g[1] - g[0])
+    assert root == pytest.approx(doc["value"], abs=1e-4), (g, root)
 
 
 def test_scene_parameters_named_k_or_v_are_accepted_on_the_command_line(capsys):

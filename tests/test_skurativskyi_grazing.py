@@ -80,3 +80,54 @@ def test_bad_input():
     a = continuation([20.45], None, 100, 1, 1)[-1]        # chaotic (Fig. 5: λ1 > 0)
     with pytest.raises(InputError, match="not periodic"):
         locate_grazing_margin(20.45, 20.44, a.y_end, n_keep=42)
+
+
+def test_sweep_enters_the_period_7_window_from_the_chaotic_band():
+    # the up-sweep from inside the chaotic band (Fig. 4/5: λ1 > 0 on 20.44–20.59) meets the period-7
+    # window (14 impacts) on the grid of multiples of the step, entered from an aperiodic attractor
+    # one step below; the bracket holds the published first grazing 20.59 ± 0.015 (Fig. 3b).
+    # Independent of the sweep's protocol: the returned state, continued at rtol 1e-10 (not 1e-8)
+    # over 100 + 84 periods, is the period-7 orbit with 14 impacts.
+    from landau.verify.skurativskyi.analysis import attractor, section_period, sweep_to_window
+    E = sweep_to_window(20.58, 7, 14)
+    assert (E.gone_period, E.period, E.impacts) == (0, 7, 14)
+    assert E.orbit_omega - E.gone_omega == pytest.approx(E.step, rel=1e-9)
+    assert E.orbit_omega / E.step == pytest.approx(round(E.orbit_omega / E.step), abs=1e-9)
+    assert 20.59 - 0.015 < E.gone_omega < E.orbit_omega < 20.59 + 0.015
+    a = attractor(E.orbit_omega, E.y_orbit, 100, 84, rtol=1e-10)
+    assert section_period(a, 1e-6, 24) == 7 and a.impacts_per_period * 7 == pytest.approx(14)
+
+
+def test_sweep_strides_along_a_settled_orbit_and_resolves_the_change_to_one_step():
+    # along the period-1 orbit with 2 impacts (19.34–20.25, Fig. 4) the stride grows to 32 steps;
+    # the first period doubling is still met across a single step of 0.0025, at the doubling
+    # located independently by bisection on a persistent period-2 alternation (is_doubled,
+    # 300 transient periods).  Tolerance 5e-3 rad/s: the sweep keeps 50 + 8 periods per point, so
+    # just below the doubling (multiplier → −1) the slowly decaying alternation can exceed the
+    # section tolerance 1e-6 m a little early.
+    from landau.verify.skurativskyi.analysis import attractor, locate_period_doubling, sweep_to_window
+    E = sweep_to_window(19.9, 2, 4)
+    assert E.orbit_omega - E.gone_omega == pytest.approx(E.step, rel=1e-9) and E.gone_period == 1
+    n_grid = round((E.orbit_omega - E.start) / E.step)
+    assert E.points < n_grid / 4                  # 143 grid steps, 26 attractors
+    y = attractor(20.1, None, 200, 1).y_end
+    pd = locate_period_doubling(20.1, 20.3, y, tol=2e-3)
+    assert abs(E.orbit_omega - pd.value) < 5e-3
+
+
+def test_sweep_to_window_bad_input_and_no_window():
+    from landau.verify.skurativskyi.analysis import sweep_to_window
+    with pytest.raises(InputError):
+        sweep_to_window(20.58, step=0.0)
+    with pytest.raises(InputError, match="multiple"):
+        sweep_to_window(20.58, 7, 14, n_keep=30)
+    with pytest.raises(InputError, match="no period-7"):   # the band has no period-7 orbit below 20.59
+        sweep_to_window(20.58, 7, 14, stop=20.59)
+
+
+def test_cascade_scene_bracket_is_both_or_neither():
+    from landau.scenes import run_scene
+    with pytest.raises(InputError, match="both"):
+        run_scene("skurativskyi2019/first-cascade-grazing", {"orbit_omega": 20.6})
+    with pytest.raises(InputError, match="step"):
+        run_scene("skurativskyi2019/first-cascade-grazing", {"step": 0.0})

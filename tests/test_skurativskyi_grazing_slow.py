@@ -1,5 +1,5 @@
 """The grazing cascade of Skurativskyi et al. (2019), Nonlinear Dyn. 98:1795, Sec. 4 / Fig. 3b,
-located on grazing margins (verify/skurativskyi/grazing.py; opt-in: pytest -m slow, ~90 s).
+located on grazing margins (verify/skurativskyi/grazing.py; opt-in: pytest -m slow, ~3 min).
 
 Paper: grazing bifurcations at f = (20.59, 20.8586, 21.5085, 23.0702) rad/s, spacings
 D = (0.2686, 0.6499, 1.5617), ratios D2/D1 = 2.419, D3/D2 = 2.403.
@@ -97,6 +97,16 @@ def test_both_sweeps_leave_the_chaotic_band_at_the_first_grazing(cascade):
     assert np.all(per[om > f1 + 1e-4][-10:] == 7) and np.all(per[om < f1 - 1e-4] == 0)
 
 
-def test_scene_first_cascade_grazing():
+def test_scene_first_cascade_grazing(cascade):
+    # the scene derives its bracket (no window fitted to 20.59): an up-sweep from the first
+    # detachment enters the period-7 window from the chaotic band; the grazing it locates there is
+    # the one located from the hand-placed bracket [20.595, 20.6] of the fixture (same root: both
+    # brackets are narrower than tol = 1e-4 and hold it; measured: the same dyadic bisection points,
+    # the same value 20.5989453125)
     doc = run_scene("skurativskyi2019/first-cascade-grazing")
     assert doc["agrees"] and doc["period"] == 7 and doc["kind"] == "impact added", doc
+    win = doc["window"]
+    assert win["gone_omega"] <= doc["lo"] < doc["hi"] <= win["orbit_omega"] and win["entered_from_period"] == 0
+    assert win["passed_over"] == []
+    assert abs(doc["value"] - cascade[0][0].value) < 1e-4
+    assert doc["lo"] - 2e-4 <= doc["linear_root"] <= doc["hi"] + 2e-4

@@ -289,7 +289,7 @@ def fig16(out_dir: Path) -> list[Path]:
     axs[1].set_xlabel("X1")
     axs[1].set_ylabel("X2")
     axs[1].set_title("(b) displacement plane and g.s.p. region Γ")
-    fig.suptitle(f"Fig. 16: multi-sliding, α=1.2, β=2, δ=0, V=0.05, γ=10.756 (located γ*={B.multi_sliding().value:.6f})")
+    fig.suptitle(f"Fig. 16: multi-sliding, α=1.2, β=2, δ=0, V=0.05, γ=10.756 (located γ*={B.multi_sliding(gamma=10.756, d0=0.1969494).value:.6f})")
     return _save(fig, out_dir, "fig16")
 
 

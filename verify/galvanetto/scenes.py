@@ -5,8 +5,9 @@ instead of a number (Figs 8, 9, 15) the published value is the interval's midpoi
 tolerance its relative half-width, so ``agrees`` means "inside the printed interval".
 ``lo``/``hi`` bound the search (Brent's method on the scene's test function, see
 :mod:`landau.verify.galvanetto.bifurcations`); ``lo = hi = 0`` (the default) derives the search
-interval from the model (the law's weakening velocity, the Hopf point, the preceding bifurcation),
-so the scenes also run at parameters away from the paper's (``--param``).
+interval from the model (the law's weakening velocity, the Hopf point, the preceding bifurcation,
+the periodic windows of the map's attractor), so the scenes also run at parameters away from the
+paper's (``--param``).
 """
 
 from __future__ import annotations
@@ -148,15 +149,20 @@ _register_beta("grazing-sliding", B.grazing_sliding, "Fig. 15 (1.7652 < beta* < 
 
 def _multi(p):
     loc = B.multi_sliding(bracket=_bracket(p), V=p["V"], alpha=p["alpha"], beta=p["beta"], delta=p["delta"],
-                          gamma=p["gamma"], d0=p["d0"])
+                          gamma=p["gamma"] or None, d0=p["d0"])
     return _doc(loc)
 
 
 register(Scene(
     name="galvanetto2004/multi-sliding", parameter="gamma", units="dimensionless",
     source=f"{SRC}, Sec. 4.3, Fig. 16 (gamma≈10.75265; the figure at gamma=10.756 from d≈0.1969494)",
-    compute=_multi, defaults={"V": 0.05, "alpha": 1.2, "beta": 2.0, "delta": 0.0, "gamma": B.FIG16_GAMMA,
-                              "d0": B.FIG16_D0, "lo": 0.0, "hi": 0.0},
+    compute=_multi, defaults={"V": 0.05, "alpha": 1.2, "beta": 2.0, "delta": 0.0, "gamma": 0.0, "d0": 0.0,
+                              "lo": 0.0, "hi": 0.0},
     published=10.75265, tolerance=1e-4 / 10.75265,
-    description="a stick phase of block 2 touches K2 = -beta: a slip phase with r2>0 is born (lo=hi=0: the "
-                "periodic attractor at gamma from d0 is followed in gamma until it happens)"))
+    # the start of the search (gamma, d0) and its bracket steer the computation, not the model
+    settings=frozenset({"gamma", "d0", "lo", "hi"}),
+    description="a stick phase of block 2 touches K2 = -beta: a slip phase with r2>0 is born.  gamma = 0 and "
+                "lo = hi = 0: the start is derived from the model (periodic windows of the map's attractor from "
+                "d0, the middle of the map's domain, scanned in gamma over the law's weakening velocity 10V..V, "
+                "lowest period first); gamma > 0: the periodic attractor at gamma from d0 is followed in gamma "
+                "(the figure's start: --param gamma=10.756 --param d0=0.1969494)"))

@@ -242,3 +242,110 @@ def locate_period_doubling(lo: float, hi: float, y_lo, tol: float = 1e-4, params
     :func:`is_doubled`, every run from the attractor ``y_lo`` at lo."""
     return bisect(lambda w: not is_doubled(attractor(w, y_lo, n_transient, n_keep, params, rtol)), lo, hi, tol,
                   "period doubling")
+
+
+# --------------------------------------------------------------------------- entering a window
+@dataclass(frozen=True)
+class WindowEntry:
+    """The first ω of an up-sweep whose attractor is a given periodic orbit, with the grid point
+    one fine step below it (:func:`sweep_to_window`).
+
+    ``orbit_omega``: first grid ω where the attractor has section period ``period`` and
+    ``impacts`` impacts per ``period`` forcing periods; ``gone_omega`` = orbit_omega − step, where
+    it has not; ``y_orbit``: state at phase 0 on the attractor at orbit_omega (warm start for a
+    continuation of that orbit); ``gone_period``: section period at gone_omega (0: aperiodic up
+    to ``n_keep``/2 — the sweep leaves a chaotic band there); ``start``: first ω of the sweep;
+    ``points``: attractors computed, ``periods``: forcing periods integrated; ``path``: (ω,
+    section period, impacts per period) of every point the sweep kept, in sweep order."""
+
+    orbit_omega: float
+    gone_omega: float
+    y_orbit: np.ndarray
+    gone_period: int
+    period: int
+    impacts: int
+    start: float
+    step: float
+    points: int
+    periods: int
+    path: tuple
+
+    def __repr__(self) -> str:
+        came = "chaos" if self.gone_period == 0 else f"a period-{self.gone_period} attractor"
+        return (f"WindowEntry(period-{self.period} orbit with {self.impacts} impacts from ω = {self.orbit_omega:.6g}, "
+                f"{came} at {self.gone_omega:.6g}; sweep from {self.start:.6g} in steps ≥ {self.step:g}: "
+                f"{self.points} attractors, {self.periods} periods)")
+
+
+def sweep_to_window(start: float, period: int = 7, impacts: int = 14, params: Params = PAPER, rtol: float = RTOL,
+                    step: float = 0.0025, max_stride: int = 32, settle: int = 3, n_first: int = 100, n_step: int = 50,
+                    n_keep: int | None = None, stop: float | None = None, section_tol: float = 1e-6,
+                    y0=None) -> WindowEntry:
+    """Continue the attractor upward in ω from ``start`` until it enters a periodic orbit of
+    section period ``period`` with ``impacts`` impacts per ``period`` forcing periods (the first
+    point with that signature after one without it: a sweep that starts on such an orbit first
+    leaves it, so a sweep resumed from a window's orbit finds the next window).
+
+    Every ω is a multiple of ``step`` (the grid does not depend on ``start``).  The sweep moves
+    one ``step`` at a time, except along a settled periodic orbit (the last ``settle`` points
+    kept have the same section period and impact count), where the stride doubles at each point
+    up to ``max_stride`` steps; a stride > 1 that lands on another attractor is discarded and
+    tried again at half the stride from the last point kept.  A change of the attractor — in
+    particular the entry into the window — is thus only ever accepted across a single step and
+    is resolved to ``step``, while the long stretches of period-1 orbits (impact adding,
+    Skurativskyi et al. 2019, Sec. 5) cost a few points each.  A window narrower than ``step``
+    on the sweep can be missed, and so could one that opens and closes between two points of
+    the same settled orbit (a stride skips only stretches that begin and end on it).
+
+    Each point: ``n_step`` transient periods from the previous attractor (``n_first`` at the first
+    point, from ``y0`` — a state at phase 0 — or from rest at X₀), then ``n_keep`` observed periods (default 4·``period``, a multiple of
+    the period; the section period is searched up to ``n_keep``/2 with ``section_tol`` [m]) —
+    the paper's sweep protocol (100 / 50 transient periods, Sec. 4).
+
+    Raises :class:`~landau.errors.InputError` when the window is not met below ``stop`` (default
+    2·start); when, after a settled orbit with two or more impacts per period, the sweep settles
+    on the single-impact period-1 orbit (the impact count has come down through the whole
+    grazing cascade, Fig. 3b, without meeting the window)."""
+    if not (step > 0 and start > 0 and period >= 1 and impacts >= 1 and max_stride >= 1 and settle >= 1):
+        raise InputError("sweep_to_window needs start > 0, step > 0, and period, impacts, max_stride, settle >= 1")
+    n_keep = 4 * period if n_keep is None else int(n_keep)
+    if n_keep < 2 * period or n_keep % period:
+        raise InputError(f"n_keep must be a multiple of the period >= 2 * period (got {n_keep})")
+    stop = 2.0 * start if stop is None else float(stop)
+    grid = lambda j: round(j * step, 10)       # decimal grid: the same floats whatever the start
+    j0 = int(np.floor(start / step + 1e-9))
+    target = (period, impacts * n_keep // period)
+
+    def signature(a: Attractor) -> tuple[int, int]:
+        return section_period(a, section_tol, n_keep // 2), int(round(a.impacts_per_period * n_keep))
+
+    a = attractor(grid(j0), y0, n_first, n_keep, params, rtol)
+    kept = [(j0, a.y_end, signature(a))]       # (grid index, state at phase 0, signature)
+    points, periods = 1, n_first + n_keep
+    stride, many = 1, False                    # many: a settled orbit with >= 2 impacts per period was passed
+    while True:
+        j, y, sig0 = kept[-1]
+        if grid(j + stride) > stop:
+            raise InputError(f"no period-{period} attractor with {impacts} impacts on the up-sweep from ω = "
+                             f"{grid(j0)} to {stop:g} rad/s (steps of {step:g})")
+        a = attractor(grid(j + stride), y, n_step, n_keep, params, rtol)
+        points, periods = points + 1, periods + n_step + n_keep
+        sig = signature(a)
+        if stride > 1 and sig != sig0:
+            stride //= 2                       # the attractor changed inside the stride: try half of it
+            continue
+        kept.append((j + stride, a.y_end, sig))
+        if sig == target and kept[-2][2] != target:
+            prev = kept[-2]
+            path = tuple((grid(i), s[0], s[1] / n_keep) for i, _, s in kept)
+            return WindowEntry(grid(j + stride), grid(prev[0]), a.y_end.copy(), prev[2][0], period, impacts,
+                               grid(j0), step, points, periods, path)
+        settled = len(kept) >= settle and len({s for _, _, s in kept[-settle:]}) == 1 and sig[0] > 0
+        if settled:
+            if sig[1] >= 2 * n_keep:
+                many = True
+            elif many and sig == (1, n_keep):
+                raise InputError(f"the up-sweep from ω = {grid(j0)} settled on the single-impact period-1 orbit at "
+                                 f"ω = {grid(j + stride)} without meeting a period-{period} window with {impacts} "
+                                 "impacts")
+        stride = min(2 * stride, max_stride) if settled else 1

@@ -185,6 +185,13 @@ class GrazingPoint:
     def value(self) -> float:
         return 0.5 * (self.lo + self.hi)
 
+    def root_at_bracket(self, slack: float = 2e-4) -> bool:
+        """True when the straight-line zero of s(ω) lies within ``slack`` [rad/s] of the bracket:
+        the orbit ends by grazing (s → 0 linearly there).  False when the orbit ends with s ≠ 0
+        (a fold, a crisis, a period doubling: the impact count or the section period changes
+        without a maximum touching x = x_I)."""
+        return self.lo - slack <= self.extrapolated <= self.hi + slack
+
     @property
     def kind(self) -> str:
         return "impact added" if self.samples[0][1] < 0 else "impact lost"

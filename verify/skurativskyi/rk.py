@@ -8,7 +8,8 @@ SDIRK4 of :mod:`landau.verify.skurativskyi.sdirk`.  Its ``integrate_mixed`` (the
 of :func:`landau.verify.skurativskyi.simulate.run`) takes every step that starts with |ẋ|
 below a threshold (stick: the cart rests on the obstacle or on the track, |ẋ| ~ 1e-9…1e-6
 m/s) with the L-stable SDIRK4 (stage equations solved as scalar monotone equations, robust on
-the |ẋ|^{n₃} cusp) and all other steps with the DOPRI5 of :mod:`landau.verify.hybrid.compiled`;
+the |ẋ|^{n₃} cusp) and all other steps with DOPRI5 (the arithmetic of the DOPRI5 of
+:mod:`landau.verify.hybrid.compiled`, term for term);
 ``integrate`` is the explicit path alone.  Event location (the compiled locator of
 :mod:`landau.verify.hybrid.crossing`), stroboscopic clipping and tangent renormalisation are
 the same for both steppers.
@@ -52,6 +53,12 @@ No saltation is needed: the field is continuous across x = x_I (see ``model``).
 
 Stroboscopic samples t = t₀ + i·2π/ω are step ends (steps are clipped onto them); with the
 4-D variational system the tangent vector is renormalised there (top Lyapunov exponent).
+
+Speed (not the arithmetic): the field and the steps are inlined into the loop, the stage
+vectors are preallocated, and the loop works on views without numba's atomic reference
+counts (:func:`borrowed`).  Measured at ω = 16, 20 periods from rest (2 shared cores): 3.9 →
+2.0 ms at rtol 1e-5, 4.9 → 2.5 ms at 1e-6, 7.6 → 3.9 ms at 1e-7 — every step, event and
+final state unchanged to the bit.
 """
 
 from __future__ import annotations
@@ -62,16 +69,50 @@ from pathlib import Path
 
 import numpy as np
 from numba import njit
+from numba.core import types
+from numba.extending import intrinsic
 
 from dataclasses import dataclass
 
 from landau.verify.hybrid import compiled as _compiled
-from landau.verify.hybrid.compiled import dopri5_method
 from landau.verify.hybrid.kernel import Kernel
 from landau.verify.hybrid.specialise import specialise
 
 OK, MAX_STEPS, STEP_TOO_SMALL, MAX_EVENTS = 0, 1, 2, 3
 STATUS = {OK: "t_end", MAX_STEPS: "max_steps", STEP_TOO_SMALL: "step-size-underflow", MAX_EVENTS: "max_events"}
+
+
+@intrinsic
+def borrowed(typingctx, arr):
+    """A view of the array ``arr`` without a reference count (numba intrinsic; compiled code only).
+
+    numba keeps an atomic reference count on every array it passes between compiled functions
+    and on every local alias; in the switching loop (a 2-vector state, a field call per stage)
+    those locked updates measured about half of a run.  The view returned here shares ``arr``'s
+    data and shape but has no memory-info pointer, so numba's reference-count calls skip it.
+    It must not outlive ``arr`` and must not be returned to Python: the caller keeps ``arr``
+    alive (a use after the last use of the view) and returns copies.
+
+    Parameters
+    ----------
+    arr : numba array
+
+    Returns
+    -------
+    numba array
+        The same type as ``arr``.
+    """
+    if not isinstance(arr, types.Array):
+        return None
+
+    def codegen(context, builder, sig, args):
+        src = context.make_array(sig.args[0])(context, builder, args[0])
+        out = context.make_array(sig.return_type)(context, builder)
+        context.populate_array(out, data=src.data, shape=src.shape, strides=src.strides,
+                               itemsize=src.itemsize, meminfo=None, parent=None)
+        return out._getvalue()
+
+    return arr(arr), codegen
 
 
 
@@ -93,9 +134,8 @@ def switching_integrator(fun, stiff_step):
     (integrate, integrate_mixed)
         The jitted loops documented below (the module docstring describes the method).
     """
-    dp_step, _ = dopri5_method(fun)
     mod = specialise(Path(__file__).parent / "templates" / "switching.py",
-                     {"fun": fun, "dp_step": dp_step, "stiff_step": stiff_step}, "switching")
+                     {"fun": fun, "stiff_step": stiff_step}, "switching")
     return mod.integrate, mod.integrate_mixed
 
 
@@ -114,4 +154,4 @@ class CompiledDOPRI5(_compiled.CompiledDOPRI5):
     first_step: float = 1e-5
     max_step: float = 0.01
 
-__all__ = ["CompiledDOPRI5", "CompiledField", "STATUS", "switching_integrator"]
+__all__ = ["CompiledDOPRI5", "CompiledField", "STATUS", "borrowed", "switching_integrator"]

@@ -13,9 +13,12 @@ positive and O(1) over stick phases where v falls by tens of decades:
 
 so that steady sliding is the origin.  The right-hand side is written from the symbolic
 law (logs of products expanded so that ln v = ln V + w is never formed from an underflowed
-v); it and its exact Jacobian are then generated and compiled by :mod:`landau.kernels`
-(common-subexpression elimination, the whitelist of generated syntax, numba through the
-cross-process code cache).  The dimensionless parameters of the paper (eq. 6) are
+v); its parameter-only subexpressions (the logarithms of parameters that this expansion
+produces, products and quotients of parameters) become derived entries of the parameter vector,
+computed once per model (:func:`landau.kernels.hoist_parameters`), so that a call of the
+compiled field does only state-dependent work; the field and its exact Jacobian are then
+generated and compiled by :mod:`landau.kernels` (common-subexpression elimination, the
+whitelist of generated syntax, numba through the cross-process code cache).  The dimensionless parameters of the paper (eq. 6) are
 m = M V_*²/(σL) and κ = kL/σ (σ = Mg); :meth:`SpringBlockModel.from_dimensionless`
 builds the model from (m, κ, V/V_*).
 """
@@ -32,14 +35,21 @@ import numpy as np
 import sympy as sp
 
 from landau.errors import InputError
-from landau.kernels import compile_source, kernel_source
+from landau.kernels import DerivedParameters, compile_source, hoist_parameters, kernel_source
 from landau.system import SpringBlock
 from landau.laws.law import FrictionLaw, v as v_slip
 
 
 @dataclass(frozen=True)
 class CompiledLaw:
-    """Generated source and compiled f, J of the scaled spring–block for one law (any parameters)."""
+    """Generated source and compiled f, J of the scaled spring–block for one law (any parameters).
+
+    The kernels read the parameter vector ``parameters(base)``: the base vector (law
+    parameters in the order of ``param_names``, then M, σ, k, V, ℓ, μ₀, φ₀) followed by the
+    parameter-only subexpressions of the field (logarithms of parameters, products and
+    quotients), evaluated once per model rather than at every call
+    (:func:`landau.kernels.hoist_parameters`).
+    """
 
     law_name: str
     n: int
@@ -49,6 +59,7 @@ class CompiledLaw:
     jac: object = field(repr=False)
     rhs_py: object = field(repr=False)
     jac_py: object = field(repr=False)
+    parameters: DerivedParameters = field(repr=False, default=None)
 
 
 _CACHE: dict[tuple, CompiledLaw] = {}
@@ -95,23 +106,29 @@ def compile_law(law: FrictionLaw) -> CompiledLaw:
     for r, ph in zip(law.rates, phis):
         f.append((ell / Vsym) * sp.expand(tidy(r) / ph))
     psyms = [*lp, Msym, sig, ksym, Vsym, ell, mu0, *phi0]
-    _SYMBOLIC[key] = (ys, f, psyms)
-    out = _compile(ys, f, psyms, law.name, tuple(p.name for p in law.parameters))
+    # the logarithms of parameters that expand_log produced, and every other parameter-only
+    # subexpression, become entries of the parameter vector computed once per model
+    h = hoist_parameters(f, psyms)
+    full = [*psyms, *h.derived]
+    _SYMBOLIC[key] = (ys, h.field, full)
+    _DERIVED[key] = DerivedParameters(psyms, h.values)
+    out = _compile(ys, h.field, full, law.name, tuple(p.name for p in law.parameters), _DERIVED[key])
     _CACHE[key] = out
     _BY_LAW[law] = out
     return out
 
 
-def _compile(ys, f, psyms, label, param_names) -> CompiledLaw:
+def _compile(ys, f, psyms, label, param_names, derived) -> CompiledLaw:
     """The field ``f`` over the states ``ys`` and parameter vector ``psyms``, through the kernel
     generator of :mod:`landau.kernels` (exact Jacobian by sympy, common subexpressions, the
     whitelist of generated syntax, the cross-process code cache)."""
     src = kernel_source(ys, f, psyms)
     c = compile_source(src, label)
-    return CompiledLaw(label, len(ys), param_names, src, c.fun, c.jac, c.fun_py, c.jac_py)
+    return CompiledLaw(label, len(ys), param_names, src, c.fun, c.jac, c.fun_py, c.jac_py, derived)
 
 
 _SYMBOLIC: dict[tuple, tuple] = {}
+_DERIVED: dict[tuple, DerivedParameters] = {}
 _VAR_CACHE: dict[tuple, CompiledLaw] = {}
 
 
@@ -129,7 +146,7 @@ def compile_variational(law: FrictionLaw) -> CompiledLaw:
     JP = Jm * Phi
     faug = list(f) + [JP[i, j] for i in range(n) for j in range(n)]
     yaug = list(ys) + [Phi[i, j] for i in range(n) for j in range(n)]
-    out = _compile(yaug, faug, psyms, law.name + " (variational)", _CACHE[key].param_names)
+    out = _compile(yaug, faug, psyms, law.name + " (variational)", _CACHE[key].param_names, _DERIVED[key])
     _VAR_CACHE[key] = out
     return out
 
@@ -211,9 +228,11 @@ class SpringBlockModel:
 
     @cached_property
     def p(self) -> np.ndarray:
+        """The parameter vector of the compiled kernels (the same for :func:`compile_law` and
+        :func:`compile_variational`): base values, then the derived parameter combinations."""
         vals = [self.params[nm] for nm in self.compiled.param_names]
         vals += [self.params["M"], self.params["sigma"], self.k, self.V, self.ell, self.mu0, *self.phi0]
-        return np.ascontiguousarray(vals, dtype=float)
+        return self.compiled.parameters(vals)
 
     @property
     def time_unit(self) -> float:

@@ -15,6 +15,12 @@ from landau.verify.skurativskyi.sdirk import GAMMA, MAX_ITER, SA, SC, SE, _to_v,
 def _g_and_slope(p, t, sx, sv, hg, V, in_w):
     """G(V) and dG/dw (in_w: w = sgn V |V|^{n₃}) or dG/dV."""
     a, ax, av, kap = accel_partials(t, sx + hg * V, V, p)
+    return _g_and_slope_at(p, sv, hg, V, in_w, a, ax, av, kap)
+
+
+@jit
+def _g_and_slope_at(p, sv, hg, V, in_w, a, ax, av, kap):
+    """:func:`_g_and_slope` from the partials (a, ax, av, kap) at V."""
     G = V - sv - hg * a
     base = 1.0 - hg * (hg * ax + av)
     q = p[exponent_index]
@@ -35,10 +41,11 @@ def stage_velocity(p, t, sx, sv, hg, V0, tol):
     """Root V of G(V) = V − s_v − hγ a(t, s_x + hγV, V) (module docstring) from the guess V0:
     safeguarded Newton (bracket from |V − V*| ≤ |G|).  Returns (V, a(V), evaluations, ok)."""
     q = p[exponent_index]
-    _, _, _, kap0 = accel_partials(t, sx + hg * V0, V0, p)
+    # one evaluation at the guess decides the variable (w in contact) and gives G there
+    a0, ax0, av0, kap0 = accel_partials(t, sx + hg * V0, V0, p)
     in_w = kap0 > 0.0
     V = V0
-    G, slope, a = _g_and_slope(p, t, sx, sv, hg, V, in_w)
+    G, slope, a = _g_and_slope_at(p, sv, hg, V, in_w, a0, ax0, av0, kap0)
     nev = 1
     if abs(G) <= tol:
         return V, a, nev, True
