@@ -45,8 +45,9 @@ import numpy as np
 from numpy.polynomial import polynomial as P
 
 from landau.errors import InputError
-from landau.verify.hybrid.stiffdriver import (EPS, _crossings, _finish, _guard, _lu, _may_cross, _next_size, _poly,
-                                              _record, _retry_size, _rms, _solve, _start)
+from landau.verify.hybrid.nrt import borrowed, keep_alive
+from landau.verify.hybrid.stiffdriver import (EPS, _crossings, _finish, _guard, _lu, _lu_n, _may_cross, _next_size, _poly,
+                                              _record, _retry_size, _rms, _solve, _solve_n, _start)
 
 __all__ = ["RadauTableau", "radau_tableau", "radau_iia_core", "collocation_core", "NEWTON_MAXITER"]
 
@@ -137,8 +138,8 @@ def _stage_jacobians(jac, t, h, y, Z, p, AR, CN, JB, ytmp, Mf, pivF, cnt):
 
 
 @nb.njit(cache=True)
-def radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir, ev_stop,
-                   rec_cap, AR, CN, EE, mu, VI, full_retry, f0_first, EVBUF, EVDIR):
+def radau_iia_core(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
+                   ev_stop, rec_cap, AR_in, CN_in, EE_in, mu, VI_in, full_retry, f0_first, EVBUF_in, EVDIR_in):
     """Integrate from t0 to t_end with the s-stage Radau IIA given by ``AR`` (s × s), nodes ``CN``,
     error weights ``EE``, ``mu`` = 1/γ₀ and ``VI`` (:class:`RadauTableau`).
 
@@ -161,29 +162,37 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_ste
         When crossings are asked for (``ev_idx >= 0``) with s ≠ 3: they are located on a cubic.
     """
     n = y0.shape[0]
-    s = AR.shape[0]
+    s = AR_in.shape[0]
     N = s * n
     if ev_idx >= 0 and s != 3:
         raise InputError("radau_iia_core: event location needs the cubic dense output of three stages")
-    y, f0, cnt, rec_t, rec_y, h, status, t_end = _start(fun, t0, y0, t_end, p, h0, max_step, rec_cap)
+    y_own, f0_own, cnt_own, rec_t_own, rec_y_own, h, status, t_end = _start(fun, t0, y0, t_end, p_in, h0, max_step,
+                                                                              rec_cap)
+    # work arrays, owned here and used in the loop through borrowed views (no reference counts,
+    # landau.verify.hybrid.nrt); the owners are kept alive to the end (keep_alive, _finish)
+    J_own = np.empty((n, n))
+    Mf_own = np.empty((N, N))
+    Mr_own = np.empty((n, n))
+    pivF_own = np.empty(N, dtype=np.int64)
+    pivR_own = np.empty(n, dtype=np.int64)
+    Z_own = np.zeros((s, n))
+    F_own = np.empty((s, n))
+    JB_own = np.empty((s, n, n))
+    R_own = np.empty(N)
+    vec_own = np.empty((7, n))
+    Q_own = np.zeros((s, n))
+    Qprev_own = np.zeros((s, n))
+    y, f0, cnt, rec_t, rec_y = borrowed(y_own), borrowed(f0_own), borrowed(cnt_own), borrowed(rec_t_own), borrowed(
+        rec_y_own)
+    p, atol, AR, CN, EE, VI = borrowed(p_in), borrowed(atol_in), borrowed(AR_in), borrowed(CN_in), borrowed(
+        EE_in), borrowed(VI_in)
+    EVBUF, EVDIR = borrowed(EVBUF_in), borrowed(EVDIR_in)
+    J, Mf, Mr, pivF, pivR = borrowed(J_own), borrowed(Mf_own), borrowed(Mr_own), borrowed(pivF_own), borrowed(pivR_own)
+    Z, F, JB, R, Q, Qprev = borrowed(Z_own), borrowed(F_own), borrowed(JB_own), borrowed(R_own), borrowed(
+        Q_own), borrowed(Qprev_own)
+    vec = borrowed(vec_own)
+    ytmp, ynew, scale, err, ZE, yprev = vec[0], vec[1], vec[2], vec[3], vec[4], vec[5]
     t = t0
-    J = np.empty((n, n))
-    Mf = np.empty((N, N))
-    Mr = np.empty((n, n))
-    pivF = np.empty(N, dtype=np.int64)
-    pivR = np.empty(n, dtype=np.int64)
-    Z = np.zeros((s, n))
-    F = np.empty((s, n))
-    JB = np.empty((s, n, n))
-    R = np.empty(N)
-    ytmp = np.empty(n)
-    ynew = np.empty(n)
-    scale = np.empty(n)
-    err = np.empty(n)
-    ZE = np.empty(n)
-    Q = np.zeros((s, n))
-    Qprev = np.zeros((s, n))
-    yprev = np.empty(n)
     have_prev = False
     tprev = 0.0
     hprev = 1.0
@@ -208,7 +217,7 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_ste
                         Mf[a * n + i, b * n + j] = hab * J[i, j]
         for i in range(N):
             Mf[i, i] += 1.0
-        ok = _lu(Mf, pivF)
+        ok = _lu_n(Mf, pivF, 9) if N == 9 else _lu(Mf, pivF)
         cnt[4] += 1
         # Newton start: extrapolate the previous collocation polynomial
         for a in range(s):
@@ -245,7 +254,10 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_ste
                         for b in range(s):
                             acc += h * AR[a, b] * F[b, i]
                         R[a * n + i] = acc
-                _solve(Mf, pivF, R)
+                if N == 9:
+                    _solve_n(Mf, pivF, R, 9)
+                else:
+                    _solve(Mf, pivF, R)
                 dW = 0.0
                 for a in range(s):
                     for i in range(n):
@@ -285,7 +297,10 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_ste
             for j in range(n):
                 Mr[i, j] = -J[i, j]
             Mr[i, i] += mu / h
-        _lu(Mr, pivR)
+        if n == 3:
+            _lu_n(Mr, pivR, 3)
+        else:
+            _lu(Mr, pivR)
         cnt[4] += 1
         for i in range(n):
             if f0_first:
@@ -301,7 +316,10 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_ste
                 ZE[i] = acc
                 err[i] = f0[i] + acc
             scale[i] = atol[i] + max(abs(y[i]), abs(ynew[i])) * rtol
-        _solve(Mr, pivR, err)
+        if n == 3:
+            _solve_n(Mr, pivR, err, 3)
+        else:
+            _solve(Mr, pivR, err)
         err_norm = _rms(err, scale)
         if rejected and err_norm > 1.0:
             for i in range(n):
@@ -353,7 +371,8 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_ste
             break
         h, h_old, err_old = _next_size(h, h_old, err_norm, err_old, rejected, safety, expo, 10.0, max_step)
         rejected = False
-    return _finish(status, t, y, cnt, EVBUF, rec_t, rec_y, h, Qprev)
+    keep_alive((f0_own, J_own, Mf_own, Mr_own, pivF_own, pivR_own, Z_own, F_own, JB_own, R_own, vec_own, Q_own))
+    return _finish(status, t, y_own, cnt_own, EVBUF_in, rec_t_own, rec_y_own, h, Qprev_own)
 
 
 @nb.njit(cache=True)

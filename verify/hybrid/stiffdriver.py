@@ -64,7 +64,13 @@ STATUS = {0: "finished", 1: "terminal event", -1: "step size too small", -2: "ma
 def _lu(a, piv):
     """In-place LU decomposition of ``a`` with partial pivoting (row swaps in ``piv``);
     False when a pivot is exactly zero."""
-    n = a.shape[0]
+    return _lu_n(a, piv, a.shape[0])
+
+
+@nb.njit(cache=True, inline="always")
+def _lu_n(a, piv, n):
+    """:func:`_lu` of the leading n × n block, inlined where it is called: with a constant
+    ``n`` the compiler unrolls the loops (same operations in the same order)."""
     for k in range(n):
         m = k
         big = abs(a[k, k])
@@ -93,7 +99,12 @@ def _lu(a, piv):
 @nb.njit(cache=True)
 def _solve(lu, piv, b):
     """Solve with the factors of :func:`_lu`, in place in ``b``."""
-    n = lu.shape[0]
+    _solve_n(lu, piv, b, lu.shape[0])
+
+
+@nb.njit(cache=True, inline="always")
+def _solve_n(lu, piv, b, n):
+    """:func:`_solve` with the leading n × n block, inlined where it is called (see :func:`_lu_n`)."""
     for k in range(n):
         m = piv[k]
         if m != k:
