@@ -46,8 +46,8 @@ from numpy.polynomial import polynomial as P
 
 from landau.errors import InputError
 from landau.verify.hybrid.nrt import borrowed, keep_alive
-from landau.verify.hybrid.stiffdriver import (EPS, _crossings, _finish, _guard, _lu, _lu_n, _may_cross, _next_size, _poly,
-                                              _record, _retry_size, _rms, _solve, _solve_n, _start)
+from landau.verify.hybrid.stiffdriver import (EPS, _crossings, _finish, _guard, _lu, _lu_n, _may_cross, _next_size,
+                                              _poly, _record, _retry_size, _rms, _solve_n, _start)
 
 __all__ = ["RadauTableau", "radau_tableau", "radau_iia_core", "collocation_core", "NEWTON_MAXITER"]
 
@@ -138,8 +138,8 @@ def _stage_jacobians(jac, t, h, y, Z, p, AR, CN, JB, ytmp, Mf, pivF, cnt):
 
 
 @nb.njit(cache=True)
-def radau_iia_core(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
-                   ev_stop, rec_cap, AR_in, CN_in, EE_in, mu, VI_in, full_retry, f0_first, EVBUF_in, EVDIR_in):
+def radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir, ev_stop,
+                   rec_cap, AR, CN, EE, mu, VI, full_retry, f0_first, EVBUF, EVDIR):
     """Integrate from t0 to t_end with the s-stage Radau IIA given by ``AR`` (s × s), nodes ``CN``,
     error weights ``EE``, ``mu`` = 1/γ₀ and ``VI`` (:class:`RadauTableau`).
 
@@ -162,7 +162,23 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step, m
         When crossings are asked for (``ev_idx >= 0``) with s ≠ 3: they are located on a cubic.
     """
     n = y0.shape[0]
-    s = AR_in.shape[0]
+    s = AR.shape[0]
+    # the loop compiled with constant sizes for the 3-state spring–block at s = 3 and 5: the
+    # compiler unrolls the small loops (the same operations in the same order)
+    if n == 3 and s == 3:
+        return _radau_iia(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
+                          ev_stop, rec_cap, AR, CN, EE, mu, VI, full_retry, f0_first, EVBUF, EVDIR, 3, 3)
+    if n == 3 and s == 5:
+        return _radau_iia(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
+                          ev_stop, rec_cap, AR, CN, EE, mu, VI, full_retry, f0_first, EVBUF, EVDIR, 3, 5)
+    return _radau_iia(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
+                      ev_stop, rec_cap, AR, CN, EE, mu, VI, full_retry, f0_first, EVBUF, EVDIR, n, s)
+
+
+@nb.njit(cache=True, inline="always")
+def _radau_iia(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
+               ev_stop, rec_cap, AR_in, CN_in, EE_in, mu, VI_in, full_retry, f0_first, EVBUF_in, EVDIR_in, n, s):
+    """The body of :func:`radau_iia_core` for n states and s stages (inlined where it is called)."""
     N = s * n
     if ev_idx >= 0 and s != 3:
         raise InputError("radau_iia_core: event location needs the cubic dense output of three stages")
@@ -217,7 +233,7 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step, m
                         Mf[a * n + i, b * n + j] = hab * J[i, j]
         for i in range(N):
             Mf[i, i] += 1.0
-        ok = _lu_n(Mf, pivF, 9) if N == 9 else _lu(Mf, pivF)
+        ok = _lu_n(Mf, pivF, N)
         cnt[4] += 1
         # Newton start: extrapolate the previous collocation polynomial
         for a in range(s):
@@ -254,10 +270,7 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step, m
                         for b in range(s):
                             acc += h * AR[a, b] * F[b, i]
                         R[a * n + i] = acc
-                if N == 9:
-                    _solve_n(Mf, pivF, R, 9)
-                else:
-                    _solve(Mf, pivF, R)
+                _solve_n(Mf, pivF, R, N)
                 dW = 0.0
                 for a in range(s):
                     for i in range(n):
@@ -297,10 +310,7 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step, m
             for j in range(n):
                 Mr[i, j] = -J[i, j]
             Mr[i, i] += mu / h
-        if n == 3:
-            _lu_n(Mr, pivR, 3)
-        else:
-            _lu(Mr, pivR)
+        _lu_n(Mr, pivR, n)
         cnt[4] += 1
         for i in range(n):
             if f0_first:
@@ -316,10 +326,7 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step, m
                 ZE[i] = acc
                 err[i] = f0[i] + acc
             scale[i] = atol[i] + max(abs(y[i]), abs(ynew[i])) * rtol
-        if n == 3:
-            _solve_n(Mr, pivR, err, 3)
-        else:
-            _solve(Mr, pivR, err)
+        _solve_n(Mr, pivR, err, n)
         err_norm = _rms(err, scale)
         if rejected and err_norm > 1.0:
             for i in range(n):
@@ -328,7 +335,7 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step, m
             cnt[2] += 1
             for i in range(n):
                 err[i] += ZE[i]
-            _solve(Mr, pivR, err)
+            _solve_n(Mr, pivR, err, n)
             err_norm = _rms(err, scale)
         safety = 0.9 * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter)
         h_retry = _retry_size(h, err_norm, safety, expo)
