@@ -25,6 +25,13 @@ and :func:`collocation_core` for any s without events.  Its set-up, step-size co
 location and recording are the pieces shared by the compiled stiff integrators
 (:mod:`landau.verify.hybrid.stiffdriver`).
 
+Speed (not the arithmetic): the loop works on views of its buffers without numba's atomic
+reference counts (:func:`landau.verify.hybrid.nrt.borrowed`), and it is compiled a second and
+a third time with constant sizes for three states at s = 3 and s = 5 (the spring–block), so
+that the compiler unrolls the small loops and the 9 × 9 / 15 × 15 LU and solves.  Measured on
+one period of the Fig. 3 cycle of Putelat et al. (2010) at s = 3: 0.79 → 0.51 µs per step
+(rtol 1e-10), every step and result unchanged to the bit.
+
 References
 ----------
 Hairer, E., Wanner, G. (1996). Solving Ordinary Differential Equations II, 2nd ed.,

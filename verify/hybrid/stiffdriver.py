@@ -27,7 +27,11 @@ Each method keeps its own ``while`` loop over these pieces, with its stage array
 variables: handing a method's work arrays to a shared loop (as a tuple, or as arguments of a
 function called every step) costs numba two reference-count updates per array per step,
 measured 20–120 % of a step of the 3-state spring–block.  The pieces take scalars or few arrays
-and are called once per run, once per step or only when events or recording are asked for.
+and are called once per run, once per step or only when events or recording are asked for; a
+loop that passes them views without reference counts (:mod:`landau.verify.hybrid.nrt`) pays
+no atomic update at all.  :func:`_lu_n` and :func:`_solve_n` are the LU and its solve inlined
+where they are called, so that with a constant size the compiler unrolls them (the same
+operations in the same order as :func:`_lu` and :func:`_solve`).
 
 numba's cache of a compiled function is invalidated only by changes to its own source file:
 after editing this module, delete the cache files of the cores and of
