@@ -26,11 +26,13 @@ location and recording are the pieces shared by the compiled stiff integrators
 (:mod:`landau.verify.hybrid.stiffdriver`).
 
 Speed (not the arithmetic): the loop works on views of its buffers without numba's atomic
-reference counts (:func:`landau.verify.hybrid.nrt.borrowed`), and it is compiled a second and
-a third time with constant sizes for three states at s = 3 and s = 5 (the spring–block), so
-that the compiler unrolls the small loops and the 9 × 9 / 15 × 15 LU and solves.  Measured on
-one period of the Fig. 3 cycle of Putelat et al. (2010) at s = 3: 0.79 → 0.51 µs per step
-(rtol 1e-10), every step and result unchanged to the bit.
+reference counts (:func:`landau.verify.hybrid.nrt.borrowed`), and the order-5 core
+(:func:`landau.verify.hybrid.radau.radau_core`) compiles it a second time with constant sizes
+for three states (the spring–block), so that the compiler unrolls the small loops and the
+9 × 9 LU and solves.  Measured on one period of the Fig. 3 cycle of Putelat et al. (2010):
+0.79 → 0.51 µs per step (rtol 1e-10), every step and result unchanged to the bit.  (A third
+copy for s = 5 gained 15 % per step of the order-9 method but made its first compilation
+take a minute; it is not made.)
 
 References
 ----------
@@ -168,24 +170,16 @@ def radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_ste
     InputError
         When crossings are asked for (``ev_idx >= 0``) with s ≠ 3: they are located on a cubic.
     """
-    n = y0.shape[0]
-    s = AR.shape[0]
-    # the loop compiled with constant sizes for the 3-state spring–block at s = 3 and 5: the
-    # compiler unrolls the small loops (the same operations in the same order)
-    if n == 3 and s == 3:
-        return _radau_iia(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
-                          ev_stop, rec_cap, AR, CN, EE, mu, VI, full_retry, f0_first, EVBUF, EVDIR, 3, 3)
-    if n == 3 and s == 5:
-        return _radau_iia(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
-                          ev_stop, rec_cap, AR, CN, EE, mu, VI, full_retry, f0_first, EVBUF, EVDIR, 3, 5)
-    return _radau_iia(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
-                      ev_stop, rec_cap, AR, CN, EE, mu, VI, full_retry, f0_first, EVBUF, EVDIR, n, s)
+    return _radau_iia_any(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
+                          ev_stop, rec_cap, AR, CN, EE, mu, VI, full_retry, f0_first, EVBUF, EVDIR, y0.shape[0],
+                          AR.shape[0])
 
 
-@nb.njit(cache=True, inline="always")
-def _radau_iia(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
+def _radau_iia_body(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
                ev_stop, rec_cap, AR_in, CN_in, EE_in, mu, VI_in, full_retry, f0_first, EVBUF_in, EVDIR_in, n, s):
-    """The body of :func:`radau_iia_core` for n states and s stages (inlined where it is called)."""
+    """The body of :func:`radau_iia_core` for n states and s stages, inlined where it is called:
+    with constant n and s (:func:`landau.verify.hybrid.radau.radau_core` for three states) the
+    compiler unrolls the small loops — the same operations in the same order."""
     N = s * n
     if ev_idx >= 0 and s != 3:
         raise InputError("radau_iia_core: event location needs the cubic dense output of three stages")
@@ -387,6 +381,13 @@ def _radau_iia(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step, max_s
         rejected = False
     keep_alive((f0_own, J_own, Mf_own, Mr_own, pivF_own, pivR_own, Z_own, F_own, JB_own, R_own, vec_own, Q_own))
     return _finish(status, t, y_own, cnt_own, EVBUF_in, rec_t_own, rec_y_own, h, Qprev_own)
+
+
+#: the loop inlined at its call (for constant sizes; its callers are cached) and compiled on its
+#: own for any sizes (inlining the whole loop where the sizes are not constant only costs compile
+#: time: measured 27 s instead of 6 s for the first order-9 run)
+_radau_iia = nb.njit(inline="always")(_radau_iia_body)
+_radau_iia_any = nb.njit(cache=True)(_radau_iia_body)
 
 
 @nb.njit(cache=True)
