@@ -33,7 +33,7 @@ import numba as nb
 import numpy as np
 from numba import types
 
-from landau.verify.hybrid.collocation import NEWTON_MAXITER, radau_iia_core  # noqa: F401
+from landau.verify.hybrid.collocation import NEWTON_MAXITER, _radau_iia, radau_iia_core  # noqa: F401
 from landau.verify.hybrid.stiffdriver import STATUS, _lu, _poly, _rms, _solve  # noqa: F401  (re-exported)
 
 SQ6 = math.sqrt(6.0)
@@ -134,5 +134,9 @@ def radau_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
     :func:`landau.verify.hybrid.collocation.radau_iia_core` with this module's coefficients and
     a failed Newton iteration retried with the stage Jacobians.
     """
+    if y0.shape[0] == 3:
+        # the spring–block's three states: the loop compiled with constant sizes (same arithmetic)
+        return _radau_iia(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
+                          ev_stop, rec_cap, AR, _NODES, E_ERR, MU_REAL, VI, True, True, EVBUF, EVDIR, 3, 3)
     return radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
                           ev_stop, rec_cap, AR, _NODES, E_ERR, MU_REAL, VI, True, True, EVBUF, EVDIR)

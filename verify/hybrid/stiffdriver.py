@@ -27,7 +27,11 @@ Each method keeps its own ``while`` loop over these pieces, with its stage array
 variables: handing a method's work arrays to a shared loop (as a tuple, or as arguments of a
 function called every step) costs numba two reference-count updates per array per step,
 measured 20–120 % of a step of the 3-state spring–block.  The pieces take scalars or few arrays
-and are called once per run, once per step or only when events or recording are asked for.
+and are called once per run, once per step or only when events or recording are asked for; a
+loop that passes them views without reference counts (:mod:`landau.verify.hybrid.nrt`) pays
+no atomic update at all.  :func:`_lu_n` and :func:`_solve_n` are the LU and its solve inlined
+where they are called, so that with a constant size the compiler unrolls them (the same
+operations in the same order as :func:`_lu` and :func:`_solve`).
 
 numba's cache of a compiled function is invalidated only by changes to its own source file:
 after editing this module, delete the cache files of the cores and of
@@ -64,7 +68,13 @@ STATUS = {0: "finished", 1: "terminal event", -1: "step size too small", -2: "ma
 def _lu(a, piv):
     """In-place LU decomposition of ``a`` with partial pivoting (row swaps in ``piv``);
     False when a pivot is exactly zero."""
-    n = a.shape[0]
+    return _lu_n(a, piv, a.shape[0])
+
+
+@nb.njit(cache=True, inline="always")
+def _lu_n(a, piv, n):
+    """:func:`_lu` of the leading n × n block, inlined where it is called: with a constant
+    ``n`` the compiler unrolls the loops (same operations in the same order)."""
     for k in range(n):
         m = k
         big = abs(a[k, k])
@@ -93,7 +103,12 @@ def _lu(a, piv):
 @nb.njit(cache=True)
 def _solve(lu, piv, b):
     """Solve with the factors of :func:`_lu`, in place in ``b``."""
-    n = lu.shape[0]
+    _solve_n(lu, piv, b, lu.shape[0])
+
+
+@nb.njit(cache=True, inline="always")
+def _solve_n(lu, piv, b, n):
+    """:func:`_solve` with the leading n × n block, inlined where it is called (see :func:`_lu_n`)."""
     for k in range(n):
         m = piv[k]
         if m != k:

@@ -69,51 +69,16 @@ from pathlib import Path
 
 import numpy as np
 from numba import njit
-from numba.core import types
-from numba.extending import intrinsic
 
 from dataclasses import dataclass
 
 from landau.verify.hybrid import compiled as _compiled
 from landau.verify.hybrid.kernel import Kernel
+from landau.verify.hybrid.nrt import borrowed  # noqa: F401  (re-exported: used by templates/switching.py)
 from landau.verify.hybrid.specialise import specialise
 
 OK, MAX_STEPS, STEP_TOO_SMALL, MAX_EVENTS = 0, 1, 2, 3
 STATUS = {OK: "t_end", MAX_STEPS: "max_steps", STEP_TOO_SMALL: "step-size-underflow", MAX_EVENTS: "max_events"}
-
-
-@intrinsic
-def borrowed(typingctx, arr):
-    """A view of the array ``arr`` without a reference count (numba intrinsic; compiled code only).
-
-    numba keeps an atomic reference count on every array it passes between compiled functions
-    and on every local alias; in the switching loop (a 2-vector state, a field call per stage)
-    those locked updates measured about half of a run.  The view returned here shares ``arr``'s
-    data and shape but has no memory-info pointer, so numba's reference-count calls skip it.
-    It must not outlive ``arr`` and must not be returned to Python: the caller keeps ``arr``
-    alive (a use after the last use of the view) and returns copies.
-
-    Parameters
-    ----------
-    arr : numba array
-
-    Returns
-    -------
-    numba array
-        The same type as ``arr``.
-    """
-    if not isinstance(arr, types.Array):
-        return None
-
-    def codegen(context, builder, sig, args):
-        src = context.make_array(sig.args[0])(context, builder, args[0])
-        out = context.make_array(sig.return_type)(context, builder)
-        context.populate_array(out, data=src.data, shape=src.shape, strides=src.strides,
-                               itemsize=src.itemsize, meminfo=None, parent=None)
-        return out._getvalue()
-
-    return arr(arr), codegen
-
 
 
 @lru_cache(maxsize=None)
