@@ -404,3 +404,269 @@ def collocation_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_s
     out = radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, -1, 0.0, 0, 0, 0, AR, CN,
                          EE, mu, VI, False, False, np.empty((1, n + 1)), np.empty(1))
     return out[0], out[1], out[2], out[3]
+
+
+def split_coefficients(A):
+    """The transformation of the 3-stage Newton system to one real and one complex n × n system.
+
+    A⁻¹ = T·Λ·T⁻¹ with Λ = diag(γ, [[α, −β], [β, α]]): γ the real eigenvalue of A⁻¹ and
+    α ± iβ (β > 0) its complex pair (Hairer & Wanner 1996, IV.8, eq. (8.15)–(8.18)).  With
+    W = T⁻¹Z the stage equations Z = h(A ⊗ I)F decouple, for a constant Jacobian, into
+    (γ/h·I − J)·ΔW₁ = … and ((α + iβ)/h·I − J)·(ΔW₂ + iΔW₃) = ….
+
+    Parameters
+    ----------
+    A : ndarray, shape (3, 3)
+        Butcher matrix of a 3-stage method whose A⁻¹ has one real eigenvalue and a complex pair.
+
+    Returns
+    -------
+    (T, TI, gamma, alpha, beta) : (ndarray, ndarray, float, float, float)
+    """
+    A = np.asarray(A, dtype=float)
+    if A.shape != (3, 3):
+        raise InputError(f"split_coefficients: a 3 x 3 Butcher matrix is needed, got shape {A.shape}")
+    AI = np.linalg.inv(A)
+    lam, vec = np.linalg.eig(AI)
+    ir = int(np.argmin(np.abs(np.imag(lam))))
+    ic = int(np.argmin(np.imag(lam)))          # the eigenvalue α − iβ of the pair
+    if ic == ir or abs(np.imag(lam[ic])) == 0.0:
+        raise InputError("split_coefficients: A⁻¹ has no complex eigenvalue pair")
+    gamma = float(np.real(lam[ir]))
+    alpha, beta = float(np.real(lam[ic])), float(-np.imag(lam[ic]))
+    u = vec[:, ic]
+    T = np.column_stack([np.real(vec[:, ir]), np.real(u), np.imag(u)])
+    TI = np.linalg.inv(T)
+    Lam = np.array([[gamma, 0.0, 0.0], [0.0, alpha, -beta], [0.0, beta, alpha]])
+    if not np.allclose(T @ Lam @ TI, AI, rtol=1e-12, atol=1e-12 * np.abs(AI).max()):
+        raise InputError("split_coefficients: the eigen-decomposition of A⁻¹ does not reproduce it")
+    return T, TI, gamma, alpha, beta
+
+
+def _radau_split_body(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
+                      ev_stop, rec_cap, AR_in, CN_in, EE_in, VI_in, T_in, TI_in, gam, alp, bet, EVBUF_in, EVDIR_in, n):
+    """The 3-stage Radau IIA of :func:`_radau_iia_body` (``full_retry`` and ``f0_first`` on) with
+    the simplified Newton system solved in the eigenbasis of A⁻¹ (:func:`split_coefficients`):
+    per step one real n × n LU of γ/h·I − J (also the matrix of the error estimate) and one
+    complex n × n LU of (α + iβ)/h·I − J instead of the 3n × 3n LU.  The increments are mapped
+    back to Z (ΔZ = T·ΔW), so that the convergence test, the error estimate, the dense output
+    and the events are those of the untransformed iteration.  A retry with the stage Jacobians
+    uses the full 3n × 3n system, as :func:`_radau_iia_body` does.  Same results up to rounding
+    (not bit-identical: the linear algebra differs)."""
+    s = 3
+    N = s * n
+    y_own, f0_own, cnt_own, rec_t_own, rec_y_own, h, status, t_end = _start(fun, t0, y0, t_end, p_in, h0, max_step,
+                                                                              rec_cap)
+    J_own = np.empty((n, n))
+    Mf_own = np.empty((N, N))
+    Mr_own = np.empty((n, n))
+    Mc_own = np.empty((n, n), dtype=np.complex128)
+    bc_own = np.empty(n, dtype=np.complex128)
+    pivF_own = np.empty(N, dtype=np.int64)
+    pivR_own = np.empty(n, dtype=np.int64)
+    pivC_own = np.empty(n, dtype=np.int64)
+    Z_own = np.zeros((s, n))
+    F_own = np.empty((s, n))
+    JB_own = np.empty((s, n, n))
+    R_own = np.empty(N)
+    vec_own = np.empty((10, n))
+    Q_own = np.zeros((s, n))
+    Qprev_own = np.zeros((s, n))
+    y, f0, cnt, rec_t, rec_y = borrowed(y_own), borrowed(f0_own), borrowed(cnt_own), borrowed(rec_t_own), borrowed(
+        rec_y_own)
+    p, atol, AR, CN, EE, VI = borrowed(p_in), borrowed(atol_in), borrowed(AR_in), borrowed(CN_in), borrowed(
+        EE_in), borrowed(VI_in)
+    T, TI = borrowed(T_in), borrowed(TI_in)
+    EVBUF, EVDIR = borrowed(EVBUF_in), borrowed(EVDIR_in)
+    J, Mf, Mr, pivF, pivR = borrowed(J_own), borrowed(Mf_own), borrowed(Mr_own), borrowed(pivF_own), borrowed(pivR_own)
+    Mc, bc, pivC = borrowed(Mc_own), borrowed(bc_own), borrowed(pivC_own)
+    Z, F, JB, R, Q, Qprev = borrowed(Z_own), borrowed(F_own), borrowed(JB_own), borrowed(R_own), borrowed(
+        Q_own), borrowed(Qprev_own)
+    vec = borrowed(vec_own)
+    ytmp, ynew, scale, err, ZE, yprev = vec[0], vec[1], vec[2], vec[3], vec[4], vec[5]
+    b0, b1, b2 = vec[6], vec[7], vec[8]
+    t = t0
+    have_prev = False
+    tprev = 0.0
+    hprev = 1.0
+    newton_tol = max(10 * EPS / rtol, min(0.03, rtol ** 0.5))
+    expo = 1.0 / (s + 1)
+    use_full = False
+    err_old = -1.0
+    h_old = -1.0
+    rejected = False
+    nev_dir = 0
+    while t < t_end:
+        status, h = _guard(cnt[0] + cnt[1], max_steps, t, t_end, h)
+        if status != 0:
+            break
+        jac(t, y, p, J)
+        cnt[3] += 1
+        gh = gam / h
+        ch = complex(alp / h, bet / h)
+        for i in range(n):
+            for j in range(n):
+                Mr[i, j] = -J[i, j]
+                Mc[i, j] = -J[i, j]
+            Mr[i, i] += gh
+            Mc[i, i] += ch
+        ok = _lu_n(Mr, pivR, n)
+        cnt[4] += 1
+        if not use_full:
+            ok = _lu_n(Mc, pivC, n) and ok
+            cnt[4] += 1
+        for a in range(s):
+            for i in range(n):
+                if have_prev:
+                    x = (t + CN[a] * h - tprev) / hprev
+                    Z[a, i] = _poly(yprev, Qprev, x, i) - y[i]
+                else:
+                    Z[a, i] = 0.0
+        converged = False
+        dW_old = -1.0
+        rate = -1.0
+        n_iter = 0
+        if ok:
+            for it in range(3 * NEWTON_MAXITER if use_full else NEWTON_MAXITER):
+                n_iter = min(it + 1, NEWTON_MAXITER)
+                finite = True
+                for a in range(s):
+                    for i in range(n):
+                        ytmp[i] = y[i] + Z[a, i]
+                    fa = F[a]
+                    fun(t + CN[a] * h, ytmp, p, fa)
+                    cnt[2] += 1
+                    for i in range(n):
+                        if not math.isfinite(fa[i]):
+                            finite = False
+                if not finite:
+                    break
+                if use_full:
+                    if not _stage_jacobians(jac, t, h, y, Z, p, AR, CN, JB, ytmp, Mf, pivF, cnt):
+                        break
+                    for a in range(s):
+                        for i in range(n):
+                            acc = -Z[a, i]
+                            for b in range(s):
+                                acc += h * AR[a, b] * F[b, i]
+                            R[a * n + i] = acc
+                    _solve_n(Mf, pivF, R, N)
+                else:
+                    # right-hand sides T⁻¹F − (Λ/h)·T⁻¹Z of the decoupled systems
+                    for i in range(n):
+                        g0 = TI[0, 0] * F[0, i] + TI[0, 1] * F[1, i] + TI[0, 2] * F[2, i]
+                        g1 = TI[1, 0] * F[0, i] + TI[1, 1] * F[1, i] + TI[1, 2] * F[2, i]
+                        g2 = TI[2, 0] * F[0, i] + TI[2, 1] * F[1, i] + TI[2, 2] * F[2, i]
+                        w0 = TI[0, 0] * Z[0, i] + TI[0, 1] * Z[1, i] + TI[0, 2] * Z[2, i]
+                        w1 = TI[1, 0] * Z[0, i] + TI[1, 1] * Z[1, i] + TI[1, 2] * Z[2, i]
+                        w2 = TI[2, 0] * Z[0, i] + TI[2, 1] * Z[1, i] + TI[2, 2] * Z[2, i]
+                        b0[i] = g0 - gh * w0
+                        bc[i] = complex(g1 - (alp * w1 - bet * w2) / h, g2 - (bet * w1 + alp * w2) / h)
+                    _solve_n(Mr, pivR, b0, n)
+                    _solve_n(Mc, pivC, bc, n)
+                    for i in range(n):
+                        b1[i] = bc[i].real
+                        b2[i] = bc[i].imag
+                    for a in range(s):
+                        for i in range(n):
+                            R[a * n + i] = T[a, 0] * b0[i] + T[a, 1] * b1[i] + T[a, 2] * b2[i]
+                dW = 0.0
+                for a in range(s):
+                    for i in range(n):
+                        sc = atol[i] + abs(y[i] + Z[a, i]) * rtol
+                        r = R[a * n + i] / sc
+                        dW += r * r
+                        Z[a, i] += R[a * n + i]
+                dW = math.sqrt(dW / N)
+                if dW_old > 0:
+                    rate = dW / dW_old
+                if use_full:
+                    if (rate >= 1.0 and it >= 4) or it >= 3 * NEWTON_MAXITER - 1:
+                        break
+                    if dW < newton_tol and rate < 1.0:
+                        converged = True
+                        break
+                    dW_old = dW
+                    continue
+                if rate >= 1.0 or (rate > 0 and rate ** (NEWTON_MAXITER - it) / (1 - rate) * dW > newton_tol):
+                    break
+                if dW == 0.0 or (rate > 0 and rate / (1 - rate) * dW < newton_tol):
+                    converged = True
+                    break
+                dW_old = dW
+        if not converged:
+            cnt[5] += 1
+            cnt[1] += 1
+            if use_full:
+                h *= 0.5
+            use_full = True
+            rejected = True
+            continue
+        for i in range(n):
+            ynew[i] = y[i] + Z[s - 1, i]
+        # embedded error estimate: (γ/h I − J)⁻¹ (f0 + Σ e_a Z_a / h), with the real factors above
+        for i in range(n):
+            acc = f0[i]
+            for a in range(s):
+                acc += EE[a] * Z[a, i] / h
+            err[i] = acc
+            ZE[i] = acc - f0[i]
+            scale[i] = atol[i] + max(abs(y[i]), abs(ynew[i])) * rtol
+        _solve_n(Mr, pivR, err, n)
+        err_norm = _rms(err, scale)
+        if rejected and err_norm > 1.0:
+            for i in range(n):
+                ytmp[i] = y[i] + err[i]
+            fun(t, ytmp, p, err)
+            cnt[2] += 1
+            for i in range(n):
+                err[i] += ZE[i]
+            _solve_n(Mr, pivR, err, n)
+            err_norm = _rms(err, scale)
+        safety = 0.9 * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter)
+        h_retry = _retry_size(h, err_norm, safety, expo)
+        if h_retry > 0.0:
+            cnt[1] += 1
+            h = h_retry
+            rejected = True
+            continue
+        cnt[0] += 1
+        use_full = False
+        for j in range(s):
+            for i in range(n):
+                acc = 0.0
+                for a in range(s):
+                    acc += VI[j, a] * Z[a, i]
+                Q[j, i] = acc
+        t_new = t + h
+        stop = False
+        if ev_idx >= 0 and _may_cross(y[ev_idx] - ev_val, Q[0, ev_idx], Q[1, ev_idx], Q[2, ev_idx]):
+            stop, nev_dir = _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF, EVDIR)
+        for i in range(n):
+            yprev[i] = y[i]
+        for j in range(s):
+            for i in range(n):
+                Qprev[j, i] = Q[j, i]
+        tprev = t
+        hprev = h
+        have_prev = True
+        t = t_new
+        for i in range(n):
+            y[i] = ynew[i]
+        fun(t, y, p, f0)
+        cnt[2] += 1
+        if rec_cap > 0:
+            _record(cnt, rec_t, rec_y, t, y)
+        if stop:
+            status = 1
+            break
+        h, h_old, err_old = _next_size(h, h_old, err_norm, err_old, rejected, safety, expo, 10.0, max_step)
+        rejected = False
+    keep_alive((f0_own, J_own, Mf_own, Mr_own, pivF_own, pivR_own, Z_own, F_own, JB_own, R_own, vec_own, Q_own))
+    keep_alive((Mc_own, bc_own, pivC_own))
+    return _finish(status, t, y_own, cnt_own, EVBUF_in, rec_t_own, rec_y_own, h, Qprev_own)
+
+
+#: the split loop inlined where it is called with a constant n (radau.radau_split_core) and on its own for any n
+_radau_split = nb.njit(inline="always")(_radau_split_body)
+_radau_split_any = nb.njit(cache=True)(_radau_split_body)

@@ -140,3 +140,28 @@ def radau_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                           ev_stop, rec_cap, AR, _NODES, E_ERR, MU_REAL, VI, True, True, EVBUF, EVDIR, 3, 3)
     return radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
                           ev_stop, rec_cap, AR, _NODES, E_ERR, MU_REAL, VI, True, True, EVBUF, EVDIR)
+
+
+from landau.verify.hybrid.collocation import _radau_split, _radau_split_any, split_coefficients  # noqa: E402
+
+#: A⁻¹ = T·diag(γ, [[α, −β], [β, α]])·T⁻¹, computed from :data:`A_RADAU` (:func:`split_coefficients`)
+T_SPLIT, TI_SPLIT, GAMMA_SPLIT, ALPHA_SPLIT, BETA_SPLIT = split_coefficients(A_RADAU)
+
+
+@nb.njit(types.Tuple((I64, F64, A1, I64[::1], A1, A2, A1, A2, F64, A2))(
+    FUN_T, JAC_T, F64, A1, F64, A1, F64, A1, F64, F64, I64, I64, F64, I64, I64, I64, A2, A2, A2, A2, F64, F64, F64,
+    A2, A1), cache=True)
+def radau_split_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
+                     ev_idx, ev_val, ev_dir, ev_stop, rec_cap, AR, VI, T, TI, gam, alp, bet, EVBUF, EVDIR):
+    """:func:`radau_core` with the Newton system solved in the eigenbasis of A⁻¹: one real and
+    one complex n × n LU per step instead of one 3n × 3n LU
+    (:func:`landau.verify.hybrid.collocation._radau_split_body`; ``T``, ``TI``, ``gam``, ``alp``,
+    ``bet`` from :func:`landau.verify.hybrid.collocation.split_coefficients`, e.g.
+    :data:`T_SPLIT`…).  Same arguments and returned tuple as :func:`radau_core`; the results
+    agree with it to the integration tolerance, not to the bit.
+    """
+    if y0.shape[0] == 3:
+        return _radau_split(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
+                            ev_stop, rec_cap, AR, _NODES, E_ERR, VI, T, TI, gam, alp, bet, EVBUF, EVDIR, 3)
+    return _radau_split_any(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
+                            ev_stop, rec_cap, AR, _NODES, E_ERR, VI, T, TI, gam, alp, bet, EVBUF, EVDIR, y0.shape[0])
