@@ -443,6 +443,28 @@ def split_coefficients(A):
     return T, TI, gamma, alpha, beta
 
 
+@nb.njit(cache=True, inline="always")
+def _solve_recip(lu, piv, dinv, b, n):
+    """:func:`landau.verify.hybrid.stiffdriver._solve_n` with the reciprocals ``dinv`` of the
+    pivots given (for complex factors, where a division costs several multiplications)."""
+    for k in range(n):
+        m = piv[k]
+        if m != k:
+            tmp = b[k]
+            b[k] = b[m]
+            b[m] = tmp
+    for i in range(n):
+        acc = b[i]
+        for j in range(i):
+            acc -= lu[i, j] * b[j]
+        b[i] = acc
+    for i in range(n - 1, -1, -1):
+        acc = b[i]
+        for j in range(i + 1, n):
+            acc -= lu[i, j] * b[j]
+        b[i] = acc * dinv[i]
+
+
 def _radau_split_body(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
                       ev_stop, rec_cap, AR_in, CN_in, EE_in, VI_in, T_in, TI_in, gam, alp, bet, EVBUF_in, EVDIR_in, n):
     """The 3-stage Radau IIA of :func:`_radau_iia_body` (``full_retry`` and ``f0_first`` on) with
@@ -485,6 +507,10 @@ def _radau_split_body(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step
     vec = borrowed(vec_own)
     ytmp, ynew, scale, err, ZE, yprev = vec[0], vec[1], vec[2], vec[3], vec[4], vec[5]
     b0, b1, b2 = vec[6], vec[7], vec[8]
+    W_own = np.empty((s, n))
+    W = borrowed(W_own)
+    dinv_own = np.empty(n, dtype=np.complex128)
+    dinv = borrowed(dinv_own)
     t = t0
     have_prev = False
     tprev = 0.0
@@ -503,7 +529,9 @@ def _radau_split_body(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step
         jac(t, y, p, J)
         cnt[3] += 1
         gh = gam / h
-        ch = complex(alp / h, bet / h)
+        ah = alp / h
+        bh = bet / h
+        ch = complex(ah, bh)
         for i in range(n):
             for j in range(n):
                 Mr[i, j] = -J[i, j]
@@ -515,6 +543,9 @@ def _radau_split_body(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step
         if not use_full:
             ok = _lu_n(Mc, pivC, n) and ok
             cnt[4] += 1
+            if ok:
+                for i in range(n):
+                    dinv[i] = 1.0 / Mc[i, i]
         for a in range(s):
             for i in range(n):
                 if have_prev:
@@ -522,6 +553,11 @@ def _radau_split_body(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step
                     Z[a, i] = _poly(yprev, Qprev, x, i) - y[i]
                 else:
                     Z[a, i] = 0.0
+        if not use_full:
+            for i in range(n):
+                W[0, i] = TI[0, 0] * Z[0, i] + TI[0, 1] * Z[1, i] + TI[0, 2] * Z[2, i]
+                W[1, i] = TI[1, 0] * Z[0, i] + TI[1, 1] * Z[1, i] + TI[1, 2] * Z[2, i]
+                W[2, i] = TI[2, 0] * Z[0, i] + TI[2, 1] * Z[1, i] + TI[2, 2] * Z[2, i]
         converged = False
         dW_old = -1.0
         rate = -1.0
@@ -557,16 +593,17 @@ def _radau_split_body(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step
                         g0 = TI[0, 0] * F[0, i] + TI[0, 1] * F[1, i] + TI[0, 2] * F[2, i]
                         g1 = TI[1, 0] * F[0, i] + TI[1, 1] * F[1, i] + TI[1, 2] * F[2, i]
                         g2 = TI[2, 0] * F[0, i] + TI[2, 1] * F[1, i] + TI[2, 2] * F[2, i]
-                        w0 = TI[0, 0] * Z[0, i] + TI[0, 1] * Z[1, i] + TI[0, 2] * Z[2, i]
-                        w1 = TI[1, 0] * Z[0, i] + TI[1, 1] * Z[1, i] + TI[1, 2] * Z[2, i]
-                        w2 = TI[2, 0] * Z[0, i] + TI[2, 1] * Z[1, i] + TI[2, 2] * Z[2, i]
+                        w0, w1, w2 = W[0, i], W[1, i], W[2, i]
                         b0[i] = g0 - gh * w0
-                        bc[i] = complex(g1 - (alp * w1 - bet * w2) / h, g2 - (bet * w1 + alp * w2) / h)
+                        bc[i] = complex(g1 - (ah * w1 - bh * w2), g2 - (bh * w1 + ah * w2))
                     _solve_n(Mr, pivR, b0, n)
-                    _solve_n(Mc, pivC, bc, n)
+                    _solve_recip(Mc, pivC, dinv, bc, n)
                     for i in range(n):
                         b1[i] = bc[i].real
                         b2[i] = bc[i].imag
+                        W[0, i] += b0[i]
+                        W[1, i] += b1[i]
+                        W[2, i] += b2[i]
                     for a in range(s):
                         for i in range(n):
                             R[a * n + i] = T[a, 0] * b0[i] + T[a, 1] * b1[i] + T[a, 2] * b2[i]
@@ -663,7 +700,7 @@ def _radau_split_body(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step
         h, h_old, err_old = _next_size(h, h_old, err_norm, err_old, rejected, safety, expo, 10.0, max_step)
         rejected = False
     keep_alive((f0_own, J_own, Mf_own, Mr_own, pivF_own, pivR_own, Z_own, F_own, JB_own, R_own, vec_own, Q_own))
-    keep_alive((Mc_own, bc_own, pivC_own))
+    keep_alive((Mc_own, bc_own, pivC_own, W_own, dinv_own))
     return _finish(status, t, y_own, cnt_own, EVBUF_in, rec_t_own, rec_y_own, h, Qprev_own)
 
 
