@@ -14,7 +14,8 @@ Sections (``--only``):
 
 * ``springblock`` — one period of the Fig. 3 stick-slip cycle of Putelat et al. (2010)
   (Dieterich law, V/V_* = 100, κ = 1e-3): the toolkit (``integrate(method="auto")``, which
-  picks the order-5 or order-9 Radau IIA by tolerance; each of its methods also on its own,
+  picks the order-5 Radau IIA solved in the eigenbasis of A⁻¹ or the order-9 Radau IIA by
+  tolerance; each of its methods also on its own,
   and the order-5 Radau IIA called the way it was before kernels were passed by address)
   against ``solve_ivp`` Radau/BDF/LSODA with the generated right-hand side and Jacobian as plain
   Python and as numba-compiled functions, SUNDIALS CVODE (BDF, compiled f and J, scikit-sundae)
@@ -271,6 +272,8 @@ def section_springblock(quick: bool) -> None:
     for rtol in tols:
         add(ours, rtol, lambda: integrate(model, y0, (0.0, T), rtol=rtol, method="auto").y)
         add("landau Radau IIA order 5", rtol, lambda: integrate(model, y0, (0.0, T), rtol=rtol).y)
+        add("landau Radau IIA order 5, eigenbasis of A⁻¹", rtol,
+            lambda: integrate(model, y0, (0.0, T), rtol=rtol, method="radau5t").y)
         add("landau Radau IIA order 5, per-call dispatch (before)", rtol, lambda: radau_dispatched(rtol))
         add("landau Radau IIA order 9", rtol, lambda: integrate(model, y0, (0.0, T), rtol=rtol, method="radau9").y)
         add("landau RODAS4", rtol, lambda: integrate(model, y0, (0.0, T), rtol=rtol, method="rodas4").y)

@@ -8,7 +8,8 @@ dˢ⁻¹/dxˢ⁻¹ [xˢ⁻¹(x − 1)ˢ] (c_s = 1), the Butcher matrix is aᵢ�
 (ℓⱼ the Lagrange basis on the nodes).
 
 The stage equations are solved by simplified Newton on the full sn×sn system I − h(A⊗J) —
-for the 3-state spring–block (sn = 15 at s = 5) one dense LU per step.  The error estimate
+one dense LU per step (for s = 3 the eigenbasis of A⁻¹ — one real and one complex n×n system —
+is the cheaper route: :func:`split_coefficients`).  The error estimate
 is the radau5 construction generalised to s stages: an embedded solution
 ŷ₁ = y₀ + h(γ₀ f(y₀) + Σ b̂ᵢ f(Yᵢ)) of order s, with γ₀ the real eigenvalue of A
 and b̂ from the order conditions Σ b̂ᵢ cᵢ^{k−1} = 1/k − γ₀ δ_{k1} (k = 1…s), filtered by
