@@ -14,10 +14,9 @@ import sympy as sp
 
 from landau.kernels import generate_kernel
 from landau.verify.hybrid.collocation import split_coefficients
-from landau.verify.hybrid.fastcall import addresses
+from landau.verify.hybrid.fastcall import addresses, radau_split_at
 from landau.verify.hybrid.radau import (A_RADAU, ALPHA_SPLIT, BETA_SPLIT, GAMMA_SPLIT, MU_REAL, T_SPLIT, TI_SPLIT,
                                         VINV)
-from landau.verify.springblock.simulate import radau_split_at
 
 
 def _run(kernel, y0, t_end, rtol, ev_idx=-1, ev_dir=0, ev_stop=0):

@@ -27,7 +27,7 @@ from numba.core import cgutils
 from numba.extending import intrinsic
 
 from landau.verify.hybrid.collocation import collocation_core
-from landau.verify.hybrid.radau import FUN_T, JAC_T, pointers, radau_core
+from landau.verify.hybrid.radau import FUN_T, JAC_T, pointers, radau_core, radau_split_core
 from landau.verify.hybrid.rosenbrock import rosenbrock_core
 
 __all__ = ["addresses", "collocation_at", "radau_at", "rosenbrock_at"]
@@ -78,6 +78,14 @@ def radau_at(af, aj, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_i
     """:func:`~landau.verify.hybrid.radau.radau_core` with (f, J) given by address."""
     return radau_core(fun_at(af), jac_at(aj), t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx,
                       ev_val, ev_dir, ev_stop, rec_cap, AR, VI, EVBUF, EVDIR)
+
+
+@nb.njit(cache=True)
+def radau_split_at(af, aj, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir, ev_stop,
+                   rec_cap, AR, VI, T, TI, gam, alp, bet, EVBUF, EVDIR):
+    """:func:`~landau.verify.hybrid.radau.radau_split_core` with (f, J) given by address."""
+    return radau_split_core(fun_at(af), jac_at(aj), t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx,
+                            ev_val, ev_dir, ev_stop, rec_cap, AR, VI, T, TI, gam, alp, bet, EVBUF, EVDIR)
 
 
 @nb.njit(cache=True)

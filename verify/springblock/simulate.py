@@ -22,7 +22,6 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field
 
-import numba as nb
 import numpy as np
 
 from landau.errors import InputError, IntegratorError
@@ -30,10 +29,8 @@ from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.result import Simulation, status_from_text
 from landau.verify.springblock.model import SpringBlockModel, compile_variational
 from landau.verify.hybrid.collocation import radau_tableau
-from landau.verify.hybrid.fastcall import addresses, collocation_at, radau_at, rosenbrock_at
-from landau.verify.hybrid.fastcall import fun_at, jac_at
-from landau.verify.hybrid.radau import (A_RADAU, ALPHA_SPLIT, BETA_SPLIT, GAMMA_SPLIT, STATUS, T_SPLIT, TI_SPLIT, VINV,
-                                        radau_split_core)
+from landau.verify.hybrid.fastcall import addresses, collocation_at, radau_at, radau_split_at, rosenbrock_at
+from landau.verify.hybrid.radau import A_RADAU, ALPHA_SPLIT, BETA_SPLIT, GAMMA_SPLIT, STATUS, T_SPLIT, TI_SPLIT, VINV
 from landau.verify.hybrid.rosenbrock import (RODAS4_A, RODAS4_C, RODAS4_CNODES, RODAS4_D, RODAS4_E,
                                              RODAS4_M)
 
@@ -44,15 +41,6 @@ W_INDEX = 1
 METHODS = ("radau5", "radau5t", "radau9", "rodas4", "auto")
 #: ``"auto"`` takes the order-9 Radau IIA at and below this rtol when no event or recording is asked
 AUTO_HIGH_ORDER_RTOL = 1e-7
-
-
-@nb.njit(cache=True)
-def radau_split_at(af, aj, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir, ev_stop,
-                   rec_cap, AR, VI, T, TI, gam, alp, bet, EVBUF, EVDIR):
-    """:func:`~landau.verify.hybrid.radau.radau_split_core` with (f, J) given by address
-    (as :func:`landau.verify.hybrid.fastcall.radau_at` for the default core)."""
-    return radau_split_core(fun_at(af), jac_at(aj), t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx,
-                            ev_val, ev_dir, ev_stop, rec_cap, AR, VI, T, TI, gam, alp, bet, EVBUF, EVDIR)
 
 
 def choose_method(rtol: float, events: bool) -> str:
