@@ -406,7 +406,7 @@ def derived_parameter_source(params: Sequence[sp.Symbol], values: Sequence[sp.Ex
     kernel sources (printing it would otherwise be most of the cost of a warm start).
     """
     ren = {s: sp.Symbol(f"q{i}", **s.assumptions0) for i, s in enumerate(params)}
-    vals = [sp.sympify(v).xreplace(ren) for v in values]
+    vals = [sp.sympify(v).xreplace(ren) for v in values]     # sympy expressions of hoist_parameters (never user text)
     from landau import cache
 
     key = cache.make_key("derived-parameters", _generator_fingerprint(), sp.__version__, len(params),
