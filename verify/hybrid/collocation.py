@@ -57,7 +57,7 @@ from numpy.polynomial import polynomial as P
 from landau.errors import InputError
 from landau.verify.hybrid.nrt import borrowed, keep_alive
 from landau.verify.hybrid.stiffdriver import (EPS, _crossings, _finish, _guard, _lu, _lu_n, _may_cross, _next_size,
-                                              _poly, _record, _retry_size, _rms, _solve_n, _start)
+                                              _poly, _record, _retry_size, _rms, _solve_n, _solve_recip, _start)
 
 __all__ = ["RadauTableau", "radau_tableau", "radau_iia_core", "collocation_core", "NEWTON_MAXITER"]
 
@@ -442,28 +442,6 @@ def split_coefficients(A):
     if not np.allclose(T @ Lam @ TI, AI, rtol=1e-12, atol=1e-12 * np.abs(AI).max()):
         raise InputError("split_coefficients: the eigen-decomposition of A⁻¹ does not reproduce it")
     return T, TI, gamma, alpha, beta
-
-
-@nb.njit(cache=True, inline="always")
-def _solve_recip(lu, piv, dinv, b, n):
-    """:func:`landau.verify.hybrid.stiffdriver._solve_n` with the reciprocals ``dinv`` of the
-    pivots given (for complex factors, where a division costs several multiplications)."""
-    for k in range(n):
-        m = piv[k]
-        if m != k:
-            tmp = b[k]
-            b[k] = b[m]
-            b[m] = tmp
-    for i in range(n):
-        acc = b[i]
-        for j in range(i):
-            acc -= lu[i, j] * b[j]
-        b[i] = acc
-    for i in range(n - 1, -1, -1):
-        acc = b[i]
-        for j in range(i + 1, n):
-            acc -= lu[i, j] * b[j]
-        b[i] = acc * dinv[i]
 
 
 def _radau_split_body(fun, jac, t0, y0, t_end, p_in, rtol, atol_in, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,

@@ -107,8 +107,9 @@ def _solve(lu, piv, b):
 
 
 @nb.njit(cache=True, inline="always")
-def _solve_n(lu, piv, b, n):
-    """:func:`_solve` with the leading n × n block, inlined where it is called (see :func:`_lu_n`)."""
+def _permute_forward(lu, piv, b, n):
+    """The row interchanges and the unit-lower-triangular forward substitution of a solve with
+    the factors of :func:`_lu` (leading n × n block), in place in ``b``."""
     for k in range(n):
         m = piv[k]
         if m != k:
@@ -120,11 +121,29 @@ def _solve_n(lu, piv, b, n):
         for j in range(i):
             s -= lu[i, j] * b[j]
         b[i] = s
+
+
+@nb.njit(cache=True, inline="always")
+def _solve_n(lu, piv, b, n):
+    """:func:`_solve` with the leading n × n block, inlined where it is called (see :func:`_lu_n`)."""
+    _permute_forward(lu, piv, b, n)
     for i in range(n - 1, -1, -1):
         s = b[i]
         for j in range(i + 1, n):
             s -= lu[i, j] * b[j]
         b[i] = s / lu[i, i]
+
+
+@nb.njit(cache=True, inline="always")
+def _solve_recip(lu, piv, dinv, b, n):
+    """:func:`_solve_n` with the reciprocals ``dinv`` of the pivots given (for complex factors,
+    where a division costs several multiplications)."""
+    _permute_forward(lu, piv, b, n)
+    for i in range(n - 1, -1, -1):
+        s = b[i]
+        for j in range(i + 1, n):
+            s -= lu[i, j] * b[j]
+        b[i] = s * dinv[i]
 
 
 @nb.njit(cache=True)
