@@ -56,11 +56,17 @@ def test_changed_source_gets_a_new_entry(cache):
     assert len(list(cache.glob("landau_kernel_*.py"))) == 2
 
 
+def _numba_files(cache, pattern):
+    """numba's cache files of generated sources in ``cache``: in its __pycache__, or under
+    $NUMBA_CACHE_DIR when that is set."""
+    return [f for d in jitcache.numba_cache_folders(cache / "any.py") for f in d.glob(pattern)]
+
+
 def test_corrupt_entries_are_rebuilt(cache):
     _compile(SRC)
     path = jitcache.source_path(SRC)
     path.write_text("def kern(y, out):\n    out[0] = 12345.0\n")   # not the source its name promises
-    for f in (cache / "__pycache__").glob("*.nb[ic]"):
+    for f in _numba_files(cache, "landau_kernel_*.nb[ic]"):
         f.write_bytes(b"garbage")                                 # unreadable numba entries
     kern = _compile(SRC)
     assert _run(kern) == math.sin(0.3) + 2.0
@@ -76,7 +82,7 @@ def test_only_allowed_builtins_are_reachable(cache):
 
 def test_corrupt_numba_entry_alone_is_rebuilt(cache):
     _compile(SRC)
-    for f in (cache / "__pycache__").glob("*.nb[ic]"):
+    for f in _numba_files(cache, "landau_kernel_*.nb[ic]"):
         f.write_bytes(b"garbage")                    # the source file is intact, numba's entry not
     kern = _compile(SRC)
     assert _run(kern) == math.sin(0.3) + 2.0
@@ -146,7 +152,7 @@ def test_corrupt_entry_of_a_lazily_compiled_template_is_rebuilt(cache, tmp_path)
     template.write_text(TEMPLATE)
     k = _generated_decay()
     _euler(template, k)(k.p, 0.0, np.array([1.0]), 0.125)
-    entries = list((cache / "__pycache__").glob("landau_jit_euler_*.nb[ic]"))
+    entries = _numba_files(cache, "landau_jit_euler_*.nb[ic]")
     assert entries
     for f in entries:
         f.write_bytes(b"\x80garbage")

@@ -268,11 +268,32 @@ def njit_cached(fn, signature):
     return disp
 
 
+def numba_cache_folders(path: Path) -> list[Path]:
+    """The folders where numba may keep the cache files of the source file ``path``.
+
+    numba writes them to ``__pycache__`` beside the source, or, when ``$NUMBA_CACHE_DIR`` is set,
+    to a sub-folder of that folder (named by numba after the source's folder).  Generated sources
+    carry a content hash in their name, so their entries are found by name in either place.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        A Python source file.
+
+    Returns
+    -------
+    list of pathlib.Path
+        Existing folders that may hold entries of ``path``.
+    """
+    folders = [path.parent / "__pycache__"]
+    root = os.environ.get("NUMBA_CACHE_DIR")
+    if root and Path(root).is_dir():
+        folders += [d for d in Path(root).iterdir() if d.is_dir()]
+    return [d for d in folders if d.is_dir()]
+
+
 def _numba_entries(path: Path, suffix: str) -> list[Path]:
-    pycache = path.parent / "__pycache__"
-    if not pycache.is_dir():
-        return []
-    return list(pycache.glob(f"{path.stem}.*.{suffix}"))
+    return [f for d in numba_cache_folders(path) for f in d.glob(f"{path.stem}.*.{suffix}")]
 
 
 def _drop_numba_entries(path: Path) -> None:
