@@ -68,6 +68,9 @@ EXTENDED = np.finfo(np.longdouble).eps < 1e-18
 #: low-velocity end of the Dieterich and Ruina laws (1000-point tests against 50 digits), where
 #: 512 let long double values off by 2e-10 through.  16 keeps a factor ≥ 4 below that.
 EXT_GAIN = 16.0
+#: the same gain where only a sign is needed: the smallest measured (60); a sign is taken as
+#: certain where the long double value's error so estimated is below half its size
+SIGN_GAIN = 60.0
 #: points settled by mpmath in one call from which the cost (~1 ms a point) deserves a warning
 MP_WARN = 2_000
 
@@ -100,9 +103,9 @@ def agree(x: np.ndarray, y: np.ndarray, rel: float) -> np.ndarray:
 
 def sign_settled(x64: np.ndarray, x80: np.ndarray) -> np.ndarray:
     """Where the extended-precision value is certain in sign: non-zero, and its error — the
-    float64 error |x64 − x80| scaled down by the precision gain — below a tenth of its size."""
+    float64 error |x64 − x80| scaled down by :data:`SIGN_GAIN` — below half its size."""
     with np.errstate(all="ignore"):
-        return (x80 != 0) & np.isfinite(x80) & (np.abs(x64 - x80) <= 0.1 * EXT_GAIN * np.abs(x80))
+        return (x80 != 0) & np.isfinite(x80) & (np.abs(x64 - x80) <= 0.5 * SIGN_GAIN * np.abs(x80))
 
 
 def _no_extended(law: str, n: int) -> None:

@@ -108,3 +108,23 @@ def test_rational_laws_1000_points_within_1e_10_on_the_float_route(name):
     worst, checked = _worst(d, _velocities(name, 1000 - 100 * len(ends), 25), method="general")
     assert checked >= 800
     assert worst <= 1e-10, worst
+
+
+def test_without_long_double_the_doubtful_points_go_to_mpmath_with_one_warning(monkeypatch):
+    """A platform whose long double is float64: the float32 screen's suspects are settled by
+    mpmath (still within 1e-10 of 50 digits), and a single warning names the cause."""
+    import warnings
+
+    import landau.precision as precision
+
+    monkeypatch.setattr(precision, "EXTENDED", False)
+    monkeypatch.setattr(precision, "_warned", set())
+    d = derive(SpringBlock(get_law("spinodal")), ["Lambda"])
+    lo = vw_range("spinodal")[0]
+    Vs = np.logspace(np.log10(lo * 1.001), np.log10(3 * lo), 12)     # the cancelling low-velocity end
+    with pytest.warns(RuntimeWarning, match="long double has no more precision"):
+        worst, checked = _worst(d, Vs)
+    assert checked == 12 and worst <= 1e-10, worst
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        d.evaluate(Vs, {}, ["Lambda"])                                 # once per process
