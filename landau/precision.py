@@ -54,10 +54,10 @@ BLOCK = 16_384
 #: threads for the blocks (numpy's elementwise loops release the GIL)
 WORKERS = max(1, min(8, os.cpu_count() or 1))
 #: float32 vs float64 disagreement above which float64 may miss REL_GOOD.  The eps ratio is
-#: ~5e8, but the float64 error was measured up to ~200x larger than that ratio predicts from
-#: the float32 disagreement (spinodal law at V ~ 3e-8 m/s: 1.2e-10 behind a 0.5 % disagreement),
-#: hence 2e-4 rather than 2e-2
-REL_SCREEN = 2e-4
+#: ~5e8, but float32's error saturates where float64's does not: on 20,000 log-spaced points of
+#: the spinodal law's range (M = default and 1e-7 kg) 2e-4 let one float64 value off by 1.2e-10
+#: through; at 2e-5 the worst value passed is off by 1e-11 (nanoscale, micron-scale: ≤ 1e-12)
+REL_SCREEN = 2e-5
 #: digits of the successive mpmath evaluations that decide whether a tiny value is genuine
 MP_LADDER = (50, 80, 120, 200, 330, 550)
 #: extended precision available (x86 80-bit long double: eps 1.1e-19, ~1000x float64)
