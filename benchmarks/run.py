@@ -29,9 +29,7 @@ Sections (``--only``):
   driven by a ``solve_ivp`` loop with the guards as terminal events.
 * ``lambda`` — Λ(V) of every built-in one-state law: throughput of ``Derivation.evaluate``
   on one thread against ``sympy.lambdify(cse=True)`` of the same expression, the first call,
-  and the error of 1000 points against 50-digit mpmath; ``x87-tail-only`` is the engine with
-  the compensated float64 refinement switched off (doubtful points refined in x87 extended
-  precision only), measured in the same run.
+  and the error of 1000 points against 50-digit mpmath.
 * ``derive`` — derivation + compile CPU time of Dieterich-type laws with 1…6 state
   variables (fresh interpreter each), with the growth exponent; ``--baseline-derive`` adds the
   direct routes (numeric conversion of symbolic pivots, Berkowitz determinant) for comparison.
@@ -541,16 +539,16 @@ def section_lambda(quick: bool) -> None:
     import mpmath
     import sympy as sp
 
-    import landau.bounded as bounded
     import landau.multiscale as ms
+    import landau.precision as precision
     from landau.laws import get_law
     from landau.system import SpringBlock
 
     sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
     from vw_ranges import LAWS, vw_range
 
-    workers = ms._WORKERS
-    ms._WORKERS = 1                     # single-threaded, like the lambdify baseline
+    workers = precision.WORKERS
+    precision.WORKERS = 1                    # single-threaded, like the lambdify baseline
     n_points = 200_000 if quick else 1_000_000
     rows = []
     try:
@@ -566,13 +564,6 @@ def section_lambda(quick: bool) -> None:
             d.evaluate(Vs, {}, ["Lambda"])
             first = n_points / (time.process_time() - t0)
             _, t_eng = cpu_time(lambda: d.evaluate(Vs, {}, ["Lambda"]), repeat=2)
-            # the previous route side by side: doubtful points refined in x87 extended precision
-            # only (no compensated float64 pass)
-            bounded.COMPENSATE = False
-            try:
-                _, t_x87 = cpu_time(lambda: d.evaluate(Vs, {}, ["Lambda"]), repeat=2)
-            finally:
-                bounded.COMPENSATE = True
             block = d.block
             p = block.resolve()
             expr = d.coefficient("Lambda").expr
@@ -590,12 +581,12 @@ def section_lambda(quick: bool) -> None:
                     want = d.evaluate_mp(float(V0), {}, ["Lambda"], dps=50)["Lambda"]
                 errs.append(float(abs(g - want) / abs(want)) if want != 0 else abs(g))
             errs = np.array(errs)
-            rows.append({"law": name, "engine pts/s": n_points / t_eng, "x87-tail-only pts/s": n_points / t_x87,
+            rows.append({"law": name, "engine pts/s": n_points / t_eng,
                          "lambdify(cse) pts/s": n_points / t_lam,
                          "first call pts/s": first, "compile s": compile_s, "max rel err": float(errs.max()),
                          "points > 1e-10": int((errs > 1e-10).sum())})
             r = rows[-1]
-            print(f"  {name:20s} engine {r['engine pts/s']:.3g}/s  (x87 tail only {r['x87-tail-only pts/s']:.3g}/s)  "
+            print(f"  {name:20s} engine {r['engine pts/s']:.3g}/s  "
                   f"lambdify {r['lambdify(cse) pts/s']:.3g}/s  first "
                   f"{first:.3g}/s  max err {r['max rel err']:.2g} ({r['points > 1e-10']} > 1e-10)", flush=True)
             report(Goal("5", f"Λ(V) {name}: engine / lambdify(cse=True) throughput (1 thread)",
@@ -604,7 +595,7 @@ def section_lambda(quick: bool) -> None:
             report(Goal("5", f"Λ(V) {name}: points off 50-digit mpmath by > 1e-10 (of 1000)",
                         float(r["points > 1e-10"]), 0.0, "<="))
     finally:
-        ms._WORKERS = workers
+        precision.WORKERS = workers
     RAW["lambda"] = rows
     TABLES["lambda"] = (f"Λ(V) over {n_points:.0e} log-spaced V in the velocity-weakening range, one thread, CPU "
                         "time (best of 2); first call includes no compilation (compile s is separate).\n\n"
@@ -755,7 +746,7 @@ def section_verify(quick: bool) -> None:
     report(Goal("7", "cold `landau verify ruina --V 1e-4`, warm kernel cache [CPU s]", warm, 2.0, "<=", note=note))
 
 
-#: sub-folders of a landau cache that hold generated code (sources, numba's and the bounded
+#: sub-folders of a landau cache that hold generated code (sources, numba's and, from earlier versions,
 #: kernels' object files), not derivations: what "empty derivation cache, warm code cache" keeps
 CODE_FOLDERS = ("jit", "kernels")
 

@@ -15,11 +15,7 @@ unstable cycle for k > k_c).
 
 from __future__ import annotations
 
-import logging
-import os
 import time
-from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any, Iterable, Mapping, Sequence
 
@@ -27,344 +23,18 @@ import mpmath
 import numpy as np
 import sympy as sp
 
+from landau import precision
 from landau.codegen import AtomTable, CompiledFormula
+from landau.coefficients import (_GB, _LA, ALL_QUANTITIES, CONVENTION, DERIVED, QUANTITIES, QUINTIC, UNITS,  # noqa: F401
+                                 Coefficient, CoefficientTable, _with_bases, criticality)
 from landau.cx import Cx, as_expr
-from landau.errors import InputError, NoHopfError, SingularPointError
+from landau.errors import InputError, NoHopfError
 from landau.fredholm import cubic_coefficient, linear_coefficient, null_vectors, quintic_coefficient
-from landau.hopf import SPRING_BLOCK_UNITS, spring_block_result
+from landau.hopf import spring_block_result
 from landau.jets import Jets
 from landau.linear import HopfLine, w
+from landau.precision import BLOCK as _BLOCK, REL_GOOD as _REL_GOOD, WORKERS as _WORKERS  # noqa: F401
 from landau.system import SpringBlock
-
-logger = logging.getLogger(__name__)
-
-CONVENTION = ("d|A|/dT = (Gamma |A| + Lambda |A|^3)/2, dtheta/dT = (Omega + chi |A|^2)/2 (Putelat et al. 2010 eq. 20); "
-              "Gamma = -2 Gamma_bar (k - kc)/eps^2, Omega = 2 Omega_bar (k - kc)/eps^2; critical mode normalised "
-              "with slip component 1; Lambda < 0: supercritical, Lambda > 0: subcritical; "
-              "C = max|x - x0| / sqrt(|kc - k|) = 2 sqrt(2 Gamma_bar/|Lambda|) (eq. 23)")
-#: smallest grid on which Derivation.evaluate compiles the bounded program (landau.bounded) when
-#: it is not compiled already: below, the compile (0.4–0.9 s) costs more than it saves
-BOUNDED_MIN_POINTS = 20_000
-
-#: SI units of the spring–block quantities (and of a spring–block :class:`~landau.hopf.HopfResult`'s fields)
-UNITS = SPRING_BLOCK_UNITS
-
-#: quantity -> (LaTeX symbol, description, equation)
-QUANTITIES: dict[str, tuple[str, str, str]] = {
-    "kc": (r"k_c", "critical stiffness", "eq. (7)"),
-    "omega_c": (r"\omega_c", "angular frequency at onset", "eq. (8)"),
-    "Gamma_bar": (r"\bar\Gamma", "linear growth rate per unit k_c - k", "eqs (18), (21)"),
-    "Omega_bar": (r"\bar\Omega", "linear frequency shift per unit k - k_c", "eqs (18), (21)"),
-    "Lambda": (r"\Lambda", "Landau coefficient", "eqs (15)-(21)"),
-    "chi": (r"\chi", "nonlinear frequency coefficient", "eqs (15)-(21)"),
-    "C": (r"C", "slip amplitude per sqrt(k_c - k)", "eq. (23)"),
-}
-
-#: fifth-order quantities: built only when asked for by name (never by ``derive(block)``'s default)
-QUINTIC: dict[str, tuple[str, str, str]] = {
-    "Lambda5": (r"\Lambda_5", "quintic coefficient 2 Re c of dA/dT = ... + c A|A|^4 (slip component of the mode 1)",
-                "Fredholm condition at O(eps^5)"),
-}
-#: every quantity a :class:`Derivation` can build
-ALL_QUANTITIES = {**QUANTITIES, **QUINTIC}
-
-_GB, _LA = sp.symbols("Gamma_bar Lambda", real=True)
-#: quantities composed from others (name -> the base quantities they need)
-DERIVED = {"C": ("Gamma_bar", "Lambda")}
-
-#: accuracy every returned value must have (relative)
-_REL_GOOD = 1e-10
-#: doubtful points from which deriving the exactly cancelled form beats mpmath point by point
-_RATIONAL_MIN = 500
-#: points from which the exactly cancelled form (~0.2 s to derive per parameter set) beats the
-#: general formula for all of them (float64 + float32 screen + extended pass, ~1e6 points/s)
-_RATIONAL_DIRECT = 100_000
-#: points per block of the vectorised evaluation (working set of a formula stays in cache)
-_BLOCK = 16_384
-#: threads for the blocks (numpy's elementwise loops release the GIL)
-_WORKERS = max(1, min(8, os.cpu_count() or 1))
-#: float32 vs float64 disagreement above which float64 may miss _REL_GOOD.  The eps ratio is
-#: ~5e8, but the float64 error was measured up to ~200x larger than that ratio predicts from
-#: the float32 disagreement (spinodal law at V ~ 3e-8 m/s: 1.2e-10 behind a 0.5 % disagreement),
-#: hence 2e-4 rather than 2e-2
-_REL_SCREEN = 2e-4
-#: digits of the successive mpmath evaluations that decide whether a tiny value is genuine
-_MP_LADDER = (50, 80, 120, 200, 330, 550)
-#: extended precision available (x86 80-bit long double: eps 1.1e-19, ~1000x float64)
-_EXTENDED = np.finfo(np.longdouble).eps < 1e-18
-_EXT_GAIN = float(np.finfo(np.float64).eps / np.finfo(np.longdouble).eps) / 4
-
-
-@dataclass(frozen=True, eq=False)
-class Coefficient:
-    """One amplitude-equation coefficient: formula, closed form, LaTeX and compiled code.
-
-    ``formula`` is in the derivative atoms of the law (see :mod:`landau.jets`) with the
-    onset frequency ``omega`` and stiffness ``k`` as symbols; :attr:`expr` is the same
-    quantity in terms of V and the parameters; ``coef(V, **params)`` evaluates it
-    vectorised (float64, with a 50-digit fallback where ω_c² suffers cancellation).
-
-    Parameters
-    ----------
-    name : str
-        The quantity, one of :data:`ALL_QUANTITIES` (``"kc"``, ``"omega_c"``, ``"Gamma_bar"``,
-        ``"Omega_bar"``, ``"Lambda"``, ``"chi"``, ``"C"``, ``"Lambda5"``).
-    formula : sympy.Expr
-        The formula in the law's derivative atoms.
-    derivation : Derivation
-        The derivation it belongs to (obtain coefficients with :meth:`Derivation.coefficient`).
-
-    References
-    ----------
-    Putelat, T., Dawes, J. H. P. & Willis, J. R. (2010), "Regimes of frictional sliding of a
-    spring–block system", J. Mech. Phys. Solids 58(1), 27–53, eqs (23), (32)–(35), (44)–(45).
-    """
-
-    name: str
-    formula: sp.Expr
-    derivation: "Derivation" = field(repr=False)
-    _cache: dict = field(default_factory=dict, repr=False, compare=False)
-
-    @property
-    def symbol(self) -> str:
-        """The LaTeX symbol (e.g. ``\\Lambda``)."""
-        return ALL_QUANTITIES[self.name][0]
-
-    @property
-    def units(self) -> str:
-        """SI units of the coefficient."""
-        return UNITS[self.name]
-
-    @property
-    def expr(self) -> sp.Expr:
-        """The coefficient in terms of V and the parameters (atoms substituted, ω = sqrt(ω_c²))."""
-        if "expr" not in self._cache:
-            d = self.derivation
-            kc, W_c = d.hopf.closed_form or (None, None)
-            if kc is None:
-                raise InputError(f"{d.block.law.name}: no closed form (the Hopf line is numeric)")
-            if self.name in DERIVED:
-                e = self.formula.xreplace({_GB: d.coefficient("Gamma_bar").expr, _LA: d.coefficient("Lambda").expr})
-            else:
-                e = d.jets.expand_atoms(self.formula.xreplace({d.k: kc}).xreplace({w: sp.sqrt(W_c)}))
-            self._cache["expr"] = e
-        return self._cache["expr"]
-
-    def closed_form(self) -> sp.Expr:
-        """A simplified closed form (e.g. eqs 32–35, 44–45).
-
-        An expression rational after ω_c = sqrt(ω_c²) is cancelled and factored; a law whose
-        derivatives at steady sliding are rational in V and the parameters (Dieterich, Ruina)
-        is re-derived in the field ℚ(V, parameters)(ω_c) (:func:`landau.rational.closed_form`:
-        FLINT polynomials, well under a second; cached on disk); otherwise the unsimplified
-        :attr:`expr` is returned.
-
-        Returns
-        -------
-        sympy.Expr
-            The coefficient in V and the law's parameters.
-
-        Raises
-        ------
-        InputError
-            The Hopf line has no closed form (a numeric Hopf line).
-        """
-        if "closed" not in self._cache:
-            d = self.derivation
-            if self.name in DERIVED:
-                e = self.formula.xreplace({_GB: d.coefficient("Gamma_bar").closed_form(),
-                                           _LA: d.coefficient("Lambda").closed_form()})
-            elif self.name in QUINTIC:
-                e = self.expr  # fifth order: too large for cancellation and factoring (seconds become hours)
-            else:
-                from landau.progress import progress
-
-                # one status line while the closed form is (re-)derived: a terminal or notebook only
-                with progress(total=1, desc=f"closed form of {self.name}", unit="form") as bar:
-                    e = self.expr
-                    if all(e.is_rational_function(s) for s in e.free_symbols):
-                        e = sp.factor(sp.cancel(sp.together(e)))
-                    elif self.name not in ("kc", "omega_c"):
-                        from landau.rational import closed_form
-
-                        e = closed_form(d, self.name) or e
-                    bar.update()
-            self._cache["closed"] = e
-        return self._cache["closed"]
-
-    def latex(self) -> str:
-        """The coefficient as LaTeX (an ``aligned`` block, long lines split, paper symbols):
-        the factored closed form in V and the parameters when the law's derivatives at steady
-        sliding are rational (computed once, cached on disk), else the form in those
-        derivatives (:func:`landau.latex.coefficient_latex`).
-
-        Returns
-        -------
-        str
-            LaTeX for a math environment.
-
-        Raises
-        ------
-        InputError
-            For the quintic coefficient (too large to print).
-        """
-        if self.name in QUINTIC:
-            raise InputError(f"{self.name}: the fifth-order closed form is too large to print; "
-                             "evaluate it (Derivation.evaluate) or use .formula (in the law's derivatives)")
-        if "latex" not in self._cache:
-            from landau.latex import coefficient_latex
-
-            self._cache["latex"] = coefficient_latex(self)
-        return self._cache["latex"]
-
-    def _repr_latex_(self) -> str:
-        # display never computes: the LaTeX already made by latex(), else a one-line summary
-        if "latex" in self._cache:
-            return f"$\\displaystyle {self._cache['latex']}$"
-        desc = QUANTITIES[self.name][1].replace("_", r"\_")
-        return (f"${self.symbol}$: {desc} (Putelat et al. 2010, {QUANTITIES[self.name][2]}), "
-                f"units {self.units.replace('^', '')}; .latex() gives the formula")
-
-    def __repr__(self) -> str:
-        return f"Coefficient({self.name}: {ALL_QUANTITIES[self.name][1]}, {ALL_QUANTITIES[self.name][2]}, [{self.units}])"
-
-    def __call__(self, Vs, **params) -> np.ndarray:
-        return self.derivation.evaluate(Vs, params, [self.name])[self.name]
-
-
-class CoefficientTable(dict):
-    """Evaluated amplitude-equation coefficients: a dict of arrays (name -> values over V).
-
-    What :meth:`Derivation.evaluate` returns.  It is a plain ``dict`` for every existing use
-    (``table["Lambda"]``), and adds what a notebook user expects: :attr:`units`,
-    :meth:`to_dataframe` (pandas, units in the column names and in ``df.attrs``),
-    :meth:`plot` (the coefficients against V with the criticality bands) and an HTML table.
-
-    Parameters
-    ----------
-    data : mapping
-        Quantity name -> array (``"V"``, ``"kc"``, ``"omega_c"``, …, ``"degenerate"``).
-    law : str
-        Name of the friction law.
-    params : mapping
-        The parameter values the table was evaluated at.
-    """
-
-    def __init__(self, data: Mapping[str, Any] = (), law: str = "", params: Mapping[str, Any] | None = None):
-        super().__init__(data)
-        self.law = law
-        self.params = dict(params or {})
-
-    @property
-    def units(self) -> dict[str, str]:
-        """Quantity -> SI unit for the quantities in the table."""
-        return {k: UNITS[k] for k in self if k in UNITS}
-
-    def columns(self, limit: int | None = None) -> dict[str, np.ndarray]:
-        """Flat columns (arrays broadcast together and flattened in C order; the first
-        ``limit`` points if given), with the criticality of each point as a string column
-        when Λ is in the table."""
-        if not self:
-            return {}
-        shape = np.broadcast(*[np.asarray(v) for v in self.values()]).shape
-        if limit is None:
-            flat = {k: np.ravel(np.broadcast_to(np.asarray(v), shape)) for k, v in self.items()}
-        else:
-            flat = {k: np.broadcast_to(np.asarray(v), shape).flat[:limit] for k, v in self.items()}
-        degenerate = flat.pop("degenerate", np.zeros(flat[next(iter(flat))].shape, dtype=bool))
-        if "Lambda" in flat and "kc" in flat:
-            lam = flat["Lambda"]
-            flat["criticality"] = np.where(~np.isfinite(flat["kc"]), "no Hopf point",
-                                           np.where(degenerate | ~np.isfinite(lam) | (lam == 0), "degenerate",
-                                                    np.where(lam < 0, "supercritical", "subcritical")))
-        return flat
-
-    def rows(self, limit: int | None = None) -> list[dict[str, Any]]:
-        """One mapping per point (the first ``limit`` points if given), see :meth:`columns`."""
-        cols = self.columns(limit)
-        n = len(next(iter(cols.values()))) if cols else 0
-        return [{k: c[i].item() for k, c in cols.items()} for i in range(n)]
-
-    def to_dataframe(self):
-        """The table as a pandas DataFrame.
-
-        Returns
-        -------
-        pandas.DataFrame
-            One row per point; units in the column names (``"kc [N/m]"``) and in
-            ``df.attrs["units"]``; ``df.attrs`` also holds the law and the parameters.
-
-        Raises
-        ------
-        ImportError
-            When pandas is missing (``pip install 'landau-friction[notebook]'``).
-        """
-        from landau.display import require_pandas
-
-        pd = require_pandas("CoefficientTable.to_dataframe()")
-        units = self.units
-        df = pd.DataFrame({(f"{c} [{units[c]}]" if c in units else c): v for c, v in self.columns().items()})
-        df.attrs.update(units=units, law=self.law, params=dict(self.params))
-        return df
-
-    def plot(self, names: Sequence[str] | None = None, *, fig=None):
-        """k_c, Λ, C, … against V with the super/subcritical bands shaded; returns the Figure
-        (see :func:`landau.plotting.plot_coefficients`)."""
-        from landau.plotting import plot_coefficients
-
-        return plot_coefficients(self, names, fig=fig)
-
-    def _size(self) -> int:
-        return int(np.prod(np.broadcast(*[np.asarray(v) for v in self.values()]).shape)) if self else 0
-
-    def _repr_html_(self) -> str:
-        from landau.display import MAX_ROWS, html_table
-
-        n = self._size()
-        shown = "" if n <= MAX_ROWS else f", the first {MAX_ROWS} shown"
-        title = f"Amplitude-equation coefficients, law {self.law}" if self.law else "Amplitude-equation coefficients"
-        return html_table(self.rows(MAX_ROWS), units=self.units, title=title,
-                          note=f"{n} point(s){shown}. Convention: {CONVENTION}")
-
-    def __repr__(self) -> str:
-        from landau.display import text_table
-
-        n = self._size()
-        names = ", ".join(k for k in self if k != "degenerate")
-        more = f"\n… {n - 20} more points" if n > 20 else ""
-        return (f"CoefficientTable(law {self.law!r}, {n} point(s): {names})\n"
-                + text_table(self.rows(20), units=self.units) + more)
-
-
-def _agree(x: np.ndarray, y: np.ndarray, rel: float) -> np.ndarray:
-    """|x − y| ≤ rel·|y| elementwise; two NaNs agree (no Hopf point in either precision)."""
-    with np.errstate(all="ignore"):
-        return (np.abs(x - y) <= rel * np.abs(y)) | (np.isnan(x) & np.isnan(y))
-
-
-def _sign_settled(x64: np.ndarray, x80: np.ndarray) -> np.ndarray:
-    """Where the extended-precision value is certain in sign: non-zero, and its error — the
-    float64 error |x64 − x80| scaled down by the precision gain — below a tenth of its size."""
-    with np.errstate(all="ignore"):
-        return (x80 != 0) & np.isfinite(x80) & (np.abs(x64 - x80) <= 0.1 * _EXT_GAIN * np.abs(x80))
-
-
-def _with_bases(names: Iterable[str]) -> list[str]:
-    """names with the base quantities of derived ones placed before them."""
-    out: list[str] = []
-    for n in names:
-        for b in DERIVED.get(n, ()):
-            if b not in out:
-                out.append(b)
-        if n not in out:
-            out.append(n)
-    return out
-
-
-def criticality(lam: float, scale: float = 0.0) -> str:
-    if not np.isfinite(lam) or abs(lam) <= scale:
-        return "degenerate"
-    return "supercritical" if lam < 0 else "subcritical"
 
 
 class Derivation:
@@ -598,46 +268,6 @@ class Derivation:
             self._compiled[key] = CompiledFormula(f, (w, self.k, *self.args), self.jets.atoms, modules)
         return self._compiled[key]
 
-    def _bounded_kernel(self, bases: Sequence[str], n_points: int = BOUNDED_MIN_POINTS):
-        """k_c, ω_c² and the coefficients ``bases`` as one compiled program with a round-off
-        bound (:class:`landau.bounded.BoundedKernel`); None where it cannot be built (an
-        operation it does not know, an llvmlite without LLVM 16 IR), and the float32-screened
-        route is used.
-
-        Compiling the program costs 0.4–0.9 s per law and set of coefficients, which only pays
-        off on large grids: below :data:`BOUNDED_MIN_POINTS` points it is used only when it is
-        already compiled (in this process, or its object files are in the disk cache)."""
-        key = ("bounded", tuple(bases))
-        if key in self._compiled:
-            return self._compiled[key]
-        from landau.bounded import EXTENDED, BoundedKernel
-
-        varying = [True] + [False] * (len(self.args) - 1)
-        draft_key = ("bounded-draft", tuple(bases))
-        if draft_key not in self._compiled:
-            kc, W_c = self.hopf.closed_form
-            defs = {**self.jets.atoms, w: sp.sqrt(W_c), self.k: kc}
-            try:
-                draft = BoundedKernel([kc, W_c, *(self.coefficient(n).formula for n in bases)], self.args, defs)
-                cheap = draft.ready(varying)
-            except Exception as exc:  # an unknown operation: the old route, for good
-                logger.info("%s: no bounded kernel (%s)", self.block.law.name, exc)
-                self._compiled[key] = None
-                return None
-            self._compiled[draft_key] = (draft, cheap)
-        kernel, cheap = self._compiled[draft_key]
-        if n_points < BOUNDED_MIN_POINTS and not cheap:
-            return None
-        try:
-            kernel.compiled(varying)
-            if EXTENDED:
-                kernel.compiled_extended()
-        except Exception as exc:  # an llvmlite too old for the IR: old route
-            logger.info("%s: no bounded kernel (%s)", self.block.law.name, exc)
-            kernel = None
-        self._compiled[key] = kernel
-        return kernel
-
     @cached_property
     def _hopf_mp(self):
         kc, W_c = self.hopf.closed_form
@@ -690,25 +320,19 @@ class Derivation:
                  method: str = "auto", sign_only: bool = False) -> dict[str, np.ndarray]:
         """Vectorised evaluation over velocities (any parameter may also be an array).
 
-        NaN where there is no Hopf point.  Every value is checked for round-off: with a
-        closed-form Hopf line, k_c, ω_c² and the coefficients are one compiled program that
-        computes a first-order bound of its own round-off at every point
-        (:mod:`landau.bounded`); where the bound exceeds 1e-10 (cancellation near an extremum
-        of μ_ss, inertia-free limits, Λ ≡ 0 at M = 0) the rounding errors of the program are
-        computed and added back (compensated float64, with its own bound), then what is still
-        unproven runs again in 80-bit extended precision with its own bound; a value is used
-        where it is proven to 1e-10 (laws
-        whose formulas the program cannot express use a float32 screen instead).  What is still doubtful is taken from
-        the exactly cancelled form when the law's derivatives are rational in V
-        (:mod:`landau.rational`: Dieterich, Ruina, modified Dieterich), else re-evaluated at 50
-        and 80 digits with mpmath, and at up to 550 digits until two successive precisions
-        agree (a tiny but genuine value, e.g. Λ ∝ M at M = 1e-50, keeps its value and sign).
-        A quantity that vanishes identically is returned as 0 and the point flagged
-        ``degenerate``.
+        NaN where there is no Hopf point.  Every value is accurate to 1e-10 relative or
+        settled by a slower route (:mod:`landau.precision`): the exactly cancelled form when
+        the law's derivatives are rational in V (:mod:`landau.rational`: Dieterich, Ruina,
+        modified Dieterich); otherwise float64 screened by float32, the suspects in long
+        double; what is still doubtful from the exactly cancelled form where it exists, else
+        with mpmath at 50 and 80 digits, and at up to 550 digits until two successive
+        precisions agree (a tiny but genuine value, e.g. Λ ∝ M at M = 1e-50, keeps its value
+        and sign).  A quantity that vanishes identically is returned as 0 and the point
+        flagged ``degenerate``.
 
-        ``method``: "general" (the route above), "rational" (every point from the exactly
-        cancelled form, with error bounds and exact fallback; laws rational in V only) or
-        "auto": "rational" for large batches (≥ 1e5 points) and once the cancelled form for
+        ``method``: "general" (the float routes above), "rational" (every point from the
+        exactly cancelled form, with error bounds and exact fallback; laws rational in V only)
+        or "auto": "rational" for large batches (≥ 1e5 points) and once the cancelled form for
         these parameters exists, else "general".
 
         ``sign_only=True`` is for callers that use only the signs (a scan for sign changes): a
@@ -731,7 +355,7 @@ class Derivation:
 
         Returns
         -------
-        dict of str to numpy.ndarray
+        CoefficientTable
             One array per quantity, shaped like the broadcast inputs.
         """
         if method not in ("auto", "general", "rational"):
@@ -747,232 +371,28 @@ class Derivation:
         shape = np.broadcast(*[np.asarray(x) for x in vals]).shape
         vals = [np.broadcast_to(np.asarray(x, dtype=float), shape) for x in vals]
         bases = [n for n in _with_bases(names) if n not in ("kc", "omega_c") and n not in DERIVED]
+        closed = self.hopf.closed_form is not None
         forms = None
-        if self.hopf.closed_form is not None and not arr and method != "general" and (
-                method == "rational" or Vs.size >= _RATIONAL_DIRECT or self._has_rational(bases, p)):
-            forms = self._rational_forms(bases, p)
+        if closed and not arr and method != "general" and (
+                method == "rational" or Vs.size >= precision.RATIONAL_DIRECT or precision.has_rational(self, bases, p)):
+            forms = precision.rational_forms(self, bases, p)
             if forms is None and method == "rational":
                 raise InputError(f"{self.block.law.name}: the derivatives at steady sliding are not rational in V")
         if forms is not None:
-            raw = forms.evaluate(np.broadcast_to(Vs, shape), bases, _REL_GOOD)
-            need_mp = np.zeros(shape, dtype=bool)
-            exact_zero = np.full(shape, "Lambda" in forms and forms["Lambda"].identically_zero)
-        elif self.hopf.closed_form is None:
-            if arr:
-                raise InputError("array-valued parameters need a closed-form Hopf line (one state variable)")
-            kc, om = self.hopf.evaluate(Vs.ravel(), p)
-            raw = {"kc": kc.reshape(shape), "W": om.reshape(shape) ** 2}
-            raw.update(self._raw(vals, shape, bases, np.float64, raw["kc"], np.sqrt(raw["W"])))
-            # screen: the same formulas in extended precision at the same (k_c, ω_c); where
-            # float64 loses more than _REL_GOOD to round-off, the point goes to mpmath
-            need_mp = np.zeros(shape, dtype=bool)
-            if _EXTENDED and bases:
-                ld = np.longdouble
-                ext = self._raw([v.astype(ld) for v in vals], shape, bases, ld, raw["kc"].astype(ld),
-                                np.sqrt(raw["W"]).astype(ld))
-                for n in bases:
-                    x80 = ext[n].astype(float)
-                    doubtful = ~_agree(raw[n], x80, _REL_GOOD)
-                    if sign_only:
-                        doubtful &= ~_sign_settled(raw[n], x80)
-                        raw[n] = np.where(doubtful, raw[n], x80)
-                    need_mp |= doubtful
-            elif bases:
-                need_mp[...] = True
-            need_mp &= np.isfinite(raw["kc"])
-            exact_zero = np.zeros(shape, dtype=bool)
+            raw = precision.exact_rational_route(self, Vs, shape, bases, forms)
+        elif closed:
+            raw = precision.screened_route(self, Vs, vals, shape, bases, p, not arr, sign_only)
+        elif arr:
+            raise InputError("array-valued parameters need a closed-form Hopf line (one state variable)")
         else:
-            kernel = self._bounded_kernel(bases, int(np.prod(shape)))
-            if kernel is not None:
-                # compiled, with a first-order round-off bound at every point: proven values
-                # are kept, the rest refined in long double (landau.bounded), then below
-                from landau.bounded import evaluate_proven
-
-                flat, unproven = evaluate_proven(kernel, vals, _REL_GOOD, _WORKERS, sign_only)
-                keys = ["kc", "W", *bases]
-                raw = {key: flat[j].reshape(shape) for j, key in enumerate(keys)}
-                bad = {key: unproven[j].reshape(shape) for j, key in enumerate(keys)}
-            else:
-                raw = self._raw(vals, shape, bases, np.float64)
-                # cheap screen: the same code in float32; where it disagrees by more than 2 % the
-                # float64 value may be off by more than ~1e-10 (errors scale with the unit round-off)
-                r32 = self._raw([v.astype(np.float32) for v in vals], shape, bases, np.float32)
-                suspect = np.zeros(shape, dtype=bool)
-                for key in raw:
-                    suspect |= ~_agree(raw[key], r32[key].astype(float), _REL_SCREEN)
-                bad = {key: suspect.copy() for key in raw}
-                if _EXTENDED and suspect.any():
-                    # the suspects again in extended precision: keep the value where float64 and it
-                    # agree; take the extended value where it is itself good enough; else mpmath
-                    sub = [v[suspect].astype(np.longdouble) for v in vals]
-                    ext = self._raw(sub, sub[0].shape, bases, np.longdouble)
-                    for key in raw:
-                        x64, x80 = raw[key][suspect], ext[key].astype(float)
-                        good64 = _agree(x64, x80, _REL_GOOD)
-                        raw[key][suspect] = np.where(good64, x64, x80)
-                        bad[key][suspect] = ~_agree(x64, x80, _REL_GOOD * _EXT_GAIN)
-                        if sign_only:
-                            bad[key][suspect] &= ~_sign_settled(x64, x80)
-            need_mp = np.zeros(shape, dtype=bool)
-            for key in raw:
-                need_mp |= bad[key]
-            hopf_ok = ~(bad["kc"] | bad["W"])
-            rest = need_mp & hopf_ok & (raw["kc"] > 0) & (raw["W"] > 0)
-            exact_zero = np.zeros(shape, dtype=bool)
-            # the exact route costs ~1 s to derive per parameter set: worth it for many points
-            if bases and not arr and (rest.sum() >= _RATIONAL_MIN or (rest.any() and self._has_rational(bases, p))):
-                resolved, exact_zero = self._exact_rational(Vs, vals, raw, rest, bases, p)
-                need_mp &= ~resolved
-        kc, W_c = raw["kc"], raw["W"]
-        ok = (kc > 0) & (W_c > 0)
-        out: dict[str, np.ndarray] = {"V": Vs * np.ones(shape), "kc": np.where(ok, kc, np.nan),
-                                      "omega_c": np.sqrt(np.where(ok, W_c, np.nan))}
-        for n in bases:
-            out[n] = raw[n]
-        out["degenerate"] = exact_zero & ok
-        extra = [n for n in _with_bases(names) if n not in ("kc", "omega_c")]
-        if np.any(need_mp & ok):
-            logger.info("%s: 50-digit fallback at %d points", self.block.law.name, int(np.sum(need_mp & ok)))
-        for idx in map(tuple, np.argwhere(need_mp & ok)):
-            point = {s.name: float(vals[i + 1][idx]) for i, s in enumerate(self.args[1:])}
-            estimate = {n: float(out[n][idx]) for n in extra if n in out} if sign_only else None
-            mp, degenerate = self._evaluate_mp_checked(float(vals[0][idx]), point, extra, estimate)
-            for n in ("kc", "omega_c", *extra):
-                if n not in DERIVED:
-                    out[n][idx] = float(mp[n])
-            out["degenerate"][idx] = degenerate
-        if "C" in names:
-            with np.errstate(all="ignore"):
-                out["C"] = 2 * np.sqrt(2 * out["Gamma_bar"] / np.abs(out["Lambda"]))
-        for n in bases:
-            singular = np.isfinite(out["kc"]) & ~np.isfinite(out[n])
-            if np.any(singular):
-                i = tuple(np.argwhere(singular)[0])
-                raise SingularPointError(
-                    f"{self.block.law.name}: {n} is not finite at V = {float(out['V'][i]):g} m/s although a Hopf "
-                    "point exists there: the law's derivatives are singular at this steady state")
-        return CoefficientTable(out, law=self.block.law.name, params={**p, **arr})
-
-    def _has_rational(self, bases, params) -> bool:
-        return (tuple(bases), tuple(sorted(params.items()))) in self._rational_cache
-
-    def _rational_forms(self, bases, params):
-        """The exactly cancelled forms (:mod:`landau.rational`) for these parameters, cached;
-        None when the law's derivatives at steady state are not rational in V."""
-        from landau.rational import rational_forms
-
-        key = (tuple(bases), tuple(sorted(params.items())))
-        if key not in self._rational_cache:
-            self._rational_cache[key] = rational_forms(self, bases, params)
-        return self._rational_cache[key]
-
-    def _exact_rational(self, Vs, vals, raw, where, bases, params) -> tuple[np.ndarray, np.ndarray]:
-        """Points of ``where`` settled by the exactly cancelled form when every derivative at
-        steady state is rational in V; returns the settled mask and the points where Λ
-        vanishes identically."""
-        settled = np.zeros(where.shape, dtype=bool)
-        forms = self._rational_forms(bases, params)
-        if forms is None:
-            return settled, settled
-        sub = forms.evaluate(np.broadcast_to(Vs, where.shape)[where], bases, _REL_GOOD)
-        for n in bases:
-            raw[n][where] = sub[n]
-        settled[where] = True
-        degenerate = settled & bool("Lambda" in forms and forms["Lambda"].identically_zero)
-        return settled, degenerate
-
-    def _raw(self, vals, shape, bases, dtype, kc=None, om=None) -> dict[str, np.ndarray]:
-        """k_c, ω_c² and the requested coefficients in one precision, atoms shared.
-
-        Large batches go through in blocks of _BLOCK points, on _WORKERS threads: the formulas
-        are long chains of elementwise operations; blocks that fit in cache run them faster and
-        numpy releases the GIL inside each operation."""
-        size = int(np.prod(shape))
-        if size <= _BLOCK:
-            return self._raw_block(vals, shape, bases, dtype, kc, om)
-        flat = [np.ravel(v) for v in vals]
-        kcf = None if kc is None else np.ravel(kc)
-        omf = None if om is None else np.ravel(om)
-        self._raw_block([v[:1] for v in flat], (1,), bases, dtype, None if kcf is None else kcf[:1],
-                        None if omf is None else omf[:1])          # compile once, outside the threads
-
-        def block(i: int) -> tuple[slice, dict[str, np.ndarray]]:
-            sl = slice(i, min(i + _BLOCK, size))
-            return sl, self._raw_block([v[sl] for v in flat], (sl.stop - sl.start,), bases, dtype,
-                                       None if kcf is None else kcf[sl], None if omf is None else omf[sl])
-
-        out: dict[str, np.ndarray] = {}
-        # numpy releases the GIL inside each elementwise operation: blocks run on all cores
-        with ThreadPoolExecutor(max_workers=_WORKERS) as pool:
-            for sl, part in pool.map(block, range(0, size, _BLOCK)):
-                for key, val in part.items():
-                    out.setdefault(key, np.empty(size, dtype=val.dtype))[sl] = val
-        return {key: val.reshape(shape) for key, val in out.items()}
-
-    def _raw_block(self, vals, shape, bases, dtype, kc=None, om=None) -> dict[str, np.ndarray]:
-        formulas = [self._compiled_formula(n) for n in bases]
-        hopf = self.hopf._compiled_closed if kc is None else ()
-        atoms = self._atom_table.evaluate(
-            sorted(set().union(*(f.atom_syms for f in [*formulas, *hopf])), key=str), *vals)
-        res: dict[str, np.ndarray] = {}
-        if kc is None:
-            fk, fW = hopf
-            res["kc"] = np.asarray(fk.call_with_atoms(atoms, *vals), dtype=dtype) * np.ones(shape, dtype)
-            res["W"] = np.asarray(fW.call_with_atoms(atoms, *vals), dtype=dtype) * np.ones(shape, dtype)
-            with np.errstate(all="ignore"):
-                om = np.sqrt(np.where(res["W"] > 0, res["W"], np.nan))
-            kc = res["kc"]
-        for n, f in zip(bases, formulas):
-            res[n] = np.asarray(f.call_with_atoms(atoms, om, kc, *vals), dtype=dtype) * np.ones(shape, dtype)
-        return res
+            raw = precision.numeric_hopf_route(self, Vs, vals, shape, bases, p, sign_only)
+        return precision.finish(self, Vs, vals, raw, names, bases, sign_only, {**p, **arr})
 
     def _evaluate_mp_checked(self, V0: float, point: Mapping[str, float], names,
                              sign_estimate: Mapping[str, float] | None = None) -> tuple[dict, bool]:
-        """Values at 50 digits, or more where needed.  A coefficient whose values at two
-        successive precisions (50, 80, 120, 200, 330, 550 digits) agree to 1e-20 relative is
-        settled at the finer one: a tiny but genuine value (e.g. Λ ∝ M at M = 1e-50) is
-        cancellation-free once the precision exceeds the orders it lies below its terms.  A
-        coefficient that never settles is round-off of an identically vanishing quantity
-        (its value keeps shrinking with the precision): it is returned as 0 and flagged.
-
-        ``sign_estimate`` (a sign scan's float values at this point): round-off grows with the
-        unit round-off times the same condition number at every precision, so a 50-digit value
-        h whose float estimate f (unit round-off ≥ 5e-20) is off by |h − f| is itself off by
-        about |h − f|·1e-30.  Where |h − f| ≤ 1e20·|h| (f non-zero) that is below 1e-10·|h|:
-        the sign is certain and the 50-digit values are returned without climbing the ladder.
-        Round-off of a quantity that vanishes identically, or a genuine value far below its
-        terms (|h − f| ~ 1e34·|h|), still climbs it."""
-        ladder = _MP_LADDER
-        hi = self.evaluate_mp(V0, point, names, dps=ladder[0])
-        if sign_estimate is not None and all(
-                n in DERIVED or (hi[n] != 0 and sign_estimate.get(n, 0.0) != 0
-                                 and abs(hi[n] - sign_estimate.get(n, float("nan"))) <= 1e20 * abs(hi[n]))
-                for n in names):
-            return dict(hi), False
-        ref = self.evaluate_mp(V0, point, names, dps=ladder[1])
-        degenerate = False
-        res = dict(hi)
-        tol = mpmath.mpf("1e-20")
-        for n in names:
-            if n in DERIVED:
-                continue
-            if abs(hi[n] - ref[n]) <= tol * abs(ref[n]):
-                continue
-            prev, settled = ref[n], None
-            for dps in ladder[2:]:
-                cur = self.evaluate_mp(V0, point, [n], dps=dps)[n]
-                if abs(cur - prev) <= tol * abs(cur):
-                    settled = cur
-                    break
-                prev = cur
-            if settled is not None:
-                res[n] = settled
-            else:
-                res[n] = mpmath.mpf(0)
-                degenerate = degenerate or n == "Lambda"
-        if degenerate and "C" in res:
-            res["C"] = mpmath.inf
-        return res, degenerate
+        """Values at 50 digits, or more until two precisions agree (see
+        :func:`landau.precision.evaluate_mp_checked`); returns them and whether Λ vanishes identically."""
+        return precision.evaluate_mp_checked(self, V0, point, names, sign_estimate)
 
     def points(self, Vs, params: Mapping[str, float] | None = None,
                names: Sequence[str] = ("Gamma_bar", "Lambda", "C")) -> list[Any]:
