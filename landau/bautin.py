@@ -154,7 +154,7 @@ def quintic_normal_form(system: DynamicalSystem, values: Mapping[str, float], p_
     -------
     HopfResult
         With ``Lambda5`` = 2 Re c (critical mode's ``normalise`` component 1) and
-        ``extra["Im_c"]`` (gauge-dependent: h₂₁'s normalised component is 0).
+        ``Im_c`` (gauge-dependent: h₂₁'s normalised component is 0).
     """
     jets = jets or Jets(system)
     with mpmath.workdps(dps):
@@ -209,7 +209,7 @@ def quintic_normal_form(system: DynamicalSystem, values: Mapping[str, float], p_
             equilibrium=tuple(eq), dlambda_dp=complex(float(a.re), float(a.im)), Lambda=float(2 * bc.b.re),
             chi=float(2 * bc.b.im), convention=GENERAL, normalise=system.states[system.normalise].name,
             Lambda5=float(2 * bc.c.re), params={s.name: float(v) for s, v in vals.items()},
-            extra={"Im_c": float(bc.c.im)},
+            Im_c=float(bc.c.im),
         )
 
 
