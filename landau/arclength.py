@@ -201,6 +201,7 @@ def continue_branch(F: Residual, u0: np.ndarray, step: StepControl, *, tangent0:
                     refine: bool = True, accept: Callable[[np.ndarray], bool] | None = None,
                     stop: Callable[[BranchPoint], str | None] | None = None,
                     on_point: Callable[[BranchPoint], None] | None = None,
+                    on_attempt: Callable[[], Any] | None = None,
                     failures: tuple[type[BaseException], ...] = ()) -> Continued:
     """Follow the branch G(u) = 0 from the point ``u0`` on it.
 
@@ -229,7 +230,9 @@ def continue_branch(F: Residual, u0: np.ndarray, step: StepControl, *, tangent0:
     stop : callable, optional
         Called with each accepted point: a reason (str) ends the continuation after that point.
     on_point : callable, optional
-        Called with each point (the start included), e.g. for progress.
+        Called with each point (the start included).
+    on_attempt : callable, optional
+        Called before each predictor–corrector attempt (e.g. a progress bar's ``update``).
     failures : tuple of exception types
         Exceptions of F that count as a failed correction (besides :class:`CorrectorError`).
 
@@ -255,6 +258,8 @@ def continue_branch(F: Residual, u0: np.ndarray, step: StepControl, *, tangent0:
             stopped = "step limit"
             break
         attempts += 1
+        if on_attempt:
+            on_attempt()
         last = pts[-1]
         try:
             u_new, its = newton_corrector(F, last.u + h * last.tangent, last.tangent, tol, maxit=maxit, norm=norm)

@@ -28,6 +28,9 @@ Kuznetsov's normal form with multilinear forms up to fifth order
 (:func:`landau.lyapunov.lyapunov_coefficients`, which also reports l₂ as MatCont and
 BifurcationKit print it).
 
+The point and the fold are :class:`landau.codim2.GeneralisedHopfPoint` and
+:class:`landau.codim2.FoldOfCycles`, the types every route shares.
+
 References
 ----------
 Kuznetsov, Yu. A. (2004). Elements of Applied Bifurcation Theory, 3rd ed., Springer, §8.3 (Bautin).

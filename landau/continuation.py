@@ -8,11 +8,12 @@
   (:class:`landau.hopf.HopfResult`); folds are reported where the branch turns back in p.
 * :func:`hopf_curve` follows a Hopf point in two parameters (the system's parameter p₁ and a second
   one p₂), with l₁ along the curve, and :func:`generalised_hopf` locates the generalised-Hopf
-  (Bautin) points where l₁ = 0, with the second Lyapunov coefficient l₂ = Re c₂ from
-  :func:`landau.lyapunov.lyapunov_coefficients`.
+  (Bautin) points where l₁ = 0 (:class:`landau.codim2.GeneralisedHopfPoint`), with the second
+  Lyapunov coefficient l₂ = Re c₂ from :func:`landau.lyapunov.lyapunov_coefficients`.
 
-Pseudo-arclength continuation (Keller 1977) in float64; each located point is refined at the
-working precision by :func:`landau.general.refine_hopf`.
+This module defines the two problems (residual and Jacobian); the pseudo-arclength continuation
+(Keller 1977) in float64 is :func:`landau.arclength.continue_branch`.  Each located point is
+refined at the working precision by :func:`landau.general.refine_hopf`.
 
 References
 ----------
