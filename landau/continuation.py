@@ -89,8 +89,8 @@ def _n_unstable(lam: np.ndarray) -> int:
 
 def _start_tangent(J: np.ndarray, fp: np.ndarray) -> np.ndarray:
     """The starting unit tangent of the equilibrium branch, towards increasing p."""
-    # dy/dp = −J⁻¹ f_p
     try:
+        # J dy/dp = −f_p
         dy = np.linalg.solve(J, -fp)
     except np.linalg.LinAlgError:
         raise SingularPointError("continuation cannot start at a singular point") from None
@@ -213,6 +213,7 @@ def _refine_fold(num: NumericSystem, ya, pa, yb, pb) -> float:
         for _ in range(30):
             F, J, fp = num.first(y, p, True)
             A = np.column_stack([np.delete(J, k, axis=1), fp])
+            # [J without column k | f_p] (δy_{≠k}, δp) = −f  (y_k fixed; least squares, square when regular)
             d = np.linalg.lstsq(A, -F, rcond=None)[0]
             y[np.arange(n) != k] += d[:-1]
             p += d[-1]
@@ -302,6 +303,7 @@ def _hopf_residual(num: NumericSystem, sym2, X: np.ndarray, b: np.ndarray, c: np
     M[n, :n] = c.conj()
     rhs = np.zeros(n + 1, complex)
     rhs[n] = 1.0
+    # [[iωE − J, b], [cᴴ, 0]] (v, g) = (0, 1)
     g = np.linalg.solve(M, rhs)[n]
     return np.concatenate([f, [g.real, g.imag]])
 

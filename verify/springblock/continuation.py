@@ -266,6 +266,7 @@ def branch_curvature(model: SpringBlockModel, k_hopf: float, xis=(0.02, 0.04), r
     x2 = np.array(xis) ** 2
     # two amplitudes: eliminate the ξ⁴ term (Richardson)
     A = np.column_stack([x2, x2 ** 2])
+    # [ξ² ξ⁴] (c₂, c₄) = k(ξ)/k_H − 1 at the two amplitudes
     c2, c4 = np.linalg.solve(A, np.array(lams))
     return float(c2 * k_hopf)
 
@@ -342,6 +343,7 @@ def fold_point(make_V: Callable[[float], SpringBlockModel], V_guess: float, z_gu
             um[j] -= h
             J[:, j] = (_fold_residual(make_V, up[-1], up[:-1], rtol)[0]
                        - _fold_residual(make_V, um[-1], um[:-1], rtol)[0]) / (2 * h)
+        # D[P(z) − z; det(DP − I)] du = −[P(z) − z; det(DP − I)]  (Newton, central-difference Jacobian)
         du = np.linalg.solve(J, -r)
         u = u + du
         if np.linalg.norm(du) < tol * max(1.0, np.linalg.norm(u)):
