@@ -181,7 +181,7 @@ class CheckResult:
                "reason": self.reason, "eps2_max_valid": self.eps2_max_valid, "bistable": self.bistable,
                "cycle_stable": self.cycle_stable}
         if isinstance(self.prediction, HopfResult):  # its route's numbers (V, kc, Γ̄, Ω̄ of the spring–block …)
-            route = {**self.prediction._route(), **self.prediction.extra}
+            route = {**self.prediction.route_fields(), **self.prediction.extra}
             out.update({k: v for k, v in route.items() if k not in out})
         out["detail"] = dict(self.detail)
         return out

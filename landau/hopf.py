@@ -245,7 +245,7 @@ class HopfResult:
         if len(extra) != len(self.extra):
             object.__setattr__(self, "extra", extra)
 
-    def _route(self) -> dict[str, Any]:
+    def route_fields(self) -> dict[str, Any]:
         """The route-specific entries that are set, by their :meth:`as_dict` names."""
         out: dict[str, Any] = {}
         for name in _ROUTE_FIELDS:
@@ -388,7 +388,7 @@ class HopfResult:
                 out[name] = getattr(self, name)
         if self.c1 is not None:
             out["c1"] = [self.c1.real, self.c1.imag]
-        out.update(self._route())
+        out.update(self.route_fields())
         out.update(self.extra)
         return out
 
