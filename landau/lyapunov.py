@@ -256,7 +256,7 @@ def first_lyapunov(system: DynamicalSystem, values: Mapping[sp.Symbol | str, Any
         In the general convention (critical mode with ``normalise`` component 1):
         ``l1`` = Re c₁/ω, ``c1`` (⟨q, q⟩ = 1, ⟨p, q⟩ = 1), ``dlambda_dp`` from eigenvalues at
         p_c ± h, p_c ± 2h (``dmu_dp`` its real part), Λ = 2 Re c₁/|q_n|², χ = 2 Im c₁/|q_n|²,
-        so ``C`` = 2|q_n| sqrt(|μ'|/|Re c₁|); ``extra``: ``q_norm`` = |q_n| and ``dps``.
+        so ``C`` = 2|q_n| sqrt(|μ'|/|Re c₁|); fields ``q_norm`` = |q_n| and ``dps``.
 
     References
     ----------
