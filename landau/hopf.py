@@ -246,7 +246,14 @@ class HopfResult:
             object.__setattr__(self, "extra", extra)
 
     def route_fields(self) -> dict[str, Any]:
-        """The route-specific entries that are set, by their :meth:`as_dict` names."""
+        """The route-specific entries that are set, by their :meth:`as_dict` names.
+
+        Returns
+        -------
+        dict
+            ``V``, ``kc``, ``Gamma_bar``, ``Omega_bar``, ``q_norm``, ``dps``, ``c2_re``, ``c2_im``,
+            ``l2_over_omega`` and ``Im_c``, those that are not None.
+        """
         out: dict[str, Any] = {}
         for name in _ROUTE_FIELDS:
             v = getattr(self, name)
