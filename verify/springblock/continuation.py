@@ -94,14 +94,12 @@ class _Problem:
         return r, DG, (T, DP)
 
 
-def _correct(prob: _Problem, u_pred: np.ndarray, tau: np.ndarray, tol: float, maxiter: int = 8):
-    """Newton's corrector of the engine on G (2-norm test); then G, DG, T, DP at the converged point."""
+def _correct(prob: _Problem, u_pred: np.ndarray, tau: np.ndarray, tol: float, maxiter: int = 8) -> np.ndarray:
+    """The engine's Newton corrector on G (2-norm test) from ``u_pred`` with the row ``tau``: the cycle u."""
     try:
-        u, it = al.newton_corrector(prob.F, u_pred, tau, tol, maxit=maxiter, norm="2")
+        return al.newton_corrector(prob.F, u_pred, tau, tol, maxit=maxiter, norm="2")[0]
     except al.CorrectorError as exc:
         raise ShootingError(f"corrector did not converge ({exc})") from None
-    r, DG, T, DP = prob.G(u)
-    return u, DG, T, DP, it
 
 
 def continue_branch(make: Callable[[float], SpringBlockModel], lam_hopf: float, *, direction: float,
@@ -119,7 +117,7 @@ def continue_branch(make: Callable[[float], SpringBlockModel], lam_hopf: float, 
     u_pred = np.r_[z0, lam_hopf + direction * 1e-6 * max(abs(lam_hopf), 1.0)]
     e_xi = np.zeros(len(u_pred))
     e_xi[0] = 1.0
-    u = _correct(prob, u_pred, e_xi, tol, maxiter=15)[0]
+    u = _correct(prob, u_pred, e_xi, tol, maxiter=15)
     out = []
 
     def orbit(pt: al.BranchPoint):
@@ -261,7 +259,7 @@ def branch_curvature(model: SpringBlockModel, k_hopf: float, xis=(0.02, 0.04), r
         u_pred = np.r_[z0, 1.0]
         e_xi = np.zeros(len(u_pred))
         e_xi[0] = 1.0
-        u = _correct(prob, u_pred, e_xi, 1e-11, maxiter=15)[0]
+        u = _correct(prob, u_pred, e_xi, 1e-11, maxiter=15)
         lams.append(u[-1] - 1.0)
     x2 = np.array(xis) ** 2
     # two amplitudes: eliminate the ξ⁴ term (Richardson)
