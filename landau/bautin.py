@@ -28,6 +28,9 @@ Kuznetsov's normal form with multilinear forms up to fifth order
 (:func:`landau.lyapunov.lyapunov_coefficients`, which also reports l₂ as MatCont and
 BifurcationKit print it).
 
+The point and the fold are :class:`landau.codim2.GeneralisedHopfPoint` and
+:class:`landau.codim2.FoldOfCycles`, the types every route shares.
+
 References
 ----------
 Kuznetsov, Yu. A. (2004). Elements of Applied Bifurcation Theory, 3rd ed., Springer, §8.3 (Bautin).
@@ -38,12 +41,12 @@ system. J. Mech. Phys. Solids 58, 27–53 (eq. 20; Figs 11–12: the fold of cyc
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Mapping
 
 import mpmath
 import sympy as sp
 
+from landau.codim2 import SPRING_BLOCK_PARAMETERS, FoldOfCycles, GeneralisedHopfPoint
 from landau.cx import as_expr
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.fredholm import _pencil, best_drop, linear_coefficient, null_vectors, quintic_coefficient
@@ -55,42 +58,8 @@ from landau.system import DynamicalSystem
 
 # --------------------------------------------------------------------------------------
 # the fold of cycles of the truncated amplitude equation
-@dataclass(frozen=True)
-class FoldOfCycles:
-    """The fold (saddle-node) of cycles predicted by the quintic amplitude equation.
-
-    Parameters
-    ----------
-    p_fold : float
-        Parameter value of the fold, p_c + Λ²/(8 Λ₅ Re a).
-    p_c : float
-        The Hopf point it belongs to.
-    amplitude : float
-        max|y_n − y₀,n| of the cycle at the fold (normalised component), sqrt(−2Λ/Λ₅).
-    side : int
-        +1 if the fold lies at p > p_c, −1 if at p < p_c.
-    """
-
-    p_fold: float
-    p_c: float
-    amplitude: float
-    side: int
-
-    @property
-    def offset(self) -> float:
-        """p_fold − p_c."""
-        return self.p_fold - self.p_c
-
-    def as_dict(self) -> dict[str, float]:
-        return {"p_fold": self.p_fold, "p_c": self.p_c, "offset": self.offset, "amplitude": self.amplitude,
-                "side": self.side}
-
-    def __repr__(self) -> str:
-        return (f"FoldOfCycles(p_fold = {self.p_fold:.10g} (p_c {'+' if self.offset >= 0 else '-'} "
-                f"{abs(self.offset):.4g}), amplitude {self.amplitude:.4g})")
-
-
-def fold_of_cycles(Lambda: float, Lambda5: float, re_a: float, p_c: float) -> FoldOfCycles | None:
+def fold_of_cycles(Lambda: float, Lambda5: float, re_a: float, p_c: float, *,
+                   parameter: str = "p") -> FoldOfCycles | None:
     """The fold of cycles of Re a (p − p_c) + (Λ/2) r² + (Λ₅/2) r⁴ = 0, or None where there is none.
 
     Parameters
@@ -101,6 +70,8 @@ def fold_of_cycles(Lambda: float, Lambda5: float, re_a: float, p_c: float) -> Fo
         Re a = d Re λ/dp (spring–block: −Γ̄).
     p_c : float
         The Hopf point.
+    parameter : str
+        Name of the parameter p.
 
     Returns
     -------
@@ -112,7 +83,7 @@ def fold_of_cycles(Lambda: float, Lambda5: float, re_a: float, p_c: float) -> Fo
     if Lambda * Lambda5 >= 0:
         return None
     off = Lambda ** 2 / (8.0 * Lambda5 * re_a)
-    return FoldOfCycles(p_c + off, p_c, math.sqrt(-2.0 * Lambda / Lambda5), 1 if off > 0 else -1)
+    return FoldOfCycles(parameter, p_c + off, math.sqrt(-2.0 * Lambda / Lambda5), p_c=p_c)
 
 
 def cycle_amplitudes(Lambda: float, Lambda5: float, re_a: float, p_c: float, p: float) -> tuple[float, ...]:
@@ -154,7 +125,7 @@ def quintic_normal_form(system: DynamicalSystem, values: Mapping[str, float], p_
     -------
     HopfResult
         With ``Lambda5`` = 2 Re c (critical mode's ``normalise`` component 1) and
-        ``extra["Im_c"]`` (gauge-dependent: h₂₁'s normalised component is 0).
+        ``Im_c`` (gauge-dependent: h₂₁'s normalised component is 0).
     """
     jets = jets or Jets(system)
     with mpmath.workdps(dps):
@@ -209,74 +180,12 @@ def quintic_normal_form(system: DynamicalSystem, values: Mapping[str, float], p_
             equilibrium=tuple(eq), dlambda_dp=complex(float(a.re), float(a.im)), Lambda=float(2 * bc.b.re),
             chi=float(2 * bc.b.im), convention=GENERAL, normalise=system.states[system.normalise].name,
             Lambda5=float(2 * bc.c.re), params={s.name: float(v) for s, v in vals.items()},
-            extra={"Im_c": float(bc.c.im)},
+            Im_c=float(bc.c.im),
         )
 
 
 # --------------------------------------------------------------------------------------
 # the spring–block: Bautin points on the Hopf line k_c(V) and the fold of cycles in (V, k)
-@dataclass(frozen=True)
-class BautinPoint:
-    """A generalised-Hopf (Bautin) point of the spring–block Hopf line: Λ(V*) = 0, with Λ₅ and l₂.
-
-    Parameters
-    ----------
-    V, kc, omega_c : float
-        The point (m/s, N/m, rad/s).
-    Lambda5 : float
-        Quintic coefficient 2 Re c (slip component of the mode 1), 1/(m⁴ s).
-    l2 : float
-        Second Lyapunov coefficient Re c₂ in Kuznetsov's normalisation (⟨q, q⟩ = 1, ⟨p, q⟩ = 1;
-        not divided by ω, as MatCont and BifurcationKit print it): Λ₅ |q_X|⁴ / 2.
-    Gamma_bar : float
-        Γ̄ at V* (Re a = −Γ̄).
-    dLambda_dV : float
-        Slope of Λ along the Hopf line at V*.
-    fold_k2 : float
-        The fold of cycles: k_fold(V) − k_c(V) ≈ fold_k2 (V − V*)² on the side ``fold_side``.
-    fold_amp : float
-        Slip amplitude at the fold ≈ fold_amp |V − V*|^{1/2} (m).
-    fold_side : int
-        −1: the fold exists for V < V*, +1 for V > V*, 0: none (Λ₅ = 0).
-    sign_below, sign_above : int
-        Signs of Λ just below and above V* (−1 supercritical, +1 subcritical).
-    """
-
-    V: float
-    kc: float
-    omega_c: float
-    Lambda5: float
-    l2: float
-    Gamma_bar: float
-    dLambda_dV: float
-    fold_k2: float
-    fold_amp: float
-    fold_side: int
-    sign_below: int
-    sign_above: int
-
-    def predicted_fold(self, V: float) -> tuple[float, float] | None:
-        """(k_fold − k_c(V), slip amplitude) from the expansion about V*, or None on the side without a fold."""
-        dv = V - self.V
-        if self.fold_side == 0 or dv == 0 or (dv > 0) != (self.fold_side > 0):
-            return None
-        return self.fold_k2 * dv * dv, self.fold_amp * math.sqrt(abs(dv))
-
-    def as_dict(self) -> dict[str, Any]:
-        return {"V": self.V, "kc": self.kc, "omega_c": self.omega_c, "Lambda5": self.Lambda5, "l2": self.l2,
-                "Gamma_bar": self.Gamma_bar, "dLambda_dV": self.dLambda_dV, "sign_below": self.sign_below,
-                "sign_above": self.sign_above,
-                "fold_of_cycles": {"side": {-1: "V < V*", 1: "V > V*", 0: "none"}[self.fold_side],
-                                   "k_minus_kc_per_dV2": self.fold_k2, "amplitude_per_sqrt_dV": self.fold_amp,
-                                   "formula": "k_fold - kc(V) = -Lambda(V)^2/(8 Lambda5 Gamma_bar), "
-                                              "amplitude = sqrt(-2 Lambda(V)/Lambda5)"}}
-
-    def __repr__(self) -> str:
-        side = {-1: "V < V*", 1: "V > V*", 0: "none"}[self.fold_side]
-        return (f"BautinPoint(V* = {self.V:.8g} m/s, kc = {self.kc:.6g} N/m, Lambda5 = {self.Lambda5:.6g}, "
-                f"l2 = {self.l2:.6g}; fold of cycles on {side}: k - kc = {self.fold_k2:.4g} (V - V*)^2)")
-
-
 def _unit_mode_slip(d, params: Mapping[str, float], V: float, kc, omega, dps: int = 30) -> float:
     """|q_X| of the critical eigenvector of E⁻¹J normalised to ⟨q, q⟩ = 1 (the factor between landau's
     and Kuznetsov's normalisation)."""
@@ -292,7 +201,7 @@ def _unit_mode_slip(d, params: Mapping[str, float], V: float, kc, omega, dps: in
 
 
 def bautin_point(d, V: float, params: Mapping[str, float] | None = None, *, sign_below: int = 0,
-                 sign_above: int = 0, rel_step: float = 1e-6) -> BautinPoint:
+                 sign_above: int = 0, rel_step: float = 1e-6) -> GeneralisedHopfPoint:
     """Λ₅, l₂ and the fold-of-cycles expansion at a codimension-two velocity V* of the spring–block.
 
     Parameters
@@ -303,10 +212,17 @@ def bautin_point(d, V: float, params: Mapping[str, float] | None = None, *, sign
         A velocity where Λ = 0 on the Hopf line (e.g. from :func:`landau.transition.codim2_points`).
     params : mapping, optional
         Parameter overrides.
+    sign_below, sign_above : int
+        Signs of Λ just below and above V (as :func:`landau.transition.codim2_points` gives them).
+    rel_step : float
+        Relative step of the central difference for dΛ/dV.
 
     Returns
     -------
-    BautinPoint
+    GeneralisedHopfPoint
+        p₁ = k_c, p₂ = V*, with Λ₅, l₂ = Λ₅ |q_X|⁴/2 (Re c₂ in Kuznetsov's normalisation; NaN for
+        M = 0, a DAE), Re a = −Γ̄ and dΛ/dV, hence the fold of cycles
+        k_fold − k_c(V) ≈ −Λ'²/(8Λ₅Γ̄)(V − V*)² with slip amplitude sqrt(2|Λ'|/|Λ₅|)|V − V*|^{1/2}.
     """
     p = d.block.resolve(params)
     mp = d.evaluate_mp(V, p, ["Gamma_bar", "Lambda", "Lambda5"])
@@ -315,24 +231,18 @@ def bautin_point(d, V: float, params: Mapping[str, float] | None = None, *, sign
     lm = d.evaluate_mp(V - h, p, ["Lambda"])["Lambda"]
     dlam = float((lp - lm) / (2 * h))
     L5, gb = float(mp["Lambda5"]), float(mp["Gamma_bar"])
-    if M_ok := p["M"] > 0:
+    if p["M"] > 0:
         qx = _unit_mode_slip(d, p, V, mp["kc"], mp["omega_c"])
         l2 = L5 * qx ** 4 / 2
     else:
         l2 = math.nan  # the quasi-static limit is a DAE: no Kuznetsov normalisation
-    del M_ok
-    if L5 == 0 or dlam == 0:
-        k2, amp, side = math.nan, math.nan, 0
-    else:
-        # Λ(V) ≈ Λ'(V − V*): fold where Λ and Λ₅ have opposite signs
-        k2 = -dlam ** 2 / (8 * L5 * gb)
-        amp = math.sqrt(2 * abs(dlam) / abs(L5))
-        side = 1 if dlam * L5 < 0 else -1
-    return BautinPoint(V, float(mp["kc"]), float(mp["omega_c"]), L5, l2, gb, dlam, k2, amp, side,
-                       sign_below, sign_above)
+    return GeneralisedHopfPoint(d.block.law.name, SPRING_BLOCK_PARAMETERS, float(mp["kc"]), float(V),
+                                float(mp["omega_c"]),
+                                Lambda5=L5, l2=l2, sign_below=sign_below, sign_above=sign_above, re_a=-gb,
+                                dLambda_dp2=dlam)
 
 
-def bautin_points(d, lo: float, hi: float, params: Mapping[str, float] | None = None) -> list[BautinPoint]:
+def bautin_points(d, lo: float, hi: float, params: Mapping[str, float] | None = None) -> list[GeneralisedHopfPoint]:
     """Every Bautin point of the spring–block Hopf line with V in [lo, hi] (see :func:`bautin_point`)."""
     from landau.transition import codim2_points
 
@@ -347,4 +257,5 @@ def spring_block_fold(d, V: float, params: Mapping[str, float] | None = None) ->
     Λ₅ have the same sign."""
     p = d.block.resolve(params)
     mp = d.evaluate_mp(V, p, ["Gamma_bar", "Lambda", "Lambda5"])
-    return fold_of_cycles(float(mp["Lambda"]), float(mp["Lambda5"]), -float(mp["Gamma_bar"]), float(mp["kc"]))
+    return fold_of_cycles(float(mp["Lambda"]), float(mp["Lambda5"]), -float(mp["Gamma_bar"]), float(mp["kc"]),
+                          parameter="k")

@@ -39,7 +39,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from landau.errors import InputError, IntegratorError, LandauError
-from landau.hopf import Criticality
+from landau.hopf import Criticality, HopfResult
 
 #: relative amplitude tolerance at ε² = 1e-3 (the O(ε²) remainder of the amplitude equation)
 SUPERCRITICAL_TOLERANCE = 0.02
@@ -180,7 +180,9 @@ class CheckResult:
                "tolerance": self.tolerance, "verdict": self.verdict.value, "agrees": self.agrees,
                "reason": self.reason, "eps2_max_valid": self.eps2_max_valid, "bistable": self.bistable,
                "cycle_stable": self.cycle_stable}
-        out.update({k: v for k, v in self.prediction.extra.items() if k not in out} if hasattr(self.prediction, "extra") else {})
+        if isinstance(self.prediction, HopfResult):  # its route's numbers (V, kc, Γ̄, Ω̄ of the spring–block …)
+            route = {**self.prediction.route_fields(), **self.prediction.extra}
+            out.update({k: v for k, v in route.items() if k not in out})
         out["detail"] = dict(self.detail)
         return out
 
@@ -214,7 +216,7 @@ def spring_block_validity(pr, eps2: float) -> tuple[bool, str, float]:
 
     The predicted slip rate swings by A·ω_c around V with A = C·sqrt(ε² k_c); it must stay below V
     (v > 0): ε² < V²/(C² ω_c² k_c)."""
-    V, kc, wc, C = pr.extra["V"], pr.p_c, pr.omega_c, pr.C
+    V, kc, wc, C = pr.V, pr.p_c, pr.omega_c, pr.C
     if pr.criticality == Criticality.DEGENERATE:
         return False, "Lambda = 0 (codimension-two point): the cubic amplitude equation predicts no amplitude", 0.0
     eps2_max = V * V / (C * C * wc * wc * kc)

@@ -8,11 +8,12 @@
   (:class:`landau.hopf.HopfResult`); folds are reported where the branch turns back in p.
 * :func:`hopf_curve` follows a Hopf point in two parameters (the system's parameter p₁ and a second
   one p₂), with l₁ along the curve, and :func:`generalised_hopf` locates the generalised-Hopf
-  (Bautin) points where l₁ = 0, with the second Lyapunov coefficient l₂ = Re c₂ from
-  :func:`landau.lyapunov.lyapunov_coefficients`.
+  (Bautin) points where l₁ = 0 (:class:`landau.codim2.GeneralisedHopfPoint`), with the second
+  Lyapunov coefficient l₂ = Re c₂ from :func:`landau.lyapunov.lyapunov_coefficients`.
 
-Pseudo-arclength continuation (Keller 1977) in float64; each located point is refined at the
-working precision by :func:`landau.general.refine_hopf`.
+This module defines the two problems (residual and Jacobian); the pseudo-arclength continuation
+(Keller 1977) in float64 is :func:`landau.arclength.continue_branch`.  Each located point is
+refined at the working precision by :func:`landau.general.refine_hopf`.
 
 References
 ----------
@@ -32,6 +33,8 @@ import numpy as np
 import scipy.linalg
 import scipy.optimize
 
+from landau.arclength import StepControl, continue_branch
+from landau.codim2 import GeneralisedHopfPoint
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.general import (DEFAULT_DPS, NumericSystem, hopf_test_function, locate_crossing, normal_form_at,
                             refine_hopf, second_lyapunov)
@@ -84,49 +87,15 @@ def _n_unstable(lam: np.ndarray) -> int:
     return int(np.sum(lam.real > 0))
 
 
-def _tangent(J: np.ndarray, fp: np.ndarray, t_old: np.ndarray | None) -> np.ndarray:
-    n = len(fp)
-    if t_old is None:
-        # dy/dp = −J⁻¹ f_p, oriented towards increasing p
-        try:
-            dy = np.linalg.solve(J, -fp)
-        except np.linalg.LinAlgError:
-            raise SingularPointError("continuation cannot start at a singular point") from None
-        t = np.append(dy, 1.0)
-    else:
-        A = np.zeros((n + 1, n + 1))
-        A[:n, :n] = J
-        A[:n, n] = fp
-        A[n] = t_old
-        rhs = np.zeros(n + 1)
-        rhs[n] = 1.0
-        t = np.linalg.solve(A, rhs)
-    t /= np.linalg.norm(t)
-    if t_old is not None and t @ t_old < 0:
-        t = -t
-    return t
-
-
-def _corrector(num: NumericSystem, x_pred: np.ndarray, t: np.ndarray, tol: float, maxit: int = 8):
-    n = num.n
-    x = x_pred.copy()
-    for it in range(1, maxit + 1):
-        F, J, fp = num.first(x[:n], x[n], True)
-        if not np.all(np.isfinite(F)):
-            return None, it
-        A = np.zeros((n + 1, n + 1))
-        A[:n, :n] = J
-        A[:n, n] = fp
-        A[n] = t
-        r = np.append(F, t @ (x - x_pred))
-        try:
-            dx = np.linalg.solve(A, -r)
-        except np.linalg.LinAlgError:
-            return None, it
-        x = x + dx
-        if np.max(np.abs(dx)) <= tol * (1 + np.max(np.abs(x))):
-            return x, it
-    return None, maxit
+def _start_tangent(J: np.ndarray, fp: np.ndarray) -> np.ndarray:
+    """The starting unit tangent of the equilibrium branch, towards increasing p."""
+    try:
+        # J dy/dp = −f_p
+        dy = np.linalg.solve(J, -fp)
+    except np.linalg.LinAlgError:
+        raise SingularPointError("continuation cannot start at a singular point") from None
+    t = np.append(dy, 1.0)
+    return t / np.linalg.norm(t)
 
 
 def equilibrium_branch(system: DynamicalSystem, params: Mapping[str, float] | None, p_range: tuple[float, float], *,
@@ -184,47 +153,28 @@ def equilibrium_branch(system: DynamicalSystem, params: Mapping[str, float] | No
     num = NumericSystem(system, params or {}, equilibrium_guess)
     n = num.n
     width = hi - lo
-    h = step or 0.01 * width
-    hmax = max_step or 0.05 * width
-    hmin = 1e-9 * width
     p0 = (lo if direction == 1 else hi) if start is None else float(start)
     y0 = num.equilibrium_float(p0)
-    x = np.append(y0, p0)
     _, J, fp = num.first(y0, p0, True)
-    t = direction * _tangent(J, fp, None)
-    ps, ys, nus, tfs, tps = [p0], [y0], [], [], [t[n]]
-    lam = num.eigenvalues(y0, p0)
-    nus.append(_n_unstable(lam))
-    tfs.append(hopf_test_function(lam))
-    while len(ps) < max_points:
-        x_new, its = _corrector(num, x + h * t, t, 1e-11)
-        if x_new is None:
-            h *= 0.5
-            if h < hmin:
-                raise SingularPointError(f"{system.name}: continuation stalled at {num.p.name} = {x[n]:.8g}")
-            continue
-        _, J, fp = num.first(x_new[:n], x_new[n], True)
-        try:
-            t_new = _tangent(J, fp, t)
-        except np.linalg.LinAlgError:
-            h *= 0.5
-            continue
-        x, t = x_new, t_new
-        lam = num.eigenvalues(x[:n], x[n])
-        ps.append(x[n])
-        ys.append(x[:n].copy())
-        nus.append(_n_unstable(lam))
-        tfs.append(hopf_test_function(lam))
-        tps.append(t[n])
-        if its <= 3:
-            h = min(1.3 * h, hmax)
-        if not (lo <= x[n] <= hi):
-            break
-    P, Y = np.array(ps), np.array(ys)
-    folds = []
-    for k in range(1, len(P)):
-        if tps[k - 1] * tps[k] < 0:
-            folds.append(_refine_fold(num, Y[k - 1], P[k - 1], Y[k], P[k]))
+
+    def F(x):  # G = f(y; p), DG = [J | f_p]
+        f, Jx, fpx = num.first(x[:n], x[n], True)
+        return f, np.column_stack([Jx, fpx]), None
+
+    h = step or 0.01 * width
+    ctl = StepControl(h0=h, h_max=max_step or 0.05 * width, h_min=1e-9 * width)
+    br = continue_branch(F, np.append(y0, p0), ctl, tangent0=direction * _start_tangent(J, fp), tol=1e-11,
+                         max_points=max_points, refine=False,
+                         stop=lambda pt: None if lo <= pt.u[n] <= hi else "parameter range")
+    if br.stopped.startswith("step size underflow"):
+        raise SingularPointError(f"{system.name}: continuation stalled at {num.p.name} = {br.points[-1].u[n]:.8g}")
+    P = np.array([pt.u[n] for pt in br.points])
+    Y = np.array([pt.u[:n] for pt in br.points])
+    tps = [pt.tangent[n] for pt in br.points]
+    lams = [num.eigenvalues(y, p) for y, p in zip(Y, P)]
+    nus = [_n_unstable(lam) for lam in lams]
+    tfs = [hopf_test_function(lam) for lam in lams]
+    folds = [_refine_fold(num, Y[f.index - 1], P[f.index - 1], Y[f.index], P[f.index]) for f in br.folds]
     hopfs: list[HopfResult] = []
     if locate_hopf:
         cache: dict = {}
@@ -263,6 +213,7 @@ def _refine_fold(num: NumericSystem, ya, pa, yb, pb) -> float:
         for _ in range(30):
             F, J, fp = num.first(y, p, True)
             A = np.column_stack([np.delete(J, k, axis=1), fp])
+            # [J without column k | f_p] (δy_{≠k}, δp) = −f  (y_k fixed; least squares, square when regular)
             d = np.linalg.lstsq(A, -F, rcond=None)[0]
             y[np.arange(n) != k] += d[:-1]
             p += d[-1]
@@ -279,46 +230,6 @@ def _refine_fold(num: NumericSystem, ya, pa, yb, pb) -> float:
 
 
 # --- two-parameter continuation of a Hopf point -------------------------------------------------------
-
-@dataclass(frozen=True)
-class GeneralisedHopfPoint:
-    """A generalised-Hopf (Bautin) point: a Hopf point with l₁ = 0.
-
-    Parameters
-    ----------
-    system : str
-    parameters : (str, str)
-        Names of p₁ (the system's Hopf parameter) and p₂.
-    p1, p2 : float
-        The point.
-    omega : float
-        Angular frequency.
-    equilibrium : tuple of float
-    l2 : float or None
-        Second Lyapunov coefficient in Kuznetsov's normalisation (None where not computed).
-    hopf : HopfResult
-        The Hopf analysis at the point (its l₁ is zero to the located accuracy).
-    """
-
-    system: str
-    parameters: tuple[str, str]
-    p1: float
-    p2: float
-    omega: float
-    equilibrium: tuple[float, ...]
-    l2: float | None
-    hopf: HopfResult
-
-    def as_dict(self) -> dict[str, Any]:
-        return {"system": self.system, "parameters": list(self.parameters), "p1": self.p1, "p2": self.p2,
-                "omega": self.omega, "equilibrium": list(self.equilibrium), "l2": self.l2,
-                "l1": self.hopf.l1}
-
-    def __repr__(self) -> str:
-        l2 = "not computed" if self.l2 is None else f"{self.l2:.6g}"
-        return (f"GeneralisedHopfPoint({self.system}: {self.parameters[0]} = {self.p1:.10g}, "
-                f"{self.parameters[1]} = {self.p2:.10g}, ω = {self.omega:.8g}, l2 = {l2})")
-
 
 @dataclass(frozen=True)
 class HopfCurve:
@@ -392,6 +303,7 @@ def _hopf_residual(num: NumericSystem, sym2, X: np.ndarray, b: np.ndarray, c: np
     M[n, :n] = c.conj()
     rhs = np.zeros(n + 1, complex)
     rhs[n] = 1.0
+    # [[iωE − J, b], [cᴴ, 0]] (v, g) = (0, 1)
     g = np.linalg.solve(M, rhs)[n]
     return np.concatenate([f, [g.real, g.imag]])
 
@@ -420,43 +332,23 @@ def _trace_hopf_curve(num: NumericSystem, sym2, X0: np.ndarray, lo: float, hi: f
     n = num.n
     out_both = []
     for direction in (1, -1):
-        X = X0.copy()
-        b, c = _hopf_borders(num, X)
-        G = lambda Z: _hopf_residual(num, sym2, Z, b, c)
-        t = np.linalg.svd(_fd_jacobian(G, X))[2][-1]
-        t = t * direction * (1 if t[n + 1] >= 0 else -1)
-        h = hmax / 4
-        pts = []
-        while len(pts) < max_points:
-            Xp = X + h * t
-            Z = Xp.copy()
-            ok = False
-            for it in range(8):
-                r = np.append(G(Z), t @ (Z - Xp))
-                A = np.vstack([_fd_jacobian(G, Z), t])
-                try:
-                    dZ = np.linalg.solve(A, -r)
-                except np.linalg.LinAlgError:
-                    break
-                Z = Z + dZ
-                if np.max(np.abs(dZ)) <= 1e-10 * (1 + np.max(np.abs(Z))):
-                    ok = True
-                    break
-            if not ok or Z[n + 2] <= 0:
-                h *= 0.5
-                if h < 1e-8 * hmax:
-                    break
-                continue
-            tn = np.linalg.svd(_fd_jacobian(G, Z))[2][-1]
-            t = tn if tn @ t >= 0 else -tn
-            X = Z
-            pts.append(X.copy())
-            b, c = _hopf_borders(num, X)
-            if it <= 3:
-                h = min(1.3 * h, hmax)
-            if not (lo <= X[n + 1] <= hi):
-                break
-        out_both.append(pts)
+        borders = list(_hopf_borders(num, X0))
+
+        def F(Z):  # the minimally augmented system, its Jacobian by central differences
+            G = lambda W: _hopf_residual(num, sym2, W, *borders)  # noqa: E731
+            return G(Z), _fd_jacobian(G, Z), None
+
+        def new_borders(pt):  # b, c follow the critical eigenvectors along the curve
+            borders[:] = _hopf_borders(num, pt.u)
+
+        orient = np.zeros(len(X0))
+        orient[n + 1] = direction
+        # the corrector counts iterations from 1: "≤ 4" is the three-correction rule of a 0-based count
+        ctl = StepControl(h0=hmax / 4, h_max=hmax, h_min=1e-8 * hmax, fast=4)
+        br = continue_branch(F, X0.copy(), ctl, orient=orient, tol=1e-10, max_points=max_points + 1,
+                             fold_index=None, accept=lambda Z: Z[n + 2] > 0, on_point=new_borders,
+                             stop=lambda pt: None if lo <= pt.u[n + 1] <= hi else "parameter range")
+        out_both.append([pt.u for pt in br.points[1:]])
     return out_both[1][::-1] + [X0] + out_both[0]
 
 
@@ -547,7 +439,7 @@ def _locate_gh(system: DynamicalSystem, tracker: _HopfTracker, a: float, b: floa
     if l2v is not None:
         r = replace(r, l2=l2v)
     return GeneralisedHopfPoint(system=system.name, parameters=(system.parameter.name, tracker.second), p1=r.p_c,
-                                p2=float(p2), omega=r.omega_c, equilibrium=r.equilibrium, l2=l2v, hopf=r)
+                                p2=float(p2), omega=r.omega_c, equilibrium=r.equilibrium, l1=r.l1, l2=l2v, hopf=r)
 
 
 def generalised_hopf(system: DynamicalSystem, params: Mapping[str, float], second: str,

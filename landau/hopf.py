@@ -132,6 +132,10 @@ def _fmt(x: Any, digits: int = 6) -> str:
         return str(x)
 
 
+#: the route-specific typed fields of a :class:`HopfResult`, in their :meth:`~HopfResult.as_dict` order
+_ROUTE_FIELDS = ("V", "kc", "Gamma_bar", "Omega_bar", "q_norm", "dps", "c2", "Im_c")
+
+
 @dataclass(frozen=True)
 class HopfResult:
     """A located Hopf point with its amplitude-equation coefficients (SI units of the system).
@@ -171,20 +175,33 @@ class HopfResult:
     params : mapping
         The other parameters' values.
     extra : mapping
-        Route-specific numbers (e.g. the driving velocity V, Γ̄, Ω̄ of the spring–block), also
-        readable as attributes (``result.V``).
+        Free-form labels added to :meth:`as_dict` (e.g. the name of a friction law); never read as
+        attributes.  A number of a known route given here (an old-style call) is moved to its typed
+        field below.
     units : mapping
         Unit of each field by its :meth:`as_dict` name (empty: the system's own units, unstated).
     at : tuple of str
-        Names of ``extra`` (or ``params``) entries that locate the point on a family, shown
-        first in the repr and in tables (``("V",)`` for a spring–block point at driving
-        velocity V).
+        Names of fields (or ``params`` entries) that locate the point on a family, shown first in
+        the repr and in tables (``("V",)`` for a spring–block point at driving velocity V).
+    V, kc : float, optional
+        Spring–block: the driving velocity V (m/s) and the critical stiffness k_c (= ``p_c``, N/m)
+        (Putelat et al. 2010, eq. 7).
+    Gamma_bar, Omega_bar : float, optional
+        Spring–block: Γ̄ and Ω̄ of dλ/dk = −Γ̄ + iΩ̄ (Putelat et al. 2010, eqs 18, 21).
+    q_norm : float, optional
+        Kuznetsov route: |q_n| of the critical eigenvector with ⟨q, q⟩ = 1 (the factor between the
+        two normalisations: Λ = 2 Re c₁/|q_n|², Λ₅ = 2 Re c₂/|q_n|⁴).
+    dps : int, optional
+        Kuznetsov route: the working precision (digits).
+    c2 : complex, optional
+        Kuznetsov's c₂(0) (⟨q, q⟩ = 1), written to JSON as ``c2_re``, ``c2_im``.
+    Im_c : float, optional
+        Fredholm route at fifth order: Im c (gauge-dependent: h₂₁'s normalised component is 0).
 
     Notes
     -----
     Names kept from the former result types: ``omega`` (= ``omega_c``), ``dmu_dp``
-    (= Re ``dlambda_dp``), ``sign`` (of Λ), ``result["Lambda"]`` (any :meth:`as_dict` entry), and
-    the spring–block's ``V``, ``kc``, ``Gamma_bar``, ``Omega_bar`` (from ``extra``).
+    (= Re ``dlambda_dp``), ``sign`` (of Λ), ``result["Lambda"]`` (any :meth:`as_dict` entry by name).
     """
 
     system: str
@@ -202,19 +219,56 @@ class HopfResult:
     Lambda5: float | None = None
     l2: float | None = None
     params: Mapping[str, float] = field(default_factory=dict)
-    extra: Mapping[str, float] = field(default_factory=dict)
+    extra: Mapping[str, Any] = field(default_factory=dict)
     units: Mapping[str, str] = field(default_factory=dict)
     at: tuple[str, ...] = ()
+    V: float | None = None
+    kc: float | None = None
+    Gamma_bar: float | None = None
+    Omega_bar: float | None = None
+    q_norm: float | None = None
+    dps: int | None = None
+    c2: complex | None = None
+    Im_c: float | None = None
 
-    def __getattr__(self, name: str) -> Any:
-        # route-specific numbers (e.g. ``kc``, ``V``, ``Gamma_bar`` of the spring–block) read as attributes
-        try:
-            extra = object.__getattribute__(self, "extra")
-        except AttributeError:
-            raise AttributeError(name) from None
-        if name in extra:
-            return extra[name]
-        raise AttributeError(f"{type(self).__name__} has no attribute {name!r}")
+    def __post_init__(self) -> None:
+        # an old-style call with route numbers in ``extra``: move them to their typed fields
+        extra = dict(self.extra)
+        if "c2_re" in extra or "c2_im" in extra:
+            object.__setattr__(self, "c2", complex(extra.pop("c2_re", 0.0), extra.pop("c2_im", 0.0)))
+        extra.pop("l2_over_omega", None)        # a property (Re c₂/ω)
+        if "omega_c" in extra and extra["omega_c"] == self.omega_c:
+            extra.pop("omega_c")
+        for name in _ROUTE_FIELDS:
+            if name in extra:
+                object.__setattr__(self, name, extra.pop(name))
+        if len(extra) != len(self.extra):
+            object.__setattr__(self, "extra", extra)
+
+    def route_fields(self) -> dict[str, Any]:
+        """The route-specific entries that are set, by their :meth:`as_dict` names.
+
+        Returns
+        -------
+        dict
+            ``V``, ``kc``, ``Gamma_bar``, ``Omega_bar``, ``q_norm``, ``dps``, ``c2_re``, ``c2_im``,
+            ``l2_over_omega`` and ``Im_c``, those that are not None.
+        """
+        out: dict[str, Any] = {}
+        for name in _ROUTE_FIELDS:
+            v = getattr(self, name)
+            if v is None:
+                continue
+            if name == "c2":
+                out.update(c2_re=v.real, c2_im=v.imag, l2_over_omega=self.l2_over_omega)
+            else:
+                out[name] = v
+        return out
+
+    @property
+    def l2_over_omega(self) -> float | None:
+        """Re c₂/ω (Kuznetsov route; None where c₂ was not computed)."""
+        return None if self.c2 is None else self.c2.real / self.omega_c
 
     def __getitem__(self, key: str) -> Any:
         """``result["Lambda"]``: any entry of :meth:`as_dict` by name."""
@@ -224,11 +278,11 @@ class HopfResult:
         return fields[key]
 
     def _located(self) -> dict[str, Any]:
-        """The entries named by ``at``, from ``extra`` or ``params``."""
+        """The entries named by ``at``, from the typed fields or ``params``."""
         out: dict[str, Any] = {}
         for name in self.at:
-            if name in self.extra:
-                out[name] = self.extra[name]
+            if name in _ROUTE_FIELDS and getattr(self, name) is not None:
+                out[name] = getattr(self, name)
             elif name in self.params:
                 out[name] = self.params[name]
         return out
@@ -341,6 +395,7 @@ class HopfResult:
                 out[name] = getattr(self, name)
         if self.c1 is not None:
             out["c1"] = [self.c1.real, self.c1.imag]
+        out.update(self.route_fields())
         out.update(self.extra)
         return out
 
@@ -408,23 +463,21 @@ def spring_block_result(law: str, V: float, kc: float, omega_c: float, Gamma_bar
     params : mapping
         The other parameters' values.
     **fields
-        Further :class:`HopfResult` fields (``equilibrium``, ``Lambda5``, ``l1``, ``c1``; ``extra``
-        entries to add).
+        Further :class:`HopfResult` fields (``equilibrium``, ``Lambda5``, ``l1``, ``c1``, ``q_norm``, …).
 
     Returns
     -------
     HopfResult
-        With ``extra`` V, k_c, Γ̄, Ω̄ (readable as attributes), located at V.
+        With the fields V, kc, Gamma_bar, Omega_bar set, located at V.
 
     References
     ----------
     Putelat, T., Dawes, J. H. P., Willis, J. R. (2010). Regimes of frictional sliding of a
     spring–block system. J. Mech. Phys. Solids 58, 27–53, eqs (7), (8), (18)–(23).
     """
-    extra = {"V": float(V), "kc": float(kc), "Gamma_bar": float(Gamma_bar), "Omega_bar": float(Omega_bar),
-             **fields.pop("extra", {})}
     fields.setdefault("equilibrium", ())
     return HopfResult(system=law, parameter="k", p_c=float(kc), omega_c=float(omega_c),
                       dlambda_dp=complex(-Gamma_bar, Omega_bar), Lambda=float(Lambda), chi=float(chi),
-                      convention=SPRING_BLOCK, normalise="X", params=dict(params), extra=extra,
-                      units=SPRING_BLOCK_UNITS, at=("V",), **fields)
+                      convention=SPRING_BLOCK, normalise="X", params=dict(params), units=SPRING_BLOCK_UNITS,
+                      at=("V",), V=float(V), kc=float(kc), Gamma_bar=float(Gamma_bar),
+                      Omega_bar=float(Omega_bar), **fields)

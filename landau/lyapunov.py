@@ -256,7 +256,7 @@ def first_lyapunov(system: DynamicalSystem, values: Mapping[sp.Symbol | str, Any
         In the general convention (critical mode with ``normalise`` component 1):
         ``l1`` = Re c₁/ω, ``c1`` (⟨q, q⟩ = 1, ⟨p, q⟩ = 1), ``dlambda_dp`` from eigenvalues at
         p_c ± h, p_c ± 2h (``dmu_dp`` its real part), Λ = 2 Re c₁/|q_n|², χ = 2 Im c₁/|q_n|²,
-        so ``C`` = 2|q_n| sqrt(|μ'|/|Re c₁|); ``extra``: ``q_norm`` = |q_n| and ``dps``.
+        so ``C`` = 2|q_n| sqrt(|μ'|/|Re c₁|); fields ``q_norm`` = |q_n| and ``dps``.
 
     References
     ----------
@@ -306,7 +306,7 @@ def first_lyapunov(system: DynamicalSystem, values: Mapping[sp.Symbol | str, Any
             equilibrium=tuple(eq), dlambda_dp=complex(float(dmu), float(dom)),
             Lambda=float(2 * mpmath.re(c1) / qx ** 2), chi=float(2 * mpmath.im(c1) / qx ** 2), convention=GENERAL,
             normalise=system.states[system.normalise].name, l1=float(l1), c1=complex(c1),
-            params={s.name: float(v) for s, v in vals.items()}, extra={"q_norm": float(qx), "dps": dps},
+            params={s.name: float(v) for s, v in vals.items()}, q_norm=float(qx), dps=dps,
         )
 
 
@@ -367,7 +367,7 @@ def spring_block_lyapunov(block: SpringBlock, V: float, params: Mapping[str, flo
     a = res.dlambda_dp
     return spring_block_result(block.law.name, float(V), res.p_c, res.omega_c, -a.real, a.imag, res.Lambda,
                                res.chi, {**p, "V": float(V)}, equilibrium=res.equilibrium, l1=res.l1, c1=res.c1,
-                               extra=dict(res.extra))
+                               q_norm=res.q_norm, dps=res.dps)
 
 
 # --------------------------------------------------------------------------------------
@@ -486,7 +486,7 @@ def lyapunov_coefficients(system: DynamicalSystem, values: Mapping[sp.Symbol | s
         ``l1`` = Re c₁/ω (as :func:`first_lyapunov`); ``c1``; ``l2`` = Re c₂ — the number
         MatCont (``nf_GH.m``: ``real(p0'*h32/12)``) and BifurcationKit
         (``NormalForms.jl``: ``l2 = real(G32)/12``) print at a generalised-Hopf point, *not*
-        divided by ω; ``extra["l2_over_omega"]`` = Re c₂/ω.  In landau's convention
+        divided by ω; ``c2`` and ``l2_over_omega`` = Re c₂/ω.  In landau's convention
         (critical mode with ``normalise`` component 1): Λ = 2 Re c₁/|q_n|²,
         χ = 2 Im c₁/|q_n|², Λ₅ = 2 Re c₂/|q_n|⁴ with q_n that component of Kuznetsov's q.
         Re c₂ does not depend on the choice ⟨p, h₂₁⟩ = 0; away from l₁ = 0 it is the
@@ -515,6 +515,5 @@ def lyapunov_coefficients(system: DynamicalSystem, values: Mapping[sp.Symbol | s
             chi=float(2 * mpmath.im(c1) / qx2), convention=GENERAL, normalise=system.states[system.normalise].name,
             l1=float(mpmath.re(c1) / om), c1=complex(c1), Lambda5=float(2 * mpmath.re(c2) / qx2 ** 2),
             l2=float(mpmath.re(c2)), params={s.name: float(v) for s, v in vals.items()},
-            extra={"c2_re": float(mpmath.re(c2)), "c2_im": float(mpmath.im(c2)),
-                   "l2_over_omega": float(mpmath.re(c2) / om), "q_norm": float(mpmath.sqrt(qx2)), "dps": dps},
+            c2=complex(c2), q_norm=float(mpmath.sqrt(qx2)), dps=dps,
         )

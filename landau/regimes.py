@@ -19,7 +19,8 @@ from typing import Mapping
 import numpy as np
 
 from landau.multiscale import Derivation
-from landau.transition import Codim2Point, TransitionCurve, codim2_points, transition_curve
+from landau.codim2 import GeneralisedHopfPoint
+from landau.transition import TransitionCurve, codim2_points, transition_curve
 
 
 @dataclass(frozen=True)
@@ -30,7 +31,7 @@ class RegimeDiagram:
     kc: np.ndarray
     Lambda: np.ndarray
     inertial_boundary: np.ndarray  # M ω_c² (N/m)
-    codim2: tuple[Codim2Point, ...]
+    codim2: tuple[GeneralisedHopfPoint, ...]
     params: Mapping[str, float]
 
     @property

@@ -40,6 +40,7 @@ import mpmath
 import numpy as np
 from scipy.optimize import brentq
 
+from landau.codim2 import SPRING_BLOCK_PARAMETERS, GeneralisedHopfPoint
 from landau.errors import InputError, NoHopfError
 from landau.multiscale import Derivation
 
@@ -82,29 +83,6 @@ class WeakeningRange:
         lo = f"{self.lo:.6g}" + (" (V_M)" if self.lo_extremum else " (scan end)")
         hi = f"{self.hi:.6g}" + (" (V_m)" if self.hi_extremum else " (scan end)")
         return f"WeakeningRange({lo} .. {hi} m/s)"
-
-
-@dataclass(frozen=True)
-class Codim2Point:
-    """A codimension-two (Bautin) point of the Hopf line: Λ(V) = 0 with k_c(V) > 0.
-
-    ``sign_below``/``sign_above`` are the signs of Λ just below/above V (−1: supercritical,
-    +1: subcritical)."""
-
-    V: float
-    kc: float
-    omega_c: float
-    sign_below: int
-    sign_above: int
-
-    def as_dict(self) -> dict[str, Any]:
-        return {"V": self.V, "kc": self.kc, "omega_c": self.omega_c,
-                "sign_below": self.sign_below, "sign_above": self.sign_above}
-
-    def __repr__(self) -> str:
-        nat = {-1: "super", 1: "sub"}
-        return (f"Codim2Point(V={self.V:.8g} m/s, kc={self.kc:.6g} N/m, omega_c={self.omega_c:.6g} rad/s; "
-                f"{nat[self.sign_below]}critical below, {nat[self.sign_above]}critical above)")
 
 
 @dataclass(frozen=True)
@@ -265,12 +243,14 @@ def _scan_grid(lo: float, hi: float, ext: Sequence[Extremum], per_decade: int) -
 
 
 def codim2_points(derivation: Derivation, lo: float, hi: float,
-                  params: Mapping[str, float] | None = None, *, per_decade: int = 200) -> list[Codim2Point]:
+                  params: Mapping[str, float] | None = None, *, per_decade: int = 200) -> list[GeneralisedHopfPoint]:
     """Every velocity in [lo, hi] where Λ changes sign on the Hopf line (k_c > 0).
 
     Not the ends of a velocity-weakening range (k_c → 0 there).  Roots are refined with
     brentq to ~1e-15 relative in V on the compiled Λ (50-digit mpmath near V_m); each
-    sign change is confirmed at 50 digits before it is reported."""
+    sign change is confirmed at 50 digits before it is reported.  Each point is a
+    :class:`~landau.codim2.GeneralisedHopfPoint` with p₁ = k_c, p₂ = V and the signs of Λ
+    below and above (:func:`landau.bautin.bautin_point` adds Λ₅, l₂ and the fold of cycles)."""
     if not (np.isfinite(lo) and np.isfinite(hi) and 0 < lo < hi):
         raise InputError(f"codim2: need 0 < LO < HI (m/s), got {lo!r}:{hi!r}")
     d = derivation
@@ -282,7 +262,7 @@ def codim2_points(derivation: Derivation, lo: float, hi: float,
     res = d.evaluate(Vs, p, ["Lambda"], sign_only=True)
     kc, lam = res["kc"], res["Lambda"]
     ok = np.isfinite(kc) & (kc > 0) & np.isfinite(lam)
-    out: list[Codim2Point] = []
+    out: list[GeneralisedHopfPoint] = []
     for i in range(len(Vs) - 1):
         if not (ok[i] and ok[i + 1]) or lam[i] * lam[i + 1] >= 0:
             continue
@@ -293,8 +273,9 @@ def codim2_points(derivation: Derivation, lo: float, hi: float,
                    xtol=1e-16, rtol=8.9e-16, maxiter=300)
         Vr = math.exp(r)
         at = d.evaluate(np.array([Vr]), p, ["kc", "omega_c"])
-        out.append(Codim2Point(Vr, float(at["kc"][0]), float(at["omega_c"][0]),
-                               int(np.sign(lam[i])), int(np.sign(lam[i + 1]))))
+        out.append(GeneralisedHopfPoint(d.block.law.name, SPRING_BLOCK_PARAMETERS, float(at["kc"][0]), Vr,
+                                        float(at["omega_c"][0]), sign_below=int(np.sign(lam[i])),
+                                        sign_above=int(np.sign(lam[i + 1]))))
     return out
 
 

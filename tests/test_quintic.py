@@ -93,7 +93,7 @@ def test_polar_normal_form_exact():
         assert r.Lambda5 == pytest.approx(32 * NF["b"], rel=1e-14)
     assert k.l1 == pytest.approx(2 * NF["a"] / NF["omega"], rel=1e-14)
     assert k.l2 == pytest.approx(4 * NF["b"], rel=1e-14)
-    assert k.extra["l2_over_omega"] == pytest.approx(4 * NF["b"] / NF["omega"], rel=1e-14)
+    assert k.l2_over_omega == pytest.approx(4 * NF["b"] / NF["omega"], rel=1e-14)
     assert f.dlambda_dp == pytest.approx(1.0, rel=1e-14)
 
 
@@ -167,7 +167,7 @@ def test_spring_block_quintic_both_routes_at_codim2(derivations, name, params):
         assert f64 == pytest.approx(float(mp["Lambda5"]), rel=REL), ctx
         assert k.Lambda == pytest.approx(float(mp["Lambda"]), rel=1e-6, abs=1e-12 * abs(k.Lambda5) * 1e-6)
         # l₂ = Re c₂ with Kuznetsov's unit q: Λ₅ |q_X|⁴ / 2
-        assert k.l2 == pytest.approx(k.Lambda5 * k.extra["q_norm"] ** 4 / 2, rel=1e-12)
+        assert k.l2 == pytest.approx(k.Lambda5 * k.q_norm ** 4 / 2, rel=1e-12)
 
 
 def test_quintic_is_lazy():

@@ -99,7 +99,7 @@ def test_fig6_dieterich_subcritical_with_fold():
     br = fig6_branch("dieterich", steps=12)
     kc = predict(get_law("dieterich"), 1e-4).kc
     assert br.hopf_equilibrium == pytest.approx(kc, rel=1e-6)
-    assert len(br.folds) == 1 and br.folds[0].parameter > kc
+    assert len(br.folds) == 1 and br.folds[0].p_fold > kc
     assert not br.points[0].orbit.stable and br.points[-1].orbit.stable and br.points[-1].parameter < kc
 
 
@@ -149,6 +149,6 @@ def test_fig12_fold_curve_ends_at_codim2_point():
     folds = fig12_fold_curve(3e-4)
     law = get_law("spinodal")
     v_star = brentq(lambda V: predict(law, V, {"c": 3e-4}).Lambda, 1e-3, 1.25e-3, xtol=1e-16, rtol=1e-13)
-    end = max(folds, key=lambda f: f.kappa)
+    end = max(folds, key=lambda f: f.value("kappa"))
     assert end.amplitude < 0.05 * max(f.amplitude for f in folds)
-    assert end.V == pytest.approx(v_star, rel=1e-2)
+    assert end.p_fold == pytest.approx(v_star, rel=1e-2)

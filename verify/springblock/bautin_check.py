@@ -57,8 +57,8 @@ def compare_fold(d: Derivation, V: float, params: Mapping[str, float] | None = N
     make = lambda x: model.with_(k=kc + sgn * x)  # noqa: E731  (x = |k − k_c| > 0)
     m0 = make(abs(pred.offset))
     z0 = section_point(m0, pred.amplitude)
-    fp = fold_point(make, abs(pred.offset), z0, rtol=rtol)
-    return FoldComparison(V, kc, pred.offset, sgn * fp.V, pred.amplitude, fp.amplitude)
+    fp = fold_point(make, abs(pred.offset), z0, rtol=rtol, parameter="|k - kc|")
+    return FoldComparison(V, kc, pred.offset, sgn * fp.p_fold, pred.amplitude, fp.amplitude)
 
 
 def fold_convergence(name: str, params: Mapping[str, float], V_star: float, deltas: Sequence[float],

@@ -60,7 +60,7 @@ def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = Non
     -------
     HopfResult
         k_c (``p_c``), ω_c, Λ, χ and C at V (SI units), with the predicted amplitude and frequency at
-        any stiffness k; ``extra`` carries V, k_c, Γ̄ and Ω̄ (readable as attributes).
+        any stiffness k; its fields ``V``, ``kc``, ``Gamma_bar`` and ``Omega_bar`` are set.
 
     Raises
     ------

@@ -9,19 +9,25 @@ DG = [DP − I | ∂P/∂λ] (DP from the variational equations, ∂P/∂λ by c
   the crossing of the leading eigenvalue pair (Brent on max Re λ(J)); the first cycle is solved
   with its slip amplitude ξ fixed small and λ free (the branch's amplitude² is linear in λ
   near the Hopf point, which gives the branch's own Hopf estimate).
-* **Continuation** — predictor along the tangent (null vector of DG, oriented by the previous
-  one), corrector by Newton on [G; τ·(u − u_pred)] = 0, step adapted to Newton's effort.
+* **Continuation** — :func:`landau.arclength.continue_branch` (predictor along the tangent,
+  corrector by Newton on [G; τ·(u − u_pred)] = 0, step adapted to Newton's effort); this module
+  defines the problem (G, DG) only.
 * **Folds of cycles** (saddle-nodes) — sign changes of the λ-component of the tangent, refined
-  by quadratic interpolation of λ over the arclength; a Floquet multiplier crosses +1 there.
+  by bisection in the arclength (:func:`landau.arclength.refine_fold`); a Floquet multiplier
+  crosses +1 there.  Each is a :class:`landau.codim2.FoldOfCycles`; the velocity where the fold
+  meets the Hopf line (:func:`codim2_velocity`) a :class:`landau.codim2.GeneralisedHopfPoint`.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
 
+from landau import arclength as al
+from landau.codim2 import SPRING_BLOCK_PARAMETERS, FoldOfCycles, GeneralisedHopfPoint
 from landau.errors import IntegratorError
 from landau.progress import progress as bar
 from landau.verify.springblock.model import SpringBlockModel
@@ -37,14 +43,6 @@ class BranchPoint:
 
 
 @dataclass(frozen=True)
-class Fold:
-    parameter: float
-    amplitude: float          # max|x − x0| at the fold [m]
-    half_peak_to_peak: float
-    z: np.ndarray | None = field(default=None, repr=False)
-
-
-@dataclass(frozen=True)
 class Branch:
     """A continued branch of limit cycles born at a Hopf point."""
 
@@ -53,13 +51,13 @@ class Branch:
     hopf_equilibrium: float    # Hopf parameter from the steady state's eigenvalues
     hopf_extrapolated: float   # from the branch (amplitude² → 0)
     points: tuple[BranchPoint, ...] = field(repr=False)
-    folds: tuple[Fold, ...] = ()
+    folds: tuple[FoldOfCycles, ...] = ()
     stopped: str = ""
 
     def __repr__(self) -> str:
         return (f"Branch({self.kind}, Hopf {self.hopf_equilibrium:.10g} (eigenvalues), "
                 f"{self.hopf_extrapolated:.6g} (branch), {len(self.points)} points, folds="
-                f"{[f'{f.parameter:.6g}' for f in self.folds]}, stopped: {self.stopped})")
+                f"{[f'{f.p_fold:.6g}' for f in self.folds]}, stopped: {self.stopped})")
 
 
 class _Problem:
@@ -90,26 +88,18 @@ class _Problem:
         DG = np.hstack([DP - np.eye(len(z)), ((Pp - Pm) / (2 * h))[:, None]])
         return Pz - z, DG, T, DP
 
-
-def _tangent(DG: np.ndarray, prev: np.ndarray | None) -> np.ndarray:
-    t = np.linalg.svd(DG)[2][-1]
-    if prev is not None and t @ prev < 0:
-        t = -t
-    return t / np.linalg.norm(t)
+    def F(self, u: np.ndarray):
+        """The engine's problem: G(u) = P(z; λ) − z, DG = [DP − I | ∂P/∂λ], info (T, DP)."""
+        r, DG, T, DP = self.G(u)
+        return r, DG, (T, DP)
 
 
-def _correct(prob: _Problem, u_pred: np.ndarray, tau: np.ndarray, tol: float, maxiter: int = 8):
-    u = u_pred.copy()
-    for it in range(1, maxiter + 1):
-        r, DG, T, DP = prob.G(u)
-        A = np.vstack([DG, tau])
-        rhs = -np.r_[r, tau @ (u - u_pred)]
-        du = np.linalg.solve(A, rhs)
-        u = u + du
-        if np.linalg.norm(du) <= tol * max(1.0, np.linalg.norm(u)):
-            r, DG, T, DP = prob.G(u)
-            return u, DG, T, DP, it
-    raise ShootingError("corrector did not converge")
+def _correct(prob: _Problem, u_pred: np.ndarray, tau: np.ndarray, tol: float, maxiter: int = 8) -> np.ndarray:
+    """The engine's Newton corrector on G (2-norm test) from ``u_pred`` with the row ``tau``: the cycle u."""
+    try:
+        return al.newton_corrector(prob.F, u_pred, tau, tol, maxit=maxiter, norm="2")[0]
+    except al.CorrectorError as exc:
+        raise ShootingError(f"corrector did not converge ({exc})") from None
 
 
 def continue_branch(make: Callable[[float], SpringBlockModel], lam_hopf: float, *, direction: float,
@@ -118,7 +108,8 @@ def continue_branch(make: Callable[[float], SpringBlockModel], lam_hopf: float, 
                     rtol: float = 1e-10, tol: float = 1e-9, progress=None):
     """Continue cycles from the Hopf point at λ = ``lam_hopf`` (``direction`` = ±1 guesses the side).
 
-    Returns (list of (λ, orbit, τ_λ), fold λ list, stop reason)."""
+    Returns (list of (λ, orbit, τ_λ), list of (λ, orbit, orbit) at the folds, stop reason); ``steps``
+    bounds the predictor–corrector attempts."""
     prob = _Problem(make, rtol)
     m0 = prob.model(lam_hopf)
     z0 = section_point(m0, xi_start * m0.ell)
@@ -126,74 +117,40 @@ def continue_branch(make: Callable[[float], SpringBlockModel], lam_hopf: float, 
     u_pred = np.r_[z0, lam_hopf + direction * 1e-6 * max(abs(lam_hopf), 1.0)]
     e_xi = np.zeros(len(u_pred))
     e_xi[0] = 1.0
-    u, DG, T, DP, _ = _correct(prob, u_pred, e_xi, tol, maxiter=15)
-    tau = _tangent(DG, None)
-    if tau[0] < 0:  # move away from the Hopf point: growing amplitude
-        tau = -tau
-    out = [(u[-1], describe(prob.model(u[-1]), u[:-1], DP, T, None, 0, 0.0), tau[-1])]
-    if progress:
-        progress(out[-1])
-    folds = []
-    stop = "step limit"
-    for _ in bar(range(steps), desc="continuation", unit="step"):
-        try:
-            u_new, DG, T, DP, it = _correct(prob, u + ds * tau, tau, tol)
-        except (ShootingError, IntegratorError, np.linalg.LinAlgError) as exc:
-            ds *= 0.5
-            if ds < 1e-6:
-                stop = f"step size underflow ({exc})"
-                break
-            continue
-        tau_new = _tangent(DG, tau)
-        orb = describe(prob.model(u_new[-1]), u_new[:-1], DP, T, None, it, 0.0)
-        if np.sign(tau_new[-1]) != np.sign(tau[-1]) and tau[-1] != 0:
-            folds.append(_refine_fold(prob, u, tau, ds, tol))
-        u, tau = u_new, tau_new
-        out.append((u[-1], orb, tau[-1]))
+    u = _correct(prob, u_pred, e_xi, tol, maxiter=15)
+    out = []
+
+    def orbit(pt: al.BranchPoint):
+        T, DP = pt.info
+        return describe(prob.model(pt.u[-1]), pt.u[:-1], DP, T, None, pt.iterations, 0.0)
+
+    def record(pt: al.BranchPoint) -> None:
+        out.append((pt.u[-1], orbit(pt), pt.tangent[-1]))
         if progress:
             progress(out[-1])
-        ds = min(ds * (1.6 if it <= 3 else (1.0 if it <= 5 else 0.5)), ds_max)
-        if not (lam_bounds[0] <= u[-1] <= lam_bounds[1]):
-            stop = "parameter bound"
-            break
-        if abs(u[0]) > xi_max:
-            stop = "amplitude bound"
-            break
-    return out, folds, stop
 
+    def stop(pt: al.BranchPoint) -> str | None:
+        if not (lam_bounds[0] <= pt.u[-1] <= lam_bounds[1]):
+            return "parameter bound"
+        return "amplitude bound" if abs(pt.u[0]) > xi_max else None
 
-def _refine_fold(prob: _Problem, u: np.ndarray, tau: np.ndarray, ds: float, tol: float, iters: int = 12):
-    """Bisection in the arclength s ∈ (0, ds) from u for the zero of the tangent's λ-component."""
-    lo, hi = 0.0, ds
-    best = None
-    for _ in range(iters):
-        s = 0.5 * (lo + hi)
-        try:
-            us, DG, T, DP, _ = _correct(prob, u + s * tau, tau, tol)
-        except (ShootingError, IntegratorError):
-            break
-        ts = _tangent(DG, tau)
-        best = (us, T, DP)
-        if np.sign(ts[-1]) == np.sign(tau[-1]):
-            lo = s
+    ctl = al.StepControl(h0=ds, h_max=ds_max, h_min=1e-6, grow=1.6, fast=3, keep=1.0, slow=5, shrink=0.5)
+    with bar(total=steps, desc="continuation", unit="step") as pb:
+        # move away from the Hopf point: growing amplitude (τ_ξ > 0)
+        br = al.continue_branch(prob.F, u, ctl, orient=e_xi, tol=tol, norm="2", max_points=steps + 1,
+                                max_attempts=steps, stop=stop, on_point=record,
+                                failures=(ShootingError, IntegratorError), on_attempt=pb.update)
+    stopped = "step limit" if br.stopped in ("step limit", "point limit") else br.stopped
+    folds = []
+    for f in br.folds:
+        if f.point is None:  # no trial point converged: the point before the fold
+            prev = br.points[f.index - 1]
+            o = describe(prob.model(prev.u[-1]), prev.u[:-1], None, 0.0, None, 0, 0.0)
         else:
-            hi = s
-    if best is None:
-        orb = describe(prob.model(u[-1]), u[:-1], None, 0.0, None, 0, 0.0)
-        return (u[-1], orb, orb)
-    us, T, DP = best
-    orb = describe(prob.model(us[-1]), us[:-1], DP, T, None, 0, 0.0)
-    return (us[-1], orb, orb)
-
-
-def _vertex(l3: np.ndarray) -> float:
-    """Extremum of the parabola through (s=−1, 0, 1; λ) — the fold's λ between equally spaced points."""
-    a = 0.5 * (l3[0] + l3[2]) - l3[1]
-    b = 0.5 * (l3[2] - l3[0])
-    if a == 0:
-        return float(l3[1])
-    s = np.clip(-b / (2 * a), -1, 1)
-    return float(l3[1] + b * s + a * s * s)
+            o = orbit(al.BranchPoint(f.point.u, f.point.tangent, f.point.info, 0))
+            prev = f.point
+        folds.append((prev.u[-1], o, o))
+    return out, folds, stopped
 
 
 def continue_in_k(model: SpringBlockModel, k_lo: float, k_hi: float, **kw) -> Branch:
@@ -241,7 +198,9 @@ def _branch(kind, fixed, hopf, pts, folds, stop) -> Branch:
         par = np.log10(par)
     c = np.polyfit(hp ** 2, par, 1) if len(bp) >= 2 else [0, par[0]]
     h_ext = float(c[-1]) if kind == "k" else float(10 ** c[-1])
-    fl = tuple(Fold(lam, 0.5 * (a.amplitude + b.amplitude), 0.25 * (a.x_max - a.x_min + b.x_max - b.x_min), a.z)
+    name = "k" if kind == "k" else "V"
+    fl = tuple(FoldOfCycles(name, lam, 0.5 * (a.amplitude + b.amplitude), p_c=hopf, fixed=dict(fixed),
+                            half_peak_to_peak=0.25 * (a.x_max - a.x_min + b.x_max - b.x_min), z=a.z)
                for lam, a, b in folds)
     return Branch(kind, fixed, hopf, h_ext, bp, fl, stop)
 
@@ -272,7 +231,7 @@ def plot_branch(branch: Branch, path, title: str = ""):
             ax.plot(np.where(~st, par, np.nan), np.where(~st, arr, np.nan), "k:")
         ax.axvline(branch.hopf_equilibrium, color="r", lw=0.6)
         for f in branch.folds:
-            ax.axvline(f.parameter, color="b", lw=0.6, ls="--")
+            ax.axvline(f.p_fold, color="b", lw=0.6, ls="--")
         ax.set_ylabel(lab, fontsize=8)
         ax.set_xlabel("k [N/m]" if branch.kind == "k" else "V [m/s]", fontsize=8)
         if branch.kind == "logV":
@@ -285,16 +244,6 @@ def plot_branch(branch: Branch, path, title: str = ""):
     out = atomic_savefig(fig, path)
     plt.close(fig)
     return out
-
-
-@dataclass(frozen=True)
-class Codim2Point:
-    """Where the fold-of-cycles curve meets the Hopf line (generalised Hopf / Bautin point)."""
-
-    V: float
-    k: float
-    iterations: int
-    curvatures: tuple[tuple[float, float], ...] = field(repr=False)
 
 
 def branch_curvature(model: SpringBlockModel, k_hopf: float, xis=(0.02, 0.04), rtol: float = 1e-11) -> float:
@@ -310,20 +259,30 @@ def branch_curvature(model: SpringBlockModel, k_hopf: float, xis=(0.02, 0.04), r
         u_pred = np.r_[z0, 1.0]
         e_xi = np.zeros(len(u_pred))
         e_xi[0] = 1.0
-        u = _correct(prob, u_pred, e_xi, 1e-11, maxiter=15)[0]
+        u = _correct(prob, u_pred, e_xi, 1e-11, maxiter=15)
         lams.append(u[-1] - 1.0)
     x2 = np.array(xis) ** 2
     # two amplitudes: eliminate the ξ⁴ term (Richardson)
     A = np.column_stack([x2, x2 ** 2])
+    # [ξ² ξ⁴] (c₂, c₄) = k(ξ)/k_H − 1 at the two amplitudes
     c2, c4 = np.linalg.solve(A, np.array(lams))
     return float(c2 * k_hopf)
 
 
 def codim2_velocity(make_model: Callable[[float], SpringBlockModel], hopf_k: Callable[[float], float],
-                    V_lo: float, V_hi: float, tol: float = 1e-4, maxiter: int = 30) -> Codim2Point:
+                    V_lo: float, V_hi: float, tol: float = 1e-4, maxiter: int = 30) -> GeneralisedHopfPoint:
     """The velocity where the branch curvature c₂ (fold-of-cycles ↔ Hopf) changes sign, by the
     Illinois (regula falsi) method in log V on c₂(V) computed from periodic orbits alone
-    (Hopf stiffness from the steady state's eigenvalues, cycles by shooting)."""
+    (Hopf stiffness from the steady state's eigenvalues, cycles by shooting).
+
+    Returns a :class:`~landau.codim2.GeneralisedHopfPoint` with p₁ = k (the Hopf stiffness there),
+    p₂ = V, the Illinois ``iterations`` and the ``history`` of (V, c₂); ω is not computed (NaN)."""
+    law = make_model(V_lo).law.name
+
+    def point(V, k, it, hist):
+        return GeneralisedHopfPoint(law, SPRING_BLOCK_PARAMETERS, float(k), float(V), math.nan, iterations=it,
+                                    history=tuple(hist))
+
     def c2(V):
         m = make_model(V)
         kh = hopf_k(V)
@@ -342,7 +301,7 @@ def codim2_velocity(make_model: Callable[[float], SpringBlockModel], hopf_k: Cal
         fc, kh = c2(10 ** c)
         hist.append((10 ** c, fc))
         if abs(b - a) < tol / np.log(10) or fc == 0:
-            return Codim2Point(10 ** c, kh, it, tuple(hist))
+            return point(10 ** c, kh, it, hist)
         if np.sign(fc) == np.sign(fb):
             b, fb = c, fc
             if side == -1:
@@ -354,19 +313,8 @@ def codim2_velocity(make_model: Callable[[float], SpringBlockModel], hopf_k: Cal
                 fb /= 2
             side = 1
         if abs(b - a) < tol / np.log(10):
-            return Codim2Point(10 ** c, kh, it, tuple(hist))
-    return Codim2Point(10 ** c, kh, maxiter, tuple(hist))
-
-
-@dataclass(frozen=True)
-class FoldPoint:
-    """A fold of cycles in the (V, k) plane (Fig. 12): a cycle with Floquet multiplier +1."""
-
-    V: float
-    k: float
-    kappa: float
-    amplitude: float
-    z: np.ndarray = field(repr=False)
+            return point(10 ** c, kh, it, hist)
+    return point(10 ** c, kh, maxiter, hist)
 
 
 def _fold_residual(make_V, lv: float, z: np.ndarray, rtol: float):
@@ -376,8 +324,12 @@ def _fold_residual(make_V, lv: float, z: np.ndarray, rtol: float):
 
 
 def fold_point(make_V: Callable[[float], SpringBlockModel], V_guess: float, z_guess, *, rtol: float = 1e-11,
-               tol: float = 1e-10, maxiter: int = 12) -> FoldPoint:
-    """Solve P(z; V) = z, det(DP − I) = 0 for (z, log V) at fixed k (Newton, finite-difference Jacobian)."""
+               tol: float = 1e-10, maxiter: int = 12, parameter: str = "V") -> FoldOfCycles:
+    """Solve P(z; V) = z, det(DP − I) = 0 for (z, log V) at fixed k (Newton, finite-difference Jacobian).
+
+    ``make_V`` maps the positive unknown (V by default; its name is ``parameter``) to a model; the fold
+    is a :class:`~landau.codim2.FoldOfCycles` with the model's V, k and κ (those not the unknown) in
+    ``fixed`` and the slip amplitude in m."""
     u = np.r_[np.asarray(z_guess, dtype=float), np.log10(V_guess)]
     for _ in range(maxiter):
         r, m = _fold_residual(make_V, u[-1], u[:-1], rtol)
@@ -389,20 +341,22 @@ def fold_point(make_V: Callable[[float], SpringBlockModel], V_guess: float, z_gu
             um[j] -= h
             J[:, j] = (_fold_residual(make_V, up[-1], up[:-1], rtol)[0]
                        - _fold_residual(make_V, um[-1], um[:-1], rtol)[0]) / (2 * h)
+        # D[P(z) − z; det(DP − I)] du = −[P(z) − z; det(DP − I)]  (Newton, central-difference Jacobian)
         du = np.linalg.solve(J, -r)
         u = u + du
         if np.linalg.norm(du) < tol * max(1.0, np.linalg.norm(u)):
             m = make_V(10 ** u[-1])
-            return FoldPoint(10 ** u[-1], m.k, m.kappa, float(u[0] * m.ell), u[:-1].copy())
+            fixed = {n: float(v) for n, v in (("V", m.V), ("k", m.k), ("kappa", m.kappa)) if n != parameter}
+            return FoldOfCycles(parameter, float(10 ** u[-1]), float(u[0] * m.ell), fixed=fixed, z=u[:-1].copy())
     raise ShootingError(f"fold-of-cycles Newton did not converge (last |du| = {np.linalg.norm(du):.3g})")
 
 
-def fold_curve(base: SpringBlockModel, V_fold: float, z_fold, kappas, **kw) -> list[FoldPoint]:
+def fold_curve(base: SpringBlockModel, V_fold: float, z_fold, kappas, **kw) -> list[FoldOfCycles]:
     """Two-parameter continuation of the fold of cycles in (V, κ) (Fig. 12): natural continuation in
     κ (list ``kappas`` ordered away from the starting κ), each point by :func:`fold_point` seeded by the
     previous one (secant extrapolation in log V and z).  Stops when Newton fails — near the
     codimension-two point the fold's amplitude → 0 and the condition det(DP − I) = 0 degenerates."""
-    pts: list[FoldPoint] = []
+    pts: list[FoldOfCycles] = []
     V, z = V_fold, np.asarray(z_fold, dtype=float)
     sigma, L = base.params["sigma"], base.params["L"]
     for kap in kappas:
@@ -410,13 +364,13 @@ def fold_curve(base: SpringBlockModel, V_fold: float, z_fold, kappas, **kw) -> l
         make_V = lambda VV, k=k: base.with_(V=VV, k=k)  # noqa: E731
         if len(pts) >= 2:
             a, b = pts[-2], pts[-1]
-            w = (np.log(kap) - np.log(b.kappa)) / (np.log(b.kappa) - np.log(a.kappa))
-            V = 10 ** (np.log10(b.V) + w * (np.log10(b.V) - np.log10(a.V)))
+            w = (np.log(kap) - np.log(b.value("kappa"))) / (np.log(b.value("kappa")) - np.log(a.value("kappa")))
+            V = 10 ** (np.log10(b.p_fold) + w * (np.log10(b.p_fold) - np.log10(a.p_fold)))
             z = b.z + w * (b.z - a.z)
         try:
             fp = fold_point(make_V, V, z, **kw)
         except (ShootingError, IntegratorError, np.linalg.LinAlgError):
             break
         pts.append(fp)
-        V, z = fp.V, fp.z
+        V, z = fp.p_fold, fp.z
     return pts

@@ -20,8 +20,9 @@ from landau.errors import NoHopfError
 from landau.io import atomic_write_json
 from landau.laws import get_law
 from landau.verify.springblock.checks import predict
-from landau.verify.springblock.continuation import (Branch, FoldPoint, codim2_velocity, continue_in_k, continue_in_logV,
-                                             fold_curve, plot_branch)
+from landau.codim2 import FoldOfCycles
+from landau.verify.springblock.continuation import (Branch, codim2_velocity, continue_in_k, continue_in_logV, fold_curve,
+                                                    plot_branch)
 from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.orbits import hopf_stiffness
 
@@ -59,20 +60,20 @@ def fig11_branch(c: float, steps: int = 60) -> Branch:
                             lam_bounds=(-5.0, np.log10(10 ** lvs[i + 1]) + 0.5))
 
 
-def fig12_fold_curve(c: float = 3e-4, branch: Branch | None = None) -> list[FoldPoint]:
+def fig12_fold_curve(c: float = 3e-4, branch: Branch | None = None) -> list[FoldOfCycles]:
     """Fig. 12: the fold of cycles continued in (V, κ) from the κ = 1e-3 fold of Fig. 11, towards the
     codimension-two point (larger κ) and to small κ (down to 5.6e-5)."""
     br = branch or fig11_branch(c, steps=45)
     if not br.folds:
         return []
     f = br.folds[0]
-    base = SpringBlockModel.build(get_law("spinodal"), f.parameter, br.points[0].orbit.k, {"c": c})
-    up = fold_curve(base, f.parameter, f.z, list(np.logspace(-3, -2.05, 12)))
-    down = fold_curve(base, f.parameter, f.z, list(np.logspace(-3, -4.25, 6)))
-    return sorted(up + down[1:], key=lambda p: p.kappa)
+    base = SpringBlockModel.build(get_law("spinodal"), f.p_fold, br.points[0].orbit.k, {"c": c})
+    up = fold_curve(base, f.p_fold, f.z, list(np.logspace(-3, -2.05, 12)))
+    down = fold_curve(base, f.p_fold, f.z, list(np.logspace(-3, -4.25, 6)))
+    return sorted(up + down[1:], key=lambda p: p.value("kappa"))
 
 
-def plot_fig12(c: float, folds: list[FoldPoint], v_star: float, path: Path) -> Path:
+def plot_fig12(c: float, folds: list[FoldOfCycles], v_star: float, path: Path) -> Path:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -92,7 +93,7 @@ def plot_fig12(c: float, folds: list[FoldPoint], v_star: float, path: Path) -> P
             kap.append(np.nan)
     fig, ax = plt.subplots(figsize=(6, 4.5))
     ax.loglog(Vs / p["V_s"], kap, "k-", label="Hopf (engine k_c)")
-    ax.loglog([f.V / p["V_s"] for f in folds], [f.kappa for f in folds], "b--o", ms=3,
+    ax.loglog([f.p_fold / p["V_s"] for f in folds], [f.value("kappa") for f in folds], "b--o", ms=3,
               label="fold of cycles (continued in V, kappa)")
     ax.loglog([v_star / p["V_s"]], [predict(law, v_star, {"c": c}).kc * p["L"] / sigma], "ko", mfc="w",
               label="codim-2 point (V*)")
@@ -145,13 +146,13 @@ def main(argv=None) -> int:
         plot_branch(br, out / f"fig6_{name}.png", f"Fig. 6 ({name}): cycles vs k at V/V* = 100")
         doc[f"fig6_{name}"] = {"hopf_k": br.hopf_equilibrium, "engine_kc": kc,
                                "rel_diff": br.hopf_equilibrium / kc - 1, "hopf_from_branch": br.hopf_extrapolated,
-                               "folds_k": [f.parameter for f in br.folds]}
+                               "folds_k": [f.p_fold for f in br.folds]}
         print(name, doc[f"fig6_{name}"], flush=True)
     branches = {}
     for c in (1e-3, 3e-4):
         br = branches[c] = fig11_branch(c)
         plot_branch(br, out / f"fig11_c{c:g}.png", f"Fig. 11 (spinodal, c = {c:g}): cycles vs V at kappa = 1e-3")
-        doc[f"fig11_c{c:g}"] = {"hopf_V": br.hopf_equilibrium, "folds_V": [f.parameter for f in br.folds]}
+        doc[f"fig11_c{c:g}"] = {"hopf_V": br.hopf_equilibrium, "folds_V": [f.p_fold for f in br.folds]}
         print(c, doc[f"fig11_c{c:g}"], flush=True)
     for name, params in (("dieterich", {}), ("modified-dieterich", {"c": 3e-4}), ("spinodal", {"c": 3e-4})):
         pt, ve = codim2(name, params)
@@ -160,8 +161,9 @@ def main(argv=None) -> int:
     folds = fig12_fold_curve(3e-4, branches[3e-4])
     vs = doc["codim2_spinodal"]["V_engine"]
     plot_fig12(3e-4, folds, vs, out / "fig12_c3e-4.png")
-    doc["fig12_c3e-4"] = {"fold_curve": [{"V": f.V, "kappa": f.kappa, "amplitude": f.amplitude} for f in folds],
-                          "fold_end_V_vs_engine_Vstar": folds[-1].V / vs - 1 if folds else None}
+    doc["fig12_c3e-4"] = {"fold_curve": [{"V": f.p_fold, "kappa": f.value("kappa"), "amplitude": f.amplitude}
+                                         for f in folds],
+                          "fold_end_V_vs_engine_Vstar": folds[-1].p_fold / vs - 1 if folds else None}
     print("fig12", doc["fig12_c3e-4"], flush=True)
     atomic_write_json(out / "reproductions.json", doc)
     print(f"wrote {out} in {time.time() - t0:.0f} s")
