@@ -400,7 +400,7 @@ class Derivation:
         there is no Hopf point).
 
         Each point is in the spring–block convention (Putelat et al. 2010, eq. 20): p = k,
-        dλ/dk = −Γ̄ + iΩ̄, with ``V``, ``kc``, ``Gamma_bar``, ``Omega_bar`` in ``extra``.
+        dλ/dk = −Γ̄ + iΩ̄, with ``V``, ``kc``, ``Gamma_bar``, ``Omega_bar`` as typed fields.
 
         Parameters
         ----------
@@ -441,7 +441,7 @@ class Derivation:
             quintic = {"Lambda5": values.pop("Lambda5")} if "Lambda5" in values else {}
             kc = float(res["kc"][i])
             out.append(spring_block_result(self.block.law.name, float(Vi), kc, float(res["omega_c"][i]),
-                                           params={**resolved, "V": float(Vi)}, extra=values,
+                                           params={**resolved, "V": float(Vi)},
                                            equilibrium=equilibrium(float(Vi), kc), **fields, **quintic))
         from landau.display import ResultList
 
