@@ -18,8 +18,9 @@ def _run(law_name: str, route: str, out) -> None:
     from sympy import QQ
     from sympy.polys.fields import field
 
-    import landau.rational as R
-    from landau import SpringBlock, cache, derive
+    import landau.derivation.rational as R
+    from landau import SpringBlock, derive
+    from landau.support import cache
     from landau.laws import FrictionLaw, get_law
 
     cache.set_enabled(False)

@@ -33,8 +33,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
 from landau.laws import get_law  # noqa: E402
 from landau.laws.law import v as v_slip  # noqa: E402
-from landau.multiscale import derive  # noqa: E402
-from landau.system import SpringBlock  # noqa: E402
+from landau.derivation.multiscale import derive  # noqa: E402
+from landau.systems.system import SpringBlock  # noqa: E402
 from vw_ranges import LAWS, vw_range  # noqa: E402
 
 ALL_LAWS = (*LAWS, "two-state-dieterich")
@@ -44,8 +44,8 @@ _DERIVE_SNIPPET = """
 import time
 t0 = time.perf_counter()
 from landau.laws import get_law
-from landau.system import SpringBlock
-from landau.multiscale import QUANTITIES, derive
+from landau.systems.system import SpringBlock
+from landau.derivation.multiscale import QUANTITIES, derive
 t1 = time.perf_counter()
 d = derive(SpringBlock(get_law({name!r})), list(QUANTITIES))
 t2 = time.perf_counter()

@@ -26,7 +26,7 @@ def dense_test_system(n: int, seed: int = 0):
     A₀ = −2I + a rotation in (y₁, y₂) + a small dense rational perturbation, so the rightmost
     eigenvalues are one complex pair near ±i; N has dense quadratic, cubic and tanh terms.
     """
-    from landau.system import DynamicalSystem
+    from landau.systems.system import DynamicalSystem
 
     rng = np.random.default_rng(seed)
     ys = sp.symbols(f"y1:{n + 1}", real=True)
@@ -62,7 +62,7 @@ def main(argv=None) -> None:
     ap.add_argument("--routes", default="taylor,symbolic")
     ap.add_argument("--json", action="store_true")
     a = ap.parse_args(argv)
-    from landau.general import hopf_normal_form
+    from landau.derivation.general import hopf_normal_form
 
     routes = a.routes.split(",")
     rows = []

@@ -14,7 +14,7 @@ import sympy as sp
 
 
 def _magnitude(z):
-    from landau.cx import cx_is_zero
+    from landau.support.cx import cx_is_zero
 
     try:
         return float(abs(complex(z.re, z.im)))
@@ -24,7 +24,7 @@ def _magnitude(z):
 
 def _char(self):
     from landau.errors import InputError
-    from landau.linear import lam
+    from landau.derivation.linear import lam
 
     J = sp.Matrix(self.jets.jacobian())
     E = sp.diag(*self.system.mass)
@@ -36,7 +36,7 @@ def _char(self):
 
 
 def _split(poly):
-    from landau.linear import w
+    from landau.derivation.linear import w
 
     re, im = sp.Integer(0), sp.Integer(0)
     for (m,), c in poly.terms():
@@ -47,7 +47,7 @@ def _split(poly):
 
 
 def _hopf_polys(self):
-    from landau.linear import W, w
+    from landau.derivation.linear import W, w
 
     P, Q = self._char
     Pr, Pi = _split(P)
@@ -61,8 +61,8 @@ def _hopf_polys(self):
 
 def install() -> None:
     """Put the direct routes in place of the fast ones (for this process)."""
-    import landau.cx as cx
-    from landau.linear import HopfLine
+    import landau.support.cx as cx
+    from landau.derivation.linear import HopfLine
 
     cx.magnitude = _magnitude
     for name, fn in (("_char", _char), ("_hopf_polys", _hopf_polys)):

@@ -174,7 +174,7 @@ def plot_work_precision(rows, title: str, path: Path, xlabel: str = "error") -> 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from landau.io import atomic_savefig
+    from landau.support.io import atomic_savefig
 
     fig, ax = plt.subplots(figsize=(7, 5))
     for method in dict.fromkeys(r["method"] for r in rows):
@@ -539,10 +539,10 @@ def section_lambda(quick: bool) -> None:
     import mpmath
     import sympy as sp
 
-    import landau.multiscale as ms
-    import landau.precision as precision
+    import landau.derivation.multiscale as ms
+    import landau.derivation.precision as precision
     from landau.laws import get_law
-    from landau.system import SpringBlock
+    from landau.systems.system import SpringBlock
 
     sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
     from vw_ranges import LAWS, vw_range
@@ -608,8 +608,8 @@ _DERIVE_SNIPPET = r"""
 import sys, time
 n, direct = int(sys.argv[1]), sys.argv[2] == "direct"
 from landau.laws import FrictionLaw
-from landau.system import SpringBlock
-from landau.multiscale import QUANTITIES, derive
+from landau.systems.system import SpringBlock
+from landau.derivation.multiscale import QUANTITIES, derive
 if direct:
     sys.path.insert(0, {bench!r})
     from direct_routes import install
@@ -827,7 +827,7 @@ def main(argv=None) -> int:
     print("\nsummary (goal, measure, value, target, result)")
     for g in GOALS:
         print("  " + g.line())
-    from landau.io import atomic_write_json, atomic_write_text
+    from landau.support.io import atomic_write_json, atomic_write_text
 
     md = ["# Benchmarks", "", "Machine: " + ", ".join(f"{k} {v}" for k, v in info.items()), "",
           "## Goals", "", "| goal | measure | value | target | result | note |", "|---|---|---|---|---|---|"]

@@ -83,7 +83,7 @@ checks = [landau.check(law, V, eps2) for eps2 in (1e-3, 4e-4, 1.6e-4)]
 checks[0]
 
 # %%
-from landau.display import ResultList
+from landau.report.display import ResultList
 
 # a list of results shows as one table
 ResultList(checks, columns=["eps2", "amplitude_predicted", "amplitude_simulated", "rel_error", "verdict"])
@@ -105,7 +105,7 @@ exponent
 # ## 5. Plot
 
 # %%
-from landau.plotting import plot_check
+from landau.report.plotting import plot_check
 
 plot_check(checks, title=f"{law.name}, V = {V:g} m/s")
 

@@ -74,7 +74,7 @@ checks[-1]
 assert all(c.agrees for c in checks) and np.all(np.abs(rel) < 1e-2), rel
 
 # %%
-from landau.plotting import plot_check
+from landau.report.plotting import plot_check
 
 plot_check(checks, title="van der Pol: max|x| against 2 sqrt(mu/beta)", units="x")
 plt.close("all")

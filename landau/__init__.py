@@ -8,25 +8,25 @@ Data flows one way: a friction law (:mod:`laws`) → a mechanical system
 from typing import TYPE_CHECKING
 
 from landau.errors import InputError, IntegratorError, LandauError, NoHopfError, SingularPointError
-from landau.hopf import Convention, Criticality, HopfResult
+from landau.derivation.hopf import Convention, Criticality, HopfResult
 
 if TYPE_CHECKING:  # the same names as _LAZY, for type checkers and the API documentation
     __version__: str
-    from landau.checking import CheckResult, Verdict, check
-    from landau.general import hopf_normal_form
-    from landau.linear import HopfLine, HopfPoint, critical_stiffness
-    from landau.multiscale import CONVENTION, Coefficient, Derivation, derive
-    from landau.system import DynamicalSystem, SpringBlock
+    from landau.analyses.checking import CheckResult, Verdict, check
+    from landau.derivation.general import hopf_normal_form
+    from landau.derivation.linear import HopfLine, HopfPoint, critical_stiffness
+    from landau.derivation.multiscale import CONVENTION, Coefficient, Derivation, derive
+    from landau.systems.system import DynamicalSystem, SpringBlock
 
 # The derivation engine (sympy) loads on first use of one of its names, so that importing a
 # subpackage (``landau.laws``, ``landau.verify.hybrid``) does not import it.
 _LAZY = {
-    "hopf_normal_form": "landau.general",
-    "HopfLine": "landau.linear", "HopfPoint": "landau.linear", "critical_stiffness": "landau.linear",
-    "CONVENTION": "landau.multiscale", "Coefficient": "landau.multiscale", "Derivation": "landau.multiscale",
-    "derive": "landau.multiscale",
-    "DynamicalSystem": "landau.system", "SpringBlock": "landau.system",
-    "CheckResult": "landau.checking", "Verdict": "landau.checking", "check": "landau.checking",
+    "hopf_normal_form": "landau.derivation.general",
+    "HopfLine": "landau.derivation.linear", "HopfPoint": "landau.derivation.linear", "critical_stiffness": "landau.derivation.linear",
+    "CONVENTION": "landau.derivation.multiscale", "Coefficient": "landau.derivation.multiscale", "Derivation": "landau.derivation.multiscale",
+    "derive": "landau.derivation.multiscale",
+    "DynamicalSystem": "landau.systems.system", "SpringBlock": "landau.systems.system",
+    "CheckResult": "landau.analyses.checking", "Verdict": "landau.analyses.checking", "check": "landau.analyses.checking",
 }
 
 

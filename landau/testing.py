@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
-from landau.checking import CheckResult, Verdict, check
+from landau.analyses.checking import CheckResult, Verdict, check
 
 
 def assert_prediction(target: Any, V: float | None = None, eps2: float = 1e-3,

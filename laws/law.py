@@ -383,7 +383,7 @@ class FrictionLaw(Law):
         solves numerically)."""
         if self.steady_state is not None:
             return tuple(self.steady_state)
-        from landau.budget import run_bounded
+        from landau.support.budget import run_bounded
         from landau.errors import BudgetError
 
         try:

@@ -1,11 +1,11 @@
-"""The pseudo-arclength engine (landau.arclength) on branches with closed forms."""
+"""The pseudo-arclength engine (landau.analyses.arclength) on branches with closed forms."""
 
 import math
 
 import numpy as np
 import pytest
 
-from landau.arclength import CorrectorError, StepControl, continue_branch, newton_corrector, tangent
+from landau.analyses.arclength import CorrectorError, StepControl, continue_branch, newton_corrector, tangent
 
 
 def circle(u):

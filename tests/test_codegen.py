@@ -1,4 +1,4 @@
-"""landau.codegen: the straight-line program (Tape) against lambdify on the same expression."""
+"""landau.codegen.formula: the straight-line program (Tape) against lambdify on the same expression."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from landau.codegen import Tape, dag_free_symbols, tree_size
+from landau.codegen.formula import Tape, dag_free_symbols, tree_size
 
 # plain symbols: assumption queries would walk the tree at every construction step
 x, y, z = sp.symbols("x y z")

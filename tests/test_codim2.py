@@ -1,12 +1,12 @@
-"""One generalised-Hopf point type and one fold-of-cycles type (landau.codim2), and typed HopfResult fields."""
+"""One generalised-Hopf point type and one fold-of-cycles type (landau.analyses.codim2), and typed HopfResult fields."""
 
 import math
 
 import pytest
 
-from landau.bautin import fold_of_cycles
-from landau.codim2 import FoldOfCycles, GeneralisedHopfPoint
-from landau.hopf import HopfResult, spring_block_result
+from landau.analyses.bautin import fold_of_cycles
+from landau.analyses.codim2 import FoldOfCycles, GeneralisedHopfPoint
+from landau.derivation.hopf import HopfResult, spring_block_result
 
 
 def _sb_point(**kw):

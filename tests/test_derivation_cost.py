@@ -1,16 +1,16 @@
 """The cheap routes taken for speed give the same symbolic results as the direct ones:
-pivot sizes in the complex Gaussian elimination (landau.cx) and the characteristic / Hopf
-polynomials of the Hopf line (landau.linear)."""
+pivot sizes in the complex Gaussian elimination (landau.support.cx) and the characteristic / Hopf
+polynomials of the Hopf line (landau.derivation.linear)."""
 
 import mpmath
 import sympy as sp
 
-import landau.cx as cx
-from landau.cx import Cx
+import landau.support.cx as cx
+from landau.support.cx import Cx
 from landau.laws import get_law
-from landau.linear import HopfLine, W, lam, w
-from landau.multiscale import derive
-from landau.system import SpringBlock
+from landau.derivation.linear import HopfLine, W, lam, w
+from landau.derivation.multiscale import derive
+from landau.systems.system import SpringBlock
 
 
 def _magnitude_by_conversion(z):

@@ -9,10 +9,10 @@ import pytest
 import sympy as sp
 
 from landau import SpringBlock, derive
-from landau.display import ResultList, html_table, text_table
-from landau.hopf import HopfResult
+from landau.report.display import ResultList, html_table, text_table
+from landau.derivation.hopf import HopfResult
 from landau.laws import get_law
-from landau.multiscale import CoefficientTable, Derivation
+from landau.derivation.multiscale import CoefficientTable, Derivation
 
 #: the display contract (not a benchmark): a result shows in under a second
 DISPLAY_BOUND_S = 1.0
@@ -33,9 +33,9 @@ def _no_symbolic_work(monkeypatch):
         monkeypatch.setattr(sp, name, forbidden)
     for name in ("simplify", "factor", "cancel", "together"):
         monkeypatch.setattr(sp.Expr, name, forbidden)
-    import landau.rational
+    import landau.derivation.rational
 
-    monkeypatch.setattr(landau.rational, "closed_form", forbidden)
+    monkeypatch.setattr(landau.derivation.rational, "closed_form", forbidden)
     monkeypatch.setattr(Derivation, "coefficient", forbidden)      # no derivation either
 
 
@@ -49,15 +49,15 @@ def _display(obj) -> dict[str, str]:
 
 
 def _results(d, table):
-    from landau.general import hopf_normal_form
-    from landau.regimes import regime_diagram
+    from landau.derivation.general import hopf_normal_form
+    from landau.analyses.regimes import regime_diagram
     from landau.scenes import get_scene, run_scene
-    from landau.system import DynamicalSystem
+    from landau.systems.system import DynamicalSystem
 
     x, y, mu, beta = *sp.symbols("x y mu", real=True), sp.Symbol("beta", positive=True)
     vdp = DynamicalSystem("van-der-Pol", (x, y), (y, (mu - beta * x ** 2) * y - x), (sp.Integer(1), sp.Integer(1)),
                           mu, (sp.Integer(0), sp.Integer(0)), {"beta": 1.0}, 0)
-    from landau.checking import CheckResult, Verdict
+    from landau.analyses.checking import CheckResult, Verdict
 
     mixed = Derivation(SpringBlock(get_law("spinodal"))).points([1e-4, 1e-2])     # a Hopf point and none
     hopf = HopfResult("toy", "p", 1.0, 2.0, (0.0, 0.0), complex(1.0, 0.5), -3.0, 0.25)

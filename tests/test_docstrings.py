@@ -9,7 +9,7 @@ import pytest
 
 import landau
 import landau.laws
-from landau.checking import check
+from landau.analyses.checking import check
 from landau.testing import assert_prediction
 
 
@@ -36,7 +36,7 @@ VERIFY_ENTRY_POINTS = (
 def _public_api():
     names = [(f"landau.{n}", getattr(landau, n)) for n in landau.__all__ if not n.startswith("_")]
     names += [(f"landau.laws.{n}", getattr(landau.laws, n)) for n in getattr(landau.laws, "__all__", ())]
-    names += [("landau.checking.check", check), ("landau.testing.assert_prediction", assert_prediction)]
+    names += [("landau.analyses.checking.check", check), ("landau.testing.assert_prediction", assert_prediction)]
     # the simulation and check entry points of the API reference (docs/api/verify.md)
     for path in VERIFY_ENTRY_POINTS:
         module, _, attr = path.rpartition(".")

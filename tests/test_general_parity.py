@@ -1,8 +1,8 @@
-"""The general Hopf engine (landau.general, landau.continuation): closed forms, independent routes, defects.
+"""The general Hopf engine (landau.derivation.general, landau.analyses.continuation): closed forms, independent routes, defects.
 
 Every check compares with a closed form, or with an independent computation: sympy's exact
 derivatives against the Taylor-arithmetic jets, Kuznetsov's projection formula
-(landau.lyapunov) against the Fredholm numbers, a system multiplied by its mass matrix against
+(landau.derivation.lyapunov) against the Fredholm numbers, a system multiplied by its mass matrix against
 the plain one, a system with E(p) against the same system written as ẏ = E(p)⁻¹f.
 """
 
@@ -17,12 +17,12 @@ import mpmath
 import pytest
 import sympy as sp
 
-from landau.continuation import equilibrium_branch, generalised_hopf
+from landau.analyses.continuation import equilibrium_branch, generalised_hopf
 from landau.errors import InputError, NoHopfError
-from landau.general import hopf_normal_form, kuznetsov_check
-from landau.hopf import HopfResult
-from landau.lyapunov import first_lyapunov
-from landau.system import DynamicalSystem
+from landau.derivation.general import hopf_normal_form, kuznetsov_check
+from landau.derivation.hopf import HopfResult
+from landau.derivation.lyapunov import first_lyapunov
+from landau.systems.system import DynamicalSystem
 
 x, y, z, w = sp.symbols("x y z w", real=True)
 mu, a, b, c = sp.symbols("mu a b c", real=True)

@@ -21,7 +21,7 @@ from landau.errors import BudgetError, DomainError, InputError, OutputError, Par
 from landau.laws import FrictionLaw, get_law
 from landau.laws.law import TABLE1, v
 from landau.laws.parse import parse_expression
-from landau.linear import HopfLine
+from landau.derivation.linear import HopfLine
 
 DIETERICH_MU = "a_v + a*log(v/V_s) + b*log(V_s*phi/L)"
 DIETERICH_RATE = "1 - v*phi/L"
@@ -163,7 +163,7 @@ def test_no_stable_steady_state_is_a_named_error():
 
 
 def test_symbolic_work_is_abandoned_at_its_budget():
-    from landau.budget import run_bounded
+    from landau.support.budget import run_bounded
 
     t0 = time.perf_counter()
     with pytest.raises(BudgetError, match="within 0.5 s"):
@@ -275,7 +275,7 @@ def test_no_hopf_message_gives_the_weakening_range(capsys):
 
 # --- medium items -------------------------------------------------------------------------------
 def test_latex_budget_is_a_named_error_with_a_hint(capsys, monkeypatch, tmp_path):
-    import landau.commands.derive as cmd
+    import landau.cli.derive as cmd
 
     monkeypatch.setattr(cmd, "LATEX_SECONDS", 0.05)
     code, out, err = run(capsys, "derive", "modified-dieterich", "--latex", str(tmp_path / "m.tex"))
@@ -303,7 +303,7 @@ def test_overflowing_ranges_are_refused(capsys, rng):
 
 
 def test_atomic_write_keeps_links_modes_and_leaves_no_temporary(tmp_path):
-    from landau.io import atomic_write, atomic_write_text
+    from landau.support.io import atomic_write, atomic_write_text
 
     real = tmp_path / "real.txt"
     real.write_text("old")
@@ -358,7 +358,7 @@ def test_undefined_function_through_the_python_api_is_refused():
 
 
 def test_ctrl_c_is_one_line(capsys, monkeypatch):
-    import landau.commands.laws as cmd
+    import landau.cli.laws as cmd
 
     def interrupted(args):
         raise KeyboardInterrupt

@@ -126,8 +126,8 @@ def test_tiny_inertia_lambda_is_returned_not_degenerate():
     Λ(M = 1e-50) = 1e-30·Λ(M = 1e-20), a tiny number with a definite sign, not the vanishing
     quasi-static value."""
     from landau.laws import get_law
-    from landau.multiscale import derive
-    from landau.system import SpringBlock
+    from landau.derivation.multiscale import derive
+    from landau.systems.system import SpringBlock
 
     d = derive(SpringBlock(get_law("dieterich")), ["Lambda"])
     Vs = [1e-5, 1e-3]

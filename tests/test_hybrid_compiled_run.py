@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from landau.kernels import generate_kernel
+from landau.codegen.kernels import generate_kernel
 from landau.verify.galvanetto.maps import gsp_start, model_for
 from landau.verify.galvanetto.model import build_model, one_block, two_blocks
 from landau.verify.hybrid import EngineOptions, ScipyStepper, simulate

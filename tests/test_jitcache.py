@@ -116,7 +116,7 @@ def euler(p, t, y, h):
 def _generated_decay():
     import sympy as sp
 
-    from landau.kernels import generate_kernel
+    from landau.codegen.kernels import generate_kernel
 
     y, lam = sp.symbols("y lam")
     return generate_kernel([y], [-lam * y], [lam], [2.0], name="decay")
@@ -189,8 +189,8 @@ def test_concurrent_processes_share_one_entry(cache):
 def test_generated_source_is_kept_with_the_derivations(tmp_path, monkeypatch):
     import sympy as sp
 
-    from landau import cache as dcache
-    from landau import kernels
+    from landau.support import cache as dcache
+    from landau.codegen import kernels
 
     monkeypatch.setenv("LANDAU_CACHE_DIR", str(tmp_path))
     monkeypatch.setattr(dcache, "_enabled", True)

@@ -3,15 +3,15 @@ of the same formulas (``Derivation.evaluate_mp``): over the velocity-weakening r
 built-in laws, approaching the extrema of μ_ss (Λ → 0/0, relative distance 1e-8 … 1e-2), at a
 tiny mass (inertia-free limit, terms ∝ M cancel) and in the ill-conditioned low-velocity end of
 the spinodal law.  The tolerance 1e-10 is the accuracy ``Derivation.evaluate`` promises for
-every returned value (:data:`landau.precision.REL_GOOD`)."""
+every returned value (:data:`landau.derivation.precision.REL_GOOD`)."""
 
 import mpmath
 import numpy as np
 import pytest
 
 from landau.laws import get_law
-from landau.multiscale import derive
-from landau.system import SpringBlock
+from landau.derivation.multiscale import derive
+from landau.systems.system import SpringBlock
 from vw_ranges import LAWS, vw_range
 
 GENERAL = ("spinodal", "nanoscale", "micron-scale")   # laws not rational in V: the float routes
@@ -115,7 +115,7 @@ def test_without_long_double_the_doubtful_points_go_to_mpmath_with_one_warning(m
     mpmath (still within 1e-10 of 50 digits), and a single warning names the cause."""
     import warnings
 
-    import landau.precision as precision
+    import landau.derivation.precision as precision
 
     monkeypatch.setattr(precision, "EXTENDED", False)
     monkeypatch.setattr(precision, "_warned", set())

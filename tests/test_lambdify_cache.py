@@ -1,6 +1,6 @@
-"""Lambdified formulas cached across processes (landau.codegen.lambdify): keyed by the formula's
+"""Lambdified formulas cached across processes (landau.codegen.formula.lambdify): keyed by the formula's
 structure, stored atomically in the one code folder, corrupt entries rebuilt, concurrent
-processes safe; and one rule for where every landau cache lives (landau.cachedir)."""
+processes safe; and one rule for where every landau cache lives (landau.support.cachedir)."""
 
 import os
 import subprocess
@@ -11,8 +11,9 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from landau import cache as dcache
-from landau import cachedir, codegen
+from landau.support import cache as dcache
+from landau.support import cachedir
+from landau.codegen import formula as codegen
 from landau.verify import jitcache
 
 x, y = sp.symbols("x y", real=True)
@@ -111,7 +112,7 @@ def test_unwritable_folder_runs_from_memory(tmp_path, monkeypatch):
 
 _WORKER = """
 import sympy as sp
-from landau import codegen
+from landau.codegen import formula as codegen
 x, y = sp.symbols("x y", real=True)
 f = codegen.lambdify([x, y], [sp.exp(x) * y + sp.exp(x) / (1 + y ** 2) + sp.sqrt(x)], "numpy")
 print(repr(float(f(0.25, 3.0)[0])))

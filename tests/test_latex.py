@@ -18,10 +18,10 @@ import pytest
 import sympy as sp
 
 from landau import SpringBlock, derive
-from landau import cache
+from landau.support import cache
 from landau.cli import main
 from landau.laws import BUILTIN, get_law
-from landau.latex import escape_text, symbol_latex
+from landau.report.latex import escape_text, symbol_latex
 
 PDFLATEX = shutil.which("pdflatex")
 
@@ -123,7 +123,7 @@ def test_symbols_as_a_paper_writes_them():
 def test_closed_form_in_latex_equals_the_numeric_route():
     # the factored P + ω_c Q of the LaTeX is the same function as the compiled general route:
     # Ruina's Λ at Table 1 (Putelat et al. 2010) and V = 1e-4, 50-digit evaluation of the closed form
-    from landau.rational import closed_form_parts
+    from landau.derivation.rational import closed_form_parts
 
     d = derive(SpringBlock(get_law("ruina")), ["Lambda"])
     parts = closed_form_parts(d, ["Lambda"])
@@ -171,7 +171,7 @@ def test_cache_hit_corrupt_entry_and_switch(tmp_path, monkeypatch):
 def test_second_derivation_of_the_same_law_reads_the_cache(monkeypatch):
     d1 = derive(SpringBlock(get_law("dieterich")), ["Lambda"])
     lam = d1.coefficient("Lambda").formula
-    from landau.multiscale import Derivation
+    from landau.derivation.multiscale import Derivation
 
     monkeypatch.setattr(Derivation, "formula", lambda self, name: pytest.fail("re-derived"))
     d2 = derive(SpringBlock(get_law("dieterich").with_defaults(a=0.03)), ["Lambda"])   # same equations
@@ -181,7 +181,7 @@ def test_second_derivation_of_the_same_law_reads_the_cache(monkeypatch):
 
 
 def test_flint_field_agrees_with_sympy_cancel():
-    from landau.rational import _FlintField
+    from landau.derivation.rational import _FlintField
 
     x, y, z = sp.symbols("x y z")
     K = _FlintField([x, y, z])
@@ -196,7 +196,7 @@ def test_flint_field_agrees_with_sympy_cancel():
 
 
 def test_progress_bars_are_silent_where_nobody_watches(capsys):
-    from landau.progress import progress, set_quiet, shown
+    from landau.support.progress import progress, set_quiet, shown
 
     # under pytest stderr is captured (not a terminal): no bar, and the iterable is unchanged
     assert not shown()

@@ -8,10 +8,10 @@ import pytest
 import sympy as sp
 
 from landau.errors import InputError
-from landau.linear import NO_HOPF_STABLE, HopfLine
-from landau.multiscale import Derivation
-from landau.transition import extrema, velocity_weakening_ranges
-from landau.system import M, V, SpringBlock, sigma
+from landau.derivation.linear import NO_HOPF_STABLE, HopfLine
+from landau.derivation.multiscale import Derivation
+from landau.analyses.transition import extrema, velocity_weakening_ranges
+from landau.systems.system import M, V, SpringBlock, sigma
 from landau.laws import TABLE1, get_law, v
 
 a, b, L, V_s = (TABLE1[n].symbol for n in ("a", "b", "L", "V_s"))

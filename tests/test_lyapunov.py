@@ -1,4 +1,4 @@
-"""Fredholm route (landau.multiscale) vs Kuznetsov's projection formula (landau.lyapunov).
+"""Fredholm route (landau.derivation.multiscale) vs Kuznetsov's projection formula (landau.derivation.lyapunov).
 
 Two independent routes must agree: sign(l₁) = sign(Λ) and the
 normalisation-free slip amplitude C (Putelat et al. 2010, eq. 23: max|x − x₀| ≈
@@ -21,10 +21,10 @@ import sympy as sp
 
 from landau.laws import get_law
 from landau.errors import InputError
-from landau.hopf import Criticality, HopfResult
-from landau.lyapunov import first_lyapunov, spring_block_lyapunov
-from landau.multiscale import derive
-from landau.system import DynamicalSystem, SpringBlock
+from landau.derivation.hopf import Criticality, HopfResult
+from landau.derivation.lyapunov import first_lyapunov, spring_block_lyapunov
+from landau.derivation.multiscale import derive
+from landau.systems.system import DynamicalSystem, SpringBlock
 from vw_ranges import LAWS, vw_range
 
 REL = 1e-8

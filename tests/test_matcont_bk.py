@@ -17,8 +17,8 @@ import math
 import pytest
 import sympy as sp
 
-from landau.continuation import equilibrium_branch, hopf_curve
-from landau.system import DynamicalSystem
+from landau.analyses.continuation import equilibrium_branch, hopf_curve
+from landau.systems.system import DynamicalSystem
 
 BK = "BifurcationKit.jl"
 
@@ -58,7 +58,7 @@ def test_lorenz84_hopf_points_found_with_another_pair_unstable(lorenz_branch):
     # largest real part never changes sign there: the crossing pair must be followed
     import numpy as np
 
-    from landau.general import NumericSystem
+    from landau.derivation.general import NumericSystem
 
     num = NumericSystem(LORENZ84, LORENZ84_PARAMS)
     others = 0
@@ -79,7 +79,7 @@ def test_lorenz84_fold(lorenz_branch):
     import mpmath
     import numpy as np
 
-    from landau.general import NumericSystem
+    from landau.derivation.general import NumericSystem
 
     assert len(lorenz_branch.folds) == 1
     fold = lorenz_branch.folds[0]
@@ -176,7 +176,7 @@ STUART_LANDAU = DynamicalSystem(
 
 
 def test_stuart_landau_normal_form():
-    from landau.general import hopf_normal_form
+    from landau.derivation.general import hopf_normal_form
 
     par = dict(mu=0.132, nu=1.0, c3=1.123, c5=0.2)
     h = hopf_normal_form(STUART_LANDAU, par, (-0.3, 0.1))

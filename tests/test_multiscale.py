@@ -9,8 +9,8 @@ import pytest
 import sympy as sp
 
 from landau.errors import NoHopfError
-from landau.multiscale import Derivation, derive
-from landau.system import M, V, SpringBlock, sigma
+from landau.derivation.multiscale import Derivation, derive
+from landau.systems.system import M, V, SpringBlock, sigma
 from landau.laws import TABLE1, get_law
 
 a, b, L, V_s = (TABLE1[n].symbol for n in ("a", "b", "L", "V_s"))
@@ -122,8 +122,8 @@ def test_vectorised_over_a_parameter():
 
 
 def test_general_route_reproduces_the_spring_block():
-    """landau.general (numeric Hopf point + 50-digit Fredholm) against the closed-form route."""
-    from landau.general import hopf_normal_form
+    """landau.derivation.general (numeric Hopf point + 50-digit Fredholm) against the closed-form route."""
+    from landau.derivation.general import hopf_normal_form
 
     block = SpringBlock(get_law("spinodal"))
     d = derive(block)
@@ -140,9 +140,9 @@ def test_general_route_reproduces_the_spring_block():
 
 
 def test_exactly_cancelled_route_matches_50_digits_and_finds_the_zero():
-    """landau.rational (field ℚ(V, ω)) against the general formula at 50 digits: Dieterich at
+    """landau.derivation.rational (field ℚ(V, ω)) against the general formula at 50 digits: Dieterich at
     Table 1, where float64 loses ~10 digits below 1e-6 m/s, and Λ ≡ 0 at M = 0 (Sec. 3.2)."""
-    from landau.rational import rational_forms
+    from landau.derivation.rational import rational_forms
 
     d = Derivation(SpringBlock(get_law("dieterich")))
     params = d.block.resolve()
@@ -161,7 +161,7 @@ def test_exactly_cancelled_route_matches_50_digits_and_finds_the_zero():
 def test_blocked_evaluation_equals_pointwise_pieces():
     """Large batches run in cache-sized blocks (multiscale._BLOCK): the result must be the same
     numbers as small pieces (elementwise arithmetic, per-point screening: bitwise identical)."""
-    from landau import multiscale
+    from landau.derivation import multiscale
 
     d = derive(SpringBlock(get_law("spinodal")), ["Lambda", "Gamma_bar"])
     Vs = np.logspace(-7.5, -3.4, 3 * multiscale._BLOCK + 17)

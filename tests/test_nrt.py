@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from landau.kernels import generate_kernel
+from landau.codegen.kernels import generate_kernel
 from landau.verify.hybrid.collocation import radau_tableau
 from landau.verify.hybrid.fastcall import addresses, collocation_at, radau_at
 from landau.verify.hybrid.nrt import borrowed, keep_alive

@@ -25,8 +25,8 @@ import pytest
 import sympy as sp
 
 from landau.laws import get_law
-from landau.multiscale import derive
-from landau.system import M, SpringBlock
+from landau.derivation.multiscale import derive
+from landau.systems.system import M, SpringBlock
 from vw_ranges import LAWS, vw_range
 
 NAMES = ["kc", "omega_c", "Gamma_bar", "Omega_bar", "Lambda", "chi", "C"]
@@ -125,10 +125,10 @@ RATIONAL_LAWS = ["dieterich", "ruina", "modified-dieterich"]
 @pytest.mark.parametrize("mass", [1.2, 1e-12, 0.0])
 @pytest.mark.parametrize("name", RATIONAL_LAWS)
 def test_exactly_cancelled_route_matches_mp(name, mass):
-    """The route large batches take (landau.rational: Horner with error bounds, exact ℚ
+    """The route large batches take (landau.derivation.rational: Horner with error bounds, exact ℚ
     fallback) against 50 digits on the same grid, plus V within 1e-6…1e-9 of the range ends
     and of the codimension-two point, where the bound sends points to the exact fallback."""
-    from landau.transition import codim2_points
+    from landau.analyses.transition import codim2_points
 
     d = _derivation(name)
     lo, hi, ends = vw_range(name)

@@ -11,9 +11,9 @@ import pytest
 from scipy.optimize import brentq
 
 from landau.laws import get_law
-from landau.lyapunov import spring_block_lyapunov
+from landau.derivation.lyapunov import spring_block_lyapunov
 from landau.scenes import run_scene
-from landau.system import SpringBlock
+from landau.systems.system import SpringBlock
 
 
 def _sigma_params(doc):
@@ -25,7 +25,7 @@ def _sigma_params(doc):
 @pytest.mark.parametrize("params", [{"c": 5e-4}, {"c": 2e-4, "b": 0.055}])
 def test_modified_dieterich_transition_velocity_against_kuznetsov(params):
     """V* of law (39) (Λ = 0 on the Hopf line) at other c and b against the root of Kuznetsov's
-    l₁(V) (landau.lyapunov, 40 digits, k_c re-located from the eigenvalues) found by brentq between
+    l₁(V) (landau.derivation.lyapunov, 40 digits, k_c re-located from the eigenvalues) found by brentq between
     V*(1 ∓ 1e-3).  Λ and l₁ have the same sign and a simple zero; l₁ is evaluated to ~1e-30, so the
     roots agree to brentq's xtol (1e-12 relative); 1e-8 leaves room for the relocation of k_c."""
     doc = run_scene("putelat2010/V-star-modified-dieterich", params)

@@ -5,8 +5,8 @@ import json
 import numpy as np
 import pytest
 
-from landau.cli import _jsonable, main
-from landau.plotting import criticality_bands, plot_check, plot_coefficients
+from landau.cli.app import _jsonable, main
+from landau.report.plotting import criticality_bands, plot_check, plot_coefficients
 
 #: the Dieterich codimension-two point (Λ = 0 on the Hopf line), Putelat et al. (2010) eq. (34)
 #: evaluated by the toolkit (README: V = 2.0693e-4 m/s)

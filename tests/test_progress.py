@@ -1,4 +1,4 @@
-"""Progress on a terminal, silence in --json mode and off a terminal (landau.progress)."""
+"""Progress on a terminal, silence in --json mode and off a terminal (landau.support.progress)."""
 
 import io
 import json
@@ -7,11 +7,11 @@ import sys
 import pytest
 
 from landau.cli import main
-from landau.progress import set_quiet
+from landau.support.progress import set_quiet
 
 
 class _Terminal(io.StringIO):
-    """A stand-in for an interactive stderr: ``landau.progress.shown`` asks ``sys.stderr.isatty()``."""
+    """A stand-in for an interactive stderr: ``landau.support.progress.shown`` asks ``sys.stderr.isatty()``."""
 
     def isatty(self) -> bool:
         return True

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from landau.transition import transition_curve
+from landau.analyses.transition import transition_curve
 from landau.paper_figures.putelat2010 import FIGURES, fig4, fig5, fig8, fig9, fig10, fig13, fig14, fig15, fig17
 from landau.paper_figures.putelat2010._common import derivation, fresh
 

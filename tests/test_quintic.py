@@ -1,8 +1,8 @@
 """Fifth order: the quintic amplitude coefficient Λ₅ and the second Lyapunov coefficient l₂.
 
-Two independent routes — the Fredholm condition at O(ε⁵) (landau.fredholm.quintic_coefficient, closed
+Two independent routes — the Fredholm condition at O(ε⁵) (landau.derivation.fredholm.quintic_coefficient, closed
 forms in the law's derivatives for the spring–block) and Kuznetsov's normal form with multilinear
-forms up to fifth order (landau.lyapunov.lyapunov_coefficients, eigenvectors from mpmath.eig,
+forms up to fifth order (landau.derivation.lyapunov.lyapunov_coefficients, eigenvectors from mpmath.eig,
 ⟨q, q⟩ = 1) — must agree on every built-in law at its codimension-two points, and both must give the
 closed forms of systems whose normal form is known exactly.
 """
@@ -16,12 +16,12 @@ import pytest
 import sympy as sp
 
 from landau import SpringBlock
-from landau.bautin import cycle_amplitudes, fold_of_cycles, quintic_normal_form
+from landau.analyses.bautin import cycle_amplitudes, fold_of_cycles, quintic_normal_form
 from landau.laws import get_law
-from landau.lyapunov import lyapunov_coefficients
-from landau.multiscale import Derivation, derive
-from landau.system import DynamicalSystem
-from landau.transition import codim2_points
+from landau.derivation.lyapunov import lyapunov_coefficients
+from landau.derivation.multiscale import Derivation, derive
+from landau.systems.system import DynamicalSystem
+from landau.analyses.transition import codim2_points
 
 R = sp.Rational
 mu, a_, b_, om_ = sp.symbols("mu a b omega", real=True)
@@ -76,7 +76,7 @@ def warped_3d() -> DynamicalSystem:
 
 
 def _both(system):
-    from landau.jets import Jets
+    from landau.derivation.jets import Jets
 
     jets = Jets(system)
     k = lyapunov_coefficients(system, NF, 0.0, dps=40, relocate=False, jets=jets)
@@ -186,7 +186,7 @@ def test_cli_codim2_prints_l2_and_Lambda5(capsys):
     from the coefficients there (they differ at O(V − V*))."""
     import json
 
-    from landau.bautin import spring_block_fold
+    from landau.analyses.bautin import spring_block_fold
     from landau.cli import main
 
     assert main(["derive", "dieterich", "--codim2", "1e-7:1e-2", "--json"]) == 0
@@ -211,7 +211,7 @@ def test_quintic_extreme_regimes_against_50_digits():
     """Law (39), c = 3e-4: the compiled float64 Λ₅ (with its round-off screens) against the same formula at
     50 digits just below the minimum of μ_ss (V_m(1 − 1e-6), where k_c → 0) and in the inertia-free limit
     (M = 1e-6, 1e-8 kg); the quasi-static DAE (M = 0) is the M → 0 limit of the ODE's value."""
-    from landau.transition import extrema
+    from landau.analyses.transition import extrema
 
     d = Derivation(SpringBlock(get_law("modified-dieterich")))
     p = {"c": 3e-4}

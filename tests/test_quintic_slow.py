@@ -1,7 +1,7 @@
 """Slow checks of the quintic amplitude equation against periodic orbits of the full spring–block.
 
 Near a codimension-two (Bautin) velocity V* the quintic amplitude equation predicts a fold of cycles at
-k_fold − k_c = −Λ²/(8Λ₅Γ̄) (landau.bautin.spring_block_fold).  The fold located by shooting
+k_fold − k_c = −Λ²/(8Λ₅Γ̄) (landau.analyses.bautin.spring_block_fold).  The fold located by shooting
 (Newton on P(z; k) = z, det(DP − I) = 0) must agree, with a relative error that vanishes like
 |V − V*|¹: the omitted terms (k − k_c)A|A|² and A|A|⁶ are O(|V − V*|) relative at the fold.
 Measured (this machine): Dieterich −11.5 %, −8.0 %, −4.7 %, −2.5 %, −1.3 % at δ = 0.16 … 0.01
@@ -19,8 +19,8 @@ import pytest
 
 from landau import SpringBlock
 from landau.laws import get_law
-from landau.multiscale import Derivation
-from landau.transition import codim2_points
+from landau.derivation.multiscale import Derivation
+from landau.analyses.transition import codim2_points
 
 pytestmark = pytest.mark.slow
 

@@ -12,7 +12,7 @@ import pytest
 import scipy.linalg
 import sympy as sp
 
-from landau.kernels import generate_kernel
+from landau.codegen.kernels import generate_kernel
 from landau.verify.hybrid.collocation import split_coefficients
 from landau.verify.hybrid.fastcall import addresses, radau_split_at
 from landau.verify.hybrid.radau import (A_RADAU, ALPHA_SPLIT, BETA_SPLIT, GAMMA_SPLIT, MU_REAL, T_SPLIT, TI_SPLIT,

@@ -18,7 +18,7 @@ import pytest
 import sympy as sp
 
 from landau.errors import InputError
-from landau.kernels import generate_kernel
+from landau.codegen.kernels import generate_kernel
 from landau.verify.hybrid.collocation import radau_tableau
 from landau.verify.hybrid.fastcall import addresses, rosenbrock_at
 from landau.verify.hybrid.radau import A_RADAU, E_ERR, MU_REAL, VINV

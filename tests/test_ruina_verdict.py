@@ -7,7 +7,7 @@ Verdict (docs/verdicts.md): the printed (35) is wrong; the correct form is
 
 (same denominators as the printed (33) and (35)).  Evidence here: the engine's closed form
 equals it at random rational points (50 digits), Kuznetsov's projection formula
-(landau.lyapunov) reproduces its C, and the quasi-static (M = 0) system — written
+(landau.derivation.lyapunov) reproduces its C, and the quasi-static (M = 0) system — written
 independently in log-variables — has l₁ = 0, as the correct form says and (35) denies.
 """
 
@@ -21,9 +21,9 @@ import pytest
 import sympy as sp
 
 from landau.laws import get_law
-from landau.lyapunov import first_lyapunov, spring_block_lyapunov
-from landau.multiscale import derive
-from landau.system import DynamicalSystem, SpringBlock
+from landau.derivation.lyapunov import first_lyapunov, spring_block_lyapunov
+from landau.derivation.multiscale import derive
+from landau.systems.system import DynamicalSystem, SpringBlock
 
 a, b, L, V, s, M = sp.symbols("a b L V sigma M", positive=True)
 D1 = M ** 2 * b * V ** 4 + 2 * L * s * a ** 2 * M * V ** 2 + L ** 2 * s ** 2 * a ** 3
@@ -73,7 +73,7 @@ def test_engine_closed_form_is_the_correct_form_not_the_printed_one(ruina):
 
 @pytest.mark.slow
 def test_engine_closed_form_is_exactly_the_correct_form(ruina):
-    # Coefficient.closed_form() re-derives Λ in ℚ(V, a, b, L, σ, M)(ω_c) (landau.rational): it must
+    # Coefficient.closed_form() re-derives Λ in ℚ(V, a, b, L, σ, M)(ω_c) (landau.derivation.rational): it must
     # be the correct form identically, not just at sample points (~20 s: multivariate gcds)
     engine = ruina.coefficient("Lambda").closed_form()
     sym = {x.name: x for x in engine.free_symbols}
@@ -122,7 +122,7 @@ def test_quasi_static_limit():
 
 
 def _quasi_static_ruina() -> DynamicalSystem:
-    """M = 0 spring–block with the Ruina law, written independently of landau.system:
+    """M = 0 spring–block with the Ruina law, written independently of landau.systems.system:
     states X = x − x₀ and θ = ln(Vφ/L); y = ln(ẋ/V) from the force balance
     kX = −σ(a y + b θ); Ẋ = V(eʸ − 1), θ̇ = −(V eʸ/L)(y + θ) (eqs 4, 26, 29 with M = 0)."""
     X, th = sp.symbols("X theta", real=True)

@@ -1,11 +1,11 @@
-"""A sign scan's points in doubt are settled at 50 digits (landau.multiscale): the 80-digit rung
+"""A sign scan's points in doubt are settled at 50 digits (landau.derivation.multiscale): the 80-digit rung
 of the precision ladder is climbed only where the float estimate cannot bound the 50-digit error."""
 
 import numpy as np
 
 from landau.laws import get_law
-from landau.multiscale import derive
-from landau.system import SpringBlock
+from landau.derivation.multiscale import derive
+from landau.systems.system import SpringBlock
 
 
 def _dps_used(d, monkeypatch):

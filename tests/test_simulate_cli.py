@@ -220,7 +220,7 @@ def test_failed_run_exits_1(monkeypatch, capsys, tmp_path):
     """A run that ends without reaching t_end: exit 1, the status and its advice, no files."""
     from dataclasses import replace
 
-    import landau.commands.simulate as S
+    import landau.cli.simulate as S
     from landau.verify.hybrid.result import Status
 
     failed = replace(_harmonic(), status=Status.ZENO, message=Status.ZENO.advice)

@@ -225,7 +225,7 @@ def test_codim2_point_from_orbits_matches_engine_vstar():
                                  "import os"])
 def test_generated_code_is_whitelisted_before_exec(src):
     from landau.errors import InputError
-    from landau.kernels import check_source
+    from landau.codegen.kernels import check_source
 
     with pytest.raises(InputError, match="refusing to compile"):
         check_source(src)

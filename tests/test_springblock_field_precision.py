@@ -2,7 +2,7 @@
 the same field evaluated from the law at 30 significant digits (mpmath).
 
 The kernels read a parameter vector extended by the field's parameter-only subexpressions (logs
-of parameters, products, quotients: :func:`landau.kernels.hoist_parameters`), computed once
+of parameters, products, quotients: :func:`landau.codegen.kernels.hoist_parameters`), computed once
 per model.  These tests check that the values they produce are those of eq. (4), to within
 the rounding that double precision allows at each point:
 
@@ -29,7 +29,7 @@ import pytest
 import sympy as sp
 
 from landau.errors import InputError
-from landau.kernels import DerivedParameters, hoist_parameters
+from landau.codegen.kernels import DerivedParameters, hoist_parameters
 from landau.laws import get_law
 from landau.laws.law import v as v_slip
 from landau.verify.springblock.model import SpringBlockModel, compile_variational

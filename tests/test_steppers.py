@@ -9,7 +9,7 @@ contract (``step()``, ``t``, ``y``, ``t_old``, ``dense_output()``, ``nfev``):
 * stiff linear y' = A y, A = [[998, 1998], [−999, −1999]] (eigenvalues −1, −1000; Hairer &
   Wanner, *Solving ODEs II*, IV.1), y(0) = (1, 0): y = (2e^{−t} − e^{−1000t}, −e^{−t} + e^{−1000t}).
 
-The fields are declared in sympy and compiled by :func:`landau.kernels.generate_kernel`; the
+The fields are declared in sympy and compiled by :func:`landau.codegen.kernels.generate_kernel`; the
 cost budgets compare with scipy's implementation of the same method run on the same kernel
 (an independent code: its step and evaluation counts are the reference).
 """
@@ -23,7 +23,7 @@ import pytest
 import sympy as sp
 
 from landau.errors import InputError
-from landau.kernels import check_source, generate_kernel
+from landau.codegen.kernels import check_source, generate_kernel
 from landau.verify.hybrid.compiled import CompiledDOPRI5, CompiledRadau5, CompiledSDIRK4
 from landau.verify.hybrid.rosenbrock import CompiledRODAS4
 from landau.verify.hybrid.steppers import ScipyStepper

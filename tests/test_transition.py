@@ -16,9 +16,9 @@ import numpy as np
 import pytest
 
 from landau.errors import InputError
-from landau.multiscale import Derivation
-from landau.system import SpringBlock
-from landau.transition import (codim2_points, critical_parameter, extrema, transition_curve,
+from landau.derivation.multiscale import Derivation
+from landau.systems.system import SpringBlock
+from landau.analyses.transition import (codim2_points, critical_parameter, extrema, transition_curve,
                                velocity_weakening_ranges)
 from landau.laws import FrictionLaw, get_law
 
@@ -252,7 +252,7 @@ def test_cli_transition_bad_input(argv, capsys):
 
 # --- regime diagram (Fig. 14a) -----------------------------------------------------
 def test_regime_diagram_split_and_quasi_static_comparison():
-    from landau.regimes import regime_diagram
+    from landau.analyses.regimes import regime_diagram
 
     d = D("spinodal")
     V = np.logspace(-7.5, math.log10(1.35e-3), 300)
@@ -272,7 +272,7 @@ def test_regime_diagram_split_and_quasi_static_comparison():
 def test_codim2_sign_scan_does_not_fall_back_to_mpmath(monkeypatch):
     # the scan needs only the sign of Lambda: points near V_m that are doubtful beyond 1e-10 but
     # certain in sign are settled in extended precision, not by the 50/80-digit route
-    from landau import transition as tr
+    from landau.analyses import transition as tr
 
     calls = []
     orig = Derivation._evaluate_mp_checked

@@ -78,8 +78,8 @@ def test_value_needs_known_parameters():
 
 def test_landau_hopf_spring_block_matches_the_linear_closed_form(capsys):
     from landau.cli import main
-    from landau.linear import HopfLine
-    from landau.system import SpringBlock
+    from landau.derivation.linear import HopfLine
+    from landau.systems.system import SpringBlock
     import json
 
     assert main(["hopf", "spring-block", "dieterich", "--V", "1e-4", "--json"]) == 0

@@ -15,11 +15,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from landau.commands.common import add_law_arguments, parse_floats, parse_velocities, resolve_law
+from landau.cli.common import add_law_arguments, parse_floats, parse_velocities, resolve_law
 from landau.errors import InputError
-from landau.progress import progress, set_quiet
-from landau.system import SpringBlock
-from landau.checking import MAX_TOLERANCE, SUBCRITICAL_TOLERANCE, SUPERCRITICAL_TOLERANCE, check
+from landau.support.progress import progress, set_quiet
+from landau.systems.system import SpringBlock
+from landau.analyses.checking import MAX_TOLERANCE, SUBCRITICAL_TOLERANCE, SUPERCRITICAL_TOLERANCE, check
 from landau.verify.springblock.checks import fitted_exponent
 
 AMPLITUDE_DEFINITION = ("amplitude_simulated = half peak-to-peak slip (max X - min X)/2 of the cycle, X = x - x0; "
@@ -81,7 +81,7 @@ def run(args) -> dict:
             doc["fitted_exponent"] = fits
     if args.work_precision:
         from landau.verify.springblock.workprecision import plot, run_work_precision
-        from landau.io import atomic_write_json, atomic_write_text
+        from landau.support.io import atomic_write_json, atomic_write_text
 
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)

@@ -8,7 +8,7 @@ a user is never left in front of a silent terminal.  A build loaded from the dis
 quick and prints nothing (the line appears only after :data:`NOTICE_AFTER` seconds).
 
 Which folders to keep between CI runs so that the build happens once: the landau cache root
-(``$LANDAU_CACHE_DIR``, else the per-user cache folder, see :mod:`landau.cachedir`) and numba's
+(``$LANDAU_CACHE_DIR``, else the per-user cache folder, see :mod:`landau.support.cachedir`) and numba's
 cache (``$NUMBA_CACHE_DIR`` when set, else the ``__pycache__`` folders of the installed package).
 
 This module imports numba only when a function is compiled.

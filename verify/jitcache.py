@@ -5,7 +5,7 @@ defines it, so code built from a string with ``exec`` would be compiled again in
 process.  Everything the toolkit generates at run time therefore goes through one mechanism:
 
 * :func:`cached_source_file` writes a generated source once to a file named by its SHA-256
-  (``landau_<tag>_<hash>.py``) in :func:`cache_dir`, atomically (:mod:`landau.io`); a file
+  (``landau_<tag>_<hash>.py``) in :func:`cache_dir`, atomically (:mod:`landau.support.io`); a file
   that does not hold the source its name promises is rewritten, and numba cache entries
   that cannot be read are removed first, so a corrupt entry is rebuilt, never loaded;
 * :func:`exec_cached` executes that file's code as a module registered in ``sys.modules``
@@ -15,7 +15,7 @@ process.  Everything the toolkit generates at run time therefore goes through on
   in place of the Python one, so that other generated code can import it by name.
 
 Two kinds of source use it: kernels generated from a symbolic declaration
-(:func:`load_generated`, used by :mod:`landau.kernels`) and compiled-method templates bound to
+(:func:`load_generated`, used by :mod:`landau.codegen.kernels`) and compiled-method templates bound to
 one kernel (:mod:`landau.verify.hybrid.specialise`).  A changed source is a new file (a new
 key); files are only ever replaced whole, so concurrent processes see either no file or a
 complete one.  When the folder cannot be written the code runs from memory (compiled once per
@@ -37,9 +37,9 @@ import types
 from pathlib import Path
 from typing import Iterable, Mapping
 
-from landau.cachedir import ENV_JIT, ENV_ROOT, code_dir  # noqa: F401  (re-exported names)
+from landau.support.cachedir import ENV_JIT, ENV_ROOT, code_dir  # noqa: F401  (re-exported names)
 from landau.errors import OutputError
-from landau.io import atomic_write_text
+from landau.support.io import atomic_write_text
 
 #: file-name prefix of generated kernels (:func:`load_generated`)
 _KERNEL_TAG = "kernel"
@@ -52,7 +52,7 @@ def cache_dir() -> Path:
     -------
     pathlib.Path
         ``$LANDAU_CACHE_DIR/jit``, else ``$LANDAU_JIT_DIR``, else ``jit`` in the per-user
-        cache folder of landau (the one rule of :func:`landau.cachedir.code_dir`); not created here.
+        cache folder of landau (the one rule of :func:`landau.support.cachedir.code_dir`); not created here.
     """
     return code_dir()
 

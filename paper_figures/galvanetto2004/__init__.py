@@ -18,7 +18,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from landau.io import atomic_savefig  # noqa: E402
+from landau.support.io import atomic_savefig  # noqa: E402
 from landau.verify.galvanetto import bifurcations as B  # noqa: E402
 from landau.verify.galvanetto.analysis import FIG_STEPPER, beta_diagram, gsp_orbit_trajectory, map_curve, trajectory  # noqa: E402
 from landau.verify.galvanetto.maps import iterate, model_for, one_block_cycle  # noqa: E402

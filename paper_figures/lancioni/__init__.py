@@ -1,7 +1,7 @@
 """Figures of Lancioni, Lenci & Galvanetto (frictional impact oscillator), from the toolkit.
 
 ``landau figures lancioni [--only fig2]``.  Slip branches come from the engine (Hopf point,
-:mod:`landau.general`) and shooting on the slip ODE; detached branches and orbits from the
+:mod:`landau.derivation.general`) and shooting on the slip ODE; detached branches and orbits from the
 hybrid engine (:mod:`landau.verify.lancioni`).  The φ̇_max section is φ̈ = 0, φ̇ > 0 (see
 :mod:`landau.verify.lancioni.diagrams` for why not the OCR's "φ = 0").  Belt v = −1 m/s (the
 direction with the Hopf point); Fig. 6: v = sin(πt/2).
@@ -18,7 +18,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from landau.io import atomic_savefig  # noqa: E402
+from landau.support.io import atomic_savefig  # noqa: E402
 from landau.verify.hybrid import simulate  # noqa: E402
 from landau.verify.lancioni import analysis as A  # noqa: E402
 from landau.verify.lancioni import diagrams as D  # noqa: E402

@@ -21,10 +21,10 @@ from matplotlib.lines import Line2D  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.mathtext import MathTextParser  # noqa: E402
 
-from landau.io import atomic_savefig  # noqa: E402
-from landau.multiscale import CoefficientTable, Derivation  # noqa: E402
-from landau.system import SpringBlock  # noqa: E402
-from landau.transition import velocity_weakening_ranges  # noqa: E402
+from landau.support.io import atomic_savefig  # noqa: E402
+from landau.derivation.multiscale import CoefficientTable, Derivation  # noqa: E402
+from landau.systems.system import SpringBlock  # noqa: E402
+from landau.analyses.transition import velocity_weakening_ranges  # noqa: E402
 from landau.laws import get_law  # noqa: E402
 
 #: the paper's Table 1 values used in labels
@@ -36,7 +36,7 @@ class SharedDerivation(Derivation):
     """A :class:`Derivation` that evaluates each (velocity grid, parameters) once.
 
     The figures plot several quantities of one law on one grid, through helpers that each
-    ask :meth:`Derivation.evaluate` for a few names (:mod:`landau.amplitude`); the points
+    ask :meth:`Derivation.evaluate` for a few names (:mod:`landau.analyses.amplitude`); the points
     near an extremum of μ_ss go to a 50-digit fallback on every such call.  Here a call
     whose names were already evaluated on the same grid and parameters gets the stored
     arrays (copies), and a call with new names evaluates only those and adds them.  Calls
@@ -72,7 +72,7 @@ class SharedDerivation(Derivation):
         return CoefficientTable({k: v.copy() for k, v in table.items()}, law=self.block.law.name, params=p)
 
 
-#: what the amplitude, growth-rate and apparent-stiffness panels use (:mod:`landau.amplitude`)
+#: what the amplitude, growth-rate and apparent-stiffness panels use (:mod:`landau.analyses.amplitude`)
 AMPLITUDE_NAMES = ("kc", "omega_c", "Gamma_bar", "Omega_bar", "Lambda", "chi")
 
 _DERIVATIONS: dict[str, SharedDerivation] = {}

@@ -10,8 +10,8 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
-from landau.amplitude import growth_rate
-from landau.transition import codim2_points
+from landau.analyses.amplitude import growth_rate
+from landau.analyses.transition import codim2_points
 from landau.paper_figures.putelat2010._common import derivation, mu_ss, panel_title, save, symlog_y, vlabel, vw_grid
 
 C = 3e-4

@@ -8,7 +8,7 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
-from landau.transition import codim2_points, transition_curve
+from landau.analyses.transition import codim2_points, transition_curve
 from landau.paper_figures.putelat2010._common import V_S, derivation, panel_title, save, symlog_y, vlabel, vw_grid
 
 C = 3e-4

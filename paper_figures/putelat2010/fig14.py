@@ -11,7 +11,7 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
-from landau.regimes import naive_crossover, regime_diagram, transition_line
+from landau.analyses.regimes import naive_crossover, regime_diagram, transition_line
 from landau.paper_figures.putelat2010._common import L, derivation, panel_title, save, vlabel, vw_grid
 
 CS = (1e-3, 7e-4, 5e-4, 3e-4)

@@ -9,7 +9,7 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
-from landau.transition import codim2_points
+from landau.analyses.transition import codim2_points
 from landau.paper_figures.putelat2010._common import derivation, mu_ss, panel_title, save, symlog_y, vlabel, vw_grid
 
 LAW, PARAMS, REF = "nanoscale", {}, ("spinodal", {"c": 1e-3})

@@ -13,7 +13,7 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
-from landau.amplitude import apparent_stiffness, growth_rate, slip_amplitude, slip_rate_amplitude
+from landau.analyses.amplitude import apparent_stiffness, growth_rate, slip_amplitude, slip_rate_amplitude
 from landau.paper_figures.putelat2010._common import AMPLITUDE_NAMES, derivation, mu_ss, panel_title, save, symlog_y, vlabel
 
 V = np.logspace(-7, -2, 240)

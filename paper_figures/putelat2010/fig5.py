@@ -8,7 +8,7 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
-from landau.transition import codim2_points
+from landau.analyses.transition import codim2_points
 from landau.paper_figures.putelat2010._common import derivation, panel_title, save, symlog_y, vlabel
 
 V = np.logspace(-7, -2, 300)

@@ -18,7 +18,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from landau.io import atomic_savefig  # noqa: E402
+from landau.support.io import atomic_savefig  # noqa: E402
 from landau.verify.skurativskyi.model import PAPER  # noqa: E402
 from landau.verify.skurativskyi.simulate import run  # noqa: E402
 from landau.verify.skurativskyi.sweep import SweepSpec, run_sweep  # noqa: E402

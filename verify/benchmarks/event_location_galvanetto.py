@@ -154,7 +154,7 @@ def run(out_dir: Path = Path("benchmarks_out")) -> list[dict]:
     for r in rows:
         lines.append(f"| {r['method']} | {r['rtol']:.0e} | {r['t_error']:.2e} | {r['x_error']:.2e} | "
                      f"{r['nfev']} | {1e3 * r['seconds']:.2f} |")
-    from landau.io import atomic_savefig, atomic_write_text
+    from landau.support.io import atomic_savefig, atomic_write_text
     atomic_write_text(out_dir / "event_location_galvanetto.md", "\n".join(lines) + "\n")
     import matplotlib
     matplotlib.use("Agg")

@@ -21,7 +21,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from landau.io import atomic_savefig, atomic_write_text  # noqa: E402
+from landau.support.io import atomic_savefig, atomic_write_text  # noqa: E402
 from landau.verify.hybrid import DOP853Stepper, simulate  # noqa: E402
 from landau.verify.lancioni.contact import default_options  # noqa: E402
 from landau.verify.lancioni.model import build, slip_state  # noqa: E402

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from landau.io import atomic_write_text
+from landau.support.io import atomic_write_text
 from landau.verify.skurativskyi.analysis import first_detachment, locate_grazing, locate_period_doubling
 from landau.verify.skurativskyi.sweep import SweepSpec, run_sweep
 

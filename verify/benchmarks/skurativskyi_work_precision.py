@@ -39,7 +39,7 @@ from pathlib import Path
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from landau.io import atomic_savefig, atomic_write_text
+from landau.support.io import atomic_savefig, atomic_write_text
 from landau.verify.skurativskyi.model import Params, accel, accel_grad
 from landau.verify.skurativskyi.simulate import rest_state, run
 

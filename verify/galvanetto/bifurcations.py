@@ -1092,11 +1092,11 @@ def hopf_c1(V: float = 0.5, gamma: float | None = None, delta: float | None = No
 
 
 def hopf_c1_normal_form(V: float = 0.5, gamma: float | None = None, delta: float | None = None, law=None):
-    """The damped one block's Hopf point c₁ located by the landau engine (:mod:`landau.general`) on
+    """The damped one block's Hopf point c₁ located by the landau engine (:mod:`landau.derivation.general`) on
     the smooth slip field of the kinetic law ``law`` (default eq. (7) with ``gamma``, ``delta``),
     with its amplitude equation: Λ > 0 means subcritical (an unstable cycle for c > c₁ whose
     displacement amplitude is C·sqrt(c − c₁))."""
-    from landau.general import hopf_normal_form
+    from landau.derivation.general import hopf_normal_form
     from landau.verify.galvanetto.smooth import damped_slip_system, kinetic_law
 
     law = kinetic_law(gamma, delta, law)

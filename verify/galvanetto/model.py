@@ -225,7 +225,7 @@ def _mode_kernel(neg_expr, pos_expr, n: int, code: str):
     p = (V, c, α, F_s1, F_s2, γ, δ) (its ``p`` holds placeholders)."""
     import sympy as sp
 
-    from landau.kernels import generate_kernel
+    from landau.codegen.kernels import generate_kernel
     from landau.laws.kinetic import DELTA, GAMMA, R
 
     xs, vs = sp.symbols(f"x1:{n + 1}"), sp.symbols(f"v1:{n + 1}")

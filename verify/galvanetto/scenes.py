@@ -68,7 +68,7 @@ def _c1(p):
     return {"value": h.p_c, "closed_form": B.hopf_c1(p["V"], p["gamma"], p["delta"]),
             "formula": "c1 = F_k'(-V) = gamma(1-delta)/(1+gamma V)^2", "omega_c": h.omega_c,
             "Lambda": h.Lambda, "criticality": h.criticality, "C": h.C,
-            "engine": "landau.general.hopf_normal_form on the smooth slip field"}
+            "engine": "landau.derivation.general.hopf_normal_form on the smooth slip field"}
 
 
 register(Scene(

@@ -9,7 +9,7 @@ origin:
 
 The Hopf parameter is the damping c; the Hopf point is c₁ = F_k⁻'(−V) (= γ(1 − δ)/(1 + γV)²
 for eq. 7) with ω = 1.  :func:`damped_slip_system` returns it as a
-:class:`landau.system.DynamicalSystem` so that the landau engine computes the criticality (Λ) —
+:class:`landau.systems.system.DynamicalSystem` so that the landau engine computes the criticality (Λ) —
 see :func:`landau.verify.galvanetto.bifurcations.hopf_c1_normal_form`.
 """
 
@@ -41,14 +41,14 @@ def damped_slip_system(V: float = 0.5, gamma: float | None = None, delta: float 
 
     Returns
     -------
-    landau.system.DynamicalSystem
+    landau.systems.system.DynamicalSystem
         States (u, w), Hopf parameter c, parameters V (and γ, δ if the law uses them).
 
     References
     ----------
     U. Galvanetto, J. Sound Vib. 276 (2004) 121–139, eqs (4a), (7), Sec. 4.2.
     """
-    from landau.system import DynamicalSystem
+    from landau.systems.system import DynamicalSystem
     law = kinetic_law(gamma, delta, law)
     u, w, c = sp.symbols("u w c", real=True)
     Vs = sp.Symbol("V", positive=True)

@@ -3,7 +3,7 @@
 Each method is a *factory over a kernel*: nothing here knows a model.  The field comes in
 as a :class:`~landau.verify.hybrid.kernel.Kernel` (numba ``fun(t, y, p, out)`` and, for the
 implicit methods, ``jac(t, y, p, out)``), generated from a model's symbolic declaration by
-:mod:`landau.kernels` or written by hand in numba.
+:mod:`landau.codegen.kernels` or written by hand in numba.
 
 * :func:`dopri5_method` builds, once per kernel function, the jitted Dormand–Prince 5(4)
   step (7 stages, FSAL, embedded 4th-order estimate; Dormand & Prince 1980; Hairer,
@@ -193,7 +193,7 @@ class _Collocation:
 def _as_kernel(fun, method: str, need_jac: bool) -> Kernel:
     if not isinstance(fun, Kernel):
         raise InputError(f"the compiled {method} stepper integrates a compiled Kernel (numba fun(t, y, p, out)); "
-                         f"got {type(fun).__name__} — generate one with landau.kernels.generate_kernel")
+                         f"got {type(fun).__name__} — generate one with landau.codegen.kernels.generate_kernel")
     if need_jac and fun.jac is None:
         raise InputError(f"the compiled {method} stepper needs the kernel's Jacobian (kernel {fun.name!r} has none)")
     return fun

@@ -2,7 +2,7 @@
 
 A :class:`Kernel` holds numba-compiled functions ``fun(t, y, p, out)`` (out = f(t, y; p))
 and optionally ``jac(t, y, p, out)`` (out = ∂f/∂y), with the packed parameter vector ``p``.
-Kernels are generated from a model's symbolic declaration by :mod:`landau.kernels` (or
+Kernels are generated from a model's symbolic declaration by :mod:`landau.codegen.kernels` (or
 written by hand in numba); the simulation layer only calls them.  A kernel is also callable
 like a Python right-hand side, ``kernel(t, y) -> f`` (the hybrid engine evaluates it at
 phase starts and the scipy steppers can use it directly).

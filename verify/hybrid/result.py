@@ -276,7 +276,7 @@ class Simulation:
         pathlib.Path
             The file written.
         """
-        from landau.io import atomic_write_text
+        from landau.support.io import atomic_write_text
 
         units = dict(units or {})
         names = self._names()
@@ -299,7 +299,7 @@ class Simulation:
         pathlib.Path
             The file written.
         """
-        from landau.io import atomic_write
+        from landau.support.io import atomic_write
 
         arrays = dict(t=self.t, y=self.y, state_names=np.array(self._names()), model=np.array(self.model),
                       status=np.array(self.status.value), t_final=np.array(self.t_final),

@@ -9,7 +9,7 @@ Why not a closure: numba keys the on-disk cache of a closure on its captured val
 captured dispatcher pickles differently in every process, so a closure would be recompiled
 (several seconds) in every process and its cache would grow without bound.  Here, when
 every bound kernel is a module-level function of an importable module — a hand-written
-kernel, or a generated one (:mod:`landau.kernels` keeps generated kernels as modules of the
+kernel, or a generated one (:mod:`landau.codegen.kernels` keeps generated kernels as modules of the
 code cache) — the specialised source (template + an import header) goes through the code
 cache of :mod:`landau.verify.jitcache`: it is written to a file named by its content hash
 and executed from there, and numba caches it like any module (``@jit`` =

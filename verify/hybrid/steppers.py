@@ -23,7 +23,7 @@ A compiled stepper only has to expose these members to be used by
 :func:`landau.verify.hybrid.simulate` without change: :mod:`landau.verify.hybrid.compiled`
 has DOPRI5, Radau IIA 5 and SDIRK4 as factories over a compiled
 :class:`~landau.verify.hybrid.kernel.Kernel` (generated from a symbolic declaration by
-:mod:`landau.kernels`).
+:mod:`landau.codegen.kernels`).
 """
 
 from __future__ import annotations

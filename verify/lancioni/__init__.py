@@ -5,13 +5,13 @@
   derived in its docstring —, chattering, Painlevé detection);
 * :mod:`landau.verify.lancioni.model` — eq. (1): the two-mass bar on a moving belt;
 * :mod:`landau.verify.lancioni.slip` — the smooth slip mode as a ``DynamicalSystem`` and its
-  Hopf point through :func:`landau.general.hopf_normal_form`;
+  Hopf point through :func:`landau.derivation.general.hopf_normal_form`;
 * :mod:`landau.verify.lancioni.analysis` — slip cycles, lift-off, stick onset, free-flight onset,
   Painlevé onset, simulated Hopf point;
 * :mod:`landau.verify.lancioni.period_adding` — the e_N = 0 detached branch near μ = 0.38957 (why
   eq. (1) has no period-adding cascade);
 * :mod:`landau.verify.lancioni.diagrams` — bifurcation diagrams in μ and the sinusoidal belt runs;
-* :mod:`landau.verify.lancioni.hopf_cli` — ``landau hopf impact-oscillator``.
+* :mod:`landau.cli.hopf_lancioni` — ``landau hopf impact-oscillator`` (in the command line package).
 
 Friction.  The paper's Coulomb coefficient μ is the default; every model, analysis and
 command also takes a velocity-dependent friction coefficient law

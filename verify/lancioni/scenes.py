@@ -44,7 +44,7 @@ register(Scene(
     source=f"{SRC}: Hopf bifurcation of the slip equilibrium at mu = 0.40977 (set 1, Fig. 2(b)); "
            "set 2 (m1=0.4, k_phi=25): 0.353 (Fig. 4(b)); reproduced with g = 10 m/s^2",
     compute=_hopf, defaults={**SET1, "lo": 0.0, "hi": 0.0}, published=0.40977, tolerance=_half_digit(0.4098, 4),
-    description="slip-mode ODE (eq. 1 with g_N = 0) through landau.general.hopf_normal_form "
+    description="slip-mode ODE (eq. 1 with g_N = 0) through landau.derivation.general.hopf_normal_form "
                 "(lo = hi = 0: the mu interval is found by scanning the model)"))
 
 

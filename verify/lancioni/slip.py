@@ -10,7 +10,7 @@ y = l cos φ, ẏ = −lφ̇ sin φ, ÿ = −lφ̇² cos φ − lφ̈ sin φ, an
 λ_T = −s μ λ_N with s = sign g_T, g_T = lφ̇ cos φ − v.  Substituting y, ÿ and λ_T, the two
 rows of eq. (1) are linear in the two unknowns (φ̈, λ_N); eliminating λ_N leaves the planar
 smooth ODE  φ̇ = ω,  ω̇ = F(φ, ω; μ)  (``slip_system``), which the landau engine
-(:func:`landau.general.hopf_normal_form`) analyses with μ as the Hopf parameter.
+(:func:`landau.derivation.general.hopf_normal_form`) analyses with μ as the Hopf parameter.
 
 Belt direction.  For a constant belt velocity v the slip equilibrium (ω = 0) has g_T = −v,
 so s = −sign v and neither the equilibrium nor its linearisation depend on |v|.  Only one
@@ -50,10 +50,10 @@ import numpy as np
 import sympy as sp
 
 from landau.errors import InputError, NoHopfError
-from landau.general import hopf_normal_form
-from landau.hopf import HopfResult
+from landau.derivation.general import hopf_normal_form
+from landau.derivation.hopf import HopfResult
 from landau.laws.velocity import V_SLIP, VelocityFriction
-from landau.system import DynamicalSystem
+from landau.systems.system import DynamicalSystem
 
 phi, omega = sp.symbols("phi omega", real=True)
 mu = sp.Symbol("mu", nonnegative=True)

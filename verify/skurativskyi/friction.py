@@ -5,7 +5,7 @@ friction from a :class:`~landau.laws.velocity.VelocityFriction` (default: the re
 Coulomb law c ẋ + T ẋ/sqrt(ẋ² + ε²) of their eq. (1), :func:`~landau.laws.velocity.regularised_coulomb`).
 :func:`compile_friction` prints the law's two branches F(v > 0), F(v < 0) and their
 derivatives (by sympy) as Python source, each branch a function of its own,
-checks that source with the whitelist of :func:`landau.kernels.check_source`, and compiles
+checks that source with the whitelist of :func:`landau.codegen.kernels.check_source`, and compiles
 
     friction(v, p)             -> F(v)
     friction_slope(v, p)       -> (F(v), dF/dv)
@@ -39,7 +39,7 @@ from sympy.printing.precedence import PRECEDENCE
 from sympy.printing.pycode import PythonCodePrinter
 
 from landau.errors import DomainError, InputError
-from landau.kernels import ALLOWED_BUILTINS, check_source
+from landau.codegen.kernels import ALLOWED_BUILTINS, check_source
 from landau.laws.velocity import V_SLIP, VelocityFriction
 
 

@@ -168,7 +168,7 @@ def run_sweep(omegas, direction: str = "up", out: str | os.PathLike | None = Non
                 raise InputError(f"{outp} holds a different sweep (ω list, chunking or direction); "
                                  "use another folder")
         else:
-            from landau.io import atomic_write_json
+            from landau.support.io import atomic_write_json
             atomic_write_json(mpath, meta)
     from tqdm import tqdm
 

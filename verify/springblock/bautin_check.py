@@ -2,7 +2,7 @@
 
 For a driving velocity V near a codimension-two velocity V* (Λ(V*) = 0) the quintic amplitude
 equation predicts a fold (saddle-node) of cycles at k_fold = k_c − Λ²/(8Λ₅Γ̄) with slip amplitude
-sqrt(−2Λ/Λ₅) (:func:`landau.bautin.spring_block_fold`).  Here the fold is located independently of
+sqrt(−2Λ/Λ₅) (:func:`landau.analyses.bautin.spring_block_fold`).  Here the fold is located independently of
 the engine: Newton on P(z; k) = z, det(DP − I) = 0 (:func:`~landau.verify.springblock.continuation.fold_point`)
 with the unknown log₁₀|k − k_c|, seeded by the prediction; k_c from the steady state's eigenvalues.
 The relative error of k_fold − k_c must vanish like |V − V*|¹ (the omitted terms
@@ -17,10 +17,10 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from landau.bautin import spring_block_fold
+from landau.analyses.bautin import spring_block_fold
 from landau.laws import get_law
-from landau.multiscale import Derivation
-from landau.system import SpringBlock
+from landau.derivation.multiscale import Derivation
+from landau.systems.system import SpringBlock
 from landau.verify.springblock.continuation import fold_point
 from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.orbits import hopf_stiffness, section_point
@@ -95,7 +95,7 @@ def compare_amplitude(d: Derivation, V: float, eta: float, params: Mapping[str, 
     """At k = k_c(V)(1 − η) a single cycle exists on both sides of V* when Λ₅ < 0; the cubic prediction
     diverges as Λ → 0, the quintic one stays finite.  The cycle is found by shooting (Newton on the
     return map, seeded by the quintic prediction; settling by direct integration if Newton fails)."""
-    from landau.bautin import cycle_amplitudes
+    from landau.analyses.bautin import cycle_amplitudes
     from landau.verify.springblock.checks import find_cycle
 
     p = d.block.resolve(params)
@@ -115,7 +115,7 @@ def compare_amplitude(d: Derivation, V: float, eta: float, params: Mapping[str, 
 if __name__ == "__main__":  # pragma: no cover - manual run
     import sys
 
-    from landau.transition import codim2_points
+    from landau.analyses.transition import codim2_points
 
     names = sys.argv[1:] or ["dieterich", "modified-dieterich", "spinodal"]
     cases = {"dieterich": ({}, 1.5e-4, 3e-4, [0.16, 0.08, 0.04, 0.02, 0.01]),

@@ -3,7 +3,7 @@
 * :func:`supercritical_check` — at k = k_c(1 − ε²) find the limit cycle (shooting on the
   Poincaré section, seeded by the prediction, with a direct-integration fallback) and
   compare its slip amplitude with C·sqrt(k_c − k) and its frequency with
-  ω_c − (Ω̄ + χΓ̄/Λ)(k_c − k) (:mod:`landau.multiscale` conventions).
+  ω_c − (Ω̄ + χΓ̄/Λ)(k_c − k) (:mod:`landau.derivation.multiscale` conventions).
 * :func:`subcritical_check` — at k = k_c(1 + ε²) show bistability (a perturbation below the
   unstable cycle decays, one above it grows into a large stick–slip cycle), bracket the
   unstable cycle by bisection on the initial amplitude, and locate it by shooting.
@@ -25,9 +25,9 @@ from typing import Mapping
 import numpy as np
 
 from landau.errors import InputError, NoHopfError
-from landau.hopf import Criticality, HopfResult, spring_block_result
-from landau.multiscale import derive
-from landau.system import SpringBlock
+from landau.derivation.hopf import Criticality, HopfResult, spring_block_result
+from landau.derivation.multiscale import derive
+from landau.systems.system import SpringBlock
 from landau.laws.law import FrictionLaw
 from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.orbits import PeriodicOrbit, ShootingError, section_point, shoot
@@ -41,7 +41,7 @@ _DERIVATIONS: dict[int, object] = {}
 
 
 def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = None) -> HopfResult:
-    """The engine's Hopf point of the spring–block at driving velocity V, as a :class:`~landau.hopf.HopfResult`.
+    """The engine's Hopf point of the spring–block at driving velocity V, as a :class:`~landau.derivation.hopf.HopfResult`.
 
     Spring–block convention (Putelat et al. 2010, eq. 20): p = k, dλ/dk = −Γ̄ + iΩ̄, Λ = 2 Re b, so the
     amplitude is C·sqrt|k − k_c| on the side where the cycle exists and the frequency

@@ -9,13 +9,13 @@ DG = [DP − I | ∂P/∂λ] (DP from the variational equations, ∂P/∂λ by c
   the crossing of the leading eigenvalue pair (Brent on max Re λ(J)); the first cycle is solved
   with its slip amplitude ξ fixed small and λ free (the branch's amplitude² is linear in λ
   near the Hopf point, which gives the branch's own Hopf estimate).
-* **Continuation** — :func:`landau.arclength.continue_branch` (predictor along the tangent,
+* **Continuation** — :func:`landau.analyses.arclength.continue_branch` (predictor along the tangent,
   corrector by Newton on [G; τ·(u − u_pred)] = 0, step adapted to Newton's effort); this module
   defines the problem (G, DG) only.
 * **Folds of cycles** (saddle-nodes) — sign changes of the λ-component of the tangent, refined
-  by bisection in the arclength (:func:`landau.arclength.refine_fold`); a Floquet multiplier
-  crosses +1 there.  Each is a :class:`landau.codim2.FoldOfCycles`; the velocity where the fold
-  meets the Hopf line (:func:`codim2_velocity`) a :class:`landau.codim2.GeneralisedHopfPoint`.
+  by bisection in the arclength (:func:`landau.analyses.arclength.refine_fold`); a Floquet multiplier
+  crosses +1 there.  Each is a :class:`landau.analyses.codim2.FoldOfCycles`; the velocity where the fold
+  meets the Hopf line (:func:`codim2_velocity`) a :class:`landau.analyses.codim2.GeneralisedHopfPoint`.
 """
 
 from __future__ import annotations
@@ -26,10 +26,10 @@ from typing import Callable
 
 import numpy as np
 
-from landau import arclength as al
-from landau.codim2 import SPRING_BLOCK_PARAMETERS, FoldOfCycles, GeneralisedHopfPoint
+from landau.analyses import arclength as al
+from landau.analyses.codim2 import SPRING_BLOCK_PARAMETERS, FoldOfCycles, GeneralisedHopfPoint
 from landau.errors import IntegratorError
-from landau.progress import progress as bar
+from landau.support.progress import progress as bar
 from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.orbits import (PeriodicOrbit, ShootingError, describe, hopf_parameter, hopf_stiffness,
                                               return_map, section_point)
@@ -212,7 +212,7 @@ def plot_branch(branch: Branch, path, title: str = ""):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from landau.io import atomic_savefig
+    from landau.support.io import atomic_savefig
 
     par = np.array([b.parameter for b in branch.points])
     o = [b.orbit for b in branch.points]
@@ -275,7 +275,7 @@ def codim2_velocity(make_model: Callable[[float], SpringBlockModel], hopf_k: Cal
     Illinois (regula falsi) method in log V on c₂(V) computed from periodic orbits alone
     (Hopf stiffness from the steady state's eigenvalues, cycles by shooting).
 
-    Returns a :class:`~landau.codim2.GeneralisedHopfPoint` with p₁ = k (the Hopf stiffness there),
+    Returns a :class:`~landau.analyses.codim2.GeneralisedHopfPoint` with p₁ = k (the Hopf stiffness there),
     p₂ = V, the Illinois ``iterations`` and the ``history`` of (V, c₂); ω is not computed (NaN)."""
     law = make_model(V_lo).law.name
 
@@ -328,7 +328,7 @@ def fold_point(make_V: Callable[[float], SpringBlockModel], V_guess: float, z_gu
     """Solve P(z; V) = z, det(DP − I) = 0 for (z, log V) at fixed k (Newton, finite-difference Jacobian).
 
     ``make_V`` maps the positive unknown (V by default; its name is ``parameter``) to a model; the fold
-    is a :class:`~landau.codim2.FoldOfCycles` with the model's V, k and κ (those not the unknown) in
+    is a :class:`~landau.analyses.codim2.FoldOfCycles` with the model's V, k and κ (those not the unknown) in
     ``fixed`` and the slip amplitude in m."""
     u = np.r_[np.asarray(z_guess, dtype=float), np.log10(V_guess)]
     for _ in range(maxiter):

@@ -15,9 +15,9 @@ so that steady sliding is the origin.  The right-hand side is written from the s
 law (logs of products expanded so that ln v = ln V + w is never formed from an underflowed
 v); its parameter-only subexpressions (the logarithms of parameters that this expansion
 produces, products and quotients of parameters) become derived entries of the parameter vector,
-computed once per model (:func:`landau.kernels.hoist_parameters`), so that a call of the
+computed once per model (:func:`landau.codegen.kernels.hoist_parameters`), so that a call of the
 compiled field does only state-dependent work; the field and its exact Jacobian are then
-generated and compiled by :mod:`landau.kernels` (common-subexpression elimination, the
+generated and compiled by :mod:`landau.codegen.kernels` (common-subexpression elimination, the
 whitelist of generated syntax, numba through the cross-process code cache).  The dimensionless parameters of the paper (eq. 6) are
 m = M V_*²/(σL) and κ = kL/σ (σ = Mg); :meth:`SpringBlockModel.from_dimensionless`
 builds the model from (m, κ, V/V_*).
@@ -35,8 +35,8 @@ import numpy as np
 import sympy as sp
 
 from landau.errors import InputError
-from landau.kernels import DerivedParameters, compile_source, hoist_parameters, kernel_source
-from landau.system import SpringBlock
+from landau.codegen.kernels import DerivedParameters, compile_source, hoist_parameters, kernel_source
+from landau.systems.system import SpringBlock
 from landau.laws.law import FrictionLaw, v as v_slip
 
 
@@ -48,7 +48,7 @@ class CompiledLaw:
     parameters in the order of ``param_names``, then M, σ, k, V, ℓ, μ₀, φ₀) followed by the
     parameter-only subexpressions of the field (logarithms of parameters, products and
     quotients), evaluated once per model rather than at every call
-    (:func:`landau.kernels.hoist_parameters`).
+    (:func:`landau.codegen.kernels.hoist_parameters`).
     """
 
     law_name: str
@@ -120,7 +120,7 @@ def compile_law(law: FrictionLaw) -> CompiledLaw:
 
 def _compile(ys, f, psyms, label, param_names, derived) -> CompiledLaw:
     """The field ``f`` over the states ``ys`` and parameter vector ``psyms``, through the kernel
-    generator of :mod:`landau.kernels` (exact Jacobian by sympy, common subexpressions, the
+    generator of :mod:`landau.codegen.kernels` (exact Jacobian by sympy, common subexpressions, the
     whitelist of generated syntax, the cross-process code cache)."""
     src = kernel_source(ys, f, psyms)
     c = compile_source(src, label)
@@ -155,7 +155,7 @@ def compile_variational(law: FrictionLaw) -> CompiledLaw:
 class SpringBlockModel:
     """Eq. (4) for one law at driving velocity V [m/s] and stiffness k [N/m] (SI units).
 
-    ``params`` is the full parameter dict of :meth:`landau.system.SpringBlock.resolve`
+    ``params`` is the full parameter dict of :meth:`landau.systems.system.SpringBlock.resolve`
     (law parameters, M, g, sigma).  ``ell`` is the length unit of ξ (the law's L if it has one).
     """
 

@@ -17,10 +17,10 @@ import numpy as np
 from scipy.optimize import brentq
 
 from landau.errors import NoHopfError
-from landau.io import atomic_write_json
+from landau.support.io import atomic_write_json
 from landau.laws import get_law
 from landau.verify.springblock.checks import predict
-from landau.codim2 import FoldOfCycles
+from landau.analyses.codim2 import FoldOfCycles
 from landau.verify.springblock.continuation import (Branch, codim2_velocity, continue_in_k, continue_in_logV, fold_curve,
                                                     plot_branch)
 from landau.verify.springblock.model import SpringBlockModel
@@ -79,7 +79,7 @@ def plot_fig12(c: float, folds: list[FoldOfCycles], v_star: float, path: Path) -
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from landau.io import atomic_savefig
+    from landau.support.io import atomic_savefig
 
     law = get_law("spinodal")
     p = law.defaults()
@@ -112,9 +112,9 @@ def codim2(name: str, params: dict, V_lo: float | None = None, V_hi: float | Non
     Putelat et al. 2010, eq. 31), ∓ 10 %."""
     law = get_law(name)
     if V_lo is None or V_hi is None:
-        from landau.multiscale import Derivation
-        from landau.system import SpringBlock
-        from landau.transition import codim2_points
+        from landau.derivation.multiscale import Derivation
+        from landau.systems.system import SpringBlock
+        from landau.analyses.transition import codim2_points
         q = SpringBlock(law).resolve(params)
         v_hat = float(np.sqrt(q["a"] * q["sigma"] * q["L"] / q["M"]))
         pts = codim2_points(Derivation(SpringBlock(law)), 1e-5 * v_hat, 1e2 * v_hat, params)

@@ -158,7 +158,7 @@ def plot(wp: WorkPrecision, path: Path) -> Path:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from landau.io import atomic_savefig
+    from landau.support.io import atomic_savefig
 
     fig, ax = plt.subplots(figsize=(7, 5))
     for method in dict.fromkeys(p.method for p in wp.points):

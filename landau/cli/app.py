@@ -1,0 +1,213 @@
+"""The ``landau`` command line.
+
+Each sub-command lives in its own module exposing ``configure(parser)``,
+``run(args) -> dict`` (the JSON document) and ``render(doc) -> str`` (the human
+table).  This module only wires them up and enforces the contract: ``--json`` prints
+one JSON document on stdout; bad input exits with code 2 and a one-line message on
+stderr naming what is wrong.
+"""
+
+from __future__ import annotations
+
+import argparse
+import difflib
+import importlib
+import importlib.util
+import json
+import math
+import numbers
+import os
+import re
+import sys
+from typing import Any, Sequence
+
+from landau.errors import InputError, LandauError
+
+#: sub-command -> module implementing it
+COMMANDS: dict[str, str] = {
+    "linear": "landau.cli.linear",
+    "derive": "landau.cli.derive",
+    "scene": "landau.cli.scene",
+    "laws": "landau.cli.laws",
+    "transition": "landau.cli.transition",
+    "plot": "landau.cli.plot",
+    "simulate": "landau.cli.simulate",
+    "hopf": "landau.cli.hopf",
+    "figures": "landau.paper_figures.cli",
+    "verify": "landau.verify.cli",
+}
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse that raises instead of exiting, so every bad input becomes exit 2 with one line."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        raise InputError(f"{self.prog}: {message}")
+
+
+def _first_line(exc: BaseException) -> str:
+    text = str(exc).strip()
+    return (text.splitlines()[0] if text else type(exc).__name__)[:500]
+
+
+def _jsonable(obj: Any) -> Any:
+    if isinstance(obj, dict):
+        return {str(k): _jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_jsonable(v) for v in obj]
+    if isinstance(obj, bool) or obj is None or isinstance(obj, str):
+        return obj
+    if isinstance(obj, numbers.Integral):
+        return int(obj)
+    try:
+        x = float(obj)
+    except (TypeError, ValueError):
+        return str(obj)
+    return x if math.isfinite(x) else None
+
+
+def _version() -> str:
+    from landau import __version__
+
+    return __version__
+
+
+class _VersionAction(argparse.Action):
+    """``--version``: the installed version, looked up only when asked for."""
+
+    def __init__(self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, help=None):
+        super().__init__(option_strings=option_strings, dest=dest, default=default, nargs=0,
+                         help=help or "show the version and exit")
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(f"landau {_version()}")
+        parser.exit()
+
+
+def build_parser(only: str | None = None) -> tuple[argparse.ArgumentParser, dict[str, Any]]:
+    """The argument parser; with ``only``, just that sub-command's module is imported (fast start)."""
+    parser = _Parser(prog="landau", description=__doc__.splitlines()[0])
+    parser.add_argument("--version", action=_VersionAction)
+    sub = parser.add_subparsers(dest="command", parser_class=_Parser)
+    modules: dict[str, Any] = {}
+    for name, modname in COMMANDS.items():
+        if only is not None and name != only:
+            sub.add_parser(name)
+            continue
+        if importlib.util.find_spec(modname.rsplit(".", 1)[0]) is None:
+            continue
+        try:
+            spec = importlib.util.find_spec(modname)
+        except ModuleNotFoundError:
+            spec = None
+        if spec is None:
+            continue
+        mod = importlib.import_module(modname)
+        p = sub.add_parser(name, help=(mod.__doc__ or "").strip().splitlines()[0] if mod.__doc__ else None,
+                           description=mod.__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+        p.add_argument("--json", action="store_true", help="print one JSON document on stdout")
+        mod.configure(p)
+        modules[name] = mod
+    return parser, modules
+
+
+#: a negative number in exponent notation ("-1e-3"), which argparse would read as an option
+_NEGATIVE_NUMBER = re.compile(r"-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?(,.*)?")
+
+
+def _join_negative_values(argv: list[str]) -> list[str]:
+    """``--eps2 -1e-3`` → ``--eps2=-1e-3``: a value that looks like a negative number is the
+    option's value (it is then checked, and refused, as a value), never a new option."""
+    out: list[str] = []
+    i = 0
+    while i < len(argv):
+        tok = argv[i]
+        if (tok.startswith("--") and "=" not in tok and i + 1 < len(argv)
+                and _NEGATIVE_NUMBER.fullmatch(argv[i + 1])):
+            out.append(f"{tok}={argv[i + 1]}")
+            i += 2
+            continue
+        out.append(tok)
+        i += 1
+    return out
+
+
+def _did_you_mean(word: str, choices) -> str:
+    close = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    argv = list(sys.argv[1:] if argv is None else argv)
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        print("landau: interrupted", file=sys.stderr)
+        return 130
+
+
+def _main(argv: list[str]) -> int:
+    if any(not isinstance(a, str) for a in argv):
+        print("landau: error: every argument must be a string", file=sys.stderr)
+        return 2
+    argv = _join_negative_values(argv)
+    try:
+        if argv and not argv[0].startswith("-") and argv[0] not in COMMANDS:
+            raise InputError(f"unknown command {argv[0]!r}{_did_you_mean(argv[0], COMMANDS)} "
+                             f"(commands: {', '.join(COMMANDS)})")
+        if argv in (["--version"], ["-V"]):
+            print(f"landau {_version()}")
+            return 0
+        if not argv:
+            argv = ["derive", "dieterich", "--V", "1e-5,2.6e-5,1e-4,1e-3"]
+        parser, modules = build_parser(argv[0] if argv[0] in COMMANDS else None)
+        args = parser.parse_args(argv)
+        if args.command is None:
+            parser.print_help()
+            return 2
+        mod = modules[args.command]
+        doc = mod.run(args)
+    except InputError as exc:
+        print(f"landau: error: {_first_line(exc)}", file=sys.stderr)
+        return 2
+    except LandauError as exc:
+        print(f"landau: {type(exc).__name__}: {_first_line(exc)}", file=sys.stderr)
+        return 1
+    except OSError as exc:
+        # an output that cannot be written (a folder, a missing or read-only place, a full disk)
+        where = f" {exc.filename}" if getattr(exc, "filename", None) else ""
+        print(f"landau: error: cannot write{where}: {exc.strerror or exc}", file=sys.stderr)
+        return 2
+    except (RecursionError, MemoryError) as exc:
+        print(f"landau: error: the input is too large or too deeply nested ({type(exc).__name__})", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        raise
+    except Exception as exc:  # noqa: BLE001 - the CLI promises one line, never a traceback
+        print(f"landau: internal error: {type(exc).__name__}: {_first_line(exc)} (please report this with the "
+              "command line)", file=sys.stderr)
+        return 1
+    try:
+        if getattr(args, "json", False):
+            json.dump(_jsonable(doc), sys.stdout, indent=1, allow_nan=False)
+            sys.stdout.write("\n")
+        else:
+            text = mod.render(doc)
+            sys.stdout.write(text if text.endswith("\n") else text + "\n")
+        sys.stdout.flush()
+    except BrokenPipeError:
+        # the reader (e.g. `| head`) closed the pipe: stop quietly, as Unix tools do
+        try:
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        except (OSError, ValueError, AttributeError):  # stdout without a file descriptor (captured)
+            pass
+        return 1
+    except (ValueError, TypeError) as exc:  # a result the renderer cannot print: one line, never a traceback
+        print(f"landau: internal error: {type(exc).__name__}: {_first_line(exc)} (please report this with the "
+              "command line)", file=sys.stderr)
+        return 1
+    return int(doc.get("exit_code", 0)) if isinstance(doc, dict) else 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

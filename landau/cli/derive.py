@@ -1,0 +1,116 @@
+"""Amplitude equation of the stick–slip Hopf bifurcation: Γ̄, Ω̄, Λ, χ, C (Putelat et al. 2010, eqs 15–23).
+
+Example: landau derive ruina --V 1e-5,1e-4 --quantities kc,omega_c,Lambda,C --latex ruina.tex
+         landau derive dieterich --V 1e-4 --codim2 1e-7:1e-2
+"""
+
+from __future__ import annotations
+
+from functools import partial
+
+from landau.cli.common import (add_law_arguments, block_and_params, fmt, parse_range,
+                                    parse_velocities)
+from landau.errors import InputError
+from landau.support.io import atomic_write_text, check_output
+from landau.derivation.multiscale import CONVENTION, QUANTITIES, UNITS, Derivation, criticality
+
+
+#: time budget of the symbolic work behind --latex (s)
+LATEX_SECONDS = 600.0
+
+
+def configure(p) -> None:
+    add_law_arguments(p)
+    p.add_argument("--V", default=None, help="driving velocities in m/s, comma-separated")
+    p.add_argument("--quantities", default=",".join(QUANTITIES),
+                   help=f"comma-separated subset of {','.join(QUANTITIES)} (default: all)")
+    p.add_argument("--latex", default=None, metavar="FILE",
+                   help="write the coefficients as a .tex file that compiles with pdflatex (closed forms in V and "
+                        "the parameters where they exist, else in the law's derivatives at steady sliding)")
+    p.add_argument("--fragment", action="store_true",
+                   help="with --latex: write only the equations (for \\input into a paper that loads amsmath)")
+    p.add_argument("--codim2", default=None, metavar="LO:HI",
+                   help="find every velocity in [LO, HI] m/s where Lambda changes sign on the Hopf line")
+
+
+def run(args) -> dict:
+    block, params = block_and_params(args)
+    names = [q.strip() for q in args.quantities.split(",") if q.strip()]
+    if not names:
+        raise InputError(f"--quantities: no quantity given (choose from {', '.join(QUANTITIES)})")
+    unknown = [q for q in names if q not in QUANTITIES]
+    if unknown:
+        raise InputError(f"unknown quantity {unknown[0]!r} (known: {', '.join(QUANTITIES)})")
+    if args.V is None and args.codim2 is None and args.latex is None:
+        raise InputError("give --V (velocities), --codim2 LO:HI or --latex FILE")
+    if args.latex is not None:
+        check_output(args.latex)
+    d = Derivation(block)
+    doc: dict = {"law": block.law.name, "source": block.law.source, "convention": CONVENTION,
+                 "units": {k: UNITS[k] for k in ("V", *names)}, "params": params}
+    if args.V is not None:
+        Vs = parse_velocities(args.V)
+        res = d.evaluate(Vs, params, ["kc", "omega_c", *names])
+        pts = []
+        for i, Vi in enumerate(Vs):
+            if res["kc"][i] != res["kc"][i]:  # NaN: no Hopf point here
+                pt = d.hopf.point(Vi, params)
+                pts.append({"V": Vi, "status": "no-hopf", "reason": pt.reason, "velocity_weakening": pt.weakening})
+                continue
+            row = {"V": Vi, "status": "ok", **{n: float(res[n][i]) for n in names}}
+            if "Lambda" in res:
+                row["criticality"] = "degenerate" if res["degenerate"][i] else criticality(float(res["Lambda"][i]))
+            pts.append(row)
+        doc["points"] = pts
+    if args.codim2 is not None:
+        lo, hi = parse_range(args.codim2, "--codim2")
+        from landau.analyses.bautin import bautin_point
+        from landau.analyses.transition import codim2_points
+
+        doc["codim2"] = []
+        for c in codim2_points(d, lo, hi, params):
+            # generalised-Hopf (Bautin) point: the quintic coefficient, l2 and the fold of cycles from it
+            b = bautin_point(d, c.V, params, sign_below=c.sign_below, sign_above=c.sign_above)
+            extra = {k: v for k, v in b.as_dict().items() if k not in ("V", "kc", "omega_c", "sign_below", "sign_above")}
+            doc["codim2"].append({**c.as_dict(), **extra})
+        doc["units"].update({"Lambda5": UNITS["Lambda5"], "l2": "Re c2 of dz/dt = i omega z + c1 z|z|^2 + c2 z|z|^4, <q,q> = 1 (MatCont/BifurcationKit)"})
+    if args.fragment and args.latex is None:
+        raise InputError("--fragment needs --latex FILE")
+    if args.latex is not None:
+        from landau.support.budget import run_bounded
+        from landau.derivation.latex import derivation_latex
+        from landau.support.progress import set_quiet
+
+        set_quiet(getattr(args, "json", False))
+        text = run_bounded(partial(derivation_latex, fragment=args.fragment), (d, names), seconds=LATEX_SECONDS,
+                           what=f"the closed forms of {', '.join(names)} for --latex",
+                           hint="ask for fewer quantities (e.g. --quantities kc,omega_c,Gamma_bar) or evaluate "
+                                "numerically with --V instead")
+        doc["latex"] = str(atomic_write_text(args.latex, text))
+    return doc
+
+
+def render(doc: dict) -> str:
+    out = [f"Amplitude equation — law {doc['law']} ({doc['source']})", f"Convention: {doc['convention']}"]
+    if "points" in doc:
+        names = [n for n in doc["units"] if n != "V"]
+        out.append(f"{'V [m/s]':>12} " + " ".join(f"{n:>12}" for n in names) + "  criticality")
+        for p in doc["points"]:
+            if p["status"] != "ok":
+                out.append(f"{fmt(p['V'])}  {p['reason']}; {p.get('velocity_weakening', '')}")
+                continue
+            out.append(f"{fmt(p['V'])} " + " ".join(fmt(p[n]) for n in names) + f"  {p.get('criticality', '')}")
+        out.append("units: " + ", ".join(f"{k} [{v}]" for k, v in doc["units"].items()))
+    for c in doc.get("codim2", []):
+        out.append(f"codimension-two point (Lambda = 0): V = {c['V']:.10g} m/s, k_c = {c['kc']:.8g} N/m, "
+                   f"omega_c = {c['omega_c']:.6g} rad/s, {c['sign_below']} below / {c['sign_above']} above")
+        if "Lambda5" in c:
+            fc = c["fold_of_cycles"]
+            out.append(f"  Lambda5 = {c['Lambda5']:.6g} 1/(m^4 s), l2 = {c['l2']:.6g} (Re c2, <q,q> = 1); fold of cycles "
+                       f"for {fc['side']}: k - k_c = {fc['k_minus_kc_per_dV2']:.4g} (V - V*)^2 N/m, "
+                       f"slip amplitude {fc['amplitude_per_sqrt_dV']:.4g} |V - V*|^(1/2) m")
+    if "codim2" in doc and not doc["codim2"]:
+        out.append("no change of sign of Lambda on the Hopf line in the requested range")
+    if "latex" in doc:
+        out.append(f"LaTeX written to {doc['latex']}")
+    return "\n".join(out)

@@ -1,0 +1,87 @@
+"""Hopf point of a model's steady state, with its first Lyapunov coefficient and criticality.
+
+``landau hopf MODEL [law options] [--param NAME=VALUE ...] [--json]``
+
+Each model registers how to find its Hopf point (:data:`MODELS`, filled by the models'
+own modules): the result is a :class:`~landau.derivation.hopf.HopfResult`, which prints its amplitude
+equation and criticality.  Models:
+
+* ``spring-block`` — the spring–block of Putelat, Dawes & Willis (2010) with a rate-and-state
+  law (built-in name, or ``--mu``/``--state``), at driving velocity ``--V``: the bifurcation
+  parameter is the stiffness k.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+from landau.cli.common import add_friction_arguments, add_law_arguments, block_and_params, parse_velocities
+from landau.errors import InputError
+
+#: model name -> (one-line description, function(args) -> HopfResult)
+MODELS: dict[str, tuple[str, Callable]] = {}
+
+
+def register(name: str, description: str):
+    """Register ``fn(args) -> HopfResult`` as the Hopf analysis of model ``name``."""
+    def deco(fn):
+        MODELS[name] = (description, fn)
+        return fn
+    return deco
+
+
+@register("spring-block", "spring–block with a rate-and-state law (Putelat et al. 2010); parameter k at --V")
+def _spring_block(args):
+    from landau.verify.springblock.checks import predict
+
+    if args.friction is not None:
+        raise InputError("landau hopf spring-block: the spring-block takes a rate-and-state law (LAW or "
+                         "--mu/--state), not --friction")
+    if getattr(args, "parameter", None) not in (None, "k"):
+        raise InputError("landau hopf spring-block: the bifurcation parameter is the stiffness k "
+                         f"(got --parameter {args.parameter})")
+    block, params = block_and_params(args)
+    Vs = parse_velocities(args.V if args.V is not None else "1e-4")
+    if len(Vs) != 1:
+        raise InputError("landau hopf: give one driving velocity --V")
+    return predict(block.law, Vs[0], params)
+
+
+def _load_models() -> None:
+    # the other models register themselves when their analysis modules are imported
+    import importlib
+
+    for mod in ("landau.cli.hopf_galvanetto", "landau.cli.hopf_lancioni"):
+        try:
+            importlib.import_module(mod)
+        except ModuleNotFoundError as exc:
+            if exc.name != mod:
+                raise
+
+
+def configure(p) -> None:
+    p.add_argument("model", help="the mechanical model (spring-block, galvanetto-one-block, impact-oscillator)")
+    add_law_arguments(p)
+    add_friction_arguments(p)
+    p.add_argument("--V", default=None, help="spring-block: driving velocity in m/s (default 1e-4)")
+    p.add_argument("--kinetic", default=None, metavar="EXPR",
+                   help="galvanetto-one-block: kinetic friction for r = Xdot - V < 0 in r, gamma, delta")
+    p.add_argument("--kinetic-pos", default=None, metavar="EXPR",
+                   help="galvanetto-one-block: the r > 0 branch (default the odd reflection of --kinetic)")
+    p.add_argument("--parameter", default=None, metavar="NAME",
+                   help="impact-oscillator: the bifurcation parameter (default mu, or the first parameter of --friction)")
+
+
+def run(args) -> dict:
+    _load_models()
+    if args.model not in MODELS:
+        raise InputError(f"landau hopf: unknown model {args.model!r}; known: {', '.join(MODELS)}")
+    res = MODELS[args.model][1](args)
+    doc = {"model": args.model}
+    doc.update(res.as_dict() if hasattr(res, "as_dict") else {"result": repr(res)})
+    doc["text"] = str(res)
+    return doc
+
+
+def render(doc: dict) -> str:
+    return doc.get("text") or repr(doc)

@@ -1,0 +1,51 @@
+"""``landau hopf galvanetto-one-block``: the damped one block's Hopf point with any kinetic law.
+
+The steady sliding equilibrium of the one block (Galvanetto 2004, eq. (4a)) loses stability in
+the damping c at c₁ = F_k'(−V); the landau engine gives the criticality and the amplitude
+equation on the smooth slip field (:func:`landau.verify.galvanetto.bifurcations.hopf_c1_normal_form`).
+The kinetic law is eq. (7) or the user's ``--kinetic EXPR`` (r < 0 branch in r, gamma, delta;
+``--kinetic-pos`` the r > 0 branch); ``--param gamma=... --param delta=...``, ``--V`` the belt
+velocity (default 0.5).
+"""
+
+from __future__ import annotations
+
+from landau.cli.common import parse_params
+from landau.cli.hopf import register
+from landau.errors import InputError, NoHopfError
+
+
+@register("galvanetto-one-block", "damped one block on a belt (Galvanetto 2004); parameter c, kinetic law "
+                                  "eq. (7) or --kinetic EXPR")
+def _galvanetto_one_block(args):
+    from landau.laws.kinetic import KineticFriction
+    from landau.verify.galvanetto.bifurcations import hopf_c1, hopf_c1_normal_form
+
+    if getattr(args, "friction", None) is not None:
+        raise InputError("landau hopf galvanetto-one-block: give the kinetic law as --kinetic EXPR (the r < 0 "
+                         "branch in r = Xdot - V), not --friction")
+    if getattr(args, "parameter", None) not in (None, "c"):
+        raise InputError(f"landau hopf galvanetto-one-block: the bifurcation parameter is the damping c "
+                         f"(got --parameter {args.parameter})")
+    over = parse_params(args.param)
+    unknown = sorted(set(over) - {"gamma", "delta"})
+    if unknown:
+        raise InputError(f"galvanetto-one-block: unknown parameter(s) {', '.join(unknown)} (known: gamma, delta)")
+    kinetic, kinetic_pos = getattr(args, "kinetic", None), getattr(args, "kinetic_pos", None)
+    if kinetic_pos is not None and kinetic is None:
+        raise InputError("galvanetto-one-block: --kinetic-pos needs --kinetic (the r < 0 branch)")
+    g, d = over.get("gamma", 3.0), over.get("delta", 0.0)
+    law = (KineticFriction(g, d) if kinetic is None
+           else KineticFriction.from_expression(kinetic, kinetic_pos, gamma=g, delta=d,
+                                                names=("--kinetic", "--kinetic-pos")))
+    try:
+        V = float(args.V) if args.V is not None else 0.5
+    except ValueError:
+        raise InputError(f"--V: {args.V!r} is not a number") from None
+    if not V > 0:
+        raise InputError(f"galvanetto-one-block: belt velocity V must be > 0, got {V!r}")
+    c1 = hopf_c1(V, law=law)
+    if not c1 > 0:
+        raise NoHopfError(f"galvanetto-one-block: F_k'(-V) = {c1:.6g} <= 0 at V = {V:g}: steady sliding is "
+                          f"stable for every damping c >= 0 ({law!r})")
+    return hopf_c1_normal_form(V, law=law)

@@ -1,0 +1,1 @@
+"""Code generation: symbolic results as compiled, vectorised functions and simulation kernels."""

@@ -1,0 +1,579 @@
+"""Hopf points and their amplitude equation for any smooth system E(p)·ẏ = f(y; p).
+
+The spring–block has closed forms; a general model (the slip mode of an impact oscillator, a
+damped stick–slip block, Lorenz-84, a chemical reactor, …) has a numeric equilibrium and a Hopf
+parameter that may move it.  :func:`hopf_normal_form` locates the Hopf point and runs the *same*
+Fredholm code as the spring–block (:mod:`landau.derivation.fredholm`) on mpmath numbers:
+
+1. the equilibrium is followed across the bracket (Newton from the declared equilibrium, which
+   may be a closed form, constants, or a guess built from ``unknown_guess``);
+2. a Hopf point is where a complex pair of the pencil (J, E) crosses the imaginary axis.  It is
+   detected by the sign of the bialternate-product test function Π_{i<j}(λᵢ + λⱼ), which changes
+   sign at *every* crossing — also when another pair is already unstable (the largest real part
+   then never changes sign) — and located by bisection on it, then by Newton on
+   det(iωE(p) − J(y₀(p), p)) = 0 at ``dps`` digits;
+3. the derivatives of f at the point come from truncated Taylor arithmetic on the expression tree
+   (:class:`landau.derivation.jets.TaylorJets`; ``jets="symbolic"`` uses sympy's derivatives instead — the
+   same numbers, slower for large dense systems);
+4. a full (non-diagonal) invertible mass matrix is handled by multiplying the system by E(p_c)⁻¹;
+   a parameter-dependent E(p) adds −iω ψE_p q/δ to the linear coefficient.
+
+Convention (:data:`landau.derivation.hopf.GENERAL`): dA/dT = a·(p − p_c)A + b·A|A|² with the critical
+mode's ``normalise`` component equal to 1; a = dλ/dp, Λ = 2 Re b (Λ < 0: supercritical),
+χ = 2 Im b.  The result also carries Kuznetsov's c₁ = b/⟨q, q⟩ and the first Lyapunov
+coefficient l₁ = Re c₁/ω in Kuznetsov's normalisation (⟨q, q⟩ = 1, ⟨p, q⟩ = 1 for ẏ = E⁻¹f;
+for a DAE, q is the full-state mode; Kuznetsov 2004, eq. 3.20).  MatCont (``nf_H.m``:
+``real(p0'*h21)/2``) and BifurcationKit (its ``l1``) both print Re c₁ = ω·l₁, not divided by ω.
+
+References
+----------
+Kuznetsov, Yu. A. (2004). Elements of Applied Bifurcation Theory, 3rd ed., Springer, §3.5, §10.2.
+Govaerts, W. (2000). Numerical Methods for Bifurcations of Dynamical Equilibria, SIAM (the
+bialternate product test function).
+Putelat, T., Dawes, J. H. P., Willis, J. R. (2010). J. Mech. Phys. Solids 58, 27–53 (eq. 20).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import Any, Mapping, Sequence
+
+import mpmath
+import numpy as np
+import scipy.linalg
+import scipy.optimize
+import sympy as sp
+
+from landau.errors import InputError, NoHopfError, SingularPointError
+from landau.derivation.fredholm import _pencil, best_drop, cubic_coefficient, linear_coefficient, null_vectors, row_dot
+from landau.support.cx import Cx, as_expr
+from landau.derivation.hopf import GENERAL, HopfResult
+from landau.derivation.jets import Jets, TaylorJets
+from landau.systems.system import DynamicalSystem
+
+#: default working precision of the located point and its coefficients (decimal digits)
+DEFAULT_DPS = 50
+#: samples of the bracket when looking for crossings
+SCAN_SAMPLES = 40
+
+
+class NumericSystem:
+    """A :class:`DynamicalSystem` with every parameter but the Hopf parameter p given a value.
+
+    Evaluates f, its Jacobian, ∂f/∂p and E(p) in float64 (numpy) and at any mpmath precision,
+    and finds equilibria by Newton's method.
+
+    Parameters
+    ----------
+    system : DynamicalSystem
+    params : mapping
+        Values of ``system.parameters`` by name (extra names are ignored).
+    y_guess : sequence of float, optional
+        A starting guess of the equilibrium (else ``system.equilibrium`` with
+        ``unknown_guess`` substituted for its unknowns).
+    """
+
+    def __init__(self, system: DynamicalSystem, params: Mapping[str, float], y_guess: Sequence[float] | None = None):
+        self.sys = system
+        self.n = len(system.states)
+        missing = [s.name for s in system.parameters if s.name not in params]
+        if missing:
+            raise InputError(f"{system.name}: missing parameter(s) {', '.join(missing)}")
+        try:
+            self.params = {s: float(params[s.name]) for s in system.parameters}
+        except (TypeError, ValueError):
+            raise InputError(f"{system.name}: every parameter value must be a number") from None
+        bad = [s.name for s, v in self.params.items() if not math.isfinite(v)]
+        if bad:
+            raise InputError(f"{system.name}: parameter(s) {', '.join(bad)} must be finite")
+        self.p = system.parameter
+        Em = system.mass_matrix
+        # f and its first derivatives (J, f_p) by Taylor arithmetic: no symbolic differentiation
+        self.taylor1 = TaylorJets(system.rhs, [*system.states, self.p], 1)
+        self._E = sp.lambdify([self.p, *self.params], Em.tolist(), "mpmath")
+        self._Ep = sp.lambdify([self.p, *self.params], Em.diff(self.p).tolist(), "mpmath")
+        self._Ef = sp.lambdify([self.p, *self.params], Em.tolist(), "numpy")
+        self.mass_depends_on_p = self.p in Em.free_symbols
+        self.diagonal_mass = system.mass_is_diagonal
+        self._pv = list(self.params.values())
+        if y_guess is not None:
+            if len(y_guess) != self.n:
+                raise InputError(f"{system.name}: the equilibrium guess needs {self.n} values")
+            self._guess = lambda p: [float(x) for x in y_guess]
+        else:
+            eq = list(system.equilibrium)
+            if system.unknowns:
+                if len(system.unknown_guess) != len(system.unknowns):
+                    raise InputError(f"{system.name}: the equilibrium has no closed form; give unknown_guess "
+                                     "or an equilibrium guess")
+                eq = [as_expr(e).xreplace(dict(zip(system.unknowns, system.unknown_guess))) for e in eq]
+            fn = sp.lambdify([self.p, *self.params], eq, "numpy")
+            self._guess = lambda p: [float(x) for x in fn(p, *self._pv)]
+
+    # --- float64 ------------------------------------------------------------------------------
+    def first(self, y, p, as_float: bool):
+        """(f, J = ∂f/∂y, f_p = ∂f/∂p) at (y, p), in float64 or at the working precision."""
+        t = self.taylor1.at([*y, p], self.params, as_float=as_float)
+        n = self.n
+        J = np.zeros((n, n)) if as_float else mpmath.zeros(n, n)
+        fp = np.zeros(n) if as_float else [mpmath.mpf(0)] * n
+        f = np.zeros(n) if as_float else [mpmath.mpf(0)] * n
+        for (i,), v in t[0].items():
+            f[i] = v
+        for (i, j), v in t[1].items():
+            if j < n:
+                J[i, j] = v
+            else:
+                fp[i] = v
+        return f, J, fp
+
+    def f_float(self, y, p) -> np.ndarray:
+        return self.first([float(x) for x in y], float(p), True)[0]
+
+    def J_float(self, y, p) -> np.ndarray:
+        return self.first([float(x) for x in y], float(p), True)[1]
+
+    def fp_float(self, y, p) -> np.ndarray:
+        return self.first([float(x) for x in y], float(p), True)[2]
+
+    def E_float(self, p) -> np.ndarray:
+        return np.array(self._Ef(p, *self._pv), dtype=float).reshape(self.n, self.n)
+
+    def equilibrium_float(self, p: float, guess=None, tol: float = 1e-12, maxit: int = 40) -> np.ndarray:
+        """Newton's method on f(y, p) = 0 (float64) from ``guess`` (default: the declared equilibrium)."""
+        y = np.array(self._guess(p) if guess is None else guess, dtype=float)
+        for _ in range(maxit):
+            F, J, _ = self.first(y, float(p), True)
+            if not np.all(np.isfinite(F)):
+                break
+            try:
+                dy = np.linalg.solve(J, -F)
+            except np.linalg.LinAlgError:
+                raise SingularPointError(f"{self.sys.name}: singular Jacobian at {self.p.name} = {p:g}") from None
+            y = y + dy
+            if np.max(np.abs(dy)) <= tol * (1 + np.max(np.abs(y))):
+                if np.all(np.isfinite(y)):
+                    return y
+        raise SingularPointError(f"{self.sys.name}: no equilibrium found near the guess at {self.p.name} = {p:g}")
+
+    def eigenvalues(self, y, p) -> np.ndarray:
+        """Finite eigenvalues of the pencil J(y, p) v = λ E(p) v."""
+        J, E = self.J_float(y, p), self.E_float(p)
+        if np.count_nonzero(E - np.diag(np.diag(E))) == 0 and np.all(np.diag(E) != 0):
+            lam = np.linalg.eigvals(J / np.diag(E)[:, None])
+        else:
+            lam = scipy.linalg.eigvals(J, E)
+        return lam[np.isfinite(lam)]
+
+    # --- mpmath ---------------------------------------------------------------------------------
+    def equilibrium_mp(self, p, guess) -> list:
+        """Newton's method at the working precision from a float or mp guess."""
+        y = [mpmath.mpf(x) for x in guess]
+        tol = mpmath.mpf(10) ** (-mpmath.mp.dps + 6)
+        for _ in range(60):
+            f, J, _ = self.first(y, p, False)
+            F = mpmath.matrix(f)
+            try:
+                dy = mpmath.lu_solve(J, -F)
+            except ZeroDivisionError:
+                raise SingularPointError(f"{self.sys.name}: singular Jacobian at the equilibrium") from None
+            y = [a + b for a, b in zip(y, dy)]
+            if mpmath.norm(dy, mpmath.inf) <= tol * (1 + max(abs(v) for v in y)):
+                return y
+        raise SingularPointError(f"{self.sys.name}: equilibrium Newton iteration did not converge at "
+                                 f"{self.p.name} = {float(p):.10g}")
+
+    def J_mp(self, y, p) -> mpmath.matrix:
+        return self.first(y, p, False)[1]
+
+    def E_mp(self, p) -> mpmath.matrix:
+        return mpmath.matrix(self._E(p, *self._pv))
+
+    def Ep_mp(self, p) -> mpmath.matrix:
+        return mpmath.matrix(self._Ep(p, *self._pv))
+
+
+def hopf_test_function(lam: np.ndarray) -> float:
+    """Bialternate-product test function Π_{i<j}(λᵢ + λⱼ) with each factor divided by 1 + |λᵢ| + |λⱼ|.
+
+    Real for a real pencil; changes sign when a complex pair crosses the imaginary axis (and at
+    neutral saddles λᵢ = −λⱼ real, which the callers reject).  The division keeps the sign and
+    avoids overflow.
+    """
+    prod = 1.0 + 0j
+    lam = np.asarray(lam)
+    for i in range(len(lam)):
+        for j in range(i + 1, len(lam)):
+            prod *= (lam[i] + lam[j]) / (1 + abs(lam[i]) + abs(lam[j]))
+    return float(prod.real)
+
+
+def critical_pair(lam: np.ndarray) -> complex | None:
+    """The eigenvalue with Im > 0 closest to the imaginary axis (None if all are real)."""
+    upper = lam[lam.imag > 1e-10 * (1 + np.abs(lam.real))]
+    if upper.size == 0:
+        return None
+    return complex(upper[np.argmin(np.abs(upper.real))])
+
+
+def locate_crossing(num: NumericSystem, pa: float, pb: float, ya) -> tuple[float, np.ndarray, complex] | None:
+    """Bisect the Hopf test function between pa and pb (float64); None at a neutral saddle."""
+    cache = {}
+
+    def g(p):
+        y = num.equilibrium_float(p, ya)
+        cache[p] = y
+        return hopf_test_function(num.eigenvalues(y, p))
+
+    p0 = scipy.optimize.brentq(g, pa, pb, xtol=1e-13 * max(1.0, abs(pa), abs(pb)), rtol=1e-13)
+    y0 = num.equilibrium_float(p0, cache.get(p0, ya))
+    lam = critical_pair(num.eigenvalues(y0, p0))
+    if lam is None or abs(lam.real) > 1e-6 * abs(lam):
+        return None
+    return p0, y0, lam
+
+
+def refine_hopf(num: NumericSystem, p0: float, omega0: float, y_guess) -> tuple[Any, Any, list]:
+    """(p_c, ω_c, y₀) at the working precision: Newton on det(iωE(p) − J(y₀(p), p)) = 0."""
+    n = num.n
+    state = {"y": [mpmath.mpf(x) for x in y_guess]}
+
+    def det_eq(p, om):
+        y = num.equilibrium_mp(p, state["y"])
+        state["y"] = y
+        J, E = num.J_mp(y, p), num.E_mp(p)
+        A = mpmath.matrix(n, n)
+        for i in range(n):
+            for j in range(n):
+                A[i, j] = 1j * om * E[i, j] - J[i, j]
+        d = mpmath.det(A)
+        return [mpmath.re(d), mpmath.im(d)]
+
+    try:
+        pc, wc = mpmath.findroot(det_eq, (mpmath.mpf(p0), mpmath.mpf(omega0)))
+    except (ZeroDivisionError, ValueError) as exc:
+        raise SingularPointError(f"{num.sys.name}: Newton refinement of the Hopf point failed: {exc}") from None
+    y0 = num.equilibrium_mp(pc, state["y"])
+    return pc, abs(wc), y0
+
+
+def scan_hopf(num: NumericSystem, lo: float, hi: float, samples: int = SCAN_SAMPLES,
+              y_start=None) -> list[tuple[float, np.ndarray, complex]]:
+    """Every Hopf crossing in [lo, hi] (float64): (p, y₀, critical eigenvalue), in order of p.
+
+    The equilibrium is followed from ``lo`` (which may be the larger end) by Newton's method
+    from the previous sample.
+    """
+    ps = np.linspace(lo, hi, samples + 1)
+    y = num.equilibrium_float(ps[0], y_start)
+    tf = hopf_test_function(num.eigenvalues(y, ps[0]))
+    found = []
+    for pa, pb in zip(ps[:-1], ps[1:]):
+        yb = num.equilibrium_float(pb, y)
+        tfb = hopf_test_function(num.eigenvalues(yb, pb))
+        if tf == 0 or tf * tfb < 0:
+            hit = locate_crossing(num, min(pa, pb), max(pa, pb), y)
+            if hit is not None:
+                found.append(hit)
+        y, tf = yb, tfb
+    return found
+
+
+def _symbolic_tensors(num: NumericSystem, y0, pc, jets_cache: dict) -> dict[int, dict]:
+    """Derivative tensors of f in (y, p) up to order 3 from sympy's derivatives (lambdified)."""
+    sysm = num.sys
+    key = "symbolic"
+    if key not in jets_cache:
+        y0s = tuple(sp.Symbol(f"{s.name}__eq", real=True) for s in sysm.states)
+        probe = DynamicalSystem(sysm.name, sysm.states, sysm.rhs, sysm.mass, sysm.parameter, y0s)
+        jets = Jets(probe)
+        orders = {m: jets.order(m) for m in (1, 2, 3)}
+        fp, Jp = jets.parameter_derivatives()
+        n = num.n
+        entries = []
+        for m in (1, 2, 3):
+            entries += [((m, k), v) for k, v in orders[m].items()]
+        entries += [((1, (i, n)), fp[i]) for i in range(n)]
+        entries += [((2, (i, j, n)), Jp[i][j]) for i in range(n) for j in range(n)]
+        atoms = dict(jets.atoms)
+
+        def expand(e):
+            for _ in range(10):
+                if not (as_expr(e).free_symbols & atoms.keys()):
+                    return e
+                e = as_expr(e).xreplace(atoms)
+            return e
+        fn = sp.lambdify([*y0s, sysm.parameter, *num.params], [expand(v) for _, v in entries], "mpmath")
+        jets_cache[key] = ([k for k, _ in entries], fn)
+    keys, fn = jets_cache[key]
+    vals = fn(*y0, pc, *num._pv)
+    tens: dict[int, dict] = {1: {}, 2: {}, 3: {}}
+    for (m, k), v in zip(keys, vals):
+        v = mpmath.mpmathify(v)
+        if v != 0:
+            tens[m][k] = v
+    return tens
+
+
+def _taylor_tensors(num: NumericSystem, y0, pc, jets_cache: dict) -> dict[int, dict]:
+    if "taylor" not in jets_cache:
+        jets_cache["taylor"] = TaylorJets(num.sys.rhs, [*num.sys.states, num.p], 3)
+    tj = jets_cache["taylor"]
+    return tj.at([*y0, pc], num.params)
+
+
+def normal_form_at(num: NumericSystem, pc, wc, y0, *, jets: str = "taylor", jets_cache: dict | None = None,
+                   params: Mapping[str, float] | None = None) -> HopfResult:
+    """The amplitude equation at a located Hopf point (p_c, ω_c, y₀) — mpmath numbers at the working precision.
+
+    Parameters
+    ----------
+    num : NumericSystem
+    pc, wc : mpmath numbers
+        The Hopf parameter and angular frequency (ω_c > 0).
+    y0 : list of mpmath numbers
+        The equilibrium at p_c.
+    jets : {"taylor", "symbolic"}
+        How the derivatives of f are computed.
+    jets_cache : dict, optional
+        Reused between calls on the same system (continuation).
+
+    Returns
+    -------
+    HopfResult
+    """
+    n = num.n
+    cache = {} if jets_cache is None else jets_cache
+    if jets == "taylor":
+        tens = _taylor_tensors(num, y0, pc, cache)
+    elif jets == "symbolic":
+        tens = _symbolic_tensors(num, y0, pc, cache)
+    else:
+        raise InputError(f"jets must be 'taylor' or 'symbolic', got {jets!r}")
+    J = [[mpmath.mpf(0)] * n for _ in range(n)]
+    fp = [mpmath.mpf(0)] * n
+    Jp = [[mpmath.mpf(0)] * n for _ in range(n)]
+    B2: dict = {}
+    C3: dict = {}
+    for (i, j), v in tens[1].items():
+        if j < n:
+            J[i][j] = v
+        else:
+            fp[i] = v
+    for k, v in tens[2].items():
+        if k[2] == n:
+            if k[1] < n:
+                Jp[k[0]][k[1]] = v
+        else:
+            B2[k] = v
+    for k, v in tens[3].items():
+        if k[-1] < n:
+            C3[k] = v
+    Em = num.E_mp(pc)
+    Ep = num.Ep_mp(pc) if num.mass_depends_on_p else None
+    if num.diagonal_mass:
+        E = [Em[i, i] for i in range(n)]
+    else:
+        # E·ẏ = f  ⇔  ẏ = E⁻¹f: every tensor, f_p and J_p are multiplied by E⁻¹ (f = 0 at y₀)
+        try:
+            Einv = Em ** -1
+        except ZeroDivisionError:
+            raise InputError(f"{num.sys.name}: a non-diagonal mass matrix must be invertible "
+                             "(write a DAE with a diagonal E)") from None
+        L = lambda vec: [sum(Einv[i, k] * vec[k] for k in range(n)) for i in range(n)]
+        J = [list(col) for col in zip(*[L([J[i][j] for i in range(n)]) for j in range(n)])]
+        Jp = [list(col) for col in zip(*[L([Jp[i][j] for i in range(n)]) for j in range(n)])]
+        fp = L(fp)
+
+        def left(t):
+            out: dict = {}
+            for key, v in t.items():
+                for i in range(n):
+                    if Einv[i, key[0]] != 0:
+                        k2 = (i, *key[1:])
+                        out[k2] = out.get(k2, 0) + Einv[i, key[0]] * v
+            return out
+        B2, C3 = left(B2), left(C3)
+        if Ep is not None:
+            Ep = Einv * Ep
+        E = [mpmath.mpf(1)] * n
+    A = _pencil(J, E, wc)
+
+    def absdet(rows):
+        if not rows:
+            return 1.0
+        m = mpmath.matrix([[mpmath.mpc(z.re, z.im) for z in r] for r in rows])
+        try:
+            return float(abs(mpmath.det(m)))
+        except (ZeroDivisionError, TypeError):  # mpmath's LU fails on an exactly zero column
+            return 0.0
+
+    normalise = num.sys.normalise
+    r, c = best_drop(A, normalise, absdet)
+    vec = null_vectors(J, E, wc, normalise, r, c)
+    a = linear_coefficient(vec, J, Jp, fp, B2)
+    if Ep is not None:
+        # E(p_c + ε²p₂)·ẏ adds −p₂ iω E_p q A to the resonant forcing at O(ε³)
+        Epq = [Cx(0, 0)] * n
+        for i in range(n):
+            for j in range(n):
+                if Ep[i, j] != 0:
+                    Epq[i] = Epq[i] + vec.q[j] * Ep[i, j]
+        a = a - row_dot(vec.psi, Epq) / vec.delta * Cx(0, wc)
+    b = cubic_coefficient(vec, J, E, wc, B2, C3, mpmath.mpf(1) / 2)
+    qq = sum(z.re ** 2 + z.im ** 2 for z in vec.q)
+    c1 = complex(float(b.re / qq), float(b.im / qq))
+    Lam = float(2 * b.re)
+    return HopfResult(
+        system=num.sys.name, parameter=num.p.name, p_c=float(pc), omega_c=float(wc),
+        equilibrium=tuple(float(x) for x in y0), dlambda_dp=complex(float(a.re), float(a.im)),
+        Lambda=Lam, chi=float(2 * b.im), convention=GENERAL, normalise=num.sys.states[normalise].name,
+        l1=float(b.re / qq / wc), c1=c1, params={s.name: v for s, v in num.params.items()} if params is None
+        else dict(params),
+    )
+
+
+def hopf_normal_form(system: DynamicalSystem, params: Mapping[str, float] | None, bracket: tuple[float, float],
+                     dps: int = DEFAULT_DPS, *, equilibrium_guess: Sequence[float] | None = None,
+                     jets: str = "taylor", samples: int = SCAN_SAMPLES, l2: bool = False) -> HopfResult:
+    """Locate the Hopf point of ``system`` in its parameter inside ``bracket`` and derive its amplitude equation.
+
+    Parameters
+    ----------
+    system : DynamicalSystem
+        E(p)·ẏ = f(y; p); E diagonal (possibly singular: a DAE) or a full invertible matrix.
+    params : mapping or None
+        Values of every other parameter, by name (None or {} if the Hopf parameter is the only one).
+    bracket : (float, float)
+        Interval of the Hopf parameter holding exactly one Hopf point (other eigenvalue pairs may
+        be unstable anywhere in it: the crossing pair is followed).  The equilibrium is followed
+        from ``bracket[0]`` to ``bracket[1]`` (either order).
+    dps : int
+        Working precision (decimal digits) of the located point and its coefficients.
+    equilibrium_guess : sequence of float, optional
+        Starting guess of the equilibrium at ``bracket[0]`` (default: ``system.equilibrium``,
+        which may be a closed form, constants, or contain ``unknowns`` with ``unknown_guess``).
+    jets : {"taylor", "symbolic"}
+        Derivatives by Taylor arithmetic (default; fast for large dense systems) or by sympy.
+    samples : int
+        Number of intervals the bracket is scanned in for crossings.
+    l2 : bool
+        Also compute the second Lyapunov coefficient (:func:`second_lyapunov`; wanted at or near
+        Λ = 0, where l₁ says nothing).
+
+    Returns
+    -------
+    HopfResult
+        With ``l1`` and ``c1`` in Kuznetsov's normalisation (l₁ = Re c₁/ω; MatCont and
+        BifurcationKit print Re c₁), and ``l2`` = Re c₂ if asked for.
+
+    Raises
+    ------
+    NoHopfError
+        No complex pair crosses the imaginary axis in the bracket.
+    InputError
+        Bad parameters, or several Hopf points in the bracket (the message lists them).
+    SingularPointError
+        If the Newton refinement of the Hopf point fails.
+
+    References
+    ----------
+    Kuznetsov, Yu. A. (2004). Elements of Applied Bifurcation Theory, 3rd ed., Springer, §3.5.
+    Putelat, T., Dawes, J. H. P., Willis, J. R. (2010). J. Mech. Phys. Solids 58, 27–53,
+    Sec. 2.2 (the Fredholm route, written here for a general parameter).
+    """
+    num = NumericSystem(system, params or {}, equilibrium_guess)
+    try:
+        first, last = map(float, bracket)
+    except (TypeError, ValueError):
+        raise InputError(f"{system.name}: bracket must be two numbers, got {bracket!r}") from None
+    lo, hi = sorted((first, last))
+    if not (math.isfinite(lo) and math.isfinite(hi)) or lo == hi:
+        raise InputError(f"{system.name}: bracket must be two different finite numbers, got {bracket!r}")
+    hits = scan_hopf(num, first, last, samples)
+    if not hits:
+        raise NoHopfError(f"{system.name}: no Hopf crossing of {system.parameter.name} in [{lo:g}, {hi:g}]")
+    if len(hits) > 1:
+        raise InputError(f"{system.name}: {len(hits)} Hopf points in [{lo:g}, {hi:g}] (at "
+                         + ", ".join(f"{h[0]:.8g}" for h in hits) + "); narrow the bracket or use "
+                         "landau.analyses.continuation.equilibrium_branch")
+    p0, y0, lam = hits[0]
+    with mpmath.workdps(dps):
+        pc, wc, y = refine_hopf(num, p0, abs(lam.imag), y0)
+        res = normal_form_at(num, pc, wc, y, jets=jets, params=params)
+    if l2:
+        res = replace(res, l2=second_lyapunov(system, params, res, max(dps, 40)))
+    return res
+
+
+def _frozen_equilibrium(system: DynamicalSystem, params: Mapping[str, float] | None, result: HopfResult):
+    """(probe system, values, p_c) for the symbolic-jet routes of :mod:`landau.derivation.lyapunov` at a located point.
+
+    The probe's equilibrium is a set of fresh unknowns whose values are the numeric equilibrium
+    at p_c (refined at the working precision), so those routes need no closed form.
+    """
+    y0s = tuple(sp.Symbol(f"{s.name}__eq", real=True) for s in system.states)
+    at = dict(zip(system.states, y0s))
+    probe = DynamicalSystem(system.name, system.states, system.rhs, system.mass, system.parameter, y0s,
+                            normalise=system.normalise, unknowns=y0s,
+                            unknown_equations=tuple(as_expr(f).xreplace(at) for f in system.rhs))
+    values: dict[str, Any] = dict(params or {})
+    num = NumericSystem(system, params or {}, result.equilibrium)
+    pc, _, y = refine_hopf(num, result.p_c, result.omega_c, result.equilibrium)
+    values.update({s.name: v for s, v in zip(y0s, y)})
+    return probe, values, pc
+
+
+def kuznetsov_check(system: DynamicalSystem, params: Mapping[str, float] | None, result: HopfResult,
+                    dps: int = 40) -> HopfResult:
+    """Kuznetsov's projection formula (:func:`landau.derivation.lyapunov.first_lyapunov`) at a located Hopf point.
+
+    Works without a closed-form equilibrium: the numeric equilibrium of ``result`` is passed to
+    the projection route as the values of fresh unknowns, at the exact p_c (no re-location), and
+    the transversality is taken from ``result`` (the projection route would move p with the
+    equilibrium frozen).  Needs a diagonal, invertible E.
+
+    Parameters
+    ----------
+    system : DynamicalSystem
+    params : mapping or None
+        The other parameters' values, by name.
+    result : HopfResult
+        The point, from :func:`hopf_normal_form` or :func:`landau.analyses.continuation.equilibrium_branch`.
+    dps : int
+        Working precision (≥ 30).
+
+    Returns
+    -------
+    HopfResult
+        l₁, c₁, Λ = 2 Re c₁/|q_n|², χ = 2 Im c₁/|q_n|² and a = dλ/dp from ``result``, so that
+        C = 2|q_n| sqrt(|Re a|/|Re c₁|).
+
+    References
+    ----------
+    Kuznetsov, Yu. A. (2004). Elements of Applied Bifurcation Theory, 3rd ed., Springer, eq. (3.20).
+    """
+    from landau.derivation.lyapunov import first_lyapunov
+
+    with mpmath.workdps(dps):
+        probe, values, pc = _frozen_equilibrium(system, params, result)
+        res = first_lyapunov(probe, values, pc, omega_c=result.omega_c, dps=dps, relocate=False)
+    return replace(res, dlambda_dp=result.dlambda_dp)
+
+
+def second_lyapunov(system: DynamicalSystem, params: Mapping[str, float] | None, result: HopfResult,
+                    dps: int = 40) -> float | None:
+    """l₂ = Re c₂ (Kuznetsov's normalisation, not divided by ω) at a located Hopf point by
+    :func:`landau.derivation.lyapunov.lyapunov_coefficients`.
+
+    The numeric equilibrium is passed as the values of fresh unknowns (as in
+    :func:`kuznetsov_check`), so no closed form is needed; the point is not re-located (the
+    equilibrium is frozen at p_c, as in :func:`kuznetsov_check`).
+    """
+    from landau.derivation.lyapunov import lyapunov_coefficients
+
+    with mpmath.workdps(dps):
+        probe, values, pc = _frozen_equilibrium(system, params, result)
+        out = lyapunov_coefficients(probe, values, pc, dps=dps, omega_c=result.omega_c, relocate=False)
+    return None if out.l2 is None else float(out.l2)

@@ -1,0 +1,370 @@
+"""The precision routes of :meth:`landau.derivation.multiscale.Derivation.evaluate`: every returned value
+accurate to :data:`REL_GOOD` (relative) or settled by a slower, more precise route.
+
+Each route returns a :class:`Raw` (k_c, ω_c², the requested coefficients, the points still in
+doubt, the points where Λ vanishes identically); :func:`refine_mpmath` settles the doubtful
+points and :func:`finish` assembles the table.
+
+* :func:`exact_rational_route` — laws whose derivatives at steady sliding are rational in V
+  (Dieterich, Ruina, modified Dieterich): every point from the exactly cancelled form
+  (:mod:`landau.derivation.rational`), with a proven error bound or an exact evaluation.
+* :func:`screened_route` — a closed-form Hopf line: float64 (numpy, vectorised in blocks on
+  threads), screened by the same code in float32; the suspects again in long double (x87,
+  eps 1.1e-19); what is still doubtful from the exactly cancelled form where it exists.
+* :func:`numeric_hopf_route` — a Hopf line found numerically (several state variables): the
+  formulas in float64 at the numeric (k_c, ω_c), screened in long double.
+* :func:`refine_mpmath` — the points in doubt after a route: 50 and 80 digits, and up to 550
+  until two successive precisions agree (:func:`evaluate_mp_checked`).
+
+Round-off grows with the unit round-off times the condition number at every precision: a
+float32 value off by δ₃₂ means a float64 value off by about δ₃₂·2⁻²⁹ (measured up to 200×
+more, hence the screen's threshold :data:`REL_SCREEN`), and a long double value ~2000× better
+than float64 (Higham 2002, *Accuracy and Stability of Numerical Algorithms*, Sec. 1.12).
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import warnings
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Mapping, Sequence
+
+import mpmath
+import numpy as np
+
+from landau.derivation.coefficients import DERIVED, CoefficientTable, _with_bases
+from landau.errors import SingularPointError
+
+if TYPE_CHECKING:
+    from landau.derivation.multiscale import Derivation
+
+logger = logging.getLogger(__name__)
+
+#: accuracy every returned value must have (relative)
+REL_GOOD = 1e-10
+#: doubtful points from which deriving the exactly cancelled form beats mpmath point by point
+RATIONAL_MIN = 500
+#: points from which the exactly cancelled form (~0.2 s to derive per parameter set) beats the
+#: general formula for all of them (float64 + float32 screen + long double pass)
+RATIONAL_DIRECT = 100_000
+#: points per block of the vectorised evaluation (working set of a formula stays in cache)
+BLOCK = 16_384
+#: threads for the blocks (numpy's elementwise loops release the GIL)
+WORKERS = max(1, min(8, os.cpu_count() or 1))
+#: float32 vs float64 disagreement above which float64 may miss REL_GOOD.  The eps ratio is
+#: ~5e8, but float32's error saturates where float64's does not: on 20,000 log-spaced points of
+#: the spinodal law's range (M = default and 1e-7 kg) 2e-4 let one float64 value off by 1.2e-10
+#: through; at 2e-5 the worst value passed is off by 1e-11 (nanoscale, micron-scale: ≤ 1e-12)
+REL_SCREEN = 2e-5
+#: digits of the successive mpmath evaluations that decide whether a tiny value is genuine
+MP_LADDER = (50, 80, 120, 200, 330, 550)
+#: extended precision available (x86 80-bit long double: eps 1.1e-19, ~1000x float64)
+EXTENDED = np.finfo(np.longdouble).eps < 1e-18
+#: how much closer to the exact value the long double evaluation is than float64, at least.
+#: Not the 2048 of the unit round-offs: the printed formulas carry float64 literals (rational
+#: constants such as 1/3), whose rounding long double does not remove; measured 60–300 at the
+#: low-velocity end of the Dieterich and Ruina laws (1000-point tests against 50 digits), where
+#: 512 let long double values off by 2e-10 through.  16 keeps a factor ≥ 4 below that.
+EXT_GAIN = 16.0
+#: the same gain where only a sign is needed: the smallest measured (60); a sign is taken as
+#: certain where the long double value's error so estimated is below half its size
+SIGN_GAIN = 60.0
+#: points settled by mpmath in one call from which the cost (~1 ms a point) deserves a warning
+MP_WARN = 2_000
+
+_warned: set[tuple[str, str]] = set()
+
+
+def warn_once(key: tuple[str, str], message: str) -> None:
+    """``warnings.warn(message)`` once per process for ``key`` (law, cause)."""
+    if key not in _warned:
+        _warned.add(key)
+        warnings.warn(message, RuntimeWarning, stacklevel=4)
+
+
+@dataclass
+class Raw:
+    """What a route computed: ``values`` ("kc", "W" = ω_c², and the coefficients), the points
+    whose values are not yet proven to :data:`REL_GOOD` (``doubtful``), and the points where Λ
+    vanishes identically (``degenerate``)."""
+
+    values: dict[str, np.ndarray]
+    doubtful: np.ndarray
+    degenerate: np.ndarray
+
+
+def agree(x: np.ndarray, y: np.ndarray, rel: float) -> np.ndarray:
+    """|x − y| ≤ rel·|y| elementwise; two NaNs agree (no Hopf point in either precision)."""
+    with np.errstate(all="ignore"):
+        return (np.abs(x - y) <= rel * np.abs(y)) | (np.isnan(x) & np.isnan(y))
+
+
+def sign_settled(x64: np.ndarray, x80: np.ndarray) -> np.ndarray:
+    """Where the extended-precision value is certain in sign: non-zero, and its error — the
+    float64 error |x64 − x80| scaled down by :data:`SIGN_GAIN` — below half its size."""
+    with np.errstate(all="ignore"):
+        return (x80 != 0) & np.isfinite(x80) & (np.abs(x64 - x80) <= 0.5 * SIGN_GAIN * np.abs(x80))
+
+
+def _no_extended(law: str, n: int) -> None:
+    warn_once((law, "no long double"), (
+        f"{law}: numpy's long double has no more precision than float64 on this platform, so {n} point(s) "
+        "that float64 may not give to 1e-10 are re-evaluated with mpmath (about 1 ms each); on an x86-64 "
+        "machine they are settled in 80-bit long double instead"))
+
+
+# --- vectorised evaluation in one precision ------------------------------------------------
+def raw(d: "Derivation", vals, shape, bases, dtype, kc=None, om=None) -> dict[str, np.ndarray]:
+    """k_c, ω_c² and the coefficients ``bases`` in one precision (``dtype``), atoms shared.
+
+    With ``kc``, ``om`` given (a numeric Hopf line) only the coefficients are evaluated there.
+    Large batches go through in blocks of :data:`BLOCK` points on :data:`WORKERS` threads: the
+    formulas are long chains of elementwise operations; blocks that fit in cache run them
+    faster and numpy releases the GIL inside each operation."""
+    size = int(np.prod(shape))
+    if size <= BLOCK:
+        return _raw_block(d, vals, shape, bases, dtype, kc, om)
+    flat = [np.ravel(v) for v in vals]
+    kcf = None if kc is None else np.ravel(kc)
+    omf = None if om is None else np.ravel(om)
+    _raw_block(d, [v[:1] for v in flat], (1,), bases, dtype, None if kcf is None else kcf[:1],
+               None if omf is None else omf[:1])          # compile once, outside the threads
+
+    def block(i: int) -> tuple[slice, dict[str, np.ndarray]]:
+        sl = slice(i, min(i + BLOCK, size))
+        return sl, _raw_block(d, [v[sl] for v in flat], (sl.stop - sl.start,), bases, dtype,
+                              None if kcf is None else kcf[sl], None if omf is None else omf[sl])
+
+    out: dict[str, np.ndarray] = {}
+    with ThreadPoolExecutor(max_workers=WORKERS) as pool:
+        for sl, part in pool.map(block, range(0, size, BLOCK)):
+            for key, val in part.items():
+                out.setdefault(key, np.empty(size, dtype=val.dtype))[sl] = val
+    return {key: val.reshape(shape) for key, val in out.items()}
+
+
+def _raw_block(d: "Derivation", vals, shape, bases, dtype, kc=None, om=None) -> dict[str, np.ndarray]:
+    formulas = [d._compiled_formula(n) for n in bases]
+    hopf = d.hopf._compiled_closed if kc is None else ()
+    atoms = d._atom_table.evaluate(sorted(set().union(*(f.atom_syms for f in [*formulas, *hopf])), key=str), *vals)
+    res: dict[str, np.ndarray] = {}
+    if kc is None:
+        fk, fW = hopf
+        res["kc"] = np.asarray(fk.call_with_atoms(atoms, *vals), dtype=dtype) * np.ones(shape, dtype)
+        res["W"] = np.asarray(fW.call_with_atoms(atoms, *vals), dtype=dtype) * np.ones(shape, dtype)
+        with np.errstate(all="ignore"):
+            om = np.sqrt(np.where(res["W"] > 0, res["W"], np.nan))
+        kc = res["kc"]
+    for n, f in zip(bases, formulas):
+        res[n] = np.asarray(f.call_with_atoms(atoms, om, kc, *vals), dtype=dtype) * np.ones(shape, dtype)
+    return res
+
+
+# --- the routes ------------------------------------------------------------------------------
+def rational_forms(d: "Derivation", bases, params):
+    """The exactly cancelled forms (:func:`landau.derivation.rational.rational_forms`) for these
+    parameters, cached on the derivation; None when the law's derivatives at steady state are
+    not rational in V."""
+    from landau.derivation.rational import rational_forms as build
+
+    key = (tuple(bases), tuple(sorted(params.items())))
+    if key not in d._rational_cache:
+        d._rational_cache[key] = build(d, bases, params)
+    return d._rational_cache[key]
+
+
+def has_rational(d: "Derivation", bases, params) -> bool:
+    """Whether the exactly cancelled forms for these parameters were built already."""
+    return (tuple(bases), tuple(sorted(params.items()))) in d._rational_cache
+
+
+def exact_rational_route(d: "Derivation", Vs, shape, bases, forms) -> Raw:
+    """Every point from the exactly cancelled form (``forms``, see :func:`rational_forms`).
+
+    Used for ``method="rational"``, and by ``"auto"`` for a closed-form Hopf line with scalar
+    parameters when the batch has ≥ :data:`RATIONAL_DIRECT` points or the form exists already.
+    Guarantee: each value carries a proven float64 error bound ≤ :data:`REL_GOOD` or is computed
+    exactly in ℚ and rounded once; Λ ≡ 0 (Dieterich at M = 0) is exactly 0 and flagged."""
+    values = forms.evaluate(np.broadcast_to(Vs, shape), bases, REL_GOOD)
+    degenerate = np.full(shape, "Lambda" in forms and forms["Lambda"].identically_zero)
+    return Raw(values, np.zeros(shape, dtype=bool), degenerate)
+
+
+def screened_route(d: "Derivation", Vs, vals, shape, bases, p, exact: bool, sign_only: bool) -> Raw:
+    """A closed-form Hopf line: float64, screened by float32, suspects again in long double.
+
+    Used by ``method="general"`` and by ``"auto"`` below :data:`RATIONAL_DIRECT` points.  A value
+    is kept where float64 and float32 agree to :data:`REL_SCREEN` (float64 then within ~1e-12);
+    a suspect keeps its float64 value where long double agrees with it to :data:`REL_GOOD`, takes
+    the long double value where that is good to REL_GOOD (float64–long double gap below
+    REL_GOOD·:data:`EXT_GAIN`), and is otherwise doubtful.  With ``exact`` (scalar parameters)
+    doubtful points of a law rational in V are taken from the exactly cancelled form when there
+    are ≥ :data:`RATIONAL_MIN` of them or the form exists; the rest go to :func:`refine_mpmath`.
+    ``sign_only``: a suspect whose long double value is certain in sign is not doubtful."""
+    law = d.block.law.name
+    values = raw(d, vals, shape, bases, np.float64)
+    r32 = raw(d, [v.astype(np.float32) for v in vals], shape, bases, np.float32)
+    suspect = np.zeros(shape, dtype=bool)
+    for key in values:
+        suspect |= ~agree(values[key], r32[key].astype(float), REL_SCREEN)
+    bad = {key: suspect.copy() for key in values}
+    if suspect.any() and not EXTENDED:
+        _no_extended(law, int(suspect.sum()))
+    elif suspect.any():
+        sub = [v[suspect].astype(np.longdouble) for v in vals]
+        ext = raw(d, sub, sub[0].shape, bases, np.longdouble)
+        for key in values:
+            x64, x80 = values[key][suspect], ext[key].astype(float)
+            values[key][suspect] = np.where(agree(x64, x80, REL_GOOD), x64, x80)
+            bad[key][suspect] = ~agree(x64, x80, REL_GOOD * EXT_GAIN)
+            if sign_only:
+                bad[key][suspect] &= ~sign_settled(x64, x80)
+    doubtful = np.zeros(shape, dtype=bool)
+    for key in values:
+        doubtful |= bad[key]
+    rest = doubtful & ~(bad["kc"] | bad["W"]) & (values["kc"] > 0) & (values["W"] > 0)
+    degenerate = np.zeros(shape, dtype=bool)
+    if bases and exact and (rest.sum() >= RATIONAL_MIN or (rest.any() and has_rational(d, bases, p))):
+        forms = rational_forms(d, bases, p)
+        if forms is not None:
+            sub = forms.evaluate(np.broadcast_to(Vs, shape)[rest], bases, REL_GOOD)
+            for n in bases:
+                values[n][rest] = sub[n]
+            doubtful &= ~rest
+            degenerate = rest & bool("Lambda" in forms and forms["Lambda"].identically_zero)
+    return Raw(values, doubtful, degenerate)
+
+
+def numeric_hopf_route(d: "Derivation", Vs, vals, shape, bases, p, sign_only: bool) -> Raw:
+    """A Hopf line without closed form (several state variables): k_c and ω_c solved numerically
+    (:meth:`landau.derivation.linear.HopfLine.evaluate`), the coefficients in float64 there, screened by
+    the same formulas in long double at the same (k_c, ω_c).
+
+    Guarantee: a coefficient is kept where float64 and long double agree to :data:`REL_GOOD`;
+    elsewhere the point is doubtful (:func:`refine_mpmath`), except with ``sign_only`` where the
+    long double value is certain in sign (it is then returned)."""
+    kc, om = d.hopf.evaluate(Vs.ravel(), p)
+    values = {"kc": kc.reshape(shape), "W": om.reshape(shape) ** 2}
+    values.update(raw(d, vals, shape, bases, np.float64, values["kc"], np.sqrt(values["W"])))
+    doubtful = np.zeros(shape, dtype=bool)
+    if EXTENDED and bases:
+        ld = np.longdouble
+        ext = raw(d, [v.astype(ld) for v in vals], shape, bases, ld, values["kc"].astype(ld),
+                  np.sqrt(values["W"]).astype(ld))
+        for n in bases:
+            x80 = ext[n].astype(float)
+            off = ~agree(values[n], x80, REL_GOOD)
+            if sign_only:
+                off &= ~sign_settled(values[n], x80)
+                values[n] = np.where(off, values[n], x80)
+            doubtful |= off
+    elif bases:
+        doubtful[...] = True
+        _no_extended(d.block.law.name, int(np.sum(np.isfinite(values["kc"]))))
+    doubtful &= np.isfinite(values["kc"])
+    return Raw(values, doubtful, np.zeros(shape, dtype=bool))
+
+
+# --- mpmath ----------------------------------------------------------------------------------
+def evaluate_mp_checked(d: "Derivation", V0: float, point: Mapping[str, float], names,
+                        sign_estimate: Mapping[str, float] | None = None) -> tuple[dict, bool]:
+    """Values at 50 digits, or more where needed.  A coefficient whose values at two
+    successive precisions (50, 80, 120, 200, 330, 550 digits) agree to 1e-20 relative is
+    settled at the finer one: a tiny but genuine value (e.g. Λ ∝ M at M = 1e-50) is
+    cancellation-free once the precision exceeds the orders it lies below its terms.  A
+    coefficient that never settles is round-off of an identically vanishing quantity
+    (its value keeps shrinking with the precision): it is returned as 0 and flagged.
+
+    ``sign_estimate`` (a sign scan's float values at this point): round-off grows with the
+    unit round-off times the same condition number at every precision, so a 50-digit value
+    h whose float estimate f (unit round-off ≥ 5e-20) is off by |h − f| is itself off by
+    about |h − f|·1e-30.  Where |h − f| ≤ 1e20·|h| (f non-zero) that is below 1e-10·|h|:
+    the sign is certain and the 50-digit values are returned without climbing the ladder.
+    Round-off of a quantity that vanishes identically, or a genuine value far below its
+    terms (|h − f| ~ 1e34·|h|), still climbs it."""
+    ladder = MP_LADDER
+    hi = d.evaluate_mp(V0, point, names, dps=ladder[0])
+    if sign_estimate is not None and all(
+            n in DERIVED or (hi[n] != 0 and sign_estimate.get(n, 0.0) != 0
+                             and abs(hi[n] - sign_estimate.get(n, float("nan"))) <= 1e20 * abs(hi[n]))
+            for n in names):
+        return dict(hi), False
+    ref = d.evaluate_mp(V0, point, names, dps=ladder[1])
+    degenerate = False
+    res = dict(hi)
+    tol = mpmath.mpf("1e-20")
+    for n in names:
+        if n in DERIVED or abs(hi[n] - ref[n]) <= tol * abs(ref[n]):
+            continue
+        prev, settled = ref[n], None
+        for dps in ladder[2:]:
+            cur = d.evaluate_mp(V0, point, [n], dps=dps)[n]
+            if abs(cur - prev) <= tol * abs(cur):
+                settled = cur
+                break
+            prev = cur
+        if settled is not None:
+            res[n] = settled
+        else:
+            res[n] = mpmath.mpf(0)
+            degenerate = degenerate or n == "Lambda"
+    if degenerate and "C" in res:
+        res["C"] = mpmath.inf
+    return res, degenerate
+
+
+def refine_mpmath(d: "Derivation", out: dict[str, np.ndarray], vals, where: np.ndarray, extra: Sequence[str],
+                  sign_only: bool) -> None:
+    """The points ``where`` re-evaluated with mpmath (:meth:`Derivation._evaluate_mp_checked`),
+    in place in ``out``.
+
+    Used after every route for the points it left doubtful (cancellation near an extremum of
+    μ_ss, inertia-free limits, Λ ≡ 0).  Guarantee: values at 50 digits or at the precision
+    where two successive ladder steps agree; an identically vanishing Λ is 0 and flagged.
+    With ``sign_only`` the route's float estimates let a certain sign stop at 50 digits."""
+    idx_all = np.argwhere(where)
+    if len(idx_all) >= MP_WARN:
+        warn_once((d.block.law.name, "mpmath"), (
+            f"{d.block.law.name}: {len(idx_all)} point(s) lose more than 1e-10 to round-off in float64 and long "
+            "double (cancellation near an extremum of mu_ss or in an inertia-free limit) and are re-evaluated "
+            "with mpmath (about 1 ms each); fewer points in that region, or method='rational' for a law "
+            "rational in V, avoid it"))
+    elif len(idx_all):
+        logger.debug("%s: 50-digit evaluation at %d points", d.block.law.name, len(idx_all))
+    for idx in map(tuple, idx_all):
+        point = {s.name: float(vals[i + 1][idx]) for i, s in enumerate(d.args[1:])}
+        estimate = {n: float(out[n][idx]) for n in extra if n in out} if sign_only else None
+        mp, degenerate = d._evaluate_mp_checked(float(vals[0][idx]), point, extra, estimate)
+        for n in ("kc", "omega_c", *extra):
+            if n not in DERIVED:
+                out[n][idx] = float(mp[n])
+        out["degenerate"][idx] = degenerate
+
+
+def finish(d: "Derivation", Vs, vals, r: Raw, names, bases, sign_only: bool, params: dict[str, Any]) -> CoefficientTable:
+    """The table of a route's values: NaN where there is no Hopf point, doubtful points from
+    :func:`refine_mpmath`, C composed from Γ̄ and Λ; a coefficient that is not finite where a
+    Hopf point exists raises :class:`~landau.errors.SingularPointError`."""
+    shape = r.doubtful.shape
+    kc, W_c = r.values["kc"], r.values["W"]
+    ok = (kc > 0) & (W_c > 0)
+    out: dict[str, np.ndarray] = {"V": Vs * np.ones(shape), "kc": np.where(ok, kc, np.nan),
+                                  "omega_c": np.sqrt(np.where(ok, W_c, np.nan))}
+    for n in bases:
+        out[n] = r.values[n]
+    out["degenerate"] = r.degenerate & ok
+    extra = [n for n in _with_bases(names) if n not in ("kc", "omega_c")]
+    refine_mpmath(d, out, vals, r.doubtful & ok, extra, sign_only)
+    if "C" in names:
+        with np.errstate(all="ignore"):
+            out["C"] = 2 * np.sqrt(2 * out["Gamma_bar"] / np.abs(out["Lambda"]))
+    for n in bases:
+        singular = np.isfinite(out["kc"]) & ~np.isfinite(out[n])
+        if np.any(singular):
+            i = tuple(np.argwhere(singular)[0])
+            raise SingularPointError(
+                f"{d.block.law.name}: {n} is not finite at V = {float(out['V'][i]):g} m/s although a Hopf "
+                "point exists there: the law's derivatives are singular at this steady state")
+    return CoefficientTable(out, law=d.block.law.name, params=params)

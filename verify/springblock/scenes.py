@@ -1,0 +1,79 @@
+"""Published linear-stability facts of Putelat, Dawes & Willis, J. Mech. Phys. Solids (2010).
+
+Each scene computes its value with the toolkit (nothing typed in) next to the number the
+paper prints.
+"""
+
+from __future__ import annotations
+
+import math
+
+from landau.errors import InputError
+from landau.scenes import Scene, register
+from landau.derivation.multiscale import Derivation
+from landau.analyses.transition import extrema
+from landau.systems.system import SpringBlock
+from landau.laws import get_law
+
+_T1 = {"a_v": 0.369, "a": 0.0349, "b": 0.0489, "L": 0.9e-6, "V_s": 1e-6}
+_MECH = {"M": 1.2, "g": 9.81}
+
+
+def _v_hat(p: dict) -> float:
+    # eq. (31): V̂ = sqrt(a σ L / M), σ = M g
+    return math.sqrt(p["a"] * p["M"] * p["g"] * p["L"] / p["M"])
+
+
+def _v_m_eq41(p: dict) -> float:
+    """The minimum of μ_ss of law (39) in closed form, V_m = (b/a − 1) V_*/c (eq. 41)."""
+    return (p["b"] / p["a"] - 1) * p["V_s"] / p["c"]
+
+
+def _first_extremum(law: str, kind: str, p: dict, lo: float, hi: float):
+    d = Derivation(SpringBlock(get_law(law)))
+    ex = [e for e in extrema(d, {**p, "sigma": p["M"] * p["g"]}, lo, hi) if e.kind == kind]
+    if not ex:
+        raise InputError(f"the {law} law has no {kind} of mu_ss in [{lo:.3g}, {hi:.3g}] m/s for these parameters")
+    return ex[0]
+
+
+def _spinodal_extremum(kind: str):
+    def compute(p: dict) -> dict:
+        # V window from the law's velocity scales: L/t_ss (healing; V_M ≈ 2.5 L/t_ss for Table 1)
+        # and V_m of eq. (41) (V_m ≈ 1.01 × eq. 41), three decades beyond each
+        scales = (p["L"] / p["t_ss"], _v_m_eq41(p))
+        e = _first_extremum("spinodal", kind, p, 1e-3 * min(scales), 1e3 * max(scales))
+        return {"value": e.V, "mu_ss": e.mu}
+    return compute
+
+
+def _modified_dieterich_vm(p: dict) -> dict:
+    closed = _v_m_eq41(p)
+    e = _first_extremum("modified-dieterich", "minimum", p, 1e-3 * closed, 1e3 * closed)  # three decades around eq. (41)
+    return {"value": e.V, "closed_form_eq41": closed}
+
+
+def _mu_ss_extremum_scene(name: str, parameter: str, source: str, compute, extra: dict, published: float,
+                          description: str) -> None:
+    register(Scene(name=name, parameter=parameter, units="m/s", source=source, compute=compute,
+                   defaults={**_T1, **_MECH, **extra}, published=published, tolerance=5e-4,
+                   description=description))
+
+
+register(Scene(
+    name="putelat2010/V-hat", parameter="V_hat", units="m/s",
+    source="Putelat et al. 2010, eq. (31) (prints 5.6e-4, rounded)",
+    compute=_v_hat, defaults={**_T1, **_MECH}, published=5.6e-4, tolerance=0.01,
+    description="inertial crossover velocity V̂ = sqrt(aσL/M) of the Dieterich–Ruina laws"))
+
+_SPINODAL = {"c": 1e-3, "t_ss": 90.0}
+_mu_ss_extremum_scene("putelat2010/spinodal-V_M", "V_M", "Putelat et al. 2010, Sec. 4.1 (c = 1e-3): V_M = 2.493e-8 m/s",
+                      _spinodal_extremum("maximum"), _SPINODAL, 2.493e-8,
+                      "local maximum of μ_ss of the spinodal law (37)–(38): lower end of the stick–slip domain")
+_mu_ss_extremum_scene("putelat2010/spinodal-V_m", "V_m", "Putelat et al. 2010, Sec. 4.1 (c = 1e-3): V_m = 4.052e-4 m/s",
+                      _spinodal_extremum("minimum"), _SPINODAL, 4.052e-4,
+                      "local minimum of μ_ss of the spinodal law (37)–(38): upper end of the stick–slip domain")
+_mu_ss_extremum_scene("putelat2010/modified-dieterich-V_m", "V_m",
+                      "Putelat et al. 2010, eq. (41) and Sec. 4.2 (c = 3e-4): V_m ≈ 1.337e-3 m/s",
+                      _modified_dieterich_vm, {"c": 3e-4}, 1.337e-3,
+                      "minimum of μ_ss of law (39), found numerically; eq. (41) closed form reported beside it")
