@@ -3,7 +3,9 @@
 The three-stage Radau IIA collocation method (Hairer & Wanner 1996, *Solving ODEs II*,
 Sec. IV.8) with its simplified Newton iteration solved in the eigenbasis of A⁻¹, as in the
 classical code radau5: per step one real n × n LU of γ/h·I − J (also the matrix of the error
-estimate) and one complex n × n LU of (α + iβ)/h·I − J.  A Newton iteration that fails is
+estimate) and one LU of the complex system with (α + iβ)/h·I − J, written as the real
+2n × 2n system [[α/h·I − J, −β/h·I], [β/h·I, α/h·I − J]] (the same solution; compiling real
+arithmetic only halves the first build of the loop).  A Newton iteration that fails is
 retried at the same step with the stage Jacobians J(Yᵢ) on the full 3n × 3n system (needed when
 the Jacobian changes by orders of magnitude within a step: ẇ ∝ e^{−w} as v → 0) before the
 step is halved.  Error estimate and step-size control follow the radau5 recipe (embedded
@@ -296,19 +298,6 @@ def _solve(lu, piv, b):
 
 
 @nb.njit(cache=True)
-def _solve_recip(lu, piv, dinv, b):
-    """:func:`_solve` with the reciprocals ``dinv`` of the pivots given (for complex factors,
-    where a division costs several multiplications)."""
-    _permute_forward(lu, piv, b)
-    n = lu.shape[0]
-    for i in range(n - 1, -1, -1):
-        s = b[i]
-        for j in range(i + 1, n):
-            s -= lu[i, j] * b[j]
-        b[i] = s * dinv[i]
-
-
-@nb.njit(cache=True)
 def _rms(x, scale):
     """The error norm: the root mean square of x / scale."""
     s = 0.0
@@ -542,12 +531,11 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
     J = np.empty((n, n))
     Mf = np.empty((N, N))
     Mr = np.empty((n, n))
-    Mc = np.empty((n, n), dtype=np.complex128)
-    bc = np.empty(n, dtype=np.complex128)
-    dinv = np.empty(n, dtype=np.complex128)
+    Mc = np.empty((2 * n, 2 * n))
+    bc = np.empty(2 * n)
     pivF = np.empty(N, dtype=np.int64)
     pivR = np.empty(n, dtype=np.int64)
-    pivC = np.empty(n, dtype=np.int64)
+    pivC = np.empty(2 * n, dtype=np.int64)
     Z = np.empty((s, n))
     W = np.empty((s, n))
     F = np.empty((s, n))
@@ -581,21 +569,24 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
         gh = gam / h
         ah = alp / h
         bh = bet / h
-        ch = complex(ah, bh)
+        # (α + iβ)/h·I − J acting on u + iv, as the real 2n × 2n matrix [[αI/h − J, −βI/h], [βI/h, αI/h − J]]
         for i in range(n):
             for j in range(n):
                 Mr[i, j] = -J[i, j]
                 Mc[i, j] = -J[i, j]
+                Mc[n + i, n + j] = -J[i, j]
+                Mc[i, n + j] = 0.0
+                Mc[n + i, j] = 0.0
             Mr[i, i] += gh
-            Mc[i, i] += ch
+            Mc[i, i] += ah
+            Mc[n + i, n + i] += ah
+            Mc[i, n + i] = -bh
+            Mc[n + i, i] = bh
         ok = _lu(Mr, pivR)
         cnt[4] += 1
         if not use_full:
             ok = _lu(Mc, pivC) and ok
             cnt[4] += 1
-            if ok:
-                for i in range(n):
-                    dinv[i] = 1.0 / Mc[i, i]
         # Newton start: the previous step's collocation polynomial, extrapolated
         for a in range(s):
             for i in range(n):
@@ -647,12 +638,13 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                         g2 = TI[2, 0] * F[0, i] + TI[2, 1] * F[1, i] + TI[2, 2] * F[2, i]
                         w0, w1, w2 = W[0, i], W[1, i], W[2, i]
                         b0[i] = g0 - gh * w0
-                        bc[i] = complex(g1 - (ah * w1 - bh * w2), g2 - (bh * w1 + ah * w2))
+                        bc[i] = g1 - (ah * w1 - bh * w2)
+                        bc[n + i] = g2 - (bh * w1 + ah * w2)
                     _solve(Mr, pivR, b0)
-                    _solve_recip(Mc, pivC, dinv, bc)
+                    _solve(Mc, pivC, bc)
                     for i in range(n):
-                        b1[i] = bc[i].real
-                        b2[i] = bc[i].imag
+                        b1[i] = bc[i]
+                        b2[i] = bc[n + i]
                         W[0, i] += b0[i]
                         W[1, i] += b1[i]
                         W[2, i] += b2[i]
