@@ -559,7 +559,7 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
     err_old = -1.0
     h_old = -1.0
     rejected = False
-    nev_dir = 0
+    nev_dir = 0 * ev_stop      # (an int64 variable: a literal 0 would compile _crossings twice)
     while t < t_end:
         status, h = _guard(cnt[0] + cnt[1], max_steps, t, t_end, h)
         if status != 0:
