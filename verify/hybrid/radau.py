@@ -40,16 +40,14 @@ Runge–Kutta methods. ACM Trans. Math. Softw. 20, 496–517.
 from __future__ import annotations
 
 import math
-import types as _pytypes
-import warnings
 
 import numba as nb
 import numpy as np
 from numba import types
-from numba.extending import typeof_impl
 
 from landau.errors import InputError
 from landau.verify.compiling import compile_once
+from landau.verify.hybrid.callbacks import FunctionPointer, jit_enabled, make_pointers, warn_once
 
 __all__ = ["A_RADAU", "C_NODES", "E_ERR", "MU_REAL", "VINV", "SIG", "SIG_JAC", "FUN_T", "JAC_T", "STATUS",
            "FunctionPointer", "pointers", "radau_core", "split_coefficients", "cubic", "cubic_crossing"]
@@ -128,114 +126,6 @@ T_SPLIT, TI_SPLIT, GAMMA_SPLIT, ALPHA_SPLIT, BETA_SPLIT = split_coefficients(A_R
 
 
 # ---------------------------------------------------------------------------------------------
-# first-class right-hand side and Jacobian
-_WARNED: set[str] = set()
-
-
-def _warn_once(key: str, message: str) -> None:
-    if key not in _WARNED:
-        _WARNED.add(key)
-        warnings.warn(message, RuntimeWarning, stacklevel=3)
-
-
-def _jit_enabled() -> bool:
-    """False under ``NUMBA_DISABLE_JIT=1`` (``njit`` then returns the Python function itself)."""
-    return hasattr(_radau_loop, "py_func")
-
-
-class FunctionPointer(types.WrapperAddressProtocol):
-    """A compiled ``f(t, y, p, out)`` (or Jacobian) handed to :func:`radau_core` by its address.
-
-    Made by :func:`pointers` from a ``numba.cfunc``; numba reads the address
-    (:meth:`__wrapper_address__`) and the signature (:meth:`signature`) of this documented
-    protocol.  The object keeps the cfunc alive, so the address stays valid.  Calling it from
-    Python runs the Python function it was compiled from.
-    """
-
-    def __init__(self, cfunc, signature, python):
-        self._cfunc = cfunc
-        self._signature = signature
-        self._ftype = types.FunctionType(signature)
-        self._address = int(cfunc.address)
-        self._python = python
-
-    def __wrapper_address__(self) -> int:
-        return self._address
-
-    def signature(self):
-        return self._signature
-
-    def __call__(self, *args):
-        return self._python(*args)
-
-
-@typeof_impl.register(FunctionPointer)
-def _typeof_pointer(val, c):
-    # numba's own typing of a WrapperAddressProtocol object builds a new FunctionType at every
-    # call from Python (≈ 10 µs); the type of a pointer never changes, so it is made once
-    return val._ftype
-
-
-def _cfunc(fn, signature, tag):
-    """``numba.cfunc(signature, cache=True)`` of the Python function behind ``fn``.
-
-    The cfunc is made from a copy of the function under another qualified name, so that its
-    disk-cache entry does not collide with that of an ``njit`` of the same function (both are
-    keyed by the function's file, name and signature).
-    """
-    py = getattr(fn, "py_func", fn)
-    if not isinstance(py, _pytypes.FunctionType):
-        raise InputError(f"the integrator needs a Python or numba function for {tag}, got {type(fn).__name__}")
-    twin = _pytypes.FunctionType(py.__code__, py.__globals__, py.__name__, py.__defaults__, py.__closure__)
-    twin.__qualname__ = f"{py.__qualname__}__cfunc"
-    twin.__module__ = py.__module__
-    try:
-        return nb.cfunc(signature, cache=True)(twin), py
-    except Exception as exc:       # no file to cache it in (code made by exec), or dynamic globals
-        _warn_once(f"nocache:{py.__qualname__}",
-                   f"landau: {tag} {py.__qualname__!r} is compiled without numba's disk cache ({exc}); "
-                   "it is compiled again in every process")
-        return nb.cfunc(signature)(twin), py
-
-
-_POINTERS: dict[tuple[int, str], tuple[object, object]] = {}
-
-
-def pointers(fun, jac):
-    """(fun, jac) in the form :func:`radau_core` calls them, made once per function.
-
-    Parameters
-    ----------
-    fun, jac : function, numba dispatcher or FunctionPointer
-        ``fun(t, y, p, out)`` and ``jac(t, y, p, out)`` (signatures :data:`SIG`, :data:`SIG_JAC`):
-        plain Python functions or ``numba.njit`` dispatchers are compiled as ``numba.cfunc``
-        (cached on disk).
-
-    Returns
-    -------
-    tuple
-        Two :class:`FunctionPointer` objects, or, under ``NUMBA_DISABLE_JIT=1``, the two Python
-        functions.
-    """
-    jit = _jit_enabled()
-    out = []
-    for f, sig, tag in ((fun, SIG, "right-hand side"), (jac, SIG_JAC, "Jacobian")):
-        if isinstance(f, FunctionPointer):
-            out.append(f if jit else f._python)
-            continue
-        if not jit:
-            out.append(getattr(f, "py_func", f))
-            continue
-        key = (id(f), tag)
-        hit = _POINTERS.get(key)
-        if hit is None or hit[0] is not f:
-            cf, py = _cfunc(f, sig, tag)
-            hit = _POINTERS[key] = (f, FunctionPointer(cf, sig, py))
-        out.append(hit[1])
-    return out[0], out[1]
-
-
-# ---------------------------------------------------------------------------------------------
 # dense linear algebra, norms, dense output
 @nb.njit(cache=True)
 def _lu(a, piv):
@@ -268,9 +158,8 @@ def _lu(a, piv):
 
 
 @nb.njit(cache=True)
-def _permute_forward(lu, piv, b):
-    """The row interchanges and the unit-lower-triangular forward substitution of a solve with
-    the factors of :func:`_lu`, in place in ``b``."""
+def _solve(lu, piv, b):
+    """Solve with the factors of :func:`_lu`, in place in ``b``."""
     n = lu.shape[0]
     for k in range(n):
         m = piv[k]
@@ -283,13 +172,6 @@ def _permute_forward(lu, piv, b):
         for j in range(i):
             s -= lu[i, j] * b[j]
         b[i] = s
-
-
-@nb.njit(cache=True)
-def _solve(lu, piv, b):
-    """Solve with the factors of :func:`_lu`, in place in ``b``."""
-    _permute_forward(lu, piv, b)
-    n = lu.shape[0]
     for i in range(n - 1, -1, -1):
         s = b[i]
         for j in range(i + 1, n):
@@ -754,6 +636,12 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
             rec_y[:cnt[7]].copy(), h, Qprev)
 
 
+def pointers(fun, jac):
+    """(fun, jac) as :func:`radau_core` calls them (:func:`landau.verify.hybrid.callbacks.make_pointers`
+    with the signatures :data:`SIG`, :data:`SIG_JAC`), made once per function."""
+    return make_pointers(fun, jac, SIG, SIG_JAC)
+
+
 _F64 = types.float64
 _I64 = types.int64
 _A1 = types.float64[::1]
@@ -766,10 +654,10 @@ _READY = []
 def _loop():
     """The compiled loop (built or loaded from the disk cache on first use), or the Python one."""
     if not _READY:
-        if _jit_enabled():
+        if jit_enabled():
             compile_once(_radau_loop, _LOOP_SIG, "the Radau IIA integrator")
         else:
-            _warn_once("nojit", "landau: NUMBA_DISABLE_JIT is set: the Radau IIA integrator runs as plain Python "
+            warn_once("nojit", "landau: NUMBA_DISABLE_JIT is set: the Radau IIA integrator runs as plain Python "
                                 "(about a thousand times slower)")
         _READY.append(True)
     return _radau_loop
@@ -822,7 +710,7 @@ def radau_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, 
     for given, ours, name in ((AR, A_RADAU, "AR"), (VI, VINV, "VI")):
         if given is not None and given is not ours and not np.array_equal(given, ours):
             raise InputError(f"radau_core: {name} must be the Radau IIA coefficients of this module")
-    fun, jac = pointers(fun, jac)
+    fun, jac = make_pointers(fun, jac, SIG, SIG_JAC)
     y0 = _f64(y0, 1, "y0")
     n = y0.shape[0]
     if EVBUF is None:
