@@ -22,9 +22,10 @@ and loaded from numba's disk cache afterwards; nothing compiles at import.  The 
 and the Jacobian, ``f(t, y, p, out)`` and ``jac(t, y, p, out)`` (signatures :data:`SIG`,
 :data:`SIG_JAC`), reach it as first-class functions: :func:`pointers` compiles each as a
 ``numba.cfunc`` (cached on disk) and wraps its address in a
-:class:`numba.types.WrapperAddressProtocol` object, so a new friction law compiles only its own
-two small functions.  The loop and every helper it calls live in this one file, because
-numba's cache of a function is invalidated by edits of that function's own file only.
+:class:`numba.types.WrapperAddressProtocol` object (:mod:`landau.verify.hybrid.callbacks`), so a
+new friction law compiles only its own two small functions.  The loop and every helper it calls
+live in this one file, because numba's cache of a function is invalidated by edits of that
+function's own file only.
 
 With ``NUMBA_DISABLE_JIT=1`` the same code runs as plain Python (slowly; a warning says so once).
 
