@@ -659,7 +659,7 @@ def _loop():
             compile_once(_radau_loop, _LOOP_SIG, "the Radau IIA integrator")
         else:
             warn_once("nojit", "landau: NUMBA_DISABLE_JIT is set: the Radau IIA integrator runs as plain Python "
-                                "(about a thousand times slower)")
+                                "(some hundred times slower)")
         _READY.append(True)
     return _radau_loop
 
