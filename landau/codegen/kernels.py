@@ -261,7 +261,9 @@ def compile_source(src: str, name: str = "kernel") -> CompiledSource:
     The source is checked again (:func:`check_source`), kept in the cross-process code cache
     of :mod:`landau.verify.jitcache` (a file named by its SHA-256, executed with the builtins
     ``abs``, ``min``, ``max``, ``float`` and the module ``math`` only) and compiled with
-    ``cache=True``, so a later process loads the machine code from disk.  The compiled
+    ``cache=True`` on first use (for the argument types of that call; :data:`FUN_SIG`,
+    :data:`JAC_SIG` for the usual C-contiguous float arrays), so a later process loads the
+    machine code from disk.  The compiled
     functions are module-level functions of that file's module, so compiled-method templates
     bound to them are cached on disk as well (:mod:`landau.verify.hybrid.specialise`).  One
     source is compiled once per process.
@@ -285,8 +287,10 @@ def compile_source(src: str, name: str = "kernel") -> CompiledSource:
     if not callable(ns.get("fun")):
         raise InputError(f"kernel {name!r}: the source defines no function fun")
     fun_py, jac_py = ns["fun"], ns.get("jac")
-    fun = njit_cached(fun_py, FUN_SIG)
-    jac = njit_cached(jac_py, JAC_SIG) if jac_py is not None else None
+    # compiled on first use (signature None): a field handed to the Radau IIA only as a C callback
+    # (landau.verify.hybrid.callbacks) never builds these dispatchers
+    fun = njit_cached(fun_py, None)
+    jac = njit_cached(jac_py, None) if jac_py is not None else None
     out = CompiledSource(src, fun, jac, fun_py, jac_py)
     _COMPILED[src] = out
     return out

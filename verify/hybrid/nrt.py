@@ -4,9 +4,8 @@ numba keeps an atomic reference count on every array it hands to a compiled func
 callee takes a reference on entry and drops it after the last use) and on every local alias
 or slice.  In a step loop over a 2- or 3-state system those locked updates can be a large part
 of a step: in the forced-oscillator loop of :mod:`landau.verify.skurativskyi.rk` about half
-of a run; in the Radau IIA core of :mod:`landau.verify.hybrid.collocation`, whose work arrays
-were already local, 3 % of a step of the spring–block (the rest of its overhead is the dense
-linear algebra, see there).  :func:`borrowed` returns a view that shares the array's data,
+of a run.  (The Radau IIA of :mod:`landau.verify.hybrid.radau` keeps its work arrays local and
+does not use these views.)  :func:`borrowed` returns a view that shares the array's data,
 shape and strides but carries no memory-info pointer, so numba's reference-count calls skip
 it (a test for a null pointer instead of an atomic update); :func:`keep_alive` marks the
 point up to which the owners of such views must live.

@@ -1,29 +1,41 @@
 """Compiled Radau IIA (order 5) integrator for small stiff systems with an analytic Jacobian.
 
-The three-stage Radau IIA collocation method (Hairer & Wanner, *Solving ODEs II*, Sec. IV.8)
-solved by simplified Newton on the full 3n×3n stage system I − h(A⊗J) (:func:`radau_core`, the
-default: one dense LU per step), or in the eigenbasis of A⁻¹ as in the classical code — one real
-and one complex n×n system (:func:`radau_split_core`, the same steps at 1.3–1.5× less CPU per
-step on the spring–block).  Error estimate and step-size control follow
-the standard radau5 recipe (embedded estimate (μ/h·I − J)⁻¹(f₀ + Σ eᵢZᵢ/h), predictive
-Gustafsson controller), dense output is the collocation polynomial.
+The three-stage Radau IIA collocation method (Hairer & Wanner 1996, *Solving ODEs II*,
+Sec. IV.8) with its simplified Newton iteration solved in the eigenbasis of A⁻¹, as in the
+classical code radau5: per step one real n × n LU of γ/h·I − J (also the matrix of the error
+estimate) and one LU of the complex system with (α + iβ)/h·I − J, written as the real
+2n × 2n system [[α/h·I − J, −β/h·I], [β/h·I, α/h·I − J]] (the same solution; compiling real
+arithmetic only halves the first build of the loop).  A Newton iteration that fails is
+retried at the same step with the stage Jacobians J(Yᵢ) on the full 3n × 3n system (needed when
+the Jacobian changes by orders of magnitude within a step: ẇ ∝ e^{−w} as v → 0) before the
+step is halved.  Error estimate and step-size control follow the radau5 recipe (embedded
+estimate (γ/h·I − J)⁻¹(f₀ + Σ eᵢZᵢ/h), predictive controller of Gustafsson 1994); the dense
+output is the collocation cubic.
 
-The integrator is the s-stage Radau IIA of :mod:`landau.verify.hybrid.collocation` with this
-module's closed-form coefficients; its set-up, step-size control, event location and recording
-are the pieces shared by the compiled stiff integrators
-(:mod:`landau.verify.hybrid.stiffdriver`).  What is particular to this method is here: its
-coefficients, and the retry of a failed Newton iteration with the stage Jacobians before the
-step is halved.
+Crossings of ``y[ev_idx] = ev_val`` are located on the collocation cubic (the exact cubic scan
+of :func:`cubic_crossing`) and recorded; the run can stop after a number of crossings in a
+chosen direction (Poincaré returns).  Accepted steps may be recorded for plots.
 
-Everything runs inside one ``numba`` function compiled once (cached on disk) that calls
-the right-hand side and Jacobian through first-class function pointers of signature
-``f(t, y, p, out)`` / ``jac(t, y, p, out)`` — a new friction law compiles only its own
-two small functions.
+Compilation: the loop (:func:`radau_core`) is one ``numba.njit(cache=True)`` function, compiled
+on its first use for the one signature it is called with (:func:`landau.verify.compiling.compile_once`)
+and loaded from numba's disk cache afterwards; nothing compiles at import.  The right-hand side
+and the Jacobian, ``f(t, y, p, out)`` and ``jac(t, y, p, out)`` (signatures :data:`SIG`,
+:data:`SIG_JAC`), reach it as first-class functions: :func:`pointers` compiles each as a
+``numba.cfunc`` (cached on disk) and wraps its address in a
+:class:`numba.types.WrapperAddressProtocol` object (:mod:`landau.verify.hybrid.callbacks`), so a
+new friction law compiles only its own two small functions.  The loop and every helper it calls
+live in this one file, because numba's cache of a function is invalidated by edits of that
+function's own file only.
 
-Crossings of ``y[ev_idx] = ev_val`` are located on the dense output (the collocation cubic,
-by the compiled event locator of :mod:`landau.verify.hybrid.crossing`) and recorded; the run
-can stop after a number of crossings in a chosen direction (Poincaré returns).  Accepted steps
-may be recorded for plots.
+With ``NUMBA_DISABLE_JIT=1`` the same code runs as plain Python (slowly; a warning says so once).
+
+References
+----------
+Hairer, E., Wanner, G. (1996). Solving Ordinary Differential Equations II, 2nd ed., Springer,
+Sec. IV.5 (collocation, Radau IIA) and IV.8 (implementation: simplified Newton in the
+eigenbasis of A⁻¹, eq. (8.15)–(8.20), error estimate, step-size control).
+Gustafsson, K. (1994). Control-theoretic techniques for stepsize selection in implicit
+Runge–Kutta methods. ACM Trans. Math. Softw. 20, 496–517.
 """
 
 from __future__ import annotations
@@ -34,8 +46,12 @@ import numba as nb
 import numpy as np
 from numba import types
 
-from landau.verify.hybrid.collocation import NEWTON_MAXITER, _radau_iia, radau_iia_core  # noqa: F401
-from landau.verify.hybrid.stiffdriver import STATUS, _lu, _poly, _rms, _solve  # noqa: F401  (re-exported)
+from landau.errors import InputError
+from landau.verify.compiling import compile_once
+from landau.verify.hybrid.callbacks import FunctionPointer, jit_enabled, make_pointers, warn_once
+
+__all__ = ["A_RADAU", "C_NODES", "E_ERR", "MU_REAL", "VINV", "SIG", "SIG_JAC", "FUN_T", "JAC_T", "STATUS",
+           "FunctionPointer", "pointers", "radau_core", "split_coefficients", "cubic", "cubic_crossing"]
 
 SQ6 = math.sqrt(6.0)
 #: collocation nodes c_i and Butcher matrix A of Radau IIA (order 5)
@@ -55,114 +71,653 @@ VINV = np.linalg.inv(np.array([[c ** j for j in (1, 2, 3)] for c in C_NODES]))
 #: (4 − √6)/10 in the last bit; the code has used these since its first version)
 _NODES = np.array([0.1550510257216822, 0.6449489742783178, 1.0])
 
+#: double-precision machine epsilon
+EPS = 2.220446049250313e-16
+#: Newton sweeps of the simplified iteration before a step is declared failed
+NEWTON_MAXITER = 7
+#: the status codes :func:`radau_core` returns
+STATUS = {0: "finished", 1: "terminal event", -1: "step size too small", -2: "maximum number of steps",
+          -3: "non-finite state"}
+
 SIG = types.void(types.float64, types.float64[::1], types.float64[::1], types.float64[::1])
 SIG_JAC = types.void(types.float64, types.float64[::1], types.float64[::1], types.float64[:, ::1])
 FUN_T = types.FunctionType(SIG)
 JAC_T = types.FunctionType(SIG_JAC)
 
 
-class FunctionPointer(types.WrapperAddressProtocol):
-    """A compiled function handed to :func:`radau_core` by its machine address.
+def split_coefficients(A):
+    """The transformation of the 3-stage Newton system to one real and one complex n × n system.
 
-    Passing a numba dispatcher where a first-class function type is expected makes numba look
-    up (and possibly compile) its wrapper at *every* call — about 0.2 ms, more than a whole
-    loose-tolerance run of a small system.  This object resolves the address once; numba then
-    only reads it (:meth:`__wrapper_address__`).  It keeps the dispatcher alive, so the
-    address stays valid.
-    """
-
-    def __init__(self, dispatcher, signature):
-        from numba.experimental.function_type import _get_wrapper_address
-
-        self._dispatcher = dispatcher
-        self._signature = signature
-        self._address = _get_wrapper_address(dispatcher, signature)
-
-    def __wrapper_address__(self) -> int:
-        return self._address
-
-    def signature(self):
-        return self._signature
-
-    def __call__(self, *args):
-        return self._dispatcher(*args)
-
-
-_POINTERS: dict[tuple[int, str], FunctionPointer] = {}
-
-
-def pointers(fun, jac) -> tuple[FunctionPointer, FunctionPointer]:
-    """(fun, jac) as :class:`FunctionPointer` objects for :func:`radau_core` (made once per function).
+    A⁻¹ = T·Λ·T⁻¹ with Λ = diag(γ, [[α, −β], [β, α]]): γ the real eigenvalue of A⁻¹ and
+    α ± iβ (β > 0) its complex pair (Hairer & Wanner 1996, IV.8, eq. (8.15)–(8.18)).  With
+    W = T⁻¹Z the stage equations Z = h(A ⊗ I)F decouple, for a constant Jacobian, into
+    (γ/h·I − J)·ΔW₁ = … and ((α + iβ)/h·I − J)·(ΔW₂ + iΔW₃) = ….
 
     Parameters
     ----------
-    fun, jac : numba dispatchers
-        ``fun(t, y, p, out)`` and ``jac(t, y, p, out)`` (signatures :data:`SIG`, :data:`SIG_JAC`).
+    A : ndarray, shape (3, 3)
+        Butcher matrix of a 3-stage method whose A⁻¹ has one real eigenvalue and a complex pair.
 
     Returns
     -------
-    tuple of FunctionPointer
+    (T, TI, gamma, alpha, beta) : (ndarray, ndarray, float, float, float)
     """
-    out = []
-    for f, sig, tag in ((fun, SIG, "f"), (jac, SIG_JAC, "J")):
-        if isinstance(f, FunctionPointer):
-            out.append(f)
-            continue
-        key = (id(f), tag)
-        ptr = _POINTERS.get(key)
-        if ptr is None or ptr._dispatcher is not f:
-            ptr = _POINTERS[key] = FunctionPointer(f, sig)
-        out.append(ptr)
-    return out[0], out[1]
-F64 = types.float64
-A1 = types.float64[::1]
-A2 = types.float64[:, ::1]
-I64 = types.int64
+    A = np.asarray(A, dtype=float)
+    if A.shape != (3, 3):
+        raise InputError(f"split_coefficients: a 3 x 3 Butcher matrix is needed, got shape {A.shape}")
+    AI = np.linalg.inv(A)
+    lam, vec = np.linalg.eig(AI)
+    ir = int(np.argmin(np.abs(np.imag(lam))))
+    ic = int(np.argmin(np.imag(lam)))          # the eigenvalue α − iβ of the pair
+    if ic == ir or abs(np.imag(lam[ic])) == 0.0:
+        raise InputError("split_coefficients: A⁻¹ has no complex eigenvalue pair")
+    gamma = float(np.real(lam[ir]))
+    alpha, beta = float(np.real(lam[ic])), float(-np.imag(lam[ic]))
+    u = vec[:, ic]
+    T = np.column_stack([np.real(vec[:, ir]), np.real(u), np.imag(u)])
+    TI = np.linalg.inv(T)
+    Lam = np.array([[gamma, 0.0, 0.0], [0.0, alpha, -beta], [0.0, beta, alpha]])
+    if not np.allclose(T @ Lam @ TI, AI, rtol=1e-12, atol=1e-12 * np.abs(AI).max()):
+        raise InputError("split_coefficients: the eigen-decomposition of A⁻¹ does not reproduce it")
+    return T, TI, gamma, alpha, beta
 
-
-@nb.njit(types.Tuple((I64, F64, A1, I64[::1], A1, A2, A1, A2, F64, A2))(
-    FUN_T, JAC_T, F64, A1, F64, A1, F64, A1, F64, F64, I64, I64, F64, I64, I64, I64, A2, A2, A2, A1), cache=True)
-def radau_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
-               ev_idx, ev_val, ev_dir, ev_stop, rec_cap, AR, VI, EVBUF, EVDIR):
-    """Integrate from t0 to t_end.  Returns (status, t, y, counters, ev_t, ev_y, rec_t, rec_y, h, Q).
-
-    counters = [accepted steps, rejected steps, f evaluations, Jacobians, LU decompositions,
-    Newton failures, events, recorded steps].  ``EVBUF`` (m × n) / ``EVDIR`` (m) receive
-    crossings; ``ev_idx < 0`` disables events; ``ev_stop > 0`` stops after that many
-    crossings in direction ``ev_dir`` (±1, 0 = either).  ``h`` is the next step size and ``Q``
-    the last accepted step's collocation polynomial (y(t_old + x h_old) = y_old + Σ_j Q_j x^{j+1}),
-    so that a caller can drive the method one step at a time (``max_steps = 1``).  The step is
-    :func:`landau.verify.hybrid.collocation.radau_iia_core` with this module's coefficients and
-    a failed Newton iteration retried with the stage Jacobians.
-    """
-    if y0.shape[0] == 3:
-        # the spring–block's three states: the loop compiled with constant sizes (same arithmetic)
-        return _radau_iia(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
-                          ev_stop, rec_cap, AR, _NODES, E_ERR, MU_REAL, VI, True, True, EVBUF, EVDIR, 3, 3)
-    return radau_iia_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
-                          ev_stop, rec_cap, AR, _NODES, E_ERR, MU_REAL, VI, True, True, EVBUF, EVDIR)
-
-
-from landau.verify.hybrid.collocation import _radau_split, _radau_split_any, split_coefficients  # noqa: E402
 
 #: A⁻¹ = T·diag(γ, [[α, −β], [β, α]])·T⁻¹, computed from :data:`A_RADAU` (:func:`split_coefficients`)
 T_SPLIT, TI_SPLIT, GAMMA_SPLIT, ALPHA_SPLIT, BETA_SPLIT = split_coefficients(A_RADAU)
 
 
-@nb.njit(types.Tuple((I64, F64, A1, I64[::1], A1, A2, A1, A2, F64, A2))(
-    FUN_T, JAC_T, F64, A1, F64, A1, F64, A1, F64, F64, I64, I64, F64, I64, I64, I64, A2, A2, A2, A2, F64, F64, F64,
-    A2, A1), cache=True)
-def radau_split_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
-                     ev_idx, ev_val, ev_dir, ev_stop, rec_cap, AR, VI, T, TI, gam, alp, bet, EVBUF, EVDIR):
-    """:func:`radau_core` with the Newton system solved in the eigenbasis of A⁻¹: one real and
-    one complex n × n LU per step instead of one 3n × 3n LU
-    (:func:`landau.verify.hybrid.collocation._radau_split_body`; ``T``, ``TI``, ``gam``, ``alp``,
-    ``bet`` from :func:`landau.verify.hybrid.collocation.split_coefficients`, e.g.
-    :data:`T_SPLIT`…).  Same arguments and returned tuple as :func:`radau_core`; the results
-    agree with it to the integration tolerance, not to the bit.
+# ---------------------------------------------------------------------------------------------
+# dense linear algebra, norms, dense output
+@nb.njit(cache=True)
+def _lu(a, piv):
+    """In-place LU decomposition of the square ``a`` with partial pivoting (row swaps in ``piv``);
+    False when a pivot is exactly zero."""
+    n = a.shape[0]
+    for k in range(n):
+        m = k
+        big = abs(a[k, k])
+        for i in range(k + 1, n):
+            if abs(a[i, k]) > big:
+                big = abs(a[i, k])
+                m = i
+        piv[k] = m
+        if big == 0.0:
+            return False
+        if m != k:
+            for j in range(n):
+                tmp = a[k, j]
+                a[k, j] = a[m, j]
+                a[m, j] = tmp
+        inv = 1.0 / a[k, k]
+        for i in range(k + 1, n):
+            a[i, k] *= inv
+            f = a[i, k]
+            if f != 0.0:
+                for j in range(k + 1, n):
+                    a[i, j] -= f * a[k, j]
+    return True
+
+
+@nb.njit(cache=True)
+def _solve(lu, piv, b):
+    """Solve with the factors of :func:`_lu`, in place in ``b``."""
+    n = lu.shape[0]
+    for k in range(n):
+        m = piv[k]
+        if m != k:
+            tmp = b[k]
+            b[k] = b[m]
+            b[m] = tmp
+    for i in range(n):
+        s = b[i]
+        for j in range(i):
+            s -= lu[i, j] * b[j]
+        b[i] = s
+    for i in range(n - 1, -1, -1):
+        s = b[i]
+        for j in range(i + 1, n):
+            s -= lu[i, j] * b[j]
+        b[i] = s / lu[i, i]
+
+
+@nb.njit(cache=True)
+def _rms(x, scale):
+    """The error norm: the root mean square of x / scale."""
+    s = 0.0
+    for i in range(x.shape[0]):
+        r = x[i] / scale[i]
+        s += r * r
+    return math.sqrt(s / x.shape[0])
+
+
+@nb.njit(cache=True)
+def _poly(y0, Q, x, i):
+    """Component i of the dense output y0 + Σ_j Q_j x^{j+1} (Horner)."""
+    acc = Q[Q.shape[0] - 1, i]
+    for j in range(Q.shape[0] - 2, -1, -1):
+        acc = Q[j, i] + x * acc
+    return y0[i] + x * acc
+
+
+# ---------------------------------------------------------------------------------------------
+# event location on the collocation cubic
+@nb.njit(cache=True)
+def cubic(c1, c2, c3, s):
+    """c₁s + c₂s² + c₃s³ (Horner)."""
+    return s * (c1 + s * (c2 + s * c3))
+
+
+@nb.njit(cache=True)
+def cubic_crossing(g0, c1, c2, c3, lo, outside_sign, inclusive):
+    """First s in (lo, 1] where g(s) = g0 + c1 s + c2 s² + c3 s³ is on the side
+    ``outside_sign`` (g·sign > 0, or g = 0 too when ``inclusive``), or −1 if none.
+
+    g(lo) must be on the other side.  The scan is exact for a cubic: g is monotone between its
+    critical points, so evaluating g at every critical point inside the interval and at its end
+    finds the first sign change, including a guard that dips across and back inside one step.
+    The bracket is bisected to adjacent floating-point numbers and the root is returned on the
+    *new side* (the side the guard is crossing to)."""
+    pts = np.empty(3)
+    npts = 0
+    a, b, c = 3 * c3, 2 * c2, c1
+    if a != 0.0:
+        disc = b * b - 4 * a * c
+        if disc >= 0:
+            r = math.sqrt(disc)
+            s1 = (-b - r) / (2 * a)
+            s2 = (-b + r) / (2 * a)
+            if s1 > s2:
+                s1, s2 = s2, s1
+            if lo < s1 < 1.0:
+                pts[npts] = s1
+                npts += 1
+            if lo < s2 < 1.0:
+                pts[npts] = s2
+                npts += 1
+    elif b != 0.0:
+        s = -c / b
+        if lo < s < 1.0:
+            pts[npts] = s
+            npts += 1
+    pts[npts] = 1.0
+    npts += 1
+    for k in range(npts):
+        hi = pts[k]
+        gh = (g0 + cubic(c1, c2, c3, hi)) * outside_sign
+        if gh > 0.0 or (inclusive and gh == 0.0):
+            for _ in range(100):
+                mid = 0.5 * (lo + hi)
+                if mid <= lo or mid >= hi:
+                    break
+                gm = (g0 + cubic(c1, c2, c3, mid)) * outside_sign
+                if gm > 0.0 or (inclusive and gm == 0.0):
+                    hi = mid
+                else:
+                    lo = mid
+            return hi
+        lo = hi
+    return -1.0
+
+
+@nb.njit(cache=True)
+def _may_cross(g0, c1, c2, c3):
+    """Whether g(x) = g0 + c1 x + c2 x² + c3 x³ may change sign on [0, 1] (else :func:`_crossings`
+    would find nothing): False for g0 = 0 (a crossing starting on the surface is not one), and
+    when |g0| exceeds the cubic's largest change |c1| + |c2| + |c3| by a margin (10⁻¹²) far
+    above the rounding of its evaluation — most steps, decided with scalars only."""
+    return g0 != 0.0 and (abs(c1) + abs(c2) + abs(c3)) * (1.0 + 1e-12) >= abs(g0)
+
+
+@nb.njit(cache=True)
+def _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF, EVDIR):
+    """Record every sign change of y[ev_idx] − ev_val on the step's cubic dense output.
+
+    Returns (stop, nev_dir): whether the ``ev_stop``-th crossing in direction ``ev_dir`` was
+    reached, and the updated count of such crossings.
     """
-    if y0.shape[0] == 3:
-        return _radau_split(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
-                            ev_stop, rec_cap, AR, _NODES, E_ERR, VI, T, TI, gam, alp, bet, EVBUF, EVDIR, 3)
-    return _radau_split_any(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir,
-                            ev_stop, rec_cap, AR, _NODES, E_ERR, VI, T, TI, gam, alp, bet, EVBUF, EVDIR, y0.shape[0])
+    n = y.shape[0]
+    g0 = y[ev_idx] - ev_val
+    c1 = Q[0, ev_idx]
+    c2 = Q[1, ev_idx]
+    c3 = Q[2, ev_idx]
+    xa = 0.0
+    ga = g0
+    for _ in range(4):  # a cubic changes sign at most three times
+        if ga == 0.0:
+            break
+        sgn = -1.0 if ga > 0.0 else 1.0
+        xr = cubic_crossing(g0, c1, c2, c3, xa, sgn, True)
+        if xr < 0.0:
+            break
+        d = 1 if sgn > 0.0 else -1
+        k = cnt[6]
+        if k < EVBUF.shape[0]:
+            EVDIR[k] = d
+            EVBUF[k, 0] = t + xr * h
+            for i in range(n):
+                EVBUF[k, 1 + i] = _poly(y, Q, xr, i)
+            cnt[6] += 1
+        if ev_stop > 0 and (ev_dir == 0 or d == ev_dir):
+            nev_dir += 1
+            if nev_dir >= ev_stop:
+                return True, nev_dir
+        xa = xr
+        ga = g0 + cubic(c1, c2, c3, xr)
+        if xr >= 1.0:
+            break
+    return False, nev_dir
+
+
+# ---------------------------------------------------------------------------------------------
+# step-size control
+@nb.njit(cache=True)
+def _guard(steps, max_steps, t, t_end, h):
+    """(status, h) before a step: the budget of ``max_steps`` attempts (−2), h cut to the end of
+    the interval, step-size underflow (−1); status 0 to go on."""
+    if steps >= max_steps:
+        return -2, h
+    if h > t_end - t:
+        h = t_end - t
+    if h < 10 * EPS * max(abs(t), 1e-300) or h <= 0.0:
+        return -1, h
+    return 0, h
+
+
+@nb.njit(cache=True)
+def _retry_size(h, err_norm, safety, expo):
+    """The step size to retry with when the error test fails — h/4 for a non-finite error,
+    h·max(0.2, safety·err^(−expo)) above the tolerance — or −1 when the step is accepted."""
+    if not math.isfinite(err_norm):
+        return h * 0.25
+    if err_norm > 1.0:
+        return h * max(0.2, safety * err_norm ** -expo)
+    return -1.0
+
+
+@nb.njit(cache=True)
+def _next_size(h, h_old, err_norm, err_old, rejected, safety, expo, facmax, max_step):
+    """The predictive (Gustafsson 1994) controller after an accepted step of size h.
+
+    ``expo`` = 1/4 for the order-3 estimate; the step grows by at most ``facmax``, and not at
+    all right after a rejection.  Returns (next h, h_old, err_old) for the next call.
+    """
+    if err_old > 0 and err_norm > 0:
+        mult = h / h_old * (err_old / err_norm) ** expo
+    else:
+        mult = 1.0
+    fac = min(1.0, mult) * (err_norm ** -expo if err_norm > 0 else facmax)
+    fac = min(facmax, safety * fac)
+    if rejected:
+        fac = min(1.0, fac)
+    return min(h * fac, max_step), h, max(err_norm, 1e-10)
+
+
+@nb.njit(cache=True)
+def _stage_jacobians(jac, t, h, y, Z, p, JB, ytmp, Mf, pivF, cnt):
+    """The full-Newton matrix I − h(A ⊗ I)·diag(J(Y_b)) with the stage Jacobians at the current
+    iterate, factorised in place; False when it is singular."""
+    s, n = Z.shape
+    for b in range(s):
+        for i in range(n):
+            ytmp[i] = y[i] + Z[b, i]
+        jac(t + _NODES[b] * h, ytmp, p, JB[b])
+        cnt[3] += 1
+    for a in range(s):
+        for b in range(s):
+            hab = -h * A_RADAU[a, b]
+            for i in range(n):
+                for j in range(n):
+                    Mf[a * n + i, b * n + j] = hab * JB[b, i, j]
+    for i in range(s * n):
+        Mf[i, i] += 1.0
+    if not _lu(Mf, pivF):
+        return False
+    cnt[4] += 1
+    return True
+
+
+# ---------------------------------------------------------------------------------------------
+# the step loop
+@nb.njit(cache=True)
+def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir, ev_stop,
+                rec_cap, EVBUF, EVDIR):
+    """The integrator (:func:`radau_core` documents the arguments and the returned tuple)."""
+    s = 3
+    n = y0.shape[0]
+    N = s * n
+    T = T_SPLIT
+    TI = TI_SPLIT
+    gam = GAMMA_SPLIT
+    alp = ALPHA_SPLIT
+    bet = BETA_SPLIT
+    # set-up: f at the start (counted), the first step, counters and recording buffers
+    cnt = np.empty(8, dtype=np.int64)
+    for i in range(8):
+        cnt[i] = 0
+    rec_t = np.empty(rec_cap)
+    rec_y = np.empty((rec_cap, n))
+    y = y0.copy()
+    f0 = np.empty(n)
+    fun(t0, y, p, f0)
+    cnt[2] += 1
+    h = min(h0, max_step, t_end - t0)
+    status = 0
+    for i in range(n):
+        if not math.isfinite(y[i]) or not math.isfinite(f0[i]):
+            status = -3
+            t_end = t0
+    if rec_cap > 0:
+        rec_t[0] = t0
+        for i in range(n):
+            rec_y[0, i] = y[i]
+        cnt[7] = 1
+    J = np.empty((n, n))
+    Mf = np.empty((N, N))
+    Mr = np.empty((n, n))
+    Mc = np.empty((2 * n, 2 * n))
+    bc = np.empty(2 * n)
+    pivF = np.empty(N, dtype=np.int64)
+    pivR = np.empty(n, dtype=np.int64)
+    pivC = np.empty(2 * n, dtype=np.int64)
+    Z = np.empty((s, n))
+    W = np.empty((s, n))
+    F = np.empty((s, n))
+    JB = np.empty((s, n, n))
+    R = np.empty(N)
+    vec = np.empty((10, n))
+    Q = np.empty((s, n))
+    Qprev = np.empty((s, n))
+    for a in range(s):
+        for i in range(n):
+            Qprev[a, i] = 0.0
+    ytmp, ynew, scale, err, ZE, yprev = vec[0], vec[1], vec[2], vec[3], vec[4], vec[5]
+    b0, b1, b2 = vec[6], vec[7], vec[8]
+    t = t0
+    have_prev = False
+    tprev = 0.0
+    hprev = 1.0
+    newton_tol = max(10 * EPS / rtol, min(0.03, rtol ** 0.5))
+    expo = 1.0 / (s + 1)
+    use_full = False
+    err_old = -1.0
+    h_old = -1.0
+    rejected = False
+    nev_dir = 0 * ev_stop      # (an int64 variable: a literal 0 would compile _crossings twice)
+    while t < t_end:
+        status, h = _guard(cnt[0] + cnt[1], max_steps, t, t_end, h)
+        if status != 0:
+            break
+        jac(t, y, p, J)
+        cnt[3] += 1
+        gh = gam / h
+        ah = alp / h
+        bh = bet / h
+        # (α + iβ)/h·I − J acting on u + iv, as the real 2n × 2n matrix [[αI/h − J, −βI/h], [βI/h, αI/h − J]]
+        for i in range(n):
+            for j in range(n):
+                Mr[i, j] = -J[i, j]
+                Mc[i, j] = -J[i, j]
+                Mc[n + i, n + j] = -J[i, j]
+                Mc[i, n + j] = 0.0
+                Mc[n + i, j] = 0.0
+            Mr[i, i] += gh
+            Mc[i, i] += ah
+            Mc[n + i, n + i] += ah
+            Mc[i, n + i] = -bh
+            Mc[n + i, i] = bh
+        ok = _lu(Mr, pivR)
+        cnt[4] += 1
+        if not use_full:
+            ok = _lu(Mc, pivC) and ok
+            cnt[4] += 1
+        # Newton start: the previous step's collocation polynomial, extrapolated
+        for a in range(s):
+            for i in range(n):
+                if have_prev:
+                    x = (t + _NODES[a] * h - tprev) / hprev
+                    Z[a, i] = _poly(yprev, Qprev, x, i) - y[i]
+                else:
+                    Z[a, i] = 0.0
+        if not use_full:
+            for i in range(n):
+                W[0, i] = TI[0, 0] * Z[0, i] + TI[0, 1] * Z[1, i] + TI[0, 2] * Z[2, i]
+                W[1, i] = TI[1, 0] * Z[0, i] + TI[1, 1] * Z[1, i] + TI[1, 2] * Z[2, i]
+                W[2, i] = TI[2, 0] * Z[0, i] + TI[2, 1] * Z[1, i] + TI[2, 2] * Z[2, i]
+        converged = False
+        dW_old = -1.0
+        rate = -1.0
+        n_iter = 0
+        if ok:
+            for it in range(3 * NEWTON_MAXITER if use_full else NEWTON_MAXITER):
+                n_iter = min(it + 1, NEWTON_MAXITER)
+                finite = True
+                for a in range(s):
+                    for i in range(n):
+                        ytmp[i] = y[i] + Z[a, i]
+                    fa = F[a]
+                    fun(t + _NODES[a] * h, ytmp, p, fa)
+                    cnt[2] += 1
+                    for i in range(n):
+                        if not math.isfinite(fa[i]):
+                            finite = False
+                if not finite:
+                    break
+                if use_full:
+                    # the retry: full Newton matrix with the stage Jacobians
+                    if not _stage_jacobians(jac, t, h, y, Z, p, JB, ytmp, Mf, pivF, cnt):
+                        break
+                    for a in range(s):
+                        for i in range(n):
+                            acc = -Z[a, i]
+                            for b in range(s):
+                                acc += h * A_RADAU[a, b] * F[b, i]
+                            R[a * n + i] = acc
+                    _solve(Mf, pivF, R)
+                else:
+                    # right-hand sides T⁻¹F − (Λ/h)·T⁻¹Z of the decoupled systems
+                    for i in range(n):
+                        g0 = TI[0, 0] * F[0, i] + TI[0, 1] * F[1, i] + TI[0, 2] * F[2, i]
+                        g1 = TI[1, 0] * F[0, i] + TI[1, 1] * F[1, i] + TI[1, 2] * F[2, i]
+                        g2 = TI[2, 0] * F[0, i] + TI[2, 1] * F[1, i] + TI[2, 2] * F[2, i]
+                        w0, w1, w2 = W[0, i], W[1, i], W[2, i]
+                        b0[i] = g0 - gh * w0
+                        bc[i] = g1 - (ah * w1 - bh * w2)
+                        bc[n + i] = g2 - (bh * w1 + ah * w2)
+                    _solve(Mr, pivR, b0)
+                    _solve(Mc, pivC, bc)
+                    for i in range(n):
+                        b1[i] = bc[i]
+                        b2[i] = bc[n + i]
+                        W[0, i] += b0[i]
+                        W[1, i] += b1[i]
+                        W[2, i] += b2[i]
+                    for a in range(s):
+                        for i in range(n):
+                            R[a * n + i] = T[a, 0] * b0[i] + T[a, 1] * b1[i] + T[a, 2] * b2[i]
+                dW = 0.0
+                for a in range(s):
+                    for i in range(n):
+                        sc = atol[i] + abs(y[i] + Z[a, i]) * rtol
+                        r = R[a * n + i] / sc
+                        dW += r * r
+                        Z[a, i] += R[a * n + i]
+                dW = math.sqrt(dW / N)
+                if dW_old > 0:
+                    rate = dW / dW_old
+                if use_full:
+                    if (rate >= 1.0 and it >= 4) or it >= 3 * NEWTON_MAXITER - 1:
+                        break
+                    if dW < newton_tol and rate < 1.0:
+                        converged = True
+                        break
+                    dW_old = dW
+                    continue
+                if rate >= 1.0 or (rate > 0 and rate ** (NEWTON_MAXITER - it) / (1 - rate) * dW > newton_tol):
+                    break
+                if dW == 0.0 or (rate > 0 and rate / (1 - rate) * dW < newton_tol):
+                    converged = True
+                    break
+                dW_old = dW
+        if not converged:
+            cnt[5] += 1
+            cnt[1] += 1
+            if use_full:
+                h *= 0.5
+            use_full = True
+            rejected = True
+            continue
+        for i in range(n):
+            ynew[i] = y[i] + Z[s - 1, i]
+        # embedded error estimate: (γ/h I − J)⁻¹ (f0 + Σ e_a Z_a / h), with the real factors above
+        for i in range(n):
+            acc = f0[i]
+            for a in range(s):
+                acc += E_ERR[a] * Z[a, i] / h
+            err[i] = acc
+            ZE[i] = acc - f0[i]
+            scale[i] = atol[i] + max(abs(y[i]), abs(ynew[i])) * rtol
+        _solve(Mr, pivR, err)
+        err_norm = _rms(err, scale)
+        if rejected and err_norm > 1.0:
+            for i in range(n):
+                ytmp[i] = y[i] + err[i]
+            fun(t, ytmp, p, err)
+            cnt[2] += 1
+            for i in range(n):
+                err[i] += ZE[i]
+            _solve(Mr, pivR, err)
+            err_norm = _rms(err, scale)
+        safety = 0.9 * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter)
+        h_retry = _retry_size(h, err_norm, safety, expo)
+        if h_retry > 0.0:
+            cnt[1] += 1
+            h = h_retry
+            rejected = True
+            continue
+        # accepted: the collocation polynomial Q = V⁻¹Z is the dense output
+        cnt[0] += 1
+        use_full = False
+        for j in range(s):
+            for i in range(n):
+                acc = 0.0
+                for a in range(s):
+                    acc += VINV[j, a] * Z[a, i]
+                Q[j, i] = acc
+        t_new = t + h
+        stop = False
+        if ev_idx >= 0 and _may_cross(y[ev_idx] - ev_val, Q[0, ev_idx], Q[1, ev_idx], Q[2, ev_idx]):
+            stop, nev_dir = _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF, EVDIR)
+        for i in range(n):
+            yprev[i] = y[i]
+        for j in range(s):
+            for i in range(n):
+                Qprev[j, i] = Q[j, i]
+        tprev = t
+        hprev = h
+        have_prev = True
+        t = t_new
+        for i in range(n):
+            y[i] = ynew[i]
+        fun(t, y, p, f0)
+        cnt[2] += 1
+        if rec_cap > 0:
+            k = cnt[7]
+            if k < rec_t.shape[0]:
+                rec_t[k] = t
+                for i in range(n):
+                    rec_y[k, i] = y[i]
+                cnt[7] += 1
+        if stop:
+            status = 1
+            break
+        h, h_old, err_old = _next_size(h, h_old, err_norm, err_old, rejected, safety, expo, 10.0, max_step)
+        rejected = False
+    ne = min(cnt[6], EVBUF.shape[0])
+    return (status, t, y, cnt, EVBUF[:ne, 0].copy(), EVBUF[:ne, 1:].copy(), rec_t[:cnt[7]].copy(),
+            rec_y[:cnt[7]].copy(), h, Qprev)
+
+
+def pointers(fun, jac):
+    """(fun, jac) as :func:`radau_core` calls them (:func:`landau.verify.hybrid.callbacks.make_pointers`
+    with the signatures :data:`SIG`, :data:`SIG_JAC`), made once per function."""
+    return make_pointers(fun, jac, SIG, SIG_JAC)
+
+
+_F64 = types.float64
+_I64 = types.int64
+_A1 = types.float64[::1]
+_A2 = types.float64[:, ::1]
+#: the one signature the loop is compiled for
+_LOOP_SIG = (FUN_T, JAC_T, _F64, _A1, _F64, _A1, _F64, _A1, _F64, _F64, _I64, _I64, _F64, _I64, _I64, _I64, _A2, _A1)
+_READY = []
+
+
+def _loop():
+    """The compiled loop (built or loaded from the disk cache on first use), or the Python one."""
+    if not _READY:
+        if jit_enabled():
+            compile_once(_radau_loop, _LOOP_SIG, "the Radau IIA integrator")
+        else:
+            warn_once("nojit", "landau: NUMBA_DISABLE_JIT is set: the Radau IIA integrator runs as plain Python "
+                                "(some hundred times slower)")
+        _READY.append(True)
+    return _radau_loop
+
+
+def _f64(a, ndim, what):
+    a = np.ascontiguousarray(a, dtype=np.float64)
+    if a.ndim != ndim:
+        raise InputError(f"radau_core: {what} must have {ndim} dimension(s), got shape {a.shape}")
+    return a
+
+
+def radau_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir, ev_stop,
+               rec_cap, AR=None, VI=None, EVBUF=None, EVDIR=None):
+    """Integrate y' = f(t, y; p) from t0 to t_end with the order-5 Radau IIA (module docstring).
+
+    Parameters
+    ----------
+    fun, jac : function, numba dispatcher or FunctionPointer
+        ``fun(t, y, p, out)``, ``jac(t, y, p, out)`` (:func:`pointers`).
+    t0, t_end : float
+        Interval.
+    y0, p : ndarray
+        Initial state (n) and parameter vector.
+    rtol : float
+        Relative tolerance; ``atol`` (ndarray, n) the absolute one.
+    h0, max_step : float
+        First step and largest step.
+    max_steps : int
+        Budget of step attempts (accepted and rejected).
+    ev_idx, ev_val, ev_dir, ev_stop : int, float, int, int
+        Crossings of ``y[ev_idx] = ev_val`` are recorded (``ev_idx < 0``: none); the run stops
+        after ``ev_stop > 0`` crossings in direction ``ev_dir`` (±1, 0 = either).
+    rec_cap : int
+        Number of accepted steps kept (from the start; 0: none).
+    AR, VI : ndarray, optional
+        :data:`A_RADAU` and :data:`VINV` (accepted for existing callers; no other values).
+    EVBUF, EVDIR : ndarray, optional
+        m × (n + 1) and m buffers that receive the crossings (time, state) and their directions.
+
+    Returns
+    -------
+    tuple
+        (status, t, y, counters, ev_t, ev_y, rec_t, rec_y, h, Q): status as in :data:`STATUS`;
+        counters = [accepted steps, rejected steps, f evaluations, Jacobians, LU decompositions,
+        Newton failures, events, recorded steps]; ``h`` the next step size and ``Q`` the last
+        accepted step's collocation polynomial (y(t_old + x h_old) = y_old + Σ_j Q_j x^{j+1}),
+        so that a caller can drive the method one step at a time (``max_steps = 1``).
+    """
+    for given, ours, name in ((AR, A_RADAU, "AR"), (VI, VINV, "VI")):
+        if given is not None and given is not ours and not np.array_equal(given, ours):
+            raise InputError(f"radau_core: {name} must be the Radau IIA coefficients of this module")
+    fun, jac = make_pointers(fun, jac, SIG, SIG_JAC)
+    y0 = _f64(y0, 1, "y0")
+    n = y0.shape[0]
+    if EVBUF is None:
+        EVBUF = np.empty((1, n + 1))
+    if EVDIR is None:
+        EVDIR = np.empty(EVBUF.shape[0])
+    return _loop()(fun, jac, float(t0), y0, float(t_end), _f64(p, 1, "p"), float(rtol), _f64(atol, 1, "atol"),
+                   float(h0), float(max_step), int(max_steps), int(ev_idx), float(ev_val), int(ev_dir),
+                   int(ev_stop), int(rec_cap), _f64(EVBUF, 2, "EVBUF"), _f64(EVDIR, 1, "EVDIR"))

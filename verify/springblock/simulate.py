@@ -5,16 +5,10 @@ locating crossings of one component (e.g. w = ln(v/V) = 0, where X = x − x₀ 
 and stopping after a given number of them; every failure raises
 :class:`~landau.errors.IntegratorError` carrying the time and the physical state.
 
-Methods (``method=``): ``"radau5"`` (default, the 3-stage Radau IIA of
-:mod:`landau.verify.hybrid.radau`, with event location), ``"radau9"`` (the 5-stage, order-9
-Radau IIA of :mod:`landau.verify.hybrid.collocation`, no event location or recording),
-``"radau5t"`` (the same order-5 Radau IIA with its Newton system transformed to one real and
-one complex 3 × 3 system, Hairer & Wanner 1996, IV.8; with event location; agrees with
-``"radau5"`` to the tolerance, not to the bit), ``"rodas4"`` (the Rosenbrock method of
-:mod:`landau.verify.hybrid.rosenbrock`) and ``"auto"``, which picks by the requested tolerance
-(:func:`choose_method`).  The kernels are passed to the
-compiled code by machine address (:mod:`landau.verify.hybrid.fastcall`), so a call costs a few
-microseconds on top of the integration itself.
+The integrator is the order-5 Radau IIA of :mod:`landau.verify.hybrid.radau` (Newton system
+in the eigenbasis of A⁻¹, Hairer & Wanner 1996, IV.8), compiled once per machine; the law's
+right-hand side and Jacobian reach it as compiled C callbacks.  :meth:`Run.simulation` gives a
+run as the common result type :class:`~landau.verify.hybrid.result.Simulation`.
 """
 
 from __future__ import annotations
@@ -28,49 +22,13 @@ from landau.errors import InputError, IntegratorError
 from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.result import Simulation, status_from_text
 from landau.verify.springblock.model import SpringBlockModel, compile_variational
-from landau.verify.hybrid.collocation import radau_tableau
-from landau.verify.hybrid.fastcall import addresses, collocation_at, radau_at, radau_split_at, rosenbrock_at
-from landau.verify.hybrid.radau import A_RADAU, ALPHA_SPLIT, BETA_SPLIT, GAMMA_SPLIT, STATUS, T_SPLIT, TI_SPLIT, VINV
-from landau.verify.hybrid.rosenbrock import (RODAS4_A, RODAS4_C, RODAS4_CNODES, RODAS4_D, RODAS4_E,
-                                             RODAS4_M)
+from landau.verify.hybrid.radau import STATUS, radau_core
 
 #: index of w = ln(v/V) in the scaled state; w = 0 ⇔ ẋ = V ⇔ X = x − x₀ extremal
 W_INDEX = 1
 
-#: the methods :func:`integrate` knows
-METHODS = ("radau5", "radau5t", "radau9", "rodas4", "auto")
-#: ``"auto"`` takes the order-9 Radau IIA at and below this rtol when no event or recording is asked
-AUTO_HIGH_ORDER_RTOL = 1e-7
-
-
-def choose_method(rtol: float, events: bool) -> str:
-    """The method ``method="auto"`` uses.
-
-    The rule comes from the work–precision study of one period of the Fig. 3 stick–slip cycle
-    of Putelat et al. (2010) (``benchmarks/run.py --only springblock``): at rtol ≤ 1e-7 the
-    order-9 Radau IIA reaches the same end-of-period error as the order-5 one in about half
-    the CPU time (a third of the steps); at looser tolerances its stage iteration fails often
-    on the stick–slip transitions and the order-5 method is cheaper.  RODAS4 (one LU of n×n,
-    six right-hand sides, no Newton iteration) costs about half as much per step as the
-    order-5 Radau IIA but is about 30 times less accurate at the same step count on this
-    cycle, so it is never chosen; it remains available by name.  Event location and step
-    recording need the order-5 method's dense output.  The order-5 method is taken in its
-    transformed form (``"radau5t"``: one real and one complex 3 × 3 LU per step instead of a
-    9 × 9 one, Hairer & Wanner 1996, IV.8), the same steps at less CPU per step.
-
-    Parameters
-    ----------
-    rtol : float
-        The requested relative tolerance.
-    events : bool
-        Whether crossings are located or steps recorded.
-
-    Returns
-    -------
-    str
-        ``"radau5t"`` or ``"radau9"``.
-    """
-    return "radau9" if (rtol <= AUTO_HIGH_ORDER_RTOL and not events) else "radau5t"
+#: the one method :func:`integrate` knows (the name is accepted for existing callers)
+METHODS = ("radau5",)
 
 
 @dataclass(frozen=True)
@@ -145,9 +103,8 @@ def integrate(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol:
         End the run after that many located crossings (0: run to the end of ``t_span``).
     record : int, optional
         Number of accepted steps kept in ``rec_t``, ``rec_y`` (from the start; 0: none).
-    method : {"radau5", "radau5t", "radau9", "rodas4", "auto"}, optional
-        The integrator (module docstring; ``"auto"``: :func:`choose_method`).  ``"radau9"``
-        locates no events and records no steps.
+    method : {"radau5"}, optional
+        The integrator (the only one: the order-5 Radau IIA, module docstring).
 
     Returns
     -------
@@ -163,14 +120,11 @@ def integrate(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol:
     References
     ----------
     Hairer, E., Wanner, G. (1996). Solving Ordinary Differential Equations II, 2nd ed.,
-    Springer, Sec. IV.8 (Radau IIA), IV.7 and VI.4 (Rosenbrock methods, RODAS).
+    Springer, Sec. IV.8 (Radau IIA).
     """
     if method not in METHODS:
-        raise InputError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
-    if method == "auto":
-        method = choose_method(float(rtol), event_index >= 0 or record > 0)
-    if method == "radau9" and (event_index >= 0 or record > 0):
-        raise InputError("method 'radau9' locates no events and records no steps: use 'radau5'")
+        raise InputError(f"method must be {' or '.join(repr(m) for m in METHODS)} (the order-5 Radau IIA), "
+                         f"got {method!r}")
     c = compile_variational(model.law) if variational else model.compiled
     nn = c.n
     if not (0 < rtol < 1):
@@ -192,28 +146,10 @@ def integrate(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol:
     evbuf = np.empty((max_events if event_index >= 0 else 1, nn + 1))
     evdir = np.empty(evbuf.shape[0])
     tic = time.process_time()
-    af, aj = addresses(c.rhs, c.jac)
-    if method == "radau9":
-        tb = radau_tableau(5)
-        st, t, y, cnt = collocation_at(af, aj, t0, y0, t1, model.p, float(rtol), at, float(h0), float(ms),
-                                       int(max_steps), tb.A, tb.c, tb.e, tb.mu, tb.vinv)
-        et, ey, rt, ry = np.empty(0), np.empty((0, nn)), np.empty(0), np.empty((0, nn))
-    elif method == "rodas4":
-        # eq. (4) is autonomous (the loading enters through ξ = X/ℓ in the co-moving frame): no ∂f/∂t
-        st, t, y, cnt, et, ey, rt, ry, _, _ = rosenbrock_at(
-            af, aj, t0, y0, t1, model.p, float(rtol), at, float(h0), float(ms), int(max_steps), int(event_index),
-            float(event_value), int(event_direction), int(stop_after), int(record), 1, 0, RODAS4_A, RODAS4_C,
-            RODAS4_CNODES, RODAS4_D, RODAS4_M, RODAS4_E, evbuf, evdir)
-    elif method == "radau5t":
-        st, t, y, cnt, et, ey, rt, ry, _, _ = radau_split_at(
-            af, aj, t0, y0, t1, model.p, float(rtol), at, float(h0), float(ms), int(max_steps), int(event_index),
-            float(event_value), int(event_direction), int(stop_after), int(record), A_RADAU, VINV, T_SPLIT, TI_SPLIT,
-            GAMMA_SPLIT, ALPHA_SPLIT, BETA_SPLIT, evbuf, evdir)
-    else:
-        st, t, y, cnt, et, ey, rt, ry, _, _ = radau_at(af, aj, t0, y0, t1, model.p, float(rtol), at, float(h0),
-                                                       float(ms), int(max_steps), int(event_index),
-                                                       float(event_value), int(event_direction), int(stop_after),
-                                                       int(record), A_RADAU, VINV, evbuf, evdir)
+    st, t, y, cnt, et, ey, rt, ry, _, _ = radau_core(c.rhs, c.jac, t0, y0, t1, model.p, float(rtol), at, float(h0),
+                                                     float(ms), int(max_steps), int(event_index), float(event_value),
+                                                     int(event_direction), int(stop_after), int(record), None, None,
+                                                     evbuf, evdir)
     cpu = time.process_time() - tic
     if st < 0:
         phys = model.to_physical(y[:model.n])
