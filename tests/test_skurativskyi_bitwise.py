@@ -7,20 +7,22 @@ layout m, m0e, eps, n1, n2, n3, k, c, T, kI, b, xI, omega) — the floating-poin
 hand-typed kernels this model was first verified with.  The published values of the model (its
 grazing and period-doubling points) are reproduced with those operations, and the
 period-doubling cascade near ω = 20.4 is sensitive to the last bit of the stiff stepper's
-acceleration, so the field generated from the law object must round exactly as they do: compared
-here with ``==``, on random states and over whole runs (same steps, same final state).
+acceleration, so the field must round exactly as they do, whether the friction is the compiled-in
+paper's law or reached through the C callbacks generated from the law object: compared here with
+``==``, on random states and over whole runs (same steps, same final state).
 """
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
-from numba import njit
+from numba import cfunc, njit, types
 
-from landau.laws.velocity import regularised_coulomb
+from landau.verify.skurativskyi import field as F
 from landau.verify.skurativskyi import rk as R
-from landau.verify.skurativskyi.model import IN3, PAPER, Params, compiled_field
-from landau.verify.skurativskyi.sdirk import cusp_sdirk_method
+from landau.verify.skurativskyi.field import BUILT_IN
+from landau.verify.skurativskyi.friction import Callbacks, quiet_first_class
+from landau.verify.skurativskyi.model import ILAW, PAPER, Params, compiled_field
 from landau.verify.skurativskyi.simulate import METHODS, rest_state
 
 # the hand-typed layout of the parameter vector
@@ -131,34 +133,75 @@ def test_generated_field_and_partials_equal_the_hand_typed_ones_bitwise(prm):
         assert np.array_equal(out, ref)
 
 
+# eq. (1)'s friction typed by hand as the C callbacks the compiled loop takes (parameters read
+# from the packed vector at ILAW: c, T, eps), in the operations of hand_accel / hand_accel_partials
+_PTR = types.CPointer(types.float64)
+
+
+def _hand_friction(v, p):
+    eps = p[ILAW + 2]
+    return p[ILAW] * v + p[ILAW + 1] * v / np.sqrt(v * v + eps * eps)
+
+
+def _hand_friction_derivative(v, p):
+    eps = p[ILAW + 2]
+    s = v * v + eps * eps
+    return p[ILAW] + p[ILAW + 1] * eps * eps / (s * np.sqrt(s))
+
+
+def _hand_subtract_friction(a, v, p):
+    eps = p[ILAW + 2]
+    return a - p[ILAW] * v - p[ILAW + 1] * v / np.sqrt(v * v + eps * eps)
+
+
 @pytest.fixture(scope="module")
-def both_integrators():
-    k = compiled_field(PAPER)
-    _, generated_step = cusp_sdirk_method(k.accel_partials, k.accel_grad, IN3)
-    _, hand_step = cusp_sdirk_method(hand_accel_partials, hand_accel_grad, HN3)
-    return (R.switching_integrator(k.rhs, generated_step)[1], R.switching_integrator(hand_rhs, hand_step)[1])
+def callbacks():
+    """The loop's ``fr`` three ways: the built-in law, the callbacks generated from the law
+    object, the hand-typed callbacks above."""
+    fr = compiled_field(PAPER).pointers
+    assert fr[BUILT_IN]
+    one = types.float64(types.float64, _PTR)
+    hand = (cfunc(one)(_hand_friction), cfunc(one)(_hand_friction_derivative),
+            cfunc(types.float64(types.float64, types.float64, _PTR))(_hand_subtract_friction))
+    return {"built-in": fr, "generated": Callbacks(fr[:3] + (False,) + fr[4:]),
+            "hand": Callbacks(hand + (False,) + fr[4:])}
+
+
+@pytest.mark.parametrize("which", ["generated", "hand"])
+def test_field_through_the_callbacks_equals_the_hand_typed_one_bitwise(callbacks, which):
+    fr = callbacks[which]
+    prm = PAPER.with_(omega=20.38)
+    p, q = prm.packed(), hand_packed(prm)
+    with quiet_first_class():
+        for t, x, v in zip(*_states(500, 11)):
+            assert F.accel(t, x, v, p, fr) == hand_accel(t, x, v, q)
+            assert F.accel_grad(t, x, v, p, fr) == hand_accel_grad(t, x, v, q)
+            assert F.accel_partials(t, x, v, p, fr) == hand_accel_partials(t, x, v, q)
 
 
 @pytest.mark.parametrize("omega, lyapunov", [(15.0, False), (20.38, True)])
-def test_whole_runs_equal_the_hand_typed_field_bitwise(both_integrators, omega, lyapunov):
-    # the mixed DOPRI5/SDIRK4 loop over the generated and the hand-typed field, 3 forcing periods
-    # from rest (ω = 15: long stick phases on the obstacle, taken by the stiff stepper; ω = 20.38:
-    # the period-doubling window, with the variational equation): every output equal
-    generated, hand = both_integrators
+def test_whole_runs_equal_through_the_built_in_law_and_the_callbacks_bitwise(callbacks, omega, lyapunov):
+    # the mixed DOPRI5/SDIRK4 loop with the friction compiled in, reached through the generated
+    # callbacks and through the hand-typed ones, 3 forcing periods from rest (ω = 15: long stick
+    # phases on the obstacle, taken by the stiff stepper; ω = 20.38: the period-doubling window,
+    # with the variational equation): every output equal
     prm = PAPER.with_(omega=omega)
     P, rtol = prm.period, 1e-8
     y0 = rest_state(prm)
     at = np.array([rtol * 1e-4, rtol * 1e-2] + ([1e-9, 1e-9] if lyapunov else []))
     y = np.concatenate([y0, [1.0, 0.0]]) if lyapunov else y0.copy()
+    loop = R.mixed_loop()
     outs = []
-    for fn, p in ((generated, prm.packed()), (hand, hand_packed(prm))):
-        outs.append(fn(p, 0.0, y.copy(), 3 * P, rtol, at, 1e-5, P / 20, prm.xI, True, 0.0, P, 5, lyapunov,
-                       100_000, 10_000_000, *METHODS["mixed"], 0))
-    g, h = outs
-    assert g[2] == h[2] == R.OK
+    for which in ("built-in", "generated", "hand"):
+        with quiet_first_class():
+            outs.append(loop(prm.packed(), 0.0, y.copy(), 3 * P, rtol, at, 1e-5, P / 20, prm.xI, True, 0.0, P, 5,
+                             lyapunov, 100_000, 10_000_000, *METHODS["mixed"], 0, callbacks[which]))
+    g = outs[0]
+    assert g[2] == R.OK
     assert g[14] > 0  # the stiff stepper took steps
-    for a, b in zip(g, h):
-        if isinstance(a, np.ndarray):
-            assert a.shape == b.shape and np.array_equal(a, b)
-        else:
-            assert a == b
+    for h in outs[1:]:
+        for a, b in zip(g, h):
+            if isinstance(a, np.ndarray):
+                assert a.shape == b.shape and np.array_equal(a, b)
+            else:
+                assert a == b

@@ -60,6 +60,18 @@ def test_compiled_friction_and_slope_match_the_law(law):
         assert dF == pytest.approx(law.slope(v), rel=1e-9)
 
 
+def test_one_compiled_loop_serves_every_law():
+    # the loop is compiled for one signature; a law reaches it as C callbacks, so runs with the
+    # paper's law and two user laws leave that one machine-code version (nothing recompiled)
+    from landau.verify.skurativskyi import rk
+
+    for law in (regularised_coulomb(), tanh_law(), tanh_law(e=1e-4)):
+        run(Params(friction=law), 0.5, rtol=1e-6)
+    assert rk.integrate_mixed.signatures == [rk.loop_signature()]
+    fr = [compiled_field(Params(friction=law)).pointers for law in (regularised_coulomb(), tanh_law())]
+    assert fr[0][3] and not fr[1][3]            # the paper's law is the compiled-in one, tanh is not
+
+
 def test_user_law_against_scipy_radau():
     """Off-paper: the forced oscillator with c v + T tanh(v/e) (e = 1e-4 m/s) and no Hertz
     damping (b = 0; scipy's Newton-based Radau stalls on the |ẋ|^{n₃} cusp of the damping, see

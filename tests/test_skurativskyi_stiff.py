@@ -15,7 +15,7 @@ import pytest
 
 from landau.errors import InputError
 from landau.verify.skurativskyi import sdirk
-from landau.verify.skurativskyi.model import PAPER, Params, accel_partials
+from landau.verify.skurativskyi.model import PAPER, Params, accel_partials, compiled_field
 from landau.verify.skurativskyi.simulate import run
 
 SCALE = np.array([1e-3, 1e-2])  # m, m/s: the error scale of the work-precision benchmark
@@ -46,13 +46,14 @@ def test_stage_solve_converges_on_the_hertz_damping_cusp():
     # scalar stage equation G(V) = V − s_v − hγ a(t, s_x + hγV, V) has one root (G' ≥ 1) —
     # check the returned V is it (|G| ≤ tol and G changes sign across V ± 2 tol)
     p = PAPER.packed()
+    fr = compiled_field(PAPER).pointers
     rng = np.random.default_rng(1)
     for _ in range(300):
         sx = PAPER.xI + 9e-6 * rng.uniform(0.5, 1.5)
         sv = rng.choice([-1, 1]) * 10 ** rng.uniform(-12, -3)
         h = 10 ** rng.uniform(-7, -2)
         tol = 1e-16
-        V, _, nev, ok = sdirk.stage_velocity(p, 0.1, sx, sv, 0.25 * h, sv, tol)
+        V, _, nev, ok = sdirk.stage_velocity(p, 0.1, sx, sv, 0.25 * h, sv, tol, fr)
         assert ok and nev <= 40
 
         def G(v, sx=sx, sv=sv, hg=0.25 * h):

@@ -3,7 +3,8 @@ and Hertz contact of Skurativskyi, Kudra, Witkowski & Awrejcewicz (2019), Nonlin
 98:1795–1806.
 
 Modules: :mod:`.model` (eq. 1, parameters of Sec. 2, the friction law), :mod:`.friction` (the
-friction term compiled from a law), :mod:`.rk` (compiled Dormand–Prince
+friction term compiled from a law as C callbacks), :mod:`.field` (eq. 1 compiled once for
+every law), :mod:`.rk` (compiled Dormand–Prince
 5(4) with exact contact switching; the mixed path hands stick steps to :mod:`.sdirk`, an
 L-stable SDIRK4), :mod:`.simulate` (runs, engine model), :mod:`.approx` (Sec. 5 approximate
 solutions), :mod:`.analysis` (impact counting, first detachment, sweeps, Lyapunov exponent,

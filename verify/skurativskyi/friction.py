@@ -16,9 +16,11 @@ with numba.  Their parameters are read from the model's packed vector ``p`` (fro
 ``first``: the law's parameters in declaration order, then F(0) and F'(0), so that v = 0
 exactly never evaluates a branch at its edge).  The source is kept in the per-user kernel
 cache of :mod:`landau.verify.jitcache` (named by its hash), so a second process loads the
-machine code from disk; the functions are module-level objects of that cached module, which is
-what :func:`landau.verify.hybrid.specialise.specialise` needs to inline them into the compiled
-field and integrators of :mod:`landau.verify.skurativskyi.model` with numba's disk cache.
+machine code from disk.  ``friction``, ``friction_derivative`` and ``subtract_friction`` are
+also compiled as C callbacks (``numba.cfunc``, reading ``p`` through its data pointer): the
+compiled field, SDIRK4 and event-driven loop (:mod:`landau.verify.skurativskyi.field`,
+:mod:`~landau.verify.skurativskyi.sdirk`, :mod:`~landau.verify.skurativskyi.rk`) take them as
+first-class functions and are compiled once for all laws; a new law compiles only these.
 
 Half-integer powers, frequent in regularised laws, are printed as square roots
 (s^{−3/2} → 1/(s·sqrt(s))) and small integer powers as products (v² → v*v): a power routine
@@ -27,8 +29,10 @@ costs several times a multiplication or a square root in the inner loop.
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import math
+import warnings
 import weakref
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -102,7 +106,12 @@ class CompiledFriction:
     friction, friction_slope, friction_derivative, subtract_friction : numba dispatcher
         ``friction(v, p) -> F``, ``friction_slope(v, p) -> (F, dF/dv)``,
         ``friction_derivative(v, p) -> dF/dv``, ``subtract_friction(a, v, p) -> a - F(v)``
-        (F's additive terms subtracted one by one).
+        (F's additive terms subtracted one by one), compiled on first use from Python.
+    pointers : tuple
+        ``(friction, friction_derivative, subtract_friction)`` as C callbacks (``numba.cfunc``)
+        taking the packed vector's data pointer, whether the law is the built-in one and
+        :func:`data_pointer` (:func:`pointer_types`, :func:`is_built_in`): what the compiled
+        field, SDIRK4 and loop of this package receive as ``fr``.
     """
 
     law_name: str
@@ -113,6 +122,7 @@ class CompiledFriction:
     friction_slope: object = field(repr=False)
     friction_derivative: object = field(repr=False)
     subtract_friction: object = field(repr=False)
+    pointers: tuple = field(repr=False, default=())
 
     @property
     def size(self) -> int:
@@ -267,24 +277,113 @@ def _smooth_single_expression_uncached(law: VelocityFriction) -> bool:
     return True
 
 
-def _inlined(fn, signature):
-    """``numba.njit(signature, cache=True, inline="always")(fn)``: numba inlines the function into
-    every jitted caller at its own IR level (a call into another compiled library is otherwise
-    an opaque call, measured ~10 % slower in the integrators); the disk cache works as in
+def _cached(fn, signature=None, kind="njit"):
+    """``numba.njit(cache=True, inline="always")(fn)`` (compiled on first use, for the parameter
+    vector's type of that use: an array from Python, a data pointer in the callbacks) or, with
+    ``kind="cfunc"``, ``numba.cfunc(signature, cache=True)(fn)``.  The disk cache works as in
     :func:`landau.verify.jitcache.njit_cached`, which this follows (a cache entry that cannot be
     loaded is dropped and the function compiled afresh)."""
     import numba as nb
 
     from landau.verify import jitcache
 
-    path = Path(fn.__code__.co_filename)
-    if not path.is_file():
-        return nb.njit(signature, inline="always")(fn)
+    def make(cache):
+        if kind == "cfunc":
+            return nb.cfunc(signature, cache=cache)(fn)
+        return nb.njit(cache=cache, inline="always")(fn)
+
+    if not Path(fn.__code__.co_filename).is_file():
+        return make(False)
     try:
-        return nb.njit(signature, cache=True, inline="always")(fn)
+        return make(True)
     except Exception:
-        jitcache._drop_numba_entries(path)
-        return nb.njit(signature, cache=True, inline="always")(fn)
+        jitcache._drop_numba_entries(Path(fn.__code__.co_filename))
+        return make(True)
+
+
+@functools.lru_cache(maxsize=None)
+def pointer_types() -> tuple:
+    """The numba signatures of the callbacks in :attr:`CompiledFriction.pointers`:
+    ``friction(v, p*)``, ``friction_derivative(v, p*)`` and ``subtract_friction(a, v, p*)``
+    (``p*`` the data pointer of the packed parameter vector), as ``types.FunctionType``."""
+    from numba import types
+
+    ptr = types.CPointer(types.float64)
+    one = types.float64(types.float64, ptr)
+    sub = types.float64(types.float64, types.float64, ptr)
+    return (types.FunctionType(one), types.FunctionType(one), types.FunctionType(sub), types.boolean,
+            types.FunctionType(ptr(ptr)))
+
+
+def _identity(p):
+    return p
+
+
+class Callbacks(tuple):
+    """The tuple ``fr`` handed to the compiled field and loop (:attr:`CompiledFriction.pointers`).
+
+    A tuple whose numba type is known without inspecting its items
+    (``numba.extending.typeof_impl`` is registered for it): numba's generic typing of a tuple
+    of C callbacks costs ~0.1 ms a call, a noticeable part of a short run."""
+
+    __slots__ = ()
+
+
+@functools.lru_cache(maxsize=None)
+def callbacks_type():
+    """The numba type of every :class:`Callbacks` (a tuple of :func:`pointer_types`)."""
+    from numba import types
+
+    return types.Tuple(pointer_types())
+
+
+@functools.lru_cache(maxsize=None)
+def _register_typeof_once() -> None:
+    from numba.extending import typeof_impl
+
+    @typeof_impl.register(Callbacks)
+    def _typeof_callbacks(val, c):
+        return callbacks_type()
+
+
+@functools.lru_cache(maxsize=None)
+def data_pointer():
+    """The C callback ``p* -> p*`` (identity on a float64 pointer), compiled once per machine: the
+    compiled loop calls it once with ``p.ctypes`` to hold the data pointer of the packed vector
+    as a ``CPointer(float64)`` (numba converts an array's ``ctypes`` to a pointer at a call's
+    typed argument).  The field then reads ``p`` through that pointer: no array, so no
+    reference counts in the calls of the inner loop (the caller owns ``p`` for the whole run)."""
+    from numba import types
+
+    ptr = types.CPointer(types.float64)
+    return _cached(_identity, ptr(ptr), "cfunc")
+
+
+def is_built_in(law: VelocityFriction) -> bool:
+    """Whether ``law`` is the paper's regularised Coulomb law c v + T v/sqrt(v² + ε²) (same
+    expressions, parameters c, T, eps in that order, any values): the compiled field of
+    :mod:`landau.verify.skurativskyi.field` then evaluates it inline instead of through the
+    callbacks (the same operations; an indirect call cannot be inlined)."""
+    from landau.laws.velocity import regularised_coulomb
+
+    return law_key(law) == law_key(regularised_coulomb())
+
+
+def _paper_first() -> int:
+    from landau.verify.skurativskyi.model import ILAW
+
+    return ILAW
+
+
+@contextlib.contextmanager
+def quiet_first_class():
+    """Silence numba's notice that first-class function types are experimental (a documented
+    feature; the loops of :mod:`landau.verify.skurativskyi.rk` are typed with it)."""
+    from numba.core.errors import NumbaExperimentalFeatureWarning
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", NumbaExperimentalFeatureWarning)
+        yield
 
 
 def compile_friction(law: VelocityFriction, first: int) -> CompiledFriction:
@@ -303,8 +402,6 @@ def compile_friction(law: VelocityFriction, first: int) -> CompiledFriction:
     CompiledFriction
         One per law expression and ``first`` in a process.
     """
-    from numba import types
-
     from landau.verify.jitcache import load_generated
 
     key = (law_key(law), int(first))
@@ -322,22 +419,19 @@ def compile_friction(law: VelocityFriction, first: int) -> CompiledFriction:
     src = "\n\n".join(f"{body}    return {ret}\n" for body, ret in parts) + (
         _ONE_EXPRESSION if _smooth_single_expression(law) else _DISPATCH.format(i0=first + len(params)))
     ns = load_generated(src, {"math": math}, ALLOWED_BUILTINS)
-    one = types.float64(types.float64, types.float64[::1])
-    two = types.UniTuple(types.float64, 2)(types.float64, types.float64[::1])
     # the dispatchers replace the Python functions in the cached module, so that the functions
-    # calling them compile against them and `from <module> import friction` finds them
-    for nm in ("_value_pos", "_value_neg", "_deriv_pos", "_deriv_neg"):
-        ns[nm] = _inlined(ns[nm], one)
-    for nm in ("_slope_pos", "_slope_neg"):
-        ns[nm] = _inlined(ns[nm], two)
-    ns["friction"] = _inlined(ns["friction"], one)
-    ns["friction_slope"] = _inlined(ns["friction_slope"], two)
-    ns["friction_derivative"] = _inlined(ns["friction_derivative"], one)
-    sub = types.float64(types.float64, types.float64, types.float64[::1])
-    for nm in ("_sub_pos", "_sub_neg", "subtract_friction"):
-        ns[nm] = _inlined(ns[nm], sub)
+    # calling them compile against them (and inline them) and `from <module> import friction`
+    # finds them; nothing here compiles until first use, except the three C callbacks
+    for nm in ("_value_pos", "_value_neg", "_deriv_pos", "_deriv_neg", "_slope_pos", "_slope_neg",
+               "_sub_pos", "_sub_neg", "friction", "friction_slope", "friction_derivative", "subtract_friction"):
+        ns[nm] = _cached(ns[nm])
+    sigs = [t.signature for t in pointer_types()[:3]]
+    pointers = tuple(_cached(ns[nm].py_func, sig, "cfunc")
+                     for nm, sig in zip(("friction", "friction_derivative", "subtract_friction"), sigs))
+    _register_typeof_once()
+    pointers = Callbacks(pointers + (bool(is_built_in(law) and first == _paper_first()), data_pointer()))
     out = CompiledFriction(law.name, tuple(p.name for p in params), int(first), src, ns["friction"],
-                           ns["friction_slope"], ns["friction_derivative"], ns["subtract_friction"])
+                           ns["friction_slope"], ns["friction_derivative"], ns["subtract_friction"], pointers)
     _CACHE[key] = out
     return out
 

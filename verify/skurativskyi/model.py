@@ -27,8 +27,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
-from pathlib import Path
-from types import SimpleNamespace
 
 import numpy as np
 
@@ -244,35 +242,97 @@ PAPER = Params()
 
 
 # ------------------------------------------------------------------ compiled field per law
+class CompiledField:
+    """The field of eq. (1) for one friction law: the compiled functions of
+    :mod:`landau.verify.skurativskyi.field` with the law's callbacks bound (see
+    :func:`compiled_field`).
+
+    Attributes
+    ----------
+    friction : CompiledFriction
+        The law's compiled friction term (:mod:`landau.verify.skurativskyi.friction`).
+    pointers : tuple
+        Its C callbacks, the ``fr`` argument of the compiled field, SDIRK4 and loop.
+    """
+
+    def __init__(self, friction) -> None:
+        self.friction = friction
+        self.pointers = friction.pointers
+
+    def contact_force(self, x, v, p):
+        """F_I(x, ẋ) [N]."""
+        from landau.verify.skurativskyi import field as F
+        return F.contact_force(x, v, p)
+
+    def accel(self, t, x, v, p):
+        """ẍ of eq. (1)."""
+        from landau.verify.skurativskyi import field as F
+        from landau.verify.skurativskyi.friction import quiet_first_class
+        with quiet_first_class():
+            return F.accel(t, x, v, p, self.pointers)
+
+    def accel_grad(self, t, x, v, p):
+        """(∂ẍ/∂x, ∂ẍ/∂ẋ), the Hertz-damping slope floored at |ẋ| = p[IVF]."""
+        from landau.verify.skurativskyi import field as F
+        from landau.verify.skurativskyi.friction import quiet_first_class
+        with quiet_first_class():
+            return F.accel_grad(t, x, v, p, self.pointers)
+
+    def accel_partials(self, t, x, v, p):
+        """(ẍ, ∂ẍ/∂x, ∂ẍ/∂ẋ without the Hertz damping, κ) for the stiff stepper."""
+        from landau.verify.skurativskyi import field as F
+        from landau.verify.skurativskyi.friction import quiet_first_class
+        with quiet_first_class():
+            return F.accel_partials(t, x, v, p, self.pointers)
+
+    @property
+    def rhs(self):
+        """``rhs(t, y, p, out)`` as a numba function (the engine's kernel and the compiled
+        steppers take it): the field with this law's callbacks bound, built on first use in a
+        process (a small wrapper; the field it calls is compiled once per machine)."""
+        if not hasattr(self, "_rhs"):
+            self._rhs = _bound_rhs(*self.pointers)
+        return self._rhs
+
+
+def _bound_rhs(f0, f1, f2, built_in, ptr):
+    from numba import njit, types
+
+    from landau.verify.skurativskyi import field as F
+    from landau.verify.skurativskyi.friction import quiet_first_class
+
+    @njit
+    def rhs(t, y, p, out):
+        F.rhs(t, y, p, out, (f0, f1, f2, built_in, ptr))
+
+    with quiet_first_class():
+        arr = types.float64[::1]
+        rhs.compile((types.float64, arr, arr, arr))
+    return rhs
+
+
 @lru_cache(maxsize=None)
-def _compiled(key) -> SimpleNamespace:
-    from landau.verify.hybrid.specialise import specialise
+def _compiled(key) -> CompiledField:
     from landau.verify.skurativskyi.friction import compile_friction
 
-    law = _LAWS[key]
-    fr = compile_friction(law, ILAW)
-    mod = specialise(Path(__file__).parent / "templates" / "field.py",
-                     {"friction": fr.friction, "friction_slope": fr.friction_slope,
-                      "friction_derivative": fr.friction_derivative,
-                      "subtract_friction": fr.subtract_friction}, "skurativskyi_field")
-    return SimpleNamespace(friction=fr, **{n: getattr(mod, n) for n in _KERNELS})
+    return CompiledField(compile_friction(_LAWS[key], ILAW))
 
 
 _LAWS: dict = {}
-#: the compiled functions of the field (signatures as documented in ``templates/field.py``)
-_KERNELS = ("contact_force", "accel", "accel_grad", "accel_partials", "rhs", "rhs2", "rhs4")
+#: the compiled functions of the field (signatures as documented in :mod:`landau.verify.skurativskyi.field`)
+_KERNELS = ("contact_force", "accel", "accel_grad", "accel_partials", "rhs")
 
 
-def compiled_field(law: VelocityFriction | Params | None = None) -> SimpleNamespace:
+def compiled_field(law: VelocityFriction | Params | None = None) -> CompiledField:
     """The compiled field of eq. (1) with the friction of ``law`` (a law, or a :class:`Params`
     whose law is taken; default: the paper's).
 
     The friction term and its slope are generated from the law's symbolic branches
-    (:mod:`landau.verify.skurativskyi.friction`) and inlined by numba into ``accel``,
-    ``accel_grad``, ``accel_partials``, ``rhs`` (``rhs2``, ``rhs4``) and ``contact_force``
-    — the functions the compiled integrators call, all of signature ``(t, …, p)`` with ``p``
-    = :meth:`Params.packed`.  One compilation per law expression (parameter values live in
-    ``p``), cached on disk across processes.
+    (:mod:`landau.verify.skurativskyi.friction`) and compiled as C callbacks, which the field
+    of :mod:`landau.verify.skurativskyi.field` (compiled once for all laws) calls: ``accel``,
+    ``accel_grad``, ``accel_partials``, ``rhs`` and ``contact_force``, all of signature
+    ``(t, …, p)`` with ``p`` = :meth:`Params.packed`.  One compilation of the callbacks per law
+    expression (parameter values live in ``p``), cached on disk across processes.
 
     Parameters
     ----------
@@ -280,9 +340,9 @@ def compiled_field(law: VelocityFriction | Params | None = None) -> SimpleNamesp
 
     Returns
     -------
-    types.SimpleNamespace
-        ``friction`` (:class:`~landau.verify.skurativskyi.friction.CompiledFriction`) and the
-        numba functions named above.
+    CompiledField
+        ``friction`` (:class:`~landau.verify.skurativskyi.friction.CompiledFriction`), its
+        ``pointers`` and the functions named above.
     """
     if isinstance(law, Params):
         law = law.friction

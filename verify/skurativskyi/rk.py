@@ -1,15 +1,17 @@
 """A compiled event-driven loop: DOPRI5 with exact contact switching, and a stiff step for the
 stick phases, built for a given field.
 
-:func:`switching_integrator` ``(fun, stiff_step)`` specialises the loop (source in
-``templates/switching.py``) to a kernel ``fun(t, y, p, out)`` and a stick-phase step — nothing
-here knows a model; :mod:`landau.verify.skurativskyi.simulate` builds it for eq. (1) with the
-SDIRK4 of :mod:`landau.verify.skurativskyi.sdirk`.  Its ``integrate_mixed`` (the default path
+:func:`integrate_mixed` is an ordinary ``@njit(cache=True)`` function over the field of
+:mod:`landau.verify.skurativskyi.field`, compiled once per machine on first use
+(:func:`mixed_loop`, through :func:`landau.verify.compiling.compile_once`); the friction law
+reaches it as a tuple ``fr`` of first-class functions (numba's ``types.FunctionType``: the C
+callbacks of :attr:`landau.verify.skurativskyi.friction.CompiledFriction.pointers`), so a new
+law compiles only its own small callbacks.  ``integrate_mixed`` (the default path
 of :func:`landau.verify.skurativskyi.simulate.run`) takes every step that starts with |ẋ|
 below a threshold (stick: the cart rests on the obstacle or on the track, |ẋ| ~ 1e-9…1e-6
 m/s) with the L-stable SDIRK4 (stage equations solved as scalar monotone equations, robust on
-the |ẋ|^{n₃} cusp) and all other steps with DOPRI5 (the arithmetic of the DOPRI5 of
-:mod:`landau.verify.hybrid.compiled`, term for term);
+the |ẋ|^{n₃} cusp) and all other steps with DOPRI5 (the arithmetic of the generic compiled DOPRI5 of
+:mod:`landau.verify.hybrid.compiled`, term for term, checked bit for bit in the tests);
 ``integrate`` is the explicit path alone.  Event location (the compiled locator of
 :mod:`landau.verify.hybrid.crossing`), stroboscopic clipping and tangent renormalisation are
 the same for both steppers.
@@ -30,7 +32,7 @@ Method (Dormand & Prince 1980; Hairer, Nørsett & Wanner, *Solving ODEs I*, II.5
 with FSAL, 5th-order solution, embedded 4th-order error estimate, step factor
 0.9 err^{−1/5} clipped to [0.2, 10].
 
-Loose tolerances (``templates/switching.py``: ``LOOSE_RTOL``, ``LOW_ORDER_RTOL``): at rtol ≥ 1e-6
+Loose tolerances (:data:`LOOSE_RTOL`, :data:`LOW_ORDER_RTOL`): at rtol ≥ 1e-6
 the explicit steps are PI-controlled (Gustafsson 1991; Hairer, Nørsett & Wanner II.4: factor
 0.9 err^{−α} err_prev^{β}, no growth right after a rejection), and at rtol ≥ 1e-5 they are
 Bogacki–Shampine 3(2) steps (Bogacki & Shampine 1989; 4 stages with FSAL, 3 f evaluations) —
@@ -54,69 +56,389 @@ No saltation is needed: the field is continuous across x = x_I (see ``model``).
 Stroboscopic samples t = t₀ + i·2π/ω are step ends (steps are clipped onto them); with the
 4-D variational system the tangent vector is renormalised there (top Lyapunov exponent).
 
-Speed (not the arithmetic): the field and the steps are inlined into the loop, the stage
-vectors are preallocated, and the loop works on views without numba's atomic reference
-counts (:func:`borrowed`).  Measured at ω = 16, 20 periods from rest (2 shared cores): 3.9 →
-2.0 ms at rtol 1e-5, 4.9 → 2.5 ms at 1e-6, 7.6 → 3.9 ms at 1e-7 — every step, event and
-final state unchanged to the bit.
+Speed (not the arithmetic): the steps are inlined into the loop (``inline="always"``), the
+stage vectors are arrays local to the call, and the field reads the packed parameters through
+their data pointer (:mod:`landau.verify.skurativskyi.field`), so numba's atomic reference counts
+(paid for every array handed to a compiled call that is not inlined) stay out of the explicit
+steps.  The paper's friction law is compiled into the field; any other law costs one indirect
+call per evaluation.  Measured at ω = 16, 20 periods from rest (CPU time, 2 shared cores), loop
+alone, against the earlier loop specialised per law from a source template: 2.5 → 2.9 ms at
+rtol 1e-5, 3.1 → 3.5 ms at 1e-6, 4.9 → 5.3 ms at 1e-7, 12.6 → 13.1 ms at 1e-9; every step,
+event and final state unchanged to the bit.
 """
 
 from __future__ import annotations
 
 import math
 from functools import lru_cache
-from pathlib import Path
 
 import numpy as np
 from numba import njit
 
-from dataclasses import dataclass
-
-from landau.verify.hybrid import compiled as _compiled
-from landau.verify.hybrid.kernel import Kernel
-from landau.verify.hybrid.nrt import borrowed  # noqa: F401  (re-exported: used by templates/switching.py)
-from landau.verify.hybrid.specialise import specialise
+from landau.verify.hybrid.crossing import cubic_crossing
+from landau.verify.skurativskyi.field import DATA_POINTER, rhs
+from landau.verify.skurativskyi.sdirk import sdirk_step
 
 OK, MAX_STEPS, STEP_TOO_SMALL, MAX_EVENTS = 0, 1, 2, 3
 STATUS = {OK: "t_end", MAX_STEPS: "max_steps", STEP_TOO_SMALL: "step-size-underflow", MAX_EVENTS: "max_events"}
 
+#: Dormand & Prince (1980) 5(4): nodes c, coefficients a, 5th-order weights b and the error
+#: weights e = b − b̂ (Hairer, Nørsett & Wanner, Solving ODEs I, Table II.5.2)
+C2, C3, C4, C5 = 1 / 5, 3 / 10, 4 / 5, 8 / 9
+A21 = 1 / 5
+A31, A32 = 3 / 40, 9 / 40
+A41, A42, A43 = 44 / 45, -56 / 15, 32 / 9
+A51, A52, A53, A54 = 19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729
+A61, A62, A63, A64, A65 = 9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656
+B1, B3, B4, B5, B6 = 35 / 384, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84
+E1, E3, E4, E5, E6, E7 = 71 / 57600, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40
+
+#: loose tolerances (rtol ≥ LOOSE_RTOL) take explicit steps with PI step-size control and no
+#: growth right after a rejection (Hairer, Nørsett & Wanner, Solving ODEs I, II.4; their code
+#: DOPRI5): it damps the accept/reject cycles of the steps limited by the friction and
+#: Hertz-damping layers near velocity reversals (measured at ω = 16, 20 periods: 10–25 % fewer
+#: f evaluations).  Tighter tolerances keep the plain controller: the published bifurcation
+#: values were computed with it at rtol 1e-7…1e-9 and the period-doubling cascade near
+#: ω = 20.4 moves with any change of the step sequence.
+LOOSE_RTOL = 1e-6
+#: PI memory exponents of the DOPRI5 (Hairer's 0.04) and Bogacki–Shampine steps
+PI_BETA_DP = 0.04
+PI_BETA_BS = 0.08
+#: from this rtol on, the explicit steps are Bogacki–Shampine 3(2) (3 f evaluations a step
+#: instead of 6): at such tolerances the non-smooth layers (friction regularised over
+#: |ẋ| < ε, the |ẋ|^{n₃} Hertz damping) cap DOPRI5's steps below where its order pays
+LOW_ORDER_RTOL = 1e-5
+
+
+@njit(cache=True, inline="always")
+def err_norm(err, y, ynew, rtol, atol):
+    """RMS of err / (atol + rtol·max(|y|, |ynew|)) (Hairer's norm)."""
+    s = 0.0
+    n = err.shape[0]
+    for a in range(n):
+        sc = atol[a] + rtol * max(abs(y[a]), abs(ynew[a]))
+        q = err[a] / sc
+        s += q * q
+    return math.sqrt(s / n)
+
+
+@njit(cache=True, inline="always")
+def dp5_step(p, t, y, k1, h, ynew, k7, err, yt, k2, k3, k4, k5, k6, fr):
+    """One Dormand–Prince 5(4) step (FSAL): the arithmetic of the compiled DOPRI5 of
+    landau.verify.hybrid.compiled (``templates/dopri5.py``, ``stages``) term for term, into
+    preallocated stage buffers."""
+    n = y.shape[0]
+    for a in range(n):
+        yt[a] = y[a] + h * A21 * k1[a]
+    rhs(t + C2 * h, yt, p, k2, fr)
+    for a in range(n):
+        yt[a] = y[a] + h * (A31 * k1[a] + A32 * k2[a])
+    rhs(t + C3 * h, yt, p, k3, fr)
+    for a in range(n):
+        yt[a] = y[a] + h * (A41 * k1[a] + A42 * k2[a] + A43 * k3[a])
+    rhs(t + C4 * h, yt, p, k4, fr)
+    for a in range(n):
+        yt[a] = y[a] + h * (A51 * k1[a] + A52 * k2[a] + A53 * k3[a] + A54 * k4[a])
+    rhs(t + C5 * h, yt, p, k5, fr)
+    for a in range(n):
+        yt[a] = y[a] + h * (A61 * k1[a] + A62 * k2[a] + A63 * k3[a] + A64 * k4[a] + A65 * k5[a])
+    rhs(t + h, yt, p, k6, fr)
+    for a in range(n):
+        ynew[a] = y[a] + h * (B1 * k1[a] + B3 * k3[a] + B4 * k4[a] + B5 * k5[a] + B6 * k6[a])
+    rhs(t + h, ynew, p, k7, fr)
+    for a in range(n):
+        err[a] = h * (E1 * k1[a] + E3 * k3[a] + E4 * k4[a] + E5 * k5[a] + E6 * k6[a] + E7 * k7[a])
+
+
+@njit(cache=True, inline="always")
+def bs3_step(p, t, y, k1, h, ynew, k4, err, yt, k2, k3, fr):
+    """One Bogacki–Shampine 3(2) step (FSAL; Bogacki & Shampine 1989): from (t, y) with
+    k1 = f(t, y), fills ynew (order 3), k4 = f(t + h, ynew) and the embedded error estimate;
+    yt, k2, k3 are scratch."""
+    n = y.shape[0]
+    for a in range(n):
+        yt[a] = y[a] + h * (0.5 * k1[a])
+    rhs(t + 0.5 * h, yt, p, k2, fr)
+    for a in range(n):
+        yt[a] = y[a] + h * (0.75 * k2[a])
+    rhs(t + 0.75 * h, yt, p, k3, fr)
+    for a in range(n):
+        ynew[a] = y[a] + h * (2.0 / 9.0 * k1[a] + 1.0 / 3.0 * k2[a] + 4.0 / 9.0 * k3[a])
+    rhs(t + h, ynew, p, k4, fr)
+    for a in range(n):
+        err[a] = h * (-5.0 / 72.0 * k1[a] + 1.0 / 12.0 * k2[a] + 1.0 / 9.0 * k3[a] - 0.125 * k4[a])
+
+
+@njit(cache=True, inline="always")
+def any_step(stiff, low, p, t, y, k1, h, rtol, atol, ynew, k7, err, yt, k2, k3, k4, k5, k6, fr):
+    """One step of the chosen method (the stick stepper, Bogacki–Shampine 3(2) if ``low``,
+    else DOPRI5); returns (ok, f evaluations).  yt, k2…k6 are stage scratch."""
+    if stiff:
+        return sdirk_step(p, t, y, h, rtol, atol, ynew, k7, err, fr)
+    if low:
+        bs3_step(p, t, y, k1, h, ynew, k7, err, yt, k2, k3, fr)
+        return True, 3
+    dp5_step(p, t, y, k1, h, ynew, k7, err, yt, k2, k3, k4, k5, k6, fr)
+    return True, 6
+
+
+@njit(cache=True)
+def integrate_mixed(p_arr, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, strobe_dt,
+                    n_strobe_max, renorm, max_events, max_steps, v_stiff, a_stiff, rec_cap, fr):
+    """Integrate with contact switching at x = xI (``guard``), stroboscopic samples every
+    ``strobe_dt`` from ``strobe_t0`` (if > 0) and tangent renormalisation there
+    (``renorm``, 4-D systems).  A step that starts in stick — |ẋ| < ``v_stiff`` and
+    |ẍ| < ``a_stiff`` (a velocity reversal crosses the band |ẋ| < v_stiff in ~2 v_stiff/|ẍ|,
+    a few explicit steps; a stick stays in it) — is taken by the L-stable SDIRK4 of
+    :mod:`landau.verify.skurativskyi.sdirk`, any other by DOPRI5 (``v_stiff`` ≤ 0: DOPRI5 only).
+    ``fr``: the friction law's callbacks (:mod:`landau.verify.skurativskyi.field`).
+    See the module docstring.  Returns a tuple (see :func:`landau.verify.skurativskyi.simulate.run`)."""
+    n = y0.shape[0]
+    # the packed parameters are read through their data pointer (no reference counts in the
+    # calls of the field: measured 20-40 % of a step); ``p_arr`` is owned by the caller for the
+    # whole call
+    p = fr[DATA_POINTER](p_arr.ctypes)
+    # the state and the stage vectors: arrays local to this call, used only by inlined code
+    y = np.empty(n)
+    y[:] = y0
+    k1, ynew, k7, err = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    yt, k2, k3, k4, k5, k6 = np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    t = t0
+    rhs(t, y, p, k1, fr)
+    nfev = 1
+    ev_t = np.empty(max_events)
+    ev_k = np.empty(max_events, np.int64)
+    ev_v = np.empty(max_events)
+    nev = 0
+    st_t = np.empty(n_strobe_max)
+    st_y = np.empty((n_strobe_max, n))
+    nst = 0
+    # the recorded time series (t, y, f at accepted step ends), at most rec_cap points
+    rec_t = np.empty(rec_cap)
+    rec_y = np.empty((rec_cap, n))
+    rec_f = np.empty((rec_cap, n))
+    nrec = 0
+    if rec_cap > 0:
+        rec_t[0] = t
+        rec_y[0, :] = y
+        rec_f[0, :] = k1
+        nrec = 1
+    lyap = 0.0
+    nly = 0
+    g = y[0] - xI
+    contact = g > 0.0 or (g == 0.0 and y[1] > 0.0)
+    h = h0
+    ist = 0
+    ts = strobe_t0 if strobe_dt > 0 else np.inf
+    while ts < t - 1e-12 * max(1.0, abs(t)):
+        ist += 1
+        ts = strobe_t0 + ist * strobe_dt
+    nsteps = 0
+    nrej = 0
+    nstiff = 0
+    status = OK
+    max_mismatch = 0.0
+    en_old = 1e-4  # the error norm of the last accepted step (PI control), Hairer's initial value
+    after_reject = False
+    loose = rtol >= LOOSE_RTOL
+    low = rtol >= LOW_ORDER_RTOL
+    pi_beta = (PI_BETA_BS if low else PI_BETA_DP) if loose else 0.0
+    while True:
+        # stroboscopic sample at the current time?
+        if ts <= t_end and abs(t - ts) <= 1e-13 * max(1.0, abs(ts)):
+            if nst < n_strobe_max:
+                st_t[nst] = t
+                st_y[nst, :] = y
+                nst += 1
+            if renorm:
+                nv = math.sqrt(y[2] * y[2] + y[3] * y[3])
+                if nv > 0:
+                    lyap += math.log(nv)
+                    nly += 1
+                    y[2] /= nv
+                    y[3] /= nv
+                    rhs(t, y, p, k1, fr)
+                    nfev += 1
+            ist += 1
+            ts = strobe_t0 + ist * strobe_dt
+        if t >= t_end:
+            break
+        if nsteps >= max_steps:
+            status = MAX_STEPS
+            break
+        h = min(h, hmax)
+        clipped = False
+        h_free = h
+        t_target = min(t_end, ts)
+        if t + h >= t_target - 1e-13 * max(1.0, abs(t_target)):
+            h = t_target - t
+            clipped = True
+        if h <= 1e-15 * max(1.0, abs(t)):
+            status = STEP_TOO_SMALL
+            break
+        stiff = abs(y[1]) < v_stiff and abs(k1[1]) < a_stiff
+        # 1/(q + 1) for the embedded orders q = 3 (SDIRK4), 2 (Bogacki–Shampine), 4 (DOPRI5)
+        expo = 0.25 if stiff else (1.0 / 3.0 if low else 0.2)
+        ok, nf = any_step(stiff, low, p, t, y, k1, h, rtol, atol, ynew, k7, err, yt, k2, k3, k4, k5, k6, fr)
+        nfev += nf
+        en = err_norm(err, y, ynew, rtol, atol) if ok else np.nan
+        if not (en <= 1.0):
+            nrej += 1
+            after_reject = loose
+            if en != en:  # NaN or a failed stage solve
+                h *= 0.2
+            else:
+                h *= max(0.2, 0.9 * en ** -expo)
+            continue
+        if en == 0:
+            fac = 10.0
+        elif stiff or not loose:
+            fac = min(10.0, 0.9 * en ** -expo)
+        else:  # PI control (Gustafsson 1991; Hairer, Nørsett & Wanner II.4)
+            fac = min(10.0, 0.9 * en ** (pi_beta * 0.75 - expo) * en_old ** pi_beta)
+        if after_reject:  # no growth right after a rejection (Hairer, Norsett & Wanner, II.4)
+            fac = min(fac, 1.0)
+            after_reject = False
+        en_old = max(en, 1e-4)
+        h_next = h * fac
+        if clipped:
+            h_next = max(h_next, min(h_free, h_free * fac))
+        switched = False
+        if guard:
+            g0 = y[0] - xI
+            dx = ynew[0] - y[0]
+            m0 = h * y[1]
+            m1 = h * ynew[1]
+            q1 = 3 * dx - 2 * m0 - m1
+            q2 = -2 * dx + m0 + m1
+            sgn = -1.0 if contact else 1.0
+            # |g(s) − g₀| ≤ |m₀| + |q₁| + |q₂| on [0, 1]: a step that stays inside by more than
+            # that bound (plus a rounding margin) cannot cross, and cubic_crossing would return
+            # −1; skipping it changes no step
+            bnd = abs(m0) + abs(q1) + abs(q2)
+            if g0 * sgn + bnd + 1e-12 * (abs(g0) + bnd) < 0.0:
+                s_star = -1.0
+            else:
+                s_star = cubic_crossing(g0, m0, q1, q2, 0.0, sgn, False)
+            if s_star <= 0.0 and (ynew[0] - xI) * sgn > 0.0:
+                s_star = 1.0  # defensive: the end state is outside
+            if s_star > 0.0:
+                # re-take the step onto the root; Newton on the step length (slope ẋ)
+                hs = s_star * h
+                for it in range(8):
+                    ok, nf = any_step(stiff, low, p, t, y, k1, hs, rtol, atol, ynew, k7, err, yt, k2, k3,
+                                      k4, k5, k6, fr)
+                    nfev += nf
+                    if not ok:
+                        hs *= 0.5
+                        continue
+                    gr = ynew[0] - xI
+                    if abs(gr) <= 4e-16 * abs(xI) or ynew[1] == 0.0:
+                        break
+                    dh = -gr / ynew[1]
+                    hn = hs + dh
+                    if hn <= 0.0:
+                        hn = 0.5 * hs
+                    elif hn > h:
+                        hn = 0.5 * (hs + h)
+                    hs = hn
+                h = hs
+                max_mismatch = max(max_mismatch, abs(ynew[0] - xI))
+                ynew[0] = xI
+                rhs(t + h, ynew, p, k7, fr)
+                nfev += 1
+                switched = True
+                clipped = False
+        nsteps += 1
+        if stiff:
+            nstiff += 1
+        t = ts if clipped and t_target == ts else (t_end if clipped else t + h)
+        for a in range(n):
+            y[a] = ynew[a]
+            k1[a] = k7[a]
+        if nrec < rec_cap:
+            rec_t[nrec] = t
+            rec_y[nrec, :] = y
+            rec_f[nrec, :] = k1
+            nrec += 1
+        if switched:
+            if nev < max_events:
+                ev_t[nev] = t
+                ev_k[nev] = -1 if contact else 1
+                ev_v[nev] = y[1]
+                nev += 1
+            else:
+                status = MAX_EVENTS
+                break
+            contact = not contact
+            h_next = max(h_next, h_free)
+        h = h_next
+    return (t, y, status, ev_t[:nev].copy(), ev_k[:nev].copy(), ev_v[:nev].copy(), st_t[:nst].copy(),
+            st_y[:nst].copy(), lyap, nly, nsteps, nfev, nrej, max_mismatch, nstiff, rec_t[:nrec].copy(),
+            rec_y[:nrec].copy(), rec_f[:nrec].copy())
+
+
+@njit(cache=True)
+def integrate(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, strobe_dt,
+              n_strobe_max, renorm, max_events, max_steps, rec_cap, fr):
+    """The explicit path: :func:`integrate_mixed` with the stiff stepper disabled (the
+    returned tuple has the stiff-step count as its last entry, always 0 here)."""
+    return integrate_mixed(p, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, strobe_dt,
+                           n_strobe_max, renorm, max_events, max_steps, 0.0, 0.0, rec_cap, fr)
+
 
 @lru_cache(maxsize=None)
-def switching_integrator(fun, stiff_step):
-    """The compiled event-driven loop over a second-order field (x, ẋ[, δx, δẋ]).
+def loop_signature():
+    """The argument types of :func:`integrate_mixed` as :func:`landau.verify.skurativskyi.simulate.run`
+    calls it (arrays C-contiguous float64, the friction callbacks of
+    :func:`landau.verify.skurativskyi.friction.callbacks_type`)."""
+    from numba import types
 
-    Parameters
-    ----------
-    fun : numba function
-        The kernel ``fun(t, y, p, out)`` (len(y) = 2, or 4 with one tangent vector).
-    stiff_step : numba function
-        The stick-phase step ``stiff_step(p, t, y, h, rtol, atol, ynew, fnew, err) ->
-        (ok, nfev)`` (e.g. the SDIRK4 of :mod:`landau.verify.skurativskyi.sdirk` built for the
-        same field).
+    from landau.verify.skurativskyi.friction import callbacks_type
 
-    Returns
-    -------
-    (integrate, integrate_mixed)
-        The jitted loops documented below (the module docstring describes the method).
-    """
-    mod = specialise(Path(__file__).parent / "templates" / "switching.py",
-                     {"fun": fun, "stiff_step": stiff_step}, "switching")
-    return mod.integrate, mod.integrate_mixed
+    arr, f8, i8, b1 = types.float64[::1], types.float64, types.int64, types.boolean
+    return (arr, f8, arr, f8, f8, arr, f8, f8, f8, b1, f8, f8, i8, b1, i8, i8, f8, f8, i8, callbacks_type())
 
 
-# ---------------------------------------------------------------------------------------
-#: a numba field with its packed parameters (the name the engine models of this package use)
-CompiledField = Kernel
+def mixed_loop():
+    """:func:`integrate_mixed`, compiled for :func:`loop_signature` on first use (once per
+    machine: numba's disk cache keeps it for every later process and every friction law)."""
+    from landau.verify.compiling import compile_once
+
+    from landau.verify.skurativskyi.friction import quiet_first_class
+
+    with quiet_first_class():
+        return compile_once(integrate_mixed, loop_signature(), "the forced-oscillator integrator")
 
 
-@dataclass(frozen=True)
-class CompiledDOPRI5(_compiled.CompiledDOPRI5):
-    """The generic compiled DOPRI5 stepper factory with defaults for eq. (1): atol in (m, m/s),
-    first step 10 µs, steps ≤ 10 ms (a few hundredths of a forcing period)."""
+def __getattr__(name: str):
+    # the engine-facing pieces, imported on use (they pull in the generic compiled steppers)
+    if name == "CompiledField":
+        from landau.verify.hybrid.kernel import Kernel
+        return Kernel
+    if name == "CompiledDOPRI5":
+        return _compiled_dopri5()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
-    rtol: float = 1e-8
-    atol: tuple = (1e-12, 1e-10)
-    first_step: float = 1e-5
-    max_step: float = 0.01
 
-__all__ = ["CompiledDOPRI5", "CompiledField", "STATUS", "borrowed", "switching_integrator"]
+@lru_cache(maxsize=None)
+def _compiled_dopri5():
+    from dataclasses import dataclass
+
+    from landau.verify.hybrid import compiled as _compiled
+
+    @dataclass(frozen=True)
+    class CompiledDOPRI5(_compiled.CompiledDOPRI5):
+        """The generic compiled DOPRI5 stepper factory with defaults for eq. (1): atol in (m, m/s),
+        first step 10 µs, steps ≤ 10 ms (a few hundredths of a forcing period)."""
+
+        rtol: float = 1e-8
+        atol: tuple = (1e-12, 1e-10)
+        first_step: float = 1e-5
+        max_step: float = 0.01
+
+    CompiledDOPRI5.__module__ = __name__
+    return CompiledDOPRI5
+
+
+__all__ = ["STATUS", "integrate", "integrate_mixed", "loop_signature", "mixed_loop"]

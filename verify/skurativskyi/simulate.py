@@ -21,15 +21,17 @@ from landau.errors import IntegratorError, InputError
 from landau.verify.hybrid import Event, EventLog, Guard, HybridModel, Jump, Mode
 from landau.verify.hybrid.result import Simulation, Status
 from landau.verify.skurativskyi import rk as R
-from landau.verify.skurativskyi.model import IN3, Params, compiled_field
+from landau.verify.skurativskyi.friction import quiet_first_class
+from landau.verify.skurativskyi.model import Params, compiled_field
 
 
 def integrators(params: Params):
-    """The compiled event-driven loops for eq. (1) with the friction law of ``params``: DOPRI5
-    over the field ``rhs`` generated for that law, stick phases by the SDIRK4 built for the same
-    field (:func:`landau.verify.skurativskyi.rk.switching_integrator`,
-    :func:`landau.verify.skurativskyi.sdirk.cusp_sdirk_method`).  Built once per law
-    expression (values are in ``params.packed()``) and cached on disk.
+    """The compiled event-driven loops for eq. (1) with the friction law of ``params``.
+
+    The loops (:func:`landau.verify.skurativskyi.rk.integrate`, ``integrate_mixed``) are
+    compiled once per machine for every law; this binds the law's friction callbacks
+    (:attr:`landau.verify.skurativskyi.friction.CompiledFriction.pointers`, compiled once per
+    law expression and cached on disk) as their last argument.
 
     Parameters
     ----------
@@ -38,12 +40,20 @@ def integrators(params: Params):
     Returns
     -------
     (integrate, integrate_mixed)
+        Functions of the loops' arguments without the last (``fr``).
     """
-    from landau.verify.skurativskyi.sdirk import cusp_sdirk_method
+    fr = compiled_field(params).pointers
+    mixed = R.mixed_loop()
 
-    k = compiled_field(params)
-    _, sdirk_step = cusp_sdirk_method(k.accel_partials, k.accel_grad, IN3)
-    return R.switching_integrator(k.rhs, sdirk_step)
+    def integrate_mixed(*args):
+        with quiet_first_class():
+            return mixed(*args, fr)
+
+    def integrate(*args):
+        with quiet_first_class():
+            return R.integrate(*args, fr)
+
+    return integrate, integrate_mixed
 
 #: default tolerances of the fast path: event/bifurcation locations converge at rtol ≲ 1e-8
 #: (at rtol 1e-6 they move by ~0.01 rad/s); atol in m and m/s (the cart moves by mm at mm/s–cm/s): by default
@@ -189,7 +199,7 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
     y0 = rest_state(params) if y0 is None else np.asarray(y0, float)[:2]
     P = params.period
     p = params.packed()
-    at = np.asarray((rtol * 1e-4, rtol * 1e-2) if atol is None else atol, float)
+    at = np.ascontiguousarray((rtol * 1e-4, rtol * 1e-2) if atol is None else atol, float)
     if lyapunov:
         tv = np.asarray(tangent0, float)
         y = np.concatenate([y0, tv / np.linalg.norm(tv)])
@@ -198,10 +208,12 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
         y = y0.copy()
     t_end = t0 + n_periods * P if float(n_periods) != int(n_periods) else t0 + int(n_periods) * P
     n_st = int(n_periods) + 2 if strobe else 1
-    _, integrate_mixed = integrators(params)
-    out = integrate_mixed(p, float(t0), y, float(t_end), float(rtol), at, 1e-5, P / 20, params.xI, True,
-                            float(t0), P if strobe or lyapunov else 0.0, n_st, lyapunov, max_events, max_steps,
-                            *METHODS[method], int(record))
+    fr = compiled_field(params).pointers
+    loop = R.mixed_loop()
+    with quiet_first_class():
+        out = loop(p, float(t0), y, float(t_end), float(rtol), at, 1e-5, float(P / 20), float(params.xI), True,
+                   float(t0), float(P) if strobe or lyapunov else 0.0, int(n_st), bool(lyapunov), int(max_events),
+                   int(max_steps), *METHODS[method], int(record), fr)
     (t, yend, status, ev_t, ev_k, ev_v, st_t, st_y, ly, nly, nsteps, nfev, nrej, mism, nstiff,
      rec_t, rec_y, rec_f) = out
     if status != R.OK:

@@ -11,6 +11,9 @@ Every computed point is appended at once as one JSON line to ``<out>/chunk_XXXX.
 recorded attractor (state at phase 0) and computes only what is missing.  A line that was
 cut in the middle by the interruption is ignored.
 
+The compiled loop is built (or loaded from numba's disk cache) once in the calling process
+before the workers start (:func:`warm_up`), so no worker compiles it.
+
 Executors: local processes (``concurrent.futures.ProcessPoolExecutor``, default), or a
 dask.distributed cluster when ``scheduler`` (an address such as ``tcp://host:8786``, or a
 ``distributed.Client``) is given — then ``out`` must be a folder the workers can write to
@@ -115,6 +118,23 @@ def _run_chunk(c: int, omegas: list[float], idx: list[int], warm: list[float], s
     return sorted(recs, key=lambda r: r["i"])
 
 
+def warm_up(params=PAPER) -> None:
+    """Compile the event-driven loop and the friction law's callbacks in this process, before
+    any worker starts: both are cached on disk by numba (``cache=True``), so the workers load
+    them instead of compiling the same code each (forked workers inherit them loaded).
+
+    Parameters
+    ----------
+    params : Params
+        Whose friction law the sweep uses.
+    """
+    from landau.verify.skurativskyi import rk
+    from landau.verify.skurativskyi.model import compiled_field
+
+    compiled_field(params)
+    rk.mixed_loop()
+
+
 @dataclass(frozen=True)
 class SweepResult:
     """Attractors in sweep order, the direction and where they were streamed."""
@@ -172,6 +192,8 @@ def run_sweep(omegas, direction: str = "up", out: str | os.PathLike | None = Non
             atomic_write_json(mpath, meta)
     from tqdm import tqdm
 
+    if scheduler is not None or (workers > 1 and len(chunks) > 1):
+        warm_up(PAPER.with_(**dict(spec.params)) if spec.params else PAPER)
     bar = tqdm(total=n, disable=not progress, desc=f"sweep {direction}", unit="ω")
     recs: dict[int, dict] = {}
     out_s = str(outp) if outp else None
