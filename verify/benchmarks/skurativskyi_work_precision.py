@@ -136,41 +136,6 @@ def cpu_at_error(front, err):
     return None
 
 
-def radau_on_stick(t_span: float = 0.05) -> list[str]:
-    """Why the stick stepper is an SDIRK and not the springblock Radau IIA
-    (``verify/hybrid/radau.py``, simplified Newton on the coupled stage system with a
-    full-Newton fallback): both from rest at X₀ and from the stick on the obstacle at
-    t ≈ 0.15 s (ω = 15), over ``t_span`` s at rtol 1e-8."""
-    import numba as nb
-
-    from landau.verify.skurativskyi.model import rhs2
-    from landau.verify.hybrid import radau as RD
-
-    fun = nb.njit(RD.SIG)(rhs2.py_func)
-
-    def jac_py(t, y, p, J):
-        ax, av = accel_grad(t, y[0], y[1], p)
-        J[0, 0] = 0.0
-        J[0, 1] = 1.0
-        J[1, 0] = ax
-        J[1, 1] = av
-
-    jac = nb.njit(RD.SIG_JAC)(jac_py)
-    p = Params(omega=15.0)
-    out = ["## The springblock Radau IIA on the stick phase (ω = 15, rtol 1e-8, 2e5 step attempts)", "",
-           "| start | Radau IIA: status, reached Δt [s], accepted/rejected, Newton failures | default path: steps (stiff) |",
-           "|---|---|---|"]
-    r0 = run(p, 0.36, rtol=1e-8)
-    for label, t0, y0 in (("rest at X₀", 0.0, rest_state(p)), (f"stick, t = {r0.t:.3f} s, ẋ = {r0.y[1]:.1e}", r0.t, r0.y)):
-        st, t, _, cnt, *_ = RD.radau_core(fun, jac, t0, np.array(y0, float), t0 + t_span, p.packed(), 1e-8,
-                                          np.array([1e-12, 1e-10]), 1e-5, 0.01, 200000, -1, 0.0, 0, 0, 0,
-                                          RD.A_RADAU.copy(), RD.VINV.copy(), np.empty((1, 3)), np.empty(1))
-        m = run(p, t_span / p.period, y0, t0=t0, rtol=1e-8, strobe=False)
-        out.append(f"| {label} | {RD.STATUS[st]}, {t - t0:.2g} of {t_span:g}, {cnt[0]}/{cnt[1]}, {cnt[5]} | "
-                   f"{m.nsteps} ({m.nstiff}) |")
-    return out + [""]
-
-
 def main(out_dir: str = "benchmarks_out", quick: bool = False) -> str:
     out = Path(out_dir)
     rows = []
@@ -248,7 +213,6 @@ def main(out_dir: str = "benchmarks_out", quick: bool = False) -> str:
             lines.append(f"- **{tk_name}: minimum speed-up over the best solve_ivp runs (★) at ω = {omega:g}: "
                          f"{best:.0f}×**")
         lines.append("")
-    lines += radau_on_stick()
     text = "\n".join(lines) + "\n"
     atomic_write_text(out / "skurativskyi_work_precision.md", text)
     import matplotlib
