@@ -385,8 +385,9 @@ def _is_compiled(stepper) -> bool:
     """Whether ``stepper`` is a compiled stepper factory (it integrates a mode's ``kernel``)."""
     if not _COMPILED_FACTORY:
         from landau.verify.hybrid.compiled import _CompiledFactory
+        from landau.verify.hybrid.dop853 import CompiledDOP853
 
-        _COMPILED_FACTORY.append(_CompiledFactory)
+        _COMPILED_FACTORY.append((_CompiledFactory, CompiledDOP853))
     return isinstance(stepper, _COMPILED_FACTORY[0])
 
 
@@ -411,13 +412,14 @@ def _affine_guards(mode) -> tuple[np.ndarray, np.ndarray] | None:
 
 def _keeps_current_f(solver) -> bool:
     """Whether ``solver.f`` is the vector field at ``(solver.t, solver.y)`` after every step:
-    scipy's explicit Runge–Kutta solvers and Radau, the compiled DOPRI5 and SDIRK4 (the
-    compiled Radau IIA and scipy's BDF/LSODA do not keep it)."""
+    scipy's explicit Runge–Kutta solvers and Radau, the compiled DOPRI5 and DOP853 (scipy's
+    BDF/LSODA do not keep it)."""
     from scipy.integrate import DOP853, RK23, RK45, Radau
 
-    from landau.verify.hybrid.compiled import DOPRI5Solver, SDIRK4Solver
+    from landau.verify.hybrid.compiled import DOPRI5Solver
+    from landau.verify.hybrid.dop853 import DOP853Solver
 
-    return isinstance(solver, (DOP853, RK45, RK23, Radau, DOPRI5Solver, SDIRK4Solver))
+    return isinstance(solver, (DOP853, RK45, RK23, Radau, DOPRI5Solver, DOP853Solver))
 
 
 class _LazyDense:
