@@ -65,8 +65,8 @@ class Guard:
     instead of being left at once — this resolves the Filippov corner cases where a
     transition lands, to rounding, just outside a region that the flow is entering.
     ``affine = (w, b)`` (optional) declares that ``fun(t, y) = w·y + b``: a compiled stepper
-    that offers ``run_quiet`` (:class:`~landau.verify.hybrid.compiled.CompiledDOPRI5` with
-    ``dense="order4"``) then screens the guard inside its compiled loop.
+    that offers ``run_quiet`` (:class:`~landau.verify.hybrid.dop853.CompiledDOP853`) then screens
+    the guard inside its compiled loop.
     """
 
     name: str
