@@ -397,31 +397,29 @@ class DOP853Solver:
 
     def run_quiet(self, W, b, s, g_last, dec_before, state, guard_atol, dip_factor, max_steps=1_000_000):
         """Steps until one whose affine guards g = W·y + b need the engine's dense-output scan
-        (:func:`run_quiet`).  Returns (error message or None, whether ``t_bound`` was reached with
-        every step quiet, steps taken); otherwise the last step (``t_old`` → ``t``,
-        ``dense_output()``) is the one to scan."""
+        (:func:`run_quiet`), at most ``max_steps``.  Returns (error message or None, whether
+        ``t_bound`` was reached with every step quiet — None when ``max_steps`` quiet steps were
+        taken —, steps taken); otherwise the last step (``t_old`` → ``t``, ``dense_output()``) is
+        the one to scan."""
         if self.status != "running":
             raise RuntimeError("attempt to step on a finished or failed solver")
         _compile()
-        code, k = 3, 0
-        while code == 3:
-            code, t_old, t, hu, hn, nf, kk = run_quiet(
-                self._fun, self.kernel.p, self.t, self.y, self.f, self.h_abs, self.max_step, self.t_bound,
-                self.rtol, self.atol, max_steps, W, b, s, g_last, dec_before, state, guard_atol, dip_factor,
-                self._K, self._F, self._y_old)
-            self.nfev += nf
-            self.nsteps += kk
-            k += kk
-            self.t, self.h_abs = t, hn
-            if kk:
-                self.t_old, self._h_used = t_old, hu
-                self._dense = _Dense(t_old, hu, self._F.copy(), self._y_old.copy())
+        code, t_old, t, hu, hn, nf, k = run_quiet(
+            self._fun, self.kernel.p, self.t, self.y, self.f, self.h_abs, self.max_step, self.t_bound,
+            self.rtol, self.atol, int(max_steps), W, b, s, g_last, dec_before, state, guard_atol, dip_factor,
+            self._K, self._F, self._y_old)
+        self.nfev += nf
+        self.nsteps += k
+        self.t, self.h_abs = t, hn
+        if k:
+            self.t_old, self._h_used = t_old, hu
+            self._dense = _Dense(t_old, hu, self._F.copy(), self._y_old.copy())
         if code == 0:
             self.status = "failed"
             return f"compiled DOP853: step size too small at t = {self.t:.12g}", False, k
         if self.t >= self.t_bound:
             self.status = "finished"
-        return None, code == 2, k
+        return None, (None if code == 3 else code == 2), k
 
     def __repr__(self) -> str:
         return (f"DOP853Solver(t={self.t:.6g}, {self.status}, steps={self.nsteps}, nfev={self.nfev}, "

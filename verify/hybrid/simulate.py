@@ -62,6 +62,12 @@ class EngineOptions:
     zeno_relative: True (default): ``zeno_interval`` is relative to max(1, |t|); False: it is
         an absolute time (ending chattering when the inter-impact time < a fixed tolerance).
     record: keep the sampled trajectory (for plots); off for fast maps.
+    max_steps: step budget of the whole run; past it the run ends with status ``"max_steps"``
+        (:attr:`~landau.verify.hybrid.result.Status.MAX_STEPS`) at the last step taken.
+    max_samples: bound on the recorded samples: past it the recorded trajectory is thinned
+        (every other sample dropped, each segment's ends kept) and from then on only every
+        2ᵏ-th step end is recorded, so a long run keeps at most ~``max_samples`` points spread
+        over the whole run.
     screen: when not recording, first sample the guards on each step's cubic Hermite
         interpolant with an error bound and build the dense output only for steps where that
         could trigger the scan (:class:`~landau.verify.hybrid.locate.HermiteScreen`): the same
@@ -84,6 +90,8 @@ class EngineOptions:
     record: bool = True
     zeno_relative: bool = True
     screen: bool = True
+    max_steps: int = 2_000_000
+    max_samples: int = 200_000
 
 
 @dataclass(frozen=True)
@@ -197,6 +205,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
     screen = HermiteScreen(options.samples) if options.screen and options.samples > 0 and not options.record else None
     nsteps = nfev = 0
     n_zero = 0
+    rec = _Recorder(options.max_samples)
     atol = options.guard_atol
 
     def finish(status, zeno=None):
@@ -239,13 +248,23 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             while hit is None:
                 if affine is not None:
                     msg, all_quiet, k = solver.run_quiet(*affine, nodes[:-1], g_last, dec_before, state, atol,
-                                                         screen.dip_factor)
+                                                         screen.dip_factor, max(1, options.max_steps - nsteps))
                     nsteps += k
                 else:
                     msg, all_quiet = solver.step(), False
                     nsteps += 1
                 if solver.status == "failed":
                     raise IntegratorError(f"mode {mname!r}: {msg}", t=solver.t, state=solver.y)
+                if all_quiet is None or (nsteps >= options.max_steps and solver.status != "finished"):
+                    # the step budget ran out (every step so far quiet or scanned)
+                    nfev += solver.nfev
+                    t, y = solver.t, np.array(solver.y, dtype=float)
+                    if options.record:
+                        if seg_t[-1][-1] < t:
+                            seg_t.append(np.array([t]))
+                            seg_y.append(y[:, None])
+                        segs.append(Segment(mname, np.concatenate(seg_t), np.concatenate(seg_y, axis=1)))
+                    return finish("max_steps")
                 if all_quiet:
                     nfev += solver.nfev
                     t, y = solver.t, solver.y.copy()
@@ -340,12 +359,15 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                         kind = hit[2]
                         break
                 if options.record:
-                    seg_t.append(ts[1:])
-                    seg_y.append(Y)
+                    rec.push(seg_t, seg_y, ts[1:], Y)
+                    rec.bound(segs, seg_t, seg_y)
                 if solver.status == "finished":
                     nfev += solver.nfev
                     t, y = solver.t, solver.y.copy()
                     if options.record:
+                        if seg_t[-1][-1] < t:  # a thinned record keeps the final state
+                            seg_t.append(np.array([t]))
+                            seg_y.append(y[:, None])
                         segs.append(Segment(mname, np.concatenate(seg_t), np.concatenate(seg_y, axis=1)))
                     return finish("t_end")
         else:
@@ -434,6 +456,45 @@ class _LazyDense:
         if self.sol is None:
             self.sol = self.solver.dense_output()
         return self.sol(t)
+
+
+class _Recorder:
+    """Recorded samples within ``cap`` (:class:`EngineOptions` ``max_samples``): a stride over
+    the steps (1: every sample of every step; 2ᵏ: the end of every 2ᵏ-th step only) and the
+    thinning of what is kept when the count passes ``cap``."""
+
+    __slots__ = ("cap", "stride", "count", "k")
+
+    def __init__(self, cap: int):
+        self.cap, self.stride, self.count, self.k = max(int(cap), 16), 1, 0, 0
+
+    def push(self, seg_t, seg_y, ts, Y) -> None:
+        if self.stride > 1:
+            self.k += 1
+            if self.k % self.stride:
+                return
+            ts, Y = ts[-1:], Y[:, -1:]
+        seg_t.append(ts)
+        seg_y.append(Y)
+        self.count += len(ts)
+
+    def bound(self, segs, seg_t, seg_y) -> None:
+        if self.count <= self.cap:
+            return
+        for i, s in enumerate(segs):
+            keep = _thin(len(s.t))
+            segs[i] = Segment(s.mode, s.t[keep], s.y[:, keep])
+        t, y = np.concatenate(seg_t), np.concatenate(seg_y, axis=1)
+        keep = _thin(len(t))
+        seg_t[:], seg_y[:] = [t[keep]], [y[:, keep]]
+        self.count = sum(len(s.t) for s in segs) + len(seg_t[0])
+        self.stride *= 2
+
+
+def _thin(n: int) -> np.ndarray:
+    """Every other index of range(n), the last one included."""
+    idx = np.arange(0, n, 2)
+    return idx if n == 0 or idx[-1] == n - 1 else np.append(idx, n - 1)
 
 
 def _push_seg(segs, options, mname, seg_t, seg_y, ts, Y, th, yh):
