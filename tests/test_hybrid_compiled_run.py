@@ -8,8 +8,9 @@
   events are those of the same stepper scanning every step on the same dense output
   (``EngineOptions(screen=False)``) — to the last bit, since the steps are the same — and,
   as the steps are scipy's, those of scipy's DOP853 to rounding.
-* The Galvanetto (2004) models declare their guards as affine forms and their modes' fields as
-  generated kernels: both checked against the Python guards and right-hand sides.
+* The Galvanetto (2004) models declare their guards as affine forms (of the state and, for the
+  velocity extrema, the field) and their modes' fields as generated kernels: both checked
+  against the Python guards and right-hand sides.
 """
 
 from __future__ import annotations
@@ -112,12 +113,12 @@ def test_galvanetto_affine_guards_and_kernels_match_the_python_model(p):
     for mode in model.modes.values():
         Y = rng.normal(size=(n, 5))
         Y[p.n:] = p.V + 0.05 * rng.normal(size=(p.n, 5))   # slip velocities near the belt's
-        for g in mode.guards:
-            if g.affine is None:
-                assert g.name.startswith(("rmax", "rmin"))     # the accelerations are not affine
-                continue
-            w, b = g.affine
-            np.testing.assert_allclose(np.asarray(w) @ Y + b, g.fun(0.0, Y), rtol=0, atol=1e-14)
         k = mode.kernel()
+        F = np.column_stack([mode.rhs(0.0, y) for y in Y.T])
+        for g in mode.guards:
+            assert g.affine is not None
+            w, b, *u = g.affine      # the r-extrema (rmax, rmin) are ± a component of the field
+            expect = np.asarray(w) @ Y + b + (np.asarray(u[0]) @ F if u else 0.0)
+            np.testing.assert_allclose(expect, g.fun(0.0, Y), rtol=0, atol=1e-13)
         for y in Y.T:
             np.testing.assert_allclose(k(0.0, y), mode.rhs(0.0, y), rtol=1e-14, atol=1e-14)

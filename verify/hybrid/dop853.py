@@ -32,7 +32,8 @@ over through :class:`numba.core.types.WrapperAddressProtocol` typed
 once per machine for every kernel (``njit(cache=True)``, built on first use through
 :func:`landau.verify.compiling.compile_once`).
 
-:func:`run_quiet` takes steps while the mode's affine guards pass the engine's scan test
+:func:`run_quiet` takes steps while the mode's guards — affine in the state and the vector
+field, g = w·y + u·f(t, y) + b (``Guard.affine``) — pass the engine's scan test
 (:func:`landau.verify.hybrid.locate._quiet_guards`) on the dense output, and returns to Python
 only with the step where a guard may cross (or at ``t_bound``): the engine then locates the
 root on that step's dense output to its ``xtol``.
@@ -248,9 +249,9 @@ def dense_many(F, y_old, xs):
 
 
 @njit(cache=True)
-def run_quiet(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b, s, g_last, dec_before, state,
-              gatol, dip_factor, K, F, y_old):
-    """Steps from (t, y), f = f(t, y), while every affine guard g = W·y + b passes the engine's
+def run_quiet(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b, U, s, g_last, dec_before,
+              state, gatol, dip_factor, K, F, y_old):
+    """Steps from (t, y), f = f(t, y), while every guard g = W·y + U·f(t, y) + b passes the engine's
     scan test (:func:`landau.verify.hybrid.locate._quiet_guards`) on the step's dense output at
     the fractions s and at the step end, up to ``max_steps`` steps or ``t_bound``.
 
@@ -262,7 +263,11 @@ def run_quiet(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b
     n, m, k = y.shape[0], s.shape[0], W.shape[0]
     ynew, fnew = np.empty(n), np.empty(n)
     vals = np.empty((k, 3 * m + 1))
-    yk = np.empty(n)
+    yk, fk = np.empty(n), np.empty(n)
+    uses_f = False
+    for j in range(k):
+        for a in range(n):
+            uses_f = uses_f or U[j, a] != 0.0
     nfev, nsteps, t_old, h_used = 0, 0, t, 0.0
     while nsteps < max_steps:
         ok, tn, hu, h_abs, nf = advance(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, K, ynew, fnew)
@@ -278,17 +283,22 @@ def run_quiet(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b
             y_old[a] = y[a]
         for q in range(m):
             dense_at(F, y_old, s[q], yk)
+            if uses_f:
+                fun(t + s[q] * hu, yk, p, fk)
+                nfev += 1
             for j in range(k):
                 g = b[j]
                 for a in range(n):
                     g += W[j, a] * yk[a]
+                    if uses_f:
+                        g += U[j, a] * fk[a]
                 vals[j, q] = g
                 vals[j, m + 1 + q] = g
                 vals[j, 2 * m + 1 + q] = g
         for j in range(k):
             g = b[j]
             for a in range(n):
-                g += W[j, a] * ynew[a]
+                g += W[j, a] * ynew[a] + U[j, a] * fnew[a]
             vals[j, m] = g
         t_old = t
         t = tn
@@ -331,7 +341,7 @@ def _compile() -> None:
     compile_once(advance, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, mat, arr, arr),
                  "the compiled DOP853 step")
     compile_once(dense, (FUN_T, arr, f64, arr, arr, arr, mat, f64, mat), "the DOP853 dense output")
-    compile_once(run_quiet, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, mat, arr, arr, arr, barr,
+    compile_once(run_quiet, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, mat, arr, mat, arr, arr, barr,
                              types.int64[::1], f64, f64, mat, mat, arr), "the compiled DOP853 event loop")
     _BUILT.append(True)
 
@@ -397,8 +407,8 @@ class DOP853Solver:
             self._dense = _Dense(self.t_old, self._h_used, F, self._y_old.copy())
         return self._dense
 
-    def run_quiet(self, W, b, s, g_last, dec_before, state, guard_atol, dip_factor, max_steps=1_000_000):
-        """Steps until one whose affine guards g = W·y + b need the engine's dense-output scan
+    def run_quiet(self, W, b, U, s, g_last, dec_before, state, guard_atol, dip_factor, max_steps=1_000_000):
+        """Steps until one whose guards g = W·y + U·f(t, y) + b need the engine's dense-output scan
         (:func:`run_quiet`), at most ``max_steps``.  Returns (error message or None, whether
         ``t_bound`` was reached with every step quiet — None when ``max_steps`` quiet steps were
         taken —, steps taken); otherwise the last step (``t_old`` → ``t``, ``dense_output()``) is
@@ -408,7 +418,7 @@ class DOP853Solver:
         _compile()
         code, t_old, t, hu, hn, nf, k = run_quiet(
             self._fun, self.kernel.p, self.t, self.y, self.f, self.h_abs, self.max_step, self.t_bound,
-            self.rtol, self.atol, int(max_steps), W, b, s, g_last, dec_before, state, guard_atol, dip_factor,
+            self.rtol, self.atol, int(max_steps), W, b, U, s, g_last, dec_before, state, guard_atol, dip_factor,
             self._K, self._F, self._y_old)
         self.nfev += nf
         self.nsteps += k

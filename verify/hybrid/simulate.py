@@ -416,16 +416,19 @@ def _is_compiled(stepper) -> bool:
 _AFFINE: dict[int, tuple] = {}
 
 
-def _affine_guards(mode) -> tuple[np.ndarray, np.ndarray] | None:
-    """(W, b) with the mode's guards = W·y + b when every guard declares ``affine``, else None."""
+def _affine_guards(mode) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """(W, b, U) with the mode's guards = W·y + U·f(t, y) + b when every guard declares ``affine``
+    (``(w, b)`` or ``(w, b, u)``), else None."""
     hit = _AFFINE.get(id(mode))
     if hit is not None and hit[0] is mode:
         return hit[1]
     gs = mode.guards
     out = None
     if gs and all(g.affine is not None for g in gs):
-        out = (np.ascontiguousarray([g.affine[0] for g in gs], dtype=float),
-               np.array([g.affine[1] for g in gs], dtype=float))
+        W = np.ascontiguousarray([g.affine[0] for g in gs], dtype=float)
+        U = np.ascontiguousarray([g.affine[2] if len(g.affine) > 2 else np.zeros(W.shape[1]) for g in gs],
+                                 dtype=float)
+        out = (W, np.array([g.affine[1] for g in gs], dtype=float), U)
     if len(_AFFINE) > 256:
         _AFFINE.clear()
     _AFFINE[id(mode)] = (mode, out)
