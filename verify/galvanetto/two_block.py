@@ -16,9 +16,9 @@ from landau.errors import InputError, IntegratorError, LandauError
 from landau.laws.kinetic import KineticFriction, resolve_kinetic_law
 from landau.verify.galvanetto.maps import (MapUndefined, d_range, default_stepper, f_n, two_block_map)
 from landau.verify.galvanetto.model import StickSlipParams, _make_rhs, two_blocks
-from landau.verify.galvanetto.periodic import (SCAN_RTOL, Located, NoBifurcationError, PeriodicPoint, _Warm,
-                                               _grow_bracket, _locate, _margins, _velocity_scale, attractor, map_slope, orbit_events,
-                                               periodic_point, scan_bracket)
+from landau.verify.galvanetto.periodic import (SCAN_RTOL, Located, NoBifurcationError, PeriodicPoint, _grow_bracket,
+                                               _locate, _margins, _velocity_scale, _Warm, attractor, map_slope,
+                                               orbit_events, periodic_point, scan_bracket)
 
 # ----------------------------------------------------------------- two blocks (Sec. 4.1)
 
