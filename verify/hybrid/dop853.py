@@ -101,23 +101,31 @@ def kernel_function(fun) -> _Address:
     return _Address(cf)
 
 
-def _rms(x) -> float:
-    return float(np.linalg.norm(x) / math.sqrt(x.size))
-
-
-def initial_step(kernel: Kernel, t0: float, y0: np.ndarray, f0: np.ndarray, t_bound: float, max_step: float,
-                 rtol: float, atol: np.ndarray) -> float:
+@njit(cache=True)
+def initial_step(fun, p, t0, y0, f0, t_bound, max_step, rtol, atol):
     """scipy's ``select_initial_step`` for an order-7 error estimate (Hairer, Nørsett & Wanner,
-    Sec. II.4): the same first step as scipy's DOP853."""
+    Sec. II.4): the first step of scipy's DOP853 (to rounding: the norms are summed in order)."""
+    n = y0.shape[0]
     span = abs(t_bound - t0)
     if span == 0.0:
         return 0.0
-    scale = atol + np.abs(y0) * rtol
-    d0, d1 = _rms(y0 / scale), _rms(f0 / scale)
+    d0, d1 = 0.0, 0.0
+    for a in range(n):
+        sc = atol[a] + abs(y0[a]) * rtol
+        d0 += (y0[a] / sc) ** 2
+        d1 += (f0[a] / sc) ** 2
+    d0, d1 = math.sqrt(d0 / n), math.sqrt(d1 / n)
     h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
     h0 = min(h0, span)
-    f1 = kernel(t0 + h0, y0 + h0 * f0)
-    d2 = _rms((f1 - f0) / scale) / h0
+    y1, f1 = np.empty(n), np.empty(n)
+    for a in range(n):
+        y1[a] = y0[a] + h0 * f0[a]
+    fun(t0 + h0, y1, p, f1)
+    d2 = 0.0
+    for a in range(n):
+        sc = atol[a] + abs(y0[a]) * rtol
+        d2 += ((f1[a] - f0[a]) / sc) ** 2
+    d2 = math.sqrt(d2 / n) / h0
     h1 = max(1e-6, h0 * 1e-3) if d1 <= 1e-15 and d2 <= 1e-15 else (0.01 / max(d1, d2)) ** (1 / 8)
     return min(100 * h0, h1, span, max_step)
 
@@ -345,6 +353,7 @@ def _compile() -> dict:
             ("advance", advance, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, mat, arr, arr),
              "the compiled DOP853 step"),
             ("dense", dense, (FUN_T, arr, f64, arr, arr, arr, mat, f64, mat), "the DOP853 dense output"),
+            ("initial_step", initial_step, (FUN_T, arr, f64, arr, arr, f64, f64, f64, arr), "the DOP853 first step"),
             ("run_quiet", run_quiet, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, mat, arr, mat, arr,
                                       arr, barr, types.int64[::1], f64, f64, mat, mat, arr),
              "the compiled DOP853 event loop")):
@@ -376,8 +385,8 @@ class DOP853Solver:
         if first_step:
             self.h_abs = min(float(first_step), abs(self.t_bound - self.t))
         else:
-            self.h_abs = initial_step(kernel, self.t, self.y, self.f, self.t_bound, self.max_step, self.rtol,
-                                      self.atol)
+            self.h_abs = _compile()["initial_step"](self._fun, kernel.p, self.t, self.y, self.f, self.t_bound,
+                                                    self.max_step, self.rtol, self.atol)
             self.nfev += 1
         n = len(self.y)
         self._K = np.empty((N_EXT, n))
