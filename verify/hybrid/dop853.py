@@ -320,6 +320,46 @@ def run_quiet(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b
     return 3, t_old, t, h_used, h_abs, nfev, nsteps
 
 
+@njit(cache=True)
+def _g_affine(fun, p, F, y_old, t_old, h, w, bj, u, uses_f, t, yk, fk):
+    dense_at(F, y_old, (t - t_old) / h, yk)
+    if uses_f:
+        fun(t, yk, p, fk)
+    g = bj
+    for a in range(yk.shape[0]):
+        g += w[a] * yk[a]
+        if uses_f:
+            g += u[a] * fk[a]
+    return g
+
+
+@njit(cache=True)
+def affine_root(fun, p, F, y_old, t_old, h, w, bj, u, a, b, xtol):
+    """Root in [a, b] of the guard g = w·y + u·f(t, y) + bj on the step's dense output (rows F of
+    :func:`dense`), g(a) > 0 >= g(b): bisection to ``xtol`` (or to adjacent floating-point
+    numbers), returned on the new side (g <= 0), as
+    :func:`landau.verify.hybrid.locate.root_new_side` does with Brent's method."""
+    n = y_old.shape[0]
+    yk, fk = np.empty(n), np.empty(n)
+    uses_f = False
+    for k in range(n):
+        uses_f = uses_f or u[k] != 0.0
+    if _g_affine(fun, p, F, y_old, t_old, h, w, bj, u, uses_f, b, yk, fk) > 0.0:
+        return b
+    if _g_affine(fun, p, F, y_old, t_old, h, w, bj, u, uses_f, a, yk, fk) <= 0.0:
+        return a
+    lo, hi = a, b
+    while hi - lo > xtol:
+        mid = 0.5 * (lo + hi)
+        if mid <= lo or mid >= hi:
+            break
+        if _g_affine(fun, p, F, y_old, t_old, h, w, bj, u, uses_f, mid, yk, fk) > 0.0:
+            lo = mid
+        else:
+            hi = mid
+    return hi
+
+
 class _Dense:
     """The step's 7th-order interpolant (scalar t → (n,), array → (n, m))."""
 
@@ -353,6 +393,8 @@ def _compile() -> dict:
             ("advance", advance, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, mat, arr, arr),
              "the compiled DOP853 step"),
             ("dense", dense, (FUN_T, arr, f64, arr, arr, arr, mat, f64, mat), "the DOP853 dense output"),
+            ("affine_root", affine_root, (FUN_T, arr, mat, arr, f64, f64, arr, f64, arr, f64, f64, f64),
+             "the DOP853 event root"),
             ("initial_step", initial_step, (FUN_T, arr, f64, arr, arr, f64, f64, f64, arr), "the DOP853 first step"),
             ("run_quiet", run_quiet, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, mat, arr, mat, arr,
                                       arr, barr, types.int64[::1], f64, f64, mat, mat, arr),
@@ -449,6 +491,13 @@ class DOP853Solver:
         if self.t >= self.t_bound:
             self.status = "finished"
         return None, (None if code == 3 else code == 2), k
+
+    def affine_root(self, w, b, u, lo, hi, xtol) -> float:
+        """Root of the guard w·y + u·f(t, y) + b in [lo, hi] on the last step's dense output
+        (:func:`affine_root`; the guard is > 0 at lo and <= 0 at hi)."""
+        d = self.dense_output()
+        return _compile()["affine_root"](self._fun, self.kernel.p, d.F, d.y0, d.t0, d.h, w, float(b), u,
+                                         float(lo), float(hi), float(xtol))
 
     def __repr__(self) -> str:
         return (f"DOP853Solver(t={self.t:.6g}, {self.status}, steps={self.nsteps}, nfev={self.nfev}, "

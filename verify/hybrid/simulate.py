@@ -242,6 +242,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             # are recorded for plots.  A compiled stepper with run_quiet screens affine guards on
             # its own dense output inside its compiled loop instead.
             affine = _affine_guards(m) if screen is not None and hasattr(solver, "run_quiet") else None
+            roots = _affine_guards(m) if hasattr(solver, "affine_root") else None
             use_screen = affine is None and screen is not None and _keeps_current_f(solver)
             if use_screen:
                 screen.start(solver.y, solver.f, len(guards), m.rhs)
@@ -330,8 +331,11 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                             located.append((c, j, "zero-length"))
                         else:
                             a, b = c
-                            located.append((root_new_side(guard_on_dense(guards[j].fun, dense), a, b,
-                                                          options.xtol), j, "switch"))
+                            if roots is not None:   # the guard's affine form, in compiled code
+                                r = solver.affine_root(roots[0][j], roots[1][j], roots[2][j], a, b, options.xtol)
+                            else:
+                                r = root_new_side(guard_on_dense(guards[j].fun, dense), a, b, options.xtol)
+                            located.append((r, j, "switch"))
                     located.sort(key=lambda x: (x[0], x[1]))
                     # sections before the first switching guard are logged; the run goes on
                     t_sw = min((x[0] for x in located if guards[x[1]].transition is not None), default=np.inf)
