@@ -6,8 +6,9 @@ guards on every step (:mod:`landau.verify.hybrid.locate`; when no trajectory is 
 step is first screened on its cubic Hermite interpolant and the dense output is built only
 where a guard may cross; with a compiled stepper that offers ``run_quiet`` and a mode whose
 guards are all affine, the quiet steps run in one compiled call, tested on the stepper's own
-dense output), applies the earliest switching
-transition at its root (taken on the new side of the guard), logs every event, and
+dense output; a stepper that offers ``affine_root`` also refines an affine guard's root in compiled
+code), applies the earliest switching transition at its root (taken on the new side of the
+guard), logs every event, and
 watches for Zeno accumulation (:mod:`landau.verify.hybrid.zeno`).
 
 Phase starts and zero-length phases
