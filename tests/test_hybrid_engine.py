@@ -299,3 +299,18 @@ def test_a_long_run_ends_at_its_step_budget_with_bounded_samples(compiled):
             assert t[0] == 0.0 and t[-1] == sol.t  # spread over the whole run
             assert np.all(np.diff(t) > 0)
             np.testing.assert_allclose(y[0], np.cos(t), atol=1e-6)
+
+
+def test_a_long_stick_slip_run_keeps_its_samples_bounded_across_many_phases():
+    # Galvanetto (2004) one block from rest on the belt: a stick–slip cycle every ~14 steps, so
+    # the record is thousands of short phases; thinning must drop whole phases to stay bounded
+    from landau.verify.galvanetto.analysis import FIG_STEPPER
+    from landau.verify.galvanetto.maps import model_for
+    from landau.verify.galvanetto.model import one_block
+
+    p = one_block(0.25)
+    opts = EngineOptions(record=True, samples=8, max_steps=20_000, max_samples=1000)
+    sol = simulate(model_for(p), "s", np.array([0.0, p.V]), (0.0, 1e12), FIG_STEPPER, opts)
+    assert sol.status == "max_steps" and len(sol.events) > 1000
+    t, _, _ = sol.trajectory()
+    assert len(t) <= 1100 and t[0] == 0.0 and t[-1] == sol.t and np.all(np.diff(t) >= 0)

@@ -358,6 +358,9 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                         th = hit[0]
                         yh = dense(th) if th < t_new else solver.y.copy()
                         _push_seg(segs, options, mname, seg_t, seg_y, ts, Y, th, yh)
+                        if options.record:
+                            rec.count += len(ts)
+                            rec.bound(segs, [np.empty(0)], [np.empty((len(yh), 0))])
                         nfev += solver.nfev
                         t, y = th, yh
                         j = hit[1]
@@ -496,6 +499,10 @@ class _Recorder:
         keep = _thin(len(t))
         seg_t[:], seg_y[:] = [t[keep]], [y[:, keep]]
         self.count = sum(len(s.t) for s in segs) + len(seg_t[0])
+        if self.count > self.cap and len(segs) > 1:
+            # many short phases (each keeps its two ends): drop every other earlier phase
+            segs[:] = segs[-2::-2][::-1] + segs[-1:]
+            self.count = sum(len(s.t) for s in segs) + len(seg_t[0])
         self.stride *= 2
 
 
