@@ -1,15 +1,16 @@
-"""The compiled DOPRI5 with its order-4 dense output and the engine's compiled quiet runs.
+"""The compiled DOP853 stepper and the engine's compiled quiet runs.
 
-* The dense output is DOPRI5's continuous extension of order 4 (Hairer, Nørsett & Wanner,
+* The dense output is DOP853's continuous extension of order 7 (Hairer, Nørsett & Wanner,
   *Solving ODEs I*, II.6): checked against the closed-form harmonic oscillator, its error
-  inside a fixed step falls like h⁵ (the cubic Hermite interpolant's like h⁴ only).
+  inside a fixed step falls like h⁸.
 * Quiet steps of a mode whose guards are affine run in one compiled call
-  (``DOPRI5Order4Solver.run_quiet``); the test is the engine's dense-output scan test, so the
+  (``DOP853Solver.run_quiet``); the test is the engine's dense-output scan test, so the
   events are those of the same stepper scanning every step on the same dense output
-  (``EngineOptions(screen=False)``) — to the last bit, since the steps are the same — and those
-  of scipy's DOP853 within the integration tolerance.
-* The Galvanetto (2004) models declare their guards as affine forms and their modes' fields as
-  generated kernels: both checked against the Python guards and right-hand sides.
+  (``EngineOptions(screen=False)``) — to the last bit, since the steps are the same — and,
+  as the steps are scipy's, those of scipy's DOP853 to rounding.
+* The Galvanetto (2004) models declare their guards as affine forms (of the state and, for the
+  velocity extrema, the field) and their modes' fields as generated kernels: both checked
+  against the Python guards and right-hand sides.
 """
 
 from __future__ import annotations
@@ -22,62 +23,68 @@ from landau.codegen.kernels import generate_kernel
 from landau.verify.galvanetto.maps import gsp_start, model_for
 from landau.verify.galvanetto.model import build_model, one_block, two_blocks
 from landau.verify.hybrid import EngineOptions, ScipyStepper, simulate
-from landau.verify.hybrid.compiled import CompiledDOPRI5
+from landau.verify.hybrid.dop853 import CompiledDOP853
 
 _x, _v = sp.symbols("x v")
 
 
-def _first_step_dense_error(dense: str, h: float) -> float:
+def _first_step_dense_error(h: float) -> float:
     """Max error of the dense output inside one fixed step of x'' = -x from (1, 0)."""
     k = generate_kernel([_x, _v], [_v, -_x], name="harmonic")
-    s = CompiledDOPRI5(rtol=0.5, atol=0.5, first_step=h, max_step=h, dense=dense)(k, 0.0, [1.0, 0.0], 10.0)
+    s = CompiledDOP853(rtol=0.5, atol=0.5, first_step=h, max_step=h)(k, 0.0, [1.0, 0.0], 10.0)
     assert s.step() is None and s.t == pytest.approx(h, rel=1e-15)
     ts = np.linspace(0.0, h, 41)
     y = s.dense_output()(ts)
-    # the dense output interpolates the step ends exactly
+    # the dense output interpolates the step ends (to rounding)
     np.testing.assert_allclose(y[:, 0], [1.0, 0.0], rtol=0, atol=1e-15)
     np.testing.assert_allclose(y[:, -1], s.y, rtol=0, atol=1e-15)
     return float(np.max(np.abs(y - np.array([np.cos(ts), -np.sin(ts)]))))
 
 
-def test_order4_dense_output_converges_like_h5():
-    e1, e2 = _first_step_dense_error("order4", 0.2), _first_step_dense_error("order4", 0.1)
-    # O(h⁵) local error: halving h divides it by 32 (≥ 24 allows the h⁶ term at h = 0.2)
-    assert e1 / e2 > 24
-    # and it is far below the cubic Hermite interpolant's O(h⁴) error on the same step
-    assert e2 < 0.1 * _first_step_dense_error("hermite", 0.1)
-
-
-def test_unknown_dense_output_is_refused():
-    from landau.errors import InputError
-
+def test_dense_output_is_scipys_and_converges_like_h8():
+    e1, e2 = _first_step_dense_error(0.8), _first_step_dense_error(0.4)
+    # O(h⁸) local error of the order-7 interpolant: halving h divides it by 256 (≥ 120 leaves
+    # room for the next term at h = 0.8)
+    assert e1 / e2 > 120
+    # the same interpolant as scipy's DOP853 on the same step
     k = generate_kernel([_x, _v], [_v, -_x], name="harmonic")
-    with pytest.raises(InputError, match="dense"):
-        CompiledDOPRI5(dense="quintic")(k, 0.0, [1.0, 0.0], 1.0)
+    ours = CompiledDOP853(rtol=0.5, atol=0.5, first_step=0.4, max_step=0.4)(k, 0.0, [1.0, 0.0], 10.0)
+    ref = ScipyStepper("DOP853", 0.5, 0.5, max_step=0.4, first_step=0.4)(k, 0.0, np.array([1.0, 0.0]), 10.0)
+    ours.step(), ref.step()
+    ts = np.linspace(0.0, 0.4, 9)
+    np.testing.assert_allclose(ours.dense_output()(ts), ref.dense_output()(ts), rtol=0, atol=1e-15)
+
+
+def test_a_mode_without_kernel_runs_on_scipys_dop853():
+    from scipy.integrate import DOP853
+
+    s = CompiledDOP853(1e-8, 1e-10)(lambda t, y: -y, 0.0, np.array([1.0]), 1.0)
+    assert isinstance(s, DOP853)
 
 
 def _events(sol):
     return [(e.guard, e.from_mode, e.to_mode, e.kind) for e in sol.events]
 
 
-@pytest.mark.slow  # a cold numba cache compiles the DOPRI5 loop for five modes (~1 min)
 def test_compiled_quiet_run_logs_the_dense_scan_events_two_blocks():
     """One step of the two-block event map (eight switching events, Galvanetto 2004 Sec. 2.2)."""
     p = two_blocks(0.25, beta=1.722)
     mode, y0 = gsp_start(p, -0.3)
     run = lambda stepper, opts: simulate(model_for(p), mode, y0, (0.0, 300.0), stepper, opts,
                                          stop=lambda ev: ev.to_mode == "ss")
-    st = CompiledDOPRI5(1e-10, 1e-12, dense="order4")
+    st = CompiledDOP853(1e-10, 1e-12, max_step=1.0)
     fast = run(st, EngineOptions(record=False))
     scan = run(st, EngineOptions(record=False, screen=False))
+    same = run(ScipyStepper("DOP853", 1e-10, 1e-12, max_step=1.0), EngineOptions(record=False, screen=False))
     ref = run(ScipyStepper("DOP853", 1e-12, 1e-14), EngineOptions(record=False))
     assert len(fast.events) == 8
-    assert _events(fast) == _events(scan) == _events(ref)
+    assert _events(fast) == _events(scan) == _events(same) == _events(ref)
     # same steps, same dense output, same scan: the same event times to the last bit
     assert [e.t for e in fast.events] == [e.t for e in scan.events]
     assert fast.nsteps == scan.nsteps
-    # against scipy's DOP853 at rtol 1e-12: within the integration tolerance (event-time error
-    # of the compiled run at rtol 1e-10 is ~1e-9, see the Galvanetto benchmark)
+    # scipy's DOP853 at the same tolerances takes the same steps: event times to rounding
+    np.testing.assert_allclose([e.t for e in fast.events], [e.t for e in same.events], rtol=0, atol=1e-12)
+    # against scipy's DOP853 at rtol 1e-12: within the integration tolerance
     np.testing.assert_allclose([e.t for e in fast.events], [e.t for e in ref.events], rtol=0, atol=1e-7)
 
 
@@ -86,14 +93,14 @@ def test_compiled_quiet_run_one_block_event_time():
     p = one_block(1.0, gamma=3.0, delta=0.2)
     run = lambda stepper, opts=EngineOptions(record=False): simulate(
         model_for(p), "n", np.array([1.0, 1.0]), (0.0, 50.0), stepper, opts, stop=lambda ev: ev.to_mode == "s")
-    st = CompiledDOPRI5(1e-12, 1e-14, dense="order4")
+    st = CompiledDOP853(1e-12, 1e-14)
     fast = run(st)
     scan = run(st, EngineOptions(record=False, screen=False))
     ref = run(ScipyStepper("DOP853", 1e-13, 1e-15))
     assert _events(fast) == _events(scan) == _events(ref)
     # the compiled quiet run takes the steps the per-step scan takes: the same event time exactly
     assert fast.t == scan.t and fast.nsteps == scan.nsteps
-    assert abs(fast.t - ref.t) < 1e-11   # measured 5e-13 (the benchmark's rtol 1e-12 row)
+    assert abs(fast.t - ref.t) < 1e-11
     assert fast.nsteps > 10              # many steps, taken in the compiled loop
 
 
@@ -106,12 +113,12 @@ def test_galvanetto_affine_guards_and_kernels_match_the_python_model(p):
     for mode in model.modes.values():
         Y = rng.normal(size=(n, 5))
         Y[p.n:] = p.V + 0.05 * rng.normal(size=(p.n, 5))   # slip velocities near the belt's
-        for g in mode.guards:
-            if g.affine is None:
-                assert g.name.startswith(("rmax", "rmin"))     # the accelerations are not affine
-                continue
-            w, b = g.affine
-            np.testing.assert_allclose(np.asarray(w) @ Y + b, g.fun(0.0, Y), rtol=0, atol=1e-14)
         k = mode.kernel()
+        F = np.column_stack([mode.rhs(0.0, y) for y in Y.T])
+        for g in mode.guards:
+            assert g.affine is not None
+            w, b, *u = g.affine      # the r-extrema (rmax, rmin) are ± a component of the field
+            expect = np.asarray(w) @ Y + b + (np.asarray(u[0]) @ F if u else 0.0)
+            np.testing.assert_allclose(expect, g.fun(0.0, Y), rtol=0, atol=1e-13)
         for y in Y.T:
             np.testing.assert_allclose(k(0.0, y), mode.rhs(0.0, y), rtol=1e-14, atol=1e-14)

@@ -267,3 +267,50 @@ def test_hermite_screen_on_a_multi_phase_run_matches_the_dense_scan():
     assert len(full.events) == 8 and full.mode == "ss"
     assert [(e.guard, e.to_mode, e.t) for e in screened.events] == [(e.guard, e.to_mode, e.t) for e in full.events]
     assert screened.nfev < full.nfev - 2 * full.nsteps  # 3 dense-output stages saved on most steps
+
+
+@pytest.mark.parametrize("compiled", [False, True])
+def test_a_long_run_ends_at_its_step_budget_with_bounded_samples(compiled):
+    # the undamped oscillator x'' = -x never switches: a run to t = 1e12 must end at the step
+    # budget with the named status, its recorded trajectory thinned to the sample bound and still
+    # spanning the run, the state on the exact solution (cos t, -sin t)
+    import sympy as sp
+
+    from landau.codegen.kernels import generate_kernel
+    from landau.verify.hybrid import Status
+    from landau.verify.hybrid.dop853 import CompiledDOP853
+
+    x, v = sp.symbols("x v")
+    k = generate_kernel([x, v], [v, -x], name="harmonic")
+    far = Guard("far", lambda t, y: 10.0 - y[0], lambda t, y: ("osc", y), affine=((-1.0, 0.0), 10.0))
+    model = HybridModel.from_modes(Mode("osc", lambda t, y: np.array([y[1], -y[0]]), (far,), kernel=lambda: k))
+    stepper = CompiledDOP853(1e-10, 1e-12) if compiled else DOP853Stepper(1e-10, 1e-12)
+    for record in (True, False):
+        opts = EngineOptions(record=record, max_steps=3000, max_samples=500)
+        sol = simulate(model, "osc", [1.0, 0.0], (0.0, 1e12), stepper, opts)
+        assert sol.status == "max_steps" and sol.nsteps == 3000
+        sim = sol.simulation("osc")
+        assert sim.status is Status.MAX_STEPS and not sim.success and "max_steps" in sim.message
+        assert 0 < sol.t < 1e12
+        np.testing.assert_allclose(sol.y, [math.cos(sol.t), -math.sin(sol.t)], atol=1e-6)
+        if record:
+            t, y, _ = sol.trajectory()
+            assert 250 <= len(t) <= 600            # ≤ max_samples (+ one step's samples)
+            assert t[0] == 0.0 and t[-1] == sol.t  # spread over the whole run
+            assert np.all(np.diff(t) > 0)
+            np.testing.assert_allclose(y[0], np.cos(t), atol=1e-6)
+
+
+def test_a_long_stick_slip_run_keeps_its_samples_bounded_across_many_phases():
+    # Galvanetto (2004) one block from rest on the belt: a stick–slip cycle every ~14 steps, so
+    # the record is thousands of short phases; thinning must drop whole phases to stay bounded
+    from landau.verify.galvanetto.analysis import FIG_STEPPER
+    from landau.verify.galvanetto.maps import model_for
+    from landau.verify.galvanetto.model import one_block
+
+    p = one_block(0.25)
+    opts = EngineOptions(record=True, samples=8, max_steps=20_000, max_samples=1000)
+    sol = simulate(model_for(p), "s", np.array([0.0, p.V]), (0.0, 1e12), FIG_STEPPER, opts)
+    assert sol.status == "max_steps" and len(sol.events) > 1000
+    t, _, _ = sol.trajectory()
+    assert len(t) <= 1100 and t[0] == 0.0 and t[-1] == sol.t and np.all(np.diff(t) >= 0)

@@ -10,8 +10,8 @@ Methods, each over rtol = 1e-4 … 1e-12 (atol = rtol/100):
   samples per step, which is what catches double crossings, screened on the step's cubic
   Hermite interpolant so that the dense output is built only where a guard may cross; with the
   screen off, i.e. every step scanned on the dense output; and ``samples=0``: step ends
-  only, the same information solve_ivp uses) and with RK45; and with the compiled DOPRI5 over
-  the model's generated kernels (order-4 dense output, quiet steps in one compiled call);
+  only, the same information solve_ivp uses) and with RK45; and with the compiled DOP853 over
+  the model's generated kernels (7th-order dense output, quiet steps in one compiled call);
 * ``scipy.integrate.solve_ivp`` with a terminal event (direction +1), DOP853 and RK45.
 Reference: the engine at rtol 1e-13, cross-checked against solve_ivp/DOP853 at 1e-13.
 
@@ -32,7 +32,7 @@ from scipy.integrate import solve_ivp
 from landau.verify.galvanetto.maps import gsp_start, model_for
 from landau.verify.galvanetto.model import one_block, two_blocks
 from landau.verify.hybrid import EngineOptions, ScipyStepper, simulate
-from landau.verify.hybrid.compiled import CompiledDOPRI5
+from landau.verify.hybrid.dop853 import CompiledDOP853
 from landau.verify.hybrid.model import as_jump
 
 P = one_block(1.0, gamma=3.0, delta=0.2, c=0.0)
@@ -48,9 +48,9 @@ def engine(method: str, rtol: float, opts: EngineOptions = OPTS):
 
 
 def compiled_engine(rtol: float, opts: EngineOptions = OPTS):
-    """The engine with the compiled DOPRI5 (the model's generated kernels, order-4 dense
+    """The engine with the compiled DOP853 (the model's generated kernels, 7th-order dense
     output): quiet steps run in one compiled call per phase (the guards are affine)."""
-    sol = simulate(model_for(P), "n", Y0, (0.0, 50.0), CompiledDOPRI5(rtol, rtol * 1e-2, dense="order4"), opts,
+    sol = simulate(model_for(P), "n", Y0, (0.0, 50.0), CompiledDOP853(rtol, rtol * 1e-2), opts,
                    stop=lambda ev: ev.to_mode == "s")
     return sol.t, sol.y[0], sol.nfev
 
@@ -80,9 +80,9 @@ def two_block_engine(method: str, rtol: float, opts: EngineOptions = OPTS):
 
 
 def two_block_compiled_engine(rtol: float, opts: EngineOptions = OPTS):
-    """:func:`two_block_engine` with the compiled DOPRI5 (see :func:`compiled_engine`)."""
+    """:func:`two_block_engine` with the compiled DOP853 (see :func:`compiled_engine`)."""
     mode, y0 = gsp_start(P2, D0)
-    sol = simulate(model_for(P2), mode, y0, (0.0, 300.0), CompiledDOPRI5(rtol, rtol * 1e-2, dense="order4"), opts,
+    sol = simulate(model_for(P2), mode, y0, (0.0, 300.0), CompiledDOP853(rtol, rtol * 1e-2), opts,
                    stop=lambda ev: ev.to_mode == "ss")
     return sol.t, sol.y[1] - sol.y[0], sol.nfev
 

@@ -322,10 +322,13 @@ def build_model(p: StickSlipParams, sections: bool = False, transparent: frozens
                     guards.append(Guard(f"rzero{i + 1}", r_guard, affine=r_affine))
                 if sections:
                     acc = _accel_fun(p, i, ch)
+                    u = np.zeros(2 * n)   # the acceleration of block i is the field's component n + i
+                    u[n + i] = 1.0 if ch == "n" else -1.0
+                    acc_affine = (tuple(0.0 for _ in u), 0.0, tuple(float(x) for x in u))
                     if ch == "n":
-                        guards.append(Guard(f"rmax{i + 1}", acc))
+                        guards.append(Guard(f"rmax{i + 1}", acc, affine=acc_affine))
                     else:
-                        guards.append(Guard(f"rmin{i + 1}", lambda t, y, acc=acc: -acc(t, y)))
+                        guards.append(Guard(f"rmin{i + 1}", lambda t, y, acc=acc: -acc(t, y), affine=acc_affine))
             else:
                 def up(t, y, K=_K_fun(p, i), F=Fs[i]):
                     return F - K(y)

@@ -64,9 +64,11 @@ class Guard:
     slightly negative (|g| < ``EngineOptions.recover_tol``) but increasing is entered
     instead of being left at once — this resolves the Filippov corner cases where a
     transition lands, to rounding, just outside a region that the flow is entering.
-    ``affine = (w, b)`` (optional) declares that ``fun(t, y) = w·y + b``: a compiled stepper
-    that offers ``run_quiet`` (:class:`~landau.verify.hybrid.compiled.CompiledDOPRI5` with
-    ``dense="order4"``) then screens the guard inside its compiled loop.
+    ``affine = (w, b)`` (optional) declares that ``fun(t, y) = w·y + b``, and ``(w, b, u)`` that
+    ``fun(t, y) = w·y + u·f(t, y) + b`` with f the mode's vector field (e.g. an extremum of a
+    velocity: its acceleration): a compiled stepper that offers ``run_quiet``
+    (:class:`~landau.verify.hybrid.dop853.CompiledDOP853`) then screens the guard inside its
+    compiled loop.
     """
 
     name: str
@@ -74,7 +76,7 @@ class Guard:
     transition: TransitionFun | None = None
     terminal: bool = False
     rate: Callable[[float, Array], float] | None = None
-    affine: tuple[tuple[float, ...], float] | None = None
+    affine: tuple | None = None
 
     def __repr__(self) -> str:
         kind = "section" if self.transition is None else "switch"

@@ -6,8 +6,9 @@ guards on every step (:mod:`landau.verify.hybrid.locate`; when no trajectory is 
 step is first screened on its cubic Hermite interpolant and the dense output is built only
 where a guard may cross; with a compiled stepper that offers ``run_quiet`` and a mode whose
 guards are all affine, the quiet steps run in one compiled call, tested on the stepper's own
-dense output), applies the earliest switching
-transition at its root (taken on the new side of the guard), logs every event, and
+dense output; a stepper that offers ``affine_root`` also refines an affine guard's root in compiled
+code), applies the earliest switching transition at its root (taken on the new side of the
+guard), logs every event, and
 watches for Zeno accumulation (:mod:`landau.verify.hybrid.zeno`).
 
 Phase starts and zero-length phases
@@ -62,6 +63,12 @@ class EngineOptions:
     zeno_relative: True (default): ``zeno_interval`` is relative to max(1, |t|); False: it is
         an absolute time (ending chattering when the inter-impact time < a fixed tolerance).
     record: keep the sampled trajectory (for plots); off for fast maps.
+    max_steps: step budget of the whole run; past it the run ends with status ``"max_steps"``
+        (:attr:`~landau.verify.hybrid.result.Status.MAX_STEPS`) at the last step taken.
+    max_samples: bound on the recorded samples: past it the recorded trajectory is thinned
+        (every other sample dropped, each segment's ends kept) and from then on only every
+        2ᵏ-th step end is recorded, so a long run keeps at most ~``max_samples`` points spread
+        over the whole run.
     screen: when not recording, first sample the guards on each step's cubic Hermite
         interpolant with an error bound and build the dense output only for steps where that
         could trigger the scan (:class:`~landau.verify.hybrid.locate.HermiteScreen`): the same
@@ -84,6 +91,8 @@ class EngineOptions:
     record: bool = True
     zeno_relative: bool = True
     screen: bool = True
+    max_steps: int = 2_000_000
+    max_samples: int = 200_000
 
 
 @dataclass(frozen=True)
@@ -197,6 +206,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
     screen = HermiteScreen(options.samples) if options.screen and options.samples > 0 and not options.record else None
     nsteps = nfev = 0
     n_zero = 0
+    rec = _Recorder(options.max_samples)
     atol = options.guard_atol
 
     def finish(status, zeno=None):
@@ -233,19 +243,30 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             # are recorded for plots.  A compiled stepper with run_quiet screens affine guards on
             # its own dense output inside its compiled loop instead.
             affine = _affine_guards(m) if screen is not None and hasattr(solver, "run_quiet") else None
+            roots = _affine_guards(m) if hasattr(solver, "affine_root") else None
             use_screen = affine is None and screen is not None and _keeps_current_f(solver)
             if use_screen:
                 screen.start(solver.y, solver.f, len(guards), m.rhs)
             while hit is None:
                 if affine is not None:
                     msg, all_quiet, k = solver.run_quiet(*affine, nodes[:-1], g_last, dec_before, state, atol,
-                                                         screen.dip_factor)
+                                                         screen.dip_factor, max(1, options.max_steps - nsteps))
                     nsteps += k
                 else:
                     msg, all_quiet = solver.step(), False
                     nsteps += 1
                 if solver.status == "failed":
                     raise IntegratorError(f"mode {mname!r}: {msg}", t=solver.t, state=solver.y)
+                if all_quiet is None or (nsteps >= options.max_steps and solver.status != "finished"):
+                    # the step budget ran out (every step so far quiet or scanned)
+                    nfev += solver.nfev
+                    t, y = solver.t, np.array(solver.y, dtype=float)
+                    if options.record:
+                        if seg_t[-1][-1] < t:
+                            seg_t.append(np.array([t]))
+                            seg_y.append(y[:, None])
+                        segs.append(Segment(mname, np.concatenate(seg_t), np.concatenate(seg_y, axis=1)))
+                    return finish("max_steps")
                 if all_quiet:
                     nfev += solver.nfev
                     t, y = solver.t, solver.y.copy()
@@ -311,8 +332,11 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                             located.append((c, j, "zero-length"))
                         else:
                             a, b = c
-                            located.append((root_new_side(guard_on_dense(guards[j].fun, dense), a, b,
-                                                          options.xtol), j, "switch"))
+                            if roots is not None:   # the guard's affine form, in compiled code
+                                r = solver.affine_root(roots[0][j], roots[1][j], roots[2][j], a, b, options.xtol)
+                            else:
+                                r = root_new_side(guard_on_dense(guards[j].fun, dense), a, b, options.xtol)
+                            located.append((r, j, "switch"))
                     located.sort(key=lambda x: (x[0], x[1]))
                     # sections before the first switching guard are logged; the run goes on
                     t_sw = min((x[0] for x in located if guards[x[1]].transition is not None), default=np.inf)
@@ -334,18 +358,24 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                         th = hit[0]
                         yh = dense(th) if th < t_new else solver.y.copy()
                         _push_seg(segs, options, mname, seg_t, seg_y, ts, Y, th, yh)
+                        if options.record:
+                            rec.count += len(ts)
+                            rec.bound(segs, [np.empty(0)], [np.empty((len(yh), 0))])
                         nfev += solver.nfev
                         t, y = th, yh
                         j = hit[1]
                         kind = hit[2]
                         break
                 if options.record:
-                    seg_t.append(ts[1:])
-                    seg_y.append(Y)
+                    rec.push(seg_t, seg_y, ts[1:], Y)
+                    rec.bound(segs, seg_t, seg_y)
                 if solver.status == "finished":
                     nfev += solver.nfev
                     t, y = solver.t, solver.y.copy()
                     if options.record:
+                        if seg_t[-1][-1] < t:  # a thinned record keeps the final state
+                            seg_t.append(np.array([t]))
+                            seg_y.append(y[:, None])
                         segs.append(Segment(mname, np.concatenate(seg_t), np.concatenate(seg_y, axis=1)))
                     return finish("t_end")
         else:
@@ -385,24 +415,28 @@ def _is_compiled(stepper) -> bool:
     """Whether ``stepper`` is a compiled stepper factory (it integrates a mode's ``kernel``)."""
     if not _COMPILED_FACTORY:
         from landau.verify.hybrid.compiled import _CompiledFactory
+        from landau.verify.hybrid.dop853 import CompiledDOP853
 
-        _COMPILED_FACTORY.append(_CompiledFactory)
+        _COMPILED_FACTORY.append((_CompiledFactory, CompiledDOP853))
     return isinstance(stepper, _COMPILED_FACTORY[0])
 
 
 _AFFINE: dict[int, tuple] = {}
 
 
-def _affine_guards(mode) -> tuple[np.ndarray, np.ndarray] | None:
-    """(W, b) with the mode's guards = W·y + b when every guard declares ``affine``, else None."""
+def _affine_guards(mode) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """(W, b, U) with the mode's guards = W·y + U·f(t, y) + b when every guard declares ``affine``
+    (``(w, b)`` or ``(w, b, u)``), else None."""
     hit = _AFFINE.get(id(mode))
     if hit is not None and hit[0] is mode:
         return hit[1]
     gs = mode.guards
     out = None
     if gs and all(g.affine is not None for g in gs):
-        out = (np.ascontiguousarray([g.affine[0] for g in gs], dtype=float),
-               np.array([g.affine[1] for g in gs], dtype=float))
+        W = np.ascontiguousarray([g.affine[0] for g in gs], dtype=float)
+        U = np.ascontiguousarray([g.affine[2] if len(g.affine) > 2 else np.zeros(W.shape[1]) for g in gs],
+                                 dtype=float)
+        out = (W, np.array([g.affine[1] for g in gs], dtype=float), U)
     if len(_AFFINE) > 256:
         _AFFINE.clear()
     _AFFINE[id(mode)] = (mode, out)
@@ -411,13 +445,14 @@ def _affine_guards(mode) -> tuple[np.ndarray, np.ndarray] | None:
 
 def _keeps_current_f(solver) -> bool:
     """Whether ``solver.f`` is the vector field at ``(solver.t, solver.y)`` after every step:
-    scipy's explicit Runge–Kutta solvers and Radau, the compiled DOPRI5 and SDIRK4 (the
-    compiled Radau IIA and scipy's BDF/LSODA do not keep it)."""
+    scipy's explicit Runge–Kutta solvers and Radau, the compiled DOPRI5 and DOP853 (scipy's
+    BDF/LSODA do not keep it)."""
     from scipy.integrate import DOP853, RK23, RK45, Radau
 
-    from landau.verify.hybrid.compiled import DOPRI5Solver, SDIRK4Solver
+    from landau.verify.hybrid.compiled import DOPRI5Solver
+    from landau.verify.hybrid.dop853 import DOP853Solver
 
-    return isinstance(solver, (DOP853, RK45, RK23, Radau, DOPRI5Solver, SDIRK4Solver))
+    return isinstance(solver, (DOP853, RK45, RK23, Radau, DOPRI5Solver, DOP853Solver))
 
 
 class _LazyDense:
@@ -432,6 +467,49 @@ class _LazyDense:
         if self.sol is None:
             self.sol = self.solver.dense_output()
         return self.sol(t)
+
+
+class _Recorder:
+    """Recorded samples within ``cap`` (:class:`EngineOptions` ``max_samples``): a stride over
+    the steps (1: every sample of every step; 2ᵏ: the end of every 2ᵏ-th step only) and the
+    thinning of what is kept when the count passes ``cap``."""
+
+    __slots__ = ("cap", "stride", "count", "k")
+
+    def __init__(self, cap: int):
+        self.cap, self.stride, self.count, self.k = max(int(cap), 16), 1, 0, 0
+
+    def push(self, seg_t, seg_y, ts, Y) -> None:
+        if self.stride > 1:
+            self.k += 1
+            if self.k % self.stride:
+                return
+            ts, Y = ts[-1:], Y[:, -1:]
+        seg_t.append(ts)
+        seg_y.append(Y)
+        self.count += len(ts)
+
+    def bound(self, segs, seg_t, seg_y) -> None:
+        if self.count <= self.cap:
+            return
+        for i, s in enumerate(segs):
+            keep = _thin(len(s.t))
+            segs[i] = Segment(s.mode, s.t[keep], s.y[:, keep])
+        t, y = np.concatenate(seg_t), np.concatenate(seg_y, axis=1)
+        keep = _thin(len(t))
+        seg_t[:], seg_y[:] = [t[keep]], [y[:, keep]]
+        self.count = sum(len(s.t) for s in segs) + len(seg_t[0])
+        if self.count > self.cap and len(segs) > 1:
+            # many short phases (each keeps its two ends): drop every other earlier phase
+            segs[:] = segs[-2::-2][::-1] + segs[-1:]
+            self.count = sum(len(s.t) for s in segs) + len(seg_t[0])
+        self.stride *= 2
+
+
+def _thin(n: int) -> np.ndarray:
+    """Every other index of range(n), the last one included."""
+    idx = np.arange(0, n, 2)
+    return idx if n == 0 or idx[-1] == n - 1 else np.append(idx, n - 1)
 
 
 def _push_seg(segs, options, mname, seg_t, seg_y, ts, Y, th, yh):

@@ -6,9 +6,8 @@ Free names: ``fun(t, y, p, out)`` (the kernel), ``jit`` (the numba decorator).
 import numpy as np
 
 from landau.verify.hybrid.compiled import (A21, A31, A32, A41, A42, A43, A51, A52, A53, A54, A61, A62, A63, A64,
-                                           A65, B1, B3, B4, B5, B6, C2, C3, C4, C5, D1, D3, D4, D5, D6, D7, E1,
-                                           E3, E4, E5, E6, E7, err_norm)
-from landau.verify.hybrid.locate import _quiet_guards
+                                           A65, B1, B3, B4, B5, B6, C2, C3, C4, C5, E1, E3, E4, E5, E6, E7,
+                                           err_norm)
 
 
 @jit
@@ -74,74 +73,3 @@ def advance_into(p, t, y, k1, h, hmax, t_bound, rtol, atol, ynew, k7, err, K):
             return True, tn, h, h * fac, nfev
         h *= 0.2 if en != en else max(0.2, 0.9 * en ** -0.2)
     return False, t, h, h, nfev
-
-
-@jit
-def dense_coefficients(y, ynew, k1, k7, K, h, rc):
-    """The rows of rc (5, n) of the order-4 continuous extension of the step (Hairer's CONTD5):
-    y(t₀ + θh) = rc₀ + θ(rc₁ + (1−θ)(rc₂ + θ(rc₃ + (1−θ)rc₄)))."""
-    for a in range(y.shape[0]):
-        ydiff = ynew[a] - y[a]
-        bspl = h * k1[a] - ydiff
-        rc[0, a] = y[a]
-        rc[1, a] = ydiff
-        rc[2, a] = bspl
-        rc[3, a] = ydiff - h * k7[a] - bspl
-        rc[4, a] = h * (D1 * k1[a] + D3 * K[1, a] + D4 * K[2, a] + D5 * K[3, a] + D6 * K[4, a] + D7 * k7[a])
-
-
-@jit
-def run_quiet(p, t, y, k1, h, hmax, t_bound, rtol, atol, max_steps, W, b, s, g_last, dec_before, state, gatol,
-              dip_factor, rc):
-    """Steps from (t, y) with k1 = f(t, y) while every affine guard g = W·y + b passes the
-    engine's scan test (:func:`landau.verify.hybrid.locate._quiet_guards`) on the step's dense
-    output at the fractions s and at the step end, up to ``max_steps`` steps or ``t_bound``.
-
-    y and k1 are advanced in place to the end of the last step taken, rc holds its dense
-    coefficients; ``g_last``, ``dec_before`` and ``state`` are advanced past every quiet step.
-    Returns (code, t_old, t, h_used, h_next, nfev, nsteps), h_used the length of the last step:
-    code 1 = the last step is not quiet (the engine scans it), 2 = t_bound reached with every
-    step quiet, 3 = ``max_steps`` quiet steps, 0 = step-size underflow (y, k1 unchanged since
-    the last accepted step)."""
-    n, m, k = y.shape[0], s.shape[0], W.shape[0]
-    ynew, k7, err, K = np.empty(n), np.empty(n), np.empty(n), np.empty((5, n))
-    vals = np.empty((k, 3 * m + 1))
-    yk = np.empty(n)
-    nfev, nsteps, t_old, h_used = 0, 0, t, 0.0
-    while nsteps < max_steps:
-        ok, tn, hu, h, nf = advance_into(p, t, y, k1, h, hmax, t_bound, rtol, atol, ynew, k7, err, K)
-        nfev += nf
-        if not ok:
-            return 0, t_old, t, h_used, h, nfev, nsteps
-        nsteps += 1
-        h_used = hu
-        dense_coefficients(y, ynew, k1, k7, K, hu, rc)
-        finite = True
-        for a in range(n):
-            finite = finite and np.isfinite(ynew[a])
-        for q in range(m):
-            th = s[q]
-            for a in range(n):
-                yk[a] = rc[0, a] + th * (rc[1, a] + (1 - th) * (rc[2, a] + th * (rc[3, a] + (1 - th) * rc[4, a])))
-            for j in range(k):
-                g = b[j]
-                for a in range(n):
-                    g += W[j, a] * yk[a]
-                vals[j, q] = g
-                vals[j, m + 1 + q] = g
-                vals[j, 2 * m + 1 + q] = g
-        for j in range(k):
-            g = b[j]
-            for a in range(n):
-                g += W[j, a] * ynew[a]
-            vals[j, m] = g
-        t_old = t
-        t = tn
-        for a in range(n):
-            y[a] = ynew[a]
-            k1[a] = k7[a]
-        if not finite or not _quiet_guards(vals, m, g_last, dec_before, state, gatol, dip_factor):
-            return 1, t_old, t, h_used, h, nfev, nsteps
-        if t >= t_bound:
-            return 2, t_old, t, h_used, h, nfev, nsteps
-    return 3, t_old, t, h_used, h, nfev, nsteps
