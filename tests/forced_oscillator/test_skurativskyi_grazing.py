@@ -1,6 +1,6 @@
 """Grazing margins of Skurativskyi et al. (2019), Nonlinear Dyn. 98:1795, Sec. 4 / Fig. 3b
 (verify/skurativskyi/grazing.py).  Fast checks; the located cascade against the paper's
-(20.59, 20.8586, 21.5085, 23.0702) is in tests/test_skurativskyi_grazing_slow.py (-m slow).
+(20.59, 20.8586, 21.5085, 23.0702) is in tests/forced_oscillator/test_skurativskyi_grazing_slow.py (-m slow).
 """
 
 import numpy as np

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-EXAMPLES = sorted((Path(__file__).resolve().parent.parent / "examples").glob("[0-9][0-9]_*.py"))
+EXAMPLES = sorted((Path(__file__).resolve().parent.parent.parent / "examples").glob("[0-9][0-9]_*.py"))
 
 
 def test_the_four_notebooks_are_there():

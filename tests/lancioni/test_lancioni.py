@@ -121,7 +121,7 @@ def test_en02_detached_bouncing_orbit_in_hysteresis_window():
     assert eq.modes == ("slip+",) and np.all(np.diff(eq.phidot_max) < 0) and eq.phidot_max[-1] < 4e-3
 
 
-# the e_N = 0 detached branch end and the (absent) period-adding cascade: tests/test_lancioni_period_adding.py
+# the e_N = 0 detached branch end and the (absent) period-adding cascade: tests/lancioni/test_lancioni_period_adding.py
 
 
 def test_just_past_hopf_slip_cycle_and_past_lift_off_jump(hopf1):

@@ -29,7 +29,7 @@ mu, a, b, c = sp.symbols("mu a b c", real=True)
 
 
 def _bench():
-    path = pathlib.Path(__file__).resolve().parents[1] / "benchmarks" / "bench_general.py"
+    path = pathlib.Path(__file__).resolve().parents[2] / "benchmarks" / "bench_general.py"
     spec = importlib.util.spec_from_file_location("bench_general", path)
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)

@@ -158,7 +158,7 @@ def test_paper_general_formulas_give_the_correct_form():
     import sys
     from pathlib import Path
 
-    sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "benchmarks"))
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent.parent / "benchmarks"))
     from bench_engine import PaperLambda
 
     paper = PaperLambda("ruina")

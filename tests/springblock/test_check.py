@@ -13,7 +13,7 @@ from landau.laws import get_law
 from landau.testing import assert_prediction
 from landau.verify.springblock.checks import predict, subcritical_check, supercritical_check
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
 def _polar_normal_form(a: float, b: float) -> DynamicalSystem:
@@ -108,7 +108,7 @@ def test_readme_shows_the_ci_example_file_verbatim():
 def test_subcritical_point_within_one_percent_agrees():
     """Dieterich law, V = 1e-5 m/s, ε² = 1.6e-5 (subcritical, below V_D* ≈ 2.07e-4 m/s): the shot
     unstable cycle is within ~1 % of C·sqrt(k − k_c) (the O(ε²) remainder, cf. the fitted exponent 1 in
-    tests/test_springblock_slow.py); bistability is shown and the bisection bracket, in the same measure
+    tests/springblock/test_springblock_slow.py); bistability is shown and the bisection bracket, in the same measure
     (half peak-to-peak: the cycle's mean shift removed), contains the prediction — so the check agrees."""
     r = check("dieterich", V=1e-5, eps2=1.6e-5)
     assert r.criticality == Criticality.SUBCRITICAL

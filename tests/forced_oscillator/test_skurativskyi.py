@@ -3,7 +3,7 @@
 Fast, decisive checks: the Sec. 5 closed forms to the printed digits, the compiled
 integrator against a closed-form forced linear oscillator and against the hybrid engine,
 the Lyapunov machinery against the exact exponent of the linear case, and the first
-detachment bracket of Fig. 8.  Long sweeps: tests/test_skurativskyi_slow.py (-m slow).
+detachment bracket of Fig. 8.  Long sweeps: tests/forced_oscillator/test_skurativskyi_slow.py (-m slow).
 """
 
 import math

@@ -264,7 +264,7 @@ def test_no_hopf_message_gives_the_weakening_range(capsys):
     # the spinodal law weakens between its extrema V_M ~ 2.7e-8 and V_m ~ 3.9e-4 m/s (Putelat et al. 2010
     # Sec. 4; tests/vw_ranges.py computes them at 50 digits); the grid reads them to within 1/20 decade
     lo, hi = (float(x) for x in text.split("from ")[1].split(" m/s")[0].split(" to "))
-    from tests.vw_ranges import vw_range
+    from vw_ranges import vw_range
 
     V_lo, V_hi, _ = vw_range("spinodal")
     assert abs(math.log10(lo / V_lo)) < 0.1 and abs(math.log10(hi / V_hi)) < 0.1

@@ -16,7 +16,7 @@ import pytest
 
 from landau.cli import main
 
-README = Path(__file__).resolve().parents[1] / "README.md"
+README = Path(__file__).resolve().parents[2] / "README.md"
 #: commands whose cost is minutes of CPU: the slow suite runs them
 SLOW = ("landau verify", "landau figures", "landau transition", "landau scene run")
 

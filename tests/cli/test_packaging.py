@@ -5,7 +5,7 @@ import tomllib
 
 import landau
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 ROOMS = {"landau": "landau", "laws": "landau.laws", "verify": "landau.verify", "paper_figures": "landau.paper_figures"}
 
 
