@@ -1,0 +1,95 @@
+"""Development sessions: ``pip install nox`` then ``nox -s <session>`` (``nox -l`` lists them).
+
+* ``tests`` — the default test selection (not ``slow``, not ``fuzz``) on each supported Python.
+* ``numba_min`` — the integrator tests against the oldest numba the project declares
+  (the lower bound of ``numba>=X,<Y`` in pyproject.toml, read from there), so the declared
+  range is a tested one at both ends (the newest release inside it is what ``tests`` installs).
+* ``lint`` — ruff and mypy with the configuration in pyproject.toml.
+* ``docs`` — ``mkdocs build --strict``.
+* ``bench`` — ``benchmarks/run.py --quick`` followed by ``benchmarks/report.py``.
+
+Each session uses its own numba and landau cache folders inside its virtualenv, so a session
+never reads compiled code written by another numba version.
+"""
+
+from __future__ import annotations
+
+import re
+import sys
+from pathlib import Path
+
+import nox
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+ROOT = Path(__file__).resolve().parent
+PYTHONS = ["3.10", "3.11", "3.12"]
+nox.options.sessions = ["tests", "lint"]
+
+#: the tests that compile and run the integrators, steppers and compiled loops: what a change
+#: of numba (code generation, first-class functions, caching) can break
+INTEGRATOR_TESTS = "radau or springblock or skurativskyi or steppers or rosenbrock or hybrid or nrt or jitcache"
+
+
+def _dependency(name: str) -> str:
+    """The requirement string of ``name`` in pyproject's ``[project] dependencies``."""
+    deps = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["dependencies"]
+    for dep in deps:
+        if re.match(rf"{re.escape(name)}\b", dep):
+            return dep
+    raise RuntimeError(f"{name} is not a dependency in pyproject.toml")
+
+
+def numba_lower_bound() -> str:
+    """X of ``numba>=X,<Y`` in pyproject.toml."""
+    m = re.search(r">=\s*([0-9][0-9.]*)", _dependency("numba"))
+    if m is None:
+        raise RuntimeError("pyproject.toml gives numba no lower bound (numba>=X,<Y)")
+    return m.group(1)
+
+
+def _private_caches(session: nox.Session) -> dict[str, str]:
+    venv = Path(session.virtualenv.location)
+    return {"NUMBA_CACHE_DIR": str(venv / "numba-cache"), "LANDAU_CACHE_DIR": str(venv / "landau-cache")}
+
+
+@nox.session(python=PYTHONS)
+def tests(session: nox.Session) -> None:
+    session.install("-e", ".[test]")
+    session.run("pytest", "tests", "-x", "-q", *session.posargs, env=_private_caches(session))
+
+
+@nox.session(python="3.11")
+def numba_min(session: nox.Session) -> None:
+    low = numba_lower_bound()
+    session.install("-e", ".[test]")
+    # pip picks the numpy and llvmlite that this numba accepts (numba pins both)
+    session.install(f"numba=={low}")
+    session.run("python", "-c", "import numba, numpy, llvmlite; print('numba', numba.__version__, 'numpy', "
+                "numpy.__version__, 'llvmlite', llvmlite.__version__)")
+    session.run("pytest", "tests", "-x", "-q", "-k", INTEGRATOR_TESTS, *session.posargs,
+                env=_private_caches(session))
+
+
+@nox.session(python="3.11")
+def lint(session: nox.Session) -> None:
+    session.install("-e", ".", "ruff", "mypy")
+    session.run("ruff", "check", ".")
+    session.run("mypy", "landau", "laws", "verify", "paper_figures")
+
+
+@nox.session(python="3.11")
+def docs(session: nox.Session) -> None:
+    session.install("-e", ".[docs]")
+    session.run("python", "benchmarks/report.py", "--check")
+    session.run("mkdocs", "build", "--strict")
+
+
+@nox.session(python="3.11")
+def bench(session: nox.Session) -> None:
+    session.install("-e", ".[bench]")
+    session.run("python", "benchmarks/run.py", "--quick", *session.posargs)
+    session.run("python", "benchmarks/report.py")
