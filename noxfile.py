@@ -8,8 +8,7 @@
 * ``docs`` — ``mkdocs build --strict``.
 * ``bench`` — ``benchmarks/run.py --quick`` followed by ``benchmarks/report.py``.
 
-Each session uses its own numba and landau cache folders inside its virtualenv, so a session
-never reads compiled code written by another numba version.
+Each session uses a landau cache folder of its own, inside its virtualenv.
 """
 
 from __future__ import annotations
@@ -52,8 +51,10 @@ def numba_lower_bound() -> str:
 
 
 def _private_caches(session: nox.Session) -> dict[str, str]:
-    venv = Path(session.virtualenv.location)
-    return {"NUMBA_CACHE_DIR": str(venv / "numba-cache"), "LANDAU_CACHE_DIR": str(venv / "landau-cache")}
+    """A landau cache of the session's own.  numba's cache stays where numba puts it by default
+    (``__pycache__`` beside the sources; numba rewrites an entry written by another numba
+    version): tests/test_jitcache.py looks for the cache files there."""
+    return {"LANDAU_CACHE_DIR": str(Path(session.virtualenv.location) / "landau-cache")}
 
 
 @nox.session(python=PYTHONS)

@@ -179,9 +179,12 @@ def section_forced(quick: bool) -> None:
         try:
             from sksundae.cvode import CVODE
 
-            def rhs_s(t, y, yp, pk=pk):
-                yp[0] = y[1]
-                yp[1] = accel(t, y[0], y[1], pk)
+            def make_rhs(pk):  # CVODE reads a fourth parameter as user data: bind pk by closure
+                def rhs_s(t, y, yp):
+                    yp[0] = y[1]
+                    yp[1] = accel(t, y[0], y[1], pk)
+                return rhs_s
+            rhs_s = make_rhs(pk)
 
             for meth in ("Adams", "BDF"):
                 def cv(rt, meth=meth, prm=prm, tend=tend, rhs_s=rhs_s):
