@@ -110,6 +110,28 @@ def _section_table(res: dict, section: str) -> str:
     return "\n\n".join(p for p in parts if p)
 
 
+def _reach(res: dict, section: str) -> str:
+    """Each method's smallest error in a work-precision section: where a ratio can be read."""
+    lines = []
+    for key in (section, *EXTRA_RAW.get(section, ())):
+        rows = res.get("raw", {}).get(key, [])
+        if not rows or not isinstance(rows, list) or "error" not in rows[0] or "method" not in rows[0]:
+            continue
+        groups: dict[str, float] = {}
+        for r in rows:
+            tag = f"{r['method']}" + (f", ω = {r['omega']:g}" if "omega" in r else "")
+            e = r.get("error")
+            if isinstance(e, (int, float)) and math.isfinite(e):
+                groups[tag] = min(groups.get(tag, math.inf), float(e))
+            else:
+                groups.setdefault(tag, math.inf)
+        lines += [f"| {k} | {_fmt(v) if math.isfinite(v) else 'none (every run failed)'} |" for k, v in groups.items()]
+    if not lines:
+        return ""
+    return ("Smallest error each method reached (a ratio is read only at errors both sides reach):\n\n"
+            "| method | smallest error |\n|---|---|\n" + "\n".join(lines))
+
+
 def _strip_images(text: str) -> str:
     return re.sub(r"!\[[^\]]*\]\([^)]*\)", "", text)
 
@@ -129,6 +151,9 @@ def render(results: list[tuple[str, dict]] | None = None, template: str | None =
             goal_lines.append(f"| [{s}](#{s}) | {g['goal']} | {g['measure']} | {_fmt(float(g['value']))} | "
                               f"{g['sense']} {g['target']:g} | {'PASS' if g['passed'] else 'FAIL'} |")
         body = [f"## {heading} {{#{s}}}", "", _run_line(name, res), "", _section_table(res, s)]
+        reach = _reach(res, s)
+        if reach:
+            body += ["", reach]
         blocks.append("\n".join(body).rstrip())
     missing = [s for s in SECTIONS if s not in chosen]
     if missing:
