@@ -1,0 +1,159 @@
+"""Command-line sections: what a user waits for, in fresh processes, CPU time of the child.
+
+* ``coldstart`` — the first ``landau verify ruina --V 1e-4`` and the first ``landau simulate
+  forced-oscillator`` with a friction law of the user's, truly cold: a new ``LANDAU_CACHE_DIR``
+  *and* a new ``NUMBA_CACHE_DIR`` (numba then writes and reads every cache file of the package
+  there, so nothing compiled by an earlier run is found), in a fresh process; then the same
+  command again with the caches that first run left (warm).
+* ``figures`` — ``landau figures`` for galvanetto2004, skurativskyi2019 and putelat2010 warm
+  (the caches of a first run of the same command), and cold (new caches, as above) for
+  skurativskyi2019 and putelat2010 each repeat; the first, cold run of galvanetto2004 is kept
+  as one sample.
+
+CPU time is user + sys of the child (``resource.getrusage(RUSAGE_CHILDREN)``).  With
+``LANDAU_BENCH_BASELINE_PYTHON`` set to another checkout's interpreter, each repeat runs both
+interpreters back to back, and the ratio baseline / this of each repeat is reported as
+min / median / max over the repeats.
+"""
+
+from __future__ import annotations
+
+import tempfile
+from pathlib import Path
+
+import numpy as np
+from benchlib import NEUTRAL, RAW, TABLES, Goal, fresh_env, interpreters, load, report, spread, table, timed_process
+
+#: the first run of a user's own friction law in the forced oscillator (README's example law)
+FORCED_NEW_LAW = ["simulate", "forced-oscillator", "--friction", "c*v + T*tanh(v/e)", "--param", "c=6.6511",
+                  "--param", "T=0.63133", "--param", "e=1e-5", "--t-end", "2"]
+
+#: (name, argv after ``python -m landau``, goal number, target CPU s for the cold run)
+COLD_COMMANDS = (
+    ("verify ruina --V 1e-4", ["verify", "ruina", "--V", "1e-4"], "7", 10.0),
+    ("simulate forced-oscillator, new law, --t-end 2", FORCED_NEW_LAW, "9", 15.0),
+)
+
+#: (paper, cold in every repeat, goal number or None, target CPU s of its first (cold) run)
+FIGURES = (
+    ("galvanetto2004", False, None, None),
+    ("skurativskyi2019", True, None, None),
+    ("putelat2010", True, "8", 8.0),
+)
+
+
+def _row(label: str, what: str, state: str, run: tuple, repeat: int) -> dict:
+    wall, cpu, rc, tail = run
+    return {"python": label, "command": what, "state": state, "repeat": repeat, "wall s": wall,
+            "CPU s": cpu if rc == 0 else float("nan"), "exit": rc, "load": round(load()[0], 1),
+            "note": "" if rc == 0 else tail[:120]}
+
+
+def _summary(rows: list[dict]) -> list[dict]:
+    """One line per (command, state): this interpreter's min/median/max CPU s and, with a
+    baseline, the per-repeat ratio baseline / this as min/median/max."""
+    out = []
+    for what, state in dict.fromkeys((r["command"], r["state"]) for r in rows):
+        sel = [r for r in rows if r["command"] == what and r["state"] == state]
+        mine = {r["repeat"]: r["CPU s"] for r in sel if r["python"] == "this"}
+        base = {r["repeat"]: r["CPU s"] for r in sel if r["python"] == "baseline"}
+        s = spread(mine.values())
+        line = {"command": what, "state": state, "repeats": s["n"], "CPU s min": s["min"],
+                "CPU s median": s["median"], "CPU s max": s["max"],
+                "wall s median": spread(r["wall s"] for r in sel if r["python"] == "this")["median"]}
+        if base:
+            ratios = spread(base[k] / mine[k] for k in mine if k in base and mine[k] > 0)
+            line.update({"baseline CPU s median": spread(base.values())["median"],
+                         "baseline/this min": ratios["min"], "baseline/this median": ratios["median"],
+                         "baseline/this max": ratios["max"]})
+        out.append(line)
+    return out
+
+
+def _cols(summary: list[dict]) -> list[str]:
+    cols = list(dict.fromkeys(k for r in summary for k in r))
+    return cols
+
+
+def section_coldstart(quick: bool) -> None:
+    repeats = 1 if quick else 3
+    rows = []
+    with tempfile.TemporaryDirectory() as out:
+        for rep in range(repeats):
+            for what, argv, _, _ in COLD_COMMANDS:
+                extra = ["--out", str(Path(out) / "run.csv")] if argv[0] == "simulate" else []
+                for label, py in interpreters():      # interleaved: the same machine load for both
+                    with tempfile.TemporaryDirectory() as cache:
+                        env = fresh_env(Path(cache))
+                        cmd = [py, "-m", "landau", *argv, *extra]
+                        rows.append(_row(label, what, "cold", timed_process(cmd, env, cwd=NEUTRAL), rep))
+                        rows.append(_row(label, what, "warm", timed_process(cmd, env, cwd=NEUTRAL), rep))
+                    print(f"  {label} {what}: cold {rows[-2]['CPU s']:.1f} CPU s, warm {rows[-1]['CPU s']:.2f} "
+                          f"CPU s", flush=True)
+        for label, py in interpreters():
+            with tempfile.TemporaryDirectory() as cache:
+                env = fresh_env(Path(cache))
+                cmd = [py, "-c", "import landau.verify.cli"]   # nothing should compile at import
+                rows.append(_row(label, "import landau.verify.cli", "cold", timed_process(cmd, env, cwd=NEUTRAL), 0))
+                rows.append(_row(label, "import landau.verify.cli", "warm", timed_process(cmd, env, cwd=NEUTRAL), 0))
+    summary = _summary(rows)
+    RAW["coldstart"] = rows
+    RAW["coldstart_summary"] = summary
+    TABLES["coldstart"] = (
+        "A command in a fresh process: `cold` — new `LANDAU_CACHE_DIR` and `NUMBA_CACHE_DIR` folders (nothing "
+        "derived or compiled before); `warm` — the same command again with the caches the cold run left. CPU s = "
+        f"user + sys of the child; {repeats} repeat(s).\n\n" + table(summary, _cols(summary)))
+    for name, _, goal, target in COLD_COMMANDS:
+        cold = next(s for s in summary if s["command"] == name and s["state"] == "cold")
+        warm = next(s for s in summary if s["command"] == name and s["state"] == "warm")
+        note = f"median of {cold['repeats']}; warm {warm['CPU s median']:.2f} CPU s"
+        if "baseline/this median" in cold:
+            note += (f"; baseline/this cold {cold['baseline/this min']:.2f}/{cold['baseline/this median']:.2f}/"
+                     f"{cold['baseline/this max']:.2f} (min/median/max)")
+        report(Goal("coldstart", goal, f"first `landau {name}`, truly cold [CPU s]", cold["CPU s median"], target,
+                    "<=", note=note))
+
+
+def section_figures(quick: bool) -> None:
+    repeats = 1 if quick else 3
+    rows = []
+    with tempfile.TemporaryDirectory() as root:
+        warm_caches = {}
+        for rep in range(repeats):
+            for paper, cold_each, _, _ in FIGURES:
+                argv = ["-m", "landau", "figures", paper, "--no-progress", "--out", str(Path(root) / "out" / paper)]
+                for label, py in interpreters():      # interleaved: the same machine load for both
+                    key = (paper, label)
+                    if key not in warm_caches:        # the first run fills this pair's caches: cold
+                        warm_caches[key] = fresh_env(Path(root) / f"{paper}-{label}")
+                        rows.append(_row(label, paper, "cold", timed_process([py, *argv], warm_caches[key],
+                                                                             cwd=NEUTRAL), rep))
+                    elif cold_each:
+                        with tempfile.TemporaryDirectory() as cache:
+                            rows.append(_row(label, paper, "cold", timed_process([py, *argv], fresh_env(Path(cache)),
+                                                                                 cwd=NEUTRAL), rep))
+                    rows.append(_row(label, paper, "warm", timed_process([py, *argv], warm_caches[key],
+                                                                         cwd=NEUTRAL), rep))
+                    print(f"  {label} figures {paper}: " + ", ".join(
+                        f"{r['state']} {r['CPU s']:.1f} CPU s" for r in rows
+                        if r["command"] == paper and r["python"] == label and r["repeat"] == rep), flush=True)
+    summary = _summary(rows)
+    RAW["figures"] = rows
+    RAW["figures_summary"] = summary
+    TABLES["figures"] = (
+        "`landau figures PAPER` in a fresh process: `warm` — the caches of an earlier run of the same command; "
+        "`cold` — new `LANDAU_CACHE_DIR` and `NUMBA_CACHE_DIR` folders (galvanetto2004: its first run only). "
+        f"CPU s = user + sys of the child; {repeats} repeat(s).\n\n" + table(summary, _cols(summary)))
+    for paper, _, goal, target in FIGURES:
+        if goal is None:
+            continue
+        cold = next(s for s in summary if s["command"] == paper and s["state"] == "cold")
+        warm = next(s for s in summary if s["command"] == paper and s["state"] == "warm")
+        note = f"median of {cold['repeats']}; warm {warm['CPU s median']:.1f} CPU s"
+        if "baseline/this median" in cold:
+            note += (f"; baseline/this cold {cold['baseline/this min']:.2f}/{cold['baseline/this median']:.2f}/"
+                     f"{cold['baseline/this max']:.2f} (min/median/max)")
+        report(Goal("figures", goal, f"first `landau figures {paper}`, truly cold [CPU s]", cold["CPU s median"],
+                    target, "<=", note=note))
+    if not all(np.isfinite(r["CPU s"]) for r in rows):
+        print("  some figure runs failed: see the note column", flush=True)
