@@ -11,17 +11,31 @@ Which folders to keep between CI runs so that the build happens once: the landau
 (``$LANDAU_CACHE_DIR``, else the per-user cache folder, see :mod:`landau.support.cachedir`) and numba's
 cache (``$NUMBA_CACHE_DIR`` when set, else the ``__pycache__`` folders of the installed package).
 
+No stale machine code after an edit.  numba's disk cache checks only the source file of the
+function it caches: a loop whose helpers, constants or callees live in other modules would load
+old machine code after one of those is edited.  :func:`compile_once` therefore keys the cache on
+content: it hashes the source of every module the loop can reach through its module's globals
+(the modules whose names start with one of :data:`WATCHED`), keeps that hash beside the landau
+cache (``<cache root>/jit/stamps``), and when it differs from the one recorded at the last build,
+removes numba's entries of the loop's file before building again.
+
 This module imports numba only when a function is compiled.
 """
 
 from __future__ import annotations
 
+import hashlib
 import os
 import sys
 import threading
+import types
+from pathlib import Path
 from typing import Any
 
-__all__ = ["NOTICE_AFTER", "compile_once"]
+__all__ = ["NOTICE_AFTER", "WATCHED", "compile_once", "source_stamp"]
+
+#: modules whose source is part of a compiled loop's cache key (the simulation code)
+WATCHED: tuple[str, ...] = ("landau.verify.",)
 
 #: seconds a first build may take before the terminal line is printed
 NOTICE_AFTER = 0.5
@@ -34,7 +48,92 @@ def _notice(what: str) -> None:
           file=sys.stderr, flush=True)
 
 
-def compile_once(dispatcher: Any, signature: Any, what: str) -> Any:
+def _reachable_modules(module: types.ModuleType, watched: tuple[str, ...]) -> dict[str, Path]:
+    """The source files of ``module`` and of every watched module reachable through globals."""
+    found: dict[str, Path] = {}
+    stack = [module]
+    while stack:
+        mod = stack.pop()
+        name, file = mod.__name__, getattr(mod, "__file__", None)
+        if name in found or not file:
+            continue
+        found[name] = Path(file)
+        for value in list(vars(mod).values()):
+            if isinstance(value, types.ModuleType):
+                other = value
+            else:   # a function, a numba dispatcher (its Python function), a class
+                owner = getattr(getattr(value, "py_func", value), "__module__", None)
+                other = sys.modules.get(owner) if isinstance(owner, str) else None
+            if other is not None and other.__name__ not in found and other.__name__.startswith(watched):
+                stack.append(other)
+    return found
+
+
+def source_stamp(py_func: Any, watched: tuple[str, ...] = WATCHED) -> str:
+    """SHA-256 of the sources a compiled function can reach (its module and the watched modules
+    reachable from it through module globals), in a fixed order.
+
+    Parameters
+    ----------
+    py_func : function
+        The Python function behind a numba dispatcher.
+    watched : tuple of str
+        Module-name prefixes whose sources count.
+
+    Returns
+    -------
+    str
+        The hex digest.
+    """
+    files = _reachable_modules(sys.modules[py_func.__module__], watched)
+    h = hashlib.sha256()
+    for name in sorted(files):
+        h.update(name.encode())
+        try:
+            h.update(files[name].read_bytes())
+        except OSError:
+            h.update(b"<unreadable>")
+    return h.hexdigest()
+
+
+def _stamp_file(py_func: Any) -> Path:
+    from landau.support.cachedir import code_dir
+
+    return code_dir() / "stamps" / f"{py_func.__module__}.{py_func.__qualname__}.sha256"
+
+
+def _invalidate_if_changed(dispatcher: Any, watched: tuple[str, ...]) -> str | None:
+    """Drop numba's entries of ``dispatcher``'s file when the sources it can reach changed since
+    the last recorded build; returns the current stamp (None where it cannot be kept)."""
+    py_func = getattr(dispatcher, "py_func", None)
+    if py_func is None:
+        return None
+    stamp = source_stamp(py_func, watched)
+    try:
+        recorded = _stamp_file(py_func).read_text().strip()
+    except OSError:
+        recorded = None
+    if recorded != stamp:
+        from landau.verify.jitcache import _drop_numba_entries
+
+        _drop_numba_entries(Path(py_func.__code__.co_filename))
+    return stamp
+
+
+def _record(dispatcher: Any, stamp: str | None) -> None:
+    if stamp is None:
+        return
+    from landau.support.io import atomic_write_text
+
+    path = _stamp_file(dispatcher.py_func)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        atomic_write_text(path, stamp + "\n")
+    except OSError:   # a read-only cache: the next process checks again
+        pass
+
+
+def compile_once(dispatcher: Any, signature: Any, what: str, watched: tuple[str, ...] = WATCHED) -> Any:
     """Make sure ``dispatcher`` holds machine code for ``signature``; say so if building takes time.
 
     Parameters
@@ -46,6 +145,8 @@ def compile_once(dispatcher: Any, signature: Any, what: str) -> Any:
         The argument types of the call about to be made.
     what : str
         What is being compiled, for the terminal line (e.g. ``"the Radau IIA integrator"``).
+    watched : tuple of str
+        Module-name prefixes whose sources are part of the cache key (module docstring).
 
     Returns
     -------
@@ -56,6 +157,7 @@ def compile_once(dispatcher: Any, signature: Any, what: str) -> Any:
     overloads = getattr(dispatcher, "overloads", None)
     if overloads is None or args in overloads:      # NUMBA_DISABLE_JIT=1: a Python function
         return dispatcher
+    stamp = _invalidate_if_changed(dispatcher, watched)
     timer = None
     if os.environ.get(ENV_NOTICE, "1") != "0":
         timer = threading.Timer(NOTICE_AFTER, _notice, args=(what,))
@@ -66,4 +168,5 @@ def compile_once(dispatcher: Any, signature: Any, what: str) -> Any:
     finally:
         if timer is not None:
             timer.cancel()
+    _record(dispatcher, stamp)
     return dispatcher
