@@ -8,6 +8,11 @@ import subprocess
 import sys
 import textwrap
 
+import pytest
+
+pytestmark = pytest.mark.skipif(os.environ.get("NUMBA_DISABLE_JIT") == "1",
+                                reason="numba's compiler is switched off: nothing is compiled or cached")
+
 MAIN = """
     import numba as nb
     from numba import types

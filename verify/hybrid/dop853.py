@@ -51,6 +51,7 @@ from landau.verify.hybrid import dop853_tableau as _dc
 
 from landau.errors import InputError
 from landau.verify.compiling import compile_once
+from landau.verify.hybrid.callbacks import jit_enabled, warn_once
 from landau.verify.hybrid.kernel import Kernel
 from landau.verify.hybrid.locate import _quiet_guards
 
@@ -78,14 +79,19 @@ ERR_EXP = -1.0 / 8.0
 class _Address(types.WrapperAddressProtocol):
     """A compiled function by machine address (numba's documented protocol); keeps its cfunc alive."""
 
-    def __init__(self, cf):
+    def __init__(self, cf, py):
         self._cf = cf
+        self._py = py
 
     def __wrapper_address__(self):
         return self._cf.address
 
     def signature(self):
         return FUN_SIG
+
+    def __call__(self, *args):
+        # from Python (the loops run as plain Python under NUMBA_DISABLE_JIT=1): the Python kernel
+        return self._py(*args)
 
 
 @lru_cache(maxsize=None)
@@ -94,11 +100,14 @@ def kernel_function(fun) -> _Address:
     first-class function of type :data:`FUN_T` (a ``cfunc``, cached on disk when its source is
     in a file)."""
     py = getattr(fun, "py_func", fun)
+    if not jit_enabled():
+        warn_once("dop853-nojit", "landau: NUMBA_DISABLE_JIT is set: the DOP853 stepper runs as plain Python "
+                  "(some hundred times slower)")
     try:
         cf = cfunc(FUN_SIG, cache=True)(py)
     except RuntimeError:  # no place for numba's cache (e.g. a function defined in memory)
         cf = cfunc(FUN_SIG)(py)
-    return _Address(cf)
+    return _Address(cf, py)
 
 
 @njit(cache=True)

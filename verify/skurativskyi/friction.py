@@ -42,7 +42,7 @@ import sympy as sp
 from sympy.printing.precedence import PRECEDENCE
 from sympy.printing.pycode import PythonCodePrinter
 
-from landau.errors import DomainError, InputError
+from landau.errors import CompilerRequiredError, DomainError, InputError
 from landau.codegen.kernels import ALLOWED_BUILTINS, check_source
 from landau.laws.velocity import V_SLIP, VelocityFriction
 
@@ -402,8 +402,13 @@ def compile_friction(law: VelocityFriction, first: int) -> CompiledFriction:
     CompiledFriction
         One per law expression and ``first`` in a process.
     """
+    from landau.verify.hybrid.callbacks import jit_enabled
     from landau.verify.jitcache import load_generated
 
+    if not jit_enabled():
+        raise CompilerRequiredError(
+            "the forced oscillator's loop calls its friction law through compiled C callbacks and has no "
+            "plain-Python route: unset NUMBA_DISABLE_JIT to simulate it")
     key = (law_key(law), int(first))
     if key in _CACHE:
         return _CACHE[key]
