@@ -7,8 +7,8 @@ Data flows one way: a friction law (:mod:`laws`) → a mechanical system
 
 from typing import TYPE_CHECKING
 
-from landau.errors import InputError, IntegratorError, LandauError, NoHopfError, SingularPointError
 from landau.derivation.hopf import Convention, Criticality, HopfResult
+from landau.errors import InputError, IntegratorError, LandauError, NoHopfError, SingularPointError
 
 if TYPE_CHECKING:  # the same names as _LAZY, for type checkers and the API documentation
     __version__: str

@@ -383,8 +383,8 @@ class FrictionLaw(Law):
         solves numerically)."""
         if self.steady_state is not None:
             return tuple(self.steady_state)
-        from landau.support.budget import run_bounded
         from landau.errors import BudgetError
+        from landau.support.budget import run_bounded
 
         try:
             return run_bounded(_solve_steady_state, (self.rates, self.states), seconds=SOLVE_SECONDS,

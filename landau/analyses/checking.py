@@ -38,8 +38,8 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from landau.errors import InputError, IntegratorError, LandauError
 from landau.derivation.hopf import Criticality, HopfResult
+from landau.errors import InputError, IntegratorError, LandauError
 
 #: relative amplitude tolerance at ε² = 1e-3 (the O(ε²) remainder of the amplitude equation)
 SUPERCRITICAL_TOLERANCE = 0.02

@@ -35,10 +35,17 @@ import scipy.optimize
 
 from landau.analyses.arclength import StepControl, continue_branch
 from landau.analyses.codim2 import GeneralisedHopfPoint
-from landau.errors import InputError, NoHopfError, SingularPointError
-from landau.derivation.general import (DEFAULT_DPS, NumericSystem, hopf_test_function, locate_crossing, normal_form_at,
-                            refine_hopf, second_lyapunov)
+from landau.derivation.general import (
+    DEFAULT_DPS,
+    NumericSystem,
+    hopf_test_function,
+    locate_crossing,
+    normal_form_at,
+    refine_hopf,
+    second_lyapunov,
+)
 from landau.derivation.hopf import HopfResult
+from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.systems.system import DynamicalSystem
 
 
@@ -334,11 +341,11 @@ def _trace_hopf_curve(num: NumericSystem, sym2, X0: np.ndarray, lo: float, hi: f
     for direction in (1, -1):
         borders = list(_hopf_borders(num, X0))
 
-        def F(Z):  # the minimally augmented system, its Jacobian by central differences
+        def F(Z, borders=borders):  # the minimally augmented system, its Jacobian by central differences
             G = lambda W: _hopf_residual(num, sym2, W, *borders)  # noqa: E731
             return G(Z), _fd_jacobian(G, Z), None
 
-        def new_borders(pt):  # b, c follow the critical eigenvectors along the curve
+        def new_borders(pt, borders=borders):  # b, c follow the critical eigenvectors along the curve
             borders[:] = _hopf_borders(num, pt.u)
 
         orient = np.zeros(len(X0))

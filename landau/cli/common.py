@@ -7,8 +7,8 @@ import math
 from typing import Mapping, Sequence
 
 from landau.errors import InputError
-from landau.systems.system import SpringBlock
 from landau.laws import BUILTIN, FrictionLaw, get_law
+from landau.systems.system import SpringBlock
 
 SYSTEM_PARAMS = ("M", "g", "sigma")
 

@@ -8,12 +8,10 @@ from __future__ import annotations
 
 from functools import partial
 
-from landau.cli.common import (add_law_arguments, block_and_params, fmt, parse_range,
-                                    parse_velocities)
+from landau.cli.common import add_law_arguments, block_and_params, fmt, parse_range, parse_velocities
+from landau.derivation.multiscale import CONVENTION, QUANTITIES, UNITS, Derivation, criticality
 from landau.errors import InputError
 from landau.support.io import atomic_write_text, check_output
-from landau.derivation.multiscale import CONVENTION, QUANTITIES, UNITS, Derivation, criticality
-
 
 #: time budget of the symbolic work behind --latex (s)
 LATEX_SECONDS = 600.0
@@ -77,8 +75,8 @@ def run(args) -> dict:
     if args.fragment and args.latex is None:
         raise InputError("--fragment needs --latex FILE")
     if args.latex is not None:
-        from landau.support.budget import run_bounded
         from landau.derivation.latex import derivation_latex
+        from landau.support.budget import run_bounded
         from landau.support.progress import set_quiet
 
         set_quiet(getattr(args, "json", False))

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-
 from landau.errors import InputError
 from landau.laws import BUILTIN, BUILTIN_VELOCITY, get_law
 

@@ -6,8 +6,8 @@ Example: landau linear dieterich --V 1e-5,1e-4 --param M=2
 from __future__ import annotations
 
 from landau.cli.common import add_law_arguments, block_and_params, fmt, parse_velocities
-from landau.support.io import atomic_write_text, check_output
 from landau.derivation.linear import HopfLine
+from landau.support.io import atomic_write_text, check_output
 
 
 def configure(p) -> None:

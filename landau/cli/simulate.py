@@ -153,9 +153,9 @@ def _spring_block(args, t_end: float):
 
 
 def _galvanetto(args, t_end: float, n: int):
+    from landau.laws.kinetic import KineticFriction
     from landau.verify.galvanetto.analysis import FIG_STEPPER
     from landau.verify.galvanetto.maps import model_for
-    from landau.laws.kinetic import KineticFriction
     from landau.verify.galvanetto.model import StickSlipParams
     from landau.verify.hybrid import EngineOptions, simulate
 

@@ -11,10 +11,10 @@ from __future__ import annotations
 
 import math
 
-from landau.cli.common import parse_range, add_law_arguments, block_and_params, fmt, parse_floats
-from landau.errors import InputError
-from landau.derivation.multiscale import Derivation
 from landau.analyses.transition import transition_curve
+from landau.cli.common import add_law_arguments, block_and_params, fmt, parse_floats, parse_range
+from landau.derivation.multiscale import Derivation
+from landau.errors import InputError
 
 
 def configure(p) -> None:

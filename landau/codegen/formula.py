@@ -15,8 +15,8 @@ from __future__ import annotations
 
 import dis
 import hashlib
-import logging
 import linecache
+import logging
 from typing import Callable, Mapping, Sequence
 
 import numpy as np

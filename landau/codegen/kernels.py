@@ -37,8 +37,8 @@ import sympy as sp
 from numba import types
 from sympy.printing.pycode import PythonCodePrinter
 
-from landau.support.cx import as_expr
 from landau.errors import InputError
+from landau.support.cx import as_expr
 from landau.verify.hybrid.kernel import Kernel
 from landau.verify.jitcache import load_generated, njit_cached
 

@@ -14,9 +14,9 @@ from typing import TYPE_CHECKING, Any, Iterable, Mapping, Sequence
 import numpy as np
 import sympy as sp
 
-from landau.errors import InputError
 from landau.derivation.hopf import SPRING_BLOCK_UNITS
 from landau.derivation.linear import w
+from landau.errors import InputError
 
 if TYPE_CHECKING:
     from landau.derivation.multiscale import Derivation

@@ -26,8 +26,8 @@ import math
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping, Sequence
 
-from landau.support.cx import Cx, as_cx, cx_is_zero, solve
 from landau.derivation.jets import multilinear
+from landau.support.cx import Cx, as_cx, cx_is_zero, solve
 
 
 @dataclass(frozen=True)

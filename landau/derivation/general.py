@@ -45,11 +45,11 @@ import scipy.linalg
 import scipy.optimize
 import sympy as sp
 
-from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.derivation.fredholm import _pencil, best_drop, cubic_coefficient, linear_coefficient, null_vectors, row_dot
-from landau.support.cx import Cx, as_expr
 from landau.derivation.hopf import GENERAL, HopfResult
 from landau.derivation.jets import Jets, TaylorJets
+from landau.errors import InputError, NoHopfError, SingularPointError
+from landau.support.cx import Cx, as_expr
 from landau.systems.system import DynamicalSystem
 
 #: default working precision of the located point and its coefficients (decimal digits)

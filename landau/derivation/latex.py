@@ -13,7 +13,18 @@ from typing import Sequence
 
 import sympy as sp
 
-from landau.report.latex import Equation, Namer, align_block, document, equation_lines, escape_text, law_equations, straight_line, symbol_latex, units_latex
+from landau.report.latex import (
+    Equation,
+    Namer,
+    align_block,
+    document,
+    equation_lines,
+    escape_text,
+    law_equations,
+    straight_line,
+    symbol_latex,
+    units_latex,
+)
 
 _CONVENTION = (r"\frac{d|A|}{dT} &= \frac{\Gamma |A| + \Lambda |A|^3}{2}, \qquad "
                r"\frac{d\theta}{dT} = \frac{\Omega + \chi |A|^2}{2}, \\ "
@@ -144,7 +155,7 @@ def _derivation_latex(d, quantities: Sequence[str], fragment: bool, progress) ->
         reps, red = straight_line(form)
         loc = dict(names)
         eqs = []
-        for i, (s, e) in enumerate(reps, 1):
+        for i, (s, _e) in enumerate(reps, 1):
             loc[s] = rf"q_{{{i}}}"
         namer = Namer(_letter(q))
         for s, e in reps:

@@ -20,9 +20,9 @@ import sympy as sp
 from sympy.polys.matrices import DomainMatrix
 
 from landau.codegen.formula import CompiledFormula, compile_expr
-from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.derivation.jets import Jets
-from landau.systems.system import V, DynamicalSystem, SpringBlock
+from landau.errors import InputError, NoHopfError, SingularPointError
+from landau.systems.system import DynamicalSystem, SpringBlock, V
 
 lam = sp.Symbol("lambda")
 W = sp.Symbol("W", positive=True)       # ω²
@@ -334,7 +334,8 @@ class HopfLine:
         for n, Vn in enumerate(Vs):
             vals = self._argvals(np.float64(Vn), p)
             cs = [float(c(*vals)) for c in coeffs]
-            kk, Wr = _stiffest_hopf_root(np.roots(cs), lambda Wr: -float(fre(Wr, *vals)) / float(fq2(Wr, *vals)),
+            kk, Wr = _stiffest_hopf_root(np.roots(cs),
+                                         lambda Wr, vals=vals: -float(fre(Wr, *vals)) / float(fq2(Wr, *vals)),
                                          1e-9, np.nan)
             kcs[n], oms[n] = kk, np.sqrt(Wr)
         return kcs, oms

@@ -38,10 +38,10 @@ from typing import Any, Mapping, Sequence
 import mpmath
 import sympy as sp
 
-from landau.support.cx import as_expr
-from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.derivation.hopf import GENERAL, HopfResult, spring_block_result
 from landau.derivation.jets import Jets
+from landau.errors import InputError, NoHopfError, SingularPointError
+from landau.support.cx import as_expr
 from landau.systems.system import DynamicalSystem, SpringBlock
 
 #: digits used when the caller does not say (≥ 30: far above the float64 engine it checks)

@@ -23,17 +23,29 @@ import mpmath
 import numpy as np
 import sympy as sp
 
-from landau.derivation import precision
 from landau.codegen.formula import AtomTable, CompiledFormula
-from landau.derivation.coefficients import (_GB, _LA, ALL_QUANTITIES, CONVENTION, DERIVED, QUANTITIES, QUINTIC, UNITS,  # noqa: F401
-                                 Coefficient, CoefficientTable, _with_bases, criticality)
-from landau.support.cx import Cx, as_expr
-from landau.errors import InputError, NoHopfError
+from landau.derivation import precision
+from landau.derivation.coefficients import (  # noqa: F401
+    _GB,
+    _LA,
+    ALL_QUANTITIES,
+    CONVENTION,
+    DERIVED,
+    QUANTITIES,
+    QUINTIC,
+    UNITS,
+    Coefficient,
+    CoefficientTable,
+    _with_bases,
+    criticality,
+)
 from landau.derivation.fredholm import cubic_coefficient, linear_coefficient, null_vectors, quintic_coefficient
 from landau.derivation.hopf import spring_block_result
 from landau.derivation.jets import Jets
 from landau.derivation.linear import HopfLine, w
-from landau.derivation.precision import BLOCK as _BLOCK, REL_GOOD as _REL_GOOD, WORKERS as _WORKERS  # noqa: F401
+from landau.derivation.precision import BLOCK as _BLOCK  # noqa: F401
+from landau.errors import InputError, NoHopfError
+from landau.support.cx import Cx, as_expr
 from landau.systems.system import SpringBlock
 
 

@@ -31,8 +31,8 @@ import sympy as sp
 from sympy import QQ
 from sympy.polys.fields import field
 
-from landau.support.cx import as_expr
 from landau.derivation.fredholm import cubic_coefficient, linear_coefficient, null_vectors
+from landau.support.cx import as_expr
 from landau.systems.system import V
 
 _U = float(np.finfo(np.float64).eps) / 2

@@ -22,7 +22,8 @@ import numpy as np
 import sympy as sp
 
 from landau.errors import InputError
-from landau.laws.law import FrictionLaw, v as v_slip
+from landau.laws.law import FrictionLaw
+from landau.laws.law import v as v_slip
 
 #: system-level symbols shared by every spring–block
 V = sp.Symbol("V", positive=True)          # driving velocity [m/s]

@@ -54,7 +54,7 @@ def fig2(out_dir: Path) -> list[Path]:
     fig, axs = plt.subplots(1, 2, figsize=(12, 4.2))
     det_mus = [0.4099, 0.405, 0.40, 0.395, 0.392, 0.390, 0.3897, 0.3896, 0.38957]
     y = np.array([0.38, 0.929, 0.0, 0.0])
-    for ax, zoom in zip(axs, (False, True)):
+    for ax in axs:
         ax.plot([0.38, h.p_c], [0, 0], "k-", lw=1.5, label="slip equilibrium")
         ax.plot([h.p_c, 0.42], [0, 0], "k:", lw=1)
         ax.plot(mus_s, w_s, "b-", lw=1.5, label="slip cycle (shooting)")

@@ -17,15 +17,15 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker as mticker  # noqa: E402
 import matplotlib.transforms as mtransforms  # noqa: E402
-from matplotlib.lines import Line2D  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.mathtext import MathTextParser  # noqa: E402
 
-from landau.support.io import atomic_savefig  # noqa: E402
-from landau.derivation.multiscale import CoefficientTable, Derivation  # noqa: E402
-from landau.systems.system import SpringBlock  # noqa: E402
 from landau.analyses.transition import velocity_weakening_ranges  # noqa: E402
+from landau.derivation.multiscale import CoefficientTable, Derivation  # noqa: E402
 from landau.laws import get_law  # noqa: E402
+from landau.support.io import atomic_savefig  # noqa: E402
+from landau.systems.system import SpringBlock  # noqa: E402
 
 #: the paper's Table 1 values used in labels
 L = 0.9e-6

@@ -14,7 +14,15 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from landau.analyses.amplitude import apparent_stiffness, growth_rate, slip_amplitude, slip_rate_amplitude
-from landau.paper_figures.putelat2010._common import AMPLITUDE_NAMES, derivation, mu_ss, panel_title, save, symlog_y, vlabel
+from landau.paper_figures.putelat2010._common import (
+    AMPLITUDE_NAMES,
+    derivation,
+    mu_ss,
+    panel_title,
+    save,
+    symlog_y,
+    vlabel,
+)
 
 V = np.logspace(-7, -2, 240)
 DX_UM = (0.1, 1.0, 10.0)

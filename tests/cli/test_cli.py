@@ -91,7 +91,8 @@ def test_derive_latex_is_compile_ready(tmp_path, capsys):
     # the closed-form k_c typesets with matplotlib's mathtext (no TeX installation needed)
     import matplotlib
     matplotlib.use("Agg")
-    from matplotlib.mathtext import MathTextParser
     import re
+
+    from matplotlib.mathtext import MathTextParser
     kc = re.search(r"^k_c &= (.*)$", tex, re.M).group(1)
     MathTextParser("agg").parse(f"${kc}$")

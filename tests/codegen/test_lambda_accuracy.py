@@ -8,11 +8,11 @@ every returned value (:data:`landau.derivation.precision.REL_GOOD`)."""
 import mpmath
 import numpy as np
 import pytest
-
-from landau.laws import get_law
-from landau.derivation.multiscale import derive
-from landau.systems.system import SpringBlock
 from vw_ranges import LAWS, vw_range
+
+from landau.derivation.multiscale import derive
+from landau.laws import get_law
+from landau.systems.system import SpringBlock
 
 GENERAL = ("spinodal", "nanoscale", "micron-scale")   # laws not rational in V: the float routes
 

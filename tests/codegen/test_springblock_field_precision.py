@@ -28,8 +28,8 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from landau.errors import InputError
 from landau.codegen.kernels import DerivedParameters, hoist_parameters
+from landau.errors import InputError
 from landau.laws import get_law
 from landau.laws.law import v as v_slip
 from landau.verify.springblock.model import SpringBlockModel, compile_variational

@@ -7,12 +7,12 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from landau.errors import InputError
+from landau.analyses.transition import extrema, velocity_weakening_ranges
 from landau.derivation.linear import NO_HOPF_STABLE, HopfLine
 from landau.derivation.multiscale import Derivation
-from landau.analyses.transition import extrema, velocity_weakening_ranges
-from landau.systems.system import M, V, SpringBlock, sigma
+from landau.errors import InputError
 from landau.laws import TABLE1, get_law, v
+from landau.systems.system import M, SpringBlock, V, sigma
 
 a, b, L, V_s = (TABLE1[n].symbol for n in ("a", "b", "L", "V_s"))
 c = sp.Symbol("c", positive=True)

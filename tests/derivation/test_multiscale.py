@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from landau.errors import NoHopfError
 from landau.derivation.multiscale import Derivation, derive
-from landau.systems.system import M, V, SpringBlock, sigma
+from landau.errors import NoHopfError
 from landau.laws import TABLE1, get_law
+from landau.systems.system import M, SpringBlock, V, sigma
 
 a, b, L, V_s = (TABLE1[n].symbol for n in ("a", "b", "L", "V_s"))
 c = sp.Symbol("c", positive=True)

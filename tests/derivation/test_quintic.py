@@ -17,11 +17,11 @@ import sympy as sp
 
 from landau import SpringBlock
 from landau.analyses.bautin import cycle_amplitudes, fold_of_cycles, quintic_normal_form
-from landau.laws import get_law
+from landau.analyses.transition import codim2_points
 from landau.derivation.lyapunov import lyapunov_coefficients
 from landau.derivation.multiscale import Derivation, derive
+from landau.laws import get_law
 from landau.systems.system import DynamicalSystem
-from landau.analyses.transition import codim2_points
 
 R = sp.Rational
 mu, a_, b_, om_ = sp.symbols("mu a b omega", real=True)

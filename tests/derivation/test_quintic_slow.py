@@ -18,9 +18,9 @@ import numpy as np
 import pytest
 
 from landau import SpringBlock
-from landau.laws import get_law
-from landau.derivation.multiscale import Derivation
 from landau.analyses.transition import codim2_points
+from landau.derivation.multiscale import Derivation
+from landau.laws import get_law
 
 pytestmark = pytest.mark.slow
 

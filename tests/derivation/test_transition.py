@@ -15,12 +15,17 @@ from contextlib import redirect_stdout
 import numpy as np
 import pytest
 
-from landau.errors import InputError
+from landau.analyses.transition import (
+    codim2_points,
+    critical_parameter,
+    extrema,
+    transition_curve,
+    velocity_weakening_ranges,
+)
 from landau.derivation.multiscale import Derivation
-from landau.systems.system import SpringBlock
-from landau.analyses.transition import (codim2_points, critical_parameter, extrema, transition_curve,
-                               velocity_weakening_ranges)
+from landau.errors import InputError
 from landau.laws import FrictionLaw, get_law
+from landau.systems.system import SpringBlock
 
 T1 = dict(a=0.0349, b=0.0489, L=0.9e-6, V_s=1e-6, M=1.2, sigma=11.772)
 PRINTED = 5e-3  # 0.5 %: the values are printed with 3-4 significant digits

@@ -11,6 +11,7 @@ import pytest
 
 from landau.scenes import run_scene
 
+
 def _static_equilibrium(p):
     """X₀ from k X₀ + k_I (X₀ − x_I)^{n₁} = 0 at the working precision (the cart pressed on the obstacle)."""
     return mpmath.findroot(lambda X: p["k"] * X + p["kI"] * (X - p["xI"]) ** p["n1"],

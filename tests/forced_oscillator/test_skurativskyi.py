@@ -13,8 +13,8 @@ import pytest
 from scipy.linalg import expm
 
 from landau.errors import InputError
-from landau.scenes import run_scene
 from landau.laws.velocity import regularised_coulomb
+from landau.scenes import run_scene
 from landau.verify.skurativskyi import approx
 from landau.verify.skurativskyi.analysis import attractor, redundancy, tsallis_q
 from landau.verify.skurativskyi.model import PAPER, Params, saltation_matrix

@@ -16,8 +16,8 @@ import pytest
 
 from landau.verify.hybrid.compiled import dopri5_method
 from landau.verify.skurativskyi import rk as R
-from landau.verify.skurativskyi.model import Params, compiled_field
 from landau.verify.skurativskyi.friction import quiet_first_class
+from landau.verify.skurativskyi.model import Params, compiled_field
 from landau.verify.skurativskyi.simulate import run
 
 

@@ -9,8 +9,15 @@ rtol 1e-7 and 1e-9, see the report).
 import numpy as np
 import pytest
 
-from landau.verify.skurativskyi.analysis import (attractor, continuation, first_detachment, locate_grazing,
-                                          locate_period_doubling, section_period, tsallis_q)
+from landau.verify.skurativskyi.analysis import (
+    attractor,
+    continuation,
+    first_detachment,
+    locate_grazing,
+    locate_period_doubling,
+    section_period,
+    tsallis_q,
+)
 from landau.verify.skurativskyi.sweep import SweepSpec, run_sweep
 
 pytestmark = pytest.mark.slow

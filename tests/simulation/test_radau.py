@@ -19,10 +19,18 @@ import pytest
 import scipy.linalg
 import sympy as sp
 
-from landau.errors import InputError
 from landau.codegen.kernels import generate_kernel
-from landau.verify.hybrid.radau import (A_RADAU, ALPHA_SPLIT, BETA_SPLIT, GAMMA_SPLIT, MU_REAL, VINV, radau_core,
-                                        split_coefficients)
+from landau.errors import InputError
+from landau.verify.hybrid.radau import (
+    A_RADAU,
+    ALPHA_SPLIT,
+    BETA_SPLIT,
+    GAMMA_SPLIT,
+    MU_REAL,
+    VINV,
+    radau_core,
+    split_coefficients,
+)
 
 
 def _run(kernel, y0, t_end, rtol, ev_idx=-1, ev_dir=0, ev_stop=0, max_steps=10 ** 6, rec_cap=0):

@@ -20,9 +20,9 @@ import mpmath
 import pytest
 import sympy as sp
 
-from landau.laws import get_law
 from landau.derivation.lyapunov import first_lyapunov, spring_block_lyapunov
 from landau.derivation.multiscale import derive
+from landau.laws import get_law
 from landau.systems.system import DynamicalSystem, SpringBlock
 
 a, b, L, V, s, M = sp.symbols("a b L V sigma M", positive=True)

@@ -355,7 +355,7 @@ def build_model(p: StickSlipParams, sections: bool = False, transparent: frozens
                     j = 1 - i
                     a = p.alpha
 
-                    def kdot(t, y, i=i, j=j):
+                    def kdot(t, y, i=i, j=j, a=a):
                         return (1 + a) * y[n + i] - a * y[n + j]
 
                     wd = np.zeros(2 * n)

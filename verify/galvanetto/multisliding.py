@@ -14,9 +14,18 @@ from landau.errors import InputError, IntegratorError, LandauError
 from landau.laws.kinetic import KineticFriction, resolve_kinetic_law
 from landau.verify.galvanetto.maps import MapUndefined, d_range, default_stepper, two_block_map
 from landau.verify.galvanetto.model import K_of, two_blocks
-from landau.verify.galvanetto.periodic import (SCAN_RTOL, Located, NoBifurcationError, _continuation_scan, _locate,
-                                               _velocity_scale, _Warm, attractor, map_slope, periodic_point)
-
+from landau.verify.galvanetto.periodic import (
+    SCAN_RTOL,
+    Located,
+    NoBifurcationError,
+    _continuation_scan,
+    _locate,
+    _velocity_scale,
+    _Warm,
+    attractor,
+    map_slope,
+    periodic_point,
+)
 
 #: derived start of :func:`multi_sliding`: γ is scanned on a geometric grid (neighbours 2 % apart) from
 #: the γ at which the law's weakening velocity is ten times the belt velocity V to the γ at which it

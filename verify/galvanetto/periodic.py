@@ -18,7 +18,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from landau.errors import InputError, IntegratorError, LandauError
-from landau.verify.galvanetto.maps import (MapUndefined, f_n, two_block_map)
+from landau.verify.galvanetto.maps import MapUndefined, f_n, two_block_map
 from landau.verify.galvanetto.model import K_of, StickSlipParams
 
 XTOL = 1e-12

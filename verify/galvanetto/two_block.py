@@ -14,11 +14,24 @@ from scipy.optimize import brentq
 
 from landau.errors import InputError, IntegratorError, LandauError
 from landau.laws.kinetic import KineticFriction, resolve_kinetic_law
-from landau.verify.galvanetto.maps import (MapUndefined, d_range, default_stepper, f_n, two_block_map)
+from landau.verify.galvanetto.maps import MapUndefined, d_range, default_stepper, f_n, two_block_map
 from landau.verify.galvanetto.model import StickSlipParams, _make_rhs, two_blocks
-from landau.verify.galvanetto.periodic import (SCAN_RTOL, Located, NoBifurcationError, PeriodicPoint, _grow_bracket,
-                                               _locate, _margins, _velocity_scale, _Warm, attractor, map_slope,
-                                               orbit_events, periodic_point, scan_bracket)
+from landau.verify.galvanetto.periodic import (
+    SCAN_RTOL,
+    Located,
+    NoBifurcationError,
+    PeriodicPoint,
+    _grow_bracket,
+    _locate,
+    _margins,
+    _velocity_scale,
+    _Warm,
+    attractor,
+    map_slope,
+    orbit_events,
+    periodic_point,
+    scan_bracket,
+)
 
 # ----------------------------------------------------------------- two blocks (Sec. 4.1)
 
@@ -277,9 +290,9 @@ def _fold_scan(V, alpha, law) -> tuple[float, float]:
         p = fig12_params(beta, V, alpha, law=law)
         try:
             warm.d = kink(p, warm.d, st, tol=1e-6)
-        except (MapUndefined, IntegratorError, InputError):
+        except (MapUndefined, IntegratorError, InputError) as err:
             warm.d = None
-            raise MapUndefined("no kink")
+            raise MapUndefined("no kink") from err
         return f_n(p, warm.d, 1, st) - warm.d
 
     betas = 1.0 + 0.05 * np.arange(1, 1 + int(round(2 * (1 + alpha) / 0.05)))

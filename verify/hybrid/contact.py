@@ -471,7 +471,7 @@ class ContactModel:
                 if mode == "stick":
                     static = dict(zip((1, -1), mech.static_mu()))
 
-                    def onset(sgn):
+                    def onset(sgn, static=static):
                         mu = static[sgn]
 
                         def gfun(t, y):

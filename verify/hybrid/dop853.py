@@ -47,10 +47,10 @@ from functools import lru_cache
 
 import numpy as np
 from numba import cfunc, njit, types
-from landau.verify.hybrid import dop853_tableau as _dc
 
 from landau.errors import InputError
 from landau.verify.compiling import compile_once
+from landau.verify.hybrid import dop853_tableau as _dc
 from landau.verify.hybrid.kernel import Kernel
 from landau.verify.hybrid.locate import _quiet_guards
 

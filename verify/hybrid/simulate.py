@@ -307,7 +307,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                                 gs = guard_on_dense(g.fun, dense)
                                 from scipy.optimize import minimize_scalar
 
-                                res = minimize_scalar(lambda s: -gs(s), bounds=(ts[0], ts[kneg]),
+                                res = minimize_scalar(lambda s, gs=gs: -gs(s), bounds=(ts[0], ts[kneg]),
                                                       method="bounded",
                                                       options={"xatol": 1e-10 * (ts[kneg] - ts[0]) + 1e-15})
                                 if -res.fun > atol:
@@ -340,7 +340,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                     located.sort(key=lambda x: (x[0], x[1]))
                     # sections before the first switching guard are logged; the run goes on
                     t_sw = min((x[0] for x in located if guards[x[1]].transition is not None), default=np.inf)
-                    for th, j, kind in located:
+                    for th, j, _kind in located:
                         if guards[j].transition is None and th <= t_sw:
                             yh = dense(th)
                             ev = Event(th, yh, guards[j].name, mname, mname, "section", yh)

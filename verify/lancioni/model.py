@@ -32,8 +32,8 @@ import numpy as np
 
 from landau.errors import InputError
 from landau.laws.velocity import V_SLIP, VelocityFriction, coulomb
-from landau.verify.lancioni.contact import ContactMechanics, ContactModel, Section
 from landau.verify.hybrid.contact import check_contact_coefficients
+from landau.verify.lancioni.contact import ContactMechanics, ContactModel, Section
 from landau.verify.lancioni.slip import PARAM_NAMES, SET1, SET2, check_friction, hopf_parameter, resolve
 
 

@@ -49,9 +49,9 @@ from typing import Mapping
 import numpy as np
 import sympy as sp
 
-from landau.errors import InputError, NoHopfError
 from landau.derivation.general import hopf_normal_form
 from landau.derivation.hopf import HopfResult
+from landau.errors import InputError, NoHopfError
 from landau.laws.velocity import V_SLIP, VelocityFriction
 from landau.systems.system import DynamicalSystem
 

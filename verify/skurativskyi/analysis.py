@@ -23,7 +23,7 @@ from scipy.optimize import minimize_scalar
 
 from landau.errors import InputError
 from landau.verify.skurativskyi.model import PAPER, Params
-from landau.verify.skurativskyi.simulate import RTOL, ATOL, run
+from landau.verify.skurativskyi.simulate import ATOL, RTOL, run
 
 
 @dataclass(frozen=True)

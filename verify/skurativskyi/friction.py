@@ -42,8 +42,8 @@ import sympy as sp
 from sympy.printing.precedence import PRECEDENCE
 from sympy.printing.pycode import PythonCodePrinter
 
-from landau.errors import DomainError, InputError
 from landau.codegen.kernels import ALLOWED_BUILTINS, check_source
+from landau.errors import DomainError, InputError
 from landau.laws.velocity import V_SLIP, VelocityFriction
 
 

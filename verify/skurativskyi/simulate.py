@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from landau.errors import IntegratorError, InputError
+from landau.errors import InputError, IntegratorError
 from landau.verify.hybrid import Event, EventLog, Guard, HybridModel, Jump, Mode
 from landau.verify.hybrid.result import Simulation, Status
 from landau.verify.skurativskyi import rk as R

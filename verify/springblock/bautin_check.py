@@ -18,8 +18,8 @@ from typing import Mapping, Sequence
 import numpy as np
 
 from landau.analyses.bautin import spring_block_fold
-from landau.laws import get_law
 from landau.derivation.multiscale import Derivation
+from landau.laws import get_law
 from landau.systems.system import SpringBlock
 from landau.verify.springblock.continuation import fold_point
 from landau.verify.springblock.model import SpringBlockModel

@@ -24,11 +24,11 @@ from typing import Mapping
 
 import numpy as np
 
-from landau.errors import InputError, NoHopfError
 from landau.derivation.hopf import Criticality, HopfResult, spring_block_result
 from landau.derivation.multiscale import derive
-from landau.systems.system import SpringBlock
+from landau.errors import InputError, NoHopfError
 from landau.laws.law import FrictionLaw
+from landau.systems.system import SpringBlock
 from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.orbits import PeriodicOrbit, ShootingError, section_point, shoot
 from landau.verify.springblock.simulate import W_INDEX, integrate

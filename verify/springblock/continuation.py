@@ -31,8 +31,15 @@ from landau.analyses.codim2 import SPRING_BLOCK_PARAMETERS, FoldOfCycles, Genera
 from landau.errors import IntegratorError
 from landau.support.progress import progress as bar
 from landau.verify.springblock.model import SpringBlockModel
-from landau.verify.springblock.orbits import (PeriodicOrbit, ShootingError, describe, hopf_parameter, hopf_stiffness,
-                                              return_map, section_point)
+from landau.verify.springblock.orbits import (
+    PeriodicOrbit,
+    ShootingError,
+    describe,
+    hopf_parameter,
+    hopf_stiffness,
+    return_map,
+    section_point,
+)
 
 
 @dataclass(frozen=True)

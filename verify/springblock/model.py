@@ -34,10 +34,11 @@ from typing import Mapping
 import numpy as np
 import sympy as sp
 
-from landau.errors import InputError
 from landau.codegen.kernels import DerivedParameters, compile_source, hoist_parameters, kernel_source
+from landau.errors import InputError
+from landau.laws.law import FrictionLaw
+from landau.laws.law import v as v_slip
 from landau.systems.system import SpringBlock
-from landau.laws.law import FrictionLaw, v as v_slip
 
 
 @dataclass(frozen=True)

@@ -16,13 +16,19 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import brentq
 
-from landau.errors import NoHopfError
-from landau.support.io import atomic_write_json
-from landau.laws import get_law
-from landau.verify.springblock.checks import predict
 from landau.analyses.codim2 import FoldOfCycles
-from landau.verify.springblock.continuation import (Branch, codim2_velocity, continue_in_k, continue_in_logV, fold_curve,
-                                                    plot_branch)
+from landau.errors import NoHopfError
+from landau.laws import get_law
+from landau.support.io import atomic_write_json
+from landau.verify.springblock.checks import predict
+from landau.verify.springblock.continuation import (
+    Branch,
+    codim2_velocity,
+    continue_in_k,
+    continue_in_logV,
+    fold_curve,
+    plot_branch,
+)
 from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.orbits import hopf_stiffness
 
@@ -112,9 +118,9 @@ def codim2(name: str, params: dict, V_lo: float | None = None, V_hi: float | Non
     Putelat et al. 2010, eq. 31), ∓ 10 %."""
     law = get_law(name)
     if V_lo is None or V_hi is None:
+        from landau.analyses.transition import codim2_points
         from landau.derivation.multiscale import Derivation
         from landau.systems.system import SpringBlock
-        from landau.analyses.transition import codim2_points
         q = SpringBlock(law).resolve(params)
         v_hat = float(np.sqrt(q["a"] * q["sigma"] * q["L"] / q["M"]))
         pts = codim2_points(Derivation(SpringBlock(law)), 1e-5 * v_hat, 1e2 * v_hat, params)

@@ -8,12 +8,12 @@ from __future__ import annotations
 
 import math
 
-from landau.errors import InputError
-from landau.scenes import Scene, register
-from landau.derivation.multiscale import Derivation
 from landau.analyses.transition import extrema
-from landau.systems.system import SpringBlock
+from landau.derivation.multiscale import Derivation
+from landau.errors import InputError
 from landau.laws import get_law
+from landau.scenes import Scene, register
+from landau.systems.system import SpringBlock
 
 _T1 = {"a_v": 0.369, "a": 0.0349, "b": 0.0489, "L": 0.9e-6, "V_s": 1e-6}
 _MECH = {"M": 1.2, "g": 9.81}

@@ -10,11 +10,11 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 
-from landau.errors import InputError
 from landau.derivation.multiscale import Derivation
+from landau.errors import InputError
+from landau.laws import get_law
 from landau.scenes import Scene, register
 from landau.systems.system import SpringBlock
-from landau.laws import get_law
 
 _T1 = {"a_v": 0.369, "a": 0.0349, "b": 0.0489, "L": 0.9e-6, "V_s": 1e-6}
 _MECH = {"M": 1.2, "g": 9.81}

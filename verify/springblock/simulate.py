@@ -20,9 +20,9 @@ import numpy as np
 
 from landau.errors import InputError, IntegratorError
 from landau.verify.hybrid.log import Event, EventLog
+from landau.verify.hybrid.radau import STATUS, radau_core
 from landau.verify.hybrid.result import Simulation, status_from_text
 from landau.verify.springblock.model import SpringBlockModel, compile_variational
-from landau.verify.hybrid.radau import STATUS, radau_core
 
 #: index of w = ln(v/V) in the scaled state; w = 0 ⇔ ẋ = V ⇔ X = x − x₀ extremal
 W_INDEX = 1
