@@ -188,7 +188,7 @@ class KineticFriction(Law):
         half = 0.5 * (f0 + far)
         g = lambda v: float(self.neg(-v)) - half
         lo = 0.0
-        for k, v in zip(ks[ok], vals[ok]):
+        for k, v in zip(ks[ok], vals[ok], strict=True):
             if np.sign(v - half) != np.sign(f0 - half):
                 from scipy.optimize import brentq
                 return float(brentq(g, lo, 10.0 ** k, xtol=1e-14, rtol=1e-12))

@@ -242,7 +242,7 @@ class FrictionLaw(Law):
                 raise InputError(f"law {self.name!r}: name '{s.name}_0' is reserved for the steady state of {s.name}")
         known = {v, *self.states, *(p.symbol for p in self.parameters)}
         allowed = _allowed_functions()
-        for what, expr in [("mu", self.mu), *((f"d{s}/dt", r) for s, r in zip(self.states, self.rates))]:
+        for what, expr in [("mu", self.mu), *((f"d{s}/dt", r) for s, r in zip(self.states, self.rates, strict=True))]:
             extra = expr.free_symbols - known
             if extra:
                 raise InputError(f"law {self.name!r}: {what} uses undeclared symbol(s) "
@@ -563,7 +563,7 @@ class FrictionLaw(Law):
     def _reality_exprs(self):
         args = [v, *self.states, *(p.symbol for p in self.parameters)]
         exprs = []
-        for label, e in [("mu", self.mu), *((f"d{s}/dt", r) for s, r in zip(self.states, self.rates))]:
+        for label, e in [("mu", self.mu), *((f"d{s}/dt", r) for s, r in zip(self.states, self.rates, strict=True))]:
             exprs.append((label, e))
             exprs += [(f"d({label})/d{x}", sp.diff(e, x)) for x in (v, *self.states) if x in e.free_symbols]
         if all(e.is_extended_real and e.is_finite for _, e in exprs):
@@ -586,7 +586,7 @@ class FrictionLaw(Law):
         ss = self.steady_state_closed_form
         if ss is None:
             raise InputError(f"law {self.name!r}: no closed-form steady state; use numeric evaluation")
-        return self.mu.subs(dict(zip(self.states, ss)))
+        return self.mu.subs(dict(zip(self.states, ss, strict=True)))
 
     # --- display ------------------------------------------------------------------
     def latex(self) -> str:
@@ -597,11 +597,11 @@ class FrictionLaw(Law):
         str
         """
         lines = [rf"\mu = {sp.latex(self.mu)}"]
-        for s, r in zip(self.states, self.rates):
+        for s, r in zip(self.states, self.rates, strict=True):
             lines.append(rf"\frac{{d{sp.latex(s)}}}{{dt}} = {sp.latex(r)}")
         return r",\quad ".join(lines)
 
     def __repr__(self) -> str:
-        rates = ", ".join(f"d{s}/dt = {r}" for s, r in zip(self.states, self.rates))
+        rates = ", ".join(f"d{s}/dt = {r}" for s, r in zip(self.states, self.rates, strict=True))
         return f"FrictionLaw({self.name!r}: mu = {self.mu}; {rates}; source={self.source!r})"
 

@@ -256,7 +256,7 @@ class VelocityFriction(Law):
         -------
         tuple of float
         """
-        vals = dict(zip((p.symbol for p in self.parameters), self._values(params)))
+        vals = dict(zip((p.symbol for p in self.parameters), self._values(params), strict=True))
         out = []
         for side in (-1, 1):
             e = self.branch(side).subs(vals)

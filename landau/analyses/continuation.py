@@ -178,7 +178,7 @@ def equilibrium_branch(system: DynamicalSystem, params: Mapping[str, float] | No
     P = np.array([pt.u[n] for pt in br.points])
     Y = np.array([pt.u[:n] for pt in br.points])
     tps = [pt.tangent[n] for pt in br.points]
-    lams = [num.eigenvalues(y, p) for y, p in zip(Y, P)]
+    lams = [num.eigenvalues(y, p) for y, p in zip(Y, P, strict=True)]
     nus = [_n_unstable(lam) for lam in lams]
     tfs = [hopf_test_function(lam) for lam in lams]
     folds = [_refine_fold(num, Y[f.index - 1], P[f.index - 1], Y[f.index], P[f.index]) for f in br.folds]

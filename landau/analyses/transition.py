@@ -194,7 +194,7 @@ def _weakening(d: Derivation, params, lo: float, hi: float) -> list[WeakeningRan
     ext = extrema(d, p, lo, hi)
     edges = [lo, *[e.V for e in ext], hi]
     out = []
-    for a, b in zip(edges[:-1], edges[1:]):
+    for a, b in zip(edges[:-1], edges[1:], strict=True):
         mid = math.sqrt(a * b)
         s = float(fdmu(*d.block.argvals(np.float64(mid), p)))
         if np.isfinite(s) and s < 0:

@@ -31,7 +31,7 @@ def run(args) -> dict:
     for n in names:
         law = get_law(n)
         out.append({"name": law.name, "kind": "rate-and-state", "source": law.source,
-                    "description": law.description, "mu": str(law.mu), "states": {str(s): str(r) for s, r in zip(law.states, law.rates)},
+                    "description": law.description, "mu": str(law.mu), "states": {str(s): str(r) for s, r in zip(law.states, law.rates, strict=True)},
                     "convention": "rates are dphi/dt (Putelat et al.: dphi/dt = -G)",
                     "parameters": _parameters(law)})
     if not out:

@@ -356,7 +356,7 @@ def run(args) -> dict:
             "status": sim.status.value, "message": sim.message, "t_final": sim.t_final,
             "points": len(sim.t), "events": len(sim.events), "steps": sim.nsteps,
             "state_names": list(sim._names()),
-            "final_state": dict(zip(sim._names(), (float(v) for v in np.ravel(sim.y_final)))),
+            "final_state": dict(zip(sim._names(), (float(v) for v in np.ravel(sim.y_final)), strict=True)),
             "notes": notes, "files": files, **extra, "exit_code": 0 if sim.success else 1}
 
 

@@ -324,7 +324,7 @@ class AtomTable:
         if fn is None:
             return {}
         with np.errstate(all="ignore"):
-            return dict(zip(syms, fn(*vals)))
+            return dict(zip(syms, fn(*vals), strict=True))
 
 
 _NP_FUNCS = {"log": np.log, "exp": np.exp, "sqrt": np.sqrt, "Abs": np.abs, "sign": np.sign, "sin": np.sin,
@@ -445,7 +445,7 @@ class Tape:
             consts = self._constants("longdouble" if ld else "float")
             funcs = _NP_FUNCS
         reg = list(vals)
-        for (kind, val, args), c in zip(self.ops, consts):
+        for (kind, val, args), c in zip(self.ops, consts, strict=True):
             if kind == "const":
                 reg.append(c)
             elif kind == "add":

@@ -466,7 +466,7 @@ class DerivedParameters:
         except (ValueError, ZeroDivisionError, OverflowError) as exc:
             raise InputError(f"a parameter combination of the field cannot be evaluated ({exc}): "
                              f"check the parameter values {base}") from None
-        bad = [str(v) for v, x in zip(self._values, out) if not math.isfinite(x)]
+        bad = [str(v) for v, x in zip(self._values, out, strict=True) if not math.isfinite(x)]
         if bad:
             raise InputError(f"parameter combination(s) {bad} of the field are not finite at {base}")
         return np.ascontiguousarray(base + out, dtype=float)

@@ -34,7 +34,7 @@ class Jets:
     def __init__(self, system: DynamicalSystem):
         self.system = system
         self.n = len(system.states)
-        self._at = dict(zip(system.states, system.equilibrium))
+        self._at = dict(zip(system.states, system.equilibrium, strict=True))
         self._cache: dict[int, dict[tuple[int, ...], sp.Expr]] = {}
         self._param: tuple | None = None
         self.atoms: dict[sp.Symbol, sp.Expr] = {}

@@ -277,7 +277,7 @@ class HopfLine:
             mu = self.block.mu_ss()
             return mu, sp.diff(mu, V), tuple(ss)
         phi0 = self.block.phi0
-        at = {v_slip: V, **dict(zip(law.states, phi0))}
+        at = {v_slip: V, **dict(zip(law.states, phi0, strict=True))}
         R = sp.Matrix(law.rates)
         Rphi = R.jacobian(list(law.states)).xreplace(at)
         Rv = R.diff(v_slip).xreplace(at)

@@ -157,7 +157,7 @@ def _raw_block(d: "Derivation", vals, shape, bases, dtype, kc=None, om=None) -> 
         with np.errstate(all="ignore"):
             om = np.sqrt(np.where(res["W"] > 0, res["W"], np.nan))
         kc = res["kc"]
-    for n, f in zip(bases, formulas):
+    for n, f in zip(bases, formulas, strict=True):
         res[n] = np.asarray(f.call_with_atoms(atoms, om, kc, *vals), dtype=dtype) * np.ones(shape, dtype)
     return res
 

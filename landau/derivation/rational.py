@@ -73,7 +73,7 @@ class Polynomial:
         e = max((_log2(c) for c in scaled if c), default=0)
         scaled = [c / Fraction(2) ** e for c in scaled]
         desc = np.array([float(c) for c in reversed(scaled)] or [0.0])
-        safe = all(np.isfinite(x) and (x != 0 or c == 0) for x, c in zip(desc, reversed(scaled)))
+        safe = all(np.isfinite(x) and (x != 0 or c == 0) for x, c in zip(desc, reversed(scaled), strict=True))
         for name, val in (("_desc", desc), ("_abs", np.abs(desc)), ("_k", k), ("_e", e), ("_safe", safe)):
             object.__setattr__(self, name, val)
 
@@ -364,7 +364,7 @@ class _FlintFraction:
         return self.den
 
     def _poly_expr(self, p) -> sp.Expr:
-        return sp.Add(*[sp.Integer(int(c)) * sp.Mul(*[g ** e for g, e in zip(self.field.symbols, m) if e])
+        return sp.Add(*[sp.Integer(int(c)) * sp.Mul(*[g ** e for g, e in zip(self.field.symbols, m, strict=True) if e])
                         for m, c in p.to_dict().items()])
 
     def as_expr(self) -> sp.Expr:
@@ -451,7 +451,7 @@ def _fredholm_in_field(d, names: Sequence[str], sub: Mapping[sp.Symbol, sp.Expr]
         return None
     plain = [sp.Symbol(g.name) for g in gens]
     K = _field(plain)
-    local = dict(zip(gens, plain))
+    local = dict(zip(gens, plain, strict=True))
 
     def conv_field(e):
         e = as_expr(e).xreplace({d.k: kc}).xreplace(atoms).xreplace(sub).xreplace(local)

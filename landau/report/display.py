@@ -169,7 +169,7 @@ def text_table(rows: Iterable[Mapping[str, Any]], columns: Sequence[str] | None 
     cells = [[_header(c, units) for c in cols]]
     cells += [[format_value(r.get(c), digits) for c in cols] for r in rows[:max_rows]]
     widths = [max(len(row[i]) for row in cells) for i in range(len(cols))]
-    lines = ["  ".join(s.rjust(w) for s, w in zip(row, widths)) for row in cells]
+    lines = ["  ".join(s.rjust(w) for s, w in zip(row, widths, strict=True)) for row in cells]
     if len(rows) > max_rows:
         lines.append(f"… {len(rows) - max_rows} more rows")
     return "\n".join(lines)

@@ -246,7 +246,7 @@ def law_equations(law, names: Mapping | None = None) -> list[Equation]:
     """μ and the state rates of a friction law, split to fit."""
     names = dict(names or {})
     eqs = equation_lines(r"\mu", law.mu, names, letter="M")
-    for s, r in zip(law.states, law.rates):
+    for s, r in zip(law.states, law.rates, strict=True):
         eqs += equation_lines(rf"\frac{{d{symbol_latex(s.name)}}}{{dt}}", r, names, letter="R")
     return eqs
 

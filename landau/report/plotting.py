@@ -121,7 +121,7 @@ def plot_coefficients(table: Mapping[str, Any], names: Sequence[str] | None = No
     bands = []
     if "kc" in table and "Lambda" in table:
         bands = criticality_bands(V, table["kc"], table["Lambda"])
-    for ax, name in zip(axes[:, 0], names):
+    for ax, name in zip(axes[:, 0], names, strict=True):
         y = np.ravel(np.broadcast_to(np.asarray(table[name], dtype=float), V.shape))[order]
         finite = y[np.isfinite(y)]
         label = LABELS.get(name, name)

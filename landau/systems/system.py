@@ -249,13 +249,13 @@ class SpringBlock:
         mu_now = mu.subs(at_slip)
         ss = self.steady_state
         eq_phi = ss if ss is not None else self.phi0
-        mu_0 = mu.subs({v_slip: V, **dict(zip(phis, eq_phi))})
+        mu_0 = mu.subs({v_slip: V, **dict(zip(phis, eq_phi, strict=True))})
         rhs = (u, -k * X - sigma * (mu_now - mu_0), *(r.subs(at_slip) for r in self.law.rates))
         unknowns: tuple = ()
         eqs: tuple = ()
         if ss is None:
             unknowns = self.phi0
-            eqs = tuple(r.subs({v_slip: V, **dict(zip(phis, self.phi0))}) for r in self.law.rates)
+            eqs = tuple(r.subs({v_slip: V, **dict(zip(phis, self.phi0, strict=True))}) for r in self.law.rates)
         return DynamicalSystem(
             name=f"spring-block[{self.law.name}]",
             states=(X, u, *phis),

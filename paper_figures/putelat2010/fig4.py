@@ -58,7 +58,7 @@ def make(out_dir: Path) -> list[Path]:
     panel_title(ax[0], "(a) steady-state friction (eq. 27)")
     ax[1].plot(V, d["kc"], "k-", label=r"$k_c$, M = 1.2 kg")
     ax[1].plot(V, d["kc_M0"], "k--", label=r"$k_c$, M = 0")
-    for dx, ls in zip(DX_UM, (":", "-.", (0, (5, 1, 1, 1)))):
+    for dx, ls in zip(DX_UM, (":", "-.", (0, (5, 1, 1, 1))), strict=True):
         ax[1].plot(V, d["khat"][dx], color="tab:blue", ls=ls, label=rf"$\hat k$, $\Delta x$ = {dx:g} µm")
     ax[1].set_yscale("log")
     ax[1].set_ylim(1e4, 1e7)

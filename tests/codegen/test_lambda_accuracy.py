@@ -53,7 +53,7 @@ def test_spinodal_low_velocity_tail_within_1e_10():
     Vs = np.logspace(np.log10(lo), np.log10(10 * lo), 150)
     got = d.evaluate(Vs, {}, ["Lambda"])["Lambda"]
     worst = 0.0
-    for V0, g in zip(Vs, got):
+    for V0, g in zip(Vs, got, strict=True):
         ref = d.evaluate_mp(float(V0), {}, ["Lambda"], dps=50)["Lambda"]
         worst = max(worst, float(abs(g - ref) / abs(ref)))
     assert worst <= 1e-10, worst

@@ -106,7 +106,7 @@ def _eigenvalues(block, V0, k, dps=40):
     p = block.resolve()
     vals = {s: p[s.name] for s in sysm.parameters if s.name in p}
     vals.update({V: V0, sysm.parameter: k})
-    at = dict(zip(sysm.states, [0, 0] + [e.subs(vals) for e in sysm.equilibrium[2:]]))
+    at = dict(zip(sysm.states, [0, 0] + [e.subs(vals) for e in sysm.equilibrium[2:]], strict=True))
     J = sp.Matrix(sysm.rhs).jacobian(sysm.states).subs(at).subs(vals)
     E = [sp.sympify(m).subs(vals) for m in sysm.mass]
     with mpmath.workdps(dps):

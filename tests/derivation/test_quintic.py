@@ -62,7 +62,7 @@ def warped_3d() -> DynamicalSystem:
     A1, A2, A3 = sp.symbols("A1 A2 A3")
     Y = sp.Matrix([u, v + u ** 2 / 2, s + R(3, 10) * u * v])
     X = sp.Matrix([A1 + R(3, 10) * A2 ** 2 + R(1, 5) * A3 ** 2, A2 + R(1, 10) * A3 ** 2, A3])
-    sub = dict(zip((A1, A2, A3), Y))
+    sub = dict(zip((A1, A2, A3), Y, strict=True))
     x, y, w = (e.xreplace(sub) for e in X)
     fx, fy = _polar(x, y)
     D1 = X.jacobian([A1, A2, A3]).xreplace(sub)

@@ -292,7 +292,7 @@ def test_codim2_sign_scan_does_not_fall_back_to_mpmath(monkeypatch):
     assert calls == []
     # the two transitions of the micron-scale law (Putelat et al. 2010, Fig. 17) as computed at
     # full accuracy (README: 1.0395e-5 and 2.0794e-4 m/s)
-    assert len(pts) == 2 and all(rel(p.V, v) < 1e-4 for p, v in zip(pts, (1.0395e-5, 2.0794e-4)))
+    assert len(pts) == 2 and all(rel(p.V, v) < 1e-4 for p, v in zip(pts, (1.0395e-5, 2.0794e-4), strict=True))
     # the same scan at full accuracy does need the 50/80-digit route (so the count above can fail),
     # and the sign-only values agree in sign with those accurate values everywhere
     p = d.block.resolve(None)

@@ -126,5 +126,5 @@ def test_sweep_resumes_after_interruption(tmp_path):
     lines = f.read_text().splitlines()
     f.write_text("\n".join(lines[:2]) + "\n" + lines[2][:25])
     again = run_sweep(om, "up", out=tmp_path / "a", spec=spec, workers=1, progress=False)
-    for a, b in zip(full.attractors, again.attractors):
+    for a, b in zip(full.attractors, again.attractors, strict=True):
         assert np.allclose(a.x_section, b.x_section, rtol=0, atol=1e-12)

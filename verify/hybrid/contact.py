@@ -469,7 +469,7 @@ class ContactModel:
                 gs.append(Guard("lift-off", lam_n, lambda t, y: Jump(
                     "flight", mech.project(t, y, normal_velocity=True), "lift-off (λ_N = 0)")))
                 if mode == "stick":
-                    static = dict(zip((1, -1), mech.static_mu()))
+                    static = dict(zip((1, -1), mech.static_mu(), strict=True))
 
                     def onset(sgn, static=static):
                         mu = static[sgn]

@@ -121,7 +121,7 @@ def slip_cycle(mu: float, params: Mapping[str, float] | None = None, s: int = 1,
     tt = np.linspace(0, T, 4001)
     ph, w = sol.sol(tt)
     _, L = _flow(p, mu, s, *law)
-    lam = np.array([L(a_, b_) for a_, b_ in zip(ph, w)])
+    lam = np.array([L(a_, b_) for a_, b_ in zip(ph, w, strict=True)])
     gT = p["l"] * np.cos(ph) * w - v
     i = int(np.argmin(lam))
     lam_min = _parabola_min(lambda t: L(*sol.sol(t)), tt, i)
@@ -358,7 +358,7 @@ def flight_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[fl
     cm, sol = _attractor(lo, start[0], start[1], p, t_end)
     t, y, modes = sol.trajectory()
     k = (t > t_end - t_keep) & np.array([m in ("stick", "slip+", "slip-") for m in modes])
-    lam = min(float(np.min(cm.forces(m, tt, y[:, i])[1])) for i, (tt, m) in enumerate(zip(t, modes)) if k[i])
+    lam = min(float(np.min(cm.forces(m, tt, y[:, i])[1])) for i, (tt, m) in enumerate(zip(t, modes, strict=True)) if k[i])
     return FlightOnset(0.5 * (lo + hi), (lo, hi), lam, n)
 
 

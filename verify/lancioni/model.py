@@ -90,14 +90,14 @@ class Lancioni(ContactMechanics):
             law = coulomb(float(mu))
         check_friction(law)
         vals = [float(law.defaults()[p.name]) if p.name in law.defaults() else None for p in law.parameters]
-        missing = [p.name for p, x in zip(law.parameters, vals) if x is None]
+        missing = [p.name for p, x in zip(law.parameters, vals, strict=True) if x is None]
         if missing:
             raise InputError(f"friction law {law.name!r}: parameter(s) {', '.join(missing)} need a value")
         dep = any(V_SLIP in law.branch(s).free_symbols for s in (1, -1))
         if dep:
             lo, hi = law.limits_at_zero()
         else:  # constant branches (Coulomb): the limits are their values
-            at = {p.symbol: x for p, x in zip(law.parameters, vals)}
+            at = {p.symbol: x for p, x in zip(law.parameters, vals, strict=True)}
             lo, hi = (float(law.branch(s).xreplace(at)) for s in (-1, 1))
         if self.mu is not None and self.friction is not None and not np.isclose(float(self.mu), hi, rtol=1e-14,
                                                                                  atol=0.0):

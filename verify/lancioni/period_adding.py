@@ -293,7 +293,7 @@ def stick_free_saddle(mu: float, params: Mapping[str, float] | None = None, tol:
         ev = list(sol.events)
         imp = [i for i, e in enumerate(ev) if e.guard == "impact"]
         gm, stuck = [], False
-        for a, b in zip(imp[:-1], imp[1:]):
+        for a, b in zip(imp[:-1], imp[1:], strict=True):
             if any(e.to_mode == "stick" for e in ev[a:b]):
                 stuck = True
                 break

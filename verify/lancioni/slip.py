@@ -67,7 +67,7 @@ SET1: dict[str, float] = {"m1": 0.1, "m2": 1.0, "l": 1.0, "k_y": 100.0, "k_phi":
 SET2: dict[str, float] = {**SET1, "m1": 0.4, "k_phi": 25.0}
 PARAM_NAMES = tuple(SET1)
 #: the mechanical parameters' symbols, by name
-MECHANICAL = dict(zip(PARAM_NAMES, (m1, m2, l, k_y, k_phi, c_y, c_phi, phi0, y0, g)))
+MECHANICAL = dict(zip(PARAM_NAMES, (m1, m2, l, k_y, k_phi, c_y, c_phi, phi0, y0, g), strict=True))
 #: the belt velocity v in the slip mode's relative velocity g_T = lω cos φ − v (m/s)
 v_belt = sp.Symbol("v_belt", real=True)
 _TAKEN = {*PARAM_NAMES, "phi", "omega", "v_belt"}
@@ -443,7 +443,7 @@ def hopf_bracket(params: Mapping[str, float] | None = None, s: int = 1, n: int =
     else:  # pieces (0, F p0], (F p0, F² p0], ...: fine near the law's own value, wide far from it
         ends = [far / SCAN_FACTOR ** k for k in range(SCAN_STEPS - 1, -1, -1)]
         grid = np.concatenate([np.linspace(a / n if i == 0 else a + (b - a) / n, b, n)
-                               for i, (a, b) in enumerate(zip([0.0] + ends[:-1], ends))])
+                               for i, (a, b) in enumerate(zip([0.0] + ends[:-1], ends, strict=True))])
     fns = slip_functions(s, friction)
     base = slip_values(params, s, friction, v)
     prev = None

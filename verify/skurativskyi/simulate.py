@@ -122,7 +122,7 @@ class Run:
         cubic Hermite between step ends), impacts and detachments as events."""
         log = EventLog()
         xI = self.params.xI
-        ev = sorted([(t, v, "impact") for t, v in zip(self.impacts, self.impact_v)]
+        ev = sorted([(t, v, "impact") for t, v in zip(self.impacts, self.impact_v, strict=True)]
                     + [(t, np.nan, "detach") for t in self.detachments])
         for t, v, g in ev:
             frm, to = ("free", "contact") if g == "impact" else ("contact", "free")

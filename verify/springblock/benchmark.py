@@ -25,7 +25,7 @@ TARGET_ERROR = 1e-8
 def cpu_at_error(points: list[tuple[float, float]], target: float = TARGET_ERROR) -> float:
     """log–log interpolation of CPU time at ``target`` error from (error, cpu) pairs."""
     pts = sorted(points)
-    for (e0, c0), (e1, c1) in zip(pts, pts[1:]):
+    for (e0, c0), (e1, c1) in zip(pts, pts[1:], strict=False):  # consecutive pairs
         if e0 <= target <= e1:
             w = (np.log(target) - np.log(e0)) / (np.log(e1) - np.log(e0))
             return float(np.exp(np.log(c0) + w * (np.log(c1) - np.log(c0))))

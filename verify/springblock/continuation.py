@@ -230,7 +230,7 @@ def plot_branch(branch: Branch, path, title: str = ""):
     panels = [("spring-force excess -k X [N]", -k * xmin, -k * xmax), ("slip rate v [m/s]", vmax, vmin),
               ("slip x - x0 [m]", xmax, xmin), ("stress drop k(Xmax - Xmin) [N]", k * (xmax - xmin), None)]
     fig, axes = plt.subplots(2, 2, figsize=(9, 7))
-    for ax, (lab, hi, lo) in zip(axes.ravel(), panels):
+    for ax, (lab, hi, lo) in zip(axes.ravel(), panels, strict=True):
         for arr in (hi, lo):
             if arr is None:
                 continue

@@ -93,10 +93,10 @@ def compile_law(law: FrictionLaw) -> CompiledLaw:
     lp = [sp.Symbol(f"q{i}", positive=True) for i in range(len(law.parameters))]
     Msym, sig, ksym, Vsym, ell, mu0 = sp.symbols("M_ sigma_ k_ V_ ell_ mu0_", positive=True)
     phi0 = [sp.Symbol(f"phi0_{i}", positive=True) for i in range(ns)]
-    sub = {p.symbol: s for p, s in zip(law.parameters, lp)}
+    sub = {p.symbol: s for p, s in zip(law.parameters, lp, strict=True)}
     vv = Vsym * sp.exp(w)
-    phis = [p0 * sp.exp(ps) for p0, ps in zip(phi0, psis)]
-    sub.update({v_slip: vv, **dict(zip(law.states, phis))})
+    phis = [p0 * sp.exp(ps) for p0, ps in zip(phi0, psis, strict=True)]
+    sub.update({v_slip: vv, **dict(zip(law.states, phis, strict=True))})
 
     def tidy(e):
         return sp.expand_log(e.subs(sub), force=True)
@@ -104,7 +104,7 @@ def compile_law(law: FrictionLaw) -> CompiledLaw:
     mu = tidy(law.mu)
     f = [sp.exp(w) - 1,
          (ell / Vsym) * sp.exp(-w) * (-ksym * ell * xi - sig * (mu - mu0)) / (Msym * Vsym)]
-    for r, ph in zip(law.rates, phis):
+    for r, ph in zip(law.rates, phis, strict=True):
         f.append((ell / Vsym) * sp.expand(tidy(r) / ph))
     psyms = [*lp, Msym, sig, ksym, Vsym, ell, mu0, *phi0]
     # the logarithms of parameters that expand_log produced, and every other parameter-only
@@ -182,7 +182,7 @@ class SpringBlockModel:
         ell = float(length_scale if length_scale is not None else p.get("L", 1e-6))
         phi0 = _steady_state(law, V, p)
         vals = {s: p[s.name] for s in (prm.symbol for prm in law.parameters)}
-        mu0 = float(law.mu.subs({v_slip: V, **dict(zip(law.states, phi0)), **vals}))
+        mu0 = float(law.mu.subs({v_slip: V, **dict(zip(law.states, phi0, strict=True)), **vals}))
         if not np.isfinite(mu0):
             raise InputError(f"law {law.name!r}: friction coefficient not finite at steady sliding V = {V!r}")
         return cls(law, float(V), float(k), dict(p), ell, tuple(phi0), mu0)
@@ -272,7 +272,7 @@ class SpringBlockModel:
     def from_physical(self, X: float, v: float, phis) -> np.ndarray:
         if v <= 0 or any(ph <= 0 for ph in phis):
             raise InputError("slip rate and states must be > 0 for the log variables")
-        return np.array([X / self.ell, math.log(v / self.V), *(math.log(ph / p0) for ph, p0 in zip(phis, self.phi0))])
+        return np.array([X / self.ell, math.log(v / self.V), *(math.log(ph / p0) for ph, p0 in zip(phis, self.phi0, strict=True))])
 
     def critical_mode(self) -> tuple[complex, np.ndarray]:
         """Eigenvalue with the largest real part of J(0) (per unit τ) and its eigenvector with ξ-component 1."""

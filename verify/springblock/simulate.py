@@ -55,7 +55,7 @@ class Run:
         times in seconds, scaled states, linear between steps) and the located crossings as
         ``"section"`` events (guard ``"crossing"``, ``note`` = direction)."""
         log = EventLog()
-        for t, y, d in zip(self.event_t, self.event_y, self.event_dir):
+        for t, y, d in zip(self.event_t, self.event_y, self.event_dir, strict=True):
             log.append(Event(float(t), np.asarray(y), "crossing", "slip", "slip", "section",
                              np.asarray(y), "up" if d > 0 else "down"))
         st = status_from_text(self.status)
