@@ -149,7 +149,8 @@ def parse_expression(text: str, symbols: Mapping[str, sp.Symbol], *, what: str =
     except (RecursionError, MemoryError):
         raise ParseError(f"{what} is too deeply nested or too large") from None
     except (ValueError, OverflowError, TypeError, ArithmeticError, AttributeError) as exc:
-        raise ParseError(f"{what} cannot be parsed: {type(exc).__name__}: {str(exc).splitlines()[0][:120] if str(exc) else ''}") from None
+        raise ParseError(f"{what} cannot be parsed: {type(exc).__name__}: "
+                         f"{str(exc).splitlines()[0][:120] if str(exc) else ''}") from None
 
 
 def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
@@ -214,7 +215,8 @@ def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
         if isinstance(node, ast.Constant):
             if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
                 raise ParseError(f"{what}: literal {node.value!r} is not a number")
-            if isinstance(node.value, float) and node.value != node.value or node.value in (float("inf"), float("-inf")):
+            if (isinstance(node.value, float) and node.value != node.value
+                    or node.value in (float("inf"), float("-inf"))):
                 raise ParseError(f"{what}: literal {token!r} is not a finite number")
             val = sp.Integer(node.value) if isinstance(node.value, int) else sp.Float(repr(node.value))
             return bounded(val, token)

@@ -96,7 +96,8 @@ class VelocityFriction(Law):
         if not isinstance(self.name, str) or not self.name.strip() or len(self.name) > 200:
             raise InputError(f"a law needs a name (a non-empty string of at most 200 characters), got {self.name!r}")
         if self.quantity not in QUANTITIES:
-            raise InputError(f"law {self.name!r}: quantity must be one of {', '.join(QUANTITIES)}, got {self.quantity!r}")
+            raise InputError(f"law {self.name!r}: quantity must be one of {', '.join(QUANTITIES)}, got "
+                             f"{self.quantity!r}")
         names = [p.name for p in self.parameters]
         for n in names:
             _check_parameter_name(n)

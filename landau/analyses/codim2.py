@@ -269,7 +269,8 @@ class GeneralisedHopfPoint:
             out["fold_of_cycles"] = {
                 "side": _SIDE[self.fold_side], "k_minus_kc_per_dV2": self.fold_p1_coefficient,
                 "amplitude_per_sqrt_dV": self.fold_amplitude_coefficient,
-                "formula": "k_fold - kc(V) = -Lambda(V)^2/(8 Lambda5 Gamma_bar), amplitude = sqrt(-2 Lambda(V)/Lambda5)"}
+                "formula": "k_fold - kc(V) = -Lambda(V)^2/(8 Lambda5 Gamma_bar), "
+                           "amplitude = sqrt(-2 Lambda(V)/Lambda5)"}
         return out
 
     def __repr__(self) -> str:

@@ -432,7 +432,8 @@ def hopf_curve(system: DynamicalSystem, params: Mapping[str, float], second: str
                      p2=np.array(P2), omega=np.array([r.omega_c for r in res]), l1=L1, generalised_hopf=tuple(ghs))
 
 
-def _locate_gh(system: DynamicalSystem, tracker: _HopfTracker, a: float, b: float, with_l2: bool) -> GeneralisedHopfPoint:
+def _locate_gh(system: DynamicalSystem, tracker: _HopfTracker, a: float, b: float,
+               with_l2: bool) -> GeneralisedHopfPoint:
     last = {}
 
     def l1(v):

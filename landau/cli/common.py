@@ -16,7 +16,8 @@ SYSTEM_PARAMS = ("M", "g", "sigma")
 def add_law_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("law", nargs="?", default=None,
                    help=f"built-in law ({', '.join(BUILTIN)}) or, with --mu, a name for an inline law")
-    p.add_argument("--mu", default=None, help="inline friction coefficient, e.g. 'a_v + a*log(v/V_s) + b*log(V_s*phi/L)'")
+    p.add_argument("--mu", default=None,
+                   help="inline friction coefficient, e.g. 'a_v + a*log(v/V_s) + b*log(V_s*phi/L)'")
     p.add_argument("--state", action="append", default=[], metavar="NAME=RATE",
                    help="inline state variable and its rate dNAME/dt (repeatable), e.g. phi='1 - v*phi/L'")
     p.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",

@@ -31,7 +31,8 @@ def run(args) -> dict:
     for n in names:
         law = get_law(n)
         out.append({"name": law.name, "kind": "rate-and-state", "source": law.source,
-                    "description": law.description, "mu": str(law.mu), "states": {str(s): str(r) for s, r in zip(law.states, law.rates, strict=True)},
+                    "description": law.description, "mu": str(law.mu),
+                    "states": {str(s): str(r) for s, r in zip(law.states, law.rates, strict=True)},
                     "convention": "rates are dphi/dt (Putelat et al.: dphi/dt = -G)",
                     "parameters": _parameters(law)})
     if not out:
@@ -51,6 +52,6 @@ def render(doc: dict) -> str:
             lines.append(f"  mu = {law['mu']}")
             for s, r in law["states"].items():
                 lines.append(f"  d{s}/dt = {r}")
-        lines.append("  parameters: " + ", ".join(f"{p['name']}={p['default']:g}{(' ' + p['units']) if p['units'] else ''}"
-                                              for p in law["parameters"]))
+        lines.append("  parameters: " + ", ".join(
+            f"{p['name']}={p['default']:g}{(' ' + p['units']) if p['units'] else ''}" for p in law["parameters"]))
     return "\n".join(lines)

@@ -1,4 +1,5 @@
-"""Transition velocity V*(p) where the Hopf bifurcation changes nature, and the critical p* (Putelat et al. 2010, Sec. 4.2).
+"""Transition velocity V*(p) where the Hopf bifurcation changes nature, and the critical p*
+(Putelat et al. 2010, Sec. 4.2).
 
 Continues every codimension-two point (Λ = 0 on the Hopf line) in a law parameter and
 finds p*, where a branch V*(p) meets the extremum V_m(p) of μ_ss and disappears.

@@ -74,7 +74,8 @@ def check_source(src: str) -> None:
                                                     and not node.attr.startswith("_")):
             raise InputError(f"generated code accesses attribute {ast.unparse(node)!r}: refusing to compile it")
         if isinstance(node, ast.Call) and not (isinstance(node.func, ast.Attribute)
-                                               or (isinstance(node.func, ast.Name) and node.func.id in ALLOWED_BUILTINS)):
+                                               or (isinstance(node.func, ast.Name)
+                                                   and node.func.id in ALLOWED_BUILTINS)):
             raise InputError(f"generated code calls {ast.unparse(node.func)!r}: refusing to compile it")
         if isinstance(node, ast.Name) and node.id.startswith("__"):
             raise InputError(f"generated code uses the name {node.id!r}: refusing to compile it")

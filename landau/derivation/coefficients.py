@@ -184,7 +184,8 @@ class Coefficient:
                 f"units {self.units.replace('^', '')}; .latex() gives the formula")
 
     def __repr__(self) -> str:
-        return f"Coefficient({self.name}: {ALL_QUANTITIES[self.name][1]}, {ALL_QUANTITIES[self.name][2]}, [{self.units}])"
+        meaning, symbol = ALL_QUANTITIES[self.name][1], ALL_QUANTITIES[self.name][2]
+        return f"Coefficient({self.name}: {meaning}, {symbol}, [{self.units}])"
 
     def __call__(self, Vs, **params) -> np.ndarray:
         return self.derivation.evaluate(Vs, params, [self.name])[self.name]

@@ -173,7 +173,8 @@ def _faa_terms(target: tuple[int, int], monomials: Sequence[tuple[int, int]], ma
         yield ms, weight
 
 
-def quintic_coefficient(vec: FredholmVectors, J, E, w, tensors: Mapping[int, Mapping[tuple, Any]], one) -> QuinticCoefficients:
+def quintic_coefficient(vec: FredholmVectors, J, E, w, tensors: Mapping[int, Mapping[tuple, Any]],
+                        one) -> QuinticCoefficients:
     """b and c of the amplitude equation to fifth order, by the Fredholm condition order by order.
 
     With p = p_c, y = Σ h_{jk} z^j z̄^k (z = εA e^{iωt}, h₁₀ = q, h₀₁ = q̄) and

@@ -118,7 +118,8 @@ def _derivation_latex(d, quantities: Sequence[str], fragment: bool, progress) ->
         Wsym = sp.Symbol("W")
         text(r"The Hopf line has no closed form ($n>1$ state variables): $k_c$ and $\omega_c$ are computed "
              r"numerically. $\omega_c^2$ is the positive root $W$ of the Hopf polynomial below at which the "
-             r"stiffness $k = -\mathrm{Re}(P\bar Q)/|Q|^2$ is largest ($\det(\lambda E - J) = P(\lambda) + k Q(\lambda)$, "
+             r"stiffness $k = -\mathrm{Re}(P\bar Q)/|Q|^2$ is largest ($\det(\lambda E - J) = P(\lambda) + k "
+             r"Q(\lambda)$, "
              r"$\lambda = i\omega$):")
         text(align_block(equation_lines("0", H.as_expr().xreplace({d.hopf._hopf_polys[0].gen: Wsym}), names,
                                         letter="H")))

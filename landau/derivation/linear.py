@@ -124,7 +124,8 @@ class HopfPoint:
     def _repr_latex_(self) -> str:
         if self.status != "ok":
             return rf"$V = {self.V:.4g}$: \text{{{self.reason}}}"
-        return rf"$V = {self.V:.4g}\,\mathrm{{m/s}},\ k_c = {self.kc:.6g}\,\mathrm{{N/m}},\ \omega_c = {self.omega_c:.6g}\,\mathrm{{rad/s}}$"
+        return (rf"$V = {self.V:.4g}\,\mathrm{{m/s}},\ k_c = {self.kc:.6g}\,\mathrm{{N/m}},\ "
+                rf"\omega_c = {self.omega_c:.6g}\,\mathrm{{rad/s}}$")
 
 
 class HopfLine:
@@ -206,7 +207,8 @@ class HopfLine:
         """k_c(V) in terms of the law (atoms substituted), eq. (7)."""
         cf = self.closed_form
         if cf is None:
-            raise InputError(f"{self.system.name}: k_c has no closed form (more than one state); use numeric evaluation")
+            raise InputError(f"{self.system.name}: k_c has no closed form (more than one state); "
+                             "use numeric evaluation")
         return self.jets.expand_atoms(cf[0])
 
     @property
@@ -239,7 +241,8 @@ class HopfLine:
         H, re, q2 = self._hopf_polys
         atoms = self.jets.atoms
         return ([CompiledFormula(c, self.args, atoms, "mpmath") for c in H.all_coeffs()],
-                CompiledFormula(re, (W, *self.args), atoms, "mpmath"), CompiledFormula(q2, (W, *self.args), atoms, "mpmath"))
+                CompiledFormula(re, (W, *self.args), atoms, "mpmath"),
+                CompiledFormula(q2, (W, *self.args), atoms, "mpmath"))
 
     def numeric_point_mp(self, vals: Sequence[Any]) -> tuple[Any, Any]:
         """(k_c, ω_c²) of the n-state route at the working mpmath precision.
@@ -382,7 +385,8 @@ class HopfLine:
                 out.append(HopfPoint(float(Vi), "ok", float(kc[i]), float(om[i]), phi, float(mu[i]), float(dmu[i])))
             else:
                 reason = NO_HOPF_STABLE if dmu[i] >= 0 else \
-                    "no Hopf bifurcation: velocity weakening but no oscillatory instability (check the direct effect mu_v > 0)"
+                    ("no Hopf bifurcation: velocity weakening but no oscillatory instability "
+                     "(check the direct effect mu_v > 0)")
                 out.append(HopfPoint(float(Vi), "no-hopf", phi_ss=phi, mu_ss=float(mu[i]), dmu_ss=float(dmu[i]),
                                      reason=reason, weakening=self.weakening_range(p)))
         return out

@@ -271,8 +271,10 @@ def first_lyapunov(system: DynamicalSystem, values: Mapping[sp.Symbol | str, Any
         res_q = max(abs(sum(A[i, j] * q[j] for j in range(n)) - 1j * om * q[i]) for i in range(n))
         res_p = max(abs(sum(pbar[i] * A[i, j] for i in range(n)) - 1j * om * pbar[j]) for j in range(n))
         scale = mpmath.mnorm(A, 1)
-        if res_q > mpmath.mpf(10) ** (-(dps // 2)) * scale or res_p > mpmath.mpf(10) ** (-(dps // 2)) * scale * max(abs(z) for z in pbar):
-            raise SingularPointError(f"eigenvectors inaccurate at p = {float(pc):.10g} (residuals {float(res_q):.2g}, {float(res_p):.2g})")
+        small = mpmath.mpf(10) ** (-(dps // 2)) * scale
+        if res_q > small or res_p > small * max(abs(z) for z in pbar):
+            raise SingularPointError(f"eigenvectors inaccurate at p = {float(pc):.10g} (residuals {float(res_q):.2g}, "
+                                     f"{float(res_p):.2g})")
         qb = [mpmath.conj(z) for z in q]
         B, C3 = tens[2], tens[3]
         Bqq = _form(B, [q, q], n)

@@ -112,7 +112,8 @@ class Derivation:
 
     @cached_property
     def quintic(self):
-        """b and c of dA/dT = b A|A|² + c A|A|⁴ at the Hopf point (:func:`landau.derivation.fredholm.quintic_coefficient`),
+        """b and c of dA/dT = b A|A|² + c A|A|⁴ at the Hopf point
+        (:func:`landau.derivation.fredholm.quintic_coefficient`),
         in atoms with ω symbolic; builds the fourth and fifth derivatives (only when asked for)."""
         J, E, _, _ = self._structure()
         tensors = {m: self.jets.order(m) for m in (2, 3, 4, 5)}
@@ -286,7 +287,8 @@ class Derivation:
         return (CompiledFormula(kc, self.args, self.jets.atoms, "mpmath"),
                 CompiledFormula(W_c, self.args, self.jets.atoms, "mpmath"))
 
-    def evaluate_mp(self, V0: float, params: Mapping[str, float], names: Iterable[str], dps: int = 50) -> dict[str, Any]:
+    def evaluate_mp(self, V0: float, params: Mapping[str, float], names: Iterable[str],
+                    dps: int = 50) -> dict[str, Any]:
         """The same formulas evaluated at one point with mpmath at ``dps`` digits.
 
         Parameters

@@ -343,7 +343,8 @@ def refine_mpmath(d: "Derivation", out: dict[str, np.ndarray], vals, where: np.n
         out["degenerate"][idx] = degenerate
 
 
-def finish(d: "Derivation", Vs, vals, r: Raw, names, bases, sign_only: bool, params: dict[str, Any]) -> CoefficientTable:
+def finish(d: "Derivation", Vs, vals, r: Raw, names, bases, sign_only: bool,
+           params: dict[str, Any]) -> CoefficientTable:
     """The table of a route's values: NaN where there is no Hopf point, doubtful points from
     :func:`refine_mpmath`, C composed from Γ̄ and Λ; a coefficient that is not finite where a
     Hopf point exists raises :class:`~landau.errors.SingularPointError`."""

@@ -154,7 +154,8 @@ def html_record(title: str, fields: Mapping[str, Any], *, units: Mapping[str, st
     for k, v in fields.items():
         u = (units or {}).get(k)
         val = format_value(v, digits) + (f" {u}" if u else "")
-        rows.append(f"<tr><th style='text-align:left'>{esc(str(k))}</th><td style='text-align:left'>{esc(val)}</td></tr>")
+        rows.append(f"<tr><th style='text-align:left'>{esc(str(k))}</th><td "
+                    f"style='text-align:left'>{esc(val)}</td></tr>")
     out = f"<div class='landau-result'><b>{esc(title)}</b><table>{''.join(rows)}</table>"
     if note:
         out += f"<small>{esc(note)}</small>"

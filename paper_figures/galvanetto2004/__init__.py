@@ -53,7 +53,8 @@ def fig7(out_dir: Path) -> list[Path]:
         ax.set_xlabel("X")
     axs[0].set_ylabel("dX/dt")
     axs[0].legend(fontsize=7)
-    fig.suptitle("Fig. 7: one block, γ=3, δ=0.2 (the printed δ=0 is a misprint here), c=0: type II at V=1.2409, type I at V=10.8011")
+    fig.suptitle("Fig. 7: one block, γ=3, δ=0.2 (the printed δ=0 is a misprint here), c=0: type II at V=1.2409, type I "
+                 "at V=10.8011")
     return _save(fig, out_dir, "fig7")
 
 
@@ -289,7 +290,8 @@ def fig16(out_dir: Path) -> list[Path]:
     axs[1].set_xlabel("X1")
     axs[1].set_ylabel("X2")
     axs[1].set_title("(b) displacement plane and g.s.p. region Γ")
-    fig.suptitle(f"Fig. 16: multi-sliding, α=1.2, β=2, δ=0, V=0.05, γ=10.756 (located γ*={B.multi_sliding(gamma=10.756, d0=0.1969494).value:.6f})")
+    fig.suptitle(f"Fig. 16: multi-sliding, α=1.2, β=2, δ=0, V=0.05, γ=10.756 (located "
+                 f"γ*={B.multi_sliding(gamma=10.756, d0=0.1969494).value:.6f})")
     return _save(fig, out_dir, "fig16")
 
 

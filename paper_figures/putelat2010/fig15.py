@@ -53,7 +53,8 @@ def make_law_figure(out_dir: Path, name: str, law: str, cases: dict, title: str)
     ax[1].set_ylim(bottom=1e2)
     ax[1].set_ylabel("$k_c$ (N m$^{-1}$)")
     ax[2].set_ylabel(r"$\Lambda$ (m$^{-2}$ s$^{-1}$)")
-    for a, t in zip(ax, ("(a) steady-state friction", "(b) critical stiffness", r"(c) Landau coefficient"), strict=True):
+    for a, t in zip(ax, ("(a) steady-state friction", "(b) critical stiffness", r"(c) Landau coefficient"),
+                    strict=True):
         panel_title(a, t)
         vlabel(a)
         a.legend(fontsize=7)

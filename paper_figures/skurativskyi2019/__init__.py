@@ -135,7 +135,8 @@ def _portrait(ax, omega, n_transient=60, n_show=1, rtol=RTOL_FIG, profile=False)
 
 def fig8(out_dir: Path) -> list[Path]:
     fig, axs = plt.subplots(2, 4, figsize=(15, 7))
-    for ax, w, ns in zip(axs.flat, (14.0, 14.1, 15.0, 16.0, 17.0, 17.5, 18.0, 19.0), (1, 1, 1, 1, 1, 1, 4, 2), strict=True):
+    for ax, w, ns in zip(axs.flat, (14.0, 14.1, 15.0, 16.0, 17.0, 17.5, 18.0, 19.0), (1, 1, 1, 1, 1, 1, 4, 2),
+                         strict=True):
         _portrait(ax, w, n_show=ns)
     fig.suptitle("Fig. 8: impact adding (red line x = x_I, red dots t = 2πi/ω, blue dots impacts)")
     fig.tight_layout()

@@ -1,4 +1,5 @@
-"""The general Hopf engine (landau.derivation.general, landau.analyses.continuation): closed forms, independent routes, defects.
+"""The general Hopf engine (landau.derivation.general, landau.analyses.continuation): closed forms, independent
+routes, defects.
 
 Every check compares with a closed form, or with an independent computation: sympy's exact
 derivatives against the Taylor-arithmetic jets, Kuznetsov's projection formula

@@ -25,7 +25,8 @@ def _paper_G_derivatives(law):
     F = sigma * law.mu
     G = -law.rates[0]
     d = lambda e, x: sp.diff(e, x).subs(ss)
-    return d(F, v), d(F, phi), d(G, v), d(G, phi), sp.diff((sigma * law.mu).subs(phi, law.steady_state_closed_form[0]), v).subs(v, V)
+    mu_ss = (sigma * law.mu).subs(phi, law.steady_state_closed_form[0])
+    return d(F, v), d(F, phi), d(G, v), d(G, phi), sp.diff(mu_ss, v).subs(v, V)
 
 
 @pytest.mark.parametrize("name", ["dieterich", "ruina"])

@@ -162,7 +162,8 @@ def test_spring_block_quintic_both_routes_at_codim2(derivations, name, params):
         f64 = d.evaluate(np.array([pt.V]), p, ["Lambda5"])["Lambda5"][0]
         k = lyapunov_coefficients(d.block.system, {**p, "V": pt.V}, float(mp["kc"]),
                                   omega_c=float(mp["omega_c"]), jets=d.jets)
-        ctx = f"{name} V*={pt.V:.8g}: Fredholm {float(mp['Lambda5']):.15g}, float64 {f64:.15g}, Kuznetsov {k.Lambda5:.15g}"
+        ctx = (f"{name} V*={pt.V:.8g}: Fredholm {float(mp['Lambda5']):.15g}, float64 {f64:.15g}, "
+               f"Kuznetsov {k.Lambda5:.15g}")
         assert k.Lambda5 == pytest.approx(float(mp["Lambda5"]), rel=REL), ctx
         assert f64 == pytest.approx(float(mp["Lambda5"]), rel=REL), ctx
         assert k.Lambda == pytest.approx(float(mp["Lambda"]), rel=1e-6, abs=1e-12 * abs(k.Lambda5) * 1e-6)

@@ -119,7 +119,8 @@ def two_block_sliding(kind: str, alpha: float = 1.2, beta: float = 1.3, gamma: f
             if per is None:
                 raise NoBifurcationError(
                     f"two-block type {kind} sliding: the test function changes sign for V in [{bracket[0]:.6g}, "
-                    f"{bracket[1]:.6g}], but the map's attractor at V = {bracket[0]:.6g} is not periodic (period <= 8): "
+                    f"{bracket[1]:.6g}], but the map's attractor at V = {bracket[0]:.6g} is not periodic (period <= "
+                    f"8): "
                     "the sliding happens on a non-periodic attractor, not at a point of a periodic orbit "
                     "(pass period= to follow a periodic orbit of that period)")
             period = per

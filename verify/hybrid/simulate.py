@@ -272,7 +272,8 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                     t, y = solver.t, solver.y.copy()
                     return finish("t_end")
                 t_old, t_new = solver.t_old, solver.t
-                probe = (screen.advance(t_old, t_new, np.asarray(solver.y, dtype=float), np.asarray(solver.f, dtype=float))
+                probe = (screen.advance(t_old, t_new, np.asarray(solver.y, dtype=float),
+                                        np.asarray(solver.f, dtype=float))
                          if use_screen else 0 if np.isfinite(solver.y).all() else -1)
                 if probe < 0:
                     raise IntegratorError(f"mode {mname!r}: non-finite state", t=t_old, state=y)

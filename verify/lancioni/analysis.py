@@ -259,7 +259,8 @@ def growth_rate(mu: float, params: Mapping[str, float] | None = None, t_end: flo
     return GrowthRate(mu, sigma, len(ev), modes)
 
 
-def hopf_by_simulation(params: Mapping[str, float] | None = None, delta: float = 2e-3, **kw) -> tuple[float, GrowthRate, GrowthRate]:
+def hopf_by_simulation(params: Mapping[str, float] | None = None, delta: float = 2e-3,
+                       **kw) -> tuple[float, GrowthRate, GrowthRate]:
     """Simulated Hopf point: zero of the measured growth rate between μ_c ∓ delta (engine's μ_c as centre).
 
     ``friction=``/``parameter=`` (passed on to :func:`growth_rate`) give a law and its bifurcation
@@ -358,7 +359,8 @@ def flight_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[fl
     cm, sol = _attractor(lo, start[0], start[1], p, t_end)
     t, y, modes = sol.trajectory()
     k = (t > t_end - t_keep) & np.array([m in ("stick", "slip+", "slip-") for m in modes])
-    lam = min(float(np.min(cm.forces(m, tt, y[:, i])[1])) for i, (tt, m) in enumerate(zip(t, modes, strict=True)) if k[i])
+    lam = min(float(np.min(cm.forces(m, tt, y[:, i])[1]))
+              for i, (tt, m) in enumerate(zip(t, modes, strict=True)) if k[i])
     return FlightOnset(0.5 * (lo + hi), (lo, hi), lam, n)
 
 

@@ -294,5 +294,6 @@ def slip_state(mech: Lancioni, phi: float, phidot: float = 0.0) -> np.ndarray:
     return np.array([phi, l * np.cos(phi), phidot, -l * np.sin(phi) * phidot])
 
 
-__all__ = ["Lancioni", "at_parameter", "build_at", "check_friction", "ConstantBelt", "SineBelt", "build", "slip_state", "PHIDOT_MAX", "PHI_ZERO_UP",
+__all__ = ["Lancioni", "at_parameter", "build_at", "check_friction", "ConstantBelt", "SineBelt", "build", "slip_state",
+           "PHIDOT_MAX", "PHI_ZERO_UP",
            "SET1", "SET2"]

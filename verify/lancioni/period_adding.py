@@ -100,7 +100,8 @@ class StickExit:
     state: np.ndarray                  # (φ, y, φ̇, ẏ) at P, γ_N = γ_T = 0
 
     def __repr__(self) -> str:
-        return f"StickExit(mu={self.mu:.9g}, phi_P={self.phi:.10f}, stick for phi in [{self.interval[0]:.5f}, {self.interval[1]:.5f}])"
+        return (f"StickExit(mu={self.mu:.9g}, phi_P={self.phi:.10f}, "
+                f"stick for phi in [{self.interval[0]:.5f}, {self.interval[1]:.5f}])")
 
 
 def stick_exit(cm) -> StickExit:

@@ -298,7 +298,8 @@ def sweep_to_window(start: float, period: int = 7, impacts: int = 14, params: Pa
     the same settled orbit (a stride skips only stretches that begin and end on it).
 
     Each point: ``n_step`` transient periods from the previous attractor (``n_first`` at the first
-    point, from ``y0`` — a state at phase 0 — or from rest at X₀), then ``n_keep`` observed periods (default 4·``period``, a multiple of
+    point, from ``y0`` — a state at phase 0 — or from rest at X₀), then ``n_keep`` observed periods (default
+    4·``period``, a multiple of
     the period; the section period is searched up to ``n_keep``/2 with ``section_tol`` [m]) —
     the paper's sweep protocol (100 / 50 transient periods, Sec. 4).
 

@@ -126,7 +126,8 @@ if __name__ == "__main__":  # pragma: no cover - manual run
         d = Derivation(SpringBlock(get_law(name)))
         (pt,) = codim2_points(d, lo, hi, params)
         side = -1 if pt.sign_below > 0 else 1
-        print(name, "V* =", pt.V, "fold side", side, [spring_block_fold(d, pt.V * (1 + side * x), params) for x in deltas],
+        print(name, "V* =", pt.V, "fold side", side,
+              [spring_block_fold(d, pt.V * (1 + side * x), params) for x in deltas],
               flush=True)
         rows, slope = fold_convergence(name, params, pt.V, deltas, side)
         for r in rows:

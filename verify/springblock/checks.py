@@ -41,7 +41,8 @@ _DERIVATIONS: dict[int, object] = {}
 
 
 def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = None) -> HopfResult:
-    """The engine's Hopf point of the spring–block at driving velocity V, as a :class:`~landau.derivation.hopf.HopfResult`.
+    """The engine's Hopf point of the spring–block at driving velocity V, as a
+    :class:`~landau.derivation.hopf.HopfResult`.
 
     Spring–block convention (Putelat et al. 2010, eq. 20): p = k, dλ/dk = −Γ̄ + iΩ̄, Λ = 2 Re b, so the
     amplitude is C·sqrt|k − k_c| on the side where the cycle exists and the frequency

@@ -18,7 +18,8 @@ produces, products and quotients of parameters) become derived entries of the pa
 computed once per model (:func:`landau.codegen.kernels.hoist_parameters`), so that a call of the
 compiled field does only state-dependent work; the field and its exact Jacobian are then
 generated and compiled by :mod:`landau.codegen.kernels` (common-subexpression elimination, the
-whitelist of generated syntax, numba through the cross-process code cache).  The dimensionless parameters of the paper (eq. 6) are
+whitelist of generated syntax, numba through the cross-process code cache).  The dimensionless parameters of the paper
+(eq. 6) are
 m = M V_*²/(σL) and κ = kL/σ (σ = Mg); :meth:`SpringBlockModel.from_dimensionless`
 builds the model from (m, κ, V/V_*).
 """
@@ -272,7 +273,8 @@ class SpringBlockModel:
     def from_physical(self, X: float, v: float, phis) -> np.ndarray:
         if v <= 0 or any(ph <= 0 for ph in phis):
             raise InputError("slip rate and states must be > 0 for the log variables")
-        return np.array([X / self.ell, math.log(v / self.V), *(math.log(ph / p0) for ph, p0 in zip(phis, self.phi0, strict=True))])
+        return np.array([X / self.ell, math.log(v / self.V),
+                         *(math.log(ph / p0) for ph, p0 in zip(phis, self.phi0, strict=True))])
 
     def critical_mode(self) -> tuple[complex, np.ndarray]:
         """Eigenvalue with the largest real part of J(0) (per unit τ) and its eigenvector with ξ-component 1."""

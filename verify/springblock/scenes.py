@@ -49,7 +49,8 @@ def _spinodal_extremum(kind: str):
 
 def _modified_dieterich_vm(p: dict) -> dict:
     closed = _v_m_eq41(p)
-    e = _first_extremum("modified-dieterich", "minimum", p, 1e-3 * closed, 1e3 * closed)  # three decades around eq. (41)
+    e = _first_extremum("modified-dieterich", "minimum", p, 1e-3 * closed,
+                        1e3 * closed)  # three decades around eq. (41)
     return {"value": e.V, "closed_form_eq41": closed}
 
 

@@ -120,7 +120,8 @@ register(Scene(
 
 register(Scene(
     name="putelat2010/dieterich-codim2-kc", parameter="k_c(V*)", units="N/m",
-    source="Putelat et al. 2010, Fig. 5(b): k ≈ 2.08e5 N/m (the printed V = 2.31e-5 m/s is not reproducible; Table 1 gives ≈ 2.07e-4)",
+    source="Putelat et al. 2010, Fig. 5(b): k ≈ 2.08e5 N/m (the printed V = 2.31e-5 m/s is not reproducible; Table 1 "
+           "gives ≈ 2.07e-4)",
     compute=_codim2("dieterich", 0, "kc"), defaults={**_T1, **_MECH},
     published=2.08e5, tolerance=_TOL,
     description="stiffness of the Dieterich codimension-two point (Λ_D = 0, V from eq. 34 read with V̂)"))
