@@ -113,7 +113,7 @@ def resolve_law(args) -> tuple[FrictionLaw, dict[str, float]]:
     if args.mu is not None or args.state:
         if args.mu is None or not args.state:
             raise InputError("an inline law needs both --mu and at least one --state NAME=RATE")
-        states = {}
+        states: dict[str, str] = {}
         for item in args.state:
             name, rate = split_assignment(item, "--state", "RATE", states)
             states[name] = rate

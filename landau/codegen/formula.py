@@ -17,7 +17,7 @@ import dis
 import hashlib
 import linecache
 import logging
-from typing import Callable, Mapping, Sequence
+from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 import sympy as sp
@@ -422,7 +422,7 @@ class Tape:
 
     def _constants(self, mode: str) -> list:
         if mode not in self._consts:
-            out = []
+            out: list[Any] = []
             for kind, val, _ in self.ops:
                 if kind != "const":
                     out.append(None)

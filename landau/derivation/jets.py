@@ -63,7 +63,8 @@ class Jets:
                 name = f"d{n}_{ys[i].name}_" + "_".join(ys[j].name for j in idx)
                 atom = self._atom(name, val)
                 if atom != 0:
-                    out[(i, *idx)] = atom
+                    key = (i, *idx)
+                    out[key] = atom
         self._cache[n] = out
         self.built.append(n)
         return out
@@ -160,7 +161,7 @@ class _Series:
         if self.is_const():
             return o.scale(self.value)
         K = self.K
-        out = [{} for _ in range(K + 1)]
+        out: list[dict] = [{} for _ in range(K + 1)]
         for d1 in range(K + 1):
             a = self.c[d1]
             if not a:
@@ -451,5 +452,6 @@ class TaylorJets:
                     mult = 1
                     for j in set(key):
                         mult *= math.factorial(key.count(j))
-                    tens[d][(i, *key)] = v * mult
+                    full = (i, *key)
+                    tens[d][full] = v * mult
         return tens

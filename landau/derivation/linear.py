@@ -34,7 +34,8 @@ NO_HOPF_STABLE = "no Hopf bifurcation: steady sliding is stable for all k"
 def _split_at_iw(poly: sp.Poly) -> tuple[sp.Poly, sp.Poly]:
     """(Re, Im) of a polynomial in λ evaluated at λ = iω, as polynomials in ω over the same
     coefficient domain."""
-    re, im = {}, {}
+    re: dict[tuple[int], Any] = {}
+    im: dict[tuple[int], Any] = {}
     for (m,), c in poly.rep.terms():
         sign = 1 if m % 4 in (0, 1) else -1
         (re if m % 2 == 0 else im)[(m,)] = c if sign == 1 else -c
@@ -225,7 +226,7 @@ class HopfLine:
 
     @cached_property
     def _compiled_closed(self):
-        kc, W_c = self.closed_form  # type: ignore[misc]
+        kc, W_c = self.closed_form
         atoms = self.jets.atoms
         return CompiledFormula(kc, self.args, atoms), CompiledFormula(W_c, self.args, atoms)
 

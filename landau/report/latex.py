@@ -207,7 +207,8 @@ def _shorten(e: sp.Basic, names, width: int, namer: Namer) -> str:
         text = to_latex(work, names)
         if len(text) <= width or not work.args:
             return text
-        sums, others = {}, {}
+        sums: dict[sp.Expr, None] = {}
+        others: dict[sp.Expr, None] = {}
         for sub in sp.preorder_traversal(work):
             if sub is work or sub.is_Atom or sub in names:
                 continue

@@ -184,7 +184,10 @@ def fig12(out_dir: Path) -> list[Path]:
                 pts.append(d)
         ax.plot(np.full(len(pts), b), pts, "k.", ms=1.5)
     # period-1 points left (stable until PD) and right (unstable) of the kink
-    sb, sd, ub, ud = [], [], [], []
+    sb: list[float] = []
+    sd: list[float] = []
+    ub: list[float] = []
+    ud: list[float] = []
     for b in np.linspace(fold + 1e-6, 1.7290, 14):
         p = B.fig12_params(b)
         dk = B.kink(p, -0.096, FIG_STEPPER)

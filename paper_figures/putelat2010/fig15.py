@@ -12,7 +12,8 @@ import numpy as np
 from landau.analyses.transition import codim2_points
 from landau.paper_figures.putelat2010._common import derivation, mu_ss, panel_title, save, symlog_y, vlabel, vw_grid
 
-LAW, PARAMS, REF = "nanoscale", {}, ("spinodal", {"c": 1e-3})
+LAW, REF = "nanoscale", ("spinodal", {"c": 1e-3})
+PARAMS: dict[str, float] = {}
 
 
 def kc_panel(d=None, law=LAW, params=PARAMS) -> dict:

@@ -89,7 +89,7 @@ def map_slope(p: StickSlipParams, d: float, period: int = 1, stepper=None, h: fl
 def orbit_events(p: StickSlipParams, d: float, period: int, stepper=None, sections: bool = False,
                  transparent: frozenset = frozenset()) -> list:
     """Events of the map orbit d, f(d), ..., (one list over ``period`` map steps)."""
-    evs = []
+    evs: list = []
     for _ in range(period):
         ms = two_block_map(p, d, stepper, sections=sections, transparent=transparent)
         evs.extend(ms.events)
