@@ -239,10 +239,10 @@ def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
                 raise ParseError(f"{what}: {token!r} divides by zero (not finite)")
             return bounded(op(left, right), token)
         if isinstance(node, ast.UnaryOp):
-            op = _UNARY.get(type(node.op))
-            if op is None:
+            uop = _UNARY.get(type(node.op))
+            if uop is None:
                 raise ParseError(f"{what}: operator {type(node.op).__name__!r} is not allowed")
-            return op(walk(node.operand))
+            return uop(walk(node.operand))
         if isinstance(node, ast.Call):
             if not isinstance(node.func, ast.Name):
                 raise ParseError(f"{what}: only plain function calls are allowed, not {ast.unparse(node.func)!r}")
