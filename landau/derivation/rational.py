@@ -73,7 +73,8 @@ class Polynomial:
         e = max((_log2(c) for c in scaled if c), default=0)
         scaled = [c / Fraction(2) ** e for c in scaled]
         desc = np.array([float(c) for c in reversed(scaled)] or [0.0])
-        safe = all(np.isfinite(x) and (x != 0 or c == 0) for x, c in zip(desc, reversed(scaled), strict=True))
+        # not strict: the zero polynomial has no coefficients but ``desc`` = [0.0]
+        safe = all(np.isfinite(x) and (x != 0 or c == 0) for x, c in zip(desc, reversed(scaled), strict=False))
         for name, val in (("_desc", desc), ("_abs", np.abs(desc)), ("_k", k), ("_e", e), ("_safe", safe)):
             object.__setattr__(self, name, val)
 
