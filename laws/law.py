@@ -475,8 +475,8 @@ class FrictionLaw(Law):
             growth[ok] = np.linalg.eigvals(jac[ok]).real.max(axis=-1)
         bad = ok & (growth >= 0)
         if np.any(bad):
-            i = tuple(np.argwhere(np.atleast_1d(bad))[0]) if vs.ndim else ()
-            raise DomainError(f"law {self.name!r}: the steady state at v = {float(vs[i]):g} m/s is not stable at "
+            at = tuple(np.argwhere(np.atleast_1d(bad))[0]) if vs.ndim else ()
+            raise DomainError(f"law {self.name!r}: the steady state at v = {float(vs[at]):g} m/s is not stable at "
                               "fixed slip rate (an eigenvalue of d(rates)/d(states) has a non-negative real part)")
 
     def _numeric_steady_state(self, vi: float, values: list[float]) -> list[float]:

@@ -194,10 +194,10 @@ def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
             elif abs(float(ex)) > MAX_EXPONENT:
                 raise ParseError(f"{what}: exponent in {token!r} exceeds {MAX_EXPONENT} in magnitude")
         elif not ex.free_symbols:
-            e = _finite_real(ex)
-            if e is None:
+            ev = _finite_real(ex)
+            if ev is None:
                 raise ParseError(f"{what}: exponent in {token!r} is not a finite real number")
-            if abs(e) > MAX_EXPONENT:
+            if abs(ev) > MAX_EXPONENT:
                 raise ParseError(f"{what}: exponent in {token!r} exceeds {MAX_EXPONENT} in magnitude")
         return base ** ex
 

@@ -156,7 +156,7 @@ def _source_of(fn, ns: dict) -> str | None:
     """The source sympy generated for ``fn``, when every global it reads is the same object in
     the shared namespace ``ns`` (else None: such a function is not cached)."""
     entry = linecache.cache.get(fn.__code__.co_filename)
-    if not entry:
+    if not entry or len(entry) < 3:   # absent, or a lazy entry without the lines
         return None
     source = "".join(entry[2])
     import builtins
@@ -217,9 +217,9 @@ def lambdify(args: Sequence[sp.Symbol], expr, modules: str = "numpy") -> Callabl
             logger.warning("ignoring unusable generated code %s (%s)", path, exc)
             jitcache.discard_keyed_source(key, _LAMBDIFY_TAG)
     fn = sp.lambdify(args, expr, modules=_modules(modules), cse=True)
-    source = _source_of(fn, ns)
-    if source is not None:
-        jitcache.store_keyed_source(key, _LAMBDIFY_TAG, source)
+    generated = _source_of(fn, ns)
+    if generated is not None:
+        jitcache.store_keyed_source(key, _LAMBDIFY_TAG, generated)
     return fn
 
 
@@ -381,7 +381,8 @@ class Tape:
         self._many = isinstance(expr, (list, tuple))       # several outputs sharing one program
         outputs = list(expr) if self._many else [expr]
         slot: dict[sp.Basic, int] = {s: i for i, s in enumerate(inputs)}
-        ops: list[tuple[str, object, tuple[int, ...]]] = []
+        # (kind, value, argument slots): value is None, a function name, an exponent or a constant
+        ops: list[tuple[str, Any, tuple[int, ...]]] = []
         stack = [(e, False) for e in reversed(outputs)]
         while stack:
             node, done = stack.pop()
@@ -397,6 +398,7 @@ class Tape:
                 stack.append((node, True))
                 stack.extend((a, False) for a in node.args if a not in slot)
                 continue
+            op: tuple[str, Any, tuple[int, ...]]
             if node.is_Add:
                 op = ("add", None, tuple(slot[a] for a in node.args))
             elif node.is_Mul:

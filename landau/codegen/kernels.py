@@ -30,7 +30,7 @@ import ast
 import math
 from dataclasses import dataclass
 from dataclasses import field as _field
-from typing import Mapping, Sequence
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 import sympy as sp
@@ -247,10 +247,10 @@ class CompiledSource:
     """
 
     source: str = _field(repr=False)
-    fun: object
-    jac: object | None
-    fun_py: object = _field(repr=False)
-    jac_py: object | None = _field(repr=False)
+    fun: Callable[..., None]
+    jac: Callable[..., None] | None
+    fun_py: Callable[..., None] = _field(repr=False)
+    jac_py: Callable[..., None] | None = _field(repr=False)
 
 
 _COMPILED: dict[str, CompiledSource] = {}

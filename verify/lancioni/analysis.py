@@ -326,7 +326,10 @@ def flight_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[fl
     """
     p = S.resolve(params)
     derived = bracket is None
-    lo, hi = (stick_onset_mu(p)[0], 0.0) if derived else map(float, bracket)
+    if bracket is None:
+        lo, hi = stick_onset_mu(p)[0], 0.0
+    else:
+        lo, hi = map(float, bracket)
     cm = build(lo, 0.0, p)
     y0 = slip_state(cm.mech, S.equilibrium_phi(p, lo, 1) + 0.05)
     cm, sol = _attractor(lo, y0, None, p, t_end)

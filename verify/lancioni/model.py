@@ -74,12 +74,18 @@ class Lancioni(ContactMechanics):
     """
 
     params: Mapping[str, float] = field(default_factory=lambda: dict(SET1))
-    mu: float | None = None
+    mu: float | None = None  # type: ignore[assignment]  # None: from the law; a float after __post_init__
     eN: float = 0.0
     belt: object = ConstantBelt()
     n: int = 2
     name: str = "lancioni"
     friction: VelocityFriction | None = None
+    # derived in __post_init__: the static limits (μ₊, μ₋), the compiled branches, the law's
+    # parameter values and the mechanical constants in the order of eq. (1)
+    _static: tuple[float, float] = field(init=False, repr=False, compare=False)
+    _branch: dict = field(init=False, repr=False, compare=False)
+    _law_values: tuple = field(init=False, repr=False, compare=False)
+    _c: tuple[float, ...] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
         object.__setattr__(self, "params", resolve(self.params))
@@ -186,7 +192,7 @@ PHI_ZERO_UP = Section("phi=0 up", lambda t, y, acc: -y[0])
 
 def build(mu: float | None = None, eN: float = 0.0, params: Mapping[str, float] | None = None, belt=None,
           sections=(PHIDOT_MAX,), stick_tol: float = 0.0, stick_tol_reset: str = "project", *,
-          friction: VelocityFriction | None = None) -> ContactModel:
+          friction: VelocityFriction | None = None) -> ContactModel[Lancioni]:
     """The hybrid model of eq. (1) (set 1 by default, g = 10) at Coulomb coefficient μ, or with a
     velocity-dependent friction law.
 
@@ -262,7 +268,8 @@ def at_parameter(value: float, params: Mapping[str, float] | None = None, fricti
 
 
 def build_at(value: float, eN: float = 0.0, params: Mapping[str, float] | None = None, belt=None, *,
-             friction: VelocityFriction | None = None, parameter: str | None = None, **kw) -> ContactModel:
+             friction: VelocityFriction | None = None, parameter: str | None = None,
+             **kw) -> ContactModel[Lancioni]:
     """:func:`build` with the bifurcation parameter at ``value`` (see :func:`at_parameter`).
 
     Parameters

@@ -345,8 +345,8 @@ def period_adding_steps(params: Mapping[str, float] | None = None, n_steps: int 
     """
     if bracket is None:
         bracket = stick_orbit_window(params)
-    mu_end, seen = end_of_stick_orbit(params, bracket, xtol)
-    seen = list(seen)
+    mu_end, seen_bisection = end_of_stick_orbit(params, bracket, xtol)
+    seen = list(seen_bisection)
     for k in range(24):
         m = mu_end + (bracket[1] - mu_end) * 0.5 ** k
         seen.append((m, exit_orbit(m, params).period))

@@ -44,7 +44,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Mapping
+from typing import Any, Callable, Mapping
 
 import numpy as np
 import sympy as sp
@@ -212,10 +212,10 @@ class SlipFunctions:
     (the mechanical parameters, ``v_belt``, then the law's parameters)."""
 
     names: tuple[str, ...]
-    F: object       # φ̈(φ, ω, *args)  (math module: scalars)
-    L: object       # λ_N(φ, ω, *args)
-    F0: object      # φ̈(φ, 0, *args)  (numpy)
-    J: object       # Jacobian of (ω, φ̈) in (φ, ω)
+    F: Callable[..., float]       # φ̈(φ, ω, *args)  (math module: scalars)
+    L: Callable[..., float]       # λ_N(φ, ω, *args)
+    F0: Callable[..., Any]        # φ̈(φ, 0, *args)  (numpy)
+    J: Callable[..., Any]         # Jacobian of (ω, φ̈) in (φ, ω)
 
     def __repr__(self) -> str:
         return f"SlipFunctions(args={self.names})"
@@ -517,7 +517,7 @@ class DirectionScan:
         return f"DirectionScan(mu in [{self.mu[0]:g}, {self.mu[-1]:g}], Hopf for s = {self.hopf_sign()})"
 
 
-def equilibrium_phi(p: Mapping[str, float], mu_val: float, s: int, friction: VelocityFriction | None = None,
+def equilibrium_phi(p: Mapping[str, float], mu_val: float | None, s: int, friction: VelocityFriction | None = None,
                     parameter: str | None = None, v: float | None = None) -> float:
     """φ_e of the slip equilibrium (Newton on F(φ, 0) = 0 from φ₀).
 

@@ -351,7 +351,7 @@ def fold_point(make_V: Callable[[float], SpringBlockModel], V_guess: float, z_gu
         # D[P(z) − z; det(DP − I)] du = −[P(z) − z; det(DP − I)]  (Newton, central-difference Jacobian)
         du = np.linalg.solve(J, -r)
         u = u + du
-        if np.linalg.norm(du) < tol * max(1.0, np.linalg.norm(u)):
+        if np.linalg.norm(du) < tol * max(1.0, float(np.linalg.norm(u))):
             m = make_V(10 ** u[-1])
             fixed = {n: float(v) for n, v in (("V", m.V), ("k", m.k), ("kappa", m.kappa)) if n != parameter}
             return FoldOfCycles(parameter, float(10 ** u[-1]), float(u[0] * m.ell), fixed=fixed, z=u[:-1].copy())
