@@ -401,7 +401,7 @@ class FrictionLaw(Law):
         J = sp.lambdify(args, jac.tolist(), modules="numpy", cse=True)
         return f, J
 
-    def steady_state_values(self, vs, params: Mapping[str, float]) -> np.ndarray:
+    def steady_state_values(self, vs, params: Mapping[str, float | np.ndarray]) -> np.ndarray:
         """φᵢ,ss at slip rates ``vs`` (any shape), shape (number of states, *vs.shape).
 
         The closed form where there is one; otherwise every positive root of dφ/dt = 0 is
@@ -455,7 +455,7 @@ class FrictionLaw(Law):
         return sp.lambdify([v, *(p.symbol for p in self.parameters)], list(self.steady_state_closed_form),
                            modules="numpy")
 
-    def _check_stable(self, vs: np.ndarray, phis: np.ndarray, params: Mapping[str, float]) -> None:
+    def _check_stable(self, vs: np.ndarray, phis: np.ndarray, params: Mapping[str, float | np.ndarray]) -> None:
         """Refuse a closed-form steady state that is unstable at fixed slip rate (the state runs
         away from it, so the block never slides steadily there)."""
         _, J = self._numeric_rates
@@ -525,7 +525,7 @@ class FrictionLaw(Law):
         raise DomainError(f"law {self.name!r}: {len(stable)} stable positive steady states at v = {vi:g} m/s: "
                           f"{what}; declare the one you mean with FrictionLaw(..., steady_state=...)")
 
-    def check_real(self, vs, phis, params: Mapping[str, float]) -> None:
+    def check_real(self, vs, phis, params: Mapping[str, float | np.ndarray]) -> None:
         """Refuse (:class:`DomainError`) a law whose μ, rates or their first derivatives are not
         real and finite at slip rates ``vs`` and states ``phis`` (the numeric half of the
         reality check; the symbolic half runs when the law is built).

@@ -29,7 +29,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Mapping
+from typing import Callable, Mapping
 
 import numpy as np
 import sympy as sp
@@ -441,4 +441,5 @@ def regularised_coulomb(c: float = 6.6511, T: float = 0.63133, eps: float = 1e-6
                             "viscous + regularised dry resistance")
 
 
-BUILTIN_VELOCITY = {"coulomb": coulomb, "regularised-coulomb": regularised_coulomb}
+BUILTIN_VELOCITY: dict[str, Callable[..., VelocityFriction]] = {"coulomb": coulomb,
+                                                                 "regularised-coulomb": regularised_coulomb}

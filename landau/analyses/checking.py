@@ -269,7 +269,7 @@ def _check_spring_block(law, V: float, eps2: float, params, tolerance, bistabili
         stable = max(pc.detail["unstable_cycle"]["floquet_multipliers"]) < 1
     if pc.agrees:
         verdict, why = Verdict.AGREES, ""
-    elif pc.amplitude_simulated is None:
+    elif pc.amplitude_simulated is None or pc.rel_error is None:
         verdict, why = Verdict.FAILED, "no cycle found by shooting"
     else:
         verdict = Verdict.DISAGREES

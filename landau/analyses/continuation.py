@@ -149,7 +149,7 @@ def equilibrium_branch(system: DynamicalSystem, params: Mapping[str, float] | No
     if direction == 0:
         if start is None:
             raise InputError("direction=0 (both ways) needs a start value")
-        kw = dict(start=start, equilibrium_guess=equilibrium_guess, step=step, max_step=max_step,
+        kw: dict[str, Any] = dict(start=start, equilibrium_guess=equilibrium_guess, step=step, max_step=max_step,
                   max_points=max_points, dps=dps, jets=jets, locate_hopf=locate_hopf)
         down = equilibrium_branch(system, params, p_range, direction=-1, **kw)
         up = equilibrium_branch(system, params, p_range, direction=1, **kw)
@@ -490,6 +490,7 @@ def generalised_hopf(system: DynamicalSystem, params: Mapping[str, float], secon
     start = hopf_normal_form(system, prm, p1_bracket, dps=dps, jets=jets)
     tracker = _HopfTracker(system, prm, second, start, dps, jets)
     end = tracker.at(b)
+    assert start.l1 is not None and end.l1 is not None  # the normal form computes l1
     if start.l1 * end.l1 > 0:
         raise NoHopfError(f"{system.name}: l1 has the same sign at {second} = {a:g} and {b:g} "
                           f"({start.l1:.3g}, {end.l1:.3g}); no generalised-Hopf point bracketed")

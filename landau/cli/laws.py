@@ -24,10 +24,10 @@ def run(args) -> dict:
         names, vnames = list(BUILTIN), list(BUILTIN_VELOCITY)
     out = []
     for n in vnames:
-        law = BUILTIN_VELOCITY[n]()
-        out.append({"name": law.name, "kind": "velocity", "source": law.source, "description": law.description,
-                    "F(v>0)": str(law.branch(1)), "F(v<0)": str(law.branch(-1)), "quantity": law.quantity,
-                    "set_valued_at_zero": law.is_set_valued(), "parameters": _parameters(law)})
+        vlaw = BUILTIN_VELOCITY[n]()
+        out.append({"name": vlaw.name, "kind": "velocity", "source": vlaw.source, "description": vlaw.description,
+                    "F(v>0)": str(vlaw.branch(1)), "F(v<0)": str(vlaw.branch(-1)), "quantity": vlaw.quantity,
+                    "set_valued_at_zero": vlaw.is_set_valued(), "parameters": _parameters(vlaw)})
     for n in names:
         law = get_law(n)
         out.append({"name": law.name, "kind": "rate-and-state", "source": law.source,

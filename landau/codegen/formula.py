@@ -327,9 +327,10 @@ class AtomTable:
             return dict(zip(syms, fn(*vals), strict=True))
 
 
-_NP_FUNCS = {"log": np.log, "exp": np.exp, "sqrt": np.sqrt, "Abs": np.abs, "sign": np.sign, "sin": np.sin,
-             "cos": np.cos, "tanh": np.tanh, "sinh": np.sinh, "cosh": np.cosh, "atan": np.arctan,
-             "DiracDelta": _dirac_np, "Heaviside": _heaviside_np}
+_NP_FUNCS: dict[str, Callable] = {
+    "log": np.log, "exp": np.exp, "sqrt": np.sqrt, "Abs": np.abs, "sign": np.sign, "sin": np.sin,
+    "cos": np.cos, "tanh": np.tanh, "sinh": np.sinh, "cosh": np.cosh, "atan": np.arctan,
+    "DiracDelta": _dirac_np, "Heaviside": _heaviside_np}
 _MP_FUNCS = {"log": "log", "exp": "exp", "sqrt": "sqrt", "Abs": "fabs", "sign": "sign", "sin": "sin", "cos": "cos",
              "tanh": "tanh", "sinh": "sinh", "cosh": "cosh", "atan": "atan"}
 
@@ -440,7 +441,7 @@ class Tape:
             import mpmath
 
             consts = [None if k != "const" else _mp_constant(v) for k, v, _ in self.ops]
-            funcs = {k: getattr(mpmath, v) for k, v in _MP_FUNCS.items()}
+            funcs: dict[str, Callable] = {k: getattr(mpmath, v) for k, v in _MP_FUNCS.items()}
             funcs["DiracDelta"], funcs["Heaviside"] = _dirac_mp, _heaviside_mp
         else:
             ld = any(getattr(v, "dtype", None) == np.longdouble for v in vals)

@@ -209,8 +209,9 @@ class CoefficientTable(dict):
         The parameter values the table was evaluated at.
     """
 
-    def __init__(self, data: Mapping[str, Any] = (), law: str = "", params: Mapping[str, Any] | None = None):
-        super().__init__(data)
+    def __init__(self, data: Mapping[str, Any] | None = None, law: str = "",
+                 params: Mapping[str, Any] | None = None):
+        super().__init__(data or {})
         self.law = law
         self.params = dict(params or {})
 

@@ -116,9 +116,10 @@ class NumericSystem:
         """(f, J = ∂f/∂y, f_p = ∂f/∂p) at (y, p), in float64 or at the working precision."""
         t = self.taylor1.at([*y, p], self.params, as_float=as_float)
         n = self.n
-        J = np.zeros((n, n)) if as_float else mpmath.zeros(n, n)
-        fp = np.zeros(n) if as_float else [mpmath.mpf(0)] * n
-        f = np.zeros(n) if as_float else [mpmath.mpf(0)] * n
+        # float64 arrays, or mpmath matrix and lists
+        J: Any = np.zeros((n, n)) if as_float else mpmath.zeros(n, n)
+        fp: Any = np.zeros(n) if as_float else [mpmath.mpf(0)] * n
+        f: Any = np.zeros(n) if as_float else [mpmath.mpf(0)] * n
         for (i,), v in t[0].items():
             f[i] = v
         for (i, j), v in t[1].items():

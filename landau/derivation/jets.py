@@ -15,7 +15,7 @@ first (for compiled code) only at the end.  This is what keeps derivation fast.
 from __future__ import annotations
 
 import itertools
-from typing import Any, Callable, Sequence
+from typing import Any, Callable, Mapping, Sequence
 
 import sympy as sp
 
@@ -91,7 +91,7 @@ class Jets:
         return expr.xreplace(self.atoms)
 
 
-def multilinear(tensor: dict[tuple[int, ...], Any], vectors: Sequence[Sequence[Cx]], n: int,
+def multilinear(tensor: Mapping[tuple[int, ...], Any], vectors: Sequence[Sequence[Cx]], n: int,
                 convert: Callable[[Any], Any] = lambda x: x) -> list[Cx]:
     """Σ over all index orderings of D[i, j₁…jₘ] a¹_{j₁}…aᵐ_{jₘ} (symmetric multilinear form)."""
     out = [Cx(0, 0) for _ in range(n)]
@@ -290,6 +290,7 @@ class TaylorJets:
 
         if e in slots:
             return slots[e]
+        ins: tuple[Any, ...]   # (operation, operands...)
         if e.is_Number or e.is_NumberSymbol:
             ins = ("const", e)
         elif e.is_Add or e.is_Mul:
@@ -425,7 +426,8 @@ class TaylorJets:
                 raise InputError(f"Taylor jets: no value for {s.name}")
         seeds = []
         for j, x0 in enumerate(point):
-            c = [{(): self._num(x0)}] + [{} for _ in range(K)]
+            c: list[dict[tuple[int, ...], Any]] = [{} for _ in range(K + 1)]
+            c[0][()] = self._num(x0)
             if K >= 1:
                 if directions is None:
                     c[1] = {(j,): self._num(1)}

@@ -300,7 +300,7 @@ class HopfLine:
     def _compiled_phi(self):
         return [compile_expr(e, self.args) for e in self._mu_ss_exprs[2]]
 
-    def evaluate(self, Vs: Sequence[float] | float, params: Mapping[str, float] | None = None,
+    def evaluate(self, Vs: Sequence[float] | float | np.ndarray, params: Mapping[str, float] | None = None,
                  method: str = "auto") -> tuple[np.ndarray, np.ndarray]:
         """Vectorised (k_c, ω_c) over velocities; NaN where there is no Hopf point.
 
@@ -344,7 +344,8 @@ class HopfLine:
             kcs[n], oms[n] = kk, np.sqrt(Wr)
         return kcs, oms
 
-    def points(self, Vs: Sequence[float] | float, params: Mapping[str, float] | None = None) -> list[HopfPoint]:
+    def points(self, Vs: Sequence[float] | float | np.ndarray,
+               params: Mapping[str, float] | None = None) -> list[HopfPoint]:
         """One :class:`HopfPoint` per velocity, with the steady state and μ_ss slope.
 
         Parameters

@@ -331,7 +331,7 @@ class Derivation:
 
     def evaluate(self, Vs, params: Mapping[str, float] | None = None,
                  names: Sequence[str] = ("kc", "omega_c", "Gamma_bar", "Lambda"),
-                 method: str = "auto", sign_only: bool = False) -> dict[str, np.ndarray]:
+                 method: str = "auto", sign_only: bool = False) -> CoefficientTable:
         """Vectorised evaluation over velocities (any parameter may also be an array).
 
         NaN where there is no Hopf point.  Every value is accurate to 1e-10 relative or
@@ -440,7 +440,7 @@ class Derivation:
         resolved = self.block.resolve(params)
         equilibrium = self._equilibrium_function(resolved)
         lin = None
-        out = []
+        out: list[Any] = []
         for i, Vi in enumerate(Vs):
             if not np.isfinite(res["kc"][i]):
                 lin = lin or self.hopf.points(Vs, params)
@@ -482,7 +482,11 @@ def _as_block(block) -> SpringBlock:
         return block
     from landau.laws import FrictionLaw
 
-    if isinstance(block, (FrictionLaw, str)):
+    if isinstance(block, str):
+        from landau.laws import get_law
+
+        return SpringBlock(get_law(block))
+    if isinstance(block, FrictionLaw):
         return SpringBlock(block)
     raise InputError(f"derive needs a SpringBlock, a FrictionLaw or a built-in law's name, got {type(block).__name__}")
 

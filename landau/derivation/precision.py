@@ -147,7 +147,7 @@ def raw(d: "Derivation", vals, shape, bases, dtype, kc=None, om=None) -> dict[st
 
 def _raw_block(d: "Derivation", vals, shape, bases, dtype, kc=None, om=None) -> dict[str, np.ndarray]:
     formulas = [d._compiled_formula(n) for n in bases]
-    hopf = d.hopf._compiled_closed if kc is None else ()
+    hopf: tuple[Any, ...] = d.hopf._compiled_closed if kc is None else ()
     atoms = d._atom_table.evaluate(sorted(set().union(*(f.atom_syms for f in [*formulas, *hopf])), key=str), *vals)
     res: dict[str, np.ndarray] = {}
     if kc is None:

@@ -147,7 +147,8 @@ class RationalCoefficient:
     def identically_zero(self) -> bool:
         return self.P.is_zero and self.Q.is_zero
 
-    def evaluate(self, Vs: np.ndarray, omega: np.ndarray, omega_rel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def evaluate(self, Vs: np.ndarray, omega: np.ndarray,
+                 omega_rel: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
         """(value, relative error bound) in float64; ``omega_rel`` bounds the error of ``omega``."""
         p, rp = self.P.evaluate(Vs)
         if self.Q.is_zero:
@@ -281,7 +282,7 @@ class QuadraticElement:
         o = self._lift(o)
         return self.a == o.a and self.b == o.b
 
-    __hash__ = None
+    __hash__ = None  # type: ignore[assignment]  # compared by value, not hashable
 
 
 class _FlintFraction:
@@ -354,7 +355,7 @@ class _FlintFraction:
             return NotImplemented
         return self.num == o.num and self.den == o.den
 
-    __hash__ = None
+    __hash__ = None  # type: ignore[assignment]  # compared by value, not hashable
 
     @property
     def numer(self):

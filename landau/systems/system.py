@@ -278,7 +278,7 @@ class SpringBlock:
         unknowns = self.phi0 if self.steady_state is None else ()
         return (V, *(p.symbol for p in self.law.parameters), M, g, sigma, *unknowns)
 
-    def argvals(self, Vs, params: Mapping[str, float]) -> list:
+    def argvals(self, Vs, params: Mapping[str, float | np.ndarray]) -> list:
         """Values for :attr:`args`; checks that the law is real and finite at steady sliding.
 
         Parameters

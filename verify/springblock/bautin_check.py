@@ -50,6 +50,7 @@ def compare_fold(d: Derivation, V: float, params: Mapping[str, float] | None = N
     pred = spring_block_fold(d, V, p)
     if pred is None:
         raise ValueError(f"V = {V:g} m/s: Lambda and Lambda5 have the same sign, no fold of cycles")
+    assert pred.p_c is not None  # fold_of_cycles sets the Hopf point
     law = d.block.law
     model = SpringBlockModel.build(law, V, pred.p_c, params)
     kc = hopf_stiffness(model, pred.p_c * (1 - 1e-3), pred.p_c * (1 + 1e-3))

@@ -30,7 +30,7 @@ import math
 import weakref
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Mapping
+from typing import Callable, Mapping
 
 import numpy as np
 import sympy as sp
@@ -57,11 +57,11 @@ class CompiledLaw:
     n: int
     param_names: tuple[str, ...]
     source: str = field(repr=False)
-    rhs: object = field(repr=False)
-    jac: object = field(repr=False)
-    rhs_py: object = field(repr=False)
-    jac_py: object = field(repr=False)
-    parameters: DerivedParameters = field(repr=False, default=None)
+    rhs: Callable[..., None] = field(repr=False)
+    jac: Callable[..., None] = field(repr=False)
+    rhs_py: Callable[..., None] = field(repr=False)
+    jac_py: Callable[..., None] = field(repr=False)
+    parameters: DerivedParameters = field(repr=False)
 
 
 _CACHE: dict[tuple, CompiledLaw] = {}
@@ -126,6 +126,7 @@ def _compile(ys, f, psyms, label, param_names, derived) -> CompiledLaw:
     whitelist of generated syntax, the cross-process code cache)."""
     src = kernel_source(ys, f, psyms)
     c = compile_source(src, label)
+    assert c.jac is not None and c.jac_py is not None  # kernel_source emits the Jacobian by default
     return CompiledLaw(label, len(ys), param_names, src, c.fun, c.jac, c.fun_py, c.jac_py, derived)
 
 
