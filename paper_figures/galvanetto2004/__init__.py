@@ -197,9 +197,9 @@ def fig12(out_dir: Path) -> list[Path]:
                 bb.append(b)
             except Exception:
                 pass
-    sb, sd = np.array(sb), np.array(sd)
-    ax.plot(sb[sb <= pd], sd[sb <= pd], "k-", lw=2, label="stable period-1")
-    ax.plot(sb[sb >= pd], sd[sb >= pd], "g-", lw=0.8, label="unstable period-1 (after PD)")
+    sba, sda = np.array(sb), np.array(sd)
+    ax.plot(sba[sba <= pd], sda[sba <= pd], "k-", lw=2, label="stable period-1")
+    ax.plot(sba[sba >= pd], sda[sba >= pd], "g-", lw=0.8, label="unstable period-1 (after PD)")
     ax.plot(ub, ud, "b-", lw=0.8, label="unstable period-1 (fold)")
     for k, (x, lab) in enumerate(((fold, "fold"), (pd, "period doubling"), (bc, "border collision"),
                                   (crisis, "crisis (paper tick 1.7280)"))):

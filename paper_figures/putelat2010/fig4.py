@@ -9,6 +9,7 @@ docs/verdicts.md).
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -35,7 +36,7 @@ def data() -> dict:
     R.evaluate(V, {}, AMPLITUDE_NAMES)
     R.evaluate(V, {"M": 0.0}, ["kc", "Gamma_bar"])
     Dl.evaluate(V, {}, ["Gamma_bar", "Lambda"])
-    out = {"V": V, "mu_ss": mu_ss(R, V, {})}
+    out: dict[str, Any] = {"V": V, "mu_ss": mu_ss(R, V, {})}
     out["kc"] = R.evaluate(V, {}, ["kc"])["kc"]
     out["kc_M0"] = R.evaluate(V, {"M": 0.0}, ["kc"])["kc"]
     out["khat"] = {dx: apparent_stiffness(R, V, dx * 1e-6) for dx in DX_UM}

@@ -164,8 +164,9 @@ def multi_sliding(bracket=None, V=0.05, alpha=1.2, beta=2.0, delta=None, stepper
     d0 = float(d0)
     scan_st = default_stepper(SCAN_RTOL)
 
-    if gamma is not None or bracket is not None:
-        start = float(gamma) if bracket is None else float(bracket[0])
+    given = float(bracket[0]) if bracket is not None else None if gamma is None else float(gamma)
+    if given is not None:
+        start = given
         orb, period = attractor(params(start), d0, 80, 8, scan_st, tol=1e-6)
         if period is None:
             raise NoBifurcationError(f"multi-sliding: the map's attractor at gamma = {start:g} from d0 = {d0:g} is "

@@ -307,6 +307,7 @@ def _fold_scan(V, alpha, law) -> tuple[float, float]:
         if prev is not None and prev[1] > 0 > h:
             p = fig12_params(beta, V, alpha, law=law)
             dk = warm.d
+            assert dk is not None  # H(beta) has just located the kink
             off = 2e-4 * (d_range(p)[1] - d_range(p)[0])
             try:
                 left = map_slope(p, dk - off, 1, st, h=off / 20)
@@ -404,6 +405,7 @@ def _chained(name, bracket, V, alpha, stepper, law) -> Located:
             warm.d = prev.details["d_kink"]
             bracket = _chain_scan(H, prev.value, what)
     b, res, n, sec = _locate(H, bracket)
+    assert warm.d is not None  # the last H evaluation located the kink
     return Located(name, "beta", b, res, n, sec, {"d_kink": float(warm.d), "bracket": tuple(map(float, bracket))})
 
 

@@ -207,7 +207,7 @@ def tsallis_q(intervals, lo: float = 0.05, hi: float = 0.3, width: float = 0.001
     p = counts[counts > 0] / counts.sum()
     if len(p) < 2:
         raise InputError("Tsallis q undefined: all intervals fall in one bin (a periodic attractor)")
-    qs = np.linspace(*q_range, 400)
+    qs = np.linspace(q_range[0], q_range[1], 400)
     r = np.array([redundancy(q, p) for q in qs])
     i = int(np.argmax(r))
     a, b = qs[max(i - 1, 0)], qs[min(i + 1, len(qs) - 1)]

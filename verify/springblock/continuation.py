@@ -172,7 +172,7 @@ def continue_in_k(model: SpringBlockModel, k_lo: float, k_hi: float, **kw) -> Br
             break
         except (ShootingError, IntegratorError):
             continue
-    if pts is None:
+    if pts is None or folds is None:
         raise ShootingError("no cycle branch could be started at the Hopf point")
     return _branch("k", {"V": model.V}, k_h, [(lam * k_h, o, t) for lam, o, t in pts],
                    [(lam * k_h, a, b) for lam, a, b in folds], stop)
@@ -371,6 +371,7 @@ def fold_curve(base: SpringBlockModel, V_fold: float, z_fold, kappas, **kw) -> l
         make_V = lambda VV, k=k: base.with_(V=VV, k=k)  # noqa: E731
         if len(pts) >= 2:
             a, b = pts[-2], pts[-1]
+            assert a.z is not None and b.z is not None  # points of a continued fold curve carry their state
             w = (np.log(kap) - np.log(b.value("kappa"))) / (np.log(b.value("kappa")) - np.log(a.value("kappa")))
             V = 10 ** (np.log10(b.p_fold) + w * (np.log10(b.p_fold) - np.log10(a.p_fold)))
             z = b.z + w * (b.z - a.z)
