@@ -197,8 +197,8 @@ class CheckResult:
                 f"eps2 = {self.eps2:.3g}: amplitude {_fmt(self.amplitude_simulated)} simulated vs "
                 f"{_fmt(self.amplitude_predicted)} predicted "
                 f"({_fmt(self.rel_error, '+.2%') if self.rel_error is not None else '—'}, "
-                f"tolerance {self.tolerance:.1%}) -> {self.verdict.value}" + (f" ({self.reason})" if self.reason else
-                ""))
+                f"tolerance {self.tolerance:.1%}) -> {self.verdict.value}"
+                + (f" ({self.reason})" if self.reason else ""))
 
     def __repr__(self) -> str:
         return f"CheckResult({self.summary()})"

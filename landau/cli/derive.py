@@ -106,9 +106,8 @@ def render(doc: dict) -> str:
                    f"omega_c = {c['omega_c']:.6g} rad/s, {c['sign_below']} below / {c['sign_above']} above")
         if "Lambda5" in c:
             fc = c["fold_of_cycles"]
-            out.append(f"  Lambda5 = {c['Lambda5']:.6g} 1/(m^4 s), l2 = {c['l2']:.6g} (Re c2, <q,q> = 1); fold of "
-                       f"cycles "
-                       f"for {fc['side']}: k - k_c = {fc['k_minus_kc_per_dV2']:.4g} (V - V*)^2 N/m, "
+            out.append(f"  Lambda5 = {c['Lambda5']:.6g} 1/(m^4 s), l2 = {c['l2']:.6g} (Re c2, <q,q> = 1); "
+                       f"fold of cycles for {fc['side']}: k - k_c = {fc['k_minus_kc_per_dV2']:.4g} (V - V*)^2 N/m, "
                        f"slip amplitude {fc['amplitude_per_sqrt_dV']:.4g} |V - V*|^(1/2) m")
     if "codim2" in doc and not doc["codim2"]:
         out.append("no change of sign of Lambda on the Hopf line in the requested range")

@@ -44,8 +44,8 @@ def render(doc: dict) -> str:
     for p in doc["points"]:
         phi = ", ".join(f"{x:.4g}" for x in p["phi_ss"])
         if p["status"] == "ok":
-            out.append(f"{fmt(p['V'])} {fmt(p['kc'])} {fmt(p['omega_c'])} {fmt(p['mu_ss'])} {fmt(p['dmu_ss_dV'])}  "
-                       f"{phi}")
+            out.append(f"{fmt(p['V'])} {fmt(p['kc'])} {fmt(p['omega_c'])} {fmt(p['mu_ss'])} "
+                       f"{fmt(p['dmu_ss_dV'])}  {phi}")
         else:
             out.append(f"{fmt(p['V'])}  {p['reason']}  (mu_ss = {p['mu_ss']:.6g}, slope {p['dmu_ss_dV']:.4g}); "
                        f"{p['velocity_weakening']}")
