@@ -19,8 +19,8 @@
 # a script.
 
 # %%
-import numpy as np
 import matplotlib.pyplot as plt
+import numpy as np
 
 from landau import SpringBlock, derive
 from landau.laws import FrictionLaw

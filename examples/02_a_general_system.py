@@ -20,9 +20,9 @@
 # amplitude max|x| ≈ 2·sqrt(μ/β) (Strogatz, Nonlinear Dynamics and Chaos, 2nd ed., §7.6).
 
 # %%
+import matplotlib.pyplot as plt
 import numpy as np
 import sympy as sp
-import matplotlib.pyplot as plt
 
 from landau import DynamicalSystem, hopf_normal_form
 

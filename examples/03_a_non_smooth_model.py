@@ -20,8 +20,8 @@
 # "p" (r > 0), simulated by the toolkit's event-driven engine.
 
 # %%
-import numpy as np
 import matplotlib.pyplot as plt
+import numpy as np
 
 from landau.verify.galvanetto.analysis import trajectory
 from landau.verify.galvanetto.bifurcations import hopf_c1, hopf_c1_normal_form

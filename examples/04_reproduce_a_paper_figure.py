@@ -22,8 +22,8 @@
 import tempfile
 from pathlib import Path
 
-import numpy as np
 import matplotlib.pyplot as plt
+import numpy as np
 
 from landau.paper_figures.putelat2010 import fig5
 

@@ -7,8 +7,8 @@ Data flows one way: a friction law (:mod:`laws`) → a mechanical system
 
 from typing import TYPE_CHECKING
 
-from landau.errors import InputError, IntegratorError, LandauError, NoHopfError, SingularPointError
 from landau.derivation.hopf import Convention, Criticality, HopfResult
+from landau.errors import InputError, IntegratorError, LandauError, NoHopfError, SingularPointError
 
 if TYPE_CHECKING:  # the same names as _LAZY, for type checkers and the API documentation
     __version__: str
@@ -22,11 +22,14 @@ if TYPE_CHECKING:  # the same names as _LAZY, for type checkers and the API docu
 # subpackage (``landau.laws``, ``landau.verify.hybrid``) does not import it.
 _LAZY = {
     "hopf_normal_form": "landau.derivation.general",
-    "HopfLine": "landau.derivation.linear", "HopfPoint": "landau.derivation.linear", "critical_stiffness": "landau.derivation.linear",
-    "CONVENTION": "landau.derivation.multiscale", "Coefficient": "landau.derivation.multiscale", "Derivation": "landau.derivation.multiscale",
+    "HopfLine": "landau.derivation.linear", "HopfPoint": "landau.derivation.linear",
+    "critical_stiffness": "landau.derivation.linear",
+    "CONVENTION": "landau.derivation.multiscale", "Coefficient": "landau.derivation.multiscale",
+    "Derivation": "landau.derivation.multiscale",
     "derive": "landau.derivation.multiscale",
     "DynamicalSystem": "landau.systems.system", "SpringBlock": "landau.systems.system",
-    "CheckResult": "landau.analyses.checking", "Verdict": "landau.analyses.checking", "check": "landau.analyses.checking",
+    "CheckResult": "landau.analyses.checking", "Verdict": "landau.analyses.checking",
+    "check": "landau.analyses.checking",
 }
 
 

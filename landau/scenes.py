@@ -190,8 +190,8 @@ def run_scenes(patterns: Sequence[str] | None = None, overrides: Mapping[str, fl
         One :class:`SceneResult` per scene, in name order; a scene whose computation fails
         with a toolkit error is reported with an ``"error"`` field instead of stopping the run.
     """
-    from landau.report.display import ResultList
     from landau.errors import LandauError
+    from landau.report.display import ResultList
 
     scenes = all_scenes() if patterns is None else select_scenes(patterns)
     overrides = dict(overrides or {})

@@ -16,10 +16,10 @@ from __future__ import annotations
 from typing import Callable
 
 from landau.errors import InputError
+from landau.laws import putelat2010 as _p
 from landau.laws.base import Law
 from landau.laws.law import TABLE1, FrictionLaw, Parameter, v
 from landau.laws.velocity import BUILTIN_VELOCITY, VelocityFriction, coulomb, regularised_coulomb
-from landau.laws import putelat2010 as _p
 
 BUILTIN: dict[str, Callable[[], FrictionLaw]] = {
     "dieterich": _p.dieterich,

@@ -104,7 +104,8 @@ class Law:
                 new.append(p)
         if values:
             raise InputError(f"law {self.name!r} has no parameter(s) {', '.join(sorted(values))}")
-        return dataclasses.replace(self, parameters=tuple(new))
+        # every concrete law is a dataclass; the abstract base is not
+        return dataclasses.replace(self, parameters=tuple(new))  # type: ignore[type-var]
 
     def latex(self) -> str:  # pragma: no cover - every subclass defines it
         """The law as one line of LaTeX.

@@ -188,7 +188,7 @@ class KineticFriction(Law):
         half = 0.5 * (f0 + far)
         g = lambda v: float(self.neg(-v)) - half
         lo = 0.0
-        for k, v in zip(ks[ok], vals[ok]):
+        for k, v in zip(ks[ok], vals[ok], strict=True):
             if np.sign(v - half) != np.sign(f0 - half):
                 from scipy.optimize import brentq
                 return float(brentq(g, lo, 10.0 ** k, xtol=1e-14, rtol=1e-12))
@@ -206,18 +206,18 @@ class KineticFriction(Law):
         return self.neg_expr == _PAPER_NEG and self.pos_expr == _PAPER_POS
 
     # ------------------------------------------------------------ the Law interface
-    @property
-    def name(self) -> str:
+    @property  # computed from the branches: read-only here, a field of other laws
+    def name(self) -> str:  # type: ignore[override]
         """``"galvanetto-2004"`` for eq. (7), ``"user-kinetic"`` for other branches."""
         return "galvanetto-2004" if self.is_paper_law else "user-kinetic"
 
-    @property
-    def source(self) -> str:
+    @property  # computed from the branches: read-only here, a field of other laws
+    def source(self) -> str:  # type: ignore[override]
         """Galvanetto (2004) eq. (7), or "user-defined"."""
         return SOURCE if self.is_paper_law else "user-defined"
 
-    @property
-    def parameters(self) -> tuple:
+    @property  # computed from the branches: read-only here, a field of other laws
+    def parameters(self) -> tuple:  # type: ignore[override]
         """γ and δ as :class:`~landau.laws.law.Parameter` objects (dimensionless)."""
         from landau.laws.law import Parameter
 

@@ -242,7 +242,7 @@ class FrictionLaw(Law):
                 raise InputError(f"law {self.name!r}: name '{s.name}_0' is reserved for the steady state of {s.name}")
         known = {v, *self.states, *(p.symbol for p in self.parameters)}
         allowed = _allowed_functions()
-        for what, expr in [("mu", self.mu), *((f"d{s}/dt", r) for s, r in zip(self.states, self.rates))]:
+        for what, expr in [("mu", self.mu), *((f"d{s}/dt", r) for s, r in zip(self.states, self.rates, strict=True))]:
             extra = expr.free_symbols - known
             if extra:
                 raise InputError(f"law {self.name!r}: {what} uses undeclared symbol(s) "
@@ -383,8 +383,8 @@ class FrictionLaw(Law):
         solves numerically)."""
         if self.steady_state is not None:
             return tuple(self.steady_state)
-        from landau.support.budget import run_bounded
         from landau.errors import BudgetError
+        from landau.support.budget import run_bounded
 
         try:
             return run_bounded(_solve_steady_state, (self.rates, self.states), seconds=SOLVE_SECONDS,
@@ -401,7 +401,7 @@ class FrictionLaw(Law):
         J = sp.lambdify(args, jac.tolist(), modules="numpy", cse=True)
         return f, J
 
-    def steady_state_values(self, vs, params: Mapping[str, float]) -> np.ndarray:
+    def steady_state_values(self, vs, params: Mapping[str, float | np.ndarray]) -> np.ndarray:
         """φᵢ,ss at slip rates ``vs`` (any shape), shape (number of states, *vs.shape).
 
         The closed form where there is one; otherwise every positive root of dφ/dt = 0 is
@@ -455,7 +455,7 @@ class FrictionLaw(Law):
         return sp.lambdify([v, *(p.symbol for p in self.parameters)], list(self.steady_state_closed_form),
                            modules="numpy")
 
-    def _check_stable(self, vs: np.ndarray, phis: np.ndarray, params: Mapping[str, float]) -> None:
+    def _check_stable(self, vs: np.ndarray, phis: np.ndarray, params: Mapping[str, float | np.ndarray]) -> None:
         """Refuse a closed-form steady state that is unstable at fixed slip rate (the state runs
         away from it, so the block never slides steadily there)."""
         _, J = self._numeric_rates
@@ -475,8 +475,8 @@ class FrictionLaw(Law):
             growth[ok] = np.linalg.eigvals(jac[ok]).real.max(axis=-1)
         bad = ok & (growth >= 0)
         if np.any(bad):
-            i = tuple(np.argwhere(np.atleast_1d(bad))[0]) if vs.ndim else ()
-            raise DomainError(f"law {self.name!r}: the steady state at v = {float(vs[i]):g} m/s is not stable at "
+            at = tuple(np.argwhere(np.atleast_1d(bad))[0]) if vs.ndim else ()
+            raise DomainError(f"law {self.name!r}: the steady state at v = {float(vs[at]):g} m/s is not stable at "
                               "fixed slip rate (an eigenvalue of d(rates)/d(states) has a non-negative real part)")
 
     def _numeric_steady_state(self, vi: float, values: list[float]) -> list[float]:
@@ -525,7 +525,7 @@ class FrictionLaw(Law):
         raise DomainError(f"law {self.name!r}: {len(stable)} stable positive steady states at v = {vi:g} m/s: "
                           f"{what}; declare the one you mean with FrictionLaw(..., steady_state=...)")
 
-    def check_real(self, vs, phis, params: Mapping[str, float]) -> None:
+    def check_real(self, vs, phis, params: Mapping[str, float | np.ndarray]) -> None:
         """Refuse (:class:`DomainError`) a law whose μ, rates or their first derivatives are not
         real and finite at slip rates ``vs`` and states ``phis`` (the numeric half of the
         reality check; the symbolic half runs when the law is built).
@@ -563,7 +563,7 @@ class FrictionLaw(Law):
     def _reality_exprs(self):
         args = [v, *self.states, *(p.symbol for p in self.parameters)]
         exprs = []
-        for label, e in [("mu", self.mu), *((f"d{s}/dt", r) for s, r in zip(self.states, self.rates))]:
+        for label, e in [("mu", self.mu), *((f"d{s}/dt", r) for s, r in zip(self.states, self.rates, strict=True))]:
             exprs.append((label, e))
             exprs += [(f"d({label})/d{x}", sp.diff(e, x)) for x in (v, *self.states) if x in e.free_symbols]
         if all(e.is_extended_real and e.is_finite for _, e in exprs):
@@ -586,7 +586,7 @@ class FrictionLaw(Law):
         ss = self.steady_state_closed_form
         if ss is None:
             raise InputError(f"law {self.name!r}: no closed-form steady state; use numeric evaluation")
-        return self.mu.subs(dict(zip(self.states, ss)))
+        return self.mu.subs(dict(zip(self.states, ss, strict=True)))
 
     # --- display ------------------------------------------------------------------
     def latex(self) -> str:
@@ -597,11 +597,11 @@ class FrictionLaw(Law):
         str
         """
         lines = [rf"\mu = {sp.latex(self.mu)}"]
-        for s, r in zip(self.states, self.rates):
+        for s, r in zip(self.states, self.rates, strict=True):
             lines.append(rf"\frac{{d{sp.latex(s)}}}{{dt}} = {sp.latex(r)}")
         return r",\quad ".join(lines)
 
     def __repr__(self) -> str:
-        rates = ", ".join(f"d{s}/dt = {r}" for s, r in zip(self.states, self.rates))
+        rates = ", ".join(f"d{s}/dt = {r}" for s, r in zip(self.states, self.rates, strict=True))
         return f"FrictionLaw({self.name!r}: mu = {self.mu}; {rates}; source={self.source!r})"
 

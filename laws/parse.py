@@ -149,7 +149,8 @@ def parse_expression(text: str, symbols: Mapping[str, sp.Symbol], *, what: str =
     except (RecursionError, MemoryError):
         raise ParseError(f"{what} is too deeply nested or too large") from None
     except (ValueError, OverflowError, TypeError, ArithmeticError, AttributeError) as exc:
-        raise ParseError(f"{what} cannot be parsed: {type(exc).__name__}: {str(exc).splitlines()[0][:120] if str(exc) else ''}") from None
+        raise ParseError(f"{what} cannot be parsed: {type(exc).__name__}: "
+                         f"{str(exc).splitlines()[0][:120] if str(exc) else ''}") from None
 
 
 def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
@@ -193,10 +194,10 @@ def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
             elif abs(float(ex)) > MAX_EXPONENT:
                 raise ParseError(f"{what}: exponent in {token!r} exceeds {MAX_EXPONENT} in magnitude")
         elif not ex.free_symbols:
-            e = _finite_real(ex)
-            if e is None:
+            ev = _finite_real(ex)
+            if ev is None:
                 raise ParseError(f"{what}: exponent in {token!r} is not a finite real number")
-            if abs(e) > MAX_EXPONENT:
+            if abs(ev) > MAX_EXPONENT:
                 raise ParseError(f"{what}: exponent in {token!r} exceeds {MAX_EXPONENT} in magnitude")
         return base ** ex
 
@@ -214,7 +215,8 @@ def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
         if isinstance(node, ast.Constant):
             if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
                 raise ParseError(f"{what}: literal {node.value!r} is not a number")
-            if isinstance(node.value, float) and node.value != node.value or node.value in (float("inf"), float("-inf")):
+            if (isinstance(node.value, float) and node.value != node.value
+                    or node.value in (float("inf"), float("-inf"))):
                 raise ParseError(f"{what}: literal {token!r} is not a finite number")
             val = sp.Integer(node.value) if isinstance(node.value, int) else sp.Float(repr(node.value))
             return bounded(val, token)
@@ -237,10 +239,10 @@ def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
                 raise ParseError(f"{what}: {token!r} divides by zero (not finite)")
             return bounded(op(left, right), token)
         if isinstance(node, ast.UnaryOp):
-            op = _UNARY.get(type(node.op))
-            if op is None:
+            uop = _UNARY.get(type(node.op))
+            if uop is None:
                 raise ParseError(f"{what}: operator {type(node.op).__name__!r} is not allowed")
-            return op(walk(node.operand))
+            return uop(walk(node.operand))
         if isinstance(node, ast.Call):
             if not isinstance(node.func, ast.Name):
                 raise ParseError(f"{what}: only plain function calls are allowed, not {ast.unparse(node.func)!r}")

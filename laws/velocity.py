@@ -29,7 +29,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Mapping
+from typing import Callable, Mapping
 
 import numpy as np
 import sympy as sp
@@ -96,7 +96,8 @@ class VelocityFriction(Law):
         if not isinstance(self.name, str) or not self.name.strip() or len(self.name) > 200:
             raise InputError(f"a law needs a name (a non-empty string of at most 200 characters), got {self.name!r}")
         if self.quantity not in QUANTITIES:
-            raise InputError(f"law {self.name!r}: quantity must be one of {', '.join(QUANTITIES)}, got {self.quantity!r}")
+            raise InputError(f"law {self.name!r}: quantity must be one of {', '.join(QUANTITIES)}, got "
+                             f"{self.quantity!r}")
         names = [p.name for p in self.parameters]
         for n in names:
             _check_parameter_name(n)
@@ -256,7 +257,7 @@ class VelocityFriction(Law):
         -------
         tuple of float
         """
-        vals = dict(zip((p.symbol for p in self.parameters), self._values(params)))
+        vals = dict(zip((p.symbol for p in self.parameters), self._values(params), strict=True))
         out = []
         for side in (-1, 1):
             e = self.branch(side).subs(vals)
@@ -440,4 +441,5 @@ def regularised_coulomb(c: float = 6.6511, T: float = 0.63133, eps: float = 1e-6
                             "viscous + regularised dry resistance")
 
 
-BUILTIN_VELOCITY = {"coulomb": coulomb, "regularised-coulomb": regularised_coulomb}
+BUILTIN_VELOCITY: dict[str, Callable[..., VelocityFriction]] = {"coulomb": coulomb,
+                                                                 "regularised-coulomb": regularised_coulomb}

@@ -15,7 +15,7 @@ import numpy as np
 import sympy as sp
 
 from landau.laws import get_law
-from landau.systems.system import V, SpringBlock
+from landau.systems.system import SpringBlock, V
 
 #: window used when the law is velocity weakening on all of (0, ∞) [m/s]
 OPEN_WINDOW = (1e-8, 1e-1)

@@ -15,11 +15,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from landau.analyses.checking import MAX_TOLERANCE, SUBCRITICAL_TOLERANCE, SUPERCRITICAL_TOLERANCE, check
 from landau.cli.common import add_law_arguments, parse_floats, parse_velocities, resolve_law
 from landau.errors import InputError
 from landau.support.progress import progress, set_quiet
 from landau.systems.system import SpringBlock
-from landau.analyses.checking import MAX_TOLERANCE, SUBCRITICAL_TOLERANCE, SUPERCRITICAL_TOLERANCE, check
 from landau.verify.springblock.checks import fitted_exponent
 
 AMPLITUDE_DEFINITION = ("amplitude_simulated = half peak-to-peak slip (max X - min X)/2 of the cycle, X = x - x0; "
@@ -80,8 +80,8 @@ def run(args) -> dict:
                     fits[f"{V:g}"] = fitted_exponent([p["eps2"] for p in pts], [p["rel_error"] for p in pts])
             doc["fitted_exponent"] = fits
     if args.work_precision:
-        from landau.verify.springblock.workprecision import plot, run_work_precision
         from landau.support.io import atomic_write_json, atomic_write_text
+        from landau.verify.springblock.workprecision import plot, run_work_precision
 
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)

@@ -37,8 +37,8 @@ import types
 from pathlib import Path
 from typing import Iterable, Mapping
 
-from landau.support.cachedir import ENV_JIT, ENV_ROOT, code_dir  # noqa: F401  (re-exported names)
 from landau.errors import OutputError
+from landau.support.cachedir import ENV_JIT, ENV_ROOT, code_dir  # noqa: F401  (re-exported names)
 from landau.support.io import atomic_write_text
 
 #: file-name prefix of generated kernels (:func:`load_generated`)

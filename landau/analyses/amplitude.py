@@ -25,8 +25,8 @@ from typing import Mapping
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from landau.errors import InputError
 from landau.derivation.multiscale import Derivation
+from landau.errors import InputError
 
 #: distance from threshold used by the paper's figures: k_c − k = 0.001 k_c
 PAPER_DISTANCE = 1e-3

@@ -44,7 +44,7 @@ def _small(du: np.ndarray, u: np.ndarray, tol: float, norm: str) -> bool:
     """The Newton update is negligible: max|du| ≤ tol (1 + max|u|) or ‖du‖₂ ≤ tol max(1, ‖u‖₂)."""
     if norm == "max":
         return bool(np.max(np.abs(du)) <= tol * (1 + np.max(np.abs(u))))
-    return bool(np.linalg.norm(du) <= tol * max(1.0, np.linalg.norm(u)))
+    return bool(np.linalg.norm(du) <= tol * max(1.0, float(np.linalg.norm(u))))
 
 
 def newton_corrector(F: Residual, u_pred: np.ndarray, tau: np.ndarray, tol: float, *, maxit: int = 8,
@@ -179,12 +179,13 @@ def refine_fold(F: Residual, start: BranchPoint, h: float, tol: float, *, fold_i
     u, tau = start.u, start.tangent
     lo, hi = 0.0, h
     best = None
+    caught: tuple[type[BaseException], ...] = (CorrectorError, *failures)
     for _ in range(iters):
         s = 0.5 * (lo + hi)
         try:
             us, _ = newton_corrector(F, u + s * tau, tau, tol, maxit=maxit, norm=norm)
             _, DG, info = F(us)
-        except (CorrectorError, *failures):
+        except caught:
             break
         ts = tangent(DG, tau)
         best = BranchPoint(us, ts, info)
@@ -253,6 +254,7 @@ def continue_branch(F: Residual, u0: np.ndarray, step: StepControl, *, tangent0:
     h = step.h0
     attempts = 0
     stopped = "point limit"
+    caught: tuple[type[BaseException], ...] = (CorrectorError, np.linalg.LinAlgError, *failures)
     while len(pts) < max_points:
         if max_attempts is not None and attempts >= max_attempts:
             stopped = "step limit"
@@ -267,7 +269,7 @@ def continue_branch(F: Residual, u0: np.ndarray, step: StepControl, *, tangent0:
                 raise CorrectorError("corrected point rejected")
             _, DG, info = F(u_new)
             t_new = tangent(DG, last.tangent)
-        except (CorrectorError, np.linalg.LinAlgError, *failures) as exc:
+        except caught as exc:
             h *= 0.5
             if h < step.h_min:
                 stopped = f"step size underflow ({exc})"

@@ -38,8 +38,8 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from landau.errors import InputError, IntegratorError, LandauError
 from landau.derivation.hopf import Criticality, HopfResult
+from landau.errors import InputError, IntegratorError, LandauError
 
 #: relative amplitude tolerance at ε² = 1e-3 (the O(ε²) remainder of the amplitude equation)
 SUPERCRITICAL_TOLERANCE = 0.02
@@ -195,16 +195,20 @@ class CheckResult:
         """
         return (f"{self.system}: {self.criticality} Hopf at {self.parameter}_c = {self.prediction.p_c:.8g}; "
                 f"eps2 = {self.eps2:.3g}: amplitude {_fmt(self.amplitude_simulated)} simulated vs "
-                f"{_fmt(self.amplitude_predicted)} predicted ({_fmt(self.rel_error, '+.2%') if self.rel_error is not None else '—'}, "
-                f"tolerance {self.tolerance:.1%}) -> {self.verdict.value}" + (f" ({self.reason})" if self.reason else ""))
+                f"{_fmt(self.amplitude_predicted)} predicted "
+                f"({_fmt(self.rel_error, '+.2%') if self.rel_error is not None else '—'}, "
+                f"tolerance {self.tolerance:.1%}) -> {self.verdict.value}"
+                + (f" ({self.reason})" if self.reason else ""))
 
     def __repr__(self) -> str:
         return f"CheckResult({self.summary()})"
 
     def _repr_html_(self) -> str:
-        rows = "".join(f"<tr><th style='text-align:left'>{html.escape(k)}</th><td>{html.escape(_fmt(v, '.6g'))}</td></tr>"
+        rows = "".join(f"<tr><th style='text-align:left'>{html.escape(k)}</th>"
+                       f"<td>{html.escape(_fmt(v, '.6g'))}</td></tr>"
                        for k, v in self.as_dict().items() if not isinstance(v, (dict, list)))
-        return f"<div><b>check of {html.escape(self.system)}</b>: {html.escape(self.verdict.value)}<table>{rows}</table></div>"
+        return (f"<div><b>check of {html.escape(self.system)}</b>: {html.escape(self.verdict.value)}"
+                f"<table>{rows}</table></div>")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -225,10 +229,12 @@ def spring_block_validity(pr, eps2: float) -> tuple[bool, str, float]:
     swing = A * wc
     if swing >= V:
         return (False, f"the predicted slip-rate swing A*omega_c = {swing / V:.3g} V would reverse the slip "
-                       f"(the block must stop: stick-slip, not a weakly nonlinear cycle); valid for eps2 < {eps2_max:.3g}",
+                       f"(the block must stop: stick-slip, not a weakly nonlinear cycle); valid for eps2 < "
+                       f"{eps2_max:.3g}",
                 eps2_max)
     if pr.frequency(k) <= 0:
-        return False, f"the predicted frequency {pr.frequency(k):.3g} rad/s is not positive at eps2 = {eps2:g}", eps2_max
+        return (False, f"the predicted frequency {pr.frequency(k):.3g} rad/s is not positive at eps2 = {eps2:g}",
+                eps2_max)
     return True, "", eps2_max
 
 
@@ -263,7 +269,7 @@ def _check_spring_block(law, V: float, eps2: float, params, tolerance, bistabili
         stable = max(pc.detail["unstable_cycle"]["floquet_multipliers"]) < 1
     if pc.agrees:
         verdict, why = Verdict.AGREES, ""
-    elif pc.amplitude_simulated is None:
+    elif pc.amplitude_simulated is None or pc.rel_error is None:
         verdict, why = Verdict.FAILED, "no cycle found by shooting"
     else:
         verdict = Verdict.DISAGREES
@@ -354,7 +360,8 @@ def _check_system(system, params: Mapping[str, float], bracket, eps2: float, tol
         return CheckResult(p=pr.p_c, amplitude_predicted=None, amplitude_simulated=None, rel_error=None,
                            frequency_predicted=None, frequency_simulated=None, frequency_rel_error=None,
                            verdict=Verdict.OUTSIDE_VALIDITY,
-                           reason="Lambda = 0 (codimension-two point): the cubic amplitude equation predicts no amplitude",
+                           reason="Lambda = 0 (codimension-two point): the cubic amplitude equation predicts no "
+                                  "amplitude",
                            **common)
     p = pr.p_c + pr.cycle_side * eps2 * scale
     A = pr.amplitude(p)
@@ -394,7 +401,8 @@ def _check_system(system, params: Mapping[str, float], bracket, eps2: float, tol
     stable = bool(np.max(np.abs(mult)) < 1.0)
     ok_stab = stable == (crit == Criticality.SUPERCRITICAL)
     agrees = abs(rel) <= tol and ok_stab
-    reason = "" if agrees else (f"amplitude off by {rel:+.2%}" if abs(rel) > tol else "the cycle has the wrong stability")
+    reason = "" if agrees else (f"amplitude off by {rel:+.2%}" if abs(rel) > tol else "the cycle has the wrong "
+                                                                                      "stability")
     return CheckResult(p=p, amplitude_predicted=A, amplitude_simulated=amp, rel_error=rel, frequency_predicted=w,
                        frequency_simulated=wsim, frequency_rel_error=wsim / w - 1.0,
                        verdict=Verdict.AGREES if agrees else Verdict.DISAGREES, reason=reason, cycle_stable=stable,

@@ -227,16 +227,18 @@ class GeneralisedHopfPoint:
     @property
     def fold_p1_coefficient(self) -> float:
         """p₁,fold − p₁,c(p₂) ≈ this × (p₂ − p₂*)²: Λ'²/(8 Λ₅ Re a) (NaN without a fold)."""
-        if self.fold_side == 0 or not self.re_a:
+        L5, dl, ra = self.Lambda5, self.dLambda_dp2, self.re_a
+        if self.fold_side == 0 or not ra or L5 is None or dl is None:  # (fold_side == 0 covers None)
             return math.nan
-        return self.dLambda_dp2 ** 2 / (8 * self.Lambda5 * self.re_a)
+        return dl ** 2 / (8 * L5 * ra)
 
     @property
     def fold_amplitude_coefficient(self) -> float:
         """Amplitude at the fold ≈ this × |p₂ − p₂*|^{1/2}: sqrt(2|Λ'|/|Λ₅|) (NaN without a fold)."""
-        if self.fold_side == 0:
+        L5, dl = self.Lambda5, self.dLambda_dp2
+        if self.fold_side == 0 or L5 is None or dl is None:  # (fold_side == 0 covers None)
             return math.nan
-        return math.sqrt(2 * abs(self.dLambda_dp2) / abs(self.Lambda5))
+        return math.sqrt(2 * abs(dl) / abs(L5))
 
     def predicted_fold(self, p2: float) -> FoldOfCycles | None:
         """The fold of cycles at p₂ from the expansion about the point, or None on the side without one.
@@ -269,7 +271,8 @@ class GeneralisedHopfPoint:
             out["fold_of_cycles"] = {
                 "side": _SIDE[self.fold_side], "k_minus_kc_per_dV2": self.fold_p1_coefficient,
                 "amplitude_per_sqrt_dV": self.fold_amplitude_coefficient,
-                "formula": "k_fold - kc(V) = -Lambda(V)^2/(8 Lambda5 Gamma_bar), amplitude = sqrt(-2 Lambda(V)/Lambda5)"}
+                "formula": "k_fold - kc(V) = -Lambda(V)^2/(8 Lambda5 Gamma_bar), "
+                           "amplitude = sqrt(-2 Lambda(V)/Lambda5)"}
         return out
 
     def __repr__(self) -> str:

@@ -35,10 +35,17 @@ import scipy.optimize
 
 from landau.analyses.arclength import StepControl, continue_branch
 from landau.analyses.codim2 import GeneralisedHopfPoint
-from landau.errors import InputError, NoHopfError, SingularPointError
-from landau.derivation.general import (DEFAULT_DPS, NumericSystem, hopf_test_function, locate_crossing, normal_form_at,
-                            refine_hopf, second_lyapunov)
+from landau.derivation.general import (
+    DEFAULT_DPS,
+    NumericSystem,
+    hopf_test_function,
+    locate_crossing,
+    normal_form_at,
+    refine_hopf,
+    second_lyapunov,
+)
 from landau.derivation.hopf import HopfResult
+from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.systems.system import DynamicalSystem
 
 
@@ -142,7 +149,7 @@ def equilibrium_branch(system: DynamicalSystem, params: Mapping[str, float] | No
     if direction == 0:
         if start is None:
             raise InputError("direction=0 (both ways) needs a start value")
-        kw = dict(start=start, equilibrium_guess=equilibrium_guess, step=step, max_step=max_step,
+        kw: dict[str, Any] = dict(start=start, equilibrium_guess=equilibrium_guess, step=step, max_step=max_step,
                   max_points=max_points, dps=dps, jets=jets, locate_hopf=locate_hopf)
         down = equilibrium_branch(system, params, p_range, direction=-1, **kw)
         up = equilibrium_branch(system, params, p_range, direction=1, **kw)
@@ -171,7 +178,7 @@ def equilibrium_branch(system: DynamicalSystem, params: Mapping[str, float] | No
     P = np.array([pt.u[n] for pt in br.points])
     Y = np.array([pt.u[:n] for pt in br.points])
     tps = [pt.tangent[n] for pt in br.points]
-    lams = [num.eigenvalues(y, p) for y, p in zip(Y, P)]
+    lams = [num.eigenvalues(y, p) for y, p in zip(Y, P, strict=True)]
     nus = [_n_unstable(lam) for lam in lams]
     tfs = [hopf_test_function(lam) for lam in lams]
     folds = [_refine_fold(num, Y[f.index - 1], P[f.index - 1], Y[f.index], P[f.index]) for f in br.folds]
@@ -334,11 +341,11 @@ def _trace_hopf_curve(num: NumericSystem, sym2, X0: np.ndarray, lo: float, hi: f
     for direction in (1, -1):
         borders = list(_hopf_borders(num, X0))
 
-        def F(Z):  # the minimally augmented system, its Jacobian by central differences
+        def F(Z, borders=borders):  # the minimally augmented system, its Jacobian by central differences
             G = lambda W: _hopf_residual(num, sym2, W, *borders)  # noqa: E731
             return G(Z), _fd_jacobian(G, Z), None
 
-        def new_borders(pt):  # b, c follow the critical eigenvectors along the curve
+        def new_borders(pt, borders=borders):  # b, c follow the critical eigenvectors along the curve
             borders[:] = _hopf_borders(num, pt.u)
 
         orient = np.zeros(len(X0))
@@ -425,7 +432,8 @@ def hopf_curve(system: DynamicalSystem, params: Mapping[str, float], second: str
                      p2=np.array(P2), omega=np.array([r.omega_c for r in res]), l1=L1, generalised_hopf=tuple(ghs))
 
 
-def _locate_gh(system: DynamicalSystem, tracker: _HopfTracker, a: float, b: float, with_l2: bool) -> GeneralisedHopfPoint:
+def _locate_gh(system: DynamicalSystem, tracker: _HopfTracker, a: float, b: float,
+               with_l2: bool) -> GeneralisedHopfPoint:
     last = {}
 
     def l1(v):
@@ -482,6 +490,7 @@ def generalised_hopf(system: DynamicalSystem, params: Mapping[str, float], secon
     start = hopf_normal_form(system, prm, p1_bracket, dps=dps, jets=jets)
     tracker = _HopfTracker(system, prm, second, start, dps, jets)
     end = tracker.at(b)
+    assert start.l1 is not None and end.l1 is not None  # the normal form computes l1
     if start.l1 * end.l1 > 0:
         raise NoHopfError(f"{system.name}: l1 has the same sign at {second} = {a:g} and {b:g} "
                           f"({start.l1:.3g}, {end.l1:.3g}); no generalised-Hopf point bracketed")

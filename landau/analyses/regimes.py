@@ -18,9 +18,9 @@ from typing import Mapping
 
 import numpy as np
 
-from landau.derivation.multiscale import Derivation
 from landau.analyses.codim2 import GeneralisedHopfPoint
 from landau.analyses.transition import TransitionCurve, codim2_points, transition_curve
+from landau.derivation.multiscale import Derivation
 
 
 @dataclass(frozen=True)

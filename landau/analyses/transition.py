@@ -41,8 +41,8 @@ import numpy as np
 from scipy.optimize import brentq
 
 from landau.analyses.codim2 import SPRING_BLOCK_PARAMETERS, GeneralisedHopfPoint
-from landau.errors import InputError, NoHopfError
 from landau.derivation.multiscale import Derivation
+from landau.errors import InputError, NoHopfError
 
 #: relative distance from an extremum of μ_ss where Λ's sign "at the extremum" is read (critical_parameter)
 EDGE_ETA = 1e-10
@@ -194,7 +194,7 @@ def _weakening(d: Derivation, params, lo: float, hi: float) -> list[WeakeningRan
     ext = extrema(d, p, lo, hi)
     edges = [lo, *[e.V for e in ext], hi]
     out = []
-    for a, b in zip(edges[:-1], edges[1:]):
+    for a, b in zip(edges[:-1], edges[1:], strict=True):
         mid = math.sqrt(a * b)
         s = float(fdmu(*d.block.argvals(np.float64(mid), p)))
         if np.isfinite(s) and s < 0:
@@ -346,7 +346,7 @@ def critical_parameter(derivation: Derivation, name: str, lo: float, hi: float,
             if a is None or b is None or a[1] * b[1] >= 0:
                 continue
 
-            def f(x: float) -> float:
+            def f(x: float, end: str = end) -> float:
                 prm = d.block.resolve({**base, name: x})
                 ev = _edge_values(d, prm, *V_range).get(end)
                 if ev is None:

@@ -7,8 +7,8 @@ import math
 from typing import Mapping, Sequence
 
 from landau.errors import InputError
-from landau.systems.system import SpringBlock
 from landau.laws import BUILTIN, FrictionLaw, get_law
+from landau.systems.system import SpringBlock
 
 SYSTEM_PARAMS = ("M", "g", "sigma")
 
@@ -16,7 +16,8 @@ SYSTEM_PARAMS = ("M", "g", "sigma")
 def add_law_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("law", nargs="?", default=None,
                    help=f"built-in law ({', '.join(BUILTIN)}) or, with --mu, a name for an inline law")
-    p.add_argument("--mu", default=None, help="inline friction coefficient, e.g. 'a_v + a*log(v/V_s) + b*log(V_s*phi/L)'")
+    p.add_argument("--mu", default=None,
+                   help="inline friction coefficient, e.g. 'a_v + a*log(v/V_s) + b*log(V_s*phi/L)'")
     p.add_argument("--state", action="append", default=[], metavar="NAME=RATE",
                    help="inline state variable and its rate dNAME/dt (repeatable), e.g. phi='1 - v*phi/L'")
     p.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
@@ -112,7 +113,7 @@ def resolve_law(args) -> tuple[FrictionLaw, dict[str, float]]:
     if args.mu is not None or args.state:
         if args.mu is None or not args.state:
             raise InputError("an inline law needs both --mu and at least one --state NAME=RATE")
-        states = {}
+        states: dict[str, str] = {}
         for item in args.state:
             name, rate = split_assignment(item, "--state", "RATE", states)
             states[name] = rate

@@ -8,12 +8,10 @@ from __future__ import annotations
 
 from functools import partial
 
-from landau.cli.common import (add_law_arguments, block_and_params, fmt, parse_range,
-                                    parse_velocities)
+from landau.cli.common import add_law_arguments, block_and_params, fmt, parse_range, parse_velocities
+from landau.derivation.multiscale import CONVENTION, QUANTITIES, UNITS, Derivation, criticality
 from landau.errors import InputError
 from landau.support.io import atomic_write_text, check_output
-from landau.derivation.multiscale import CONVENTION, QUANTITIES, UNITS, Derivation, criticality
-
 
 #: time budget of the symbolic work behind --latex (s)
 LATEX_SECONDS = 600.0
@@ -71,14 +69,16 @@ def run(args) -> dict:
         for c in codim2_points(d, lo, hi, params):
             # generalised-Hopf (Bautin) point: the quintic coefficient, l2 and the fold of cycles from it
             b = bautin_point(d, c.V, params, sign_below=c.sign_below, sign_above=c.sign_above)
-            extra = {k: v for k, v in b.as_dict().items() if k not in ("V", "kc", "omega_c", "sign_below", "sign_above")}
+            extra = {k: v for k, v in b.as_dict().items()
+                     if k not in ("V", "kc", "omega_c", "sign_below", "sign_above")}
             doc["codim2"].append({**c.as_dict(), **extra})
-        doc["units"].update({"Lambda5": UNITS["Lambda5"], "l2": "Re c2 of dz/dt = i omega z + c1 z|z|^2 + c2 z|z|^4, <q,q> = 1 (MatCont/BifurcationKit)"})
+        doc["units"].update({"Lambda5": UNITS["Lambda5"], "l2": "Re c2 of dz/dt = i omega z + c1 z|z|^2 + c2 z|z|^4, "
+                                                                "<q,q> = 1 (MatCont/BifurcationKit)"})
     if args.fragment and args.latex is None:
         raise InputError("--fragment needs --latex FILE")
     if args.latex is not None:
-        from landau.support.budget import run_bounded
         from landau.derivation.latex import derivation_latex
+        from landau.support.budget import run_bounded
         from landau.support.progress import set_quiet
 
         set_quiet(getattr(args, "json", False))
@@ -106,8 +106,8 @@ def render(doc: dict) -> str:
                    f"omega_c = {c['omega_c']:.6g} rad/s, {c['sign_below']} below / {c['sign_above']} above")
         if "Lambda5" in c:
             fc = c["fold_of_cycles"]
-            out.append(f"  Lambda5 = {c['Lambda5']:.6g} 1/(m^4 s), l2 = {c['l2']:.6g} (Re c2, <q,q> = 1); fold of cycles "
-                       f"for {fc['side']}: k - k_c = {fc['k_minus_kc_per_dV2']:.4g} (V - V*)^2 N/m, "
+            out.append(f"  Lambda5 = {c['Lambda5']:.6g} 1/(m^4 s), l2 = {c['l2']:.6g} (Re c2, <q,q> = 1); "
+                       f"fold of cycles for {fc['side']}: k - k_c = {fc['k_minus_kc_per_dV2']:.4g} (V - V*)^2 N/m, "
                        f"slip amplitude {fc['amplitude_per_sqrt_dV']:.4g} |V - V*|^(1/2) m")
     if "codim2" in doc and not doc["codim2"]:
         out.append("no change of sign of Lambda on the Hopf line in the requested range")

@@ -69,7 +69,8 @@ def configure(p) -> None:
     p.add_argument("--kinetic-pos", default=None, metavar="EXPR",
                    help="galvanetto-one-block: the r > 0 branch (default the odd reflection of --kinetic)")
     p.add_argument("--parameter", default=None, metavar="NAME",
-                   help="impact-oscillator: the bifurcation parameter (default mu, or the first parameter of --friction)")
+                   help="impact-oscillator: the bifurcation parameter "
+                        "(default mu, or the first parameter of --friction)")
 
 
 def run(args) -> dict:

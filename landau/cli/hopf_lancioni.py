@@ -24,8 +24,8 @@ from dataclasses import replace
 
 from landau.cli.common import parse_params, velocity_law_from_args
 from landau.cli.hopf import register
-from landau.errors import InputError
 from landau.derivation.hopf import HopfResult
+from landau.errors import InputError
 
 #: --param names besides the mechanical ones and the law's
 EXTRA = ("v_belt",)

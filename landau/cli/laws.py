@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-
 from landau.errors import InputError
 from landau.laws import BUILTIN, BUILTIN_VELOCITY, get_law
 
@@ -25,14 +24,15 @@ def run(args) -> dict:
         names, vnames = list(BUILTIN), list(BUILTIN_VELOCITY)
     out = []
     for n in vnames:
-        law = BUILTIN_VELOCITY[n]()
-        out.append({"name": law.name, "kind": "velocity", "source": law.source, "description": law.description,
-                    "F(v>0)": str(law.branch(1)), "F(v<0)": str(law.branch(-1)), "quantity": law.quantity,
-                    "set_valued_at_zero": law.is_set_valued(), "parameters": _parameters(law)})
+        vlaw = BUILTIN_VELOCITY[n]()
+        out.append({"name": vlaw.name, "kind": "velocity", "source": vlaw.source, "description": vlaw.description,
+                    "F(v>0)": str(vlaw.branch(1)), "F(v<0)": str(vlaw.branch(-1)), "quantity": vlaw.quantity,
+                    "set_valued_at_zero": vlaw.is_set_valued(), "parameters": _parameters(vlaw)})
     for n in names:
         law = get_law(n)
         out.append({"name": law.name, "kind": "rate-and-state", "source": law.source,
-                    "description": law.description, "mu": str(law.mu), "states": {str(s): str(r) for s, r in zip(law.states, law.rates)},
+                    "description": law.description, "mu": str(law.mu),
+                    "states": {str(s): str(r) for s, r in zip(law.states, law.rates, strict=True)},
                     "convention": "rates are dphi/dt (Putelat et al.: dphi/dt = -G)",
                     "parameters": _parameters(law)})
     if not out:
@@ -52,6 +52,6 @@ def render(doc: dict) -> str:
             lines.append(f"  mu = {law['mu']}")
             for s, r in law["states"].items():
                 lines.append(f"  d{s}/dt = {r}")
-        lines.append("  parameters: " + ", ".join(f"{p['name']}={p['default']:g}{(' ' + p['units']) if p['units'] else ''}"
-                                              for p in law["parameters"]))
+        lines.append("  parameters: " + ", ".join(
+            f"{p['name']}={p['default']:g}{(' ' + p['units']) if p['units'] else ''}" for p in law["parameters"]))
     return "\n".join(lines)

@@ -6,8 +6,8 @@ Example: landau linear dieterich --V 1e-5,1e-4 --param M=2
 from __future__ import annotations
 
 from landau.cli.common import add_law_arguments, block_and_params, fmt, parse_velocities
-from landau.support.io import atomic_write_text, check_output
 from landau.derivation.linear import HopfLine
+from landau.support.io import atomic_write_text, check_output
 
 
 def configure(p) -> None:
@@ -44,7 +44,8 @@ def render(doc: dict) -> str:
     for p in doc["points"]:
         phi = ", ".join(f"{x:.4g}" for x in p["phi_ss"])
         if p["status"] == "ok":
-            out.append(f"{fmt(p['V'])} {fmt(p['kc'])} {fmt(p['omega_c'])} {fmt(p['mu_ss'])} {fmt(p['dmu_ss_dV'])}  {phi}")
+            out.append(f"{fmt(p['V'])} {fmt(p['kc'])} {fmt(p['omega_c'])} {fmt(p['mu_ss'])} "
+                       f"{fmt(p['dmu_ss_dV'])}  {phi}")
         else:
             out.append(f"{fmt(p['V'])}  {p['reason']}  (mu_ss = {p['mu_ss']:.6g}, slope {p['dmu_ss_dV']:.4g}); "
                        f"{p['velocity_weakening']}")

@@ -12,9 +12,9 @@ from pathlib import Path
 import numpy as np
 
 from landau.cli.common import add_law_arguments, block_and_params, parse_range
+from landau.derivation.multiscale import QUANTITIES, UNITS, Derivation
 from landau.errors import InputError
 from landau.support.io import atomic_savefig
-from landau.derivation.multiscale import QUANTITIES, UNITS, Derivation
 
 #: file types the figure can be written as
 FORMATS = ("png", "pdf", "svg")

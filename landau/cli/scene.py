@@ -8,8 +8,8 @@ Example: landau scene run putelat2010/V-hat
 from __future__ import annotations
 
 from landau.cli.common import parse_params
-from landau.report.display import text_table
 from landau.errors import InputError
+from landau.report.display import text_table
 from landau.scenes import SceneResult, all_scenes, run_scene, run_scenes, verdict
 
 

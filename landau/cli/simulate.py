@@ -153,9 +153,9 @@ def _spring_block(args, t_end: float):
 
 
 def _galvanetto(args, t_end: float, n: int):
+    from landau.laws.kinetic import KineticFriction
     from landau.verify.galvanetto.analysis import FIG_STEPPER
     from landau.verify.galvanetto.maps import model_for
-    from landau.laws.kinetic import KineticFriction
     from landau.verify.galvanetto.model import StickSlipParams
     from landau.verify.hybrid import EngineOptions, simulate
 
@@ -356,7 +356,7 @@ def run(args) -> dict:
             "status": sim.status.value, "message": sim.message, "t_final": sim.t_final,
             "points": len(sim.t), "events": len(sim.events), "steps": sim.nsteps,
             "state_names": list(sim._names()),
-            "final_state": dict(zip(sim._names(), (float(v) for v in np.ravel(sim.y_final)))),
+            "final_state": dict(zip(sim._names(), (float(v) for v in np.ravel(sim.y_final)), strict=True)),
             "notes": notes, "files": files, **extra, "exit_code": 0 if sim.success else 1}
 
 

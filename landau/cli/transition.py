@@ -1,4 +1,5 @@
-"""Transition velocity V*(p) where the Hopf bifurcation changes nature, and the critical p* (Putelat et al. 2010, Sec. 4.2).
+"""Transition velocity V*(p) where the Hopf bifurcation changes nature, and the critical p*
+(Putelat et al. 2010, Sec. 4.2).
 
 Continues every codimension-two point (Λ = 0 on the Hopf line) in a law parameter and
 finds p*, where a branch V*(p) meets the extremum V_m(p) of μ_ss and disappears.
@@ -11,10 +12,10 @@ from __future__ import annotations
 
 import math
 
-from landau.cli.common import parse_range, add_law_arguments, block_and_params, fmt, parse_floats
-from landau.errors import InputError
-from landau.derivation.multiscale import Derivation
 from landau.analyses.transition import transition_curve
+from landau.cli.common import add_law_arguments, block_and_params, fmt, parse_floats, parse_range
+from landau.derivation.multiscale import Derivation
+from landau.errors import InputError
 
 
 def configure(p) -> None:

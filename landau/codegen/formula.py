@@ -15,9 +15,9 @@ from __future__ import annotations
 
 import dis
 import hashlib
-import logging
 import linecache
-from typing import Callable, Mapping, Sequence
+import logging
+from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 import sympy as sp
@@ -156,7 +156,7 @@ def _source_of(fn, ns: dict) -> str | None:
     """The source sympy generated for ``fn``, when every global it reads is the same object in
     the shared namespace ``ns`` (else None: such a function is not cached)."""
     entry = linecache.cache.get(fn.__code__.co_filename)
-    if not entry:
+    if not entry or len(entry) < 3:   # absent, or a lazy entry without the lines
         return None
     source = "".join(entry[2])
     import builtins
@@ -217,9 +217,9 @@ def lambdify(args: Sequence[sp.Symbol], expr, modules: str = "numpy") -> Callabl
             logger.warning("ignoring unusable generated code %s (%s)", path, exc)
             jitcache.discard_keyed_source(key, _LAMBDIFY_TAG)
     fn = sp.lambdify(args, expr, modules=_modules(modules), cse=True)
-    source = _source_of(fn, ns)
-    if source is not None:
-        jitcache.store_keyed_source(key, _LAMBDIFY_TAG, source)
+    generated = _source_of(fn, ns)
+    if generated is not None:
+        jitcache.store_keyed_source(key, _LAMBDIFY_TAG, generated)
     return fn
 
 
@@ -324,12 +324,13 @@ class AtomTable:
         if fn is None:
             return {}
         with np.errstate(all="ignore"):
-            return dict(zip(syms, fn(*vals)))
+            return dict(zip(syms, fn(*vals), strict=True))
 
 
-_NP_FUNCS = {"log": np.log, "exp": np.exp, "sqrt": np.sqrt, "Abs": np.abs, "sign": np.sign, "sin": np.sin,
-             "cos": np.cos, "tanh": np.tanh, "sinh": np.sinh, "cosh": np.cosh, "atan": np.arctan,
-             "DiracDelta": _dirac_np, "Heaviside": _heaviside_np}
+_NP_FUNCS: dict[str, Callable] = {
+    "log": np.log, "exp": np.exp, "sqrt": np.sqrt, "Abs": np.abs, "sign": np.sign, "sin": np.sin,
+    "cos": np.cos, "tanh": np.tanh, "sinh": np.sinh, "cosh": np.cosh, "atan": np.arctan,
+    "DiracDelta": _dirac_np, "Heaviside": _heaviside_np}
 _MP_FUNCS = {"log": "log", "exp": "exp", "sqrt": "sqrt", "Abs": "fabs", "sign": "sign", "sin": "sin", "cos": "cos",
              "tanh": "tanh", "sinh": "sinh", "cosh": "cosh", "atan": "atan"}
 
@@ -381,7 +382,8 @@ class Tape:
         self._many = isinstance(expr, (list, tuple))       # several outputs sharing one program
         outputs = list(expr) if self._many else [expr]
         slot: dict[sp.Basic, int] = {s: i for i, s in enumerate(inputs)}
-        ops: list[tuple[str, object, tuple[int, ...]]] = []
+        # (kind, value, argument slots): value is None, a function name, an exponent or a constant
+        ops: list[tuple[str, Any, tuple[int, ...]]] = []
         stack = [(e, False) for e in reversed(outputs)]
         while stack:
             node, done = stack.pop()
@@ -397,6 +399,7 @@ class Tape:
                 stack.append((node, True))
                 stack.extend((a, False) for a in node.args if a not in slot)
                 continue
+            op: tuple[str, Any, tuple[int, ...]]
             if node.is_Add:
                 op = ("add", None, tuple(slot[a] for a in node.args))
             elif node.is_Mul:
@@ -422,7 +425,7 @@ class Tape:
 
     def _constants(self, mode: str) -> list:
         if mode not in self._consts:
-            out = []
+            out: list[Any] = []
             for kind, val, _ in self.ops:
                 if kind != "const":
                     out.append(None)
@@ -438,14 +441,14 @@ class Tape:
             import mpmath
 
             consts = [None if k != "const" else _mp_constant(v) for k, v, _ in self.ops]
-            funcs = {k: getattr(mpmath, v) for k, v in _MP_FUNCS.items()}
+            funcs: dict[str, Callable] = {k: getattr(mpmath, v) for k, v in _MP_FUNCS.items()}
             funcs["DiracDelta"], funcs["Heaviside"] = _dirac_mp, _heaviside_mp
         else:
             ld = any(getattr(v, "dtype", None) == np.longdouble for v in vals)
             consts = self._constants("longdouble" if ld else "float")
             funcs = _NP_FUNCS
         reg = list(vals)
-        for (kind, val, args), c in zip(self.ops, consts):
+        for (kind, val, args), c in zip(self.ops, consts, strict=True):
             if kind == "const":
                 reg.append(c)
             elif kind == "add":

@@ -30,15 +30,15 @@ import ast
 import math
 from dataclasses import dataclass
 from dataclasses import field as _field
-from typing import Mapping, Sequence
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 import sympy as sp
 from numba import types
 from sympy.printing.pycode import PythonCodePrinter
 
-from landau.support.cx import as_expr
 from landau.errors import InputError
+from landau.support.cx import as_expr
 from landau.verify.hybrid.kernel import Kernel
 from landau.verify.jitcache import load_generated, njit_cached
 
@@ -74,7 +74,8 @@ def check_source(src: str) -> None:
                                                     and not node.attr.startswith("_")):
             raise InputError(f"generated code accesses attribute {ast.unparse(node)!r}: refusing to compile it")
         if isinstance(node, ast.Call) and not (isinstance(node.func, ast.Attribute)
-                                               or (isinstance(node.func, ast.Name) and node.func.id in ALLOWED_BUILTINS)):
+                                               or (isinstance(node.func, ast.Name)
+                                                   and node.func.id in ALLOWED_BUILTINS)):
             raise InputError(f"generated code calls {ast.unparse(node.func)!r}: refusing to compile it")
         if isinstance(node, ast.Name) and node.id.startswith("__"):
             raise InputError(f"generated code uses the name {node.id!r}: refusing to compile it")
@@ -246,10 +247,10 @@ class CompiledSource:
     """
 
     source: str = _field(repr=False)
-    fun: object
-    jac: object | None
-    fun_py: object = _field(repr=False)
-    jac_py: object | None = _field(repr=False)
+    fun: Callable[..., None]
+    jac: Callable[..., None] | None
+    fun_py: Callable[..., None] = _field(repr=False)
+    jac_py: Callable[..., None] | None = _field(repr=False)
 
 
 _COMPILED: dict[str, CompiledSource] = {}
@@ -466,7 +467,7 @@ class DerivedParameters:
         except (ValueError, ZeroDivisionError, OverflowError) as exc:
             raise InputError(f"a parameter combination of the field cannot be evaluated ({exc}): "
                              f"check the parameter values {base}") from None
-        bad = [str(v) for v, x in zip(self._values, out) if not math.isfinite(x)]
+        bad = [str(v) for v, x in zip(self._values, out, strict=True) if not math.isfinite(x)]
         if bad:
             raise InputError(f"parameter combination(s) {bad} of the field are not finite at {base}")
         return np.ascontiguousarray(base + out, dtype=float)

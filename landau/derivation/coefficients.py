@@ -14,9 +14,9 @@ from typing import TYPE_CHECKING, Any, Iterable, Mapping, Sequence
 import numpy as np
 import sympy as sp
 
-from landau.errors import InputError
 from landau.derivation.hopf import SPRING_BLOCK_UNITS
 from landau.derivation.linear import w
+from landau.errors import InputError
 
 if TYPE_CHECKING:
     from landau.derivation.multiscale import Derivation
@@ -184,7 +184,8 @@ class Coefficient:
                 f"units {self.units.replace('^', '')}; .latex() gives the formula")
 
     def __repr__(self) -> str:
-        return f"Coefficient({self.name}: {ALL_QUANTITIES[self.name][1]}, {ALL_QUANTITIES[self.name][2]}, [{self.units}])"
+        meaning, symbol = ALL_QUANTITIES[self.name][1], ALL_QUANTITIES[self.name][2]
+        return f"Coefficient({self.name}: {meaning}, {symbol}, [{self.units}])"
 
     def __call__(self, Vs, **params) -> np.ndarray:
         return self.derivation.evaluate(Vs, params, [self.name])[self.name]
@@ -208,8 +209,9 @@ class CoefficientTable(dict):
         The parameter values the table was evaluated at.
     """
 
-    def __init__(self, data: Mapping[str, Any] = (), law: str = "", params: Mapping[str, Any] | None = None):
-        super().__init__(data)
+    def __init__(self, data: Mapping[str, Any] | None = None, law: str = "",
+                 params: Mapping[str, Any] | None = None):
+        super().__init__(data or {})
         self.law = law
         self.params = dict(params or {})
 

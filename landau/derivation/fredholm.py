@@ -26,8 +26,8 @@ import math
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping, Sequence
 
-from landau.support.cx import Cx, as_cx, cx_is_zero, solve
 from landau.derivation.jets import multilinear
+from landau.support.cx import Cx, as_cx, cx_is_zero, solve
 
 
 @dataclass(frozen=True)
@@ -62,7 +62,7 @@ def null_vectors(J, E, w, normalise: int, drop_row: int, drop_col: int) -> Fredh
     q_rest = solve([[A[i][j] for j in cols] for i in rows], [-A[i][normalise] for i in rows]) if cols else []
     q: list[Cx] = [Cx(0, 0)] * n
     q[normalise] = as_cx(1 + 0 * w)
-    for j, val in zip(cols, q_rest):
+    for j, val in zip(cols, q_rest, strict=True):
         q[j] = val
     # ψ A = 0  ⇔  Aᵀ ψᵀ = 0 (no conjugation: ψ is a row vector, ⟨p, ·⟩ = ψ·)
     prow = [i for i in range(n) if i != drop_row]
@@ -70,7 +70,7 @@ def null_vectors(J, E, w, normalise: int, drop_row: int, drop_col: int) -> Fredh
     psi_rest = solve([[A[i][j] for i in prow] for j in pcol], [-A[drop_row][j] for j in pcol]) if prow else []
     psi: list[Cx] = [Cx(0, 0)] * n
     psi[drop_row] = as_cx(1 + 0 * w)
-    for i, val in zip(prow, psi_rest):
+    for i, val in zip(prow, psi_rest, strict=True):
         psi[i] = val
     delta = Cx(0, 0)
     for i in range(n):
@@ -81,7 +81,7 @@ def null_vectors(J, E, w, normalise: int, drop_row: int, drop_col: int) -> Fredh
 
 def row_dot(psi: Sequence[Cx], x: Sequence[Cx]) -> Cx:
     out = Cx(0, 0)
-    for a, b in zip(psi, x):
+    for a, b in zip(psi, x, strict=True):
         if not (cx_is_zero(a) or cx_is_zero(b)):
             out = out + a * b
     return out
@@ -99,7 +99,7 @@ def linear_coefficient(vec: FredholmVectors, J, Jp, fp, B2) -> Cx:
         # the equilibrium moves with p: y₀(p_c + ε²p₂) = y₀ − ε² p₂ J⁻¹ f_p
         shift = solve([[as_cx(J[i][j]) for j in range(n)] for i in range(n)], [as_cx(f) for f in fp])
         Bq = multilinear(B2, [vec.q, shift], n)
-        Jpq = [a - b for a, b in zip(Jpq, Bq)]
+        Jpq = [a - b for a, b in zip(Jpq, Bq, strict=True)]
     return row_dot(vec.psi, Jpq) / vec.delta
 
 
@@ -116,7 +116,7 @@ def cubic_coefficient(vec: FredholmVectors, J, E, w, B2, C3, half) -> Cx:
     R1 = multilinear(B2, [qb, W2], n)
     R2 = multilinear(B2, [q, W0], n)
     R3 = multilinear(C3, [q, q, qb], n)
-    R = [a + b + c * half for a, b, c in zip(R1, R2, R3)]
+    R = [a + b + c * half for a, b, c in zip(R1, R2, R3, strict=True)]
     return row_dot(vec.psi, R) / vec.delta
 
 
@@ -173,7 +173,8 @@ def _faa_terms(target: tuple[int, int], monomials: Sequence[tuple[int, int]], ma
         yield ms, weight
 
 
-def quintic_coefficient(vec: FredholmVectors, J, E, w, tensors: Mapping[int, Mapping[tuple, Any]], one) -> QuinticCoefficients:
+def quintic_coefficient(vec: FredholmVectors, J, E, w, tensors: Mapping[int, Mapping[tuple, Any]],
+                        one) -> QuinticCoefficients:
     """b and c of the amplitude equation to fifth order, by the Fredholm condition order by order.
 
     With p = p_c, y = Σ h_{jk} z^j z̄^k (z = εA e^{iωt}, h₁₀ = q, h₀₁ = q̄) and
@@ -206,7 +207,7 @@ def quintic_coefficient(vec: FredholmVectors, J, E, w, tensors: Mapping[int, Map
                 continue
             term = multilinear(tens, [h[m] for m in ms], n)
             scale = one / weight
-            rhs = [r + t * scale for r, t in zip(rhs, term)]
+            rhs = [r + t * scale for r, t in zip(rhs, term, strict=True)]
         # nonlinear part of H_z ż + H_z̄ dz̄/dt: a·h_{ab} c_m z^{a-1+m+1} z̄^{b+m} + b·h_{ab} c̄_m z^{a+m} z̄^{b-1+m+1}
         corr = [zero] * n
         for (mm1, mm), cm in coef.items():
@@ -214,10 +215,10 @@ def quintic_coefficient(vec: FredholmVectors, J, E, w, tensors: Mapping[int, Map
                 if (a, b) in ((1, 0), (0, 1)):
                     continue
                 if a > 0 and (a + mm1 - 1, b + mm) == (j, k):
-                    corr = [x + y * cm * a for x, y in zip(corr, vecab)]
+                    corr = [x + y * cm * a for x, y in zip(corr, vecab, strict=True)]
                 if b > 0 and (a + mm, b + mm1 - 1) == (j, k):
-                    corr = [x + y * cm.conj() * b for x, y in zip(corr, vecab)]
-        rhs = [r - x * E[i] if E[i] != 0 else r for i, (r, x) in enumerate(zip(rhs, corr))]
+                    corr = [x + y * cm.conj() * b for x, y in zip(corr, vecab, strict=True)]
+        rhs = [r - x * E[i] if E[i] != 0 else r for i, (r, x) in enumerate(zip(rhs, corr, strict=True))]
         l = j - k
         if l == 1:
             cval = row_dot(vec.psi, rhs) / vec.delta
@@ -230,7 +231,7 @@ def quintic_coefficient(vec: FredholmVectors, J, E, w, tensors: Mapping[int, Map
             cols = [c for c in range(n) if c != vec.normalise]
             part = solve([[A[i][c] for c in cols] for i in rows], [rhs[i] for i in rows]) if cols else []
             sol = [zero] * n
-            for c, val in zip(cols, part):
+            for c, val in zip(cols, part, strict=True):
                 sol[c] = val
         else:
             sol = solve(_pencil(J, E, l * w), rhs)

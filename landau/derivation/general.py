@@ -45,11 +45,11 @@ import scipy.linalg
 import scipy.optimize
 import sympy as sp
 
-from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.derivation.fredholm import _pencil, best_drop, cubic_coefficient, linear_coefficient, null_vectors, row_dot
-from landau.support.cx import Cx, as_expr
 from landau.derivation.hopf import GENERAL, HopfResult
 from landau.derivation.jets import Jets, TaylorJets
+from landau.errors import InputError, NoHopfError, SingularPointError
+from landau.support.cx import Cx, as_expr
 from landau.systems.system import DynamicalSystem
 
 #: default working precision of the located point and its coefficients (decimal digits)
@@ -107,7 +107,7 @@ class NumericSystem:
                 if len(system.unknown_guess) != len(system.unknowns):
                     raise InputError(f"{system.name}: the equilibrium has no closed form; give unknown_guess "
                                      "or an equilibrium guess")
-                eq = [as_expr(e).xreplace(dict(zip(system.unknowns, system.unknown_guess))) for e in eq]
+                eq = [as_expr(e).xreplace(dict(zip(system.unknowns, system.unknown_guess, strict=True))) for e in eq]
             fn = sp.lambdify([self.p, *self.params], eq, "numpy")
             self._guess = lambda p: [float(x) for x in fn(p, *self._pv)]
 
@@ -116,9 +116,10 @@ class NumericSystem:
         """(f, J = ∂f/∂y, f_p = ∂f/∂p) at (y, p), in float64 or at the working precision."""
         t = self.taylor1.at([*y, p], self.params, as_float=as_float)
         n = self.n
-        J = np.zeros((n, n)) if as_float else mpmath.zeros(n, n)
-        fp = np.zeros(n) if as_float else [mpmath.mpf(0)] * n
-        f = np.zeros(n) if as_float else [mpmath.mpf(0)] * n
+        # float64 arrays, or mpmath matrix and lists
+        J: Any = np.zeros((n, n)) if as_float else mpmath.zeros(n, n)
+        fp: Any = np.zeros(n) if as_float else [mpmath.mpf(0)] * n
+        f: Any = np.zeros(n) if as_float else [mpmath.mpf(0)] * n
         for (i,), v in t[0].items():
             f[i] = v
         for (i, j), v in t[1].items():
@@ -178,7 +179,7 @@ class NumericSystem:
                 dy = mpmath.lu_solve(J, -F)
             except ZeroDivisionError:
                 raise SingularPointError(f"{self.sys.name}: singular Jacobian at the equilibrium") from None
-            y = [a + b for a, b in zip(y, dy)]
+            y = [a + b for a, b in zip(y, dy, strict=True)]
             if mpmath.norm(dy, mpmath.inf) <= tol * (1 + max(abs(v) for v in y)):
                 return y
         raise SingularPointError(f"{self.sys.name}: equilibrium Newton iteration did not converge at "
@@ -269,7 +270,7 @@ def scan_hopf(num: NumericSystem, lo: float, hi: float, samples: int = SCAN_SAMP
     y = num.equilibrium_float(ps[0], y_start)
     tf = hopf_test_function(num.eigenvalues(y, ps[0]))
     found = []
-    for pa, pb in zip(ps[:-1], ps[1:]):
+    for pa, pb in zip(ps[:-1], ps[1:], strict=True):
         yb = num.equilibrium_float(pb, y)
         tfb = hopf_test_function(num.eigenvalues(yb, pb))
         if tf == 0 or tf * tfb < 0:
@@ -309,7 +310,7 @@ def _symbolic_tensors(num: NumericSystem, y0, pc, jets_cache: dict) -> dict[int,
     keys, fn = jets_cache[key]
     vals = fn(*y0, pc, *num._pv)
     tens: dict[int, dict] = {1: {}, 2: {}, 3: {}}
-    for (m, k), v in zip(keys, vals):
+    for (m, k), v in zip(keys, vals, strict=True):
         v = mpmath.mpmathify(v)
         if v != 0:
             tens[m][k] = v
@@ -382,8 +383,8 @@ def normal_form_at(num: NumericSystem, pc, wc, y0, *, jets: str = "taylor", jets
             raise InputError(f"{num.sys.name}: a non-diagonal mass matrix must be invertible "
                              "(write a DAE with a diagonal E)") from None
         L = lambda vec: [sum(Einv[i, k] * vec[k] for k in range(n)) for i in range(n)]
-        J = [list(col) for col in zip(*[L([J[i][j] for i in range(n)]) for j in range(n)])]
-        Jp = [list(col) for col in zip(*[L([Jp[i][j] for i in range(n)]) for j in range(n)])]
+        J = [list(col) for col in zip(*[L([J[i][j] for i in range(n)]) for j in range(n)], strict=True)]
+        Jp = [list(col) for col in zip(*[L([Jp[i][j] for i in range(n)]) for j in range(n)], strict=True)]
         fp = L(fp)
 
         def left(t):
@@ -514,14 +515,14 @@ def _frozen_equilibrium(system: DynamicalSystem, params: Mapping[str, float] | N
     at p_c (refined at the working precision), so those routes need no closed form.
     """
     y0s = tuple(sp.Symbol(f"{s.name}__eq", real=True) for s in system.states)
-    at = dict(zip(system.states, y0s))
+    at = dict(zip(system.states, y0s, strict=True))
     probe = DynamicalSystem(system.name, system.states, system.rhs, system.mass, system.parameter, y0s,
                             normalise=system.normalise, unknowns=y0s,
                             unknown_equations=tuple(as_expr(f).xreplace(at) for f in system.rhs))
     values: dict[str, Any] = dict(params or {})
     num = NumericSystem(system, params or {}, result.equilibrium)
     pc, _, y = refine_hopf(num, result.p_c, result.omega_c, result.equilibrium)
-    values.update({s.name: v for s, v in zip(y0s, y)})
+    values.update({s.name: v for s, v in zip(y0s, y, strict=True)})
     return probe, values, pc
 
 

@@ -15,7 +15,7 @@ first (for compiled code) only at the end.  This is what keeps derivation fast.
 from __future__ import annotations
 
 import itertools
-from typing import Any, Callable, Sequence
+from typing import Any, Callable, Mapping, Sequence
 
 import sympy as sp
 
@@ -34,7 +34,7 @@ class Jets:
     def __init__(self, system: DynamicalSystem):
         self.system = system
         self.n = len(system.states)
-        self._at = dict(zip(system.states, system.equilibrium))
+        self._at = dict(zip(system.states, system.equilibrium, strict=True))
         self._cache: dict[int, dict[tuple[int, ...], sp.Expr]] = {}
         self._param: tuple | None = None
         self.atoms: dict[sp.Symbol, sp.Expr] = {}
@@ -63,7 +63,8 @@ class Jets:
                 name = f"d{n}_{ys[i].name}_" + "_".join(ys[j].name for j in idx)
                 atom = self._atom(name, val)
                 if atom != 0:
-                    out[(i, *idx)] = atom
+                    key = (i, *idx)
+                    out[key] = atom
         self._cache[n] = out
         self.built.append(n)
         return out
@@ -90,7 +91,7 @@ class Jets:
         return expr.xreplace(self.atoms)
 
 
-def multilinear(tensor: dict[tuple[int, ...], Any], vectors: Sequence[Sequence[Cx]], n: int,
+def multilinear(tensor: Mapping[tuple[int, ...], Any], vectors: Sequence[Sequence[Cx]], n: int,
                 convert: Callable[[Any], Any] = lambda x: x) -> list[Cx]:
     """Σ over all index orderings of D[i, j₁…jₘ] a¹_{j₁}…aᵐ_{jₘ} (symmetric multilinear form)."""
     out = [Cx(0, 0) for _ in range(n)]
@@ -160,7 +161,7 @@ class _Series:
         if self.is_const():
             return o.scale(self.value)
         K = self.K
-        out = [{} for _ in range(K + 1)]
+        out: list[dict] = [{} for _ in range(K + 1)]
         for d1 in range(K + 1):
             a = self.c[d1]
             if not a:
@@ -289,6 +290,7 @@ class TaylorJets:
 
         if e in slots:
             return slots[e]
+        ins: tuple[Any, ...]   # (operation, operands...)
         if e.is_Number or e.is_NumberSymbol:
             ins = ("const", e)
         elif e.is_Add or e.is_Mul:
@@ -424,7 +426,8 @@ class TaylorJets:
                 raise InputError(f"Taylor jets: no value for {s.name}")
         seeds = []
         for j, x0 in enumerate(point):
-            c = [{(): self._num(x0)}] + [{} for _ in range(K)]
+            c: list[dict[tuple[int, ...], Any]] = [{} for _ in range(K + 1)]
+            c[0][()] = self._num(x0)
             if K >= 1:
                 if directions is None:
                     c[1] = {(j,): self._num(1)}
@@ -451,5 +454,6 @@ class TaylorJets:
                     mult = 1
                     for j in set(key):
                         mult *= math.factorial(key.count(j))
-                    tens[d][(i, *key)] = v * mult
+                    full = (i, *key)
+                    tens[d][full] = v * mult
         return tens

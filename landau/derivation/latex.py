@@ -13,7 +13,18 @@ from typing import Sequence
 
 import sympy as sp
 
-from landau.report.latex import Equation, Namer, align_block, document, equation_lines, escape_text, law_equations, straight_line, symbol_latex, units_latex
+from landau.report.latex import (
+    Equation,
+    Namer,
+    align_block,
+    document,
+    equation_lines,
+    escape_text,
+    law_equations,
+    straight_line,
+    symbol_latex,
+    units_latex,
+)
 
 _CONVENTION = (r"\frac{d|A|}{dT} &= \frac{\Gamma |A| + \Lambda |A|^3}{2}, \qquad "
                r"\frac{d\theta}{dT} = \frac{\Omega + \chi |A|^2}{2}, \\ "
@@ -107,7 +118,8 @@ def _derivation_latex(d, quantities: Sequence[str], fragment: bool, progress) ->
         Wsym = sp.Symbol("W")
         text(r"The Hopf line has no closed form ($n>1$ state variables): $k_c$ and $\omega_c$ are computed "
              r"numerically. $\omega_c^2$ is the positive root $W$ of the Hopf polynomial below at which the "
-             r"stiffness $k = -\mathrm{Re}(P\bar Q)/|Q|^2$ is largest ($\det(\lambda E - J) = P(\lambda) + k Q(\lambda)$, "
+             r"stiffness $k = -\mathrm{Re}(P\bar Q)/|Q|^2$ is largest ($\det(\lambda E - J) = P(\lambda) + k "
+             r"Q(\lambda)$, "
              r"$\lambda = i\omega$):")
         text(align_block(equation_lines("0", H.as_expr().xreplace({d.hopf._hopf_polys[0].gen: Wsym}), names,
                                         letter="H")))
@@ -144,7 +156,7 @@ def _derivation_latex(d, quantities: Sequence[str], fragment: bool, progress) ->
         reps, red = straight_line(form)
         loc = dict(names)
         eqs = []
-        for i, (s, e) in enumerate(reps, 1):
+        for i, (s, _e) in enumerate(reps, 1):
             loc[s] = rf"q_{{{i}}}"
         namer = Namer(_letter(q))
         for s, e in reps:

@@ -20,9 +20,9 @@ import sympy as sp
 from sympy.polys.matrices import DomainMatrix
 
 from landau.codegen.formula import CompiledFormula, compile_expr
-from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.derivation.jets import Jets
-from landau.systems.system import V, DynamicalSystem, SpringBlock
+from landau.errors import InputError, NoHopfError, SingularPointError
+from landau.systems.system import DynamicalSystem, SpringBlock, V
 
 lam = sp.Symbol("lambda")
 W = sp.Symbol("W", positive=True)       # ω²
@@ -34,7 +34,8 @@ NO_HOPF_STABLE = "no Hopf bifurcation: steady sliding is stable for all k"
 def _split_at_iw(poly: sp.Poly) -> tuple[sp.Poly, sp.Poly]:
     """(Re, Im) of a polynomial in λ evaluated at λ = iω, as polynomials in ω over the same
     coefficient domain."""
-    re, im = {}, {}
+    re: dict[tuple[int], Any] = {}
+    im: dict[tuple[int], Any] = {}
     for (m,), c in poly.rep.terms():
         sign = 1 if m % 4 in (0, 1) else -1
         (re if m % 2 == 0 else im)[(m,)] = c if sign == 1 else -c
@@ -124,7 +125,8 @@ class HopfPoint:
     def _repr_latex_(self) -> str:
         if self.status != "ok":
             return rf"$V = {self.V:.4g}$: \text{{{self.reason}}}"
-        return rf"$V = {self.V:.4g}\,\mathrm{{m/s}},\ k_c = {self.kc:.6g}\,\mathrm{{N/m}},\ \omega_c = {self.omega_c:.6g}\,\mathrm{{rad/s}}$"
+        return (rf"$V = {self.V:.4g}\,\mathrm{{m/s}},\ k_c = {self.kc:.6g}\,\mathrm{{N/m}},\ "
+                rf"\omega_c = {self.omega_c:.6g}\,\mathrm{{rad/s}}$")
 
 
 class HopfLine:
@@ -206,7 +208,8 @@ class HopfLine:
         """k_c(V) in terms of the law (atoms substituted), eq. (7)."""
         cf = self.closed_form
         if cf is None:
-            raise InputError(f"{self.system.name}: k_c has no closed form (more than one state); use numeric evaluation")
+            raise InputError(f"{self.system.name}: k_c has no closed form (more than one state); "
+                             "use numeric evaluation")
         return self.jets.expand_atoms(cf[0])
 
     @property
@@ -223,7 +226,7 @@ class HopfLine:
 
     @cached_property
     def _compiled_closed(self):
-        kc, W_c = self.closed_form  # type: ignore[misc]
+        kc, W_c = self.closed_form
         atoms = self.jets.atoms
         return CompiledFormula(kc, self.args, atoms), CompiledFormula(W_c, self.args, atoms)
 
@@ -239,7 +242,8 @@ class HopfLine:
         H, re, q2 = self._hopf_polys
         atoms = self.jets.atoms
         return ([CompiledFormula(c, self.args, atoms, "mpmath") for c in H.all_coeffs()],
-                CompiledFormula(re, (W, *self.args), atoms, "mpmath"), CompiledFormula(q2, (W, *self.args), atoms, "mpmath"))
+                CompiledFormula(re, (W, *self.args), atoms, "mpmath"),
+                CompiledFormula(q2, (W, *self.args), atoms, "mpmath"))
 
     def numeric_point_mp(self, vals: Sequence[Any]) -> tuple[Any, Any]:
         """(k_c, ω_c²) of the n-state route at the working mpmath precision.
@@ -277,7 +281,7 @@ class HopfLine:
             mu = self.block.mu_ss()
             return mu, sp.diff(mu, V), tuple(ss)
         phi0 = self.block.phi0
-        at = {v_slip: V, **dict(zip(law.states, phi0))}
+        at = {v_slip: V, **dict(zip(law.states, phi0, strict=True))}
         R = sp.Matrix(law.rates)
         Rphi = R.jacobian(list(law.states)).xreplace(at)
         Rv = R.diff(v_slip).xreplace(at)
@@ -296,7 +300,7 @@ class HopfLine:
     def _compiled_phi(self):
         return [compile_expr(e, self.args) for e in self._mu_ss_exprs[2]]
 
-    def evaluate(self, Vs: Sequence[float] | float, params: Mapping[str, float] | None = None,
+    def evaluate(self, Vs: Sequence[float] | float | np.ndarray, params: Mapping[str, float] | None = None,
                  method: str = "auto") -> tuple[np.ndarray, np.ndarray]:
         """Vectorised (k_c, ω_c) over velocities; NaN where there is no Hopf point.
 
@@ -334,12 +338,14 @@ class HopfLine:
         for n, Vn in enumerate(Vs):
             vals = self._argvals(np.float64(Vn), p)
             cs = [float(c(*vals)) for c in coeffs]
-            kk, Wr = _stiffest_hopf_root(np.roots(cs), lambda Wr: -float(fre(Wr, *vals)) / float(fq2(Wr, *vals)),
+            kk, Wr = _stiffest_hopf_root(np.roots(cs),
+                                         lambda Wr, vals=vals: -float(fre(Wr, *vals)) / float(fq2(Wr, *vals)),
                                          1e-9, np.nan)
             kcs[n], oms[n] = kk, np.sqrt(Wr)
         return kcs, oms
 
-    def points(self, Vs: Sequence[float] | float, params: Mapping[str, float] | None = None) -> list[HopfPoint]:
+    def points(self, Vs: Sequence[float] | float | np.ndarray,
+               params: Mapping[str, float] | None = None) -> list[HopfPoint]:
         """One :class:`HopfPoint` per velocity, with the steady state and μ_ss slope.
 
         Parameters
@@ -381,7 +387,8 @@ class HopfLine:
                 out.append(HopfPoint(float(Vi), "ok", float(kc[i]), float(om[i]), phi, float(mu[i]), float(dmu[i])))
             else:
                 reason = NO_HOPF_STABLE if dmu[i] >= 0 else \
-                    "no Hopf bifurcation: velocity weakening but no oscillatory instability (check the direct effect mu_v > 0)"
+                    ("no Hopf bifurcation: velocity weakening but no oscillatory instability "
+                     "(check the direct effect mu_v > 0)")
                 out.append(HopfPoint(float(Vi), "no-hopf", phi_ss=phi, mu_ss=float(mu[i]), dmu_ss=float(dmu[i]),
                                      reason=reason, weakening=self.weakening_range(p)))
         return out

@@ -38,10 +38,10 @@ from typing import Any, Mapping, Sequence
 import mpmath
 import sympy as sp
 
-from landau.support.cx import as_expr
-from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.derivation.hopf import GENERAL, HopfResult, spring_block_result
 from landau.derivation.jets import Jets
+from landau.errors import InputError, NoHopfError, SingularPointError
+from landau.support.cx import as_expr
 from landau.systems.system import DynamicalSystem, SpringBlock
 
 #: digits used when the caller does not say (≥ 30: far above the float64 engine it checks)
@@ -219,7 +219,7 @@ def _critical_pair(system: DynamicalSystem, values, jets, p_c, omega_c, dps: int
     qn = mpmath.sqrt(sum(abs(z) ** 2 for z in q))
     q = [z / qn for z in q]                       # ⟨q, q⟩ = 1
     wl = [EL[i_c, j] for j in range(n)]           # w A = iω w, i.e. p̄ᵀ ∝ w
-    wq = sum(a * b for a, b in zip(wl, q))
+    wq = sum(a * b for a, b in zip(wl, q, strict=True))
     pbar = [a / wq for a in wl]                   # ⟨p, q⟩ = p̄ᵀ q = 1
     return vals, nj, pc, A, tens, mpmath.im(lam), q, pbar
 
@@ -271,8 +271,10 @@ def first_lyapunov(system: DynamicalSystem, values: Mapping[sp.Symbol | str, Any
         res_q = max(abs(sum(A[i, j] * q[j] for j in range(n)) - 1j * om * q[i]) for i in range(n))
         res_p = max(abs(sum(pbar[i] * A[i, j] for i in range(n)) - 1j * om * pbar[j]) for j in range(n))
         scale = mpmath.mnorm(A, 1)
-        if res_q > mpmath.mpf(10) ** (-(dps // 2)) * scale or res_p > mpmath.mpf(10) ** (-(dps // 2)) * scale * max(abs(z) for z in pbar):
-            raise SingularPointError(f"eigenvectors inaccurate at p = {float(pc):.10g} (residuals {float(res_q):.2g}, {float(res_p):.2g})")
+        small = mpmath.mpf(10) ** (-(dps // 2)) * scale
+        if res_q > small or res_p > small * max(abs(z) for z in pbar):
+            raise SingularPointError(f"eigenvectors inaccurate at p = {float(pc):.10g} (residuals {float(res_q):.2g}, "
+                                     f"{float(res_p):.2g})")
         qb = [mpmath.conj(z) for z in q]
         B, C3 = tens[2], tens[3]
         Bqq = _form(B, [q, q], n)
@@ -286,8 +288,8 @@ def first_lyapunov(system: DynamicalSystem, values: Mapping[sp.Symbol | str, Any
         Cqqqb = _form(C3, [q, q, qb], n)
         Bq_h11 = _form(B, [q, h11], n)
         Bqb_h20 = _form(B, [qb, h20], n)
-        vec = [c - 2 * b1 + b2 for c, b1, b2 in zip(Cqqqb, Bq_h11, Bqb_h20)]
-        c1 = sum(a * b for a, b in zip(pbar, vec)) / 2
+        vec = [c - 2 * b1 + b2 for c, b1, b2 in zip(Cqqqb, Bq_h11, Bqb_h20, strict=True)]
+        c1 = sum(a * b for a, b in zip(pbar, vec, strict=True)) / 2
         l1 = mpmath.re(c1) / om
         # transversality dλ/dp: central differences at h and 2h, one Richardson step
         h = abs(pc) * mpmath.mpf(rel_step) if pc != 0 else mpmath.mpf(rel_step)
@@ -401,7 +403,7 @@ def _kuznetsov_c1_c2(A: mpmath.matrix, tens: Mapping[int, Mapping[tuple, Any]], 
     fact = math.factorial
     h: dict[tuple[int, int], list] = {(1, 0): list(q), (0, 1): [mpmath.conj(z) for z in q]}
     coef: dict[int, Any] = {}
-    pdot = lambda x: sum(a * b for a, b in zip(pbar, x))
+    pdot = lambda x: sum(a * b for a, b in zip(pbar, x, strict=True))
 
     def shifted(s):
         M = mpmath.matrix(n, n)
@@ -421,24 +423,24 @@ def _kuznetsov_c1_c2(A: mpmath.matrix, tens: Mapping[int, Mapping[tuple, Any]], 
             for block in part:
                 nz = sum(1 for i in block if labels[i] == "z")
                 vecs.append(h[(nz, len(block) - nz)])
-            rhs = [r + t for r, t in zip(rhs, _form(tens[m], vecs, n))]
+            rhs = [r + t for r, t in zip(rhs, _form(tens[m], vecs, n), strict=True)]
         for mm, cm in coef.items():               # ż ∋ c_m z^{m+1} z̄^m
             for (a, b), vec in h.items():
                 if (a, b) in ((1, 0), (0, 1)) or (a + mm, b + mm) != (j, k):
                     continue
                 if a > 0:
                     f = fact(j) * fact(k) / (fact(a - 1) * fact(b))
-                    rhs = [r - f * cm * x for r, x in zip(rhs, vec)]
+                    rhs = [r - f * cm * x for r, x in zip(rhs, vec, strict=True)]
                 if b > 0:
                     f = fact(j) * fact(k) / (fact(a) * fact(b - 1))
-                    rhs = [r - f * mpmath.conj(cm) * x for r, x in zip(rhs, vec)]
+                    rhs = [r - f * mpmath.conj(cm) * x for r, x in zip(rhs, vec, strict=True)]
         if j - k == 1:
             mm = k
             cval = pdot(rhs) / (fact(j) * fact(k))
             coef[mm] = cval
             if mm == 2:
                 break
-            rhs = [r - fact(j) * fact(k) * cval * qi for r, qi in zip(rhs, q)]
+            rhs = [r - fact(j) * fact(k) * cval * qi for r, qi in zip(rhs, q, strict=True)]
             big = mpmath.matrix(n + 1, n + 1)
             M = shifted(1j * om)
             for i in range(n):

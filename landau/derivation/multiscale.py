@@ -23,17 +23,29 @@ import mpmath
 import numpy as np
 import sympy as sp
 
-from landau.derivation import precision
 from landau.codegen.formula import AtomTable, CompiledFormula
-from landau.derivation.coefficients import (_GB, _LA, ALL_QUANTITIES, CONVENTION, DERIVED, QUANTITIES, QUINTIC, UNITS,  # noqa: F401
-                                 Coefficient, CoefficientTable, _with_bases, criticality)
-from landau.support.cx import Cx, as_expr
-from landau.errors import InputError, NoHopfError
+from landau.derivation import precision
+from landau.derivation.coefficients import (  # noqa: F401
+    _GB,
+    _LA,
+    ALL_QUANTITIES,
+    CONVENTION,
+    DERIVED,
+    QUANTITIES,
+    QUINTIC,
+    UNITS,
+    Coefficient,
+    CoefficientTable,
+    _with_bases,
+    criticality,
+)
 from landau.derivation.fredholm import cubic_coefficient, linear_coefficient, null_vectors, quintic_coefficient
 from landau.derivation.hopf import spring_block_result
 from landau.derivation.jets import Jets
 from landau.derivation.linear import HopfLine, w
-from landau.derivation.precision import BLOCK as _BLOCK, REL_GOOD as _REL_GOOD, WORKERS as _WORKERS  # noqa: F401
+from landau.derivation.precision import BLOCK as _BLOCK  # noqa: F401
+from landau.errors import InputError, NoHopfError
+from landau.support.cx import Cx, as_expr
 from landau.systems.system import SpringBlock
 
 
@@ -100,7 +112,8 @@ class Derivation:
 
     @cached_property
     def quintic(self):
-        """b and c of dA/dT = b A|A|² + c A|A|⁴ at the Hopf point (:func:`landau.derivation.fredholm.quintic_coefficient`),
+        """b and c of dA/dT = b A|A|² + c A|A|⁴ at the Hopf point
+        (:func:`landau.derivation.fredholm.quintic_coefficient`),
         in atoms with ω symbolic; builds the fourth and fifth derivatives (only when asked for)."""
         J, E, _, _ = self._structure()
         tensors = {m: self.jets.order(m) for m in (2, 3, 4, 5)}
@@ -274,7 +287,8 @@ class Derivation:
         return (CompiledFormula(kc, self.args, self.jets.atoms, "mpmath"),
                 CompiledFormula(W_c, self.args, self.jets.atoms, "mpmath"))
 
-    def evaluate_mp(self, V0: float, params: Mapping[str, float], names: Iterable[str], dps: int = 50) -> dict[str, Any]:
+    def evaluate_mp(self, V0: float, params: Mapping[str, float], names: Iterable[str],
+                    dps: int = 50) -> dict[str, Any]:
         """The same formulas evaluated at one point with mpmath at ``dps`` digits.
 
         Parameters
@@ -317,7 +331,7 @@ class Derivation:
 
     def evaluate(self, Vs, params: Mapping[str, float] | None = None,
                  names: Sequence[str] = ("kc", "omega_c", "Gamma_bar", "Lambda"),
-                 method: str = "auto", sign_only: bool = False) -> dict[str, np.ndarray]:
+                 method: str = "auto", sign_only: bool = False) -> CoefficientTable:
         """Vectorised evaluation over velocities (any parameter may also be an array).
 
         NaN where there is no Hopf point.  Every value is accurate to 1e-10 relative or
@@ -426,7 +440,7 @@ class Derivation:
         resolved = self.block.resolve(params)
         equilibrium = self._equilibrium_function(resolved)
         lin = None
-        out = []
+        out: list[Any] = []
         for i, Vi in enumerate(Vs):
             if not np.isfinite(res["kc"][i]):
                 lin = lin or self.hopf.points(Vs, params)
@@ -468,7 +482,11 @@ def _as_block(block) -> SpringBlock:
         return block
     from landau.laws import FrictionLaw
 
-    if isinstance(block, (FrictionLaw, str)):
+    if isinstance(block, str):
+        from landau.laws import get_law
+
+        return SpringBlock(get_law(block))
+    if isinstance(block, FrictionLaw):
         return SpringBlock(block)
     raise InputError(f"derive needs a SpringBlock, a FrictionLaw or a built-in law's name, got {type(block).__name__}")
 

@@ -147,7 +147,7 @@ def raw(d: "Derivation", vals, shape, bases, dtype, kc=None, om=None) -> dict[st
 
 def _raw_block(d: "Derivation", vals, shape, bases, dtype, kc=None, om=None) -> dict[str, np.ndarray]:
     formulas = [d._compiled_formula(n) for n in bases]
-    hopf = d.hopf._compiled_closed if kc is None else ()
+    hopf: tuple[Any, ...] = d.hopf._compiled_closed if kc is None else ()
     atoms = d._atom_table.evaluate(sorted(set().union(*(f.atom_syms for f in [*formulas, *hopf])), key=str), *vals)
     res: dict[str, np.ndarray] = {}
     if kc is None:
@@ -157,7 +157,7 @@ def _raw_block(d: "Derivation", vals, shape, bases, dtype, kc=None, om=None) -> 
         with np.errstate(all="ignore"):
             om = np.sqrt(np.where(res["W"] > 0, res["W"], np.nan))
         kc = res["kc"]
-    for n, f in zip(bases, formulas):
+    for n, f in zip(bases, formulas, strict=True):
         res[n] = np.asarray(f.call_with_atoms(atoms, om, kc, *vals), dtype=dtype) * np.ones(shape, dtype)
     return res
 
@@ -343,7 +343,8 @@ def refine_mpmath(d: "Derivation", out: dict[str, np.ndarray], vals, where: np.n
         out["degenerate"][idx] = degenerate
 
 
-def finish(d: "Derivation", Vs, vals, r: Raw, names, bases, sign_only: bool, params: dict[str, Any]) -> CoefficientTable:
+def finish(d: "Derivation", Vs, vals, r: Raw, names, bases, sign_only: bool,
+           params: dict[str, Any]) -> CoefficientTable:
     """The table of a route's values: NaN where there is no Hopf point, doubtful points from
     :func:`refine_mpmath`, C composed from Γ̄ and Λ; a coefficient that is not finite where a
     Hopf point exists raises :class:`~landau.errors.SingularPointError`."""

@@ -31,8 +31,8 @@ import sympy as sp
 from sympy import QQ
 from sympy.polys.fields import field
 
-from landau.support.cx import as_expr
 from landau.derivation.fredholm import cubic_coefficient, linear_coefficient, null_vectors
+from landau.support.cx import as_expr
 from landau.systems.system import V
 
 _U = float(np.finfo(np.float64).eps) / 2
@@ -73,7 +73,8 @@ class Polynomial:
         e = max((_log2(c) for c in scaled if c), default=0)
         scaled = [c / Fraction(2) ** e for c in scaled]
         desc = np.array([float(c) for c in reversed(scaled)] or [0.0])
-        safe = all(np.isfinite(x) and (x != 0 or c == 0) for x, c in zip(desc, reversed(scaled)))
+        # not strict: the zero polynomial has no coefficients but ``desc`` = [0.0]
+        safe = all(np.isfinite(x) and (x != 0 or c == 0) for x, c in zip(desc, reversed(scaled), strict=False))
         for name, val in (("_desc", desc), ("_abs", np.abs(desc)), ("_k", k), ("_e", e), ("_safe", safe)):
             object.__setattr__(self, name, val)
 
@@ -146,7 +147,8 @@ class RationalCoefficient:
     def identically_zero(self) -> bool:
         return self.P.is_zero and self.Q.is_zero
 
-    def evaluate(self, Vs: np.ndarray, omega: np.ndarray, omega_rel: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def evaluate(self, Vs: np.ndarray, omega: np.ndarray,
+                 omega_rel: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
         """(value, relative error bound) in float64; ``omega_rel`` bounds the error of ``omega``."""
         p, rp = self.P.evaluate(Vs)
         if self.Q.is_zero:
@@ -280,7 +282,7 @@ class QuadraticElement:
         o = self._lift(o)
         return self.a == o.a and self.b == o.b
 
-    __hash__ = None
+    __hash__ = None  # type: ignore[assignment]  # compared by value, not hashable
 
 
 class _FlintFraction:
@@ -353,7 +355,7 @@ class _FlintFraction:
             return NotImplemented
         return self.num == o.num and self.den == o.den
 
-    __hash__ = None
+    __hash__ = None  # type: ignore[assignment]  # compared by value, not hashable
 
     @property
     def numer(self):
@@ -364,7 +366,7 @@ class _FlintFraction:
         return self.den
 
     def _poly_expr(self, p) -> sp.Expr:
-        return sp.Add(*[sp.Integer(int(c)) * sp.Mul(*[g ** e for g, e in zip(self.field.symbols, m) if e])
+        return sp.Add(*[sp.Integer(int(c)) * sp.Mul(*[g ** e for g, e in zip(self.field.symbols, m, strict=True) if e])
                         for m, c in p.to_dict().items()])
 
     def as_expr(self) -> sp.Expr:
@@ -451,7 +453,7 @@ def _fredholm_in_field(d, names: Sequence[str], sub: Mapping[sp.Symbol, sp.Expr]
         return None
     plain = [sp.Symbol(g.name) for g in gens]
     K = _field(plain)
-    local = dict(zip(gens, plain))
+    local = dict(zip(gens, plain, strict=True))
 
     def conv_field(e):
         e = as_expr(e).xreplace({d.k: kc}).xreplace(atoms).xreplace(sub).xreplace(local)

@@ -154,7 +154,8 @@ def html_record(title: str, fields: Mapping[str, Any], *, units: Mapping[str, st
     for k, v in fields.items():
         u = (units or {}).get(k)
         val = format_value(v, digits) + (f" {u}" if u else "")
-        rows.append(f"<tr><th style='text-align:left'>{esc(str(k))}</th><td style='text-align:left'>{esc(val)}</td></tr>")
+        rows.append(f"<tr><th style='text-align:left'>{esc(str(k))}</th><td "
+                    f"style='text-align:left'>{esc(val)}</td></tr>")
     out = f"<div class='landau-result'><b>{esc(title)}</b><table>{''.join(rows)}</table>"
     if note:
         out += f"<small>{esc(note)}</small>"
@@ -169,7 +170,7 @@ def text_table(rows: Iterable[Mapping[str, Any]], columns: Sequence[str] | None 
     cells = [[_header(c, units) for c in cols]]
     cells += [[format_value(r.get(c), digits) for c in cols] for r in rows[:max_rows]]
     widths = [max(len(row[i]) for row in cells) for i in range(len(cols))]
-    lines = ["  ".join(s.rjust(w) for s, w in zip(row, widths)) for row in cells]
+    lines = ["  ".join(s.rjust(w) for s, w in zip(row, widths, strict=True)) for row in cells]
     if len(rows) > max_rows:
         lines.append(f"… {len(rows) - max_rows} more rows")
     return "\n".join(lines)

@@ -207,7 +207,8 @@ def _shorten(e: sp.Basic, names, width: int, namer: Namer) -> str:
         text = to_latex(work, names)
         if len(text) <= width or not work.args:
             return text
-        sums, others = {}, {}
+        sums: dict[sp.Expr, None] = {}
+        others: dict[sp.Expr, None] = {}
         for sub in sp.preorder_traversal(work):
             if sub is work or sub.is_Atom or sub in names:
                 continue
@@ -246,7 +247,7 @@ def law_equations(law, names: Mapping | None = None) -> list[Equation]:
     """μ and the state rates of a friction law, split to fit."""
     names = dict(names or {})
     eqs = equation_lines(r"\mu", law.mu, names, letter="M")
-    for s, r in zip(law.states, law.rates):
+    for s, r in zip(law.states, law.rates, strict=True):
         eqs += equation_lines(rf"\frac{{d{symbol_latex(s.name)}}}{{dt}}", r, names, letter="R")
     return eqs
 

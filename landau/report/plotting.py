@@ -121,7 +121,7 @@ def plot_coefficients(table: Mapping[str, Any], names: Sequence[str] | None = No
     bands = []
     if "kc" in table and "Lambda" in table:
         bands = criticality_bands(V, table["kc"], table["Lambda"])
-    for ax, name in zip(axes[:, 0], names):
+    for ax, name in zip(axes[:, 0], names, strict=True):
         y = np.ravel(np.broadcast_to(np.asarray(table[name], dtype=float), V.shape))[order]
         finite = y[np.isfinite(y)]
         label = LABELS.get(name, name)
@@ -188,7 +188,8 @@ def plot_regime_diagram(diagram, ax=None):
               label=r"Hopf line, subcritical ($\Lambda>0$)")
     ib = np.asarray(diagram.inertial_boundary, dtype=float)
     if np.any(np.isfinite(ib) & (ib > 0)):
-        ax.loglog(V, np.where(ib > 0, ib, np.nan), color="0.4", lw=1.0, ls=":", label=r"inertial boundary $M\omega_c^2$")
+        ax.loglog(V, np.where(ib > 0, ib, np.nan), color="0.4", lw=1.0, ls=":",
+                  label=r"inertial boundary $M\omega_c^2$")
     for i, c in enumerate(diagram.codim2):
         ax.plot([c.V], [c.kc], "o", color="k", ms=5, label="codimension-two point" if i == 0 else None)
         ax.annotate(f"V = {c.V:.4g}", (c.V, c.kc), textcoords="offset points", xytext=(6, 6), fontsize="small")

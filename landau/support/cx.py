@@ -139,7 +139,7 @@ def solve(A: Sequence[Sequence[Cx]], b: Sequence[Cx]) -> list[Cx]:
 def dot(p: Sequence[Cx], x: Sequence[Cx]) -> Cx:
     """⟨p, x⟩ = Σ conj(pᵢ) xᵢ."""
     out = Cx(0, 0)
-    for pi, xi in zip(p, x):
+    for pi, xi in zip(p, x, strict=True):
         if cx_is_zero(pi) or cx_is_zero(xi):
             continue
         out = out + pi.conj() * xi

@@ -22,7 +22,8 @@ import numpy as np
 import sympy as sp
 
 from landau.errors import InputError
-from landau.laws.law import FrictionLaw, v as v_slip
+from landau.laws.law import FrictionLaw
+from landau.laws.law import v as v_slip
 
 #: system-level symbols shared by every spring–block
 V = sp.Symbol("V", positive=True)          # driving velocity [m/s]
@@ -248,13 +249,13 @@ class SpringBlock:
         mu_now = mu.subs(at_slip)
         ss = self.steady_state
         eq_phi = ss if ss is not None else self.phi0
-        mu_0 = mu.subs({v_slip: V, **dict(zip(phis, eq_phi))})
+        mu_0 = mu.subs({v_slip: V, **dict(zip(phis, eq_phi, strict=True))})
         rhs = (u, -k * X - sigma * (mu_now - mu_0), *(r.subs(at_slip) for r in self.law.rates))
         unknowns: tuple = ()
         eqs: tuple = ()
         if ss is None:
             unknowns = self.phi0
-            eqs = tuple(r.subs({v_slip: V, **dict(zip(phis, self.phi0))}) for r in self.law.rates)
+            eqs = tuple(r.subs({v_slip: V, **dict(zip(phis, self.phi0, strict=True))}) for r in self.law.rates)
         return DynamicalSystem(
             name=f"spring-block[{self.law.name}]",
             states=(X, u, *phis),
@@ -277,7 +278,7 @@ class SpringBlock:
         unknowns = self.phi0 if self.steady_state is None else ()
         return (V, *(p.symbol for p in self.law.parameters), M, g, sigma, *unknowns)
 
-    def argvals(self, Vs, params: Mapping[str, float]) -> list:
+    def argvals(self, Vs, params: Mapping[str, float | np.ndarray]) -> list:
         """Values for :attr:`args`; checks that the law is real and finite at steady sliding.
 
         Parameters

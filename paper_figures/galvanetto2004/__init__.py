@@ -44,7 +44,7 @@ def _one_block_cycle_xy(p):
 
 def fig7(out_dir: Path) -> list[Path]:
     fig, axs = plt.subplots(1, 3, figsize=(12, 3.6))
-    for ax, V, lab in zip(axs, (1.0, 3.0, 10.801), ("(a) below type II", "(b) between", "(c) type I")):
+    for ax, V, lab in zip(axs, (1.0, 3.0, 10.801), ("(a) below type II", "(b) between", "(c) type I"), strict=True):
         p = one_block(V, 3.0, 0.2, 0.0)
         y = _one_block_cycle_xy(p)
         ax.plot(y[0], y[1], "k-", lw=1)
@@ -53,7 +53,8 @@ def fig7(out_dir: Path) -> list[Path]:
         ax.set_xlabel("X")
     axs[0].set_ylabel("dX/dt")
     axs[0].legend(fontsize=7)
-    fig.suptitle("Fig. 7: one block, γ=3, δ=0.2 (the printed δ=0 is a misprint here), c=0: type II at V=1.2409, type I at V=10.8011")
+    fig.suptitle("Fig. 7: one block, γ=3, δ=0.2 (the printed δ=0 is a misprint here), c=0: type II at V=1.2409, type I "
+                 "at V=10.8011")
     return _save(fig, out_dir, "fig7")
 
 
@@ -62,7 +63,7 @@ def _two_block_portrait(axs, p, d0, period, label):
     y = gsp_orbit_trajectory(p, d, period)
     axs[0].plot(y[0], y[2], "k-", lw=0.8)
     axs[1].plot(y[1], y[3], "k-", lw=0.8)
-    for ax, i in zip(axs, (1, 2)):
+    for ax, i in zip(axs, (1, 2), strict=True):
         ax.axhline(p.V, color="r", lw=0.5)
         ax.set_xlabel(f"X{i}")
         ax.set_ylabel(f"dX{i}/dt")
@@ -71,7 +72,7 @@ def _two_block_portrait(axs, p, d0, period, label):
 
 def fig8(out_dir: Path) -> list[Path]:
     fig, axs = plt.subplots(2, 2, figsize=(9, 7))
-    for row, V in zip(axs, (0.18, 0.19)):
+    for row, V in zip(axs, (0.18, 0.19), strict=True):
         _two_block_portrait(row, two_blocks(V, 1.2, 1.3, 3.0, 0.0), 0.0, 2, f"V={V}")
     fig.suptitle("Fig. 8: two blocks α=1.2, β=1.3, γ=3, δ=0 — type II sliding at V=0.18285 (located)")
     fig.tight_layout()
@@ -83,7 +84,7 @@ def fig9(out_dir: Path) -> list[Path]:
     _two_block_portrait(axs[0], two_blocks(0.725, 1.2, 1.3, 3.0, 0.0), 0.0, 1, "V=0.725")
     p = two_blocks(0.740, 1.2, 1.3, 3.0, 0.0)   # no global stick phase: plain long run
     t, y, _ = trajectory(p, "ss", [0.5, 0.3, p.V, p.V], 300.0, t_keep=200.0)
-    for ax, i in zip(axs[1], (0, 1)):
+    for ax, i in zip(axs[1], (0, 1), strict=True):
         ax.plot(y[i], y[2 + i], "k-", lw=0.6)
         ax.axhline(p.V, color="r", lw=0.5)
         ax.set_title(f"V=0.740, block {i + 1}")
@@ -109,7 +110,7 @@ def fig10(out_dir: Path) -> list[Path]:
     c2 = B.nonsmooth_fold_c2(V).value
     cases = [(0.40, "(a) c < c1"), (0.60, "(b) c1 < c < c2"), (c2, "(c) c = c2"), (0.70, "(d) c > c2")]
     fig, axs = plt.subplots(1, 4, figsize=(15, 3.8))
-    for ax, (c, lab) in zip(axs, cases):
+    for ax, (c, lab) in zip(axs, cases, strict=True):
         p = one_block(V, 3.0, 0.0, c)
         x_eq = p.law.neg(-V)
         if c < c2 + 1e-12:
@@ -143,7 +144,7 @@ def fig11(out_dir: Path) -> list[Path]:
     V = 0.5
     c2 = B.nonsmooth_fold_c2(V).value
     fig, axs = plt.subplots(1, 4, figsize=(15, 3.8))
-    for ax, c in zip(axs, (0.40, 0.60, c2, 0.70)):
+    for ax, c in zip(axs, (0.40, 0.60, c2, 0.70), strict=True):
         p = one_block(V, 3.0, 0.0, c)
         m = _xmax_model(p)
         x_eq = p.law.neg(-V)
@@ -183,7 +184,10 @@ def fig12(out_dir: Path) -> list[Path]:
                 pts.append(d)
         ax.plot(np.full(len(pts), b), pts, "k.", ms=1.5)
     # period-1 points left (stable until PD) and right (unstable) of the kink
-    sb, sd, ub, ud = [], [], [], []
+    sb: list[float] = []
+    sd: list[float] = []
+    ub: list[float] = []
+    ud: list[float] = []
     for b in np.linspace(fold + 1e-6, 1.7290, 14):
         p = B.fig12_params(b)
         dk = B.kink(p, -0.096, FIG_STEPPER)
@@ -193,9 +197,9 @@ def fig12(out_dir: Path) -> list[Path]:
                 bb.append(b)
             except Exception:
                 pass
-    sb, sd = np.array(sb), np.array(sd)
-    ax.plot(sb[sb <= pd], sd[sb <= pd], "k-", lw=2, label="stable period-1")
-    ax.plot(sb[sb >= pd], sd[sb >= pd], "g-", lw=0.8, label="unstable period-1 (after PD)")
+    sba, sda = np.array(sb), np.array(sd)
+    ax.plot(sba[sba <= pd], sda[sba <= pd], "k-", lw=2, label="stable period-1")
+    ax.plot(sba[sba >= pd], sda[sba >= pd], "g-", lw=0.8, label="unstable period-1 (after PD)")
     ax.plot(ub, ud, "b-", lw=0.8, label="unstable period-1 (fold)")
     for k, (x, lab) in enumerate(((fold, "fold"), (pd, "period doubling"), (bc, "border collision"),
                                   (crisis, "crisis (paper tick 1.7280)"))):
@@ -251,7 +255,7 @@ def fig15(out_dir: Path) -> list[Path]:
     res = beta_diagram(betas, -0.0858, n_transient=30, n_keep=4)
     bstar = B.grazing_sliding().value
     fig, ax = plt.subplots(figsize=(7, 5))
-    for b, v in zip(res.params, res.values):
+    for b, v in zip(res.params, res.values, strict=True):
         if v is not None:
             ax.plot(np.full(len(v), b), v, "k.", ms=3)
     ax.axvline(bstar, color="r", lw=0.6)
@@ -289,7 +293,8 @@ def fig16(out_dir: Path) -> list[Path]:
     axs[1].set_xlabel("X1")
     axs[1].set_ylabel("X2")
     axs[1].set_title("(b) displacement plane and g.s.p. region Γ")
-    fig.suptitle(f"Fig. 16: multi-sliding, α=1.2, β=2, δ=0, V=0.05, γ=10.756 (located γ*={B.multi_sliding(gamma=10.756, d0=0.1969494).value:.6f})")
+    fig.suptitle(f"Fig. 16: multi-sliding, α=1.2, β=2, δ=0, V=0.05, γ=10.756 (located "
+                 f"γ*={B.multi_sliding(gamma=10.756, d0=0.1969494).value:.6f})")
     return _save(fig, out_dir, "fig16")
 
 

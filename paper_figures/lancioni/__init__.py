@@ -46,7 +46,7 @@ def _orbit(mu, eN, params, y0, mode, t_end, t_keep):
                    default_options(record=True, samples=8))
     t, y, modes = sol.trajectory()
     k = t >= t_end - t_keep
-    return t[k], y[:, k], [m for m, kk in zip(modes, k) if kk], sol
+    return t[k], y[:, k], [m for m, kk in zip(modes, k, strict=True) if kk], sol
 
 
 def fig2(out_dir: Path) -> list[Path]:
@@ -54,7 +54,7 @@ def fig2(out_dir: Path) -> list[Path]:
     fig, axs = plt.subplots(1, 2, figsize=(12, 4.2))
     det_mus = [0.4099, 0.405, 0.40, 0.395, 0.392, 0.390, 0.3897, 0.3896, 0.38957]
     y = np.array([0.38, 0.929, 0.0, 0.0])
-    for ax, zoom in zip(axs, (False, True)):
+    for ax in axs:
         ax.plot([0.38, h.p_c], [0, 0], "k-", lw=1.5, label="slip equilibrium")
         ax.plot([h.p_c, 0.42], [0, 0], "k:", lw=1)
         ax.plot(mus_s, w_s, "b-", lw=1.5, label="slip cycle (shooting)")
@@ -141,7 +141,7 @@ def fig5(out_dir: Path) -> list[Path]:
 
 def fig6(out_dir: Path) -> list[Path]:
     fig, axs = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
-    for ax, mu in zip(axs, (0.5, 0.3)):
+    for ax, mu in zip(axs, (0.5, 0.3), strict=True):
         run = D.sine_belt_run(mu)
         ax.plot(run.t, run.y[2], "k-", lw=0.7, label="φ̇")
         ax.plot(run.t, np.sin(np.pi * run.t / 2), "b--", lw=0.7, label="v = sin(πt/2)")

@@ -16,16 +16,15 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker as mticker  # noqa: E402
-import matplotlib.transforms as mtransforms  # noqa: E402
-from matplotlib.lines import Line2D  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.mathtext import MathTextParser  # noqa: E402
 
-from landau.support.io import atomic_savefig  # noqa: E402
-from landau.derivation.multiscale import CoefficientTable, Derivation  # noqa: E402
-from landau.systems.system import SpringBlock  # noqa: E402
 from landau.analyses.transition import velocity_weakening_ranges  # noqa: E402
+from landau.derivation.multiscale import CoefficientTable, Derivation  # noqa: E402
 from landau.laws import get_law  # noqa: E402
+from landau.support.io import atomic_savefig  # noqa: E402
+from landau.systems.system import SpringBlock  # noqa: E402
 
 #: the paper's Table 1 values used in labels
 L = 0.9e-6
@@ -69,7 +68,7 @@ class SharedDerivation(Derivation):
             else:   # quantities evaluated before keep their values; a degenerate point stays flagged
                 table = {**new, **table, "degenerate": table["degenerate"] | new["degenerate"]}
             self._tables[key] = table
-        return CoefficientTable({k: v.copy() for k, v in table.items()}, law=self.block.law.name, params=p)
+        return CoefficientTable({k: v.copy() for k, v in (table or {}).items()}, law=self.block.law.name, params=p)
 
 
 #: what the amplitude, growth-rate and apparent-stiffness panels use (:mod:`landau.analyses.amplitude`)
@@ -144,6 +143,14 @@ def vlabel(ax) -> None:
 _MATHTEXT = MathTextParser("path")
 
 
+def _contains_close(interval, val, rtol: float = 1e-10):
+    """Whether ``val`` lies in the closed ``interval`` widened by ``rtol`` of its length (the test
+    matplotlib's axis applies to its own ticks)."""
+    a, b = sorted(interval)
+    slack = (b - a) * rtol
+    return a - slack <= val <= b + slack
+
+
 def _unlabelled_minor_ticks(axis) -> list[Line2D]:
     """The marks of ``axis``'s minor ticks as one line per side, when none of them has a label.
 
@@ -158,7 +165,7 @@ def _unlabelled_minor_ticks(axis) -> list[Line2D]:
     lo, hi = sorted(axis.get_view_interval())
     tr = axis.get_transform()
     inside = tr.transform([lo, hi])
-    locs = np.array([x for x in locs if mtransforms._interval_contains_close(inside, tr.transform(x))])
+    locs = np.array([x for x in locs if _contains_close(inside, tr.transform(x))])
     if locs.size == 0 or any(axis.get_minor_formatter().format_ticks(locs)):
         return []
     tick = axis.get_minor_ticks(1)[0]

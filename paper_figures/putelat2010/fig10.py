@@ -62,7 +62,7 @@ def make(out_dir: Path) -> list[Path]:
     symlog_y(ax[3], np.r_[d["Lambda"], d["Lambda_M0"]])
     ax[3].set_ylabel(r"$\Lambda$ (m$^{-2}$ s$^{-1}$)")
     for a, t in zip(ax, ("(a) steady-state friction", "(b) critical stiffness",
-                         r"(c) growth rate at $k_c-k=10^{-3}k_c$", r"(d) Landau coefficient")):
+                         r"(c) growth rate at $k_c-k=10^{-3}k_c$", r"(d) Landau coefficient"), strict=True):
         panel_title(a, t)
         vlabel(a)
     for a in ax[1:]:

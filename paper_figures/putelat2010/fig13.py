@@ -9,6 +9,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from landau.analyses.transition import codim2_points, transition_curve
+from landau.errors import NoHopfError
 from landau.paper_figures.putelat2010._common import V_S, derivation, panel_title, save, symlog_y, vlabel, vw_grid
 
 C = 3e-4
@@ -31,9 +32,12 @@ def panel_b() -> dict:
     for r in curve.rows:
         top[r.value] = max(top.get(r.value, 0.0), r.V_star)
     cs = np.array(sorted(top))
+    c_star = curve.critical_value
+    if c_star is None:
+        raise NoHopfError("Fig. 13(b): the transition curve has no critical c* in c = 1e-5 ... 2e-3")
     return {"c": cs, "V_star": np.array([top[c] for c in cs]), "curve": curve,
-            "c_grid": np.logspace(-5, np.log10(2e-3), 100), "c_star": curve.critical_value,
-            "V_m_c_star": (B / A - 1) * V_S / curve.critical_value}
+            "c_grid": np.logspace(-5, np.log10(2e-3), 100), "c_star": c_star,
+            "V_m_c_star": (B / A - 1) * V_S / c_star}
 
 
 def make(out_dir: Path) -> list[Path]:

@@ -47,7 +47,7 @@ def panel_b() -> dict:
 def make(out_dir: Path) -> list[Path]:
     a, b = panel_a(), panel_b()
     fig, ax = plt.subplots(1, 2, figsize=(12, 4.6))
-    for c, col in zip(CS, ("tab:blue", "tab:green", "tab:orange", "tab:red")):
+    for c, col in zip(CS, ("tab:blue", "tab:green", "tab:orange", "tab:red"), strict=True):
         g = a["diagrams"][c]
         ax[0].plot(g.V, g.supercritical, "-", color=col, lw=1, label=f"Hopf, c = {c:g}")
         ax[0].plot(g.V, g.subcritical, "--", color=col, lw=1.5)

@@ -12,7 +12,8 @@ import numpy as np
 from landau.analyses.transition import codim2_points
 from landau.paper_figures.putelat2010._common import derivation, mu_ss, panel_title, save, symlog_y, vlabel, vw_grid
 
-LAW, PARAMS, REF = "nanoscale", {}, ("spinodal", {"c": 1e-3})
+LAW, REF = "nanoscale", ("spinodal", {"c": 1e-3})
+PARAMS: dict[str, float] = {}
 
 
 def kc_panel(d=None, law=LAW, params=PARAMS) -> dict:
@@ -36,7 +37,8 @@ def make_law_figure(out_dir: Path, name: str, law: str, cases: dict, title: str)
     ax[0].plot(Vmu, mu_ss(ref, Vmu, REF[1]), "k:", lw=0.8, label="law (37)-(38), c = 1e-3")
     kref = kc_panel(ref, *REF)
     ax[1].plot(kref["V"], kref["kc"], "k:", lw=0.8, label="law (37)-(38)")
-    for (lab, prm), ls in zip(cases.items(), ("-", "--")):
+    # one or two cases: the line styles are taken in order
+    for (lab, prm), ls in zip(cases.items(), ("-", "--"), strict=False):
         ax[0].plot(Vmu, mu_ss(derivation(law), Vmu, prm), "k", ls=ls, label=lab)
         k = kc_panel(None, law, prm)
         ax[1].plot(k["V"], k["kc"], "k", ls=ls, label=lab)
@@ -52,7 +54,8 @@ def make_law_figure(out_dir: Path, name: str, law: str, cases: dict, title: str)
     ax[1].set_ylim(bottom=1e2)
     ax[1].set_ylabel("$k_c$ (N m$^{-1}$)")
     ax[2].set_ylabel(r"$\Lambda$ (m$^{-2}$ s$^{-1}$)")
-    for a, t in zip(ax, ("(a) steady-state friction", "(b) critical stiffness", r"(c) Landau coefficient")):
+    for a, t in zip(ax, ("(a) steady-state friction", "(b) critical stiffness", r"(c) Landau coefficient"),
+                    strict=True):
         panel_title(a, t)
         vlabel(a)
         a.legend(fontsize=7)

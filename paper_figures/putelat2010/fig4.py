@@ -9,12 +9,21 @@ docs/verdicts.md).
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import matplotlib.pyplot as plt
 import numpy as np
 
 from landau.analyses.amplitude import apparent_stiffness, growth_rate, slip_amplitude, slip_rate_amplitude
-from landau.paper_figures.putelat2010._common import AMPLITUDE_NAMES, derivation, mu_ss, panel_title, save, symlog_y, vlabel
+from landau.paper_figures.putelat2010._common import (
+    AMPLITUDE_NAMES,
+    derivation,
+    mu_ss,
+    panel_title,
+    save,
+    symlog_y,
+    vlabel,
+)
 
 V = np.logspace(-7, -2, 240)
 DX_UM = (0.1, 1.0, 10.0)
@@ -27,7 +36,7 @@ def data() -> dict:
     R.evaluate(V, {}, AMPLITUDE_NAMES)
     R.evaluate(V, {"M": 0.0}, ["kc", "Gamma_bar"])
     Dl.evaluate(V, {}, ["Gamma_bar", "Lambda"])
-    out = {"V": V, "mu_ss": mu_ss(R, V, {})}
+    out: dict[str, Any] = {"V": V, "mu_ss": mu_ss(R, V, {})}
     out["kc"] = R.evaluate(V, {}, ["kc"])["kc"]
     out["kc_M0"] = R.evaluate(V, {"M": 0.0}, ["kc"])["kc"]
     out["khat"] = {dx: apparent_stiffness(R, V, dx * 1e-6) for dx in DX_UM}
@@ -50,7 +59,7 @@ def make(out_dir: Path) -> list[Path]:
     panel_title(ax[0], "(a) steady-state friction (eq. 27)")
     ax[1].plot(V, d["kc"], "k-", label=r"$k_c$, M = 1.2 kg")
     ax[1].plot(V, d["kc_M0"], "k--", label=r"$k_c$, M = 0")
-    for dx, ls in zip(DX_UM, (":", "-.", (0, (5, 1, 1, 1)))):
+    for dx, ls in zip(DX_UM, (":", "-.", (0, (5, 1, 1, 1))), strict=True):
         ax[1].plot(V, d["khat"][dx], color="tab:blue", ls=ls, label=rf"$\hat k$, $\Delta x$ = {dx:g} µm")
     ax[1].set_yscale("log")
     ax[1].set_ylim(1e4, 1e7)

@@ -12,7 +12,16 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from landau.analyses.amplitude import apparent_stiffness, growth_rate, slip_amplitude, slip_rate_amplitude
-from landau.paper_figures.putelat2010._common import AMPLITUDE_NAMES, derivation, mu_ss, panel_title, save, symlog_y, vlabel, vw_grid
+from landau.paper_figures.putelat2010._common import (
+    AMPLITUDE_NAMES,
+    derivation,
+    mu_ss,
+    panel_title,
+    save,
+    symlog_y,
+    vlabel,
+    vw_grid,
+)
 
 C = 1e-3
 DX = 5.7e-6

@@ -36,7 +36,7 @@ def lambda_panel(d=None) -> dict:
 def make(out_dir: Path) -> list[Path]:
     kc, lam = kc_panel(), lambda_panel()
     fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
-    for c, ls in zip(CS, STYLES):
+    for c, ls in zip(CS, STYLES, strict=True):
         ax[0].plot(*kc[c], "k", ls=ls, label=f"c = {c:g}")
         ax[1].plot(*lam[c], "k", ls=ls, label=f"c = {c:g}")
     ax[0].set_yscale("log")

@@ -51,8 +51,13 @@ def fig2cd(out_dir: Path) -> list[Path]:
     fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.2))
     _diagram(a, b, res, "k", "increasing ω")
     a.axhline(PAPER.xI * 1e3, color="r", lw=0.6)
-    a.set_xlabel("ω [rad/s]"); a.set_ylabel("x [mm] at t = 2πi/ω"); a.set_title("(c) Poincaré section")
-    b.set_xlabel("ω [rad/s]"); b.set_ylabel("T_j [s]"); b.set_ylim(0, 0.42); b.set_title("(d) inter-impact intervals")
+    a.set_xlabel("ω [rad/s]")
+    a.set_ylabel("x [mm] at t = 2πi/ω")
+    a.set_title("(c) Poincaré section")
+    b.set_xlabel("ω [rad/s]")
+    b.set_ylabel("T_j [s]")
+    b.set_ylim(0, 0.42)
+    b.set_title("(d) inter-impact intervals")
     fig.suptitle("Fig. 2(c,d): simulated bifurcation diagrams, increasing ω (step 0.05, 30 periods kept)")
     return _save(fig, out_dir, "fig2cd")
 
@@ -65,8 +70,10 @@ def _updown(lo, hi, step, title, name, out_dir):
     fig, (a, b) = plt.subplots(2, 1, figsize=(9, 7.5), sharex=True)
     _diagram(a, b, up, "r", "increasing ω", ms=3.0)
     _diagram(a, b, dn, "g", "decreasing ω", ms=1.6)
-    a.set_ylabel("x [mm] at t = 2πi/ω"); a.legend(fontsize=8, markerscale=2)
-    b.set_ylabel("T_j [s]"); b.set_xlabel("ω [rad/s]")
+    a.set_ylabel("x [mm] at t = 2πi/ω")
+    a.legend(fontsize=8, markerscale=2)
+    b.set_ylabel("T_j [s]")
+    b.set_xlabel("ω [rad/s]")
     a.set_title(title)
     return _save(fig, out_dir, name)
 
@@ -89,7 +96,8 @@ def fig5(out_dir: Path) -> list[Path]:
         res = run_sweep(om, d, spec=spec, progress=False)
         ax.plot(res.omegas, [a.lyapunov for a in res.attractors], "-", color=c, lw=1, label=f"{d} sweep")
     ax.axhline(0, color="k", lw=0.5)
-    ax.set_xlabel("ω [rad/s]"); ax.set_ylabel("λ₁ [1/s]")
+    ax.set_xlabel("ω [rad/s]")
+    ax.set_ylabel("λ₁ [1/s]")
     ax.set_title("Fig. 5: top Lyapunov exponent (step 0.05, 150 periods, renormalised every period)")
     ax.legend(fontsize=8)
     return _save(fig, out_dir, "fig5")
@@ -105,25 +113,30 @@ def _portrait(ax, omega, n_transient=60, n_show=1, rtol=RTOL_FIG, profile=False)
     for i in range(200 * n_show):
         r = run(p, 1 / 200, y, t0=i * P / 200, rtol=rtol, strobe=False)
         y = r.y
-        ts.append(r.t); xs.append(y[0]); vs.append(y[1])
+        ts.append(r.t)
+        xs.append(y[0])
+        vs.append(y[1])
     r = run(p, n_show, y0, rtol=rtol)
     xs, vs, ts = np.array(xs) * 1e3, np.array(vs) * 1e3, np.array(ts)
     if profile:
         ax.plot(ts, xs, "k-", lw=0.8)
         ax.axhline(p.xI * 1e3, color="r", lw=0.8)
-        ax.set_xlabel("t [s]"); ax.set_ylabel("x [mm]")
+        ax.set_xlabel("t [s]")
+        ax.set_ylabel("x [mm]")
     else:
         ax.plot(xs, vs, "k-", lw=0.7)
         ax.axvline(p.xI * 1e3, color="r", lw=0.8)
         ax.plot(r.strobe_y[:, 0] * 1e3, r.strobe_y[:, 1] * 1e3, "o", color="r", ms=4)
         ax.plot(np.full(len(r.impacts), p.xI * 1e3), r.impact_v * 1e3, "o", color="b", ms=3)
-        ax.set_xlabel("x [mm]"); ax.set_ylabel("dx/dt [mm/s]")
+        ax.set_xlabel("x [mm]")
+        ax.set_ylabel("dx/dt [mm/s]")
     ax.set_title(f"ω = {omega:g} rad/s ({len(r.impacts) / n_show:g} impacts/period)", fontsize=9)
 
 
 def fig8(out_dir: Path) -> list[Path]:
     fig, axs = plt.subplots(2, 4, figsize=(15, 7))
-    for ax, w, ns in zip(axs.flat, (14.0, 14.1, 15.0, 16.0, 17.0, 17.5, 18.0, 19.0), (1, 1, 1, 1, 1, 1, 4, 2)):
+    for ax, w, ns in zip(axs.flat, (14.0, 14.1, 15.0, 16.0, 17.0, 17.5, 18.0, 19.0), (1, 1, 1, 1, 1, 1, 4, 2),
+                         strict=True):
         _portrait(ax, w, n_show=ns)
     fig.suptitle("Fig. 8: impact adding (red line x = x_I, red dots t = 2πi/ω, blue dots impacts)")
     fig.tight_layout()
@@ -132,7 +145,7 @@ def fig8(out_dir: Path) -> list[Path]:
 
 def fig10(out_dir: Path) -> list[Path]:
     fig, axs = plt.subplots(1, 3, figsize=(14, 3.8))
-    for ax, w, ns in zip(axs, (15.0, 16.7, 18.0), (1, 1, 4)):
+    for ax, w, ns in zip(axs, (15.0, 16.7, 18.0), (1, 1, 4), strict=True):
         _portrait(ax, w, n_show=ns, profile=True)
     fig.suptitle("Fig. 10: profiles x(t) with micro-impacts near the stop (red line x = x_I)")
     fig.tight_layout()

@@ -57,7 +57,7 @@ def test_inline_law_equals_builtin(capsys):
                      "phi=1 - v*phi/L", "--V", "2e-5,3e-4", "--json")
     _, out2, _ = run(capsys, "derive", "dieterich", "--V", "2e-5,3e-4", "--json")
     p1, p2 = json.loads(out1)["points"], json.loads(out2)["points"]
-    for a, b in zip(p1, p2):
+    for a, b in zip(p1, p2, strict=True):
         for key in ("kc", "omega_c", "Gamma_bar", "Lambda", "chi", "C"):
             assert a[key] == pytest.approx(b[key], rel=1e-12)
 
@@ -91,7 +91,8 @@ def test_derive_latex_is_compile_ready(tmp_path, capsys):
     # the closed-form k_c typesets with matplotlib's mathtext (no TeX installation needed)
     import matplotlib
     matplotlib.use("Agg")
-    from matplotlib.mathtext import MathTextParser
     import re
+
+    from matplotlib.mathtext import MathTextParser
     kc = re.search(r"^k_c &= (.*)$", tex, re.M).group(1)
     MathTextParser("agg").parse(f"${kc}$")

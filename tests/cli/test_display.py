@@ -9,10 +9,10 @@ import pytest
 import sympy as sp
 
 from landau import SpringBlock, derive
-from landau.report.display import ResultList, html_table, text_table
 from landau.derivation.hopf import HopfResult
-from landau.laws import get_law
 from landau.derivation.multiscale import CoefficientTable, Derivation
+from landau.laws import get_law
+from landau.report.display import ResultList, html_table, text_table
 
 #: the display contract (not a benchmark): a result shows in under a second
 DISPLAY_BOUND_S = 1.0
@@ -49,8 +49,8 @@ def _display(obj) -> dict[str, str]:
 
 
 def _results(d, table):
-    from landau.derivation.general import hopf_normal_form
     from landau.analyses.regimes import regime_diagram
+    from landau.derivation.general import hopf_normal_form
     from landau.scenes import get_scene, run_scene
     from landau.systems.system import DynamicalSystem
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from landau.derivation.multiscale import Derivation
-from landau.paper_figures.putelat2010._common import SharedDerivation, fresh
 from landau.laws import get_law
+from landau.paper_figures.putelat2010._common import SharedDerivation, fresh
 from landau.systems.system import SpringBlock
 
 V = np.logspace(-7, -2, 60)

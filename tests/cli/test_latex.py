@@ -18,10 +18,10 @@ import pytest
 import sympy as sp
 
 from landau import SpringBlock, derive
-from landau.support import cache
 from landau.cli import main
 from landau.laws import BUILTIN, get_law
 from landau.report.latex import escape_text, symbol_latex
+from landau.support import cache
 
 PDFLATEX = shutil.which("pdflatex")
 
@@ -135,7 +135,7 @@ def test_closed_form_in_latex_equals_the_numeric_route():
         om = mpmath.sqrt(mpmath.mpf(sp.N(parts["W"].xreplace(sub), 60)))
         exact = mpmath.mpf(sp.N(P.xreplace(sub), 60)) + om * mpmath.mpf(sp.N(Q.xreplace(sub), 60))
     numeric = d.evaluate([1e-4], {}, ["Lambda"])["Lambda"][0]
-    # the general route promises 1e-10 relative (multiscale._REL_GOOD)
+    # the general route promises 1e-10 relative (precision.REL_GOOD)
     assert abs(numeric - float(exact)) <= 1e-10 * abs(float(exact))
 
 

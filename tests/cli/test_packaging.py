@@ -1,6 +1,7 @@
 """The install maps the repository's rooms under the one import namespace ``landau``."""
 
 import pathlib
+
 import tomllib
 
 import landau

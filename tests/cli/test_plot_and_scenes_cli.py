@@ -103,7 +103,7 @@ def test_criticality_bands_and_check_plot():
     from types import SimpleNamespace
 
     results = [SimpleNamespace(system="toy", eps2=a, amplitude_predicted=b, amplitude_simulated=c)
-               for a, b, c in zip(e, predicted, simulated)]
+               for a, b, c in zip(e, predicted, simulated, strict=True)]
     fig = plot_check(results)
     assert "1.50" in [t.get_text() for t in fig.axes[1].get_legend().get_texts()][1]
     np.testing.assert_allclose(fig.axes[0].lines[1].get_ydata(), simulated)

@@ -46,7 +46,7 @@ def test_tape_of_a_large_dag_is_small_and_right():
     tape = Tape(e, [x, y, z])
     assert len(tape.ops) < 300         # 16 levels × ~12 distinct operations
     pts = [(0.7, 1.3, 0.9), (1.9, 0.6, 1.4)]
-    got = tape(*(np.array(c) for c in zip(*pts)))
+    got = tape(*(np.array(c) for c in zip(*pts, strict=True)))
     with mpmath.workdps(40):
         ref = [tape(*map(mpmath.mpf, p), modules="mpmath") for p in pts]
     # float64 vs 40 digits on a well-conditioned rational recursion: ~1e-15 per level

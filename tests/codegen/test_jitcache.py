@@ -189,8 +189,8 @@ def test_concurrent_processes_share_one_entry(cache):
 def test_generated_source_is_kept_with_the_derivations(tmp_path, monkeypatch):
     import sympy as sp
 
-    from landau.support import cache as dcache
     from landau.codegen import kernels
+    from landau.support import cache as dcache
 
     monkeypatch.setenv("LANDAU_CACHE_DIR", str(tmp_path))
     monkeypatch.setattr(dcache, "_enabled", True)

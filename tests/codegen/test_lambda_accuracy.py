@@ -8,11 +8,11 @@ every returned value (:data:`landau.derivation.precision.REL_GOOD`)."""
 import mpmath
 import numpy as np
 import pytest
-
-from landau.laws import get_law
-from landau.derivation.multiscale import derive
-from landau.systems.system import SpringBlock
 from vw_ranges import LAWS, vw_range
+
+from landau.derivation.multiscale import derive
+from landau.laws import get_law
+from landau.systems.system import SpringBlock
 
 GENERAL = ("spinodal", "nanoscale", "micron-scale")   # laws not rational in V: the float routes
 
@@ -53,7 +53,7 @@ def test_spinodal_low_velocity_tail_within_1e_10():
     Vs = np.logspace(np.log10(lo), np.log10(10 * lo), 150)
     got = d.evaluate(Vs, {}, ["Lambda"])["Lambda"]
     worst = 0.0
-    for V0, g in zip(Vs, got):
+    for V0, g in zip(Vs, got, strict=True):
         ref = d.evaluate_mp(float(V0), {}, ["Lambda"], dps=50)["Lambda"]
         worst = max(worst, float(abs(g - ref) / abs(ref)))
     assert worst <= 1e-10, worst

@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 import sympy as sp
 
+from landau.codegen import formula as codegen
 from landau.support import cache as dcache
 from landau.support import cachedir
-from landau.codegen import formula as codegen
 from landau.verify import jitcache
 
 x, y = sp.symbols("x y", real=True)

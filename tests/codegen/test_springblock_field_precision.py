@@ -28,8 +28,8 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from landau.errors import InputError
 from landau.codegen.kernels import DerivedParameters, hoist_parameters
+from landau.errors import InputError
 from landau.laws import get_law
 from landau.laws.law import v as v_slip
 from landau.verify.springblock.model import SpringBlockModel, compile_variational
@@ -57,11 +57,11 @@ def _exact_field(model: SpringBlockModel):
     pvals = [p[prm.name] for prm in law.parameters] + [model.V, model.k, model.ell, p["M"], p["sigma"],
                                                        model.mu0, *model.phi0]
     vv = V * sp.exp(w)
-    phis = [p0 * sp.exp(s) for p0, s in zip(phi0, psi)]
-    sub = {v_slip: vv, **dict(zip(law.states, phis))}
+    phis = [p0 * sp.exp(s) for p0, s in zip(phi0, psi, strict=True)]
+    sub = {v_slip: vv, **dict(zip(law.states, phis, strict=True))}
     mu = law.mu.xreplace(sub)
     f = [sp.exp(w) - 1, (ell / V) * sp.exp(-w) * (-k * ell * xi - sig * (mu - mu0)) / (M * V)]
-    f += [(ell / V) * r.xreplace(sub) / ph for r, ph in zip(law.rates, phis)]
+    f += [(ell / V) * r.xreplace(sub) / ph for r, ph in zip(law.rates, phis, strict=True)]
     ys = [xi, w, *psi]
     J = sp.Matrix(f).jacobian(sp.Matrix(ys))
 
@@ -97,7 +97,7 @@ def test_kernel_field_and_jacobian_match_eq4_at_30_digits(name, params):
             args = [mpmath.mpf(float(x)) for x in y]
             f, J = model.f(y), model.J(y).ravel()
             for got, ex, sc in ((f, f_ex(*args), f_sc(*args)), (J, J_ex(*args), J_sc(*args))):
-                for g, e, s in zip(got, ex, sc):
+                for g, e, s in zip(got, ex, sc, strict=True):
                     if not np.isfinite(float(e)):
                         continue                         # e^{±w} beyond double range: not compared
                     err = abs(mpmath.mpf(float(g)) - e)
@@ -145,8 +145,8 @@ def test_hoisted_field_equals_the_original_expression():
     x, w, a, b, c = sp.symbols("x w a b c", positive=True)
     field = [sp.exp(-w) * (a * sp.log(b) + sp.log(c) * w - a / b * x), sp.log(c + a * b * sp.exp(x)) / (a * b)]
     h = hoist_parameters(field, [a, b, c])
-    back = [e.xreplace(dict(zip(h.derived, h.values))) for e in h.field]
-    assert all(sp.simplify(u - v) == 0 for u, v in zip(back, field))
+    back = [e.xreplace(dict(zip(h.derived, h.values, strict=True))) for e in h.field]
+    assert all(sp.simplify(u - v) == 0 for u, v in zip(back, field, strict=True))
     assert all(not (e.free_symbols <= {a, b, c}) for d in h.field for e in sp.preorder_traversal(d)
                if isinstance(e, (sp.log, sp.exp, sp.Pow)))
 

@@ -10,13 +10,18 @@ import math
 import numpy as np
 import pytest
 
-from landau.analyses.amplitude import (apparent_stiffness, growth_rate, growth_rate_max, slip_amplitude,
-                              slip_rate_amplitude)
-from landau.errors import InputError
+from landau.analyses.amplitude import (
+    apparent_stiffness,
+    growth_rate,
+    growth_rate_max,
+    slip_amplitude,
+    slip_rate_amplitude,
+)
 from landau.derivation.lyapunov import spring_block_lyapunov
 from landau.derivation.multiscale import Derivation
-from landau.systems.system import SpringBlock
+from landau.errors import InputError
 from landau.laws import get_law
+from landau.systems.system import SpringBlock
 
 a, b, L, Vs_, M, s = 0.0349, 0.0489, 0.9e-6, 1e-6, 1.2, 11.772
 VHAT = math.sqrt(a * s * L / M)  # eq. (31)

@@ -43,7 +43,7 @@ def test_general_json_keys_and_missing_names():
                            "equilibrium": [0.0, 0.0], "l2": None, "l1": 1e-17}
     assert g.value("b") == 1.0
     with pytest.raises(AttributeError, match="no parameter 'V'"):
-        g.V
+        _ = g.V
     assert "GeneralisedHopfPoint" in repr(g) and "not computed" in repr(g)
 
 
@@ -61,7 +61,7 @@ def test_hopf_result_fields_are_typed():
     assert r.as_dict()["V"] == 1e-4 and r["Gamma_bar"] == 0.5
     assert "__getattr__" not in HopfResult.__dict__
     with pytest.raises(AttributeError):
-        r.nonexistent
+        _ = r.nonexistent
     # an old-style call with route numbers in ``extra`` fills the typed fields; labels stay in extra
     old = HopfResult("s", "p", 1.0, 2.0, (), 1j, -1.0, 0.0, extra={"q_norm": 0.5, "c2_re": 4.0, "c2_im": 1.0,
                                                                     "dps": 30, "friction": "coulomb"})

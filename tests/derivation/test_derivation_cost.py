@@ -6,10 +6,10 @@ import mpmath
 import sympy as sp
 
 import landau.support.cx as cx
-from landau.support.cx import Cx
-from landau.laws import get_law
 from landau.derivation.linear import HopfLine, W, lam, w
 from landau.derivation.multiscale import derive
+from landau.laws import get_law
+from landau.support.cx import Cx
 from landau.systems.system import SpringBlock
 
 

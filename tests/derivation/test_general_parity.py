@@ -1,4 +1,5 @@
-"""The general Hopf engine (landau.derivation.general, landau.analyses.continuation): closed forms, independent routes, defects.
+"""The general Hopf engine (landau.derivation.general, landau.analyses.continuation): closed forms, independent
+routes, defects.
 
 Every check compares with a closed form, or with an independent computation: sympy's exact
 derivatives against the Taylor-arithmetic jets, Kuznetsov's projection formula
@@ -18,10 +19,10 @@ import pytest
 import sympy as sp
 
 from landau.analyses.continuation import equilibrium_branch, generalised_hopf
-from landau.errors import InputError, NoHopfError
 from landau.derivation.general import hopf_normal_form, kuznetsov_check
 from landau.derivation.hopf import HopfResult
 from landau.derivation.lyapunov import first_lyapunov
+from landau.errors import InputError, NoHopfError
 from landau.systems.system import DynamicalSystem
 
 x, y, z, w = sp.symbols("x y z w", real=True)

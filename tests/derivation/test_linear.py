@@ -7,12 +7,12 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from landau.errors import InputError
+from landau.analyses.transition import extrema, velocity_weakening_ranges
 from landau.derivation.linear import NO_HOPF_STABLE, HopfLine
 from landau.derivation.multiscale import Derivation
-from landau.analyses.transition import extrema, velocity_weakening_ranges
-from landau.systems.system import M, V, SpringBlock, sigma
+from landau.errors import InputError
 from landau.laws import TABLE1, get_law, v
+from landau.systems.system import M, SpringBlock, V, sigma
 
 a, b, L, V_s = (TABLE1[n].symbol for n in ("a", "b", "L", "V_s"))
 c = sp.Symbol("c", positive=True)
@@ -25,7 +25,8 @@ def _paper_G_derivatives(law):
     F = sigma * law.mu
     G = -law.rates[0]
     d = lambda e, x: sp.diff(e, x).subs(ss)
-    return d(F, v), d(F, phi), d(G, v), d(G, phi), sp.diff((sigma * law.mu).subs(phi, law.steady_state_closed_form[0]), v).subs(v, V)
+    mu_ss = (sigma * law.mu).subs(phi, law.steady_state_closed_form[0])
+    return d(F, v), d(F, phi), d(G, v), d(G, phi), sp.diff(mu_ss, v).subs(v, V)
 
 
 @pytest.mark.parametrize("name", ["dieterich", "ruina"])
@@ -106,7 +107,7 @@ def _eigenvalues(block, V0, k, dps=40):
     p = block.resolve()
     vals = {s: p[s.name] for s in sysm.parameters if s.name in p}
     vals.update({V: V0, sysm.parameter: k})
-    at = dict(zip(sysm.states, [0, 0] + [e.subs(vals) for e in sysm.equilibrium[2:]]))
+    at = dict(zip(sysm.states, [0, 0] + [e.subs(vals) for e in sysm.equilibrium[2:]], strict=True))
     J = sp.Matrix(sysm.rhs).jacobian(sysm.states).subs(at).subs(vals)
     E = [sp.sympify(m).subs(vals) for m in sysm.mass]
     with mpmath.workdps(dps):

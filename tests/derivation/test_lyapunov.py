@@ -18,14 +18,14 @@ import math
 import numpy as np
 import pytest
 import sympy as sp
+from vw_ranges import LAWS, vw_range
 
-from landau.laws import get_law
-from landau.errors import InputError
 from landau.derivation.hopf import Criticality, HopfResult
 from landau.derivation.lyapunov import first_lyapunov, spring_block_lyapunov
 from landau.derivation.multiscale import derive
+from landau.errors import InputError
+from landau.laws import get_law
 from landau.systems.system import DynamicalSystem, SpringBlock
-from vw_ranges import LAWS, vw_range
 
 REL = 1e-8
 #: positions inside the log-velocity range (fractions of log(V_hi/V_lo)), away from the ends

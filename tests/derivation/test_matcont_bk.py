@@ -49,7 +49,7 @@ def test_lorenz84_hopf_points_inside_bifurcationkit_intervals(lorenz_branch):
                  (1.619657484413436, 1.6196654620692468)]
     found = sorted((h.p_c for h in lorenz_branch.hopf), reverse=True)
     assert len(found) == 3
-    for p, (a, b) in zip(found, intervals):
+    for p, (a, b) in zip(found, intervals, strict=True):
         assert a <= p <= b, (p, a, b)
 
 

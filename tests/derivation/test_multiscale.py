@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from landau.errors import NoHopfError
 from landau.derivation.multiscale import Derivation, derive
-from landau.systems.system import M, V, SpringBlock, sigma
+from landau.errors import NoHopfError
 from landau.laws import TABLE1, get_law
+from landau.systems.system import M, SpringBlock, V, sigma
 
 a, b, L, V_s = (TABLE1[n].symbol for n in ("a", "b", "L", "V_s"))
 c = sp.Symbol("c", positive=True)
@@ -49,23 +49,30 @@ def test_gamma_dieterich_ruina_eq32():
 
 def test_landau_dieterich_eq33():
     d = Derivation(SpringBlock(get_law("dieterich")))
-    eq33 = (sigma * M * (b - a) ** 2 * V ** 3 * (-M ** 2 * (4 * b + 3 * a) * V ** 4 - 6 * L * sigma * a ** 2 * M * V ** 2
+    eq33 = (sigma * M * (b - a) ** 2 * V ** 3 * (-M ** 2 * (4 * b + 3 * a) * V ** 4
+                                               - 6 * L * sigma * a ** 2 * M * V ** 2
                                                + L ** 2 * sigma ** 2 * a ** 3)
             / (L ** 2 * (M ** 2 * b * V ** 4 + 2 * L * sigma * a ** 2 * M * V ** 2 + L ** 2 * sigma ** 2 * a ** 3)
-               * (M ** 2 * (4 * b - 3 * a) * V ** 4 + 2 * L * sigma * a ** 2 * M * V ** 2 + L ** 2 * sigma ** 2 * a ** 3)))
+               * (M ** 2 * (4 * b - 3 * a) * V ** 4 + 2 * L * sigma * a ** 2 * M * V ** 2
+                  + L ** 2 * sigma ** 2 * a ** 3)))
     agree_at_random_points(d, "Lambda", eq33, [a, b, L, sigma, M])
 
 
 def _P(n):
-    P4 = (b * V_s * M ** 2 * V ** 4 + 2 * a ** 2 * c * sigma * L * M * V ** 3 + 2 * a ** 2 * sigma * V_s * L * M * V ** 2
+    P4 = (b * V_s * M ** 2 * V ** 4 + 2 * a ** 2 * c * sigma * L * M * V ** 3
+          + 2 * a ** 2 * sigma * V_s * L * M * V ** 2
           + a ** 3 * c * sigma ** 2 * L ** 2 * V + a ** 3 * sigma ** 2 * V_s * L ** 2)
-    P5 = (3 * a * c * L * M ** 2 * V ** 5 + (3 * a - 4 * b) * V_s * L * M ** 2 * V ** 4 - 2 * a ** 2 * c * sigma * L ** 2 * M * V ** 3
-          - 2 * a ** 2 * sigma * V_s * L ** 2 * M * V ** 2 - a ** 3 * c * sigma ** 2 * L ** 3 * V - a ** 3 * sigma ** 2 * V_s * L ** 3)
+    P5 = (3 * a * c * L * M ** 2 * V ** 5 + (3 * a - 4 * b) * V_s * L * M ** 2 * V ** 4
+          - 2 * a ** 2 * c * sigma * L ** 2 * M * V ** 3
+          - 2 * a ** 2 * sigma * V_s * L ** 2 * M * V ** 2 - a ** 3 * c * sigma ** 2 * L ** 3 * V
+          - a ** 3 * sigma ** 2 * V_s * L ** 3)
     P7 = ((6 * a * b + 6 * a ** 2) * c ** 2 * L ** 2 * M ** 3 * V ** 7
           + (-4 * b ** 2 + 3 * a * b + 9 * a ** 2) * c * V_s * L ** 2 * M ** 3 * V ** 6
-          + ((-4 * b ** 2 + a * b + 3 * a ** 2) * V_s ** 2 * L ** 2 * M ** 3 + (3 * a ** 2 * b + 7 * a ** 3) * c ** 2 * sigma * L ** 3 * M ** 2) * V ** 5
+          + ((-4 * b ** 2 + a * b + 3 * a ** 2) * V_s ** 2 * L ** 2 * M ** 3
+             + (3 * a ** 2 * b + 7 * a ** 3) * c ** 2 * sigma * L ** 3 * M ** 2) * V ** 5
           + (13 * a ** 3 - 6 * a ** 2 * b) * c * sigma * V_s * L ** 3 * M ** 2 * V ** 4
-          + ((6 * a ** 3 - 6 * a ** 2 * b) * sigma * V_s ** 2 * L ** 3 * M ** 2 + (a ** 3 * b - 4 * a ** 4) * c ** 2 * sigma ** 2 * L ** 4 * M) * V ** 3
+          + ((6 * a ** 3 - 6 * a ** 2 * b) * sigma * V_s ** 2 * L ** 3 * M ** 2
+             + (a ** 3 * b - 4 * a ** 4) * c ** 2 * sigma ** 2 * L ** 4 * M) * V ** 3
           + (3 * a ** 3 * b - 5 * a ** 4) * c * sigma ** 2 * V_s * L ** 4 * M * V ** 2
           + ((a ** 3 * b - a ** 4) * sigma ** 2 * V_s ** 2 * L ** 4 * M - a ** 5 * c ** 2 * sigma ** 3 * L ** 5) * V
           - a ** 5 * c * sigma ** 3 * V_s * L ** 5)
@@ -93,7 +100,8 @@ def test_dieterich_quasi_static_lambda_is_exactly_zero():
     for _ in range(5):
         pt = {a: sp.Rational(349, 10000), b: sp.Rational(489, 10000), L: sp.Rational(9, 10 ** 7),
               sigma: sp.Rational(11772, 1000), V: sp.Rational(rng.randint(1, 10 ** 4), 10 ** 7)}
-        assert abs(sp.N(lam.subs({**pt, M: 0}), 100)) < sp.Float("1e-80") * abs(sp.N(lam.subs({**pt, M: sp.Rational(6, 5)}), 100))
+        assert (abs(sp.N(lam.subs({**pt, M: 0}), 100))
+                < sp.Float("1e-80") * abs(sp.N(lam.subs({**pt, M: sp.Rational(6, 5)}), 100)))
     # the compiled path returns 0 and flags the point degenerate instead of returning round-off
     r = d.evaluate([1e-5, 1e-4, 1e-3], {"M": 0.0}, ["Lambda", "C"])
     assert list(r["Lambda"]) == [0.0, 0.0, 0.0] and r["degenerate"].all()

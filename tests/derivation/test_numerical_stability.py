@@ -23,11 +23,11 @@ import mpmath
 import numpy as np
 import pytest
 import sympy as sp
-
-from landau.laws import get_law
-from landau.derivation.multiscale import derive
-from landau.systems.system import M, SpringBlock
 from vw_ranges import LAWS, vw_range
+
+from landau.derivation.multiscale import derive
+from landau.laws import get_law
+from landau.systems.system import M, SpringBlock
 
 NAMES = ["kc", "omega_c", "Gamma_bar", "Omega_bar", "Lambda", "chi", "C"]
 REL = 1e-9

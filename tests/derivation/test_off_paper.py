@@ -15,7 +15,6 @@ from scipy.optimize import brentq, newton
 
 from landau.scenes import run_scene
 
-
 # --- Skurativskyi et al. (2019) -------------------------------------------------------------------
 
 @pytest.mark.parametrize("xI", [-0.003, -0.0015])
@@ -45,7 +44,7 @@ def test_skurativskyi_static_equilibrium_stiff_contact():
         doc = run_scene("skurativskyi2019/static-equilibrium", {"kI": kI})
         p = doc["params"]
         with mpmath.workdps(50):
-            f = lambda X: p["k"] * X + mpmath.mpf(kI) * (X - p["xI"]) ** mpmath.mpf(p["n1"])  # noqa: E731
+            f = lambda X, p=p, kI=kI: p["k"] * X + mpmath.mpf(kI) * (X - p["xI"]) ** mpmath.mpf(p["n1"])  # noqa: E731
             ref = mpmath.findroot(f, (mpmath.mpf(p["xI"]) * (1 - mpmath.mpf(10) ** -12), mpmath.mpf(0)),
                                   solver="anderson")
         assert doc["value"] == pytest.approx(float(ref), rel=1e-12)

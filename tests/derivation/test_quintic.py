@@ -17,11 +17,11 @@ import sympy as sp
 
 from landau import SpringBlock
 from landau.analyses.bautin import cycle_amplitudes, fold_of_cycles, quintic_normal_form
-from landau.laws import get_law
+from landau.analyses.transition import codim2_points
 from landau.derivation.lyapunov import lyapunov_coefficients
 from landau.derivation.multiscale import Derivation, derive
+from landau.laws import get_law
 from landau.systems.system import DynamicalSystem
-from landau.analyses.transition import codim2_points
 
 R = sp.Rational
 mu, a_, b_, om_ = sp.symbols("mu a b omega", real=True)
@@ -62,7 +62,7 @@ def warped_3d() -> DynamicalSystem:
     A1, A2, A3 = sp.symbols("A1 A2 A3")
     Y = sp.Matrix([u, v + u ** 2 / 2, s + R(3, 10) * u * v])
     X = sp.Matrix([A1 + R(3, 10) * A2 ** 2 + R(1, 5) * A3 ** 2, A2 + R(1, 10) * A3 ** 2, A3])
-    sub = dict(zip((A1, A2, A3), Y))
+    sub = dict(zip((A1, A2, A3), Y, strict=True))
     x, y, w = (e.xreplace(sub) for e in X)
     fx, fy = _polar(x, y)
     D1 = X.jacobian([A1, A2, A3]).xreplace(sub)
@@ -162,7 +162,8 @@ def test_spring_block_quintic_both_routes_at_codim2(derivations, name, params):
         f64 = d.evaluate(np.array([pt.V]), p, ["Lambda5"])["Lambda5"][0]
         k = lyapunov_coefficients(d.block.system, {**p, "V": pt.V}, float(mp["kc"]),
                                   omega_c=float(mp["omega_c"]), jets=d.jets)
-        ctx = f"{name} V*={pt.V:.8g}: Fredholm {float(mp['Lambda5']):.15g}, float64 {f64:.15g}, Kuznetsov {k.Lambda5:.15g}"
+        ctx = (f"{name} V*={pt.V:.8g}: Fredholm {float(mp['Lambda5']):.15g}, float64 {f64:.15g}, "
+               f"Kuznetsov {k.Lambda5:.15g}")
         assert k.Lambda5 == pytest.approx(float(mp["Lambda5"]), rel=REL), ctx
         assert f64 == pytest.approx(float(mp["Lambda5"]), rel=REL), ctx
         assert k.Lambda == pytest.approx(float(mp["Lambda"]), rel=1e-6, abs=1e-12 * abs(k.Lambda5) * 1e-6)

@@ -3,8 +3,8 @@ of the precision ladder is climbed only where the float estimate cannot bound th
 
 import numpy as np
 
-from landau.laws import get_law
 from landau.derivation.multiscale import derive
+from landau.laws import get_law
 from landau.systems.system import SpringBlock
 
 

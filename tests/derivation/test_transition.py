@@ -15,12 +15,17 @@ from contextlib import redirect_stdout
 import numpy as np
 import pytest
 
-from landau.errors import InputError
+from landau.analyses.transition import (
+    codim2_points,
+    critical_parameter,
+    extrema,
+    transition_curve,
+    velocity_weakening_ranges,
+)
 from landau.derivation.multiscale import Derivation
-from landau.systems.system import SpringBlock
-from landau.analyses.transition import (codim2_points, critical_parameter, extrema, transition_curve,
-                               velocity_weakening_ranges)
+from landau.errors import InputError
 from landau.laws import FrictionLaw, get_law
+from landau.systems.system import SpringBlock
 
 T1 = dict(a=0.0349, b=0.0489, L=0.9e-6, V_s=1e-6, M=1.2, sigma=11.772)
 PRINTED = 5e-3  # 0.5 %: the values are printed with 3-4 significant digits
@@ -287,7 +292,7 @@ def test_codim2_sign_scan_does_not_fall_back_to_mpmath(monkeypatch):
     assert calls == []
     # the two transitions of the micron-scale law (Putelat et al. 2010, Fig. 17) as computed at
     # full accuracy (README: 1.0395e-5 and 2.0794e-4 m/s)
-    assert len(pts) == 2 and all(rel(p.V, v) < 1e-4 for p, v in zip(pts, (1.0395e-5, 2.0794e-4)))
+    assert len(pts) == 2 and all(rel(p.V, v) < 1e-4 for p, v in zip(pts, (1.0395e-5, 2.0794e-4), strict=True))
     # the same scan at full accuracy does need the 50/80-digit route (so the count above can fail),
     # and the sign-only values agree in sign with those accurate values everywhere
     p = d.block.resolve(None)

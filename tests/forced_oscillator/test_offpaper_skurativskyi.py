@@ -11,6 +11,7 @@ import pytest
 
 from landau.scenes import run_scene
 
+
 def _static_equilibrium(p):
     """X₀ from k X₀ + k_I (X₀ − x_I)^{n₁} = 0 at the working precision (the cart pressed on the obstacle)."""
     return mpmath.findroot(lambda X: p["k"] * X + p["kI"] * (X - p["xI"]) ** p["n1"],
@@ -73,7 +74,8 @@ def test_first_cascade_grazing_off_paper_is_a_located_grazing(params):
     """The cascade scene derives its bracket from the model: an up-sweep from the first detachment
     to the first period-7 orbit with 14 impacts whose lower edge is a grazing (at k = 1500 the sweep
     first meets a period-7 window inside the chaotic band, at 21.0025, whose orbit ends without
-    grazing — the straight-line zero of its margin lies 0.26 rad/s away —, and passes over it).  Checked independently at rtol 1e-10 instead of 1e-8, continuing the returned orbit
+    grazing — the straight-line zero of its margin lies 0.26 rad/s away —, and passes over it).  Checked independently
+    at rtol 1e-10 instead of 1e-8, continuing the returned orbit
     (``y_orbit``): 1e-3 rad/s above the located point it is still the period-7 orbit with 14 impacts,
     1e-3 below it is gone (1e-3 is 10 bisection tolerances and twice the largest shift of this edge
     measured between integration tolerances, 5e-4 from rtol 1e-7 to 1e-8); and the free-flight margin

@@ -13,8 +13,8 @@ import pytest
 from scipy.linalg import expm
 
 from landau.errors import InputError
-from landau.scenes import run_scene
 from landau.laws.velocity import regularised_coulomb
+from landau.scenes import run_scene
 from landau.verify.skurativskyi import approx
 from landau.verify.skurativskyi.analysis import attractor, redundancy, tsallis_q
 from landau.verify.skurativskyi.model import PAPER, Params, saltation_matrix
@@ -174,7 +174,7 @@ def test_sweep_dask_matches_local_and_streams(tmp_path):
         remote = run_sweep(om, "down", out=tmp_path / "dask", spec=spec, scheduler=client, chunk_size=2,
                            progress=False)
     assert list(local.omegas) == [21.8, 21.75, 21.7]
-    for a, b in zip(local.attractors, remote.attractors):
+    for a, b in zip(local.attractors, remote.attractors, strict=True):
         # same chunks, same warm starts, same deterministic integrator: identical results
         assert np.array_equal(a.x_section, b.x_section)
     with pytest.raises(InputError):  # the folder holds a different sweep

@@ -123,7 +123,7 @@ def test_generated_field_and_partials_equal_the_hand_typed_ones_bitwise(prm):
     k = compiled_field(prm)
     p, q = prm.packed(), hand_packed(prm)
     out, ref = np.empty(4), np.empty(4)
-    for t, x, v in zip(*_states(3000, 7)):
+    for t, x, v in zip(*_states(3000, 7), strict=True):
         assert k.accel(t, x, v, p) == hand_accel(t, x, v, q)
         assert k.accel_grad(t, x, v, p) == hand_accel_grad(t, x, v, q)
         assert k.accel_partials(t, x, v, p) == hand_accel_partials(t, x, v, q)
@@ -173,7 +173,7 @@ def test_field_through_the_callbacks_equals_the_hand_typed_one_bitwise(callbacks
     prm = PAPER.with_(omega=20.38)
     p, q = prm.packed(), hand_packed(prm)
     with quiet_first_class():
-        for t, x, v in zip(*_states(500, 11)):
+        for t, x, v in zip(*_states(500, 11), strict=True):
             assert F.accel(t, x, v, p, fr) == hand_accel(t, x, v, q)
             assert F.accel_grad(t, x, v, p, fr) == hand_accel_grad(t, x, v, q)
             assert F.accel_partials(t, x, v, p, fr) == hand_accel_partials(t, x, v, q)
@@ -200,7 +200,7 @@ def test_whole_runs_equal_through_the_built_in_law_and_the_callbacks_bitwise(cal
     assert g[2] == R.OK
     assert g[14] > 0  # the stiff stepper took steps
     for h in outs[1:]:
-        for a, b in zip(g, h):
+        for a, b in zip(g, h, strict=True):
             if isinstance(a, np.ndarray):
                 assert a.shape == b.shape and np.array_equal(a, b)
             else:

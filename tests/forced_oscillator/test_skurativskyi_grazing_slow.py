@@ -48,7 +48,7 @@ def cascade():
 
 def test_obstacle_grazings_are_grazings(cascade):
     pts, _ = cascade
-    for G, (period, impacts) in zip(pts, ((7, 14), (3, 5), (2, 3))):
+    for G, (period, impacts) in zip(pts, ((7, 14), (3, 5), (2, 3)), strict=True):
         assert (G.period, G.impacts, G.kind, G.orbit_side) == (period, impacts, "impact added", "above")
         # the free margin vanishes linearly at the bracket: grazing, not a fold or a crisis
         assert G.lo - 2e-4 <= G.extrapolated <= G.hi + 2e-4

@@ -16,8 +16,8 @@ import pytest
 
 from landau.verify.hybrid.compiled import dopri5_method
 from landau.verify.skurativskyi import rk as R
-from landau.verify.skurativskyi.model import Params, compiled_field
 from landau.verify.skurativskyi.friction import quiet_first_class
+from landau.verify.skurativskyi.model import Params, compiled_field
 from landau.verify.skurativskyi.simulate import run
 
 
@@ -45,7 +45,7 @@ def test_loop_dopri5_step_equals_the_generic_compiled_step(n):
         scratch = [np.empty(n) for _ in range(6)]
         with quiet_first_class():
             R.dp5_step(p, t, y, k1, h, *b, *scratch, k.pointers)
-        for u, w in zip(a, b):
+        for u, w in zip(a, b, strict=True):
             assert np.array_equal(u, w)
 
 

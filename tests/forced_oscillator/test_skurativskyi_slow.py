@@ -9,8 +9,15 @@ rtol 1e-7 and 1e-9, see the report).
 import numpy as np
 import pytest
 
-from landau.verify.skurativskyi.analysis import (attractor, continuation, first_detachment, locate_grazing,
-                                          locate_period_doubling, section_period, tsallis_q)
+from landau.verify.skurativskyi.analysis import (
+    attractor,
+    continuation,
+    first_detachment,
+    locate_grazing,
+    locate_period_doubling,
+    section_period,
+    tsallis_q,
+)
 from landau.verify.skurativskyi.sweep import SweepSpec, run_sweep
 
 pytestmark = pytest.mark.slow
@@ -119,5 +126,5 @@ def test_sweep_resumes_after_interruption(tmp_path):
     lines = f.read_text().splitlines()
     f.write_text("\n".join(lines[:2]) + "\n" + lines[2][:25])
     again = run_sweep(om, "up", out=tmp_path / "a", spec=spec, workers=1, progress=False)
-    for a, b in zip(full.attractors, again.attractors):
+    for a, b in zip(full.attractors, again.attractors, strict=True):
         assert np.allclose(a.x_section, b.x_section, rtol=0, atol=1e-12)

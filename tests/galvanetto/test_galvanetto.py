@@ -16,7 +16,6 @@ from landau.verify.galvanetto import bifurcations as B
 from landau.verify.galvanetto.maps import d_range, default_stepper, one_block_cycle, two_block_map
 from landau.verify.galvanetto.model import K_of, one_block, two_blocks
 
-
 # ------------------------------------------------------------------ friction law (eq. 7)
 
 def test_kinetic_law_eq7_levels_and_derivative():
@@ -241,6 +240,7 @@ def test_damped_slip_system_for_landau_engine():
     # the smooth slip field handed to the landau engine: equilibrium at the origin and the
     # trace of its Jacobian vanishes exactly at c1 = γ/(1+γV)² (closed form)
     import sympy as sp
+
     from landau.verify.galvanetto.smooth import damped_slip_system
     sysm = damped_slip_system()
     subs = {s: sysm.defaults[s.name] for s in sysm.parameters}
@@ -260,6 +260,7 @@ def _user_exp_law():
 
 def test_user_kinetic_law_parsed_and_differentiated():
     import sympy as sp
+
     from landau.errors import InputError, ParseError
     from landau.laws.kinetic import DELTA, GAMMA, R
     law = _user_exp_law()
@@ -271,7 +272,7 @@ def test_user_kinetic_law_parsed_and_differentiated():
         assert law.dneg(r) == pytest.approx(2.4 * math.exp(3 * r), rel=1e-14)
         assert law.d3neg(r) == pytest.approx(0.8 * 27 * math.exp(3 * r), rel=1e-14)
     assert law.neg(0.0) == pytest.approx(1.0, abs=1e-15)
-    import pickle   # rebuilt from its expressions (the generated functions are not picklable)
+    import pickle  # rebuilt from its expressions (the generated functions are not picklable)
     back = pickle.loads(pickle.dumps(law))
     assert back == law and back.dneg(-0.3) == law.dneg(-0.3)
     with pytest.raises(ParseError):
@@ -289,6 +290,7 @@ def test_user_kinetic_law_hopf_point_and_criticality():
     # + (even terms, no first-Lyapunov contribution) with a3 = F_k'''(−V)/6 > 0 → subcritical and
     # C = 1/sqrt(2ℓ1), ℓ1 = 3a3/8 (Guckenheimer–Holmes 3.4.11), as for eq. (7) above.
     import sympy as sp
+
     from landau.laws.kinetic import R
     V = 0.5
     law = _user_exp_law()

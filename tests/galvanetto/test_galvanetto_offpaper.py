@@ -99,7 +99,7 @@ def test_c2_off_paper_matches_solve_ivp(law, Fneg, what, V):
     for c, sticks in [(c2 * 0.99, True), (c2 * 1.01, False)]:
         up = lambda t, y: y[1] - V
         up.terminal, up.direction = True, 1
-        s = solve_ivp(lambda t, y: [y[1], -(y[0] + c * y[1]) + Fneg(y[1] - V)], (0, 400), [1.0 - c * V, V],
+        s = solve_ivp(lambda t, y, c=c: [y[1], -(y[0] + c * y[1]) + Fneg(y[1] - V)], (0, 400), [1.0 - c * V, V],
                       events=up, **IVP)
         assert bool(s.t_events[0].size) == sticks
 
@@ -241,7 +241,7 @@ def test_fig12_sequence_off_paper_period_doubling_against_solve_ivp_map():
     assert fold.value < pd.value < bc.value < cr.value
     dk = pd.details["d_kink"]
     for beta, above in ((pd.value - 2e-4, True), (pd.value + 2e-4, False)):
-        g = lambda d: _two_block_map_ivp(d, 0.25, 1.2, beta, Fneg) - d
+        g = lambda d, beta=beta: _two_block_map_ivp(d, 0.25, 1.2, beta, Fneg) - d
         dstar = brentq(g, dk - 0.02, dk - 1e-7, xtol=1e-12)
         h = 1e-5
         slope = (_two_block_map_ivp(dstar + h, 0.25, 1.2, beta, Fneg)

@@ -17,11 +17,11 @@ import sympy as sp
 
 from landau import DynamicalSystem, SpringBlock, derive
 from landau.cli import main
+from landau.derivation.linear import HopfLine
 from landau.errors import BudgetError, DomainError, InputError, OutputError, ParseError
 from landau.laws import FrictionLaw, get_law
 from landau.laws.law import TABLE1, v
 from landau.laws.parse import parse_expression
-from landau.derivation.linear import HopfLine
 
 DIETERICH_MU = "a_v + a*log(v/V_s) + b*log(V_s*phi/L)"
 DIETERICH_RATE = "1 - v*phi/L"

@@ -13,7 +13,6 @@ from landau.cli import main
 from landau.errors import InputError, IntegratorError
 from landau.verify.hybrid import Guard, HybridModel, Mode, simulate
 
-
 # ---------------------------------------------------------------- hybrid engine input
 
 def _oscillator(rhs=None) -> HybridModel:
@@ -125,8 +124,8 @@ def test_tiny_inertia_lambda_is_returned_not_degenerate():
     """Λ_D is proportional to M (Putelat, Dawes & Willis 2010, eq. 33: Λ_D = M·(…), exactly):
     Λ(M = 1e-50) = 1e-30·Λ(M = 1e-20), a tiny number with a definite sign, not the vanishing
     quasi-static value."""
-    from landau.laws import get_law
     from landau.derivation.multiscale import derive
+    from landau.laws import get_law
     from landau.systems.system import SpringBlock
 
     d = derive(SpringBlock(get_law("dieterich")), ["Lambda"])
@@ -137,7 +136,7 @@ def test_tiny_inertia_lambda_is_returned_not_degenerate():
     # linearity in M: the independent value 1e-30·Λ(M = 1e-20); both are good to ~1e-10
     np.testing.assert_allclose(tiny["Lambda"], 1e-30 * ref["Lambda"], rtol=1e-9)
     # and a 120-digit evaluation (the terms are O(1e13), so 120 digits leave ~60 exact ones)
-    for V0, lam in zip(Vs, tiny["Lambda"]):
+    for V0, lam in zip(Vs, tiny["Lambda"], strict=True):
         exact = d.evaluate_mp(V0, {"M": 1e-50}, ["Lambda"], dps=120)["Lambda"]
         assert abs(lam - float(exact)) <= 1e-10 * abs(float(exact))
     rows = tiny.rows()

@@ -12,8 +12,14 @@ import numpy as np
 import pytest
 
 from landau.verify.hybrid import DOP853Stepper, simulate
-from landau.verify.lancioni.contact import (ContactModel, PainleveError, PointMassOnPlane, contact_problem, default_options,
-                                     poisson_impact)
+from landau.verify.lancioni.contact import (
+    ContactModel,
+    PainleveError,
+    PointMassOnPlane,
+    contact_problem,
+    default_options,
+    poisson_impact,
+)
 from landau.verify.lancioni.model import build, slip_state
 
 G = 9.81

@@ -61,7 +61,7 @@ def test_builtin_steady_states_zero_the_rates(name):
     ss = law.steady_state_closed_form
     assert ss is not None
     for r in law.rates:
-        assert sp.simplify(r.subs(dict(zip(law.states, ss)))) == 0
+        assert sp.simplify(r.subs(dict(zip(law.states, ss, strict=True)))) == 0
     assert law.source and all(p.source for p in law.parameters)
 
 

@@ -77,10 +77,11 @@ def test_value_needs_known_parameters():
 
 
 def test_landau_hopf_spring_block_matches_the_linear_closed_form(capsys):
+    import json
+
     from landau.cli import main
     from landau.derivation.linear import HopfLine
     from landau.systems.system import SpringBlock
-    import json
 
     assert main(["hopf", "spring-block", "dieterich", "--V", "1e-4", "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
@@ -92,8 +93,9 @@ def test_landau_hopf_spring_block_matches_the_linear_closed_form(capsys):
 
 
 def test_landau_laws_lists_velocity_laws(capsys):
-    from landau.cli import main
     import json
+
+    from landau.cli import main
 
     assert main(["laws", "regularised-coulomb", "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)["laws"][0]

@@ -13,8 +13,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from landau.errors import IntegratorError
-from landau.verify.hybrid import (DOP853Stepper, EngineOptions, Guard, HybridModel, Jump, Mode, ScipyStepper,
-                           simulate)
+from landau.verify.hybrid import DOP853Stepper, EngineOptions, Guard, HybridModel, Jump, Mode, ScipyStepper, simulate
 
 G = 9.81
 

@@ -19,10 +19,18 @@ import pytest
 import scipy.linalg
 import sympy as sp
 
-from landau.errors import InputError
 from landau.codegen.kernels import generate_kernel
-from landau.verify.hybrid.radau import (A_RADAU, ALPHA_SPLIT, BETA_SPLIT, GAMMA_SPLIT, MU_REAL, VINV, radau_core,
-                                        split_coefficients)
+from landau.errors import InputError
+from landau.verify.hybrid.radau import (
+    A_RADAU,
+    ALPHA_SPLIT,
+    BETA_SPLIT,
+    GAMMA_SPLIT,
+    MU_REAL,
+    VINV,
+    radau_core,
+    split_coefficients,
+)
 
 
 def _run(kernel, y0, t_end, rtol, ev_idx=-1, ev_dir=0, ev_stop=0, max_steps=10 ** 6, rec_cap=0):
@@ -57,7 +65,7 @@ def test_decay_matches_exp_and_outputs_are_owned():
     the inputs and stay unchanged after a second run."""
     y = sp.symbols("y0:3")
     rates = (1, 3, 7)
-    k = generate_kernel(list(y), [-r * yi for r, yi in zip(rates, y)], [], [], name="radau_decay3")
+    k = generate_kernel(list(y), [-r * yi for r, yi in zip(rates, y, strict=True)], [], [], name="radau_decay3")
     y0 = np.array([1.0, 2.0, -1.0])
     (st, t, yend, cnt, ev_t, ev_y, rec_t, rec_y, h, Q), _ = _run(k, y0, 5.0, 1e-10, rec_cap=50)
     assert st == 0 and t == 5.0

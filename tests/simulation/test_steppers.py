@@ -22,8 +22,8 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from landau.errors import InputError
 from landau.codegen.kernels import check_source, generate_kernel
+from landau.errors import InputError
 from landau.verify.hybrid.compiled import CompiledDOPRI5
 from landau.verify.hybrid.dop853 import CompiledDOP853
 from landau.verify.hybrid.steppers import ScipyStepper
@@ -221,11 +221,11 @@ def test_cubic_locator_finds_a_double_crossing_inside_one_step():
 
 # --- the periodic-orbit toolkit -------------------------------------------------------------
 def test_shooting_finds_the_fixed_point_and_multipliers_of_a_return_map():
-    from landau.verify.hybrid.analysis import ShootingError, bisect_change, shoot_fixed_point
-
     # the time-2π map of the damped oscillator x'' + 2ζx' + x = 0 (closed form: exp(2πA)) with a
     # constant shift b: fixed point (I − P)⁻¹b, multipliers e^{2π(−ζ ± i√(1−ζ²))}
     from scipy.linalg import expm
+
+    from landau.verify.hybrid.analysis import ShootingError, bisect_change, shoot_fixed_point
 
     zeta = 0.05
     A = np.array([[0.0, 1.0], [-1.0, -2 * zeta]])

@@ -10,8 +10,8 @@ system, not the multiple-scales closed form the scenes evaluate) and closed form
 import pytest
 from scipy.optimize import brentq
 
-from landau.laws import get_law
 from landau.derivation.lyapunov import spring_block_lyapunov
+from landau.laws import get_law
 from landau.scenes import run_scene
 from landau.systems.system import SpringBlock
 

@@ -73,7 +73,8 @@ def test_fig9_effect_of_c():
     kc = fig9.kc_panel()
     lam = fig9.lambda_panel()
     ends = [kc[c][0][-1] for c in fig9.CS]
-    assert all(x < y for x, y in zip(ends, ends[1:]))   # V_m moves to larger V as c decreases
+    # consecutive pairs: V_m moves to larger V as c decreases
+    assert all(x < y for x, y in zip(ends, ends[1:], strict=False))
     assert not np.any(lam[1e-3][1] > 0)                 # c = 1e-3 > c*: supercritical everywhere
     for c in (7e-4, 5e-4, 3e-4):                        # c < c*: subcritical band just below V_m
         V, l_ = lam[c]

@@ -20,9 +20,9 @@ import mpmath
 import pytest
 import sympy as sp
 
-from landau.laws import get_law
 from landau.derivation.lyapunov import first_lyapunov, spring_block_lyapunov
 from landau.derivation.multiscale import derive
+from landau.laws import get_law
 from landau.systems.system import DynamicalSystem, SpringBlock
 
 a, b, L, V, s, M = sp.symbols("a b L V sigma M", positive=True)
@@ -35,7 +35,8 @@ PRINTED = (s * (b - a) * V * (L * s * a + M * V ** 2)
               - 2 * M * a * L * s * (b ** 2 - a * b + a ** 2) * V ** 2 - a ** 4 * s ** 2 * L ** 2)
            / (2 * L ** 2 * D1 * D2))
 #: the correct form (the engine's closed form, cancelled)
-CORRECT = -s * M * b * (b - a) ** 2 * V ** 3 * (L * s * a + M * V ** 2) * (L * s * a + 9 * M * V ** 2) / (L ** 2 * D1 * D2)
+CORRECT = (-s * M * b * (b - a) ** 2 * V ** 3 * (L * s * a + M * V ** 2) * (L * s * a + 9 * M * V ** 2)
+           / (L ** 2 * D1 * D2))
 #: Γ̄ of eq. (32): Γ_DR = −2Γ̄ k₂
 GAMMA_BAR = sp.Rational(1, 2) * (s * a / V) / ((s * a / V) ** 2 + M * (M * (b / a) * (V / L) ** 2 + 2 * s * a / L))
 

@@ -224,8 +224,8 @@ def test_codim2_point_from_orbits_matches_engine_vstar():
                                  "def rhs(t, y, p, out):\n    out[0] = y.__class__",
                                  "import os"])
 def test_generated_code_is_whitelisted_before_exec(src):
-    from landau.errors import InputError
     from landau.codegen.kernels import check_source
+    from landau.errors import InputError
 
     with pytest.raises(InputError, match="refusing to compile"):
         check_source(src)

@@ -10,8 +10,13 @@ from __future__ import annotations
 import pytest
 
 from landau.laws import get_law
-from landau.verify.springblock.checks import (fitted_exponent, predict, subcritical_check, supercritical_check,
-                                       bistability_scan)
+from landau.verify.springblock.checks import (
+    bistability_scan,
+    fitted_exponent,
+    predict,
+    subcritical_check,
+    supercritical_check,
+)
 
 pytestmark = pytest.mark.slow
 

@@ -36,17 +36,39 @@ The locators live in modules of one idea each and are gathered here:
 the grazing-sliding) and :mod:`~landau.verify.galvanetto.multisliding`.
 """
 
-from landau.verify.galvanetto.multisliding import (MS_SCAN_DECADE, MS_SCAN_STEP, MS_TRANSIENT,  # noqa: F401
-                                                   _multi_sliding_range, multi_sliding)
-from landau.verify.galvanetto.one_block import (hopf_c1, hopf_c1_normal_form, nonsmooth_fold_c2,  # noqa: F401
-                                                one_block_sliding)
-from landau.verify.galvanetto.periodic import (SCAN_RTOL, XTOL, Located, NoBifurcationError,  # noqa: F401
-                                               PeriodicPoint, attractor, map_slope, orbit_events, periodic_point,
-                                               scan_bracket)
-from landau.verify.galvanetto.two_block import (GRAZE1, border_collision, boundary_crisis,  # noqa: F401
-                                                discontinuous_fold, fig12_params, fixed_point_beside_kink,
-                                                grazing_sliding, kink, kink_function, period_doubling,
-                                                two_block_sliding)
+from landau.verify.galvanetto.multisliding import (  # noqa: F401
+                                                   MS_SCAN_DECADE,
+                                                   MS_SCAN_STEP,
+                                                   MS_TRANSIENT,
+                                                   _multi_sliding_range,
+                                                   multi_sliding,
+)
+from landau.verify.galvanetto.one_block import hopf_c1, hopf_c1_normal_form, nonsmooth_fold_c2, one_block_sliding  # noqa: F401
+from landau.verify.galvanetto.periodic import (  # noqa: F401
+                                                   SCAN_RTOL,
+                                                   XTOL,
+                                                   Located,
+                                                   NoBifurcationError,
+                                                   PeriodicPoint,
+                                                   attractor,
+                                                   map_slope,
+                                                   orbit_events,
+                                                   periodic_point,
+                                                   scan_bracket,
+)
+from landau.verify.galvanetto.two_block import (  # noqa: F401
+                                                   GRAZE1,
+                                                   border_collision,
+                                                   boundary_crisis,
+                                                   discontinuous_fold,
+                                                   fig12_params,
+                                                   fixed_point_beside_kink,
+                                                   grazing_sliding,
+                                                   kink,
+                                                   kink_function,
+                                                   period_doubling,
+                                                   two_block_sliding,
+)
 
 __all__ = ["Located", "NoBifurcationError", "PeriodicPoint", "attractor", "border_collision", "boundary_crisis",
            "discontinuous_fold", "fig12_params", "fixed_point_beside_kink", "grazing_sliding", "hopf_c1",

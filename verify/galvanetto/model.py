@@ -137,8 +137,8 @@ def _parameters_doc_tail(equations: str) -> str:
     """
 
 
-one_block.__doc__ += _parameters_doc_tail("(3a), (4a), (7)")
-two_blocks.__doc__ += _parameters_doc_tail("(3b), (4b), (7), (8b)")
+one_block.__doc__ = (one_block.__doc__ or "") + _parameters_doc_tail("(3a), (4a), (7)")
+two_blocks.__doc__ = (two_blocks.__doc__ or "") + _parameters_doc_tail("(3b), (4b), (7), (8b)")
 
 
 #: relative width of the band outside ±F_s where a landing block whose spring force moves into
@@ -176,7 +176,7 @@ def _make_rhs(p: StickSlipParams, code: str):
     def fr(ch, r, F):
         return F * (fneg(r) if ch == "n" else fpos(r))
 
-    c1, c2 = code
+    c1, c2 = code[0], code[1]
 
     def rhs(t, y):
         x1, x2, v1, v2 = y
@@ -328,7 +328,9 @@ def build_model(p: StickSlipParams, sections: bool = False, transparent: frozens
                     if ch == "n":
                         guards.append(Guard(f"rmax{i + 1}", acc, affine=acc_affine))
                     else:
-                        guards.append(Guard(f"rmin{i + 1}", lambda t, y, acc=acc: -acc(t, y), affine=acc_affine))
+                        def minus_acc(t, y, acc=acc):
+                            return -acc(t, y)
+                        guards.append(Guard(f"rmin{i + 1}", minus_acc, affine=acc_affine))
             else:
                 def up(t, y, K=_K_fun(p, i), F=Fs[i]):
                     return F - K(y)
@@ -347,7 +349,9 @@ def build_model(p: StickSlipParams, sections: bool = False, transparent: frozens
 
                 wK = _K_weights(p, i)
                 if f"K{i + 1}=+Fs" not in transparent:
-                    guards.append(Guard(f"K{i + 1}=+Fs", up, leave("n"), rate=lambda t, y, k=kdot: -k(t, y),
+                    def minus_kdot(t, y, k=kdot):
+                        return -k(t, y)
+                    guards.append(Guard(f"K{i + 1}=+Fs", up, leave("n"), rate=minus_kdot,
                                         affine=_affine(-wK, Fs[i])))
                 if f"K{i + 1}=-Fs" not in transparent:
                     guards.append(Guard(f"K{i + 1}=-Fs", lo, leave("p"), rate=kdot, affine=_affine(wK, Fs[i])))
@@ -355,12 +359,15 @@ def build_model(p: StickSlipParams, sections: bool = False, transparent: frozens
                     j = 1 - i
                     a = p.alpha
 
-                    def kdot(t, y, i=i, j=j):
+                    def kdiff(t, y, i=i, j=j, a=a):  # dKᵢ/dt in the section's combination
                         return (1 + a) * y[n + i] - a * y[n + j]
+
+                    def minus_kdiff(t, y, f=kdiff):
+                        return -f(t, y)
 
                     wd = np.zeros(2 * n)
                     wd[n + i], wd[n + j] = 1 + a, -a
-                    guards.append(Guard(f"Kmin{i + 1}", lambda t, y, f=kdot: -f(t, y), affine=_affine(-wd, 0.0)))
-                    guards.append(Guard(f"Kmax{i + 1}", kdot, affine=_affine(wd, 0.0)))
+                    guards.append(Guard(f"Kmin{i + 1}", minus_kdiff, affine=_affine(-wd, 0.0)))
+                    guards.append(Guard(f"Kmax{i + 1}", kdiff, affine=_affine(wd, 0.0)))
         modes[code] = Mode(code, _make_rhs(p, code), tuple(guards), kernel=_kernel_factory(p, code))
     return HybridModel(modes, name=f"galvanetto2004-{n}block")

@@ -14,9 +14,18 @@ from landau.errors import InputError, IntegratorError, LandauError
 from landau.laws.kinetic import KineticFriction, resolve_kinetic_law
 from landau.verify.galvanetto.maps import MapUndefined, d_range, default_stepper, two_block_map
 from landau.verify.galvanetto.model import K_of, two_blocks
-from landau.verify.galvanetto.periodic import (SCAN_RTOL, Located, NoBifurcationError, _continuation_scan, _locate,
-                                               _velocity_scale, _Warm, attractor, map_slope, periodic_point)
-
+from landau.verify.galvanetto.periodic import (
+    SCAN_RTOL,
+    Located,
+    NoBifurcationError,
+    _continuation_scan,
+    _locate,
+    _velocity_scale,
+    _Warm,
+    attractor,
+    map_slope,
+    periodic_point,
+)
 
 #: derived start of :func:`multi_sliding`: γ is scanned on a geometric grid (neighbours 2 % apart) from
 #: the γ at which the law's weakening velocity is ten times the belt velocity V to the γ at which it
@@ -155,8 +164,9 @@ def multi_sliding(bracket=None, V=0.05, alpha=1.2, beta=2.0, delta=None, stepper
     d0 = float(d0)
     scan_st = default_stepper(SCAN_RTOL)
 
-    if gamma is not None or bracket is not None:
-        start = float(gamma) if bracket is None else float(bracket[0])
+    given = float(bracket[0]) if bracket is not None else None if gamma is None else float(gamma)
+    if given is not None:
+        start = given
         orb, period = attractor(params(start), d0, 80, 8, scan_st, tol=1e-6)
         if period is None:
             raise NoBifurcationError(f"multi-sliding: the map's attractor at gamma = {start:g} from d0 = {d0:g} is "

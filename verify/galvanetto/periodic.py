@@ -18,7 +18,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from landau.errors import InputError, IntegratorError, LandauError
-from landau.verify.galvanetto.maps import (MapUndefined, f_n, two_block_map)
+from landau.verify.galvanetto.maps import MapUndefined, f_n, two_block_map
 from landau.verify.galvanetto.model import K_of, StickSlipParams
 
 XTOL = 1e-12
@@ -89,7 +89,7 @@ def map_slope(p: StickSlipParams, d: float, period: int = 1, stepper=None, h: fl
 def orbit_events(p: StickSlipParams, d: float, period: int, stepper=None, sections: bool = False,
                  transparent: frozenset = frozenset()) -> list:
     """Events of the map orbit d, f(d), ..., (one list over ``period`` map steps)."""
-    evs = []
+    evs: list = []
     for _ in range(period):
         ms = two_block_map(p, d, stepper, sections=sections, transparent=transparent)
         evs.extend(ms.events)
@@ -193,8 +193,8 @@ def _velocity_scale(law) -> float:
 class _Warm:
     """Warm start of the periodic point along a parameter sweep."""
 
-    def __init__(self, d0: float):
-        self.d = d0
+    def __init__(self, d0: float | None):
+        self.d = d0   # None: no periodic point followed yet
 
 
 #: a cheaper integrator for the coarse scans that only bracket a sign change (the root itself is
@@ -260,7 +260,7 @@ def _continuation_scan(H, warm: _Warm, x0: float, limit: float, what: str, max_j
     if h0 == 0.0:
         return x0, x0
     reached = {-1: (x0, warm.d), +1: (x0, warm.d)}   # the last point followed on each side
-    ends = {-1: None, +1: None}                      # where a side was lost
+    ends: dict[int, float | None] = {-1: None, +1: None}   # where a side was lost
     dist, step = 0.0, 1e-4 * abs(x0)
     while reached and dist < limit:
         dist = min(dist + step, limit)

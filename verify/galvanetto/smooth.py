@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from landau.laws.kinetic import DELTA, GAMMA, R, KineticFriction, resolve_kinetic_law
+from landau.laws.kinetic import DELTA, GAMMA, KineticFriction, R, resolve_kinetic_law
 
 
 def kinetic_law(gamma: float | None = None, delta: float | None = None,

@@ -14,11 +14,24 @@ from scipy.optimize import brentq
 
 from landau.errors import InputError, IntegratorError, LandauError
 from landau.laws.kinetic import KineticFriction, resolve_kinetic_law
-from landau.verify.galvanetto.maps import (MapUndefined, d_range, default_stepper, f_n, two_block_map)
+from landau.verify.galvanetto.maps import MapUndefined, d_range, default_stepper, f_n, two_block_map
 from landau.verify.galvanetto.model import StickSlipParams, _make_rhs, two_blocks
-from landau.verify.galvanetto.periodic import (SCAN_RTOL, Located, NoBifurcationError, PeriodicPoint, _grow_bracket,
-                                               _locate, _margins, _velocity_scale, _Warm, attractor, map_slope,
-                                               orbit_events, periodic_point, scan_bracket)
+from landau.verify.galvanetto.periodic import (
+    SCAN_RTOL,
+    Located,
+    NoBifurcationError,
+    PeriodicPoint,
+    _grow_bracket,
+    _locate,
+    _margins,
+    _velocity_scale,
+    _Warm,
+    attractor,
+    map_slope,
+    orbit_events,
+    periodic_point,
+    scan_bracket,
+)
 
 # ----------------------------------------------------------------- two blocks (Sec. 4.1)
 
@@ -106,7 +119,8 @@ def two_block_sliding(kind: str, alpha: float = 1.2, beta: float = 1.3, gamma: f
             if per is None:
                 raise NoBifurcationError(
                     f"two-block type {kind} sliding: the test function changes sign for V in [{bracket[0]:.6g}, "
-                    f"{bracket[1]:.6g}], but the map's attractor at V = {bracket[0]:.6g} is not periodic (period <= 8): "
+                    f"{bracket[1]:.6g}], but the map's attractor at V = {bracket[0]:.6g} is not periodic (period <= "
+                    f"8): "
                     "the sliding happens on a non-periodic attractor, not at a point of a periodic orbit "
                     "(pass period= to follow a periodic orbit of that period)")
             period = per
@@ -277,9 +291,9 @@ def _fold_scan(V, alpha, law) -> tuple[float, float]:
         p = fig12_params(beta, V, alpha, law=law)
         try:
             warm.d = kink(p, warm.d, st, tol=1e-6)
-        except (MapUndefined, IntegratorError, InputError):
+        except (MapUndefined, IntegratorError, InputError) as err:
             warm.d = None
-            raise MapUndefined("no kink")
+            raise MapUndefined("no kink") from err
         return f_n(p, warm.d, 1, st) - warm.d
 
     betas = 1.0 + 0.05 * np.arange(1, 1 + int(round(2 * (1 + alpha) / 0.05)))
@@ -293,6 +307,7 @@ def _fold_scan(V, alpha, law) -> tuple[float, float]:
         if prev is not None and prev[1] > 0 > h:
             p = fig12_params(beta, V, alpha, law=law)
             dk = warm.d
+            assert dk is not None  # H(beta) has just located the kink
             off = 2e-4 * (d_range(p)[1] - d_range(p)[0])
             try:
                 left = map_slope(p, dk - off, 1, st, h=off / 20)
@@ -390,6 +405,7 @@ def _chained(name, bracket, V, alpha, stepper, law) -> Located:
             warm.d = prev.details["d_kink"]
             bracket = _chain_scan(H, prev.value, what)
     b, res, n, sec = _locate(H, bracket)
+    assert warm.d is not None  # the last H evaluation located the kink
     return Located(name, "beta", b, res, n, sec, {"d_kink": float(warm.d), "bracket": tuple(map(float, bracket))})
 
 

@@ -11,8 +11,8 @@ Compiled steppers over a :class:`Kernel` are in :mod:`landau.verify.hybrid.dop85
 are in :mod:`landau.verify.hybrid.analysis`.
 """
 
-from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.kernel import Kernel
+from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.model import Guard, HybridModel, Jump, Mode
 from landau.verify.hybrid.result import Simulation, Status
 from landau.verify.hybrid.simulate import EngineOptions, HybridSolution, Segment, simulate

@@ -24,6 +24,7 @@ import math
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
+from typing import Any, ClassVar
 
 import numpy as np
 from numba import njit
@@ -207,7 +208,7 @@ class _CompiledFactory:
     first_step: float | None = None
     max_step: float = np.inf
 
-    _solver = None
+    _solver: ClassVar[Any] = None   # the compiled solver class of a concrete factory
     _needs_jac = False
 
     def __call__(self, fun, t0, y0, t_bound, jac=None):

@@ -93,7 +93,7 @@ error behind γ_T = 0 (the engine takes roots on the new side) is entered, not r
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Callable, Sequence
+from typing import Callable, Generic, Sequence, TypeVar
 
 import numpy as np
 
@@ -327,11 +327,14 @@ class Section:
     fun: Callable
 
 
+_Mech = TypeVar("_Mech", bound="ContactMechanics")
+
+
 @dataclass
-class ContactModel:
+class ContactModel(Generic[_Mech]):
     """The hybrid model of a :class:`ContactMechanics` (modes flight, slip±, stick) and helpers."""
 
-    mech: ContactMechanics
+    mech: _Mech
     sections: Sequence[Section] = ()
     v_tol: float = 1e-10
     #: numerical stick tolerance η (velocity units; 0 = exact, the default).  See
@@ -424,6 +427,7 @@ class ContactModel:
         n = self.mech.n
         a0, MiW, G, b = self.mech.terms(t, y[:n], y[n:])
         gT = float(self.mech.gammas(t, y[:n], y[n:])[1])
+        mu: float | tuple[float, float]   # the slip coefficient, or the stick cone (μ₊, μ₋)
         if abs(gT) > self.v_tol:
             mu = float(self.mech.slip_mu(1 if gT > 0 else -1, gT))
         else:
@@ -469,9 +473,9 @@ class ContactModel:
                 gs.append(Guard("lift-off", lam_n, lambda t, y: Jump(
                     "flight", mech.project(t, y, normal_velocity=True), "lift-off (λ_N = 0)")))
                 if mode == "stick":
-                    static = dict(zip((1, -1), mech.static_mu()))
+                    static = dict(zip((1, -1), mech.static_mu(), strict=True))
 
-                    def onset(sgn):
+                    def onset(sgn, static=static):
                         mu = static[sgn]
 
                         def gfun(t, y):
@@ -509,7 +513,9 @@ class ContactModel:
                         raise PainleveError("slip", f"D_{'+' if s > 0 else '-'} reached 0 in slip", t=t, state=y)
                     gs.append(Guard("painleve", painleve, raise_p))
             for sec in self.sections:
-                gs.append(Guard(sec.name, lambda t, y, sec=sec, mode=mode: sec.fun(t, y, self.accel(mode, t, y))))
+                def section_fun(t, y, sec=sec, mode=mode):
+                    return sec.fun(t, y, self.accel(mode, t, y))
+                gs.append(Guard(sec.name, section_fun))
             modes[mode] = Mode(mode, self.rhs(mode), tuple(gs),
                                on_zeno=self.end_chattering if mode == "flight" else None)
         return HybridModel(modes, name=getattr(mech, "name", "single-contact"))

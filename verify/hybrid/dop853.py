@@ -4,7 +4,8 @@ The Dormand–Prince 8(5,3) method of Hairer, Nørsett & Wanner (*Solving ODEs I
 II.5 and II.6; the code DOP853): 12 stages, FSAL, the error estimate that blends the 5th- and
 3rd-order embedded solutions, and the 7th-order continuous extension (3 more stages).  The
 tableau is Hairer's (:mod:`landau.verify.hybrid.dop853_tableau`, the same numbers as scipy's)
-and the step-size control and initial step are scipy's ``DOP853`` rules (safety 0.9, factors in [0.2, 10], exponent −1/8,
+and the step-size control and initial step are scipy's ``DOP853`` rules (safety 0.9, factors in [0.2, 10], exponent
+−1/8,
 :func:`initial_step`), so a run takes the same steps as scipy's Python stepper and its values
 agree with it to rounding.
 
@@ -47,10 +48,10 @@ from functools import lru_cache
 
 import numpy as np
 from numba import cfunc, njit, types
-from landau.verify.hybrid import dop853_tableau as _dc
 
 from landau.errors import InputError
 from landau.verify.compiling import compile_once
+from landau.verify.hybrid import dop853_tableau as _dc
 from landau.verify.hybrid.callbacks import jit_enabled, warn_once
 from landau.verify.hybrid.kernel import Kernel
 from landau.verify.hybrid.locate import _quiet_guards

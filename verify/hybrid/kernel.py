@@ -11,6 +11,7 @@ phase starts and the scipy steppers can use it directly).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Callable
 
 import numpy as np
 
@@ -35,9 +36,9 @@ class Kernel:
         The generated source (empty for hand-written kernels).
     """
 
-    fun: object
+    fun: Callable[..., None]
     p: np.ndarray
-    jac: object | None = None
+    jac: Callable[..., None] | None = None
     name: str = ""
     n: int | None = None
     source: str = field(default="", repr=False)

@@ -649,7 +649,7 @@ _A1 = types.float64[::1]
 _A2 = types.float64[:, ::1]
 #: the one signature the loop is compiled for
 _LOOP_SIG = (FUN_T, JAC_T, _F64, _A1, _F64, _A1, _F64, _A1, _F64, _F64, _I64, _I64, _F64, _I64, _I64, _I64, _A2, _A1)
-_READY = []
+_READY: list[object] = []
 
 
 def _loop():

@@ -313,7 +313,7 @@ class Simulation:
 
         names = self._names()
         span = f"[{self.t[0]:.6g}, {self.t[-1]:.6g}]" if len(self.t) else f"up to {self.t_final:.6g}"
-        final = ", ".join(f"{nm} = {float(v):.6g}" for nm, v in zip(names, np.ravel(self.y_final)))
+        final = ", ".join(f"{nm} = {float(v):.6g}" for nm, v in zip(names, np.ravel(self.y_final), strict=True))
         rows = [("model", self.model), ("status", f"{self.status.value}: {self.message}"), ("t span", span),
                 ("points", str(len(self.t))), ("events", str(len(self.events))), ("final state", final)]
         body = "".join(f"<tr><th style='text-align:left'>{escape(k)}</th><td style='text-align:left'>"

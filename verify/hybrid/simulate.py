@@ -31,14 +31,14 @@ as a zero-length phase of the next mode if it is still violated there.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable
+from typing import Any, Callable
 
 import numpy as np
 
 from landau.errors import InputError, IntegratorError
 from landau.verify.hybrid.locate import HermiteScreen, first_crossing, guard_on_dense, root_new_side
 from landau.verify.hybrid.log import Event, EventLog
-from landau.verify.hybrid.model import HybridModel, as_jump
+from landau.verify.hybrid.model import Guard, HybridModel, as_jump
 from landau.verify.hybrid.result import Simulation, status_from_text
 from landau.verify.hybrid.steppers import ScipyStepper
 from landau.verify.hybrid.zeno import ZenoDiagnosis, ZenoMonitor
@@ -153,6 +153,12 @@ ARMED, PENDING, DISARMED = 1, 0, -1
 DEFAULT_STEPPER = ScipyStepper("DOP853", rtol=1e-10, atol=1e-12)
 
 
+def _leaving(guard: Guard, g: float, t: float, y: np.ndarray, recover_tol: float) -> bool:
+    """A guard violated at a phase start by at most ``recover_tol`` whose rate says the flow is
+    already leaving it (no zero-length phase)."""
+    return guard.rate is not None and g > -recover_tol and guard.rate(t, y) > 0
+
+
 def _eval_guards(guards, t, y) -> np.ndarray:
     return np.array([float(g.fun(t, y)) for g in guards]) if guards else np.empty(0)
 
@@ -220,8 +226,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
         # ---- zero-length phase: a guard already violated at the phase start
         is_switch = np.array([gd.transition is not None for gd in guards], bool)
         viol = [j for j in np.nonzero((g0 < -atol) & is_switch)[0]
-                if not (guards[j].rate is not None and g0[j] > -options.recover_tol
-                        and guards[j].rate(t, y) > 0)]
+                if not _leaving(guards[j], g0[j], t, y, options.recover_tol)]
         fire_now = int(viol[0]) if len(viol) else None
         solver = None
         if fire_now is None:
@@ -244,11 +249,11 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             # its own dense output inside its compiled loop instead.
             affine = _affine_guards(m) if screen is not None and hasattr(solver, "run_quiet") else None
             roots = _affine_guards(m) if hasattr(solver, "affine_root") else None
-            use_screen = affine is None and screen is not None and _keeps_current_f(solver)
-            if use_screen:
-                screen.start(solver.y, solver.f, len(guards), m.rhs)
+            active = screen if affine is None and screen is not None and _keeps_current_f(solver) else None
+            if active is not None:
+                active.start(solver.y, solver.f, len(guards), m.rhs)
             while hit is None:
-                if affine is not None:
+                if affine is not None and screen is not None:   # (affine is only built with a screen)
                     msg, all_quiet, k = solver.run_quiet(*affine, nodes[:-1], g_last, dec_before, state, atol,
                                                          screen.dip_factor, max(1, options.max_steps - nsteps))
                     nsteps += k
@@ -272,11 +277,12 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                     t, y = solver.t, solver.y.copy()
                     return finish("t_end")
                 t_old, t_new = solver.t_old, solver.t
-                probe = (screen.advance(t_old, t_new, np.asarray(solver.y, dtype=float), np.asarray(solver.f, dtype=float))
-                         if use_screen else 0 if np.isfinite(solver.y).all() else -1)
+                probe = (active.advance(t_old, t_new, np.asarray(solver.y, dtype=float),
+                                        np.asarray(solver.f, dtype=float))
+                         if active is not None else 0 if np.isfinite(solver.y).all() else -1)
                 if probe < 0:
                     raise IntegratorError(f"mode {mname!r}: non-finite state", t=t_old, state=y)
-                if probe > 0 and screen.quiet(guards, g_last, dec_before, state, atol):
+                if probe > 0 and active is not None and active.quiet(guards, g_last, dec_before, state, atol):
                     if solver.status == "finished":
                         nfev += solver.nfev
                         t, y = solver.t, solver.y.copy()
@@ -286,7 +292,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                 ts_int = t_old + (t_new - t_old) * nodes[:-1]
                 Y = np.column_stack([dense(ts_int), solver.y]) if len(ts_int) else solver.y[:, None]
                 ts = np.concatenate([[t_old], ts_int, [t_new]])
-                cands = []
+                cands: list[tuple[Any, int, str]] = []   # (bracket or time, guard, kind)
                 for j, g in enumerate(guards):
                     G = np.concatenate([[g_last[j]], np.atleast_1d(g.fun(ts[1:], Y))])
                     st = state[j]
@@ -307,7 +313,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                                 gs = guard_on_dense(g.fun, dense)
                                 from scipy.optimize import minimize_scalar
 
-                                res = minimize_scalar(lambda s: -gs(s), bounds=(ts[0], ts[kneg]),
+                                res = minimize_scalar(lambda s, gs=gs: -gs(s), bounds=(ts[0], ts[kneg]),
                                                       method="bounded",
                                                       options={"xatol": 1e-10 * (ts[kneg] - ts[0]) + 1e-15})
                                 if -res.fun > atol:
@@ -326,7 +332,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                         cands.append((br, j, "cross"))
                     dec_before[j] = G[-1] < G[-2]
                 if cands:
-                    located = []
+                    located: list[tuple[float, int, str]] = []
                     for c, j, kind in cands:
                         if kind == "zero":
                             located.append((c, j, "zero-length"))
@@ -340,7 +346,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                     located.sort(key=lambda x: (x[0], x[1]))
                     # sections before the first switching guard are logged; the run goes on
                     t_sw = min((x[0] for x in located if guards[x[1]].transition is not None), default=np.inf)
-                    for th, j, kind in located:
+                    for th, j, _kind in located:
                         if guards[j].transition is None and th <= t_sw:
                             yh = dense(th)
                             ev = Event(th, yh, guards[j].name, mname, mname, "section", yh)
@@ -382,6 +388,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             j, kind, simul = fire_now, "zero-length", []
         # ---- apply the transition of guard j at (t, y)
         g = guards[j]
+        assert g.transition is not None  # j is a switching guard
         jump = as_jump(g.transition(t, y))
         n_zero = n_zero + 1 if kind == "zero-length" else 0
         if n_zero > options.max_zero_length:

@@ -44,7 +44,8 @@ class ZenoMonitor:
         self.relative = relative  # False: min_interval is an absolute time (the impact papers' rule)
         self.max_rate = max_rate
         self.rate_window = rate_window
-        self.times: deque[float] = deque(maxlen=max(history, 3))
+        self._history = max(history, 3)
+        self.times: deque[float] = deque(maxlen=self._history)
         self.window: deque[float] = deque()
 
     def reset(self) -> None:
@@ -57,7 +58,7 @@ class ZenoMonitor:
         while self.window and self.window[0] < t - self.rate_window:
             self.window.popleft()
         ts = np.asarray(self.times)
-        if len(ts) >= self.times.maxlen:  # a run of shrinking spacings, not one short phase
+        if len(ts) >= self._history:  # a run of shrinking spacings, not one short phase
             dt = np.diff(ts)
             last = dt[-1]
             scale = max(1.0, abs(t)) if self.relative else 1.0

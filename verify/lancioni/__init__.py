@@ -34,7 +34,8 @@ set 1 e_N = 0.2 detached orbit         bouncing        pure bouncing (flight + i
 set 1 Painlevé / motion change         ≈ 0.6450        0.64681 (slip reaches D₊ = 0: PainleveError)
 set 2 Hopf μ_c                         0.353           0.3530929 (supercritical)
 set 2 stick appears                    ≈ 0.360         0.3602370
-set 2 free flight from                 ≈ 0.453         0.44986 (0.7 % lower: unprinted belt speed, |v| = 0.991 gives 0.4530)
+set 2 free flight from                 ≈ 0.453         0.44986 (0.7 % lower: unprinted belt speed,
+                                                       |v| = 0.991 gives 0.4530)
 Fig. 6 v = sin(πt/2)                   hop at 0.5      hopping in every v < 0 half period at 0.5,
                                        none at 0.3     no flight at 0.3
 =====================================  ==============  ===========================================

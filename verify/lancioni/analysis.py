@@ -121,7 +121,7 @@ def slip_cycle(mu: float, params: Mapping[str, float] | None = None, s: int = 1,
     tt = np.linspace(0, T, 4001)
     ph, w = sol.sol(tt)
     _, L = _flow(p, mu, s, *law)
-    lam = np.array([L(a_, b_) for a_, b_ in zip(ph, w)])
+    lam = np.array([L(a_, b_) for a_, b_ in zip(ph, w, strict=True)])
     gT = p["l"] * np.cos(ph) * w - v
     i = int(np.argmin(lam))
     lam_min = _parabola_min(lambda t: L(*sol.sol(t)), tt, i)
@@ -259,7 +259,8 @@ def growth_rate(mu: float, params: Mapping[str, float] | None = None, t_end: flo
     return GrowthRate(mu, sigma, len(ev), modes)
 
 
-def hopf_by_simulation(params: Mapping[str, float] | None = None, delta: float = 2e-3, **kw) -> tuple[float, GrowthRate, GrowthRate]:
+def hopf_by_simulation(params: Mapping[str, float] | None = None, delta: float = 2e-3,
+                       **kw) -> tuple[float, GrowthRate, GrowthRate]:
     """Simulated Hopf point: zero of the measured growth rate between μ_c ∓ delta (engine's μ_c as centre).
 
     ``friction=``/``parameter=`` (passed on to :func:`growth_rate`) give a law and its bifurcation
@@ -325,7 +326,10 @@ def flight_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[fl
     """
     p = S.resolve(params)
     derived = bracket is None
-    lo, hi = (stick_onset_mu(p)[0], 0.0) if derived else map(float, bracket)
+    if bracket is None:
+        lo, hi = stick_onset_mu(p)[0], 0.0
+    else:
+        lo, hi = map(float, bracket)
     cm = build(lo, 0.0, p)
     y0 = slip_state(cm.mech, S.equilibrium_phi(p, lo, 1) + 0.05)
     cm, sol = _attractor(lo, y0, None, p, t_end)
@@ -358,7 +362,8 @@ def flight_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[fl
     cm, sol = _attractor(lo, start[0], start[1], p, t_end)
     t, y, modes = sol.trajectory()
     k = (t > t_end - t_keep) & np.array([m in ("stick", "slip+", "slip-") for m in modes])
-    lam = min(float(np.min(cm.forces(m, tt, y[:, i])[1])) for i, (tt, m) in enumerate(zip(t, modes)) if k[i])
+    lam = min(float(np.min(cm.forces(m, tt, y[:, i])[1]))
+              for i, (tt, m) in enumerate(zip(t, modes, strict=True)) if k[i])
     return FlightOnset(0.5 * (lo + hi), (lo, hi), lam, n)
 
 

@@ -35,7 +35,8 @@ class DiagramPoint:
     mode: str
 
     def __repr__(self) -> str:
-        return f"DiagramPoint(mu={self.mu:.6g}, {len(np.unique(np.round(self.phidot_max, 6)))} values, modes={self.modes})"
+        n_values = len(np.unique(np.round(self.phidot_max, 6)))
+        return f"DiagramPoint(mu={self.mu:.6g}, {n_values} values, modes={self.modes})"
 
 
 def diagram_point(mu: float, y0, mode: str | None, eN: float = 0.0, params: Mapping[str, float] | None = None,

@@ -130,7 +130,7 @@ def continued_phidot_max(mu: float, v: float = -1.0, params: Mapping[str, float]
 
     def top(t, y):  # φ̈ = 0 going down, only once φ̇ > 0
         return rhs(t, y)[1] if y[1] > 0 else 1.0
-    top.direction, top.terminal = -1, True
+    top.direction, top.terminal = -1, True  # type: ignore[attr-defined]  # scipy's event attributes
     sol = solve_ivp(rhs, (0.0, 5.0), [P.state[0], P.state[2]], method="DOP853", rtol=1e-12, atol=1e-14,
                     events=top)
     if not sol.t_events[0].size:

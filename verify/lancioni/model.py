@@ -32,8 +32,8 @@ import numpy as np
 
 from landau.errors import InputError
 from landau.laws.velocity import V_SLIP, VelocityFriction, coulomb
-from landau.verify.lancioni.contact import ContactMechanics, ContactModel, Section
 from landau.verify.hybrid.contact import check_contact_coefficients
+from landau.verify.lancioni.contact import ContactMechanics, ContactModel, Section
 from landau.verify.lancioni.slip import PARAM_NAMES, SET1, SET2, check_friction, hopf_parameter, resolve
 
 
@@ -74,12 +74,18 @@ class Lancioni(ContactMechanics):
     """
 
     params: Mapping[str, float] = field(default_factory=lambda: dict(SET1))
-    mu: float | None = None
+    mu: float | None = None  # type: ignore[assignment]  # None: from the law; a float after __post_init__
     eN: float = 0.0
     belt: object = ConstantBelt()
     n: int = 2
     name: str = "lancioni"
     friction: VelocityFriction | None = None
+    # derived in __post_init__: the static limits (μ₊, μ₋), the compiled branches, the law's
+    # parameter values and the mechanical constants in the order of eq. (1)
+    _static: tuple[float, float] = field(init=False, repr=False, compare=False)
+    _branch: dict = field(init=False, repr=False, compare=False)
+    _law_values: tuple = field(init=False, repr=False, compare=False)
+    _c: tuple[float, ...] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
         object.__setattr__(self, "params", resolve(self.params))
@@ -90,14 +96,14 @@ class Lancioni(ContactMechanics):
             law = coulomb(float(mu))
         check_friction(law)
         vals = [float(law.defaults()[p.name]) if p.name in law.defaults() else None for p in law.parameters]
-        missing = [p.name for p, x in zip(law.parameters, vals) if x is None]
+        missing = [p.name for p, x in zip(law.parameters, vals, strict=True) if x is None]
         if missing:
             raise InputError(f"friction law {law.name!r}: parameter(s) {', '.join(missing)} need a value")
         dep = any(V_SLIP in law.branch(s).free_symbols for s in (1, -1))
         if dep:
             lo, hi = law.limits_at_zero()
         else:  # constant branches (Coulomb): the limits are their values
-            at = {p.symbol: x for p, x in zip(law.parameters, vals)}
+            at = {p.symbol: x for p, x in zip(law.parameters, vals, strict=True)}
             lo, hi = (float(law.branch(s).xreplace(at)) for s in (-1, 1))
         if self.mu is not None and self.friction is not None and not np.isclose(float(self.mu), hi, rtol=1e-14,
                                                                                  atol=0.0):
@@ -186,7 +192,7 @@ PHI_ZERO_UP = Section("phi=0 up", lambda t, y, acc: -y[0])
 
 def build(mu: float | None = None, eN: float = 0.0, params: Mapping[str, float] | None = None, belt=None,
           sections=(PHIDOT_MAX,), stick_tol: float = 0.0, stick_tol_reset: str = "project", *,
-          friction: VelocityFriction | None = None) -> ContactModel:
+          friction: VelocityFriction | None = None) -> ContactModel[Lancioni]:
     """The hybrid model of eq. (1) (set 1 by default, g = 10) at Coulomb coefficient μ, or with a
     velocity-dependent friction law.
 
@@ -262,7 +268,8 @@ def at_parameter(value: float, params: Mapping[str, float] | None = None, fricti
 
 
 def build_at(value: float, eN: float = 0.0, params: Mapping[str, float] | None = None, belt=None, *,
-             friction: VelocityFriction | None = None, parameter: str | None = None, **kw) -> ContactModel:
+             friction: VelocityFriction | None = None, parameter: str | None = None,
+             **kw) -> ContactModel[Lancioni]:
     """:func:`build` with the bifurcation parameter at ``value`` (see :func:`at_parameter`).
 
     Parameters
@@ -294,5 +301,6 @@ def slip_state(mech: Lancioni, phi: float, phidot: float = 0.0) -> np.ndarray:
     return np.array([phi, l * np.cos(phi), phidot, -l * np.sin(phi) * phidot])
 
 
-__all__ = ["Lancioni", "at_parameter", "build_at", "check_friction", "ConstantBelt", "SineBelt", "build", "slip_state", "PHIDOT_MAX", "PHI_ZERO_UP",
+__all__ = ["Lancioni", "at_parameter", "build_at", "check_friction", "ConstantBelt", "SineBelt", "build", "slip_state",
+           "PHIDOT_MAX", "PHI_ZERO_UP",
            "SET1", "SET2"]

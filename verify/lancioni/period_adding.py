@@ -100,7 +100,8 @@ class StickExit:
     state: np.ndarray                  # (φ, y, φ̇, ẏ) at P, γ_N = γ_T = 0
 
     def __repr__(self) -> str:
-        return f"StickExit(mu={self.mu:.9g}, phi_P={self.phi:.10f}, stick for phi in [{self.interval[0]:.5f}, {self.interval[1]:.5f}])"
+        return (f"StickExit(mu={self.mu:.9g}, phi_P={self.phi:.10f}, "
+                f"stick for phi in [{self.interval[0]:.5f}, {self.interval[1]:.5f}])")
 
 
 def stick_exit(cm) -> StickExit:
@@ -293,7 +294,7 @@ def stick_free_saddle(mu: float, params: Mapping[str, float] | None = None, tol:
         ev = list(sol.events)
         imp = [i for i, e in enumerate(ev) if e.guard == "impact"]
         gm, stuck = [], False
-        for a, b in zip(imp[:-1], imp[1:]):
+        for a, b in zip(imp[:-1], imp[1:], strict=True):
             if any(e.to_mode == "stick" for e in ev[a:b]):
                 stuck = True
                 break
@@ -344,8 +345,8 @@ def period_adding_steps(params: Mapping[str, float] | None = None, n_steps: int 
     """
     if bracket is None:
         bracket = stick_orbit_window(params)
-    mu_end, seen = end_of_stick_orbit(params, bracket, xtol)
-    seen = list(seen)
+    mu_end, seen_bisection = end_of_stick_orbit(params, bracket, xtol)
+    seen = list(seen_bisection)
     for k in range(24):
         m = mu_end + (bracket[1] - mu_end) * 0.5 ** k
         seen.append((m, exit_orbit(m, params).period))

@@ -44,14 +44,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Mapping
+from typing import Any, Callable, Mapping
 
 import numpy as np
 import sympy as sp
 
-from landau.errors import InputError, NoHopfError
 from landau.derivation.general import hopf_normal_form
 from landau.derivation.hopf import HopfResult
+from landau.errors import InputError, NoHopfError
 from landau.laws.velocity import V_SLIP, VelocityFriction
 from landau.systems.system import DynamicalSystem
 
@@ -67,7 +67,7 @@ SET1: dict[str, float] = {"m1": 0.1, "m2": 1.0, "l": 1.0, "k_y": 100.0, "k_phi":
 SET2: dict[str, float] = {**SET1, "m1": 0.4, "k_phi": 25.0}
 PARAM_NAMES = tuple(SET1)
 #: the mechanical parameters' symbols, by name
-MECHANICAL = dict(zip(PARAM_NAMES, (m1, m2, l, k_y, k_phi, c_y, c_phi, phi0, y0, g)))
+MECHANICAL = dict(zip(PARAM_NAMES, (m1, m2, l, k_y, k_phi, c_y, c_phi, phi0, y0, g), strict=True))
 #: the belt velocity v in the slip mode's relative velocity g_T = lω cos φ − v (m/s)
 v_belt = sp.Symbol("v_belt", real=True)
 _TAKEN = {*PARAM_NAMES, "phi", "omega", "v_belt"}
@@ -212,10 +212,10 @@ class SlipFunctions:
     (the mechanical parameters, ``v_belt``, then the law's parameters)."""
 
     names: tuple[str, ...]
-    F: object       # φ̈(φ, ω, *args)  (math module: scalars)
-    L: object       # λ_N(φ, ω, *args)
-    F0: object      # φ̈(φ, 0, *args)  (numpy)
-    J: object       # Jacobian of (ω, φ̈) in (φ, ω)
+    F: Callable[..., float]       # φ̈(φ, ω, *args)  (math module: scalars)
+    L: Callable[..., float]       # λ_N(φ, ω, *args)
+    F0: Callable[..., Any]        # φ̈(φ, 0, *args)  (numpy)
+    J: Callable[..., Any]         # Jacobian of (ω, φ̈) in (φ, ω)
 
     def __repr__(self) -> str:
         return f"SlipFunctions(args={self.names})"
@@ -443,7 +443,7 @@ def hopf_bracket(params: Mapping[str, float] | None = None, s: int = 1, n: int =
     else:  # pieces (0, F p0], (F p0, F² p0], ...: fine near the law's own value, wide far from it
         ends = [far / SCAN_FACTOR ** k for k in range(SCAN_STEPS - 1, -1, -1)]
         grid = np.concatenate([np.linspace(a / n if i == 0 else a + (b - a) / n, b, n)
-                               for i, (a, b) in enumerate(zip([0.0] + ends[:-1], ends))])
+                               for i, (a, b) in enumerate(zip([0.0] + ends[:-1], ends, strict=True))])
     fns = slip_functions(s, friction)
     base = slip_values(params, s, friction, v)
     prev = None
@@ -517,7 +517,7 @@ class DirectionScan:
         return f"DirectionScan(mu in [{self.mu[0]:g}, {self.mu[-1]:g}], Hopf for s = {self.hopf_sign()})"
 
 
-def equilibrium_phi(p: Mapping[str, float], mu_val: float, s: int, friction: VelocityFriction | None = None,
+def equilibrium_phi(p: Mapping[str, float], mu_val: float | None, s: int, friction: VelocityFriction | None = None,
                     parameter: str | None = None, v: float | None = None) -> float:
     """φ_e of the slip equilibrium (Newton on F(φ, 0) = 0 from φ₀).
 

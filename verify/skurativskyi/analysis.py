@@ -23,7 +23,7 @@ from scipy.optimize import minimize_scalar
 
 from landau.errors import InputError
 from landau.verify.skurativskyi.model import PAPER, Params
-from landau.verify.skurativskyi.simulate import RTOL, ATOL, run
+from landau.verify.skurativskyi.simulate import ATOL, RTOL, run
 
 
 @dataclass(frozen=True)
@@ -207,7 +207,7 @@ def tsallis_q(intervals, lo: float = 0.05, hi: float = 0.3, width: float = 0.001
     p = counts[counts > 0] / counts.sum()
     if len(p) < 2:
         raise InputError("Tsallis q undefined: all intervals fall in one bin (a periodic attractor)")
-    qs = np.linspace(*q_range, 400)
+    qs = np.linspace(q_range[0], q_range[1], 400)
     r = np.array([redundancy(q, p) for q in qs])
     i = int(np.argmax(r))
     a, b = qs[max(i - 1, 0)], qs[min(i + 1, len(qs) - 1)]
@@ -298,7 +298,8 @@ def sweep_to_window(start: float, period: int = 7, impacts: int = 14, params: Pa
     the same settled orbit (a stride skips only stretches that begin and end on it).
 
     Each point: ``n_step`` transient periods from the previous attractor (``n_first`` at the first
-    point, from ``y0`` — a state at phase 0 — or from rest at X₀), then ``n_keep`` observed periods (default 4·``period``, a multiple of
+    point, from ``y0`` — a state at phase 0 — or from rest at X₀), then ``n_keep`` observed periods (default
+    4·``period``, a multiple of
     the period; the section period is searched up to ``n_keep``/2 with ``section_tol`` [m]) —
     the paper's sweep protocol (100 / 50 transient periods, Sec. 4).
 

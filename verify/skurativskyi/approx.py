@@ -126,8 +126,8 @@ def grazing_harmonic_branches(p: Params, omegas=None) -> dict[str, float | None]
                           ("trough", 1.0, True)):
         vals = np.array([_harmonic_residual(p, w, sgn, tr) for w in omegas])
         idx = np.nonzero(np.isfinite(vals[:-1]) & np.isfinite(vals[1:]) & (np.sign(vals[:-1]) != np.sign(vals[1:])))[0]
-        out[name] = (brentq(lambda w: _harmonic_residual(p, w, sgn, tr), omegas[idx[0]], omegas[idx[0] + 1],
-                            xtol=1e-13) if len(idx) else None)
+        out[name] = (brentq(lambda w, sgn=sgn, tr=tr: _harmonic_residual(p, w, sgn, tr), omegas[idx[0]],
+                            omegas[idx[0] + 1], xtol=1e-13) if len(idx) else None)
     return out
 
 

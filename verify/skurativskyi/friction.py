@@ -42,8 +42,8 @@ import sympy as sp
 from sympy.printing.precedence import PRECEDENCE
 from sympy.printing.pycode import PythonCodePrinter
 
-from landau.errors import CompilerRequiredError, DomainError, InputError
 from landau.codegen.kernels import ALLOWED_BUILTINS, check_source
+from landau.errors import CompilerRequiredError, DomainError, InputError
 from landau.laws.velocity import V_SLIP, VelocityFriction
 
 
@@ -432,7 +432,7 @@ def compile_friction(law: VelocityFriction, first: int) -> CompiledFriction:
         ns[nm] = _cached(ns[nm])
     sigs = [t.signature for t in pointer_types()[:3]]
     pointers = tuple(_cached(ns[nm].py_func, sig, "cfunc")
-                     for nm, sig in zip(("friction", "friction_derivative", "subtract_friction"), sigs))
+                     for nm, sig in zip(("friction", "friction_derivative", "subtract_friction"), sigs, strict=True))
     _register_typeof_once()
     pointers = Callbacks(pointers + (bool(is_built_in(law) and first == _paper_first()), data_pointer()))
     out = CompiledFriction(law.name, tuple(p.name for p in params), int(first), src, ns["friction"],

@@ -344,6 +344,8 @@ def locate_friction_grazing(omegas, y0, n_transient: int = 250, n_fit: int = 4, 
             raise InputError(f"the orbit changed at ω = {w} ({ipp:.4g} → {a.impacts_per_period:.4g} impacts/period)")
         ipp, y = a.impacts_per_period, a.y_end
         smp.append((float(w), velocity_stops(float(w), y, 3, 2000, 0.0, params, rtol).margin))
+    if ipp is None:
+        raise InputError("locate_friction_grazing needs at least one ω to continue the orbit over")
     ws, ms = np.array(smp[-n_fit:]).T
     slope, icpt = np.polyfit(ws, ms, 1)
     return FrictionGrazing(float(-icpt / slope), float(slope), tuple(smp[-n_fit:]), float(ipp))

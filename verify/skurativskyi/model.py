@@ -179,7 +179,8 @@ class Params:
     def packed(self) -> np.ndarray:
         """The parameter vector of the compiled kernels (indices IM … IOM, then the law's entries)."""
         from landau.verify.skurativskyi.friction import packed_values
-        head = [self.m, self.m0e, self.velocity_floor, self.n1, self.n2, self.n3, self.k, self.kI, self.b, self.xI, self.omega]
+        head = [self.m, self.m0e, self.velocity_floor, self.n1, self.n2, self.n3, self.k, self.kI, self.b, self.xI,
+                self.omega]
         return np.array(head + packed_values(self.friction), dtype=float)
 
     def with_(self, **kw) -> "Params":

@@ -325,7 +325,7 @@ def integrate_mixed(p_arr, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strob
             if s_star > 0.0:
                 # re-take the step onto the root; Newton on the step length (slope ẋ)
                 hs = s_star * h
-                for it in range(8):
+                for _it in range(8):
                     ok, nf = any_step(stiff, low, p, t, y, k1, hs, rtol, atol, ynew, k7, err, yt, k2, k3,
                                       k4, k5, k6, fr)
                     nfev += nf
@@ -404,7 +404,6 @@ def mixed_loop():
     """:func:`integrate_mixed`, compiled for :func:`loop_signature` on first use (once per
     machine: numba's disk cache keeps it for every later process and every friction law)."""
     from landau.verify.compiling import compile_once
-
     from landau.verify.skurativskyi.friction import quiet_first_class
 
     with quiet_first_class():

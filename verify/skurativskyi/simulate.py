@@ -2,10 +2,12 @@
 
 * :func:`run` — the default path: compiled DOPRI5 with exact contact switching, stick
   phases (|ẋ| < :data:`V_STIFF`, |ẍ| < :data:`A_STICK`) by the L-stable SDIRK4 of
-  :mod:`landau.verify.skurativskyi.sdirk`, stroboscopic samples t = 2πi/ω and (optionally) one tangent vector for the top Lyapunov
+  :mod:`landau.verify.skurativskyi.sdirk`, stroboscopic samples t = 2πi/ω and (optionally) one tangent vector for the
+  top Lyapunov
   exponent.  Returns a :class:`Run` (impact times, inter-impact intervals, section points).
 * :func:`hybrid_model` — the same model as a :class:`landau.verify.hybrid.HybridModel` with the
-  modes ``"free"`` (x < x_I) and ``"contact"`` (x ≥ x_I) and guards ±(x − x_I); run it with ``landau.verify.hybrid.simulate(..., CompiledDOPRI5())`` or any
+  modes ``"free"`` (x < x_I) and ``"contact"`` (x ≥ x_I) and guards ±(x − x_I); run it with
+  ``landau.verify.hybrid.simulate(..., CompiledDOPRI5())`` or any
   scipy stepper.  Used to cross-check the fast path and to draw trajectories.
 
 Impacts are the crossings of x = x_I with increasing x (the paper's definition, Sec. 5).
@@ -17,7 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from landau.errors import IntegratorError, InputError
+from landau.errors import InputError, IntegratorError
 from landau.verify.hybrid import Event, EventLog, Guard, HybridModel, Jump, Mode
 from landau.verify.hybrid.result import Simulation, Status
 from landau.verify.skurativskyi import rk as R
@@ -122,7 +124,7 @@ class Run:
         cubic Hermite between step ends), impacts and detachments as events."""
         log = EventLog()
         xI = self.params.xI
-        ev = sorted([(t, v, "impact") for t, v in zip(self.impacts, self.impact_v)]
+        ev = sorted([(t, v, "impact") for t, v in zip(self.impacts, self.impact_v, strict=True)]
                     + [(t, np.nan, "detach") for t in self.detachments])
         for t, v, g in ev:
             frm, to = ("free", "contact") if g == "impact" else ("contact", "free")

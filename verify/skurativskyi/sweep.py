@@ -26,7 +26,7 @@ from __future__ import annotations
 import json
 import os
 from concurrent.futures import ProcessPoolExecutor, as_completed
-from dataclasses import dataclass, asdict
+from dataclasses import asdict, dataclass
 from pathlib import Path
 
 import numpy as np
@@ -198,7 +198,8 @@ def run_sweep(omegas, direction: str = "up", out: str | os.PathLike | None = Non
     recs: dict[int, dict] = {}
     out_s = str(outp) if outp else None
     if scheduler is not None:
-        from distributed import Client, as_completed as d_as_completed
+        from distributed import Client
+        from distributed import as_completed as d_as_completed
         client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
         futs = [client.submit(_run_chunk, *ch, spec, out_s, pure=False) for ch in chunks]
         for f in d_as_completed(futs):

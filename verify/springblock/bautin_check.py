@@ -18,8 +18,8 @@ from typing import Mapping, Sequence
 import numpy as np
 
 from landau.analyses.bautin import spring_block_fold
-from landau.laws import get_law
 from landau.derivation.multiscale import Derivation
+from landau.laws import get_law
 from landau.systems.system import SpringBlock
 from landau.verify.springblock.continuation import fold_point
 from landau.verify.springblock.model import SpringBlockModel
@@ -50,6 +50,7 @@ def compare_fold(d: Derivation, V: float, params: Mapping[str, float] | None = N
     pred = spring_block_fold(d, V, p)
     if pred is None:
         raise ValueError(f"V = {V:g} m/s: Lambda and Lambda5 have the same sign, no fold of cycles")
+    assert pred.p_c is not None  # fold_of_cycles sets the Hopf point
     law = d.block.law
     model = SpringBlockModel.build(law, V, pred.p_c, params)
     kc = hopf_stiffness(model, pred.p_c * (1 - 1e-3), pred.p_c * (1 + 1e-3))
@@ -126,7 +127,8 @@ if __name__ == "__main__":  # pragma: no cover - manual run
         d = Derivation(SpringBlock(get_law(name)))
         (pt,) = codim2_points(d, lo, hi, params)
         side = -1 if pt.sign_below > 0 else 1
-        print(name, "V* =", pt.V, "fold side", side, [spring_block_fold(d, pt.V * (1 + side * x), params) for x in deltas],
+        print(name, "V* =", pt.V, "fold side", side,
+              [spring_block_fold(d, pt.V * (1 + side * x), params) for x in deltas],
               flush=True)
         rows, slope = fold_convergence(name, params, pt.V, deltas, side)
         for r in rows:

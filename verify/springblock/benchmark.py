@@ -25,7 +25,7 @@ TARGET_ERROR = 1e-8
 def cpu_at_error(points: list[tuple[float, float]], target: float = TARGET_ERROR) -> float:
     """log–log interpolation of CPU time at ``target`` error from (error, cpu) pairs."""
     pts = sorted(points)
-    for (e0, c0), (e1, c1) in zip(pts, pts[1:]):
+    for (e0, c0), (e1, c1) in zip(pts, pts[1:], strict=False):  # consecutive pairs
         if e0 <= target <= e1:
             w = (np.log(target) - np.log(e0)) / (np.log(e1) - np.log(e0))
             return float(np.exp(np.log(c0) + w * (np.log(c1) - np.log(c0))))
@@ -43,11 +43,11 @@ def main(argv=None) -> int:
           f"kappa = {model.kappa:.3g}")
     ours, theirs = [], []
     for rtol in (1e-7, 1e-8, 1e-9, 1e-10, 1e-11):
-        run, cpu = _timed(lambda: integrate(model, y0, (0.0, T), rtol=rtol), min_time=0.2)
+        run, cpu = _timed(lambda rtol=rtol: integrate(model, y0, (0.0, T), rtol=rtol), min_time=0.2)
         ours.append((error(run.y, ref), cpu))
         print(f"  default    rtol {rtol:6.0e}: error {ours[-1][0]:.3e}, cpu {cpu * 1e3:9.3f} ms, steps {run.steps}")
     for rtol in (1e-7, 1e-8, 1e-9, 1e-10):
-        (y, steps, _), cpu = _timed(lambda: scipy_run(model, y0, T, "Radau", rtol, False), min_time=0.0)
+        (y, steps, _), cpu = _timed(lambda rtol=rtol: scipy_run(model, y0, T, "Radau", rtol, False), min_time=0.0)
         theirs.append((error(y, ref), cpu))
         print(f"  scipy Radau rtol {rtol:6.0e}: error {theirs[-1][0]:.3e}, cpu {cpu * 1e3:9.3f} ms, steps {steps}")
     a, b = cpu_at_error(ours), cpu_at_error(theirs)

@@ -24,11 +24,11 @@ from typing import Mapping
 
 import numpy as np
 
-from landau.errors import InputError, NoHopfError
 from landau.derivation.hopf import Criticality, HopfResult, spring_block_result
-from landau.derivation.multiscale import derive
-from landau.systems.system import SpringBlock
+from landau.derivation.multiscale import Derivation, derive
+from landau.errors import InputError, NoHopfError
 from landau.laws.law import FrictionLaw
+from landau.systems.system import SpringBlock
 from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.orbits import PeriodicOrbit, ShootingError, section_point, shoot
 from landau.verify.springblock.simulate import W_INDEX, integrate
@@ -37,11 +37,12 @@ from landau.verify.springblock.simulate import W_INDEX, integrate
 AMPLITUDE_TOLERANCE = 0.02
 BRACKET_TOLERANCE = 0.05
 
-_DERIVATIONS: dict[int, object] = {}
+_DERIVATIONS: dict[int, tuple[FrictionLaw, Derivation]] = {}
 
 
 def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = None) -> HopfResult:
-    """The engine's Hopf point of the spring–block at driving velocity V, as a :class:`~landau.derivation.hopf.HopfResult`.
+    """The engine's Hopf point of the spring–block at driving velocity V, as a
+    :class:`~landau.derivation.hopf.HopfResult`.
 
     Spring–block convention (Putelat et al. 2010, eq. 20): p = k, dλ/dk = −Γ̄ + iΩ̄, Λ = 2 Re b, so the
     amplitude is C·sqrt|k − k_c| on the side where the cycle exists and the frequency
@@ -136,6 +137,7 @@ def _check_point(law: FrictionLaw, V: float, eps2: float, params, prediction, ex
         other = "subcritical_check" if expected == Criticality.SUPERCRITICAL else "supercritical_check"
         raise InputError(f"law {law.name!r} at V = {V:g} m/s is {pr.criticality} (Lambda = {pr.Lambda:.4g}): "
                          f"use {other}, or landau.check, which picks the procedure itself")
+    assert pr.kc is not None  # a spring-block result carries k_c
     k = pr.kc * (1 - eps2 if expected == Criticality.SUPERCRITICAL else 1 + eps2)
     model = SpringBlockModel.build(law, V, k, params)
     return pr, k, model, pr.amplitude(k)
@@ -286,7 +288,7 @@ def subcritical_check(law: FrictionLaw, V: float, eps2: float, params: Mapping[s
         detail["unstable_cycle"] = {"error": str(exc)}
     amp = 0.5 * (unstable.x_max - unstable.x_min) if unstable is not None else None
     rel = _rel(amp, A)
-    agrees = bool(rel is not None and abs(rel) <= tolerance and not unstable.stable)
+    agrees = bool(unstable is not None and rel is not None and abs(rel) <= tolerance and not unstable.stable)
     bistable = None
     if test_bistability:
         bistable, bracket = _bistability(model, A, bisections, detail,
@@ -373,6 +375,7 @@ def bistability_scan(law: FrictionLaw, V: float, eps2: float, params: Mapping[st
     """Fate ('decays'/'grows'/'undecided') of perturbations of a·C·sqrt(|k − k_c|) along the critical
     mode at k = k_c(1 + ε²) — the supercritical control (all should decay)."""
     pr = prediction or predict(law, V, params)
+    assert pr.kc is not None  # a spring-block result carries k_c
     k = pr.kc * (1 + eps2)
     model = SpringBlockModel.build(law, V, k, params)
     A = pr.C * np.sqrt(abs(pr.kc - k))   # the amplitude scale on the side where no cycle is predicted

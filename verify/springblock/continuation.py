@@ -31,8 +31,15 @@ from landau.analyses.codim2 import SPRING_BLOCK_PARAMETERS, FoldOfCycles, Genera
 from landau.errors import IntegratorError
 from landau.support.progress import progress as bar
 from landau.verify.springblock.model import SpringBlockModel
-from landau.verify.springblock.orbits import (PeriodicOrbit, ShootingError, describe, hopf_parameter, hopf_stiffness,
-                                              return_map, section_point)
+from landau.verify.springblock.orbits import (
+    PeriodicOrbit,
+    ShootingError,
+    describe,
+    hopf_parameter,
+    hopf_stiffness,
+    return_map,
+    section_point,
+)
 
 
 @dataclass(frozen=True)
@@ -165,7 +172,7 @@ def continue_in_k(model: SpringBlockModel, k_lo: float, k_hi: float, **kw) -> Br
             break
         except (ShootingError, IntegratorError):
             continue
-    if pts is None:
+    if pts is None or folds is None:
         raise ShootingError("no cycle branch could be started at the Hopf point")
     return _branch("k", {"V": model.V}, k_h, [(lam * k_h, o, t) for lam, o, t in pts],
                    [(lam * k_h, a, b) for lam, a, b in folds], stop)
@@ -223,7 +230,7 @@ def plot_branch(branch: Branch, path, title: str = ""):
     panels = [("spring-force excess -k X [N]", -k * xmin, -k * xmax), ("slip rate v [m/s]", vmax, vmin),
               ("slip x - x0 [m]", xmax, xmin), ("stress drop k(Xmax - Xmin) [N]", k * (xmax - xmin), None)]
     fig, axes = plt.subplots(2, 2, figsize=(9, 7))
-    for ax, (lab, hi, lo) in zip(axes.ravel(), panels):
+    for ax, (lab, hi, lo) in zip(axes.ravel(), panels, strict=True):
         for arr in (hi, lo):
             if arr is None:
                 continue
@@ -344,7 +351,7 @@ def fold_point(make_V: Callable[[float], SpringBlockModel], V_guess: float, z_gu
         # D[P(z) − z; det(DP − I)] du = −[P(z) − z; det(DP − I)]  (Newton, central-difference Jacobian)
         du = np.linalg.solve(J, -r)
         u = u + du
-        if np.linalg.norm(du) < tol * max(1.0, np.linalg.norm(u)):
+        if np.linalg.norm(du) < tol * max(1.0, float(np.linalg.norm(u))):
             m = make_V(10 ** u[-1])
             fixed = {n: float(v) for n, v in (("V", m.V), ("k", m.k), ("kappa", m.kappa)) if n != parameter}
             return FoldOfCycles(parameter, float(10 ** u[-1]), float(u[0] * m.ell), fixed=fixed, z=u[:-1].copy())
@@ -364,6 +371,7 @@ def fold_curve(base: SpringBlockModel, V_fold: float, z_fold, kappas, **kw) -> l
         make_V = lambda VV, k=k: base.with_(V=VV, k=k)  # noqa: E731
         if len(pts) >= 2:
             a, b = pts[-2], pts[-1]
+            assert a.z is not None and b.z is not None  # points of a continued fold curve carry their state
             w = (np.log(kap) - np.log(b.value("kappa"))) / (np.log(b.value("kappa")) - np.log(a.value("kappa")))
             V = 10 ** (np.log10(b.p_fold) + w * (np.log10(b.p_fold) - np.log10(a.p_fold)))
             z = b.z + w * (b.z - a.z)

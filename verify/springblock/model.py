@@ -18,7 +18,8 @@ produces, products and quotients of parameters) become derived entries of the pa
 computed once per model (:func:`landau.codegen.kernels.hoist_parameters`), so that a call of the
 compiled field does only state-dependent work; the field and its exact Jacobian are then
 generated and compiled by :mod:`landau.codegen.kernels` (common-subexpression elimination, the
-whitelist of generated syntax, numba through the cross-process code cache).  The dimensionless parameters of the paper (eq. 6) are
+whitelist of generated syntax, numba through the cross-process code cache).  The dimensionless parameters of the paper
+(eq. 6) are
 m = M V_*²/(σL) and κ = kL/σ (σ = Mg); :meth:`SpringBlockModel.from_dimensionless`
 builds the model from (m, κ, V/V_*).
 """
@@ -29,15 +30,16 @@ import math
 import weakref
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Mapping
+from typing import Callable, Mapping
 
 import numpy as np
 import sympy as sp
 
-from landau.errors import InputError
 from landau.codegen.kernels import DerivedParameters, compile_source, hoist_parameters, kernel_source
+from landau.errors import InputError
+from landau.laws.law import FrictionLaw
+from landau.laws.law import v as v_slip
 from landau.systems.system import SpringBlock
-from landau.laws.law import FrictionLaw, v as v_slip
 
 
 @dataclass(frozen=True)
@@ -55,11 +57,11 @@ class CompiledLaw:
     n: int
     param_names: tuple[str, ...]
     source: str = field(repr=False)
-    rhs: object = field(repr=False)
-    jac: object = field(repr=False)
-    rhs_py: object = field(repr=False)
-    jac_py: object = field(repr=False)
-    parameters: DerivedParameters = field(repr=False, default=None)
+    rhs: Callable[..., None] = field(repr=False)
+    jac: Callable[..., None] = field(repr=False)
+    rhs_py: Callable[..., None] = field(repr=False)
+    jac_py: Callable[..., None] = field(repr=False)
+    parameters: DerivedParameters = field(repr=False)
 
 
 _CACHE: dict[tuple, CompiledLaw] = {}
@@ -92,10 +94,10 @@ def compile_law(law: FrictionLaw) -> CompiledLaw:
     lp = [sp.Symbol(f"q{i}", positive=True) for i in range(len(law.parameters))]
     Msym, sig, ksym, Vsym, ell, mu0 = sp.symbols("M_ sigma_ k_ V_ ell_ mu0_", positive=True)
     phi0 = [sp.Symbol(f"phi0_{i}", positive=True) for i in range(ns)]
-    sub = {p.symbol: s for p, s in zip(law.parameters, lp)}
+    sub = {p.symbol: s for p, s in zip(law.parameters, lp, strict=True)}
     vv = Vsym * sp.exp(w)
-    phis = [p0 * sp.exp(ps) for p0, ps in zip(phi0, psis)]
-    sub.update({v_slip: vv, **dict(zip(law.states, phis))})
+    phis = [p0 * sp.exp(ps) for p0, ps in zip(phi0, psis, strict=True)]
+    sub.update({v_slip: vv, **dict(zip(law.states, phis, strict=True))})
 
     def tidy(e):
         return sp.expand_log(e.subs(sub), force=True)
@@ -103,7 +105,7 @@ def compile_law(law: FrictionLaw) -> CompiledLaw:
     mu = tidy(law.mu)
     f = [sp.exp(w) - 1,
          (ell / Vsym) * sp.exp(-w) * (-ksym * ell * xi - sig * (mu - mu0)) / (Msym * Vsym)]
-    for r, ph in zip(law.rates, phis):
+    for r, ph in zip(law.rates, phis, strict=True):
         f.append((ell / Vsym) * sp.expand(tidy(r) / ph))
     psyms = [*lp, Msym, sig, ksym, Vsym, ell, mu0, *phi0]
     # the logarithms of parameters that expand_log produced, and every other parameter-only
@@ -124,6 +126,7 @@ def _compile(ys, f, psyms, label, param_names, derived) -> CompiledLaw:
     whitelist of generated syntax, the cross-process code cache)."""
     src = kernel_source(ys, f, psyms)
     c = compile_source(src, label)
+    assert c.jac is not None and c.jac_py is not None  # kernel_source emits the Jacobian by default
     return CompiledLaw(label, len(ys), param_names, src, c.fun, c.jac, c.fun_py, c.jac_py, derived)
 
 
@@ -181,7 +184,7 @@ class SpringBlockModel:
         ell = float(length_scale if length_scale is not None else p.get("L", 1e-6))
         phi0 = _steady_state(law, V, p)
         vals = {s: p[s.name] for s in (prm.symbol for prm in law.parameters)}
-        mu0 = float(law.mu.subs({v_slip: V, **dict(zip(law.states, phi0)), **vals}))
+        mu0 = float(law.mu.subs({v_slip: V, **dict(zip(law.states, phi0, strict=True)), **vals}))
         if not np.isfinite(mu0):
             raise InputError(f"law {law.name!r}: friction coefficient not finite at steady sliding V = {V!r}")
         return cls(law, float(V), float(k), dict(p), ell, tuple(phi0), mu0)
@@ -271,7 +274,8 @@ class SpringBlockModel:
     def from_physical(self, X: float, v: float, phis) -> np.ndarray:
         if v <= 0 or any(ph <= 0 for ph in phis):
             raise InputError("slip rate and states must be > 0 for the log variables")
-        return np.array([X / self.ell, math.log(v / self.V), *(math.log(ph / p0) for ph, p0 in zip(phis, self.phi0))])
+        return np.array([X / self.ell, math.log(v / self.V),
+                         *(math.log(ph / p0) for ph, p0 in zip(phis, self.phi0, strict=True))])
 
     def critical_mode(self) -> tuple[complex, np.ndarray]:
         """Eigenvalue with the largest real part of J(0) (per unit τ) and its eigenvector with ξ-component 1."""

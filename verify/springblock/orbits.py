@@ -19,10 +19,10 @@ from typing import Callable
 import numpy as np
 
 from landau.errors import IntegratorError
-from landau.verify.hybrid.analysis import ShootingError as _ShootingError, shoot_fixed_point
+from landau.verify.hybrid.analysis import ShootingError as _ShootingError
+from landau.verify.hybrid.analysis import shoot_fixed_point
 from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.simulate import W_INDEX, integrate
-
 
 ShootingError = _ShootingError  # the toolkit's error (one class: ``except`` works with either name)
 

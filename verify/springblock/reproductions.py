@@ -12,17 +12,24 @@ from __future__ import annotations
 import sys
 import time
 from pathlib import Path
+from typing import Mapping
 
 import numpy as np
 from scipy.optimize import brentq
 
-from landau.errors import NoHopfError
-from landau.support.io import atomic_write_json
-from landau.laws import get_law
-from landau.verify.springblock.checks import predict
 from landau.analyses.codim2 import FoldOfCycles
-from landau.verify.springblock.continuation import (Branch, codim2_velocity, continue_in_k, continue_in_logV, fold_curve,
-                                                    plot_branch)
+from landau.errors import NoHopfError
+from landau.laws import get_law
+from landau.support.io import atomic_write_json
+from landau.verify.springblock.checks import predict
+from landau.verify.springblock.continuation import (
+    Branch,
+    codim2_velocity,
+    continue_in_k,
+    continue_in_logV,
+    fold_curve,
+    plot_branch,
+)
 from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.orbits import hopf_stiffness
 
@@ -30,12 +37,19 @@ KAPPA_FIG11 = 1e-3
 V_FIG6 = 1e-4  # V/V_* = 100
 
 
+def _kc(law, V: float, params: Mapping[str, float] | None = None) -> float:
+    """The engine's critical stiffness k_c at V (a spring-block Hopf result always carries it)."""
+    kc = predict(law, V, params).kc
+    assert kc is not None
+    return kc
+
+
 def fig6_branch(name: str, steps: int = 25) -> Branch:
     """Fig. 6: continuation in k at V/V_* = 100 (Ruina: supercritical; Dieterich: subcritical + fold)."""
     law = get_law(name)
-    pr = predict(law, V_FIG6)
-    m = SpringBlockModel.build(law, V_FIG6, pr.kc)
-    return continue_in_k(m, 0.8 * pr.kc, 1.2 * pr.kc, steps=steps, lam_bounds=(0.5, 1.5))
+    kc = _kc(law, V_FIG6)
+    m = SpringBlockModel.build(law, V_FIG6, kc)
+    return continue_in_k(m, 0.8 * kc, 1.2 * kc, steps=steps, lam_bounds=(0.5, 1.5))
 
 
 def fig11_branch(c: float, steps: int = 60) -> Branch:
@@ -45,7 +59,7 @@ def fig11_branch(c: float, steps: int = 60) -> Branch:
     m = SpringBlockModel.from_dimensionless(law, p["V_s"] ** 2 / (9.81 * p["L"]), KAPPA_FIG11, 1000.0, {"c": c})
     # bracket the Hopf point near V_m with the engine's k_c(V) = k (the Hopf point itself is found from
     # the steady state's eigenvalues)
-    f = lambda lv: predict(law, 10 ** lv, {"c": c}).kc - m.k  # noqa: E731
+    f = lambda lv: _kc(law, 10 ** lv, {"c": c}) - m.k  # noqa: E731
     lvs = np.linspace(-5, -2.5, 60)
     vals = []
     for lv in lvs:
@@ -88,14 +102,14 @@ def plot_fig12(c: float, folds: list[FoldOfCycles], v_star: float, path: Path) -
     kap = []
     for V in Vs:
         try:
-            kap.append(predict(law, V, {"c": c}).kc * p["L"] / sigma)
+            kap.append(_kc(law, V, {"c": c}) * p["L"] / sigma)
         except NoHopfError:
             kap.append(np.nan)
     fig, ax = plt.subplots(figsize=(6, 4.5))
     ax.loglog(Vs / p["V_s"], kap, "k-", label="Hopf (engine k_c)")
     ax.loglog([f.p_fold / p["V_s"] for f in folds], [f.value("kappa") for f in folds], "b--o", ms=3,
               label="fold of cycles (continued in V, kappa)")
-    ax.loglog([v_star / p["V_s"]], [predict(law, v_star, {"c": c}).kc * p["L"] / sigma], "ko", mfc="w",
+    ax.loglog([v_star / p["V_s"]], [_kc(law, v_star, {"c": c}) * p["L"] / sigma], "ko", mfc="w",
               label="codim-2 point (V*)")
     ax.set_xlabel("V / V*")
     ax.set_ylabel("kappa = kL/(Mg)")
@@ -112,9 +126,9 @@ def codim2(name: str, params: dict, V_lo: float | None = None, V_hi: float | Non
     Putelat et al. 2010, eq. 31), ∓ 10 %."""
     law = get_law(name)
     if V_lo is None or V_hi is None:
+        from landau.analyses.transition import codim2_points
         from landau.derivation.multiscale import Derivation
         from landau.systems.system import SpringBlock
-        from landau.analyses.transition import codim2_points
         q = SpringBlock(law).resolve(params)
         v_hat = float(np.sqrt(q["a"] * q["sigma"] * q["L"] / q["M"]))
         pts = codim2_points(Derivation(SpringBlock(law)), 1e-5 * v_hat, 1e2 * v_hat, params)
@@ -142,7 +156,7 @@ def main(argv=None) -> int:
     t0 = time.time()
     for name in ("ruina", "dieterich"):
         br = fig6_branch(name)
-        kc = predict(get_law(name), V_FIG6).kc
+        kc = _kc(get_law(name), V_FIG6)
         plot_branch(br, out / f"fig6_{name}.png", f"Fig. 6 ({name}): cycles vs k at V/V* = 100")
         doc[f"fig6_{name}"] = {"hopf_k": br.hopf_equilibrium, "engine_kc": kc,
                                "rel_diff": br.hopf_equilibrium / kc - 1, "hopf_from_branch": br.hopf_extrapolated,

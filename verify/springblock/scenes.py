@@ -8,12 +8,12 @@ from __future__ import annotations
 
 import math
 
-from landau.errors import InputError
-from landau.scenes import Scene, register
-from landau.derivation.multiscale import Derivation
 from landau.analyses.transition import extrema
-from landau.systems.system import SpringBlock
+from landau.derivation.multiscale import Derivation
+from landau.errors import InputError
 from landau.laws import get_law
+from landau.scenes import Scene, register
+from landau.systems.system import SpringBlock
 
 _T1 = {"a_v": 0.369, "a": 0.0349, "b": 0.0489, "L": 0.9e-6, "V_s": 1e-6}
 _MECH = {"M": 1.2, "g": 9.81}
@@ -49,7 +49,8 @@ def _spinodal_extremum(kind: str):
 
 def _modified_dieterich_vm(p: dict) -> dict:
     closed = _v_m_eq41(p)
-    e = _first_extremum("modified-dieterich", "minimum", p, 1e-3 * closed, 1e3 * closed)  # three decades around eq. (41)
+    e = _first_extremum("modified-dieterich", "minimum", p, 1e-3 * closed,
+                        1e3 * closed)  # three decades around eq. (41)
     return {"value": e.V, "closed_form_eq41": closed}
 
 

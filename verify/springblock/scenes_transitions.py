@@ -10,11 +10,11 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 
-from landau.errors import InputError
 from landau.derivation.multiscale import Derivation
+from landau.errors import InputError
+from landau.laws import get_law
 from landau.scenes import Scene, register
 from landau.systems.system import SpringBlock
-from landau.laws import get_law
 
 _T1 = {"a_v": 0.369, "a": 0.0349, "b": 0.0489, "L": 0.9e-6, "V_s": 1e-6}
 _MECH = {"M": 1.2, "g": 9.81}
@@ -120,7 +120,8 @@ register(Scene(
 
 register(Scene(
     name="putelat2010/dieterich-codim2-kc", parameter="k_c(V*)", units="N/m",
-    source="Putelat et al. 2010, Fig. 5(b): k ≈ 2.08e5 N/m (the printed V = 2.31e-5 m/s is not reproducible; Table 1 gives ≈ 2.07e-4)",
+    source="Putelat et al. 2010, Fig. 5(b): k ≈ 2.08e5 N/m (the printed V = 2.31e-5 m/s is not reproducible; Table 1 "
+           "gives ≈ 2.07e-4)",
     compute=_codim2("dieterich", 0, "kc"), defaults={**_T1, **_MECH},
     published=2.08e5, tolerance=_TOL,
     description="stiffness of the Dieterich codimension-two point (Λ_D = 0, V from eq. 34 read with V̂)"))

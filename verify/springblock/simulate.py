@@ -20,9 +20,9 @@ import numpy as np
 
 from landau.errors import InputError, IntegratorError
 from landau.verify.hybrid.log import Event, EventLog
+from landau.verify.hybrid.radau import STATUS, radau_core
 from landau.verify.hybrid.result import Simulation, status_from_text
 from landau.verify.springblock.model import SpringBlockModel, compile_variational
-from landau.verify.hybrid.radau import STATUS, radau_core
 
 #: index of w = ln(v/V) in the scaled state; w = 0 ⇔ ẋ = V ⇔ X = x − x₀ extremal
 W_INDEX = 1
@@ -55,7 +55,7 @@ class Run:
         times in seconds, scaled states, linear between steps) and the located crossings as
         ``"section"`` events (guard ``"crossing"``, ``note`` = direction)."""
         log = EventLog()
-        for t, y, d in zip(self.event_t, self.event_y, self.event_dir):
+        for t, y, d in zip(self.event_t, self.event_y, self.event_dir, strict=True):
             log.append(Event(float(t), np.asarray(y), "crossing", "slip", "slip", "section",
                              np.asarray(y), "up" if d > 0 else "down"))
         st = status_from_text(self.status)

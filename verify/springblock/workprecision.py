@@ -137,14 +137,16 @@ def run_work_precision(tolerances=TOLERANCES, methods=SCIPY_METHODS, reference_r
     }
     pts = []
     for rtol in tolerances:
-        run, cpu = _timed(lambda: integrate(model, y0, (0.0, T), rtol=rtol))
+        run, cpu = _timed(lambda rtol=rtol: integrate(model, y0, (0.0, T), rtol=rtol))
         pts.append(WorkPoint("landau Radau IIA (numba, analytic J)", rtol, error(run.y, ref), cpu, run.steps, run.nfev))
         if progress:
             progress(pts[-1])
     for method in methods:
         for with_jac in (True, False):
             for rtol in tolerances:
-                (y, steps, nfev), cpu = _timed(lambda: scipy_run(model, y0, T, method, rtol, with_jac), min_time=0.0)
+                (y, steps, nfev), cpu = _timed(
+                    lambda method=method, rtol=rtol, with_jac=with_jac: scipy_run(model, y0, T, method, rtol, with_jac),
+                    min_time=0.0)
                 pts.append(WorkPoint(f"solve_ivp {method} {'+ analytic J' if with_jac else '(FD J)'}", rtol,
                                      error(y, ref), cpu, steps, nfev))
                 if progress:
