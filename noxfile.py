@@ -30,7 +30,7 @@ nox.options.sessions = ["tests", "lint"]
 
 #: the tests that compile and run the integrators, steppers and compiled loops: what a change
 #: of numba (code generation, first-class functions, caching) can break
-INTEGRATOR_TESTS = "radau or springblock or skurativskyi or steppers or rosenbrock or hybrid or nrt or jitcache"
+INTEGRATOR_TESTS = "radau or springblock or skurativskyi or steppers or hybrid or dop853 or jitcache or compile"
 
 
 def _dependency(name: str) -> str:

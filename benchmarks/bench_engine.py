@@ -31,11 +31,12 @@ import sympy as sp
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
+from vw_ranges import LAWS, vw_range  # noqa: E402
+
+from landau.derivation.multiscale import derive  # noqa: E402
 from landau.laws import get_law  # noqa: E402
 from landau.laws.law import v as v_slip  # noqa: E402
-from landau.derivation.multiscale import derive  # noqa: E402
 from landau.systems.system import SpringBlock  # noqa: E402
-from vw_ranges import LAWS, vw_range  # noqa: E402
 
 ALL_LAWS = (*LAWS, "two-state-dieterich")
 GOAL_DERIVE_S, GOAL_THROUGHPUT, GOAL_RATIO = 2.0, 1e6, 100.0

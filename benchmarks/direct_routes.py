@@ -23,8 +23,8 @@ def _magnitude(z):
 
 
 def _char(self):
-    from landau.errors import InputError
     from landau.derivation.linear import lam
+    from landau.errors import InputError
 
     J = sp.Matrix(self.jets.jacobian())
     E = sp.diag(*self.system.mass)

@@ -59,7 +59,7 @@ def baseline(method: str, rtol: float):
     law, V = P.law, P.V
     rhs = lambda t, y: [y[1], -y[0] + law.neg(y[1] - V)]
     ev = lambda t, y: y[1] - V
-    ev.terminal, ev.direction = True, 1
+    ev.terminal, ev.direction = True, 1  # type: ignore[attr-defined]  # scipy reads event attributes
     s = solve_ivp(rhs, (0.0, 50.0), Y0, method=method, rtol=rtol, atol=rtol * 1e-2, events=ev)
     return s.t_events[0][0], s.y_events[0][0][0], s.nfev
 
@@ -99,7 +99,7 @@ def solve_ivp_loop(model, mode: str, y0, t_end: float, method: str, rtol: float,
         events = []
         for g in m.guards:
             ev = (lambda fun: lambda t, y: fun(t, y))(g.fun)
-            ev.terminal, ev.direction = True, -1
+            ev.terminal, ev.direction = True, -1  # type: ignore[attr-defined]  # scipy event attributes
             events.append(ev)
         s = solve_ivp(m.rhs, (t, t_end), y, method=method, rtol=rtol, atol=rtol * 1e-2, events=events)
         nfev += s.nfev

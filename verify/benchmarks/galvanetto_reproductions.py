@@ -37,7 +37,8 @@ def main() -> None:
         total += sec
         print(f"{name:28s} {loc.value:18.12f}  {pub:26s} {sec:8.2f}")
     h = B.hopf_c1_normal_form()
-    print(f"c1 = F_k'(-V) = {B.hopf_c1():.12g} (closed form), engine {h.p_c:.12g}, Lambda = {h.Lambda:.6g}: {h.criticality}")
+    print(f"c1 = F_k'(-V) = {B.hopf_c1():.12g} (closed form), engine {h.p_c:.12g}, "
+          f"Lambda = {h.Lambda:.6g}: {h.criticality}")
     print(f"total {total:.1f} s")
 
 
