@@ -179,6 +179,12 @@ class ContactMechanics:
         """State with γ_T = 0 exactly (and γ_N = 0): entering or leaving stick.  Default: unchanged."""
         return np.array(y, dtype=float)
 
+    def mode_kernel(self, mode: str):
+        """A function of no arguments building the compiled field of ``mode`` (a
+        :class:`~landau.verify.hybrid.kernel.Kernel`, for the compiled steppers), or None (the
+        default: the engine integrates the Python field)."""
+        return None
+
 
 # --------------------------------------------------------------------------- contact algebra
 def _mu_pair(mu) -> tuple[float, float]:
@@ -511,7 +517,8 @@ class ContactModel:
             for sec in self.sections:
                 gs.append(Guard(sec.name, lambda t, y, sec=sec, mode=mode: sec.fun(t, y, self.accel(mode, t, y))))
             modes[mode] = Mode(mode, self.rhs(mode), tuple(gs),
-                               on_zeno=self.end_chattering if mode == "flight" else None)
+                               on_zeno=self.end_chattering if mode == "flight" else None,
+                               kernel=mech.mode_kernel(mode) if hasattr(mech, "mode_kernel") else None)
         return HybridModel(modes, name=getattr(mech, "name", "single-contact"))
 
     def _tolerant_stop(self, mode: str, s: int) -> Guard:

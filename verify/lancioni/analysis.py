@@ -30,7 +30,8 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from landau.errors import IntegratorError, NoHopfError
-from landau.verify.hybrid import DOP853Stepper, simulate
+from landau.verify.hybrid import simulate
+from landau.verify.hybrid.dop853 import CompiledDOP853
 from landau.verify.lancioni import slip as S
 from landau.verify.lancioni.contact import default_options
 from landau.verify.lancioni.model import ConstantBelt, build, build_at, slip_state
@@ -238,7 +239,7 @@ class GrowthRate:
 
 
 def growth_rate(mu: float, params: Mapping[str, float] | None = None, t_end: float = 20.0,
-                kick: float = 1e-5, stepper=DOP853Stepper(1e-11, 1e-13), *, friction=None,
+                kick: float = 1e-5, stepper=CompiledDOP853(1e-11, 1e-13), *, friction=None,
                 parameter: str | None = None) -> GrowthRate:
     """Exponential growth rate of a small slip oscillation, measured by the hybrid engine.
 
@@ -287,7 +288,7 @@ class FlightOnset:
 
 def _attractor(mu, y0, mode, p, t_end, eN=0.0):
     cm = build(mu, eN, p, ConstantBelt(-1.0))
-    sol = simulate(cm.model, mode or cm.initial_mode(0.0, y0), y0, (0.0, t_end), DOP853Stepper(1e-10, 1e-12),
+    sol = simulate(cm.model, mode or cm.initial_mode(0.0, y0), y0, (0.0, t_end), CompiledDOP853(1e-10, 1e-12),
                    default_options(record=True))
     return cm, sol
 
