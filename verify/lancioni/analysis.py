@@ -60,12 +60,17 @@ class SlipCycle:
                 f"[{self.gT_min:.4g}, {self.gT_max:.4g}])")
 
 
-def _flow(p, mu, s, friction=None, parameter=None, v=None):
-    """(rhs(t, (φ, ω)), λ_N(φ, ω)) of the slip mode at bifurcation-parameter value ``mu``."""
+def _slip_args(p, mu, s, friction=None, parameter=None, v=None):
+    """(the slip mode's numeric functions, their parameter values) at bifurcation-parameter value ``mu``."""
     fns = S.slip_functions(s, friction)
     over = {} if mu is None else {S.hopf_parameter(friction, parameter): mu}
     vals = S.slip_values(p, s, friction, v if friction is not None else None, **over)
-    args = tuple(vals[n] for n in fns.names)
+    return fns, tuple(vals[n] for n in fns.names)
+
+
+def _flow(p, mu, s, friction=None, parameter=None, v=None):
+    """(rhs(t, (φ, ω)), λ_N(φ, ω)) of the slip mode at bifurcation-parameter value ``mu``."""
+    fns, args = _slip_args(p, mu, s, friction, parameter, v)
     F, L = fns.F, fns.L
 
     def rhs(t, y):
@@ -85,6 +90,35 @@ def _one_turn(p, mu, s, w0, phi_e, T_guess, rtol=1e-12, dense=False, law=()):
     if not sol.t_events[0].size:
         raise IntegratorError(f"slip ODE: no return to the section φ = φ_e at μ={mu}")
     return sol
+
+
+def _return_point(p, mu, s, w0, phi_e, T_guess, rtol=1e-12, law=()):
+    """(t, (φ, ω)) at the event of :func:`_one_turn` (the first upward crossing of φ = φ_e after
+    3/4 of ``T_guess``), integrated by the compiled DOP853 over the slip mode's kernel
+    (:func:`landau.verify.lancioni.kernels.slip_kernel`) with ``solve_ivp``'s event rule: a
+    sign change g ≤ 0 ≤ g_new at the step ends, the root by Brent's method on the step's dense
+    output to 4 ulp — the steps of scipy's DOP853, to rounding."""
+    from landau.verify.lancioni.kernels import slip_kernel
+
+    _, args = _slip_args(p, mu, s, *law)
+    kern = slip_kernel(s, law[0] if law else None, args)
+    solver = CompiledDOP853(rtol, 1e-15)(kern, 0.0, np.array([phi_e, w0]), 20 * T_guess)
+    t_mask, eps4 = 0.75 * T_guess, 4 * np.finfo(float).eps
+
+    def back(t, y):
+        return y[0] - phi_e if t > t_mask else -1.0
+    g = back(0.0, solver.y)
+    while solver.status == "running":
+        msg = solver.step()
+        if solver.status == "failed":
+            raise IntegratorError(f"slip ODE at μ={mu}: {msg}", t=solver.t, state=solver.y)
+        g_new = back(solver.t, solver.y)
+        if g <= 0 <= g_new:
+            dense = solver.dense_output()
+            te = brentq(lambda t: back(t, dense(t)), solver.t_old, solver.t, xtol=eps4, rtol=eps4)
+            return te, dense(te)
+        g = g_new
+    raise IntegratorError(f"slip ODE: no return to the section φ = φ_e at μ={mu}")
 
 
 def slip_cycle(mu: float, params: Mapping[str, float] | None = None, s: int = 1, v: float = -1.0,
@@ -108,8 +142,7 @@ def slip_cycle(mu: float, params: Mapping[str, float] | None = None, s: int = 1,
     w_nf = h.amplitude(mu) * h.omega_c
 
     def defect(w0):
-        sol = _one_turn(p, mu, s, w0, phi_e, T_guess, law=law)
-        return sol.y_events[0][0][1] - w0
+        return _return_point(p, mu, s, w0, phi_e, T_guess, law=law)[1][1] - w0
     lo, hi = 0.3 * w_nf, 2.5 * w_nf
     e = 1.0 if h.Lambda < 0 else -1.0  # inside a stable cycle small oscillations grow, inside an unstable one decay
     while e * defect(lo) < 0 and lo > 1e-9:

@@ -27,7 +27,7 @@ from dataclasses import replace
 
 import numpy as np
 
-__all__ = ["mode_kernel_factory", "belt_kind"]
+__all__ = ["mode_kernel_factory", "belt_kind", "slip_kernel"]
 
 
 def belt_kind(belt) -> tuple[str, tuple[float, ...]] | None:
@@ -124,3 +124,39 @@ def _mode_kernel(mode: str, belt: str, branch, law_symbols: tuple):
     params = [m1, m2, l, ky, kp, cy, cp, p0, y0, g, *bp, *law_symbols]
     return generate_kernel([phi, y, w, yd], [w, yd, *acc], params, [1.0] * len(params),
                            time=t if belt == "sine" else None, jacobian=False, name=f"lancioni-{mode}-{belt}")
+
+
+def slip_kernel(s: int, friction, values):
+    """The smooth slip mode of :mod:`landau.verify.lancioni.slip` (state (φ, φ̇), the constraint
+    g_N = 0 eliminated: φ̈ = F_s(φ, φ̇)) as a compiled kernel with the parameter values ``values``
+    (in the order of :func:`landau.verify.lancioni.slip.slip_functions` ``names``).
+
+    Parameters
+    ----------
+    s : {+1, -1}
+        Slip sign.
+    friction : VelocityFriction or None
+        Friction-coefficient law (None: Coulomb).
+    values : sequence of float
+        Mechanical parameters, belt velocity and the law's parameters.
+
+    Returns
+    -------
+    Kernel
+    """
+    from landau.verify.lancioni import slip as S
+
+    law = S._law(friction)
+    k = _slip_kernel(int(s), S.friction_branch(s, friction), tuple(p.name for p in law.parameters))
+    return replace(k, p=np.asarray(values, dtype=float))
+
+
+@functools.lru_cache(maxsize=16)
+def _slip_kernel(s: int, Fs, law_names: tuple):
+    from landau.codegen.kernels import generate_kernel
+    from landau.verify.lancioni import slip as S
+
+    F, _ = S._accelerations(s, Fs)
+    params = [*S.MECHANICAL.values(), S.v_belt, *map(S._law_symbol, law_names)]
+    return generate_kernel([S.phi, S.omega], [S.omega, F], params, [1.0] * len(params), jacobian=False,
+                           name=f"lancioni-slip{'+' if s > 0 else '-'}")

@@ -114,6 +114,7 @@ class Lancioni(ContactMechanics):
         p = self.params
         object.__setattr__(self, "_c", (p["m1"], p["m2"], p["l"], p["k_y"], p["k_phi"], p["c_y"], p["c_phi"],
                                          p["phi0"], p["y0"], p["g"]))
+        object.__setattr__(self, "_cv", np.array(self._c, dtype=float))
 
     def with_(self, **kw) -> "Lancioni":
         if "mu" in kw and "friction" not in kw:
@@ -135,17 +136,20 @@ class Lancioni(ContactMechanics):
         return self._static
 
     def terms(self, t, q, qd):
-        phi = np.asarray(q[0], dtype=float)
-        shape = np.broadcast_shapes(phi.shape, np.shape(q[1]), np.shape(qd[0]), np.shape(qd[1]), np.shape(t))
-
-        def flat(x):
-            x = np.asarray(x, dtype=float)
-            if x.shape != shape:
-                x = np.broadcast_to(x, shape)
-            return np.ascontiguousarray(x).reshape(-1)
-
-        a0, MiW, G, b = _terms(flat(phi), flat(q[1]), flat(qd[0]), flat(qd[1]), flat(self.belt.rate(t)),
-                               np.asarray(self._c, dtype=float))
+        if isinstance(q, np.ndarray) and isinstance(qd, np.ndarray) and q.shape == qd.shape and q.ndim >= 1 \
+                and q.dtype == float and qd.dtype == float:
+            shape = q.shape[1:]
+            m = int(np.prod(shape)) if shape else 1
+            Q, QD = np.ascontiguousarray(q).reshape(2, m), np.ascontiguousarray(qd).reshape(2, m)
+            phi, y, w, yd = Q[0], Q[1], QD[0], QD[1]
+        else:  # sequences or mixed shapes (vectorised over the broadcast of the sample axes)
+            shape = np.broadcast_shapes(np.shape(q[0]), np.shape(q[1]), np.shape(qd[0]), np.shape(qd[1]))
+            phi, y, w, yd = (np.ascontiguousarray(np.broadcast_to(np.asarray(x, dtype=float), shape)).reshape(-1)
+                             for x in (q[0], q[1], qd[0], qd[1]))
+        rate = self.belt.rate(t)
+        vdot = np.ascontiguousarray(np.broadcast_to(np.asarray(rate, dtype=float), shape)).reshape(-1) \
+            if np.ndim(rate) else np.full(1, float(rate))
+        a0, MiW, G, b = _terms(phi, y, w, yd, vdot, self._cv)
         return (a0.reshape((2,) + shape), MiW.reshape((2, 2) + shape), G.reshape((2, 2) + shape),
                 b.reshape((2,) + shape))
 
@@ -180,10 +184,11 @@ class Lancioni(ContactMechanics):
 
 @njit(cache=True)
 def _terms(phi, y, w, yd, vdot, c):
-    """(a₀, M⁻¹W, G, b) of eq. (1) at the samples (φ, y, φ̇, ẏ)[k] with belt acceleration v̇[k]
+    """(a₀, M⁻¹W, G, b) of eq. (1) at the samples (φ, y, φ̇, ẏ)[k] with belt acceleration v̇[k] (or v̇[0] for all)
     (:meth:`Lancioni.terms`, whose arithmetic this is, sample by sample)."""
     m1, m2, l, ky, kp, cy, cp, p0, y0, g = c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8], c[9]
     m = phi.shape[0]
+    one_rate = vdot.shape[0] == 1
     a0, MiW, G, b = np.empty((2, m)), np.empty((2, 2, m)), np.empty((2, 2, m)), np.empty((2, m))
     for k in range(m):
         sn, cs = np.sin(phi[k]), np.cos(phi[k])
@@ -203,7 +208,7 @@ def _terms(phi, y, w, yd, vdot, c):
         MiW[0, 0, k], MiW[1, 0, k], MiW[0, 1, k], MiW[1, 1, k] = MiN0, MiN1, MiT0, MiT1
         G[0, 0, k], G[0, 1, k], G[1, 0, k], G[1, 1, k] = GNN, GNT, GNT, nT1 * MiT0
         b[0, k] = nN1 * a00 + 1.0 * a01 + l * cs * wk * wk
-        b[1, k] = nT1 * a00 - l * sn * wk * wk - vdot[k]
+        b[1, k] = nT1 * a00 - l * sn * wk * wk - vdot[0 if one_rate else k]
     return a0, MiW, G, b
 
 
