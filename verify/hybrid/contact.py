@@ -145,7 +145,9 @@ class ContactMechanics:
     * ``slip_mu(s, gT)`` and ``static_mu()`` — the friction coefficient in slip s at relative
       velocity γ_T and its one-sided limits (μ₊, μ₋) at γ_T = 0; by default the constant
       ``mu`` (plain Coulomb friction).  ``velocity_dependent`` says whether ``slip_mu``
-      depends on γ_T (if not, γ_T is not evaluated for it).
+      depends on γ_T (if not, γ_T is not evaluated for it);
+    * ``mode_kernel(mode)`` (optional) — a function building the mode's compiled field (a
+      :class:`~landau.verify.hybrid.kernel.Kernel`) for the compiled steppers, or None.
     """
 
     n: int = 1

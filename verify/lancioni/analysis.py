@@ -115,7 +115,7 @@ def _return_point(p, mu, s, w0, phi_e, T_guess, rtol=1e-12, law=()):
         g_new = back(solver.t, solver.y)
         if g <= 0 <= g_new:
             dense = solver.dense_output()
-            te = brentq(lambda t: back(t, dense(t)), solver.t_old, solver.t, xtol=eps4, rtol=eps4)
+            te = brentq(lambda t, d=dense: back(t, d(t)), solver.t_old, solver.t, xtol=eps4, rtol=eps4)
             return te, dense(te)
         g = g_new
     raise IntegratorError(f"slip ODE: no return to the section φ = φ_e at μ={mu}")
