@@ -25,6 +25,7 @@ point: v = −1 (g_T > 0 on the slip equilibrium, *positive slip*; see
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 from typing import Mapping
 
@@ -139,16 +140,18 @@ class Lancioni(ContactMechanics):
         if isinstance(q, np.ndarray) and isinstance(qd, np.ndarray) and q.shape == qd.shape and q.ndim >= 1 \
                 and q.dtype == float and qd.dtype == float:
             shape = q.shape[1:]
-            m = int(np.prod(shape)) if shape else 1
+            m = math.prod(shape)
             Q, QD = np.ascontiguousarray(q).reshape(2, m), np.ascontiguousarray(qd).reshape(2, m)
             phi, y, w, yd = Q[0], Q[1], QD[0], QD[1]
         else:  # sequences or mixed shapes (vectorised over the broadcast of the sample axes)
             shape = np.broadcast_shapes(np.shape(q[0]), np.shape(q[1]), np.shape(qd[0]), np.shape(qd[1]))
             phi, y, w, yd = (np.ascontiguousarray(np.broadcast_to(np.asarray(x, dtype=float), shape)).reshape(-1)
                              for x in (q[0], q[1], qd[0], qd[1]))
-        rate = self.belt.rate(t)
-        vdot = np.ascontiguousarray(np.broadcast_to(np.asarray(rate, dtype=float), shape)).reshape(-1) \
-            if np.ndim(rate) else np.full(1, float(rate))
+        rate = np.asarray(self.belt.rate(t), dtype=float)
+        if rate.ndim == 0:
+            vdot = np.full(1, float(rate))
+        else:
+            vdot = np.ascontiguousarray(rate if rate.shape == shape else np.broadcast_to(rate, shape)).reshape(-1)
         a0, MiW, G, b = _terms(phi, y, w, yd, vdot, self._cv)
         return (a0.reshape((2,) + shape), MiW.reshape((2, 2) + shape), G.reshape((2, 2) + shape),
                 b.reshape((2,) + shape))
