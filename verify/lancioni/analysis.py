@@ -23,6 +23,7 @@ default the paper's Coulomb μ) and ``parameter`` (the bifurcation parameter, se
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Mapping
 
 import numpy as np
@@ -155,12 +156,30 @@ def slip_cycle(mu: float, params: Mapping[str, float] | None = None, s: int = 1,
     tt = np.linspace(0, T, 4001)
     ph, w = sol.sol(tt)
     _, L = _flow(p, mu, s, *law)
-    lam = np.array([L(a_, b_) for a_, b_ in zip(ph, w)])
+    _, args = _slip_args(p, mu, s, *law)
+    lam = np.broadcast_to(np.asarray(_lam_n_array(s, friction)(ph, w, *args), dtype=float), ph.shape)
     gT = p["l"] * np.cos(ph) * w - v
     i = int(np.argmin(lam))
     lam_min = _parabola_min(lambda t: L(*sol.sol(t)), tt, i)
     return SlipCycle(mu, phi_e, float(np.max(ph)), T, float(np.max(w)), lam_min, float(np.min(gT)),
                      float(np.max(gT)))
+
+
+def _lam_n_array(s: int, friction):
+    """λ_N(φ, ω, *slip parameters) of the slip mode evaluated on arrays (numpy), for the samples
+    along a slip cycle (the scalar function of :func:`landau.verify.lancioni.slip.slip_functions`
+    refines the minimum)."""
+    law = S._law(friction)
+    return _lam_n_numpy(int(s), S.friction_branch(s, friction), tuple(q.name for q in law.parameters))
+
+
+@lru_cache(maxsize=16)
+def _lam_n_numpy(s: int, Fs, law_names: tuple):
+    import sympy as sp
+
+    _, L = S._accelerations(s, Fs)
+    args = [S.phi, S.omega, *S.MECHANICAL.values(), S.v_belt, *map(S._law_symbol, law_names)]
+    return sp.lambdify(args, L, "numpy")
 
 
 def _parabola_min(f, tt, i):
