@@ -232,7 +232,8 @@ def _galvanetto_hopf(p) -> dict:
 def _impact_oscillator(args, t_end: float):
     from landau.cli.common import velocity_law_from_args
     from landau.laws.velocity import coulomb
-    from landau.verify.hybrid import DOP853Stepper, simulate
+    from landau.verify.hybrid import simulate
+    from landau.verify.hybrid.dop853 import CompiledDOP853
     from landau.verify.lancioni import slip as S
     from landau.verify.lancioni.contact import default_options
     from landau.verify.lancioni.model import ConstantBelt, build, slip_state
@@ -250,7 +251,7 @@ def _impact_oscillator(args, t_end: float):
     cm = build(None, eN, p, ConstantBelt(v), friction=law)
     s = 1 if v < 0 else -1
     y0 = slip_state(cm.mech, S.equilibrium_phi(p, None, s, law, None, v) + 1e-3)
-    sol = simulate(cm.model, cm.initial_mode(0.0, y0), y0, (0.0, t_end), DOP853Stepper(1e-10, 1e-12),
+    sol = simulate(cm.model, cm.initial_mode(0.0, y0), y0, (0.0, t_end), CompiledDOP853(1e-10, 1e-12),
                    default_options(record=True))
     sim = replace(sol.simulation(name), state_names=("phi", "y", "phidot", "ydot"))
     units = {"phi": "rad", "y": "m", "phidot": "rad/s", "ydot": "m/s"}

@@ -145,7 +145,9 @@ class ContactMechanics:
     * ``slip_mu(s, gT)`` and ``static_mu()`` — the friction coefficient in slip s at relative
       velocity γ_T and its one-sided limits (μ₊, μ₋) at γ_T = 0; by default the constant
       ``mu`` (plain Coulomb friction).  ``velocity_dependent`` says whether ``slip_mu``
-      depends on γ_T (if not, γ_T is not evaluated for it).
+      depends on γ_T (if not, γ_T is not evaluated for it);
+    * ``mode_kernel(mode)`` (optional) — a function building the mode's compiled field (a
+      :class:`~landau.verify.hybrid.kernel.Kernel`) for the compiled steppers, or None.
     """
 
     n: int = 1
@@ -178,6 +180,12 @@ class ContactMechanics:
     def project_stick(self, t, y):
         """State with γ_T = 0 exactly (and γ_N = 0): entering or leaving stick.  Default: unchanged."""
         return np.array(y, dtype=float)
+
+    def mode_kernel(self, mode: str):
+        """A function of no arguments building the compiled field of ``mode`` (a
+        :class:`~landau.verify.hybrid.kernel.Kernel`, for the compiled steppers), or None (the
+        default: the engine integrates the Python field)."""
+        return None
 
 
 # --------------------------------------------------------------------------- contact algebra
@@ -517,7 +525,8 @@ class ContactModel(Generic[_Mech]):
                     return sec.fun(t, y, self.accel(mode, t, y))
                 gs.append(Guard(sec.name, section_fun))
             modes[mode] = Mode(mode, self.rhs(mode), tuple(gs),
-                               on_zeno=self.end_chattering if mode == "flight" else None)
+                               on_zeno=self.end_chattering if mode == "flight" else None,
+                               kernel=mech.mode_kernel(mode) if hasattr(mech, "mode_kernel") else None)
         return HybridModel(modes, name=getattr(mech, "name", "single-contact"))
 
     def _tolerant_stop(self, mode: str, s: int) -> Guard:

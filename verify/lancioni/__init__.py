@@ -4,6 +4,9 @@
   (free flight / slip± / stick, Poisson impact law with Coulomb friction — impulse equations
   derived in its docstring —, chattering, Painlevé detection);
 * :mod:`landau.verify.lancioni.model` — eq. (1): the two-mass bar on a moving belt;
+* :mod:`landau.verify.lancioni.kernels` — its regimes' fields (and the slip ODE's) generated and
+  compiled once per machine, integrated by the compiled DOP853
+  (:class:`~landau.verify.hybrid.dop853.CompiledDOP853`, the default of every analysis here);
 * :mod:`landau.verify.lancioni.slip` — the smooth slip mode as a ``DynamicalSystem`` and its
   Hopf point through :func:`landau.derivation.general.hopf_normal_form`;
 * :mod:`landau.verify.lancioni.analysis` — slip cycles, lift-off, stick onset, free-flight onset,

@@ -23,6 +23,7 @@ default the paper's Coulomb μ) and ``parameter`` (the bifurcation parameter, se
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Mapping
 
 import numpy as np
@@ -30,7 +31,8 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from landau.errors import IntegratorError, NoHopfError
-from landau.verify.hybrid import DOP853Stepper, simulate
+from landau.verify.hybrid import simulate
+from landau.verify.hybrid.dop853 import CompiledDOP853
 from landau.verify.lancioni import slip as S
 from landau.verify.lancioni.contact import default_options
 from landau.verify.lancioni.model import ConstantBelt, build, build_at, slip_state
@@ -59,12 +61,17 @@ class SlipCycle:
                 f"[{self.gT_min:.4g}, {self.gT_max:.4g}])")
 
 
-def _flow(p, mu, s, friction=None, parameter=None, v=None):
-    """(rhs(t, (φ, ω)), λ_N(φ, ω)) of the slip mode at bifurcation-parameter value ``mu``."""
+def _slip_args(p, mu, s, friction=None, parameter=None, v=None):
+    """(the slip mode's numeric functions, their parameter values) at bifurcation-parameter value ``mu``."""
     fns = S.slip_functions(s, friction)
     over = {} if mu is None else {S.hopf_parameter(friction, parameter): mu}
     vals = S.slip_values(p, s, friction, v if friction is not None else None, **over)
-    args = tuple(vals[n] for n in fns.names)
+    return fns, tuple(vals[n] for n in fns.names)
+
+
+def _flow(p, mu, s, friction=None, parameter=None, v=None):
+    """(rhs(t, (φ, ω)), λ_N(φ, ω)) of the slip mode at bifurcation-parameter value ``mu``."""
+    fns, args = _slip_args(p, mu, s, friction, parameter, v)
     F, L = fns.F, fns.L
 
     def rhs(t, y):
@@ -84,6 +91,35 @@ def _one_turn(p, mu, s, w0, phi_e, T_guess, rtol=1e-12, dense=False, law=()):
     if not sol.t_events[0].size:
         raise IntegratorError(f"slip ODE: no return to the section φ = φ_e at μ={mu}")
     return sol
+
+
+def _return_point(p, mu, s, w0, phi_e, T_guess, rtol=1e-12, law=()):
+    """(t, (φ, ω)) at the event of :func:`_one_turn` (the first upward crossing of φ = φ_e after
+    3/4 of ``T_guess``), integrated by the compiled DOP853 over the slip mode's kernel
+    (:func:`landau.verify.lancioni.kernels.slip_kernel`) with ``solve_ivp``'s event rule: a
+    sign change g ≤ 0 ≤ g_new at the step ends, the root by Brent's method on the step's dense
+    output to 4 ulp — the steps of scipy's DOP853, to rounding."""
+    from landau.verify.lancioni.kernels import slip_kernel
+
+    _, args = _slip_args(p, mu, s, *law)
+    kern = slip_kernel(s, law[0] if law else None, args)
+    solver = CompiledDOP853(rtol, 1e-15)(kern, 0.0, np.array([phi_e, w0]), 20 * T_guess)
+    t_mask, eps4 = 0.75 * T_guess, 4 * np.finfo(float).eps
+
+    def back(t, y):
+        return y[0] - phi_e if t > t_mask else -1.0
+    g = back(0.0, solver.y)
+    while solver.status == "running":
+        msg = solver.step()
+        if solver.status == "failed":
+            raise IntegratorError(f"slip ODE at μ={mu}: {msg}", t=solver.t, state=solver.y)
+        g_new = back(solver.t, solver.y)
+        if g <= 0 <= g_new:
+            dense = solver.dense_output()
+            te = brentq(lambda t, d=dense: back(t, d(t)), solver.t_old, solver.t, xtol=eps4, rtol=eps4)
+            return te, dense(te)
+        g = g_new
+    raise IntegratorError(f"slip ODE: no return to the section φ = φ_e at μ={mu}")
 
 
 def slip_cycle(mu: float, params: Mapping[str, float] | None = None, s: int = 1, v: float = -1.0,
@@ -107,8 +143,7 @@ def slip_cycle(mu: float, params: Mapping[str, float] | None = None, s: int = 1,
     w_nf = h.amplitude(mu) * h.omega_c
 
     def defect(w0):
-        sol = _one_turn(p, mu, s, w0, phi_e, T_guess, law=law)
-        return sol.y_events[0][0][1] - w0
+        return _return_point(p, mu, s, w0, phi_e, T_guess, law=law)[1][1] - w0
     lo, hi = 0.3 * w_nf, 2.5 * w_nf
     e = 1.0 if h.Lambda < 0 else -1.0  # inside a stable cycle small oscillations grow, inside an unstable one decay
     while e * defect(lo) < 0 and lo > 1e-9:
@@ -121,12 +156,30 @@ def slip_cycle(mu: float, params: Mapping[str, float] | None = None, s: int = 1,
     tt = np.linspace(0, T, 4001)
     ph, w = sol.sol(tt)
     _, L = _flow(p, mu, s, *law)
-    lam = np.array([L(a_, b_) for a_, b_ in zip(ph, w, strict=True)])
+    _, args = _slip_args(p, mu, s, *law)
+    lam = np.broadcast_to(np.asarray(_lam_n_array(s, friction)(ph, w, *args), dtype=float), ph.shape)
     gT = p["l"] * np.cos(ph) * w - v
     i = int(np.argmin(lam))
     lam_min = _parabola_min(lambda t: L(*sol.sol(t)), tt, i)
     return SlipCycle(mu, phi_e, float(np.max(ph)), T, float(np.max(w)), lam_min, float(np.min(gT)),
                      float(np.max(gT)))
+
+
+def _lam_n_array(s: int, friction):
+    """λ_N(φ, ω, *slip parameters) of the slip mode evaluated on arrays (numpy), for the samples
+    along a slip cycle (the scalar function of :func:`landau.verify.lancioni.slip.slip_functions`
+    refines the minimum)."""
+    law = S._law(friction)
+    return _lam_n_numpy(int(s), S.friction_branch(s, friction), tuple(q.name for q in law.parameters))
+
+
+@lru_cache(maxsize=16)
+def _lam_n_numpy(s: int, Fs, law_names: tuple):
+    import sympy as sp
+
+    _, L = S._accelerations(s, Fs)
+    args = [S.phi, S.omega, *S.MECHANICAL.values(), S.v_belt, *map(S._law_symbol, law_names)]
+    return sp.lambdify(args, L, "numpy")
 
 
 def _parabola_min(f, tt, i):
@@ -238,7 +291,7 @@ class GrowthRate:
 
 
 def growth_rate(mu: float, params: Mapping[str, float] | None = None, t_end: float = 20.0,
-                kick: float = 1e-5, stepper=DOP853Stepper(1e-11, 1e-13), *, friction=None,
+                kick: float = 1e-5, stepper=CompiledDOP853(1e-11, 1e-13), *, friction=None,
                 parameter: str | None = None) -> GrowthRate:
     """Exponential growth rate of a small slip oscillation, measured by the hybrid engine.
 
@@ -288,7 +341,7 @@ class FlightOnset:
 
 def _attractor(mu, y0, mode, p, t_end, eN=0.0):
     cm = build(mu, eN, p, ConstantBelt(-1.0))
-    sol = simulate(cm.model, mode or cm.initial_mode(0.0, y0), y0, (0.0, t_end), DOP853Stepper(1e-10, 1e-12),
+    sol = simulate(cm.model, mode or cm.initial_mode(0.0, y0), y0, (0.0, t_end), CompiledDOP853(1e-10, 1e-12),
                    default_options(record=True))
     return cm, sol
 

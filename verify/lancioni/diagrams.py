@@ -18,12 +18,13 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from landau.verify.hybrid import DOP853Stepper, simulate
+from landau.verify.hybrid import simulate
+from landau.verify.hybrid.dop853 import CompiledDOP853
 from landau.verify.lancioni.contact import default_options
 from landau.verify.lancioni.model import ConstantBelt, SineBelt, build, slip_state
 from landau.verify.lancioni.slip import SET1, equilibrium_phi, resolve
 
-STEPPER = DOP853Stepper(1e-10, 1e-12)
+STEPPER = CompiledDOP853(1e-10, 1e-12)
 
 
 @dataclass(frozen=True)

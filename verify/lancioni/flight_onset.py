@@ -33,7 +33,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from landau.errors import IntegratorError
-from landau.verify.hybrid import DOP853Stepper, simulate
+from landau.verify.hybrid import simulate
+from landau.verify.hybrid.dop853 import CompiledDOP853
 from landau.verify.lancioni import slip as S
 from landau.verify.lancioni.analysis import _flow
 from landau.verify.lancioni.contact import default_options
@@ -47,7 +48,7 @@ from landau.verify.lancioni.model import (
 )
 from landau.verify.lancioni.period_adding import stick_exit
 
-STEPPER = DOP853Stepper(1e-10, 1e-12)
+STEPPER = CompiledDOP853(1e-10, 1e-12)
 
 
 @dataclass(frozen=True)

@@ -25,10 +25,12 @@ point: v = −1 (g_T > 0 on the slip equilibrium, *positive slip*; see
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 from typing import Mapping
 
 import numpy as np
+from numba import njit
 
 from landau.errors import InputError
 from landau.laws.velocity import V_SLIP, VelocityFriction, coulomb
@@ -119,6 +121,7 @@ class Lancioni(ContactMechanics):
         p = self.params
         object.__setattr__(self, "_c", (p["m1"], p["m2"], p["l"], p["k_y"], p["k_phi"], p["c_y"], p["c_phi"],
                                          p["phi0"], p["y0"], p["g"]))
+        object.__setattr__(self, "_cv", np.array(self._c, dtype=float))
 
     def with_(self, **kw) -> "Lancioni":
         if "mu" in kw and "friction" not in kw:
@@ -140,28 +143,31 @@ class Lancioni(ContactMechanics):
         return self._static
 
     def terms(self, t, q, qd):
-        m1, m2, l, ky, kp, cy, cp, p0, y0, g = self._c
-        phi, y = q[0], q[1]
-        w, yd = qd[0], qd[1]
-        sn, cs = np.sin(phi), np.cos(phi)
-        det = m1 * l * l * (m2 + m1 * cs * cs)
-        i11, i12, i22 = (m1 + m2) / det, -m1 * l * sn / det, m1 * l * l / det
-        f1 = -(cp * w + kp * (phi - p0) + m1 * g * l * sn)
-        f2 = -(cy * yd + ky * (y - y0) + m1 * l * w * w * cs + (m1 + m2) * g)
-        a0 = np.array([i11 * f1 + i12 * f2, i12 * f1 + i22 * f2])
-        # M⁻¹ w_N, M⁻¹ w_T
-        nN1, nN2 = l * sn, 1.0
-        nT1 = l * cs
-        MiN = np.array([i11 * nN1 + i12 * nN2, i12 * nN1 + i22 * nN2])
-        MiT = np.array([i11 * nT1, i12 * nT1])
-        MiW = np.stack([MiN, MiT], axis=1)
-        GNN = nN1 * MiN[0] + nN2 * MiN[1]
-        GNT = nN1 * MiT[0] + nN2 * MiT[1]
-        GTT = nT1 * MiT[0]
-        G = np.array([[GNN, GNT], [GNT, GTT]])
-        bN = nN1 * a0[0] + nN2 * a0[1] + l * cs * w * w
-        bT = nT1 * a0[0] - l * sn * w * w - self.belt.rate(t)
-        return a0, MiW, G, np.array([bN, bT])
+        if isinstance(q, np.ndarray) and isinstance(qd, np.ndarray) and q.shape == qd.shape and q.ndim >= 1 \
+                and q.dtype == float and qd.dtype == float:
+            shape = q.shape[1:]
+            m = math.prod(shape)
+            Q, QD = np.ascontiguousarray(q).reshape(2, m), np.ascontiguousarray(qd).reshape(2, m)
+            phi, y, w, yd = Q[0], Q[1], QD[0], QD[1]
+        else:  # sequences or mixed shapes (vectorised over the broadcast of the sample axes)
+            shape = np.broadcast_shapes(np.shape(q[0]), np.shape(q[1]), np.shape(qd[0]), np.shape(qd[1]))
+            phi, y, w, yd = (np.ascontiguousarray(np.broadcast_to(np.asarray(x, dtype=float), shape)).reshape(-1)
+                             for x in (q[0], q[1], qd[0], qd[1]))
+        rate = np.asarray(self.belt.rate(t), dtype=float)
+        if rate.ndim == 0:
+            vdot = np.full(1, float(rate))
+        else:
+            vdot = np.ascontiguousarray(rate if rate.shape == shape else np.broadcast_to(rate, shape)).reshape(-1)
+        a0, MiW, G, b = _terms(phi, y, w, yd, vdot, self._cv)
+        return (a0.reshape((2,) + shape), MiW.reshape((2, 2) + shape), G.reshape((2, 2) + shape),
+                b.reshape((2,) + shape))
+
+    def mode_kernel(self, mode: str):
+        """The compiled field of ``mode`` (:mod:`landau.verify.lancioni.kernels`), built on first use;
+        None for a belt other than :class:`ConstantBelt` and :class:`SineBelt`."""
+        from landau.verify.lancioni.kernels import mode_kernel_factory
+
+        return mode_kernel_factory(self, mode)
 
     def gap(self, q):
         return q[1] - self._c[2] * np.cos(q[0])
@@ -183,6 +189,36 @@ class Lancioni(ContactMechanics):
         y = np.array(y, dtype=float)
         y[2] = float(self.belt(t)) / (self._c[2] * np.cos(y[0]))
         return self.project(t, y, normal_velocity=True)
+
+
+@njit(cache=True)
+def _terms(phi, y, w, yd, vdot, c):
+    """(a₀, M⁻¹W, G, b) of eq. (1) at the samples (φ, y, φ̇, ẏ)[k] with belt acceleration v̇[k] (or v̇[0] for all)
+    (:meth:`Lancioni.terms`, whose arithmetic this is, sample by sample)."""
+    m1, m2, l, ky, kp, cy, cp, p0, y0, g = c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8], c[9]
+    m = phi.shape[0]
+    one_rate = vdot.shape[0] == 1
+    a0, MiW, G, b = np.empty((2, m)), np.empty((2, 2, m)), np.empty((2, 2, m)), np.empty((2, m))
+    for k in range(m):
+        sn, cs = np.sin(phi[k]), np.cos(phi[k])
+        wk = w[k]
+        det = m1 * l * l * (m2 + m1 * cs * cs)
+        i11, i12, i22 = (m1 + m2) / det, -m1 * l * sn / det, m1 * l * l / det
+        f1 = -(cp * wk + kp * (phi[k] - p0) + m1 * g * l * sn)
+        f2 = -(cy * yd[k] + ky * (y[k] - y0) + m1 * l * wk * wk * cs + (m1 + m2) * g)
+        a00, a01 = i11 * f1 + i12 * f2, i12 * f1 + i22 * f2
+        nN1 = l * sn
+        nT1 = l * cs
+        MiN0, MiN1 = i11 * nN1 + i12 * 1.0, i12 * nN1 + i22 * 1.0
+        MiT0, MiT1 = i11 * nT1, i12 * nT1
+        GNN = nN1 * MiN0 + 1.0 * MiN1
+        GNT = nN1 * MiT0 + 1.0 * MiT1
+        a0[0, k], a0[1, k] = a00, a01
+        MiW[0, 0, k], MiW[1, 0, k], MiW[0, 1, k], MiW[1, 1, k] = MiN0, MiN1, MiT0, MiT1
+        G[0, 0, k], G[0, 1, k], G[1, 0, k], G[1, 1, k] = GNN, GNT, GNT, nT1 * MiT0
+        b[0, k] = nN1 * a00 + 1.0 * a01 + l * cs * wk * wk
+        b[1, k] = nT1 * a00 - l * sn * wk * wk - vdot[0 if one_rate else k]
+    return a0, MiW, G, b
 
 
 #: section guards: φ̇ maxima (φ̈ → 0 from above) and upward crossings of φ = 0

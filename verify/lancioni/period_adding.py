@@ -65,12 +65,13 @@ import numpy as np
 from scipy.optimize import brentq
 
 from landau.errors import NoHopfError
-from landau.verify.hybrid import DOP853Stepper, simulate
+from landau.verify.hybrid import simulate
+from landau.verify.hybrid.dop853 import CompiledDOP853
 from landau.verify.lancioni.contact import Section, default_options
 from landau.verify.lancioni.model import ConstantBelt, build, slip_state
 from landau.verify.lancioni.slip import resolve
 
-STEPPER = DOP853Stepper(1e-11, 1e-13)
+STEPPER = CompiledDOP853(1e-11, 1e-13)
 #: μ inside the paper's cascade window (0.38957, 0.38965) and the window itself
 PAPER_STEP, PAPER_ACCUMULATION = 0.38965, 0.38957
 
