@@ -102,6 +102,13 @@ def _stamp_file(py_func: Any) -> Path:
     return code_dir() / "stamps" / f"{py_func.__module__}.{py_func.__qualname__}.sha256"
 
 
+def _writable(folder: Path) -> bool:
+    """Whether ``folder`` (or, where it does not exist yet, its nearest existing parent) is writable."""
+    while not folder.exists() and folder != folder.parent:
+        folder = folder.parent
+    return os.access(folder, os.W_OK)
+
+
 def _invalidate_if_changed(dispatcher: Any, watched: tuple[str, ...]) -> str | None:
     """Drop numba's entries of ``dispatcher``'s file when the sources it can reach changed since
     the last recorded build; returns the current stamp (None where it cannot be kept)."""
@@ -109,10 +116,20 @@ def _invalidate_if_changed(dispatcher: Any, watched: tuple[str, ...]) -> str | N
     if py_func is None:
         return None
     stamp = source_stamp(py_func, watched)
+    path = _stamp_file(py_func)
     try:
-        recorded = _stamp_file(py_func).read_text().strip()
+        recorded = path.read_text().strip()
     except OSError:
         recorded = None
+    if recorded != stamp and not _writable(path.parent):
+        # a stamp that cannot be recorded would make every process rebuild: keep numba's entries
+        import warnings
+
+        warnings.warn(f"landau: the build stamps cannot be written to {path.parent}; an edit of a module "
+                      "that a compiled loop calls may not be seen until numba's cache is cleared "
+                      "(make the landau cache folder writable, or set LANDAU_CACHE_DIR)", RuntimeWarning,
+                      stacklevel=3)
+        return None
     if recorded != stamp:
         from landau.verify.jitcache import _drop_numba_entries
 
