@@ -52,7 +52,7 @@ from numba import cfunc, njit, types
 from landau.errors import InputError
 from landau.verify.compiling import compile_once
 from landau.verify.hybrid import dop853_tableau as _dc
-from landau.verify.hybrid.callbacks import jit_enabled, warn_once
+from landau.verify.hybrid.callbacks import FunctionPointer, jit_enabled, warn_once
 from landau.verify.hybrid.kernel import Kernel
 from landau.verify.hybrid.locate import _quiet_guards
 
@@ -77,29 +77,13 @@ SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0
 ERR_EXP = -1.0 / 8.0
 
 
-class _Address(types.WrapperAddressProtocol):
-    """A compiled function by machine address (numba's documented protocol); keeps its cfunc alive."""
-
-    def __init__(self, cf, py):
-        self._cf = cf
-        self._py = py
-
-    def __wrapper_address__(self):
-        return self._cf.address
-
-    def signature(self):
-        return FUN_SIG
-
-    def __call__(self, *args):
-        # from Python (the loops run as plain Python under NUMBA_DISABLE_JIT=1): the Python kernel
-        return self._py(*args)
-
-
 @lru_cache(maxsize=None)
-def kernel_function(fun) -> _Address:
+def kernel_function(fun) -> FunctionPointer:
     """The kernel function ``fun(t, y, p, out)`` (a numba dispatcher or Python function) as a
-    first-class function of type :data:`FUN_T` (a ``cfunc``, cached on disk when its source is
-    in a file)."""
+    first-class function of type :data:`FUN_T`: a ``cfunc`` (cached on disk when its source is
+    in a file) handed over as a :class:`~landau.verify.hybrid.callbacks.FunctionPointer`, whose
+    numba type is made once, so calling a loop with it from Python is cheap.  Called from Python
+    (the loops run as plain Python under ``NUMBA_DISABLE_JIT=1``) it runs the Python kernel."""
     py = getattr(fun, "py_func", fun)
     if not jit_enabled():
         warn_once("dop853-nojit", "landau: NUMBA_DISABLE_JIT is set: the DOP853 stepper runs as plain Python "
@@ -108,7 +92,7 @@ def kernel_function(fun) -> _Address:
         cf = cfunc(FUN_SIG, cache=True)(py)
     except RuntimeError:  # no place for numba's cache (e.g. a function defined in memory)
         cf = cfunc(FUN_SIG)(py)
-    return _Address(cf, py)
+    return FunctionPointer(cf, FUN_SIG, py)
 
 
 @njit(cache=True)
@@ -387,16 +371,16 @@ class _Dense:
         return dense_many(self.F, self.y0, np.ascontiguousarray(x))
 
 
-_ENTRY: dict = {}
+_LOOPS: dict = {}
 
 
 def _compile() -> dict:
-    """Build (or load from numba's disk cache) the loops for the argument types used here, and
-    return their compiled entry points by name (a call then skips the dispatcher's type look-up of
-    the first-class function argument, ~60 µs a call; the dispatchers themselves under
-    ``NUMBA_DISABLE_JIT``)."""
-    if _ENTRY:
-        return _ENTRY
+    """The compiled loops by name, each built (or loaded from numba's disk cache) for the argument
+    types used here on first use (:func:`~landau.verify.compiling.compile_once`); the dispatchers
+    themselves, called as usual (the kernel's :class:`~landau.verify.hybrid.callbacks.FunctionPointer`
+    is typed once, not at every call)."""
+    if _LOOPS:
+        return _LOOPS
     f64, arr, i64 = types.float64, types.float64[::1], types.int64
     mat, barr = types.float64[:, ::1], types.boolean[::1]
     for name, fn, sig, what in (
@@ -410,10 +394,8 @@ def _compile() -> dict:
                                       arr, barr, types.int64[::1], f64, f64, mat, mat, arr),
              "the compiled DOP853 event loop")):
         compile_once(fn, sig, what)
-        overloads = getattr(fn, "overloads", None)
-        cres = overloads.get(tuple(sig)) if overloads is not None else None
-        _ENTRY[name] = cres.entry_point if cres is not None else fn
-    return _ENTRY
+        _LOOPS[name] = fn
+    return _LOOPS
 
 
 class DOP853Solver:
