@@ -192,7 +192,7 @@ def exec_cached(source: str, tag: str = _KERNEL_TAG, globals_: Mapping[str, obje
         Names the source may use besides its own definitions (e.g. ``{"math": math}``).
     allowed_builtins : iterable of str, optional
         The only builtins reachable from the executed code (default: all of them, for the
-        toolkit's own templates).
+        toolkit's own generated code).
 
     Returns
     -------
