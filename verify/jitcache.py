@@ -14,9 +14,9 @@ process.  Everything the toolkit generates at run time therefore goes through on
   process loads the machine code from disk) and binds the compiled function in the module
   in place of the Python one, so that other generated code can import it by name.
 
-Two kinds of source use it: kernels generated from a symbolic declaration
-(:func:`load_generated`, used by :mod:`landau.codegen.kernels`) and compiled-method templates bound to
-one kernel (:mod:`landau.verify.hybrid.specialise`).  A changed source is a new file (a new
+Kernels generated from a symbolic declaration use it (:func:`load_generated`, used by
+:mod:`landau.codegen.kernels`), and so can any generated source that imports such a kernel by
+name (e.g. a compiled-method template bound to one kernel).  A changed source is a new file (a new
 key); files are only ever replaced whole, so concurrent processes see either no file or a
 complete one.  When the folder cannot be written the code runs from memory (compiled once per
 process).
@@ -192,7 +192,7 @@ def exec_cached(source: str, tag: str = _KERNEL_TAG, globals_: Mapping[str, obje
         Names the source may use besides its own definitions (e.g. ``{"math": math}``).
     allowed_builtins : iterable of str, optional
         The only builtins reachable from the executed code (default: all of them, for the
-        toolkit's own templates).
+        toolkit's own generated code).
 
     Returns
     -------

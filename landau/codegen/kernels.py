@@ -10,7 +10,7 @@ checks that source against a whitelist of syntax (assignments of arithmetic on n
 subscripts, ``math.<function>`` calls and a few builtins), executes it in a namespace that
 holds nothing else, and compiles both functions with numba (:func:`compile_source`, through
 the cross-process code cache of :mod:`landau.verify.jitcache`).  The result (:class:`Kernel`)
-is what the compiled steppers of :mod:`landau.verify.hybrid.compiled` take: the
+is what the compiled stepper of :mod:`landau.verify.hybrid.dop853` takes: the
 simulation layer itself never imports sympy — kernels are made here, on the derivation
 side, and handed over as numba callables.
 
@@ -265,9 +265,8 @@ def compile_source(src: str, name: str = "kernel") -> CompiledSource:
     ``cache=True`` on first use (for the argument types of that call; :data:`FUN_SIG`,
     :data:`JAC_SIG` for the usual C-contiguous float arrays), so a later process loads the
     machine code from disk.  The compiled
-    functions are module-level functions of that file's module, so compiled-method templates
-    bound to them are cached on disk as well (:mod:`landau.verify.hybrid.specialise`).  One
-    source is compiled once per process.
+    functions are module-level functions of that file's module, so generated code that imports
+    them by name is cached on disk as well.  One source is compiled once per process.
 
     Parameters
     ----------

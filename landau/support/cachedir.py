@@ -6,7 +6,7 @@ Every cache of the toolkit lives under one root folder:
   (``platformdirs.user_cache_dir("landau")``, e.g. ``~/.cache/landau`` on Linux);
 * derivations and closed forms (:mod:`landau.support.cache`) are kept in sub-folders of the root named
   by their kind;
-* generated code (:mod:`landau.verify.jitcache`: kernels, compiled-method templates, lambdified
+* generated code (:mod:`landau.verify.jitcache`: kernels, lambdified
   formulas, and numba's cache of them) is kept in ``<root>/jit``; ``$LANDAU_JIT_DIR`` names
   that folder directly when ``LANDAU_CACHE_DIR`` is not set (an older setting, still accepted).
 

@@ -19,7 +19,12 @@ SRC = "def kern(y, out):\n    out[0] = math.sin(y[0]) + abs(y[1])\n"
 
 @pytest.fixture()
 def cache(tmp_path, monkeypatch):
+    from landau.codegen import kernels
+
     monkeypatch.setenv("LANDAU_CACHE_DIR", str(tmp_path))
+    # a kernel source compiled earlier in this process (another test file) would be reused
+    # from its own cache folder: start from an empty in-process memo, as a new process does
+    monkeypatch.setattr(kernels, "_COMPILED", {})
     return tmp_path / "jit"
 
 
@@ -123,10 +128,10 @@ def _generated_decay():
 
 
 def _euler(template, kernel):
-    from landau.verify.hybrid import specialise
+    import support_dopri5
 
-    specialise._LOADED.clear()                       # a fresh specialisation, as in a new process
-    return specialise.specialise(template, {"fun": kernel.fun}, "euler").euler
+    support_dopri5._LOADED.clear()                   # a fresh specialisation, as in a new process
+    return support_dopri5.specialise(template.read_text(), {"fun": kernel.fun}, "euler").euler
 
 
 def test_generated_kernels_and_their_specialised_templates_share_the_cache(cache, tmp_path):

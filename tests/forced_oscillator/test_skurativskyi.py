@@ -103,8 +103,9 @@ def test_lyapunov_exponent_of_linear_case_is_minus_c_over_2m():
 
 
 def test_contact_switching_exact_and_engine_agrees():
+    from support_dopri5 import CompiledDOPRI5
+
     from landau.verify.hybrid import EngineOptions, simulate
-    from landau.verify.skurativskyi.rk import CompiledDOPRI5
     from landau.verify.skurativskyi.simulate import hybrid_model
 
     p = PAPER.with_(omega=16.0)
@@ -114,7 +115,8 @@ def test_contact_switching_exact_and_engine_agrees():
     assert r.max_mismatch <= 1e-17
     assert len(r.impacts) == 3 and np.all(r.impact_v > 0)  # impacts: x crosses x_I upwards
     sol = simulate(hybrid_model(p), "free" if y0[0] < p.xI else "contact", y0, (0.0, p.period),
-                   CompiledDOPRI5(rtol=1e-9, atol=(1e-13, 1e-11)), EngineOptions(record=False))
+                   CompiledDOPRI5(rtol=1e-9, atol=(1e-13, 1e-11), first_step=1e-5, max_step=0.01),
+                   EngineOptions(record=False))
     imp = sol.events.times(guard="impact")
     # the engine locates roots on the Hermite interpolant and does not restart the step on the
     # surface; both runs carry the rtol-1e-9 error of the impact times (≈ 1e-8 s, work-precision

@@ -1,5 +1,5 @@
 """The compiled switching loop of landau.verify.skurativskyi.rk: its DOPRI5 steps are those of
-the generic compiled DOPRI5 of landau.verify.hybrid.compiled to the bit, and it returns owned
+the generic compiled DOPRI5 of the tests' oracle (support_dopri5) to the bit, and it returns owned
 arrays.
 
 The loop inlines the field and writes the DOPRI5 stages into preallocated buffers (speed only);
@@ -13,8 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from support_dopri5 import dopri5_method
 
-from landau.verify.hybrid.compiled import dopri5_method
 from landau.verify.skurativskyi import rk as R
 from landau.verify.skurativskyi.friction import quiet_first_class
 from landau.verify.skurativskyi.model import Params, compiled_field

@@ -74,7 +74,7 @@ def test_nothing_compiles_at_import_of_the_simulation_layer():
     code = textwrap.dedent("""
         import numba
         from numba.core.registry import CPUDispatcher
-        import landau.verify.hybrid.radau, landau.verify.hybrid.dop853, landau.verify.hybrid.compiled
+        import landau.verify.hybrid.radau, landau.verify.hybrid.dop853
         import landau.verify.skurativskyi.rk, landau.verify.skurativskyi.simulate
         import landau.verify.springblock.simulate, landau.verify.galvanetto.maps, landau.verify.lancioni.model
         import gc

@@ -21,10 +21,10 @@ import dataclasses
 import numpy as np
 import pytest
 import sympy as sp
+from support_dopri5 import CompiledDOPRI5
 
 from landau.codegen.kernels import check_source, generate_kernel
 from landau.errors import InputError
-from landau.verify.hybrid.compiled import CompiledDOPRI5
 from landau.verify.hybrid.dop853 import CompiledDOP853
 from landau.verify.hybrid.steppers import ScipyStepper
 

@@ -6,9 +6,8 @@ integrator (a stepper factory, :class:`ScipyStepper` or any object with scipy's
 (:class:`HybridSolution`) carries the event log (:class:`EventLog`) and, if events
 accumulate, a :class:`ZenoDiagnosis`; :meth:`HybridSolution.simulation` gives the common result
 type of every model (:class:`Simulation`: dense time series, events, a :class:`Status`).
-Compiled steppers over a :class:`Kernel` are in :mod:`landau.verify.hybrid.dop853` and
-:mod:`landau.verify.hybrid.compiled`.  Analysis tools (event maps, Poincaré sections)
-are in :mod:`landau.verify.hybrid.analysis`.
+The compiled stepper over a :class:`Kernel` is in :mod:`landau.verify.hybrid.dop853`.  Analysis
+tools (event maps, Poincaré sections) are in :mod:`landau.verify.hybrid.analysis`.
 """
 
 from landau.verify.hybrid.kernel import Kernel

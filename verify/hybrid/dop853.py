@@ -45,6 +45,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import ClassVar
 
 import numpy as np
 from numba import cfunc, njit, types
@@ -403,6 +404,8 @@ class DOP853Solver:
     :mod:`landau.verify.hybrid.steppers`), plus :meth:`run_quiet`."""
 
     method = "DOP853"
+    #: ``f`` is the field at ``(t, y)`` after every step (the engine's Hermite screen may use it)
+    keeps_f = True
 
     def __init__(self, kernel: Kernel, t0, y0, t_bound, rtol, atol, first_step, max_step):
         self.kernel = kernel
@@ -517,6 +520,9 @@ class CompiledDOP853:
     atol: float | tuple = 1e-12
     first_step: float | None = None
     max_step: float = np.inf
+
+    #: the hybrid engine hands this factory a mode's compiled kernel (its ``Mode.kernel``)
+    takes_kernel: ClassVar[bool] = True
 
     def __call__(self, fun, t0, y0, t_bound, jac=None):
         if not (0 < self.rtol < 1):

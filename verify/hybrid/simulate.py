@@ -415,17 +415,10 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             monitor.reset()
 
 
-_COMPILED_FACTORY: list = []
-
-
 def _is_compiled(stepper) -> bool:
-    """Whether ``stepper`` is a compiled stepper factory (it integrates a mode's ``kernel``)."""
-    if not _COMPILED_FACTORY:
-        from landau.verify.hybrid.compiled import _CompiledFactory
-        from landau.verify.hybrid.dop853 import CompiledDOP853
-
-        _COMPILED_FACTORY.append((_CompiledFactory, CompiledDOP853))
-    return isinstance(stepper, _COMPILED_FACTORY[0])
+    """Whether ``stepper`` is a compiled stepper factory (it integrates a mode's ``kernel``): one
+    that declares ``takes_kernel = True`` (:mod:`landau.verify.hybrid.steppers`)."""
+    return getattr(stepper, "takes_kernel", False) is True
 
 
 _AFFINE: dict[int, tuple] = {}
@@ -452,14 +445,11 @@ def _affine_guards(mode) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
 
 def _keeps_current_f(solver) -> bool:
     """Whether ``solver.f`` is the vector field at ``(solver.t, solver.y)`` after every step:
-    scipy's explicit Runge–Kutta solvers and Radau, the compiled DOPRI5 and DOP853 (scipy's
-    BDF/LSODA do not keep it)."""
+    scipy's explicit Runge–Kutta solvers and Radau, and a stepper that declares ``keeps_f = True``
+    (the compiled DOP853; scipy's BDF/LSODA do not keep it)."""
     from scipy.integrate import DOP853, RK23, RK45, Radau
 
-    from landau.verify.hybrid.compiled import DOPRI5Solver
-    from landau.verify.hybrid.dop853 import DOP853Solver
-
-    return isinstance(solver, (DOP853, RK45, RK23, Radau, DOPRI5Solver, DOP853Solver))
+    return isinstance(solver, (DOP853, RK45, RK23, Radau)) or getattr(solver, "keeps_f", False) is True
 
 
 class _LazyDense:

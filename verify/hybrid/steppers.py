@@ -15,15 +15,16 @@ and the stepper has
 * ``nfev``: number of right-hand-side evaluations so far.
 
 Steppers that keep ``f`` (the vector field at ``(t, y)``) current after every step — scipy's
-explicit Runge–Kutta solvers and Radau, the compiled DOPRI5 and DOP853 — let the engine screen
-each step on its cubic Hermite interpolant and skip the dense output where no guard can cross
-(:class:`landau.verify.hybrid.locate.HermiteScreen`).
+explicit Runge–Kutta solvers and Radau, and any stepper that declares ``keeps_f = True`` (the
+compiled DOP853) — let the engine screen each step on its cubic Hermite interpolant and skip the
+dense output where no guard can cross (:class:`landau.verify.hybrid.locate.HermiteScreen`).
 
 A compiled stepper only has to expose these members to be used by
-:func:`landau.verify.hybrid.simulate` without change: :mod:`landau.verify.hybrid.dop853` (DOP853,
-with the guard screen inside its compiled loop) and :mod:`landau.verify.hybrid.compiled` (DOPRI5)
-are factories over a compiled :class:`~landau.verify.hybrid.kernel.Kernel` (generated from a
-symbolic declaration by :mod:`landau.codegen.kernels`).
+:func:`landau.verify.hybrid.simulate` without change.  A factory that declares
+``takes_kernel = True`` is handed a mode's compiled :class:`~landau.verify.hybrid.kernel.Kernel`
+(generated from a symbolic declaration by :mod:`landau.codegen.kernels`) instead of its Python
+``rhs``: :mod:`landau.verify.hybrid.dop853` (DOP853, with the guard screen inside its compiled
+loop) is such a factory.
 """
 
 from __future__ import annotations

@@ -10,8 +10,9 @@ law compiles only its own small callbacks.  ``integrate_mixed`` (the default pat
 of :func:`landau.verify.skurativskyi.simulate.run`) takes every step that starts with |ẋ|
 below a threshold (stick: the cart rests on the obstacle or on the track, |ẋ| ~ 1e-9…1e-6
 m/s) with the L-stable SDIRK4 (stage equations solved as scalar monotone equations, robust on
-the |ẋ|^{n₃} cusp) and all other steps with DOPRI5 (the arithmetic of the generic compiled DOPRI5 of
-:mod:`landau.verify.hybrid.compiled`, term for term, checked bit for bit in the tests);
+the |ẋ|^{n₃} cusp) and all other steps with DOPRI5 (term for term the arithmetic of the generic
+compiled DOPRI5 step of Dormand & Prince (1980) that the published values were computed with:
+the tests keep that step as an oracle and check the two bit for bit);
 ``integrate`` is the explicit path alone.  Event location (the compiled locator of
 :mod:`landau.verify.hybrid.crossing`), stroboscopic clipping and tangent renormalisation are
 the same for both steppers.
@@ -124,9 +125,8 @@ def err_norm(err, y, ynew, rtol, atol):
 
 @njit(cache=True, inline="always")
 def dp5_step(p, t, y, k1, h, ynew, k7, err, yt, k2, k3, k4, k5, k6, fr):
-    """One Dormand–Prince 5(4) step (FSAL): the arithmetic of the compiled DOPRI5 of
-    landau.verify.hybrid.compiled (``templates/dopri5.py``, ``stages``) term for term, into
-    preallocated stage buffers."""
+    """One Dormand–Prince 5(4) step (FSAL): the arithmetic of the generic compiled DOPRI5 step
+    (the tests' oracle, ``stages``) term for term, into preallocated stage buffers."""
     n = y.shape[0]
     for a in range(n):
         yt[a] = y[a] + h * A21 * k1[a]
@@ -411,33 +411,11 @@ def mixed_loop():
 
 
 def __getattr__(name: str):
-    # the engine-facing pieces, imported on use (they pull in the generic compiled steppers)
+    # the engine-facing piece, imported on use
     if name == "CompiledField":
         from landau.verify.hybrid.kernel import Kernel
         return Kernel
-    if name == "CompiledDOPRI5":
-        return _compiled_dopri5()
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-@lru_cache(maxsize=None)
-def _compiled_dopri5():
-    from dataclasses import dataclass
-
-    from landau.verify.hybrid import compiled as _compiled
-
-    @dataclass(frozen=True)
-    class CompiledDOPRI5(_compiled.CompiledDOPRI5):
-        """The generic compiled DOPRI5 stepper factory with defaults for eq. (1): atol in (m, m/s),
-        first step 10 µs, steps ≤ 10 ms (a few hundredths of a forcing period)."""
-
-        rtol: float = 1e-8
-        atol: tuple = (1e-12, 1e-10)
-        first_step: float = 1e-5
-        max_step: float = 0.01
-
-    CompiledDOPRI5.__module__ = __name__
-    return CompiledDOPRI5
 
 
 __all__ = ["STATUS", "integrate", "integrate_mixed", "loop_signature", "mixed_loop"]

@@ -7,7 +7,7 @@
   exponent.  Returns a :class:`Run` (impact times, inter-impact intervals, section points).
 * :func:`hybrid_model` — the same model as a :class:`landau.verify.hybrid.HybridModel` with the
   modes ``"free"`` (x < x_I) and ``"contact"`` (x ≥ x_I) and guards ±(x − x_I); run it with
-  ``landau.verify.hybrid.simulate(..., CompiledDOPRI5())`` or any
+  ``landau.verify.hybrid.simulate(..., CompiledDOP853())`` (:mod:`landau.verify.hybrid.dop853`) or any
   scipy stepper.  Used to cross-check the fast path and to draw trajectories.
 
 Impacts are the crossings of x = x_I with increasing x (the paper's definition, Sec. 5).
