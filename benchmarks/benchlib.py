@@ -7,7 +7,6 @@ raw rows to :data:`RAW`; ``benchmarks/run.py`` writes them to ``benchmarks/resul
 
 from __future__ import annotations
 
-import itertools
 import os
 import platform
 import resource
@@ -20,6 +19,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+
+# the Pareto front and the CPU time at an error: one definition, beside the forced oscillator's study
+from landau.verify.benchmarks.skurativskyi_work_precision import cpu_at_error, pareto  # noqa: F401 (re-exported)
 
 #: where tables, JSON and PNGs go (``run.py --out`` changes it)
 RESULTS = Path(__file__).resolve().parent / "results"
@@ -103,31 +105,6 @@ def cpu_time(fn, min_time: float = 0.05, repeat: int = 3):
                 break
         best = min(best, el / n)
     return out, best
-
-
-def pareto(points):
-    """(cpu, error) pairs not beaten by a faster run that is at least as accurate, by cpu."""
-    pts = sorted((c, e) for c, e in points if np.isfinite(e) and np.isfinite(c))
-    front, best = [], np.inf
-    for c, e in pts:
-        if e < best:
-            front.append((c, e))
-            best = e
-    return front
-
-
-def cpu_at_error(front, err):
-    """CPU time at error ``err`` interpolated log-log along a Pareto front; the cheapest run
-    if it is already more accurate; None if ``err`` is below every error of the front."""
-    if not front or err < front[-1][1]:
-        return None
-    if err >= front[0][1]:
-        return front[0][0]
-    for (c0, e0), (c1, e1) in itertools.pairwise(front):
-        if e1 <= err <= e0:
-            w = (np.log(err) - np.log(e0)) / (np.log(e1) - np.log(e0)) if e1 < e0 else 0.0
-            return float(np.exp(np.log(c0) + w * (np.log(c1) - np.log(c0))))
-    return None
 
 
 def ratios_at_equal_error(rows, ours: str, theirs: list[str], targets):

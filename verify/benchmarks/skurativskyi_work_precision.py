@@ -111,7 +111,7 @@ def errors(res, ref):
 
 def pareto(points):
     """(cpu, error) pairs not dominated by another (faster and at least as accurate), by cpu."""
-    pts = sorted((c, e) for c, e in points if np.isfinite(e))
+    pts = sorted((c, e) for c, e in points if np.isfinite(e) and np.isfinite(c))
     front, best_e = [], np.inf
     for c, e in pts:
         if e < best_e:
