@@ -110,7 +110,8 @@ def structure_text(exprs) -> str:
         elif isinstance(node, sp.Basic):
             children = list(node.args)
         else:
-            sym = sp.sympify(node)     # a plain number a caller put in a list (never user text)
+            # a plain number a caller put in a list; strict: a string is refused, never parsed
+            sym = sp.sympify(node, strict=True)
             keep.append(sym)
             memo[id(node)] = memo.setdefault(id(sym), emit(("atom", sp.srepr(sym)), sp.srepr(sym)))
             continue

@@ -410,7 +410,8 @@ def derived_parameter_source(params: Sequence[sp.Symbol], values: Sequence[sp.Ex
     kernel sources (printing it would otherwise be most of the cost of a warm start).
     """
     ren = {s: sp.Symbol(f"q{i}", **s.assumptions0) for i, s in enumerate(params)}
-    vals = [sp.sympify(v).xreplace(ren) for v in values]     # sympy expressions of hoist_parameters (never user text)
+    # expressions of hoist_parameters; strict: a string is refused, never parsed
+    vals = [sp.sympify(v, strict=True).xreplace(ren) for v in values]
     from landau.support import cache
 
     key = cache.make_key("derived-parameters", _generator_fingerprint(), sp.__version__, len(params),
