@@ -37,6 +37,7 @@ SECTIONS = {
     "lambda": "Λ(V): throughput and accuracy",
     "derive": "Derivation cost against the number of state variables",
     "coldstart": "Commands: first run (cold) and again (warm)",
+    "help": "Commands: `landau --help` and `landau --version`",
     "figures": "Paper figures",
 }
 #: the section of each goal number, for result files written before goals named their section
