@@ -8,6 +8,7 @@ that simulate for minutes or regenerate whole figures) run in the opt-in slow su
 
 from __future__ import annotations
 
+import re
 import sys
 from pathlib import Path
 
@@ -105,3 +106,33 @@ def test_output_matching_rules():
     assert not matches("k_c = 169829", "k_c = 169839.1")[0]
     assert matches("array([1.e-04, 1.2e-03])", "array([1.e-04, 1.2e-03])")[0]
     assert not matches("(supercritical)", "(subcritical)")[0]
+
+
+def test_no_formula_is_set_in_italics():
+    """Asterisks of a formula (V*(p), p*, V_*) are escaped: MkDocs' Markdown would otherwise set
+    the text between two of them in italics."""
+    markdown = pytest.importorskip("markdown")
+    bad = []
+    for page in PAGES:
+        html = markdown.markdown(page.read_text(encoding="utf-8"), extensions=["tables", "fenced_code"])
+        html = re.sub(r"<code>.*?</code>", "", html, flags=re.S)
+        for em in re.findall(r"<em>(.*?)</em>", html, flags=re.S):
+            if re.search(r"[=_]", em) or re.match(r"[()]", em) or re.search(r"[(_]$", em):
+                bad.append(f"{_rel(page)}: *{em[:80]}*")
+    assert not bad, "\n".join(bad)
+
+
+def test_slow_marker_and_output_rules_of_the_extraction(tmp_path):
+    from docs_code import Block
+
+    page = tmp_path / "page.md"
+    page.write_text("text\n\n<!-- test: slow -->\n```bash\nlandau verify ruina \\\n  --V 1e-4\n```\n\n"
+                    "```python\nx = 1 + 1\n# 2\ny = 3   # an explanation, not checked\n```\n", encoding="utf-8")
+    (cmd,) = commands(page)
+    assert cmd.slow and cmd.argv == ["verify", "ruina", "--V", "1e-4"]
+    (b,) = blocks(page, ("python",))
+    assert isinstance(b, Block) and not b.slow
+    sts = statements(b)
+    assert [s.expected for s in sts] == ["2", None]
+    ns: dict = {}
+    assert run_statement(sts[0], ns) == "2" and run_statement(sts[1], ns) is None
