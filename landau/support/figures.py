@@ -55,8 +55,15 @@ def figure_class() -> type:
                     plt.close(self)
 
         Figure.__module__ = __name__
+        Figure.__qualname__ = "Figure"      # pickled by reference as landau.support.figures.Figure
         _FIGURE_CLASS = Figure
     return _FIGURE_CLASS
+
+
+def __getattr__(name: str):
+    if name == "Figure":
+        return figure_class()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def new_figure(**figure_kw: Any):
