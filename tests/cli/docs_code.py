@@ -166,11 +166,11 @@ def run_statement(st: Statement, ns: dict) -> str | None:
     value = None
     with contextlib.redirect_stdout(buf):
         if isinstance(st.node, ast.Expr):
-            code = compile(ast.Expression(st.node.value), st.source, "eval")
+            code = compile(ast.Expression(st.node.value), f"<documentation line {st.line}>", "eval")
             value = eval(code, ns)  # noqa: S307 - the documentation's own code
         else:
             mod = ast.Module(body=[st.node], type_ignores=[])
-            exec(compile(mod, st.source, "exec"), ns)  # noqa: S102 - the documentation's own code
+            exec(compile(mod, f"<documentation line {st.line}>", "exec"), ns)  # noqa: S102 - the documentation's own code
             if (isinstance(st.node, ast.Assign) and len(st.node.targets) == 1
                     and isinstance(st.node.targets[0], ast.Name)):
                 value = ns[st.node.targets[0].id]
