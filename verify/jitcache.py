@@ -185,6 +185,9 @@ def load_keyed_source(key: str, tag: str) -> tuple[str, Path] | None:
         return None
     head, _, source = text.partition("\n")
     fields = head[len(_KEYED_PREFIX):].split(" ") if head.startswith(_KEYED_PREFIX) else []
+    if len(fields) == 2 and fields == [tag, key]:   # written by an older release, unsigned: rebuilt
+        discard_keyed_source(key, tag)
+        return None
     if (len(fields) != 3 or fields[:2] != [tag, key]
             or not cachedir.verify(fields[2], "keyed-source", tag, key, source)):
         logger.warning("ignoring generated code %s: its signature does not verify; it is rebuilt", path)
@@ -450,7 +453,7 @@ def verify_numba_entries(path: Path, folders: list[Path] | None = None) -> None:
                for f in d.glob(f"{path.stem}.*.nb[ic]")]
     unsigned = [f for f in entries if not (sigdir / (_entry_signature(f) or "-")).is_file()]
     if unsigned:
-        logger.warning("removing numba's cache of %s: %s carries no valid signature (altered, planted or "
+        logger.info("removing numba's cache of %s: %s carries no valid signature (altered, planted or "
                        "left by a killed process); it is compiled afresh", path.name, unsigned[0].name)
         for f in entries:
             try:

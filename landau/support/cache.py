@@ -132,7 +132,19 @@ def _folder(kind: str) -> Path | None:
     if root is None:
         return None
     folder = root / kind
-    return folder if cachedir.secure_folder(folder) else None
+    if not cachedir.secure_folder(folder):
+        return None
+    if os.fspath(folder) not in _SWEPT:         # entries of the pickled format of older releases
+        _SWEPT.add(os.fspath(folder))
+        for old in folder.glob("*.pkl"):
+            try:
+                old.unlink()
+            except OSError:
+                pass
+    return folder
+
+
+_SWEPT: set[str] = set()
 
 
 def _path(kind: str, key: str) -> Path:

@@ -24,12 +24,6 @@ from landau.errors import OutputError
 _NAME_MAX = 255
 
 
-def _write(fd: int, data) -> int:
-    """``os.write``: the one place :func:`atomic_write` writes bytes (a test makes it fail as a full
-    disk does)."""
-    return os.write(fd, data)
-
-
 def _target(path: Path) -> Path:
     """The file actually written: ``path`` itself, or what a symbolic link points to."""
     if str(path) == "" or path.name in ("", ".", ".."):
@@ -98,7 +92,7 @@ def atomic_write(path: str | os.PathLike, writer: Callable[[Any], None], mode: s
         try:
             view = memoryview(payload)
             while view:
-                n = _write(fd, view)
+                n = os.write(fd, view)
                 view = view[n:]
             os.fchmod(fd, perms)
             os.fsync(fd)
