@@ -154,9 +154,8 @@ def _invalidate_if_changed(dispatcher: Any, watched: tuple[str, ...]) -> str | N
 def _record(dispatcher: Any, stamp: str | None) -> None:
     if stamp is None:
         return
-    from landau.support.io import atomic_write_text
-
     from landau.errors import OutputError
+    from landau.support.io import atomic_write_text
 
     path = _stamp_file(dispatcher.py_func)
     try:

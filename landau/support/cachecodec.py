@@ -104,6 +104,11 @@ def parse_atom(text: str) -> sp.Basic:
     return _atom(tree.body)
 
 
+def _exactly(node: sp.Basic, cls: type) -> bool:
+    """Whether ``node`` is of class ``cls`` itself (a subclass may be another thing)."""
+    return type(node) is cls
+
+
 class _Nodes:
     """The node table of one entry, built while encoding."""
 
@@ -122,7 +127,7 @@ class _Nodes:
         return n
 
     def expr(self, root: sp.Basic) -> int:
-        stack = [(root, False)]
+        stack: list[tuple[sp.Basic, bool]] = [(root, False)]
         while stack:
             node, done = stack.pop()
             if id(node) in self.by_id:
@@ -139,7 +144,7 @@ class _Nodes:
                 self.by_id[id(node)] = self.add(["atom", text])
                 continue
             name = type(node).__name__
-            if CLASSES.get(name) is not type(node):
+            if name not in CLASSES or not _exactly(node, CLASSES[name]):
                 raise Unencodable(f"sympy class {name}")
             if not done:
                 stack.append((node, True))

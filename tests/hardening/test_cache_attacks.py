@@ -13,8 +13,6 @@ import pickle
 import subprocess
 import sys
 import time
-import types
-from pathlib import Path
 
 import pytest
 
