@@ -272,3 +272,39 @@ def test_temporaries_of_a_killed_writer_are_removed_at_the_next_start(env, tmp_p
     assert code == 0
     assert [f for f in planted if f.exists()] == []
     assert fresh.exists()
+
+
+_SLOW_WRITER = """
+import os, sys, time
+from landau.support import cache, io
+
+class Stalling:
+    def __getattr__(self, name):
+        return getattr(os, name)
+
+    def write(self, fd, data):
+        n = os.write(fd, data)
+        print("writing", flush=True)
+        time.sleep(600)                 # killed here: the temporary is written, not yet renamed
+        return n
+
+io.os = Stalling()
+cache.set_enabled(True)
+cache.put("formula", cache.make_key("formula", "killed"), {"x": 1})
+"""
+
+
+def test_a_writer_killed_mid_write_leaves_nothing_the_next_start_keeps(env, tmp_path):
+    p = subprocess.Popen([sys.executable, "-c", _SLOW_WRITER], stdout=subprocess.PIPE, text=True, env=env)
+    try:
+        assert p.stdout.readline().strip() == "writing"
+        p.kill()                                            # SIGKILL: no clean-up of its own
+    finally:
+        p.wait(timeout=60)
+    root = tmp_path / "cache"
+    (orphan,) = [f for f in root.rglob("*.tmp")]
+    old = time.time() - 3600                                # an hour later
+    os.utime(orphan, (old, old))
+    code, _, _ = _landau(env, *DERIVE)
+    assert code == 0
+    assert list(root.rglob("*.tmp")) == []
