@@ -206,9 +206,9 @@ def compile_once(dispatcher: Any, signature: Any, what: str, watched: tuple[str,
     except OSError as exc:      # numba built the code (it is in memory) but could not write its files
         if args not in dispatcher.overloads:
             raise
-        from landau.support.cachedir import warn_once
+        from landau.support.cachedir import cache_root, warn_once
 
-        warn_once("numba write", f"could not write {what} to numba's cache ({exc}); it is compiled again "
+        warn_once(f"write {cache_root()}", f"could not write {what} to numba's cache ({exc}); it is compiled again "
                                  "in the next process")
         return dispatcher
     finally:

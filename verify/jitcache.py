@@ -130,8 +130,8 @@ def cached_source_file(source: str, tag: str = _KERNEL_TAG) -> Path | None:
         try:
             atomic_write_text(path, source)
         except (OSError, OutputError) as exc:   # read-only or full: run without a disk cache
-            cachedir.warn_once(f"write {path.parent}", f"could not write generated code to the cache "
-                                                       f"({exc}); it is compiled in memory")
+            cachedir.warn_once(f"write {cachedir.cache_root()}",
+                               f"could not write generated code to the cache ({exc}); it is compiled in memory")
             return None
         _drop_numba_entries(path)
     verify_numba_entries(path)
@@ -217,8 +217,9 @@ def store_keyed_source(key: str, tag: str, source: str) -> Path | None:
         logger.debug("generated code not kept (%s)", exc)
         return None
     except OutputError as exc:
-        cachedir.warn_once(f"write {cache_dir()}", f"could not write generated code to the cache ({exc}); "
-                                                   "it is generated again in the next process")
+        cachedir.warn_once(f"write {cachedir.cache_root()}",
+                           f"could not write generated code to the cache ({exc}); it is generated again in the "
+                           "next process")
         return None
     return path
 
@@ -315,8 +316,8 @@ def njit_cached(fn, signature):
         try:
             disp = nb.njit(signature, cache=True)(fn)
         except OSError as exc:                  # numba could not write its files (e.g. a full disk)
-            cachedir.warn_once(f"write {path.parent}", f"could not write compiled code to the cache ({exc}); "
-                                                       "it is compiled in memory")
+            cachedir.warn_once(f"write {cachedir.cache_root()}",
+                               f"could not write compiled code to the cache ({exc}); it is compiled in memory")
             disp = nb.njit(signature)(fn)
         except Exception:                       # a file numba cannot use: rebuilt
             _drop_numba_entries(path)
@@ -419,8 +420,9 @@ def sign_numba_entries(path: Path) -> None:
         try:
             os.close(os.open(sigdir / mac, os.O_WRONLY | os.O_CREAT, 0o600))
         except OSError as exc:
-            cachedir.warn_once(f"write {sigdir}", f"could not record signatures of compiled code ({exc}); "
-                                                  "it is compiled again in the next process")
+            cachedir.warn_once(f"write {cachedir.cache_root()}",
+                               f"could not record signatures of compiled code ({exc}); it is compiled again "
+                               "in the next process")
             return
 
 

@@ -214,8 +214,8 @@ def put(kind: str, key: str, value: Any) -> None:
     try:
         atomic_write(path, lambda fh: fh.write(data), mode="wb")
     except (OSError, OutputError) as exc:
-        cachedir.warn_once(f"write {path.parent}", f"could not write to the cache ({exc}); results are "
-                                                   "computed and returned, but not kept")
+        cachedir.warn_once(f"write {cachedir.cache_root()}",
+                           f"could not write to the cache ({exc}); results are computed and returned, but not kept")
 
 
 def cached(kind: str, key: str, build: Callable[[], Any]) -> Any:

@@ -152,7 +152,7 @@ def secure_folder(path: Path, what: str = "the landau cache") -> bool:
     ok = problem is None
     if not ok:
         warn_once(f"folder {key}", f"not using {what} in {path}: {problem}; results are computed without it "
-                                   f"(remove the folder, or make it your own with mode 0700)")
+                                   f"(set {ENV_ROOT} to a folder of your own that only you may write, e.g. mode 0700)")
     _FOLDERS[key] = ok
     return ok
 
