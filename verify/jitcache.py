@@ -377,7 +377,31 @@ def _signature_dir() -> Path | None:
     if folder is None:
         return None
     sig = folder / "signatures"
-    return sig if cachedir.secure_folder(sig, "the signatures of compiled code") else None
+    if not cachedir.secure_folder(sig, "the signatures of compiled code"):
+        return None
+    if os.fspath(sig) not in _PRUNED:
+        _PRUNED.add(os.fspath(sig))
+        _prune(sig)
+    return sig
+
+
+#: days after which a signature nobody used is removed (its file, if still there, is rebuilt)
+SIGNATURE_DAYS = 30
+_PRUNED: set[str] = set()
+
+
+def _prune(sigdir: Path) -> None:
+    """Remove the signatures not refreshed for :data:`SIGNATURE_DAYS` days (those of files numba
+    has since replaced), once per process."""
+    import time
+
+    limit = time.time() - SIGNATURE_DAYS * 86400
+    try:
+        for e in os.scandir(sigdir):
+            if e.is_file(follow_symlinks=False) and e.stat(follow_symlinks=False).st_mtime < limit:
+                os.unlink(e.path)
+    except OSError:
+        pass
 
 
 def _entry_signature(f: Path) -> str | None:
@@ -419,6 +443,7 @@ def sign_numba_entries(path: Path) -> None:
             continue
         try:
             os.close(os.open(sigdir / mac, os.O_WRONLY | os.O_CREAT, 0o600))
+            os.utime(sigdir / mac)              # in use: kept by the pruning of old signatures
         except OSError as exc:
             cachedir.warn_once(f"write {cachedir.cache_root()}",
                                f"could not record signatures of compiled code ({exc}); it is compiled again "

@@ -313,6 +313,11 @@ def usable_code_dir() -> Path | None:
         return None
     if not secure_folder(folder / "__pycache__", "numba's cache of generated code"):
         return None
+    if not (os.access(folder, os.W_OK) and os.access(folder / "__pycache__", os.W_OK)):
+        # numba would put its files of generated code in a fallback folder landau does not check
+        warn_once(f"read-only {folder}", f"the generated-code cache {folder} is read-only: generated code is "
+                                         "compiled in memory")
+        return None
     key = os.fspath(folder)
     if key not in _CLEANED:
         _CLEANED.add(key)

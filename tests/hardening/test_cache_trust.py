@@ -147,3 +147,21 @@ def test_a_value_the_format_cannot_hold_is_not_cached(root):
     cache.put("test", key, np.arange(3))
     assert cache.get("test", key) is None
     assert cache.cached("test", key, lambda: np.arange(3)).tolist() == [0, 1, 2]
+
+
+def test_signatures_nobody_used_for_a_month_are_pruned(root):
+    import time
+
+    from landau.verify import jitcache
+
+    sigdir = root / "jit" / "signatures"
+    sigdir.mkdir(parents=True, mode=0o700)
+    os.chmod(root, 0o700)
+    os.chmod(root / "jit", 0o700)
+    stale, recent = sigdir / ("a" * 64), sigdir / ("b" * 64)
+    for f, age_days in ((stale, jitcache.SIGNATURE_DAYS + 1), (recent, jitcache.SIGNATURE_DAYS - 1)):
+        f.touch()
+        t = time.time() - age_days * 86400
+        os.utime(f, (t, t))
+    assert jitcache._signature_dir() == sigdir
+    assert not stale.exists() and recent.exists()
