@@ -298,7 +298,7 @@ def usable_root() -> Path | None:
         return None
     key = os.fspath(root)
     if key not in _CLEANED:
-        _CLEANED.add(key)
+        _CLEANED.update((key, os.fspath(root / "jit")))      # the code folder is cleaned with it
         clean_temporaries(root)
     return root
 
