@@ -20,6 +20,11 @@ class DomainError(InputError):
     states > 0, and the steady state (which must exist, be positive and be stable)."""
 
 
+class NoSteadySlidingError(InputError):
+    """The system has no steady sliding state at the requested point (e.g. a normal load that
+    grows with the spring force faster than friction can hold it: γ_LD μ_ss ≥ 1)."""
+
+
 class OutputError(InputError):
     """A result cannot be written where asked (a folder, a missing or read-only place, a full disk)."""
 

@@ -22,6 +22,7 @@ import numpy as np
 import sympy as sp
 
 from landau.errors import InputError
+from landau.systems import springblock_terms as _terms
 from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
 
@@ -156,20 +157,50 @@ class SpringBlock:
     (σ = 11.772 N).  Changing M alone changes the inertia only — as the paper's M = 0
     (quasi-static) curves do; give ``g`` or ``sigma`` to change the load.
 
+    Optional terms (:mod:`landau.systems.springblock_terms`), each a system parameter with
+    default 0: radiation damping ``eta`` η [N·s/m] (Rice 1993; with M = 0 the quasi-dynamic
+    limit), variable normal stress ``gamma_ld`` γ_LD and the state response ``alpha_ld`` α_LD
+    (Linker & Dieterich 1992); ``sigma`` is then σ₀, the normal load at zero spring force.
+    All quantities may be per unit area (σ in Pa, k in Pa/m, η in Pa·s/m, M in kg/m²).
+
     Parameters
     ----------
     law : FrictionLaw or str
         The friction law, or a built-in law's name (:func:`landau.laws.get_law`).
+    terms : tuple of str, optional
+        The optional terms to build in (``"eta"``, ``"gamma_ld"``, ``"alpha_ld"``);
+        :meth:`for_params` picks them from the parameters given.
 
     References
     ----------
     Putelat, T., Dawes, J. H. P. & Willis, J. R. (2010), "Regimes of frictional sliding of a
     spring–block system", J. Mech. Phys. Solids 58(1), 27–53, eq. (4).
+    Rice, J. R. (1993), J. Geophys. Res. 98(B6), 9885–9907 (radiation damping).
+    Linker, M. F. & Dieterich, J. H. (1992), J. Geophys. Res. 97(B4), 4923–4940 (variable normal stress).
     """
 
+    @classmethod
+    def for_params(cls, law, params: Mapping[str, float] | None = None) -> "SpringBlock":
+        """The spring–block of ``law`` with every optional term whose parameter appears in ``params``.
+
+        Parameters
+        ----------
+        law : FrictionLaw or str
+        params : mapping, optional
+            Parameter overrides; a key ``eta``, ``gamma_ld`` or ``alpha_ld`` (any value, 0 too)
+            builds that term in.
+
+        Returns
+        -------
+        SpringBlock
+        """
+        return cls(law, tuple(t for t in _terms.TERMS if t in (params or {})))
+
     law: FrictionLaw
+    terms: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "terms", _terms.check_terms(self.terms))
         if isinstance(self.law, str):  # SpringBlock("dieterich"): a built-in law by name
             from landau.laws import get_law
 
@@ -181,7 +212,13 @@ class SpringBlock:
     def defaults(self) -> dict[str, float]:
         d = dict(self.law.defaults())
         d.update(M=M_DEFAULT, g=G_DEFAULT, sigma=M_DEFAULT * G_DEFAULT)
+        d.update({t: 0.0 for t in self.terms})
         return d
+
+    @property
+    def units(self) -> dict[str, str]:
+        """Units of the system parameters (SI, per block; per unit area: N → Pa)."""
+        return {**SYSTEM_UNITS, **{t: _terms.TERMS[t].unit for t in self.terms}}
 
     def resolve(self, overrides: Mapping[str, float] | None = None) -> dict[str, float]:
         """Full parameter dict (law + M, g, sigma) with overrides applied and checked.
@@ -204,6 +241,10 @@ class SpringBlock:
         over = dict(overrides or {})
         declared = {prm.name for prm in self.law.parameters} | set(p)
         for key, val in over.items():
+            if key in _terms.TERMS and key not in declared:
+                raise InputError(f"parameter {key!r} is an optional spring-block term not built into this "
+                                 f"block: use SpringBlock(law, terms=({key!r},)) or "
+                                 "SpringBlock.for_params(law, params)")
             if key not in declared:
                 raise InputError(f"unknown parameter {key!r} for law {self.law.name!r} "
                                  f"(known: {', '.join(sorted(p))})")
@@ -226,6 +267,7 @@ class SpringBlock:
         for prm in self.law.parameters:
             if prm.positive and p[prm.name] <= 0:
                 raise InputError(f"parameter {prm.name!r} must be > 0, got {p[prm.name]!r}")
+        _terms.check_values(p)
         return p
 
     @cached_property
@@ -244,20 +286,19 @@ class SpringBlock:
         """Eq. (4) as E·ẏ = f(y; k): y = (X, u, φ…), E = diag(1, M, 1…)."""
         X, u = sp.symbols("X u", real=True)
         phis = self.law.states
-        mu = self.law.mu
         at_slip = {v_slip: V + u}
-        mu_now = mu.subs(at_slip)
         ss = self.steady_state
         eq_phi = ss if ss is not None else self.phi0
-        mu_0 = mu.subs({v_slip: V, **dict(zip(phis, eq_phi, strict=True))})
-        rhs = (u, -k * X - sigma * (mu_now - mu_0), *(r.subs(at_slip) for r in self.law.rates))
+        force, rates = _terms.mechanical_rhs(self.law, self.terms, X, u, at_slip, eq_phi, k, sigma, V)
+        rhs = (u, force, *rates)
         unknowns: tuple = ()
         eqs: tuple = ()
         if ss is None:
             unknowns = self.phi0
             eqs = tuple(r.subs({v_slip: V, **dict(zip(phis, self.phi0, strict=True))}) for r in self.law.rates)
+        extra = "".join(f"+{t}" for t in self.terms)
         return DynamicalSystem(
-            name=f"spring-block[{self.law.name}]",
+            name=f"spring-block[{self.law.name}]{extra}",
             states=(X, u, *phis),
             rhs=rhs,
             mass=(sp.Integer(1), M, *([sp.Integer(1)] * len(phis))),
@@ -272,11 +313,11 @@ class SpringBlock:
 
     @cached_property
     def args(self) -> tuple[sp.Symbol, ...]:
-        """Argument order of every compiled function: (V, law parameters…, M, g, sigma), then
-        the steady states φᵢ,₀ where they have no closed form (solved numerically by
-        :meth:`argvals`)."""
+        """Argument order of every compiled function: (V, law parameters…, M, g, sigma, the optional
+        terms' parameters…), then the steady states φᵢ,₀ where they have no closed form (solved
+        numerically by :meth:`argvals`)."""
         unknowns = self.phi0 if self.steady_state is None else ()
-        return (V, *(p.symbol for p in self.law.parameters), M, g, sigma, *unknowns)
+        return (V, *(p.symbol for p in self.law.parameters), M, g, sigma, *_terms.symbols(self.terms), *unknowns)
 
     def argvals(self, Vs, params: Mapping[str, float | np.ndarray]) -> list:
         """Values for :attr:`args`; checks that the law is real and finite at steady sliding.
@@ -293,16 +334,26 @@ class SpringBlock:
         list
             One value (or array) per entry of :attr:`args`, broadcast together.
         """
-        n = len(self.law.parameters) + 3
+        n = len(self.law.parameters) + 3 + len(self.terms)
         vals = [Vs, *(params[s.name] for s in self.args[1:n + 1])]
         shape = np.broadcast(*[np.asarray(x, dtype=float) for x in vals]).shape
         Vb = np.broadcast_to(np.asarray(Vs, dtype=float), shape)
         lp = {p.name: np.broadcast_to(np.asarray(params[p.name], dtype=float), shape) for p in self.law.parameters}
         phis = self.law.steady_state_values(Vb, lp)
         self.law.check_real(Vb, phis, lp)
+        if "gamma_ld" in self.terms:
+            with np.errstate(all="ignore"):
+                mu_ss = self._mu_numeric(Vb, *phis, *(lp[p.name] for p in self.law.parameters))
+            _terms.check_steady_sliding(self.law, mu_ss, params, Vb)
         if self.steady_state is None:
             vals += [phi if np.ndim(Vs) or shape else phi.item() for phi in phis]
         return vals
+
+    @cached_property
+    def _mu_numeric(self):
+        """μ(v, φ…, law parameters…) as a numpy function (the steady-sliding checks of the terms)."""
+        return sp.lambdify([v_slip, *self.law.states, *(p.symbol for p in self.law.parameters)],
+                           self.law.mu, "numpy")
 
     def mu_ss(self) -> sp.Expr:
         """μ_ss(V) (closed form).
@@ -315,4 +366,4 @@ class SpringBlock:
         return self.law.mu_ss().subs(v_slip, V)
 
     def __repr__(self) -> str:
-        return f"SpringBlock({self.law.name!r})"
+        return f"SpringBlock({self.law.name!r}{', terms=' + repr(self.terms) if self.terms else ''})"
