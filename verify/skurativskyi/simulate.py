@@ -75,6 +75,8 @@ V_STIFF = 1e-5
 A_STICK = 0.05
 #: run(method=...) → the (v_stiff, a_stiff) arguments of rk.integrate_mixed (0: explicit only)
 METHODS = {"mixed": (V_STIFF, A_STICK), "dopri5": (0.0, 0.0)}
+#: bound on the stroboscopic samples one run keeps (memory; later samples are not kept)
+MAX_STROBES = 2_000_000
 
 
 @dataclass(frozen=True)
@@ -100,6 +102,7 @@ class Run:
     rec_t: np.ndarray = field(default_factory=lambda: np.empty(0), repr=False)   # recorded step ends
     rec_y: np.ndarray = field(default_factory=lambda: np.empty((0, 2)), repr=False)
     rec_f: np.ndarray = field(default_factory=lambda: np.empty((0, 2)), repr=False)
+    status: Status = Status.FINISHED   # MAX_STEPS / MAX_EVENTS: a run(..., at_limit="return") cut short
 
     @property
     def intervals(self) -> np.ndarray:
@@ -129,9 +132,21 @@ class Run:
         for t, v, g in ev:
             frm, to = ("free", "contact") if g == "impact" else ("contact", "free")
             log.append(Event(float(t), np.array([xI, v]), g, frm, to))
+        regimes = []   # in contact with the obstacle between an impact and the next detachment
+        start, inside = float(self.rec_t[0]) if len(self.rec_t) else 0.0, False
+        for e in log:
+            if e.t > start:
+                regimes.append((start, float(e.t), "contact" if inside else "free"))
+                start = float(e.t)
+            inside = e.guard == "impact"
+        if self.t > start:
+            regimes.append((start, float(self.t), "contact" if inside else "free"))
+        msg = self.status.advice
+        if self.status is not Status.FINISHED:
+            msg = f"stopped at t = {self.t:.6g} s by its limit: {self.status.advice}"
         return Simulation(f"skurativskyi2019(ω={self.params.omega:g})", self.rec_t, self.rec_y.T, log,
-                          Status.FINISHED, Status.FINISHED.advice, self.t, self.y, self.nsteps, self.nfev,
-                          self.rec_f.T, ("x", "xdot", "dx", "dxdot")[:self.rec_y.shape[1]])
+                          self.status, msg, self.t, self.y, self.nsteps, self.nfev,
+                          self.rec_f.T, ("x", "xdot", "dx", "dxdot")[:self.rec_y.shape[1]], tuple(regimes))
 
     def __repr__(self) -> str:
         return (f"Run(ω={self.params.omega:g}, t={self.t:.6g}, {len(self.impacts)} impacts, "
@@ -146,7 +161,8 @@ def rest_state(params: Params) -> np.ndarray:
 
 def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float = RTOL, atol=None,
         lyapunov: bool = False, strobe: bool = True, max_events: int = 200_000,
-        max_steps: int = 50_000_000, tangent0=(1.0, 0.0), method: str = "mixed", record: int = 0) -> Run:
+        max_steps: int = 50_000_000, tangent0=(1.0, 0.0), method: str = "mixed", record: int = 0,
+        at_limit: str = "raise") -> Run:
     """Integrate eq. (1) over ``n_periods`` forcing periods from (t0, y0) (default: rest at X₀).
 
     Strobe times are t0 + i·2π/ω.  ``lyapunov=True`` adds the variational equation and
@@ -180,6 +196,9 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
         The integrator (see above).
     record : int, optional
         Keep up to that many step ends as the time series.
+    at_limit : {"raise", "return"}, optional
+        At ``max_steps`` or ``max_events``: raise IntegratorError (default) or return the run
+        up to there with its ``status`` (:attr:`Status.MAX_STEPS`, :attr:`Status.MAX_EVENTS`).
 
     Returns
     -------
@@ -194,6 +213,8 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
     """
     if method not in METHODS:
         raise InputError(f"method must be one of {sorted(METHODS)} (got {method!r})")
+    if at_limit not in ("raise", "return"):
+        raise InputError(f"at_limit must be 'raise' or 'return' (got {at_limit!r})")
     if not (n_periods > 0 and np.isfinite(n_periods)):
         raise InputError(f"n_periods must be positive (got {n_periods!r})")
     if not (0 < rtol < 1):
@@ -209,7 +230,8 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
     else:
         y = y0.copy()
     t_end = t0 + n_periods * P if float(n_periods) != int(n_periods) else t0 + int(n_periods) * P
-    n_st = int(n_periods) + 2 if strobe else 1
+    # strobe samples past the buffer are not kept (the steps still end on the strobe times)
+    n_st = min(int(n_periods) + 2, MAX_STROBES) if strobe else 1
     fr = compiled_field(params).pointers
     loop = R.mixed_loop()
     with quiet_first_class():
@@ -218,14 +240,16 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
                    int(max_steps), *METHODS[method], int(record), fr)
     (t, yend, status, ev_t, ev_k, ev_v, st_t, st_y, ly, nly, nsteps, nfev, nrej, mism, nstiff,
      rec_t, rec_y, rec_f) = out
+    st = Status.FINISHED
     if status != R.OK:
         st = {R.MAX_STEPS: Status.MAX_STEPS, R.STEP_TOO_SMALL: Status.STEP_SIZE_UNDERFLOW,
               R.MAX_EVENTS: Status.MAX_EVENTS}.get(status, Status.FAILED)
+    if st is not Status.FINISHED and not (at_limit == "return" and st in (Status.MAX_STEPS, Status.MAX_EVENTS)):
         raise IntegratorError(f"compiled {method} integrator stopped: {R.STATUS[status]} (ω={params.omega}): "
                               f"{st.advice}", t=t, state=yend)
     up = ev_k > 0
     return Run(params, t, yend, ev_t[up], ev_v[up], ev_t[~up], st_t, st_y, ly, nly, nsteps, nfev, nrej, mism,
-               nstiff, method, rec_t, rec_y, rec_f)
+               nstiff, method, rec_t, rec_y, rec_f, st)
 
 
 def hybrid_model(params: Params) -> HybridModel:

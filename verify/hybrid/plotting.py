@@ -1,0 +1,237 @@
+"""Talk-ready plots of a :class:`~landau.verify.hybrid.result.Simulation`.
+
+:func:`plot_simulation` draws the overview (one time-series panel per state beside the phase
+portrait) or the Poincaré section of a run:
+
+* every axis carries its quantity and unit (``units``: state name → unit);
+* a positive quantity that spans more than two decades (the slip rate of a rate-and-state
+  block, whose stick phases are invisible on a linear axis) gets a logarithmic axis;
+* the run's regimes (``Simulation.regimes``: stick, slip, flight, contact intervals) shade the
+  time series and colour the phase portrait, each named in the legend;
+* ``discard`` drops the transient t < ``discard`` (the section keeps only the attractor).
+
+The figure follows the toolkit's plotting convention (:mod:`landau.report.plotting`): a new
+figure is made by ``landau.support.figures.new_figure`` (a pyplot-managed figure that a notebook
+shows exactly once); given ``fig=``, the plot is drawn there and that figure is returned.
+"""
+
+from __future__ import annotations
+
+from typing import Mapping, Sequence
+
+import numpy as np
+
+#: shading colour of each regime (unlisted regimes: grey); "slip" is the unshaded background
+REGIME_COLOURS = {"stick": "tab:blue", "flight": "tab:green", "contact": "tab:purple",
+                  "partial stick": "tab:cyan", "hold": "tab:orange", "slip": None, "free": None,
+                  "slide": None}
+#: a positive quantity spanning more than this ratio is drawn on a logarithmic axis
+LOG_SPAN = 100.0
+
+
+def _new_figure(**kw):
+    """A figure by the toolkit's convention (``landau.support.figures.new_figure``), or a pyplot
+    figure where that helper is not available."""
+    try:
+        from landau.support.figures import new_figure
+    except ImportError:   # an installation without the figures helper: a plain pyplot figure
+        import matplotlib.pyplot as plt
+
+        return plt.figure(**kw)
+    return new_figure(**kw)
+
+
+def merged_intervals(regimes: Sequence[tuple[float, float, str]], gap: float = 0.0) -> dict[str, list]:
+    """The regime intervals grouped by name, neighbours closer than ``gap`` merged.
+
+    Parameters
+    ----------
+    regimes : sequence of (t0, t1, name)
+        Intervals in time order.
+    gap : float, optional
+        Intervals of one name separated by less than this are drawn as one.
+
+    Returns
+    -------
+    dict
+        name → list of (t0, width).
+    """
+    out: dict[str, list[list[float]]] = {}
+    for t0, t1, name in regimes:
+        lst = out.setdefault(name, [])
+        if lst and t0 - lst[-1][1] <= gap:
+            lst[-1][1] = max(lst[-1][1], t1)
+        else:
+            lst.append([float(t0), float(t1)])
+    return {k: [(a, b - a) for a, b in v] for k, v in out.items()}
+
+
+def regimes_from_mask(t: np.ndarray, mask: np.ndarray, inside: str, outside: str) -> tuple:
+    """Regime intervals of a sampled run: ``inside`` where ``mask`` holds, ``outside`` elsewhere
+    (a change is placed halfway between the two samples on either side of it)."""
+    t = np.asarray(t, float)
+    mask = np.asarray(mask, bool)
+    if len(t) == 0:
+        return ()
+    cut = np.nonzero(mask[1:] != mask[:-1])[0]
+    edges = np.concatenate([[t[0]], 0.5 * (t[cut] + t[cut + 1]), [t[-1]]])
+    starts = np.concatenate([[0], cut + 1])
+    return tuple((float(edges[i]), float(edges[i + 1]), inside if mask[s] else outside)
+                 for i, s in enumerate(starts))
+
+
+def _colour(regime: str):
+    """The shading colour of a regime name (its words before a parenthesis: ``"stick (v < V/100)"``
+    is shaded as ``"stick"``); None for the unshaded background."""
+    return REGIME_COLOURS.get(regime.split(" (")[0], "0.5")
+
+
+def _label(name: str, units: Mapping[str, str]) -> str:
+    u = units.get(name)
+    return f"{name} [{u}]" if u else name
+
+
+def _is_log(values: np.ndarray) -> bool:
+    v = np.asarray(values, float)
+    v = v[np.isfinite(v)]
+    return bool(len(v) and v.min() > 0 and v.max() / v.min() > LOG_SPAN)
+
+
+def _regime_legend(ax_handles: list, regimes, span):
+    """Legend patches of the regimes that occur (slip as the unshaded background)."""
+    from matplotlib.patches import Patch
+
+    names = []
+    for _, _, nm in regimes:
+        if nm not in names:
+            names.append(nm)
+    for nm in names:
+        col = _colour(nm)
+        ax_handles.append(Patch(facecolor=col if col else "white", edgecolor="0.6", alpha=0.25 if col else 1.0,
+                                label=f"{nm}" + ("" if col else " (unshaded)")))
+    return names
+
+
+def plot_simulation(sim, kind: str = "overview", *, phase: tuple[int, int] = (0, 1), period: float | None = None,
+                    units: Mapping[str, str] | None = None, fig=None, discard: float = 0.0,
+                    log: Sequence[str] | None = None, section_label: str | None = None):
+    """Draw a simulation (see the module docstring) and return the Figure.
+
+    Parameters
+    ----------
+    sim : Simulation
+        The run.
+    kind : {"overview", "poincare"}
+        Time series and phase portrait, or the Poincaré section.
+    phase : (int, int)
+        State components of the phase portrait / section axes.
+    period : float, optional
+        Strobe period of a stroboscopic section (default: the logged section events).
+    units : mapping, optional
+        State name (and ``"t"``) → unit.
+    fig : matplotlib Figure, optional
+        Draw here instead of a new figure.
+    discard : float, optional
+        Leave out t < ``discard`` (a transient).
+    log : sequence of str, optional
+        States drawn on a logarithmic axis (default: the positive ones spanning > 2 decades).
+    section_label : str, optional
+        What the section events are (legend of the Poincaré plot).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from matplotlib.ticker import MaxNLocator
+
+    if kind not in ("overview", "poincare"):
+        raise ValueError(f"kind must be 'overview' or 'poincare', got {kind!r}")
+    units = dict(units or {})
+    names = sim._names()
+    n = len(names)
+    i0, i1 = (int(phase[0]), int(phase[1])) if n > 1 else (0, 0)
+    if not (0 <= i0 < n and 0 <= i1 < n):
+        raise ValueError(f"phase components {phase!r} out of range for {n} states")
+    if discard:
+        sim = sim.after(discard)
+    tu = units.get("t", "s")
+    tlabel = "t" if tu in ("1", "") else f"t [{tu}]"
+    logset = set(log) if log is not None else {nm for i, nm in enumerate(names) if len(sim.t) and _is_log(sim.y[i])}
+    title = sim.model + ("" if sim.success else f" (stopped: {sim.status.value})")
+    if discard:
+        title += f", t ≥ {discard:g}"
+    if kind == "poincare":
+        ts, ys = sim.section_points(period)
+        fig = fig if fig is not None else _new_figure(figsize=(6.0, 4.8), layout="constrained")
+        ax = fig.add_subplot(1, 1, 1)
+        what = section_label or (f"stroboscopic, period {period:.6g} {tu if tu != '1' else ''}".rstrip()
+                                 if period is not None else "section crossings")
+        ax.plot(ys[i0], ys[i1], ".", ms=4, color="tab:red", label=f"{len(ts)} points: {what}")
+        ax.set_xlabel(_label(names[i0], units))
+        ax.set_ylabel(_label(names[i1], units))
+        if names[i0] in logset:
+            ax.set_xscale("log")
+        if names[i1] in logset:
+            ax.set_yscale("log")
+        ax.legend(loc="best", fontsize="small")
+        ax.set_title(f"Poincaré section — {title}")
+        return fig
+    fig = fig if fig is not None else _new_figure(figsize=(11, max(4.5, 1.7 * n + 0.8)), layout="constrained")
+    gs = fig.add_gridspec(n, 2, width_ratios=(1.35, 1))
+    regimes = [r for r in getattr(sim, "regimes", ()) if r[1] > (sim.t[0] if len(sim.t) else -np.inf)]
+    span = (sim.t[-1] - sim.t[0]) if len(sim.t) > 1 else 1.0
+    shaded = merged_intervals(regimes, gap=span / 4000)
+    axes = []
+    for i in range(n):
+        ax = fig.add_subplot(gs[i, 0], sharex=axes[0] if axes else None)
+        axes.append(ax)
+        for nm, iv in shaded.items():
+            col = _colour(nm)
+            if col:
+                ax.broken_barh(iv, (0, 1), transform=ax.get_xaxis_transform(), facecolor=col, alpha=0.18, lw=0)
+        ax.plot(sim.t, sim.y[i], lw=0.8, color="k")
+        if names[i] in logset:
+            ax.set_yscale("log")
+        else:
+            ax.yaxis.set_major_locator(MaxNLocator(4))
+        ax.set_ylabel(_label(names[i], units))
+        if i < n - 1:
+            ax.tick_params(labelbottom=False)
+    if len(sim.t):
+        axes[0].set_xlim(sim.t[0], sim.t[-1])
+    axes[-1].set_xlabel(tlabel)
+    axes[-1].xaxis.set_major_locator(MaxNLocator(6))
+    ax = fig.add_subplot(gs[:, 1])
+    handles: list = []
+    if n >= 2 and len(sim.t):
+        x, y = sim.y[i0], sim.y[i1]
+        if regimes:
+            # the trajectory coloured by regime: each point takes the regime of its time
+            starts = np.array([r[0] for r in regimes])
+            which = np.clip(np.searchsorted(starts, sim.t, side="right") - 1, 0, len(regimes) - 1)
+            lab = np.array([regimes[k][2] for k in which])
+            for nm in dict.fromkeys(lab):
+                col = _colour(nm) or "k"
+                xs, ys_ = np.where(lab == nm, x, np.nan), np.where(lab == nm, y, np.nan)
+                ax.plot(xs, ys_, lw=0.7, color=col, label=f"trajectory, {nm}")
+        else:
+            ax.plot(x, y, lw=0.7, color="k", label="trajectory")
+        ax.plot(x[:1], y[:1], "o", ms=6, mfc="none", color="tab:red", label=f"start, t = {sim.t[0]:.4g}")
+        ax.plot(x[-1:], y[-1:], "s", ms=5, color="tab:red", label=f"end, t = {sim.t[-1]:.4g}")
+        ax.set_xlabel(_label(names[i0], units))
+        ax.set_ylabel(_label(names[i1], units))
+        if names[i0] in logset:
+            ax.set_xscale("log")
+        else:
+            ax.xaxis.set_major_locator(MaxNLocator(5))
+        if names[i1] in logset:
+            ax.set_yscale("log")
+        ax.set_title("phase portrait", fontsize="medium")
+    if regimes:
+        _regime_legend(handles, regimes, span)
+        axes[0].legend(handles=handles, loc="lower left", bbox_to_anchor=(0, 1.02), ncol=len(handles),
+                       fontsize="small", frameon=False, title="regime", title_fontsize="small",
+                       alignment="left")
+    ax.legend(loc="best", fontsize="small")
+    fig.suptitle(title)
+    return fig
