@@ -155,7 +155,7 @@ def plot_simulation(sim, kind: str = "overview", *, phase: tuple[int, int] = (0,
     if discard:
         sim = sim.after(discard)
     tu = units.get("t", "s")
-    tlabel = "t" if tu in ("1", "") else f"t [{tu}]"
+    tlabel = f"t [{tu}]" if tu else "t"
     logset = set(log) if log is not None else {nm for i, nm in enumerate(names) if len(sim.t) and _is_log(sim.y[i])}
     title = sim.model + ("" if sim.success else f" (stopped: {sim.status.value})")
     if discard:
@@ -164,7 +164,7 @@ def plot_simulation(sim, kind: str = "overview", *, phase: tuple[int, int] = (0,
         ts, ys = sim.section_points(period)
         fig = fig if fig is not None else _new_figure(figsize=(6.0, 4.8), layout="constrained")
         ax = fig.add_subplot(1, 1, 1)
-        what = section_label or (f"stroboscopic, period {period:.6g} {tu if tu != '1' else ''}".rstrip()
+        what = section_label or (f"stroboscopic, period {period:.6g} {tu}".rstrip()
                                  if period is not None else "section crossings")
         ax.plot(ys[i0], ys[i1], ".", ms=4, color="tab:red", label=f"{len(ts)} points: {what}")
         ax.set_xlabel(_label(names[i0], units))
@@ -210,10 +210,13 @@ def plot_simulation(sim, kind: str = "overview", *, phase: tuple[int, int] = (0,
             starts = np.array([r[0] for r in regimes])
             which = np.clip(np.searchsorted(starts, sim.t, side="right") - 1, 0, len(regimes) - 1)
             lab = np.array([regimes[k][2] for k in which])
-            for nm in dict.fromkeys(lab):
+            kinds = list(dict.fromkeys(lab))
+            for nm in kinds:
                 col = _colour(nm) or "k"
-                xs, ys_ = np.where(lab == nm, x, np.nan), np.where(lab == nm, y, np.nan)
-                ax.plot(xs, ys_, lw=0.7, color=col, label=f"trajectory, {nm}")
+                on = lab == nm
+                on[1:] |= on[:-1]   # each piece runs on to the next point: no gap at a regime change
+                xs, ys_ = np.where(on, x, np.nan), np.where(on, y, np.nan)
+                ax.plot(xs, ys_, lw=0.7, color=col, label=f"trajectory, {nm}" if len(kinds) > 1 else "trajectory")
         else:
             ax.plot(x, y, lw=0.7, color="k", label="trajectory")
         ax.plot(x[:1], y[:1], "o", ms=6, mfc="none", color="tab:red", label=f"start, t = {sim.t[0]:.4g}")
@@ -227,11 +230,10 @@ def plot_simulation(sim, kind: str = "overview", *, phase: tuple[int, int] = (0,
         if names[i1] in logset:
             ax.set_yscale("log")
         ax.set_title("phase portrait", fontsize="medium")
-    if regimes:
+    if any(_colour(nm) for _, _, nm in regimes):   # a legend of the shading when something is shaded
         _regime_legend(handles, regimes, span)
-        axes[0].legend(handles=handles, loc="lower left", bbox_to_anchor=(0, 1.02), ncol=len(handles),
-                       fontsize="small", frameon=False, title="regime", title_fontsize="small",
-                       alignment="left")
+        fig.legend(handles=handles, loc="outside upper left", ncol=len(handles), fontsize="small", frameon=False,
+                   title="regimes (shaded)", title_fontsize="small", alignment="left")
     ax.legend(loc="best", fontsize="small")
     fig.suptitle(title)
     return fig

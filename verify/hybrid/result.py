@@ -287,7 +287,7 @@ class Simulation:
         units = dict(units or {})
         names = self._names()
         tu = units.get("t", "s")
-        head = ["t" if tu == "1" else f"t [{tu}]"] + [f"{nm} [{units[nm]}]" if units.get(nm) else nm for nm in names]
+        head = [f"t [{tu}]" if tu else "t"] + [f"{nm} [{units[nm]}]" if units.get(nm) else nm for nm in names]
         rows = np.column_stack([self.t, self.y.T])
         lines = [",".join(head)] + [",".join(repr(float(v)) for v in r) for r in rows]
         return atomic_write_text(path, "\n".join(lines) + "\n")
