@@ -55,12 +55,13 @@ DEFAULT_T_END = {"spring-block": 20.0, "galvanetto-one-block": 60.0, "galvanetto
                  "impact-oscillator": 10.0, "forced-oscillator": 10.0}
 #: state components drawn in the phase portrait (position against its velocity); default (0, 1)
 PHASE_PLANE = {"galvanetto-two-blocks": (0, 2), "impact-oscillator": (0, 2)}
-#: accepted steps kept by the forced oscillator's compiled integrator as the time series (from the start)
-RECORD = 1_000_000
+#: accepted steps kept by the forced oscillator's compiled integrator as the time series (from the start;
+#: memory: t, x, ẋ and the field at each, 200 000 × 5 floats)
+RECORD = 200_000
 #: default step budget per model (``--max-steps``): a run that reaches it ends with status max-steps,
 #: exit 1 and the series up to there written (about 1–3 minutes of CPU time each)
 MAX_STEPS = {"spring-block": 5_000_000, "galvanetto-one-block": 300_000, "galvanetto-two-blocks": 300_000,
-             "impact-oscillator": 300_000, "forced-oscillator": 20_000_000}
+             "impact-oscillator": 300_000, "forced-oscillator": 5_000_000}
 #: events kept by the hybrid models' runs (the run ends with status max-events past it)
 MAX_EVENTS = 200_000
 #: recorded points kept (decimated past it) by the spring-block and the hybrid models
@@ -478,7 +479,8 @@ def run(args) -> dict:
                      "shorten --t-end for the whole run")
     if not sim.success:
         notes.append(f"the run ended at its limit ({sim.status.value}) at t = {sim.t_final:.6g}: the files hold "
-                     "the run up to there")
+                     "the run up to there" + (" (raise --max-steps or shorten --t-end for more)"
+                                              if sim.status.value == "max-steps" else ""))
     written = sim
     if discard is not None:
         try:
@@ -488,15 +490,17 @@ def run(args) -> dict:
         notes.append(f"t < {discard:g} discarded from the files (transient)")
     has_data = len(written.t) > 0
     if has_data and any(o.suffix.lower() == ".png" for o in outs):
-        from matplotlib.figure import Figure   # a figure pyplot never shows: the command only saves it
+        from matplotlib.figure import Figure  # a figure pyplot never shows: the command only saves it
 
         period = 2 * math.pi / params["omega"] if args.model == "forced-oscillator" else None
         phase = (1, 2) if args.V_history is not None else PHASE_PLANE.get(args.model, (0, 1))
+        if args.plot == "poincare" and args.model == "spring-block":
+            phase = (0, 2)   # v = V on the section: X against the first state
         try:
-            fig = written.plot(args.plot, units=units, phase=phase, period=period if args.plot == "poincare" else None,
-                               section_label=SECTION_LABEL.get(args.model),
-                               fig=Figure(figsize=(11, max(4.5, 1.7 * len(sim._names()) + 0.8)), layout="constrained")
-                               if args.plot == "overview" else Figure(figsize=(6.0, 4.8), layout="constrained"))
+            size = (11, max(4.5, 1.7 * len(sim._names()) + 0.8)) if args.plot == "overview" else (6.0, 4.8)
+            fig = sim.plot(args.plot, discard=discard or 0.0, units=units, phase=phase,
+                           period=period if args.plot == "poincare" else None,
+                           section_label=SECTION_LABEL.get(args.model), fig=Figure(figsize=size, layout="constrained"))
         except ValueError as exc:
             raise InputError(f"--plot {args.plot}: {args.model}: {str(exc).split(':')[0]}") from None
     if has_data:
@@ -528,7 +532,7 @@ def render(doc: dict) -> str:
                                             for k, v in doc["parameters"].items()))
     units = doc["units"]
     lines.append("final state: " + ", ".join(
-        f"{k} = {v:.6g}" + (f" {units[k]}" if k in units else "") for k, v in doc["final_state"].items()))
+        f"{k} = {v:.6g}" + (f" {units[k]}" if units.get(k, "1") != "1" else "") for k, v in doc["final_state"].items()))
     lines += doc["notes"]
     if doc["files"]:
         lines.append("wrote " + ", ".join(doc["files"]))

@@ -113,8 +113,8 @@ def test_overview_plot_axes(tmp_path):
     every axis, the stick regime shaded and named in a figure legend, no status in the title."""
     from matplotlib.figure import Figure
 
-    from landau.cli.simulate import simulate_model
     from landau.cli.app import build_parser
+    from landau.cli.simulate import simulate_model
 
     parser, _ = build_parser("simulate")
     args = parser.parse_args(["simulate", "spring-block", "--k", "1.2e5", "--t-end", "4"])

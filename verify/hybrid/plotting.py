@@ -27,6 +27,40 @@ REGIME_COLOURS = {"stick": "tab:blue", "flight": "tab:green", "contact": "tab:pu
                   "slide": None}
 #: a positive quantity spanning more than this ratio is drawn on a logarithmic axis
 LOG_SPAN = 100.0
+#: a longer record is drawn through the extrema of each of this many bins (same picture, bounded memory)
+DRAWN_BINS = 5_000
+
+
+def display_indices(y: np.ndarray, bins: int = DRAWN_BINS) -> np.ndarray:
+    """Indices of the points to draw: all of them for a short record, else the first, last, minimum
+    and maximum of every state in each of ``bins`` consecutive bins (the envelope a screen shows).
+
+    Parameters
+    ----------
+    y : ndarray, shape (n, m)
+        The recorded states.
+    bins : int, optional
+        Number of bins.
+
+    Returns
+    -------
+    ndarray of int
+        Increasing indices into the record.
+    """
+    m = y.shape[1]
+    if m <= 8 * bins:
+        return np.arange(m)
+    edges = np.linspace(0, m, bins + 1).astype(int)
+    keep = [edges[:-1], edges[1:] - 1]
+    for row in y:
+        for red in (np.minimum, np.maximum):
+            ext = red.reduceat(row, edges[:-1])
+            # the first index in each bin where the extremum is reached
+            hit = np.nonzero(row == np.repeat(ext, np.diff(edges)))[0]
+            bin_of = np.searchsorted(edges, hit, side="right") - 1
+            first = np.unique(bin_of, return_index=True)[1]
+            keep.append(hit[first])
+    return np.unique(np.concatenate(keep))
 
 
 def _new_figure(**kw):
@@ -91,6 +125,19 @@ def _label(name: str, units: Mapping[str, str]) -> str:
     return f"{name} [{u}]" if u else name
 
 
+def _centred(values: np.ndarray, name: str, units: Mapping[str, str], log: bool) -> tuple[np.ndarray, str]:
+    """Section coordinates that sit within 1e-6 of their mean (a periodic orbit's few points)
+    are drawn as the deviation from the mean, which the axis label states (no unreadable offset)."""
+    v = np.asarray(values, float)
+    if log or len(v) == 0:
+        return v, _label(name, units)
+    mean = float(np.mean(v))
+    if mean != 0 and 0 < np.ptp(v) < 1e-6 * abs(mean):
+        u = units.get(name)
+        return v - mean, f"{name} − {mean:.10g}" + (f" [{u}]" if u else "")
+    return v, _label(name, units)
+
+
 def _is_log(values: np.ndarray) -> bool:
     v = np.asarray(values, float)
     v = v[np.isfinite(v)]
@@ -152,8 +199,11 @@ def plot_simulation(sim, kind: str = "overview", *, phase: tuple[int, int] = (0,
     i0, i1 = (int(phase[0]), int(phase[1])) if n > 1 else (0, 0)
     if not (0 <= i0 < n and 0 <= i1 < n):
         raise ValueError(f"phase components {phase!r} out of range for {n} states")
+    full = sim
     if discard:
         sim = sim.after(discard)
+    idx = display_indices(sim.y) if len(sim.t) else np.arange(0)
+    t_draw, y_draw = sim.t[idx], sim.y[:, idx]
     tu = units.get("t", "s")
     tlabel = f"t [{tu}]" if tu else "t"
     logset = set(log) if log is not None else {nm for i, nm in enumerate(names) if len(sim.t) and _is_log(sim.y[i])}
@@ -161,18 +211,28 @@ def plot_simulation(sim, kind: str = "overview", *, phase: tuple[int, int] = (0,
     if discard:
         title += f", t ≥ {discard:g}"
     if kind == "poincare":
-        ts, ys = sim.section_points(period)
+        ts, ys = full.section_points(period)   # a strobe keeps the phase of the whole run's start
+        if discard:
+            ts, ys = ts[ts >= discard], ys[:, ts >= discard]
+            if len(ts) == 0:
+                raise ValueError(f"no section point at t >= {discard:g}")
         fig = fig if fig is not None else _new_figure(figsize=(6.0, 4.8), layout="constrained")
         ax = fig.add_subplot(1, 1, 1)
         what = section_label or (f"stroboscopic, period {period:.6g} {tu}".rstrip()
                                  if period is not None else "section crossings")
-        ax.plot(ys[i0], ys[i1], ".", ms=4, color="tab:red", label=f"{len(ts)} points: {what}")
-        ax.set_xlabel(_label(names[i0], units))
-        ax.set_ylabel(_label(names[i1], units))
-        if names[i0] in logset:
-            ax.set_xscale("log")
-        if names[i1] in logset:
-            ax.set_yscale("log")
+        if log is None:   # the section's own span decides (the whole run's may span decades more)
+            logset = {nm for i, nm in enumerate(names) if _is_log(ys[i])}
+        xs, xl = _centred(ys[i0], names[i0], units, names[i0] in logset)
+        yv, yl = _centred(ys[i1], names[i1], units, names[i1] in logset)
+        ax.plot(xs, yv, ".", ms=4, color="tab:red", label=f"{len(ts)} points: {what}")
+        ax.set_xlabel(xl)
+        ax.set_ylabel(yl)
+        for axis, nm, scale in ((ax.xaxis, names[i0], ax.set_xscale), (ax.yaxis, names[i1], ax.set_yscale)):
+            if nm in logset:
+                scale("log")
+            else:
+                axis.set_major_locator(MaxNLocator(5))
+                axis.get_major_formatter().set_useOffset(False)
         ax.legend(loc="best", fontsize="small")
         ax.set_title(f"Poincaré section — {title}")
         return fig
@@ -189,7 +249,7 @@ def plot_simulation(sim, kind: str = "overview", *, phase: tuple[int, int] = (0,
             col = _colour(nm)
             if col:
                 ax.broken_barh(iv, (0, 1), transform=ax.get_xaxis_transform(), facecolor=col, alpha=0.18, lw=0)
-        ax.plot(sim.t, sim.y[i], lw=0.8, color="k")
+        ax.plot(t_draw, y_draw[i], lw=0.8, color="k")
         if names[i] in logset:
             ax.set_yscale("log")
         else:
@@ -204,11 +264,11 @@ def plot_simulation(sim, kind: str = "overview", *, phase: tuple[int, int] = (0,
     ax = fig.add_subplot(gs[:, 1])
     handles: list = []
     if n >= 2 and len(sim.t):
-        x, y = sim.y[i0], sim.y[i1]
+        x, y = y_draw[i0], y_draw[i1]
         if regimes:
             # the trajectory coloured by regime: each point takes the regime of its time
             starts = np.array([r[0] for r in regimes])
-            which = np.clip(np.searchsorted(starts, sim.t, side="right") - 1, 0, len(regimes) - 1)
+            which = np.clip(np.searchsorted(starts, t_draw, side="right") - 1, 0, len(regimes) - 1)
             lab = np.array([regimes[k][2] for k in which])
             kinds = list(dict.fromkeys(lab))
             for nm in kinds:

@@ -88,7 +88,7 @@ def infer_state_units(law) -> dict[str, str]:
             am, as_ = np.exp(rng.uniform(-2, 2, 2))
             phis = base
 
-            def scaled(factor_m, factor_s, phis=phis):
+            def scaled(factor_m, factor_s, phis=phis, combo=combo):
                 args = [V * factor_m / factor_s]
                 args += [ph * factor_m ** c[0] * factor_s ** c[1] for ph, c in zip(phis, combo, strict=True)]
                 args += [val * factor_m ** d[0] * factor_s ** d[1] for d, val in dims.values()]
