@@ -227,3 +227,28 @@ def test_bad_histories_exit_2(text, words, capsys):
     for w in words:
         assert w in err
     assert main(["simulate", "galvanetto-one-block", "--V-history", "1e-5@0"]) == 2
+
+
+def test_plot_makes_a_pyplot_managed_figure_or_draws_into_the_one_given():
+    """The toolkit's plotting convention (landau.report.plotting): without ``fig=`` the figure is
+    pyplot's (a notebook shows it as an image, never ``<Figure …>`` text); with ``fig=`` the plot
+    is drawn there and that figure is returned."""
+    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
+
+    from landau.verify.hybrid import EventLog
+    from landau.verify.hybrid.plotting import regimes_from_mask
+    from landau.verify.hybrid.result import Simulation, Status
+
+    t = np.linspace(0.0, 10.0, 201)
+    y = np.vstack([np.sin(t), 1e-3 + np.exp(-t) * (1 + np.cos(3 * t))])
+    sim = Simulation("demo", t, y, EventLog(), Status.FINISHED, "", t[-1], y[:, -1], 200, 0, None, ("x", "v"),
+                     regimes_from_mask(t, y[1] < 1e-2, "stick", "slip"))
+    fig = sim.plot(units={"x": "m", "v": "m/s"})
+    try:
+        assert fig.canvas.manager is not None and plt.fignum_exists(fig.number)
+        assert fig.axes[1].get_yscale() == "log"   # v spans more than two decades
+    finally:
+        plt.close(fig)
+    given = Figure()
+    assert sim.plot(fig=given) is given
