@@ -55,9 +55,6 @@ DEFAULT_T_END = {"spring-block": 20.0, "galvanetto-one-block": 60.0, "galvanetto
                  "impact-oscillator": 10.0, "forced-oscillator": 10.0}
 #: state components drawn in the phase portrait (position against its velocity); default (0, 1)
 PHASE_PLANE = {"galvanetto-two-blocks": (0, 2), "impact-oscillator": (0, 2)}
-#: accepted steps kept by the forced oscillator's compiled integrator as the time series (from the start;
-#: memory: t, x, ẋ and the field at each, 200 000 × 5 floats)
-RECORD = 200_000
 #: default step budget per model (``--max-steps``): a run that reaches it ends with status max-steps,
 #: exit 1 and the series up to there written (about 1–3 minutes of CPU time each)
 MAX_STEPS = {"spring-block": 5_000_000, "galvanetto-one-block": 300_000, "galvanetto-two-blocks": 300_000,
@@ -400,7 +397,7 @@ def _forced_oscillator(args, t_end: float):
     from landau.laws.velocity import regularised_coulomb
     from landau.verify.skurativskyi.approx import grazing_linear, static_equilibrium
     from landau.verify.skurativskyi.model import MECHANICAL, Params
-    from landau.verify.skurativskyi.simulate import run
+    from landau.verify.skurativskyi.simulate import record_run
 
     name = "forced-oscillator"
     _no_law(args, name)
@@ -415,8 +412,7 @@ def _forced_oscillator(args, t_end: float):
         y0, note = None, "starts at rest at the static equilibrium (in contact)"
     else:  # the obstacle is not touched at rest
         y0, note = np.zeros(2), "starts at rest at x = 0 (free of the obstacle)"
-    r = run(p, t_end / p.period, y0=y0, record=RECORD, max_steps=_max_steps(args), at_limit="return")
-    sim = replace(r.simulation(), model=name)
+    sim = replace(record_run(p, t_end, y0, max_steps=_max_steps(args), max_points=MAX_POINTS), model=name)
     used = {"friction": law.name, **p.values()}
     neg = "the odd extension -F(-v)" if law.negative is None else str(law.branch(-1))
     notes = [note, f"friction F_R(v) = {law.branch(1)} [N] for v > 0, {neg} for v < 0"]

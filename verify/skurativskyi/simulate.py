@@ -15,7 +15,7 @@ Impacts are the crossings of x = x_I with increasing x (the paper's definition, 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -269,3 +269,110 @@ def hybrid_model(params: Params) -> HybridModel:
     contact = Mode("contact", fld, (Guard("detach", lambda t, y: y[0] - xI, to_free,
                                           rate=lambda t, y: y[1]),))
     return HybridModel.from_modes(free, contact, name="skurativskyi2019")
+
+
+def _thin(n: int) -> np.ndarray:
+    """Every other index of range(n), the last one kept."""
+    idx = np.arange(0, n, 2)
+    return idx if n == 0 or idx[-1] == n - 1 else np.append(idx, n - 1)
+
+
+def record_run(params: Params, t_end: float, y0=None, *, rtol: float = RTOL, max_steps: int = 5_000_000,
+               max_events: int = 200_000, max_points: int = 200_000, chunk_steps: int = 200_000,
+               method: str = "mixed") -> Simulation:
+    """Eq. (1) from t = 0 to ``t_end`` [s] with bounded steps, events and memory, as a :class:`Simulation`.
+
+    The run is taken in compiled calls of at most ``chunk_steps`` steps (each continuing from the
+    previous one's state, the stroboscopic phase kept at t = 2πi/ω); the recorded step ends are
+    streamed out of each call and decimated (every other point dropped, then every 2ᵏ-th step
+    end kept) whenever they would exceed ``max_points``, so that a run of any length keeps at most
+    about ``max_points`` points spread over its whole span.  At ``max_steps`` steps or
+    ``max_events`` contact events it ends with status ``max-steps`` / ``max-events`` and the
+    record up to there.  A run shorter than ``chunk_steps`` is the one call of :func:`run`.
+
+    Parameters
+    ----------
+    params : Params
+        Model parameters.
+    t_end : float
+        End time [s].
+    y0 : array_like, optional
+        Starting (x, ẋ) (default: rest at X₀).
+    rtol : float, optional
+        Relative tolerance (absolute tolerances as in :func:`run`).
+    max_steps, max_events, max_points, chunk_steps : int, optional
+        The bounds (see above).
+    method : {"mixed", "dopri5"}
+        The integrator (:func:`run`).
+
+    Returns
+    -------
+    Simulation
+        Times in s, states (x, ẋ) with the field at each point; impacts and detachments as events.
+    """
+    if method not in METHODS:
+        raise InputError(f"method must be one of {sorted(METHODS)} (got {method!r})")
+    if not (np.isfinite(t_end) and t_end > 0):
+        raise InputError(f"t_end must be a finite time > 0 (got {t_end!r})")
+    if not (int(max_steps) >= 1 and int(chunk_steps) >= 1 and int(max_points) >= 16 and int(max_events) >= 1):
+        raise InputError("max_steps, max_events and chunk_steps must be >= 1 and max_points >= 16")
+    y = rest_state(params) if y0 is None else np.asarray(y0, float)[:2].copy()
+    P = params.period
+    p = params.packed()
+    at = np.ascontiguousarray((rtol * 1e-4, rtol * 1e-2), float)
+    fr = compiled_field(params).pointers
+    loop = R.mixed_loop()
+    t = 0.0
+    rec_t, rec_y, rec_f, kept, stride = [], [], [], 0, 1
+    ev_t, ev_k, ev_v = [], [], []
+    steps = nfev = 0
+    status = Status.FINISHED
+    while True:
+        budget = min(int(chunk_steps), int(max_steps) - steps)
+        room = int(max_events) - sum(len(e) for e in ev_t)
+        with quiet_first_class():
+            out = loop(p, float(t), y, float(t_end), float(rtol), at, 1e-5, float(P / 20), float(params.xI), True,
+                       0.0, float(P), 1, False, int(room), int(budget), *METHODS[method], int(budget) + 1, fr)
+        (tn, yn, st, et, ek, ev, _, _, _, _, ns, nf, _, _, _, rt, ry, rf) = out
+        steps += int(ns)
+        nfev += int(nf)
+        ev_t.append(et)
+        ev_k.append(ek)
+        ev_v.append(ev)
+        if rec_t:   # the call's first point is the previous call's last
+            rt, ry, rf = rt[1:], ry[1:], rf[1:]
+        if stride > 1 and len(rt):   # every stride-th step end, and the call's last (the state it ends in)
+            sel = np.unique(np.append(np.arange(stride - 1, len(rt), stride), len(rt) - 1))
+            rt, ry, rf = rt[sel], ry[sel], rf[sel]
+        rec_t.append(rt)
+        rec_y.append(ry)
+        rec_f.append(rf)
+        kept += len(rt)
+        while kept > max_points:
+            tt, yy, ff = np.concatenate(rec_t), np.concatenate(rec_y), np.concatenate(rec_f)
+            keep = _thin(len(tt))
+            rec_t, rec_y, rec_f, kept = [tt[keep]], [yy[keep]], [ff[keep]], len(keep)
+            stride *= 2
+        t, y = float(tn), np.array(yn[:2], float)
+        if st == R.OK:
+            break
+        if st == R.MAX_EVENTS:
+            status = Status.MAX_EVENTS
+            break
+        if st != R.MAX_STEPS:
+            raise IntegratorError(f"compiled {method} integrator stopped: {R.STATUS[st]} (ω={params.omega})",
+                                  t=t, state=y)
+        if steps >= max_steps:
+            status = Status.MAX_STEPS
+            break
+    tt, yy, ff = np.concatenate(rec_t), np.concatenate(rec_y), np.concatenate(rec_f)
+    ek_all, et_all, ev_all = np.concatenate(ev_k), np.concatenate(ev_t), np.concatenate(ev_v)
+    up = ek_all > 0
+    r = Run(params, t, y, et_all[up], ev_all[up], et_all[~up], np.empty(0), np.empty((0, 2)), 0.0, 0, steps, nfev,
+            0, 0.0, 0, method, tt, yy, ff, status)
+    sim = r.simulation()
+    if status is not Status.FINISHED:
+        sim = replace(sim, message=f"stopped at the {'step' if status is Status.MAX_STEPS else 'event'} limit "
+                                   f"({int(max_steps) if status is Status.MAX_STEPS else int(max_events)}) at "
+                                   f"t = {t:.6g} s before the end t = {t_end:.6g} s: {status.advice}")
+    return sim
