@@ -27,6 +27,8 @@ REGIME_COLOURS = {"stick": "tab:blue", "flight": "tab:green", "contact": "tab:pu
                   "slide": None}
 #: a positive quantity spanning more than this ratio is drawn on a logarithmic axis
 LOG_SPAN = 100.0
+#: a phase portrait of more points than this is drawn as dots
+DOTS_ABOVE = 20_000
 #: a longer record is drawn through the extrema of each of this many bins (same picture, bounded memory)
 DRAWN_BINS = 5_000
 
@@ -265,6 +267,8 @@ def plot_simulation(sim, kind: str = "overview", *, phase: tuple[int, int] = (0,
     handles: list = []
     if n >= 2 and len(sim.t):
         x, y = y_draw[i0], y_draw[i1]
+        # a long (decimated) record is drawn as points: lines would join states far apart in time
+        style = dict(ls="none", marker=".", ms=1.0) if len(x) > DOTS_ABOVE else dict(lw=0.7)
         if regimes:
             # the trajectory coloured by regime: each point takes the regime of its time
             starts = np.array([r[0] for r in regimes])
@@ -276,9 +280,9 @@ def plot_simulation(sim, kind: str = "overview", *, phase: tuple[int, int] = (0,
                 on = lab == nm
                 on[1:] |= on[:-1]   # each piece runs on to the next point: no gap at a regime change
                 xs, ys_ = np.where(on, x, np.nan), np.where(on, y, np.nan)
-                ax.plot(xs, ys_, lw=0.7, color=col, label=f"trajectory, {nm}" if len(kinds) > 1 else "trajectory")
+                ax.plot(xs, ys_, color=col, label=f"trajectory, {nm}" if len(kinds) > 1 else "trajectory", **style)
         else:
-            ax.plot(x, y, lw=0.7, color="k", label="trajectory")
+            ax.plot(x, y, color="k", label="trajectory", **style)
         ax.plot(x[:1], y[:1], "o", ms=6, mfc="none", color="tab:red", label=f"start, t = {sim.t[0]:.4g}")
         ax.plot(x[-1:], y[-1:], "s", ms=5, color="tab:red", label=f"end, t = {sim.t[-1]:.4g}")
         ax.set_xlabel(_label(names[i0], units))
