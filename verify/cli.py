@@ -50,7 +50,7 @@ def run(args) -> dict:
         raise InputError("give --V (driving velocities in m/s) or --work-precision")
     if args.V is not None:
         law, overrides = resolve_law(args)
-        params = SpringBlock(law).resolve(overrides)
+        params = SpringBlock.for_params(law, overrides).resolve(overrides)
         if not params["M"] > 0:
             raise InputError(f"--param M={params['M']:g}: the simulation needs a block mass M > 0 "
                              "(M = 0 is the quasi-static limit, which `landau derive` handles)")

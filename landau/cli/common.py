@@ -10,7 +10,7 @@ from landau.errors import InputError
 from landau.laws import BUILTIN, FrictionLaw, get_law
 from landau.systems.system import SpringBlock
 
-SYSTEM_PARAMS = ("M", "g", "sigma")
+SYSTEM_PARAMS = ("M", "g", "sigma", "eta", "gamma_ld", "alpha_ld")
 
 
 def add_law_arguments(p: argparse.ArgumentParser) -> None:
@@ -129,7 +129,7 @@ def resolve_law(args) -> tuple[FrictionLaw, dict[str, float]]:
 
 def block_and_params(args) -> tuple[SpringBlock, dict[str, float]]:
     law, overrides = resolve_law(args)
-    block = SpringBlock(law)
+    block = SpringBlock.for_params(law, overrides)   # the optional terms given (eta, gamma_ld, alpha_ld)
     return block, block.resolve(overrides)
 
 

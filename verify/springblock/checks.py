@@ -37,7 +37,7 @@ from landau.verify.springblock.simulate import W_INDEX, integrate
 AMPLITUDE_TOLERANCE = 0.02
 BRACKET_TOLERANCE = 0.05
 
-_DERIVATIONS: dict[int, tuple[FrictionLaw, Derivation]] = {}
+_DERIVATIONS: dict[tuple, tuple[FrictionLaw, Derivation]] = {}
 
 
 def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = None) -> HopfResult:
@@ -68,8 +68,12 @@ def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = Non
     NoHopfError
         If steady sliding at V has no Hopf point (e.g. velocity strengthening).
     """
-    block = SpringBlock(law)
-    key = id(law)
+    block = SpringBlock.for_params(law, params)   # with the optional terms given (eta, gamma_ld, alpha_ld)
+    if "alpha_ld" in block.terms:
+        from landau.systems.springblock_routes import hopf_point
+
+        return hopf_point(block, float(V), block.resolve(params))
+    key = (id(law), block.terms)
     if key not in _DERIVATIONS:
         _DERIVATIONS[key] = (law, derive(block))
     d = _DERIVATIONS[key][1]
@@ -79,7 +83,9 @@ def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = Non
     vals = {n: float(np.ravel(r[n])[0]) for n in names}
     if not np.isfinite(vals["kc"]) or vals["kc"] <= 0:
         raise NoHopfError(f"law {law.name!r} has no Hopf point at V = {V!r} m/s")
-    return spring_block_result(law.name, float(V), params={k: float(v) for k, v in resolved.items()}, **vals)
+    terms = {t: float(resolved[t]) for t in block.terms}   # the optional terms named in the result
+    return spring_block_result(law.name, float(V), params={k: float(v) for k, v in resolved.items()},
+                               extra=terms, **vals)
 
 
 @dataclass(frozen=True)

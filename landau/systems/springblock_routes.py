@@ -1,0 +1,71 @@
+"""The Hopf point of a spring–block with optional terms, by the route that suits its equations.
+
+The symbolic multiple-scales route (:mod:`landau.derivation.multiscale`) needs the Hopf parameter
+k in one entry of the Jacobian.  Radiation damping (``eta``) and a normal load that follows the
+spring (``gamma_ld``) keep it there; the Linker–Dieterich state response (``alpha_ld``) does not
+(dσ/dt = −γ_LD k u enters the state rate), so a block with ``alpha_ld`` goes through the general
+Fredholm engine (:func:`landau.derivation.general.hopf_normal_form`) on the same
+:class:`~landau.systems.system.DynamicalSystem`, bracketed around the k_c of the same block
+without ``alpha_ld`` (closed form).  Both give the spring–block convention: the critical mode
+normalised with slip component X = 1, dλ/dk = −Γ̄ + iΩ̄.
+
+References
+----------
+Putelat, T., Dawes, J. H. P. & Willis, J. R. (2010), J. Mech. Phys. Solids 58(1), 27–53, eq. (20).
+Linker, M. F. & Dieterich, J. H. (1992), J. Geophys. Res. 97(B4), 4923–4940.
+"""
+
+from __future__ import annotations
+
+from typing import Mapping
+
+import numpy as np
+
+from landau.errors import NoHopfError
+
+#: the general route's bracket: k_c(α_LD = 0) divided and multiplied by this factor
+BRACKET_FACTOR = 20.0
+
+
+def hopf_point(block, V: float, params: Mapping[str, float]):
+    """The Hopf point of ``block`` (with ``alpha_ld``) at driving velocity V by the general engine.
+
+    Parameters
+    ----------
+    block : SpringBlock
+        With the term ``alpha_ld``.
+    V : float
+        Driving velocity, m/s.
+    params : mapping
+        Resolved parameters (:meth:`SpringBlock.resolve`).
+
+    Returns
+    -------
+    HopfResult
+        In the spring–block convention (:func:`landau.derivation.hopf.spring_block_result`).
+
+    Raises
+    ------
+    NoHopfError
+        No Hopf point within a factor :data:`BRACKET_FACTOR` of k_c(α_LD = 0).
+    """
+    from landau.derivation.general import hopf_normal_form
+    from landau.derivation.hopf import spring_block_result
+    from landau.derivation.linear import HopfLine
+    from landau.systems.system import SpringBlock
+
+    plain = SpringBlock(block.law, tuple(t for t in block.terms if t != "alpha_ld"))
+    guess = float(np.ravel(HopfLine(plain).evaluate(np.array([float(V)]),
+                                                    {k: v for k, v in params.items() if k != "alpha_ld"})[0])[0])
+    if not (np.isfinite(guess) and guess > 0):
+        guess = None
+    block.argvals(float(V), params)                     # the law's and the terms' checks at steady sliding
+    values = {k: v for k, v in params.items() if k in {s.name for s in block.system.parameters}}
+    values["V"] = float(V)
+    if guess is None:
+        raise NoHopfError(f"law {block.law.name!r} with {', '.join(block.terms)}: no Hopf point located at "
+                          f"V = {V:g} m/s (none without alpha_ld to start from)")
+    res = hopf_normal_form(block.system, values, (guess / BRACKET_FACTOR, guess * BRACKET_FACTOR))
+    a = res.dlambda_dp
+    return spring_block_result(block.law.name, float(V), res.p_c, res.omega_c, -a.real, a.imag, res.Lambda,
+                               res.chi, params={k: float(v) for k, v in params.items()}, l1=res.l1, c1=res.c1)
