@@ -146,15 +146,22 @@ def _spring_block(args, t_end: float):
         raise InputError("spring-block: give the driving velocity as --V and the stiffness as --k "
                          "(k is the bifurcation parameter, not a law parameter)")
     law, overrides = resolve_law(args)
-    block = SpringBlock(law)
+    block = SpringBlock.for_params(law, overrides)   # with the optional terms given (eta, gamma_ld, alpha_ld)
     _only_known(overrides, list(block.defaults), "spring-block")
     params = block.resolve(overrides)
+    if args.V_history is not None and block.terms:
+        raise InputError(f"spring-block: --V-history does not take {', '.join(block.terms)} (give a constant --V)")
     if args.V_history is not None:
         return _load_history(args, law, params, t_end)
     V = _positive(args.V, "--V") if args.V is not None else 1e-4
     notes = []
     if args.k is None:
-        kc = float(np.ravel(critical_stiffness(block, V, params))[0])
+        if "alpha_ld" in block.terms:
+            from landau.systems.springblock_routes import hopf_point
+
+            kc = hopf_point(block, V, params).p_c
+        else:
+            kc = float(np.ravel(critical_stiffness(block, V, params))[0])
         if not (math.isfinite(kc) and kc > 0):
             raise InputError(f"spring-block: law {law.name!r} has no Hopf point at V = {V:g} m/s "
                              "(steady sliding is stable for every k): give --k")

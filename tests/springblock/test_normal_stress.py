@@ -95,3 +95,40 @@ def test_alpha_hopf_point_against_eigenvalues():
     # just below k_c unstable, just above stable
     assert np.max(np.linalg.eigvals(_hand_jacobian(p, V, 0.99 * res.kc)).real) > 0
     assert np.max(np.linalg.eigvals(_hand_jacobian(p, V, 1.01 * res.kc)).real) < 0
+
+
+def test_simulation_model_with_every_term_against_hand_written_field():
+    """The compiled field of the simulator (scaled variables ξ = X/ℓ, w = ln(v/V), ψ = ln(θ/θ₀),
+    τ = tV/ℓ) with η, γ_LD and α_LD against the equations written here; at k = k_c its linearisation
+    has the critical pair on the imaginary axis."""
+    from landau.verify.springblock.model import SpringBlockModel
+
+    V = 2e-4
+    p = {**OFF, "gamma_ld": 0.6, "alpha_ld": 0.25, "eta": 7.0}
+    res = predict(LAW, V, p)
+    model = SpringBlockModel.build(LAW, V, res.kc, p)
+    a, b, L, s0, M, g, al, eta, Vs, av = (p[n] for n in ("a", "b", "L", "sigma", "M", "gamma_ld", "alpha_ld",
+                                                          "eta", "V_s", "a_v"))
+    k, ell, th0 = res.kc, model.ell, L / V
+    m0 = mu_ss(p, V)
+    s_ss = (s0 + g * eta * V) / (1 - g * m0)
+    F0 = s_ss * m0 + eta * V
+
+    def f_hand(y):
+        xi, w, psi = y
+        X, v, th = xi * ell, V * np.exp(w), th0 * np.exp(psi)
+        F = F0 - k * X
+        sig = s0 + g * F
+        mu = av + a * np.log(v / Vs) + b * np.log(Vs * th / L)
+        udot = (F - sig * mu - eta * v) / M
+        thdot = 1 - v * th / L - al * th * (-g * k * (v - V)) / (b * sig)
+        return np.array([v / V - 1, ell / V * udot / v, ell / V * thdot / th])
+
+    rng = np.random.default_rng(3)
+    for _ in range(3):
+        y = rng.normal(scale=0.05, size=3)
+        assert model.f(y) == pytest.approx(f_hand(y), rel=1e-9, abs=1e-12)
+    lam = np.linalg.eigvals(model.J(np.zeros(3)))
+    i = np.argmax(lam.real)
+    assert abs(lam[i].real) < 1e-6 * abs(lam[i].imag)
+    assert abs(lam[i].imag) * V / ell == pytest.approx(res.omega_c, rel=1e-6)

@@ -78,14 +78,18 @@ def _law_key(law: FrictionLaw) -> tuple:
 _BY_LAW: "weakref.WeakKeyDictionary[FrictionLaw, CompiledLaw]" = weakref.WeakKeyDictionary()
 
 
-def compile_law(law: FrictionLaw) -> CompiledLaw:
-    """Generate and compile the scaled right-hand side and analytic Jacobian of eq. (4) for ``law``."""
-    hit = _BY_LAW.get(law)
-    if hit is not None:
-        return hit
-    key = _law_key(law)
+def compile_law(law: FrictionLaw, terms: tuple[str, ...] = ()) -> CompiledLaw:
+    """Generate and compile the scaled right-hand side and analytic Jacobian of eq. (4) for ``law``
+    (with the optional spring–block ``terms`` of :mod:`landau.systems.springblock_terms`: their
+    values follow φ₀ in the base parameter vector, and σ there is the steady-sliding σ_ss)."""
+    if not terms:
+        hit = _BY_LAW.get(law)
+        if hit is not None:
+            return hit
+    key = _law_key(law) + ((tuple(terms),) if terms else ())
     if key in _CACHE:
-        _BY_LAW[law] = _CACHE[key]
+        if not terms:
+            _BY_LAW[law] = _CACHE[key]
         return _CACHE[key]
     ns = len(law.states)
     n = 2 + ns
@@ -94,6 +98,7 @@ def compile_law(law: FrictionLaw) -> CompiledLaw:
     lp = [sp.Symbol(f"q{i}", positive=True) for i in range(len(law.parameters))]
     Msym, sig, ksym, Vsym, ell, mu0 = sp.symbols("M_ sigma_ k_ V_ ell_ mu0_", positive=True)
     phi0 = [sp.Symbol(f"phi0_{i}", positive=True) for i in range(ns)]
+    tsyms = [sp.Symbol(f"{t}_", real=True) for t in terms]
     sub = {p.symbol: s for p, s in zip(law.parameters, lp, strict=True)}
     vv = Vsym * sp.exp(w)
     phis = [p0 * sp.exp(ps) for p0, ps in zip(phi0, psis, strict=True)]
@@ -103,11 +108,21 @@ def compile_law(law: FrictionLaw) -> CompiledLaw:
         return sp.expand_log(e.subs(sub), force=True)
 
     mu = tidy(law.mu)
-    f = [sp.exp(w) - 1,
-         (ell / Vsym) * sp.exp(-w) * (-ksym * ell * xi - sig * (mu - mu0)) / (Msym * Vsym)]
-    for r, ph in zip(law.rates, phis, strict=True):
-        f.append((ell / Vsym) * sp.expand(tidy(r) / ph))
-    psyms = [*lp, Msym, sig, ksym, Vsym, ell, mu0, *phi0]
+    tv = dict(zip(terms, tsyms, strict=True))
+    force = -ksym * ell * xi - sig * (mu - mu0)
+    if "gamma_ld" in tv:   # σ = σ_ss − γ k X (springblock_terms.mechanical_rhs, in scaled variables)
+        force += tv["gamma_ld"] * ksym * ell * xi * mu
+    if "eta" in tv:
+        force -= tv["eta"] * Vsym * (sp.exp(w) - 1)
+    f = [sp.exp(w) - 1, (ell / Vsym) * sp.exp(-w) * force / (Msym * Vsym)]
+    for i, (r, ph) in enumerate(zip(law.rates, phis, strict=True)):
+        rate = tidy(r)
+        if i == 0 and "alpha_ld" in tv and "gamma_ld" in tv:
+            sig_now = sig - tv["gamma_ld"] * ksym * ell * xi
+            sig_dot = -tv["gamma_ld"] * ksym * Vsym * (sp.exp(w) - 1)
+            rate = rate - tv["alpha_ld"] * sig_dot / (sig_now * tidy(sp.diff(law.mu, law.states[0])))
+        f.append((ell / Vsym) * sp.expand(rate / ph))
+    psyms = [*lp, Msym, sig, ksym, Vsym, ell, mu0, *phi0, *tsyms]
     # the logarithms of parameters that expand_log produced, and every other parameter-only
     # subexpression, become entries of the parameter vector computed once per model
     h = hoist_parameters(f, psyms)
@@ -116,7 +131,8 @@ def compile_law(law: FrictionLaw) -> CompiledLaw:
     _DERIVED[key] = DerivedParameters(psyms, h.values)
     out = _compile(ys, h.field, full, law.name, tuple(p.name for p in law.parameters), _DERIVED[key])
     _CACHE[key] = out
-    _BY_LAW[law] = out
+    if not terms:
+        _BY_LAW[law] = out
     return out
 
 
@@ -135,13 +151,13 @@ _DERIVED: dict[tuple, DerivedParameters] = {}
 _VAR_CACHE: dict[tuple, CompiledLaw] = {}
 
 
-def compile_variational(law: FrictionLaw) -> CompiledLaw:
+def compile_variational(law: FrictionLaw, terms: tuple[str, ...] = ()) -> CompiledLaw:
     """The system augmented with its variational equations Φ' = J(y)Φ (n + n² states, Φ row-major),
     with the exact Jacobian of the augmented system (second derivatives of f included)."""
-    key = _law_key(law)
+    key = _law_key(law) + ((tuple(terms),) if terms else ())
     if key in _VAR_CACHE:
         return _VAR_CACHE[key]
-    compile_law(law)
+    compile_law(law, terms)
     ys, f, psyms = _SYMBOLIC[key]
     n = len(ys)
     Jm = sp.Matrix(f).jacobian(sp.Matrix(ys))
@@ -169,11 +185,13 @@ class SpringBlockModel:
     ell: float
     phi0: tuple[float, ...]
     mu0: float
+    #: the optional spring–block terms built in (``eta``, ``gamma_ld``, ``alpha_ld``)
+    terms: tuple[str, ...] = ()
 
     @classmethod
     def build(cls, law: FrictionLaw, V: float, k: float, params: Mapping[str, float] | None = None,
               length_scale: float | None = None) -> "SpringBlockModel":
-        block = SpringBlock(law)
+        block = SpringBlock.for_params(law, params)    # with the optional terms given
         p = block.resolve(params)
         if not (np.isfinite(V) and V > 0):
             raise InputError(f"driving velocity V must be > 0, got {V!r}")
@@ -187,7 +205,9 @@ class SpringBlockModel:
         mu0 = float(law.mu.subs({v_slip: V, **dict(zip(law.states, phi0, strict=True)), **vals}))
         if not np.isfinite(mu0):
             raise InputError(f"law {law.name!r}: friction coefficient not finite at steady sliding V = {V!r}")
-        return cls(law, float(V), float(k), dict(p), ell, tuple(phi0), mu0)
+        if block.terms:
+            block.argvals(float(V), p)                  # no steady sliding (gamma_ld): a named error
+        return cls(law, float(V), float(k), dict(p), ell, tuple(phi0), mu0, block.terms)
 
     @classmethod
     def from_dimensionless(cls, law: FrictionLaw, m: float, kappa: float, V_over_Vs: float,
@@ -216,14 +236,14 @@ class SpringBlockModel:
         params.update(changes.pop("params", {}))
         if changes:
             raise InputError(f"unknown change(s) {sorted(changes)}")
-        block_keys = set(SpringBlock(self.law).defaults)
+        block_keys = set(SpringBlock(self.law, self.terms).defaults)
         return SpringBlockModel.build(self.law, V, k, {kk: vv for kk, vv in params.items() if kk in block_keys},
                                       self.ell)
 
     # --- compiled pieces ------------------------------------------------------------
     @property
     def compiled(self) -> CompiledLaw:
-        return compile_law(self.law)
+        return compile_law(self.law, self.terms)
 
     @property
     def n(self) -> int:
@@ -234,8 +254,16 @@ class SpringBlockModel:
         """The parameter vector of the compiled kernels (the same for :func:`compile_law` and
         :func:`compile_variational`): base values, then the derived parameter combinations."""
         vals = [self.params[nm] for nm in self.compiled.param_names]
-        vals += [self.params["M"], self.params["sigma"], self.k, self.V, self.ell, self.mu0, *self.phi0]
+        vals += [self.params["M"], self.sigma_ss, self.k, self.V, self.ell, self.mu0, *self.phi0]
+        vals += [self.params[t] for t in self.terms]
         return self.compiled.parameters(vals)
+
+    @property
+    def sigma_ss(self) -> float:
+        """The normal load at steady sliding: σ, or (σ₀ + γ_LD ηV)/(1 − γ_LD μ₀) with ``gamma_ld``
+        (:func:`landau.systems.springblock_terms.normal_load_ss`)."""
+        g = self.params.get("gamma_ld", 0.0) if "gamma_ld" in self.terms else 0.0
+        return (self.params["sigma"] + g * self.params.get("eta", 0.0) * self.V) / (1.0 - g * self.mu0)
 
     @property
     def time_unit(self) -> float:

@@ -125,7 +125,7 @@ def integrate(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol:
     if method not in METHODS:
         raise InputError(f"method must be {' or '.join(repr(m) for m in METHODS)} (the order-5 Radau IIA), "
                          f"got {method!r}")
-    c = compile_variational(model.law) if variational else model.compiled
+    c = compile_variational(model.law, model.terms) if variational else model.compiled
     nn = c.n
     if not (0 < rtol < 1):
         raise InputError(f"rtol must be in (0, 1), got {rtol!r}")
