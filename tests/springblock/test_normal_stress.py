@@ -132,3 +132,12 @@ def test_simulation_model_with_every_term_against_hand_written_field():
     i = np.argmax(lam.real)
     assert abs(lam[i].real) < 1e-6 * abs(lam[i].imag)
     assert abs(lam[i].imag) * V / ell == pytest.approx(res.omega_c, rel=1e-6)
+
+
+def test_check_with_every_term():
+    """η, γ_LD < 0 (the load decreases with the spring force) and α_LD together: the simulated cycle
+    agrees with the general engine's prediction."""
+    import landau
+
+    r = landau.check("dieterich", 1e-4, 1e-3, {"eta": 100.0, "gamma_ld": -1.0, "alpha_ld": 0.3})
+    assert r.agrees and r.prediction.criticality == "supercritical"
