@@ -51,7 +51,8 @@ def _load_models() -> None:
     # the other models register themselves when their analysis modules are imported
     import importlib
 
-    for mod in ("landau.cli.hopf_galvanetto", "landau.cli.hopf_lancioni"):
+    for mod in ("landau.cli.hopf_galvanetto", "landau.cli.hopf_lancioni", "landau.cli.hopf_system",
+                "landau.cli.hopf_chain"):
         try:
             importlib.import_module(mod)
         except ModuleNotFoundError as exc:
@@ -60,7 +61,10 @@ def _load_models() -> None:
 
 
 def configure(p) -> None:
-    p.add_argument("model", help="the mechanical model (spring-block, galvanetto-one-block, impact-oscillator)")
+    from landau.cli import hopf_chain, hopf_system
+
+    p.add_argument("model", help="the mechanical model (spring-block, spring-block-chain, galvanetto-one-block, "
+                                 "impact-oscillator, system)")
     add_law_arguments(p)
     add_friction_arguments(p)
     p.add_argument("--V", default=None, help="spring-block: driving velocity in m/s (default 1e-4)")
@@ -70,7 +74,9 @@ def configure(p) -> None:
                    help="galvanetto-one-block: the r > 0 branch (default the odd reflection of --kinetic)")
     p.add_argument("--parameter", default=None, metavar="NAME",
                    help="impact-oscillator: the bifurcation parameter "
-                        "(default mu, or the first parameter of --friction)")
+                        "(default mu, or the first parameter of --friction); system: the Hopf parameter")
+    hopf_system.add_arguments(p)
+    hopf_chain.add_arguments(p)
 
 
 def run(args) -> dict:

@@ -500,10 +500,18 @@ def hopf_normal_form(system: DynamicalSystem, params: Mapping[str, float] | None
                          + ", ".join(f"{h[0]:.8g}" for h in hits) + "); narrow the bracket or use "
                          "landau.analyses.continuation.equilibrium_branch")
     p0, y0, lam = hits[0]
-    with mpmath.workdps(dps):
-        pc, wc, y = refine_hopf(num, p0, abs(lam.imag), y0)
-        res = normal_form_at(num, pc, wc, y, jets=jets, params=params)
-    if l2:
+    jets_cache: dict = {}
+
+    def at(digits: int) -> HopfResult:
+        with mpmath.workdps(digits):
+            pc, wc, y = refine_hopf(num, p0, abs(lam.imag), y0)
+            return normal_form_at(num, pc, wc, y, jets=jets, jets_cache=jets_cache, params=params)
+
+    from landau.derivation.degenerate import with_verdict
+
+    # Λ with its round-off bound; where it vanishes, Λ = 0 (degenerate) and the next order (l₂)
+    res = with_verdict(system, params, at(dps), dps, at)
+    if l2 and res.l2 is None:
         res = replace(res, l2=second_lyapunov(system, params, res, max(dps, 40)))
     return res
 
@@ -572,8 +580,11 @@ def second_lyapunov(system: DynamicalSystem, params: Mapping[str, float] | None,
     :func:`kuznetsov_check`), so no closed form is needed; the point is not re-located (the
     equilibrium is frozen at p_c, as in :func:`kuznetsov_check`).
     """
+    from landau.derivation.degenerate import ode_on_constraint
     from landau.derivation.lyapunov import lyapunov_coefficients
 
+    # a DAE (zero mass entry) as the ODE with the same flow on its constraint manifold
+    system = ode_on_constraint(system, dict(params or {}), result.p_c, max(abs(result.omega_c), 1e-300))
     with mpmath.workdps(dps):
         probe, values, pc = _frozen_equilibrium(system, params, result)
         out = lyapunov_coefficients(probe, values, pc, dps=dps, omega_c=result.omega_c, relocate=False)

@@ -225,11 +225,10 @@ class DynamicalSystem:
                 text = str(text) if isinstance(text, (int, float)) and not isinstance(text, bool) else text
             if not isinstance(text, str):
                 raise InputError(f"{what}: expected an expression string, got {type(text).__name__}")
-            unknown = sorted(referenced_names(text, what=what) - set(symbols) - _LANGUAGE)
-            if unknown:
-                hint = (" (a state: the equilibrium and the mass depend on the parameters only)"
-                        if unknown[0] in state_syms else " (declare it as a parameter with a value)")
-                raise InputError(f"{what}: unknown name {unknown[0]!r}{hint}")
+            states_used = sorted((referenced_names(text, what=what) & set(state_syms)) - set(symbols))
+            if states_used:
+                raise InputError(f"{what}: {states_used[0]!r} is a state; the equilibrium and the mass are "
+                                 "expressions of the parameters only")
             return parse_expression(text, symbols, what=what)
 
         f = tuple(parse(rhs[s], f"d{s}/dt", every) for s in states)
