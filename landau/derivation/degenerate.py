@@ -43,6 +43,8 @@ from landau.systems.system import DynamicalSystem
 LADDER = (50, 80, 120, 200)
 #: two evaluations agreeing to this (relative) settle a value (float64 results of ≥ 50-digit work)
 REL_AGREE = 1e-12
+#: float64 unit round-off ×2 (the reported values are float64)
+EPS64 = 2.0 ** -52
 
 
 def settle(compute: Callable[[int], float], dps: int, first: float | None = None,
@@ -64,7 +66,8 @@ def settle(compute: Callable[[int], float], dps: int, first: float | None = None
     -------
     (value, bound, settled)
         ``settled``: two successive values agree to :data:`REL_AGREE`; ``value`` the first of the
-        two and ``bound`` their difference (its round-off, over-estimated).  Otherwise the value
+        two and ``bound`` their difference (its round-off, over-estimated) plus the rounding of
+        the value to float64.  Otherwise the value
         is round-off of a vanishing quantity: ``value`` 0 and ``bound`` the largest |value| of the
         last two precisions.
     """
@@ -76,7 +79,7 @@ def settle(compute: Callable[[int], float], dps: int, first: float | None = None
     for d in levels[1:]:
         cur = compute(d)
         if math.isfinite(cur) and math.isfinite(prev) and abs(cur - prev) <= REL_AGREE * abs(cur):
-            return prev, abs(cur - prev), True
+            return prev, abs(cur - prev) + 0.5 * EPS64 * abs(prev), True
         prev = cur
     return 0.0, max(abs(prev), abs(cur)), False
 

@@ -97,7 +97,7 @@ def test_bad_chain_input(blocks, over, message):
 
 @pytest.mark.slow
 def test_check_follows_the_critical_cycle():
-    """``landau.check`` on the chain's DynamicalSystem: the stable cycle of the critical mode.
+    """``landau.check`` on the chain's DynamicalSystem: the cycle of the critical mode.
 
     The measured amplitude error is -6.1 % at ε² = 1e-3 and -1.6 % at 2.5e-4 (linear in ε²: the
     next order of the amplitude expansion), hence the tolerance."""
@@ -108,5 +108,8 @@ def test_check_follows_the_critical_cycle():
     r = chain_hopf(chain, over)
     c = check(chain.system, params=chain.resolve(over), bracket=(0.99 * r.p_c, 1.01 * r.p_c), eps2=1e-3,
               tolerance=0.08)
-    assert c.agrees, c
-    assert c.cycle_stable
+    # the amplitude and frequency of the simulated cycle (its Floquet multipliers come from finite
+    # differences of absolute step 1e-6, larger than this 1e-6 m cycle: not asserted here)
+    assert abs(c.rel_error) <= 0.08, c
+    assert c.amplitude_simulated > 0.5 * c.amplitude_predicted
+    assert abs(c.frequency_rel_error) <= 1e-2, c
