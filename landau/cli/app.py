@@ -148,8 +148,9 @@ def build_parser(only: str | None = None) -> tuple[argparse.ArgumentParser, dict
     return parser, modules
 
 
-#: a negative number in exponent notation ("-1e-3"), which argparse would read as an option
-_NEGATIVE_NUMBER = re.compile(r"-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?(,.*)?")
+#: a negative number in exponent notation ("-1e-3"), or a list or range starting with one ("-1:1"),
+#: which argparse would read as an option
+_NEGATIVE_NUMBER = re.compile(r"-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?([,:].*)?")
 
 
 def _join_negative_values(argv: list[str]) -> list[str]:
