@@ -216,6 +216,36 @@ def _mode_shape(num, pc: float, wc: float, y0, slips: list[int]) -> np.ndarray:
     return x
 
 
+def _mode_shape_mp(num, pc, wc, y, slips: list[int], j: int) -> np.ndarray:
+    """The slips of the critical eigenvector at the working precision: (iωE − J)q = 0 with q_j = 1,
+    solved with the row of least residual dropped."""
+    n = num.n
+    J, E = num.J_mp(y, pc), num.E_mp(pc)
+    A = mpmath.matrix(n, n)
+    for r in range(n):
+        for c in range(n):
+            A[r, c] = 1j * wc * E[r, c] - J[r, c]
+    others = [c for c in range(n) if c != j]
+    best = None
+    for drop in range(n):
+        rows = [r for r in range(n) if r != drop]
+        M = mpmath.matrix([[A[r, c] for c in others] for r in rows])
+        rhs = mpmath.matrix([-A[r, j] for r in rows])
+        try:
+            x = mpmath.lu_solve(M, rhs)
+        except ZeroDivisionError:
+            continue
+        q = [mpmath.mpc(0)] * n
+        q[j] = mpmath.mpc(1)
+        for c, val in zip(others, x, strict=True):
+            q[c] = val
+        res = abs(sum(A[drop, c] * q[c] for c in range(n)))
+        if best is None or res < best[0]:
+            best = (res, q)
+    x = np.array([complex(best[1][i]) for i in slips])
+    return np.where(np.abs(x.real) < 1e-14, 0.0, x.real) + 1j * np.where(np.abs(x.imag) < 1e-14, 0.0, x.imag)
+
+
 def chain_hopf(chain: SpringBlockChain, params: Mapping[str, float] | None = None,
                bracket: tuple[float, float] | None = None, dps: int = 50):
     """The first Hopf point of a chain as k decreases, with its amplitude equation and mode shape.
@@ -287,7 +317,7 @@ def chain_hopf(chain: SpringBlockChain, params: Mapping[str, float] | None = Non
     with mpmath.workdps(dps):
         pc, wc, y = refine_hopf(num, p0, abs(lam.imag), y0)
         res = normal_form_at(num, pc, wc, y, params=p)
-    shape = _mode_shape(num, float(pc), float(wc), np.array([float(x) for x in y]), chain.slip_indices())
+        shape = _mode_shape_mp(num, pc, wc, y, chain.slip_indices(), biggest)
     if np.all(shape.imag == 0):
         mode = "in-phase" if np.all(shape.real > 0) else ("anti-phase" if np.all(shape.real != 0) else "mixed")
     else:
