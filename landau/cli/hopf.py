@@ -9,6 +9,9 @@ equation and criticality.  Models:
 * ``spring-block`` — the spring–block of Putelat, Dawes & Willis (2010) with a rate-and-state
   law (built-in name, or ``--mu``/``--state``), at driving velocity ``--V``: the bifurcation
   parameter is the stiffness k.
+* ``spring-block-chain`` — N such blocks (``--blocks N``) coupled by ``k_coupling``: the first Hopf
+  point as k decreases, with the critical mode shape (:mod:`landau.cli.hopf_chain`).
+* ``system`` — any smooth system written with ``--rhs NAME=EXPR`` (:mod:`landau.cli.hopf_system`).
 """
 
 from __future__ import annotations
