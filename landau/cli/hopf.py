@@ -47,7 +47,25 @@ def _spring_block(args):
     Vs = parse_velocities(args.V if args.V is not None else "1e-4")
     if len(Vs) != 1:
         raise InputError("landau hopf: give one driving velocity --V")
-    return predict(block.law, Vs[0], params)
+    res = predict(block.law, Vs[0], params)
+    if res.criticality == "degenerate":
+        res = _next_order(block, Vs[0], params, res)
+    return res
+
+
+def _next_order(block, V: float, params, res):
+    """At a degenerate point (Λ = 0) the next order from the general engine: l₂, Λ₅ and whether
+    the point is degenerate at every order computed (:mod:`landau.derivation.degenerate`)."""
+    from dataclasses import replace
+
+    from landau.derivation.general import hopf_normal_form
+
+    gen = hopf_normal_form(block.system, {**params, "V": V}, (0.9 * res.p_c, 1.1 * res.p_c))
+    if gen.criticality != "degenerate":
+        return res
+    keys = ("Lambda_bound", "l2_bound", "criticality_next_order", "degenerate_at_every_order_computed")
+    return replace(res, Lambda5=gen.Lambda5, l2=gen.l2,
+                   extra={**res.extra, **{k: gen.extra[k] for k in keys if k in gen.extra}})
 
 
 def _load_models() -> None:
@@ -90,6 +108,13 @@ def run(args) -> dict:
     doc = {"model": args.model}
     doc.update(res.as_dict() if hasattr(res, "as_dict") else {"result": repr(res)})
     doc["text"] = str(res)
+    if doc.get("degenerate_at_every_order_computed"):
+        doc["text"] += ("\nLambda and Lambda5 are 0 within their round-off bounds ("
+                        f"{doc.get('Lambda_bound', 0.0):.1e}, {doc.get('l2_bound', 0.0):.1e}): "
+                        "degenerate at every order computed")
+    elif doc.get("criticality_next_order"):
+        doc["text"] += (f"\nLambda is 0 within its round-off bound: the fifth order decides, "
+                        f"{doc['criticality_next_order']} (l2 = {doc.get('l2', 0.0):.6g})")
     return doc
 
 

@@ -107,6 +107,9 @@ def test_quasi_static_aging_law_at_kcr_is_degenerate_on_the_command_line(capsys,
     doc = json.loads(out)
     crit = doc["criticality"] if "criticality" in doc else doc["points"][0]["criticality"]
     assert crit == "degenerate"
+    if command[0] == "hopf":     # the next order from the general engine vanishes too
+        assert doc["degenerate_at_every_order_computed"] is True and doc["l2"] == 0.0
+        assert "degenerate at every order computed" in doc["text"]
 
 
 def test_general_engine_on_the_command_line_says_degenerate_at_every_order(capsys):
