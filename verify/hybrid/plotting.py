@@ -66,14 +66,10 @@ def display_indices(y: np.ndarray, bins: int = DRAWN_BINS) -> np.ndarray:
 
 
 def _new_figure(**kw):
-    """A figure by the toolkit's convention (``landau.support.figures.new_figure``), or a pyplot
-    figure where that helper is not available."""
-    try:
-        from landau.support.figures import new_figure
-    except ImportError:   # an installation without the figures helper: a plain pyplot figure
-        import matplotlib.pyplot as plt
+    """A figure by the toolkit's convention: ``landau.support.figures.new_figure`` (a notebook shows
+    it exactly once)."""
+    from landau.support.figures import new_figure
 
-        return plt.figure(**kw)
     return new_figure(**kw)
 
 
