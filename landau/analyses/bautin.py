@@ -190,8 +190,8 @@ def _unit_mode_slip(d, params: Mapping[str, float], V: float, kc, omega, dps: in
     """|q_X| of the critical eigenvector of E⁻¹J normalised to ⟨q, q⟩ = 1 (the factor between landau's
     and Kuznetsov's normalisation)."""
     with mpmath.workdps(dps):
-        vals = {s: mpmath.mpf(params[s.name]) for s in d.system.parameters if s.name in params}
-        vals[next(s for s in d.system.parameters if s.name == "V")] = mpmath.mpf(V)
+        # every compiled argument: V, the parameters and, without a closed-form steady state, φᵢ,₀
+        vals = {s: mpmath.mpf(x) for s, x in zip(d.block.args, d.block.argvals(float(V), params), strict=True)}
         nj = _NumericJets(d.system, d.jets, vals, max_order=1)
         A, _, _ = nj.at(kc)
         ev, ER = mpmath.eig(A)

@@ -335,8 +335,10 @@ class HopfLine:
             return np.where(ok, kc, np.nan), np.where(ok, np.sqrt(np.where(ok, W_c, 1.0)), np.nan)
         coeffs, fre, fq2 = self._compiled_poly
         kcs, oms = np.full(Vs.shape, np.nan), np.full(Vs.shape, np.nan)
-        for n, Vn in enumerate(Vs):
-            vals = self._argvals(np.float64(Vn), p)
+        # every argument at once (the numeric steady states are solved together), then point by point
+        table = [np.broadcast_to(np.asarray(x, dtype=float), Vs.shape) for x in self._argvals(Vs, p)]
+        for n in range(Vs.size):
+            vals = [np.float64(x[n]) for x in table]
             cs = [float(c(*vals)) for c in coeffs]
             kk, Wr = _stiffest_hopf_root(np.roots(cs),
                                          lambda Wr, vals=vals: -float(fre(Wr, *vals)) / float(fq2(Wr, *vals)),

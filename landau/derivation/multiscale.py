@@ -307,7 +307,10 @@ class Derivation:
         dict
             Quantity name -> mpmath value (NaN where there is no Hopf point).
         """
-        p = self.block.resolve(params)
+        # a point read back from a table of argument values carries the numeric steady states φᵢ,₀
+        # too: they are recomputed here, never taken as parameters
+        unknowns = {s.name for s in self.block.phi0}   # names a law may not declare ("phi_0")
+        p = self.block.resolve({k: x for k, x in params.items() if k not in unknowns})
         with mpmath.workdps(dps):
             vals = [mpmath.mpf(x) for x in self.block.argvals(V0, p)]
             if self.hopf.closed_form is None:
