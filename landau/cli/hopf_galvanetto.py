@@ -10,6 +10,8 @@ velocity (default 0.5).
 
 from __future__ import annotations
 
+import math
+
 from landau.cli.common import parse_params
 from landau.cli.hopf import register
 from landau.errors import InputError, NoHopfError
@@ -28,16 +30,24 @@ def _galvanetto_one_block(args):
         raise InputError(f"landau hopf galvanetto-one-block: the bifurcation parameter is the damping c "
                          f"(got --parameter {args.parameter})")
     over = parse_params(args.param)
-    unknown = sorted(set(over) - {"gamma", "delta"})
-    if unknown:
-        raise InputError(f"galvanetto-one-block: unknown parameter(s) {', '.join(unknown)} (known: gamma, delta)")
     kinetic, kinetic_pos = getattr(args, "kinetic", None), getattr(args, "kinetic_pos", None)
     if kinetic_pos is not None and kinetic is None:
         raise InputError("galvanetto-one-block: --kinetic-pos needs --kinetic (the r < 0 branch)")
-    g, d = over.get("gamma", 3.0), over.get("delta", 0.0)
+    # a user's law may have parameters of its own (--param eta=0.05 for '... - eta*r')
+    own = set()
+    if kinetic is not None:
+        from landau.laws.parse import referenced_names
+
+        own = referenced_names(kinetic, what="--kinetic") | (
+            referenced_names(kinetic_pos, what="--kinetic-pos") if kinetic_pos is not None else set())
+    unknown = sorted(set(over) - {"gamma", "delta"} - own)
+    if unknown:
+        raise InputError(f"galvanetto-one-block: unknown parameter(s) {', '.join(unknown)} (known: "
+                         + ", ".join(["gamma", "delta", *sorted(own - {"r", "gamma", "delta"})]) + ")")
+    g, d = over.pop("gamma", 3.0), over.pop("delta", 0.0)
     law = (KineticFriction(g, d) if kinetic is None
            else KineticFriction.from_expression(kinetic, kinetic_pos, gamma=g, delta=d,
-                                                names=("--kinetic", "--kinetic-pos")))
+                                                names=("--kinetic", "--kinetic-pos"), **over))
     try:
         V = float(args.V) if args.V is not None else 0.5
     except ValueError:
@@ -45,6 +55,11 @@ def _galvanetto_one_block(args):
     if not V > 0:
         raise InputError(f"galvanetto-one-block: belt velocity V must be > 0, got {V!r}")
     c1 = hopf_c1(V, law=law)
+    if not math.isfinite(c1):
+        from landau.errors import DomainError
+
+        raise DomainError(f"galvanetto-one-block: F_k'(-V) = {c1} at V = {V:g}: the kinetic law is not "
+                          f"differentiable at steady sliding, r = -V ({law!r})")
     if not c1 > 0:
         raise NoHopfError(f"galvanetto-one-block: F_k'(-V) = {c1:.6g} <= 0 at V = {V:g}: steady sliding is "
                           f"stable for every damping c >= 0 ({law!r})")
