@@ -233,23 +233,23 @@ class KineticFriction(Law):
     # ---------------------------------------------------------------- numeric form
     def neg(self, r):
         """Branch r < 0: (1 − δ)/(1 − γ r) + δ for eq. (7)  (> 0: the belt drags the block forward)."""
-        return self._neg(r, self.gamma, self.delta)
+        return self._neg(_float(r), self.gamma, self.delta)
 
     def pos(self, r):
         """Branch r > 0: −(1 − δ)/(1 + γ r) − δ for eq. (7)."""
-        return self._pos(r, self.gamma, self.delta)
+        return self._pos(_float(r), self.gamma, self.delta)
 
     def dneg(self, r):
         """dF_k/dr on the r < 0 branch (γ(1 − δ)/(1 − γ r)² for eq. (7))."""
-        return self._dneg(r, self.gamma, self.delta)
+        return self._dneg(_float(r), self.gamma, self.delta)
 
     def dpos(self, r):
         """dF_k/dr on the r > 0 branch (γ(1 − δ)/(1 + γ r)² for eq. (7))."""
-        return self._dpos(r, self.gamma, self.delta)
+        return self._dpos(_float(r), self.gamma, self.delta)
 
     def d3neg(self, r):
         """d³F_k/dr³ on the r < 0 branch (6γ³(1 − δ)/(1 − γ r)⁴ for eq. (7))."""
-        return self._d3neg(r, self.gamma, self.delta)
+        return self._d3neg(_float(r), self.gamma, self.delta)
 
     def __call__(self, r):
         """F_k(r) for r ≠ 0 (at r = 0 the force is set-valued, [−1, 1]; returns nan)."""
@@ -358,6 +358,12 @@ class KineticFriction(Law):
         neg, pos = self.template or (self.neg_expr, self.pos_expr)
         return (f"KineticFriction(r<0: {neg}, r>0: {pos}, "
                 f"γ={self.gamma:g}, δ={self.delta:g}" + "".join(f", {k}={x:g}" for k, x in self.extra) + ")")
+
+
+def _float(r):
+    """r as numpy floats (a Python float would make the generated code raise OverflowError where
+    numpy gives inf, and divide by zero with ZeroDivisionError)."""
+    return np.float64(r) if np.ndim(r) == 0 else np.asarray(r, dtype=float)
 
 
 def _functions() -> set[str]:
