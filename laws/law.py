@@ -507,19 +507,25 @@ class FrictionLaw(Law):
         f, J = self._numeric_rates
         grid = self._PHI_GRID
         out = np.empty(vs.size)
+        chunk = 512   # points per vectorised evaluation (512 × 1201 values, 5 MB)
         with np.errstate(all="ignore"):
-            r = np.asarray(f(vs[:, None], grid[None, :], *(x[:, None] for x in pars))[0], dtype=float)
-            r = np.broadcast_to(r, (vs.size, grid.size))
-            fin = np.isfinite(r)
-            change = fin[:, :-1] & fin[:, 1:] & (r[:, :-1] * r[:, 1:] < 0)
-            exact = fin & (r == 0)
-            for i in range(vs.size):
-                vi, values = float(vs[i]), [float(x[i]) for x in pars]
-                g = lambda lp, vi=vi, values=values: float(np.asarray(f(vi, math.exp(lp), *values)[0], dtype=float))
-                roots = [float(grid[j]) for j in np.flatnonzero(exact[i])]
-                roots += [math.exp(brentq(g, math.log(grid[j]), math.log(grid[j + 1]), xtol=1e-15))
-                          for j in np.flatnonzero(change[i])]
-                out[i] = self._pick_stable(vi, values, [np.array([x]) for x in roots])[0]
+            for start in range(0, vs.size, chunk):
+                sl = slice(start, min(start + chunk, vs.size))
+                n = sl.stop - sl.start
+                r = np.asarray(f(vs[sl, None], grid[None, :], *(x[sl, None] for x in pars))[0], dtype=float)
+                r = np.broadcast_to(r, (n, grid.size))
+                fin = np.isfinite(r)
+                change = fin[:, :-1] & fin[:, 1:] & (r[:, :-1] * r[:, 1:] < 0)
+                exact = fin & (r == 0)
+                for k in range(n):
+                    i = sl.start + k
+                    vi, values = float(vs[i]), [float(x[i]) for x in pars]
+                    g = lambda lp, vi=vi, values=values: float(np.asarray(f(vi, math.exp(lp), *values)[0],
+                                                                          dtype=float))
+                    roots = [float(grid[j]) for j in np.flatnonzero(exact[k])]
+                    roots += [math.exp(brentq(g, math.log(grid[j]), math.log(grid[j + 1]), xtol=1e-15))
+                              for j in np.flatnonzero(change[k])]
+                    out[i] = self._pick_stable(vi, values, [np.array([x]) for x in roots])[0]
         return out
 
     def _pick_stable(self, vi: float, values: list[float], roots: list[np.ndarray]) -> list[float]:
