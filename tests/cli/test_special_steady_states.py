@@ -165,3 +165,14 @@ def test_bautin_points_from_python():
     (pt,) = bautin_points(Derivation(SpringBlock(law)), 1e-6, 1e-2)
     # Λ changes sign between V = 1e-4 (subcritical) and 1e-3 m/s (supercritical), see above
     assert 1e-4 < pt.V < 1e-3 and pt.Lambda5 < 0 and pt.fold_side == -1
+
+
+def test_latex_says_why_the_hopf_line_is_numerical(capsys, tmp_path):
+    out = tmp_path / "atan.tex"
+    code, _, err = run(capsys, "derive", "atan", *law_args("atan"), "--quantities", "kc,omega_c",
+                       "--latex", str(out))
+    assert code == 0, err
+    text = out.read_text()
+    # one state variable: the Hopf line is numerical because the steady state is, not "n > 1 states"
+    assert "it depends on the steady state, which has no closed form" in text
+    assert "n>1" not in text and "state variables)" not in text
