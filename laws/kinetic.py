@@ -205,8 +205,9 @@ class KineticFriction(Law):
 
         def as_expr(x, what):
             if isinstance(x, str):
-                from landau.laws.parse import parse_expression, referenced_names
                 import re
+
+                from landau.laws.parse import parse_expression, referenced_names
 
                 # names that could be parameters (anything else is the parser's to refuse)
                 missing = sorted(m for m in referenced_names(x, what=what) - set(symbols) - _functions()

@@ -66,7 +66,7 @@ def reference(kind: str, V: float) -> tuple[float, float, float]:
             for j in range(3):
                 e = [0, 0, 0]
                 e[j] = 1
-                cols.append([mpmath.diff(lambda t: field([t * x for x in e], k)[i], 0) for i in range(3)])
+                cols.append([mpmath.diff(lambda t, e=e, i=i: field([t * x for x in e], k)[i], 0) for i in range(3)])
             return mpmath.matrix([[cols[j][i] for j in range(3)] for i in range(3)])
 
         def char(A):  # det(λ − A) = λ³ + a2 λ² + a1 λ + a0
@@ -95,11 +95,12 @@ def reference(kind: str, V: float) -> tuple[float, float, float]:
         dot = lambda x, y: sum(mpmath.conj(x[r]) * y[r] for r in range(3))
 
         def D(x, order):  # the order-th derivative of E⁻¹f along x (complex x: analytic continuation)
-            return [mpmath.diff(lambda t: field([t * z for z in x], kc)[r], 0, order) for r in range(3)]
+            return [mpmath.diff(lambda t, r=r: field([t * z for z in x], kc)[r], 0, order) for r in range(3)]
 
         add = lambda x, y, sgn=1: [x[r] + sgn * y[r] for r in range(3)]
-        B = lambda x, y: [(u - w) / 4 for u, w in zip(D(add(x, y), 2), D(add(x, y, -1), 2))]
-        C_xxy = lambda x, y: [(u - w - 2 * z) / 6 for u, w, z in zip(D(add(x, y), 3), D(add(x, y, -1), 3), D(y, 3))]
+        B = lambda x, y: [(u - w) / 4 for u, w in zip(D(add(x, y), 2), D(add(x, y, -1), 2), strict=True)]
+        C_xxy = lambda x, y: [(u - w - 2 * z) / 6
+                              for u, w, z in zip(D(add(x, y), 3), D(add(x, y, -1), 3), D(y, 3), strict=True)]
         qb = [mpmath.conj(z) for z in q]
         I3 = mpmath.eye(3)
         solve = lambda Mx, r: list(mpmath.lu_solve(Mx, mpmath.matrix(r)))
