@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -200,7 +201,12 @@ class KineticFriction(Law):
 
         for k in params:
             _check_extra_name(k)
-        values = {k: user_parameter(k, x, positive=False).default for k, x in params.items()}
+        values: dict[str, float] = {}
+        for k, x in params.items():
+            prm = user_parameter(k, x, positive=False)
+            if prm.default is None:
+                raise InputError(f"parameter {k!r} of the kinetic law needs a value")
+            values[k] = float(prm.default)
         symbols = {"r": R, "gamma": GAMMA, "delta": DELTA, **{k: sp.Symbol(k, real=True) for k in values}}
 
         def as_expr(x, what):
@@ -337,7 +343,7 @@ class KineticFriction(Law):
                              f"(known: {', '.join(['gamma', 'delta', *own])})")
         import dataclasses
 
-        kw = {k: float(values.pop(k)) for k in ("gamma", "delta") if k in values}
+        kw: dict[str, Any] = {k: float(values.pop(k)) for k in ("gamma", "delta") if k in values}
         if values:
             kw["extra"] = tuple((k, float(values.get(k, x))) for k, x in self.extra)
         return dataclasses.replace(self, **kw)
