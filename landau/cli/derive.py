@@ -99,7 +99,9 @@ def render(doc: dict) -> str:
     out = [f"Amplitude equation — law {doc['law']} ({doc['source']})", f"Convention: {doc['convention']}"]
     if "points" in doc:
         # the table's columns: the quantities of the rows (units also names --codim2's Lambda5 and l2)
-        names = [n for n in doc["units"] if n != "V" and any(n in p for p in doc["points"] if p["status"] == "ok")]
+        ok = [p for p in doc["points"] if p["status"] == "ok"]
+        names = [n for n in doc["units"] if n != "V" and (any(n in p for p in ok) if ok else
+                                                          not ("codim2" in doc and n in ("Lambda5", "l2")))]
         out.append(f"{'V [m/s]':>12} " + " ".join(f"{n:>12}" for n in names) + "  criticality")
         for p in doc["points"]:
             if p["status"] != "ok":
