@@ -436,13 +436,27 @@ def _locate_gh(system: DynamicalSystem, tracker: _HopfTracker, a: float, b: floa
                with_l2: bool) -> GeneralisedHopfPoint:
     last = {}
 
+    seen: dict[float, float] = {}
+
     def l1(v):
         r = tracker.at(v)
         last["r"] = r
+        seen[v] = r.l1
         return r.l1
 
-    p2 = scipy.optimize.brentq(l1, a, b, xtol=1e-14 * max(1.0, abs(a), abs(b)), rtol=1e-13)
+    xtol = 1e-14 * max(1.0, abs(a), abs(b))
+    p2 = scipy.optimize.brentq(l1, a, b, xtol=xtol, rtol=1e-13)
+    la, lb = seen.get(a, 0.0), seen.get(b, 0.0)
     r = tracker.at(p2, dps=max(tracker.dps, 40))
+    # verified before it is returned: l₁ vanishes to the accuracy of the located p₂ (its slope
+    # over the bracket times the bracket's tolerance, with a margin of 1e3); a Newton step of the
+    # tracker that jumped to another branch of Hopf points leaves l₁ of order one there
+    bound = max(1e3 * abs(lb - la) / abs(b - a) * (xtol + 1e-13 * abs(p2)), 1e-12 * max(abs(la), abs(lb)))
+    if not (abs(r.l1) <= bound):
+        raise NoHopfError(f"{system.name}: the point located at {tracker.second} = {p2:.10g} is not a "
+                          f"generalised-Hopf point (l1 = {r.l1:.3g}, more than {bound:.2g} from 0): the Hopf point "
+                          "jumped to another branch between the bracket's ends; narrow the bracket or follow the "
+                          "curve with hopf_curve")
     l2v = second_lyapunov(system, tracker.params, r, max(tracker.dps, 40)) if with_l2 else None
     if l2v is not None:
         r = replace(r, l2=l2v)
@@ -452,7 +466,7 @@ def _locate_gh(system: DynamicalSystem, tracker: _HopfTracker, a: float, b: floa
 
 def generalised_hopf(system: DynamicalSystem, params: Mapping[str, float], second: str,
                      p2_bracket: tuple[float, float], p1_bracket: tuple[float, float], *, dps: int = 40,
-                     jets: str = "taylor", l2: bool = True) -> GeneralisedHopfPoint:
+                     jets: str = "taylor", l2: bool = True, steps: int = 40) -> GeneralisedHopfPoint:
     """Locate the generalised-Hopf (Bautin) point — l₁ = 0 on the Hopf curve — with p₂ inside ``p2_bracket``.
 
     Parameters
@@ -473,26 +487,36 @@ def generalised_hopf(system: DynamicalSystem, params: Mapping[str, float], secon
     l2 : bool
         Compute the second Lyapunov coefficient at the point by
         :func:`landau.derivation.lyapunov.lyapunov_coefficients` (Re c₂, as MatCont and BifurcationKit print it).
+    steps : int
+        The Hopf curve from p₂ = ``p2_bracket[0]`` is followed with arclength steps of at most the
+        bracket's width over ``steps`` (:func:`hopf_curve`).
 
     Returns
     -------
     GeneralisedHopfPoint
+        The first one met on the Hopf curve from p₂ = ``p2_bracket[0]``, verified: |l₁| there is
+        within the accuracy of the located p₂.
 
     Raises
     ------
     NoHopfError
-        l₁ has the same sign at both ends of ``p2_bracket``.
+        l₁ does not change sign on the Hopf curve inside ``p2_bracket``, or the located point fails
+        its check.
     """
     from landau.derivation.general import hopf_normal_form
 
     a, b = map(float, p2_bracket)
+    if not (math.isfinite(a) and math.isfinite(b)) or a == b:
+        raise InputError(f"{system.name}: p2_bracket must be two different finite numbers, got {p2_bracket!r}")
     prm = {**params, second: a}
     start = hopf_normal_form(system, prm, p1_bracket, dps=dps, jets=jets)
-    tracker = _HopfTracker(system, prm, second, start, dps, jets)
-    end = tracker.at(b)
-    assert start.l1 is not None and end.l1 is not None  # the normal form computes l1
-    if start.l1 * end.l1 > 0:
-        raise NoHopfError(f"{system.name}: l1 has the same sign at {second} = {a:g} and {b:g} "
-                          f"({start.l1:.3g}, {end.l1:.3g}); no generalised-Hopf point bracketed")
-    tracker.last = (start.p_c, start.omega_c, start.equilibrium)
-    return _locate_gh(system, tracker, a, b, l2)
+    # the Hopf curve followed by pseudo-arclength from p₂ = a (a Newton jump straight to p₂ = b can
+    # land on another branch of Hopf points, whose l₁ has another sign)
+    curve = hopf_curve(system, prm, second, (a, b), start, steps=steps, dps=dps, jets=jets, l2=l2)
+    if not curve.generalised_hopf:
+        l1s = curve.l1
+        ends = f" ({l1s[0]:.3g} … {l1s[-1]:.3g} along the curve)" if len(l1s) else ""
+        raise NoHopfError(f"{system.name}: l1 does not change sign on the Hopf curve from {second} = {a:g} "
+                          f"towards {b:g}{ends}; no generalised-Hopf point bracketed")
+    # the first one met from p₂ = a
+    return min(curve.generalised_hopf, key=lambda g: abs(g.p2 - a))
