@@ -10,6 +10,8 @@ velocity (default 0.5).
 
 from __future__ import annotations
 
+import math
+
 from landau.cli.common import parse_params
 from landau.cli.hopf import register
 from landau.errors import InputError, NoHopfError
@@ -42,10 +44,25 @@ def _galvanetto_one_block(args):
         V = float(args.V) if args.V is not None else 0.5
     except ValueError:
         raise InputError(f"--V: {args.V!r} is not a number") from None
-    if not V > 0:
-        raise InputError(f"galvanetto-one-block: belt velocity V must be > 0, got {V!r}")
-    c1 = hopf_c1(V, law=law)
+    if not (math.isfinite(V) and V > 0):
+        raise InputError(f"galvanetto-one-block: belt velocity V must be finite and > 0, got {V!r}")
+    where = f"at V = {V:g} with gamma = {g:g}, delta = {d:g}"
+    try:
+        c1 = hopf_c1(V, law=law)
+    except (OverflowError, ZeroDivisionError, FloatingPointError) as exc:
+        raise InputError(f"galvanetto-one-block: F_k'(-V) leaves the float64 range {where} ({exc}): bring V "
+                         "and the law's parameters nearer their physical scale") from None
+    if not math.isfinite(c1):
+        raise InputError(f"galvanetto-one-block: F_k'(-V) = {c1} is not finite {where}: the kinetic law is "
+                         "singular there or leaves the float64 range")
+    if c1 == 0 and law.dneg(-V * (1 - 1e-6)) != 0:
+        raise InputError(f"galvanetto-one-block: F_k'(-V) underflows to 0 {where} (its exact value is below "
+                         "float64's smallest number): bring V and the law's parameters nearer their physical scale")
     if not c1 > 0:
         raise NoHopfError(f"galvanetto-one-block: F_k'(-V) = {c1:.6g} <= 0 at V = {V:g}: steady sliding is "
                           f"stable for every damping c >= 0 ({law!r})")
-    return hopf_c1_normal_form(V, law=law)
+    try:
+        return hopf_c1_normal_form(V, law=law)
+    except (OverflowError, ZeroDivisionError, FloatingPointError) as exc:
+        raise InputError(f"galvanetto-one-block: the normal form leaves the float64 range {where} ({exc}): "
+                         "bring V and the law's parameters nearer their physical scale") from None

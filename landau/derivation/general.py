@@ -233,11 +233,8 @@ def locate_crossing(num: NumericSystem, pa: float, pb: float, ya) -> tuple[float
 
     ga, gb = g(pa), g(pb)
     if ga * gb >= 0:               # an end is the root to round-off (its sign is round-off)
-        for end in (pa, pb):
-            hit = _exact_crossing(num, end, cache[end])
-            if hit is not None:
-                return hit
-        return None
+        hits = [h for h in (_exact_crossing(num, end, cache[end]) for end in (pa, pb)) if h is not None]
+        return min(hits, key=lambda h: abs(h[2].real)) if hits else None
     p0 = scipy.optimize.brentq(g, pa, pb, xtol=1e-13 * max(1.0, abs(pa), abs(pb)), rtol=1e-13)
     y0 = num.equilibrium_float(p0, cache.get(p0, ya))
     lam = critical_pair(num.eigenvalues(y0, p0))
@@ -278,27 +275,44 @@ def scan_hopf(num: NumericSystem, lo: float, hi: float, samples: int = SCAN_SAMP
     from the previous sample.
     """
     ps = np.linspace(lo, hi, samples + 1)
-    y = num.equilibrium_float(ps[0], y_start)
-    tf = hopf_test_function(num.eigenvalues(y, ps[0]))
-    found = []
-    taken = None                   # a grid point that is itself the crossing (to round-off)
-    hit = _exact_crossing(num, float(ps[0]), y)
-    if hit is not None:
-        found.append(hit)
-        taken = ps[0]
-    for pa, pb in zip(ps[:-1], ps[1:], strict=True):
-        yb = num.equilibrium_float(pb, y)
-        tfb = hopf_test_function(num.eigenvalues(yb, pb))
-        hit = _exact_crossing(num, float(pb), yb)
-        if hit is not None:        # the grid lands on the crossing: the exact root, not a bracket
-            found.append(hit)
-            taken = pb
-        elif tf * tfb < 0 and pa != taken:
-            hit = locate_crossing(num, min(pa, pb), max(pa, pb), y)
+    ys = [num.equilibrium_float(ps[0], y_start)]
+    for p in ps[1:]:
+        ys.append(num.equilibrium_float(p, ys[-1]))
+    lams = [num.eigenvalues(y, p) for y, p in zip(ys, ps, strict=True)]
+    tfs = [hopf_test_function(lam) for lam in lams]
+    zeros = sum(1 for t in tfs if t == 0)
+    if zeros > 2:
+        raise InputError(f"{num.sys.name}: the eigenvalues' real parts vanish to round-off at {zeros} of the "
+                         f"{len(ps)} scanned values of {num.p.name} in [{min(lo, hi):g}, {max(lo, hi):g}]: the "
+                         "crossing is below float64's resolution at this scale (bring the parameters nearer their "
+                         "physical scale)")
+    found: list[tuple[float, np.ndarray, complex]] = []
+    on_grid: set[int] = set()
+    for i in range(len(ps)):
+        # a grid point that is the crossing itself (the test function exactly 0 there, or, at an
+        # end of the scan, the pair on the axis to round-off): the exact root, not a bracket
+        end = i in (0, len(ps) - 1)
+        if tfs[i] == 0 or (end and _end_on_axis(lams[i], lams[1 if i == 0 else i - 1])):
+            hit = _exact_crossing(num, float(ps[i]), ys[i])
             if hit is not None:
                 found.append(hit)
-        y, tf = yb, tfb
-    return found
+                on_grid.add(i)
+    for i in range(len(ps) - 1):
+        if tfs[i] * tfs[i + 1] < 0 and not ({i, i + 1} & on_grid):
+            hit = locate_crossing(num, min(ps[i], ps[i + 1]), max(ps[i], ps[i + 1]), ys[i])
+            if hit is not None:
+                found.append(hit)
+    return sorted(found, key=lambda h: h[0] if lo <= hi else -h[0])
+
+
+def _end_on_axis(lam: np.ndarray, lam_next: np.ndarray) -> bool:
+    """Whether the critical pair at a scan's end lies on the imaginary axis to round-off: its real
+    part below :data:`ON_AXIS` of its modulus and below 1e-8 of its real part at the next sample
+    (the pair moves across the bracket; round-off does not)."""
+    pair, nxt = critical_pair(lam), critical_pair(lam_next)
+    if pair is None or nxt is None:
+        return False
+    return abs(pair.real) <= ON_AXIS * abs(pair) and abs(pair.real) <= 1e-8 * abs(nxt.real)
 
 
 #: a critical pair whose real part is below this fraction of its modulus lies on the imaginary

@@ -198,6 +198,11 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
         raise InputError(f"n_periods must be positive (got {n_periods!r})")
     if not (0 < rtol < 1):
         raise InputError(f"rtol must be in (0, 1) (got {rtol!r})")
+    if n_periods * 20 > max_steps:
+        # the largest step is a twentieth of the period: such a run cannot end within its step budget
+        raise InputError(f"the run spans {n_periods:.3g} forcing periods (omega = {params.omega:g} rad/s), and "
+                         f"takes at least 20 steps a period: more than its step budget of {max_steps} steps; lower "
+                         "omega or shorten the time span")
     y0 = rest_state(params) if y0 is None else np.asarray(y0, float)[:2]
     P = params.period
     p = params.packed()
