@@ -233,7 +233,21 @@ def _refine_fold(num: NumericSystem, ya, pa, yb, pb) -> float:
     lo, hi = sorted((float(ya[k]), float(yb[k])))
     res = scipy.optimize.minimize_scalar(lambda s: -sign * p_of(s), bounds=(lo, hi), method="bounded",
                                          options={"xatol": 1e-10 * (1 + abs(hi))})
-    return float(p_of(res.x))
+    pf = float(p_of(res.x))
+    # verified before it is returned: at a fold of equilibria ∂f/∂y is singular (the derivative of
+    # the branch's p vanishes); the extremum located to 1e-10 leaves σ_min(J) ~ 1e-10 |[J | f_p]|
+    _, J, fp = num.first(guess["y"], pf, True)
+    smin = np.linalg.svd(J, compute_uv=False)[-1]
+    scale = np.linalg.norm(np.column_stack([J, fp]), 2)
+    if not (smin <= FOLD_TOL * scale):
+        raise SingularPointError(f"{num.sys.name}: the fold located at {num.p.name} = {pf:.10g} fails its check: "
+                                 f"the Jacobian is regular there (smallest singular value {smin / scale:.2g} of "
+                                 "|[J | f_p]|)")
+    return pf
+
+
+#: a located fold must make ∂f/∂y singular to this size relative to |[∂f/∂y | ∂f/∂p]| (its smallest singular value)
+FOLD_TOL = 1e-6
 
 
 # --- two-parameter continuation of a Hopf point -------------------------------------------------------

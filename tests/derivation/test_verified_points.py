@@ -96,3 +96,30 @@ def test_normalise_must_be_a_state_index(bad):
     dae = DynamicalSystem("dae", (x, y, z), (*_F, _G), (1, 1, 0), mu, (0, 0, 0), normalise=bad)
     with pytest.raises(InputError, match="normalise must be the index"):
         hopf_normal_form(dae, {}, (-0.5, 0.4))
+
+
+# --- folds ------------------------------------------------------------------------------------------
+_yf, _pf = sp.symbols("yf pf", real=True)
+
+
+def test_fold_is_verified():
+    from landau.analyses.continuation import equilibrium_branch
+
+    # f = p − y²: the branch y = ±sqrt(p) turns back at the fold p = 0, where ∂f/∂y = −2y = 0
+    fold = DynamicalSystem("fold", (_yf,), (_pf - _yf**2,), (1,), _pf, (sp.sqrt(_pf),))
+    br = equilibrium_branch(fold, {}, (-0.5, 1.0), start=1.0, direction=-1, locate_hopf=False)
+    assert len(br.folds) == 1 and abs(br.folds[0]) < 1e-12
+
+
+def test_a_point_that_is_not_a_fold_is_refused():
+    import numpy as np
+
+    from landau.analyses.continuation import _refine_fold
+    from landau.derivation.general import NumericSystem
+    from landau.errors import SingularPointError
+
+    # f = p − y has no fold: the extremum of p between two points is an end, where ∂f/∂y = −1
+    line = DynamicalSystem("line", (_yf,), (_pf - _yf,), (1,), _pf, (_pf,))
+    num = NumericSystem(line, {})
+    with pytest.raises(SingularPointError, match="fails its check"):
+        _refine_fold(num, np.array([0.2]), 0.2, np.array([0.4]), 0.4)
