@@ -82,3 +82,11 @@ def test_out_of_memory_is_not_called_input_too_large(capsys, monkeypatch):
     monkeypatch.setattr(laws, "run", boom)
     code, out, err = run(capsys, "laws")
     assert code == 2 and "out of memory" in err and "too large" not in err
+
+
+def test_linear_huge_sigma_has_a_hopf_point(capsys):
+    # was: "k_c or omega_c^2 leaves the floating-point range (k_c = nan ...)" although k_c = 1.56e304 N/m
+    code, out, err = run(capsys, "linear", "dieterich", "--param", "sigma=1e300", "--V", "1", "--json")
+    assert code == 0, err
+    pt = json.loads(out)["points"][0]
+    assert pt["kc"] == pytest.approx(1e300 * (0.0489 - 0.0349) / 9e-7, rel=1e-12)
