@@ -78,3 +78,14 @@ def test_every_value_finite_where_a_hopf_point_exists(dieterich):
         assert np.all(np.isfinite(t[n])), n
     assert np.all(t["C"] > 0)      # no representable C underflows to 0 (C ≈ 2e-112 … 2e-109 here)
     assert json.dumps(t.rows(), allow_nan=False)
+
+
+def test_a_hopf_result_never_carries_nan():
+    from landau.derivation.hopf import HopfResult
+    from landau.errors import SingularPointError
+
+    with pytest.raises(SingularPointError, match=r"Lambda = nan is not finite at p = 1 \(a = 1e\+308\)"):
+        HopfResult("s", "p", 1.0, 1.0, (0.0,), complex(1, 0), float("nan"), 0.0, params={"a": 1e308})
+    with pytest.raises(SingularPointError, match="c1 = "):
+        HopfResult("s", "p", 1.0, 1.0, (0.0,), complex(1, 0), -1.0, 0.0, c1=complex(float("inf"), 0))
+    assert HopfResult("s", "p", 1.0, 1.0, (0.0,), complex(1, 0), -1.0, 0.0).Lambda == -1.0
