@@ -34,6 +34,11 @@ def run(capsys, *argv):
     (["hopf", "galvanetto-one-block", "--V", "1e150"], "below float64's resolution"),
     # wrote into the current folder
     (["figures", "putelat2010", "--only", "fig8", "--out", ""], "--out: the output folder is empty"),
+    # accepted: a negative stiffness, damping or gravity, a rest angle of 1e300 rad
+    (["hopf", "impact-oscillator", "--param", "k_y=-5"], "'k_y' is a spring stiffness and must be >= 0"),
+    (["hopf", "impact-oscillator", "--param", "c_y=-1"], "'c_y' is a damping and must be >= 0"),
+    (["simulate", "impact-oscillator", "--param", "g=-9.81"], "'g' is the gravitational acceleration"),
+    (["hopf", "impact-oscillator", "--param", "phi0=1e300"], "must lie in [-2 pi, 2 pi]"),
     # exit 0 with k_c, Lambda = null
     (["derive", "dieterich", "--param", "b=1e308", "--V", "1", "--json"], "kc = 4.24493e+321 N/m"),
 ])

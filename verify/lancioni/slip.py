@@ -365,6 +365,13 @@ def resolve(params: Mapping[str, float] | None = None) -> dict[str, float]:
     for k_ in ("m1", "m2", "l"):
         if p[k_] <= 0:
             raise InputError(f"parameter {k_!r} must be > 0, got {p[k_]!r}")
+    for k_, what in (("k_y", "a spring stiffness"), ("k_phi", "a spring stiffness"), ("c_y", "a damping"),
+                     ("c_phi", "a damping"), ("g", "the gravitational acceleration")):
+        if p[k_] < 0:
+            raise InputError(f"parameter {k_!r} is {what} and must be >= 0, got {p[k_]!r}")
+    if abs(p["phi0"]) > 2 * np.pi:
+        raise InputError(f"parameter 'phi0' is the rest angle of the rotational spring (rad) and must lie in "
+                         f"[-2 pi, 2 pi], got {p['phi0']!r}")
     return p
 
 
