@@ -283,9 +283,9 @@ def scan_hopf(num: NumericSystem, lo: float, hi: float, samples: int = SCAN_SAMP
     zeros = sum(1 for t in tfs if t == 0)
     if zeros > 2:
         raise InputError(f"{num.sys.name}: the eigenvalues' real parts vanish to round-off at {zeros} of the "
-                         f"{len(ps)} scanned values of {num.p.name} in [{min(lo, hi):g}, {max(lo, hi):g}]: the "
-                         "crossing is below float64's resolution at this scale (bring the parameters nearer their "
-                         "physical scale)")
+                         f"{len(ps)} scanned values of {num.p.name} in [{min(lo, hi):g}, {max(lo, hi):g}], so no "
+                         "isolated crossing can be told: the crossing is below float64's resolution at this scale "
+                         "(bring the parameters nearer their physical scale), or the pair stays on the axis")
     found: list[tuple[float, np.ndarray, complex]] = []
     on_grid: set[int] = set()
     for i in range(len(ps)):
