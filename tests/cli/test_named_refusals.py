@@ -39,6 +39,9 @@ def run(capsys, *argv):
     (["hopf", "impact-oscillator", "--param", "c_y=-1"], "'c_y' is a damping and must be >= 0"),
     (["simulate", "impact-oscillator", "--param", "g=-9.81"], "'g' is the gravitational acceleration"),
     (["hopf", "impact-oscillator", "--param", "phi0=1e300"], "must lie in [-2 pi, 2 pi]"),
+    # ZeroDivisionError / math domain error in a scene's formula
+    (["scene", "run", "putelat2010/V-hat", "--param", "M=0"], "is undefined for M = 0"),
+    (["scene", "run", "putelat2010/V-hat", "--param", "a=-1"], "is undefined for a = -1"),
     # exit 0 with k_c, Lambda = null
     (["derive", "dieterich", "--param", "b=1e308", "--V", "1", "--json"], "kc = 4.24493e+321 N/m"),
 ])
