@@ -25,6 +25,7 @@ than float64 (Higham 2002, *Accuracy and Stability of Numerical Algorithms*, Sec
 from __future__ import annotations
 
 import logging
+import math
 import os
 import warnings
 from concurrent.futures import ThreadPoolExecutor
@@ -60,6 +61,11 @@ WORKERS = max(1, min(8, os.cpu_count() or 1))
 REL_SCREEN = 2e-5
 #: digits of the successive mpmath evaluations that decide whether a tiny value is genuine
 MP_LADDER = (50, 80, 120, 200, 330, 550)
+#: further digits for a point with a parameter (or V) beyond 1e±EXTREME: the terms of a coefficient
+#: then cancel over as many orders as the parameter has (Λ ∝ M = 1e-308 lies 315 orders below
+#: its terms), more than the 550 digits of :data:`MP_LADDER` can settle to 1e-20
+MP_LADDER_EXTREME = (900, 1500)
+EXTREME = 100
 #: extended precision available (x86 80-bit long double: eps 1.1e-19, ~1000x float64)
 EXTENDED = np.finfo(np.longdouble).eps < 1e-18
 #: how much closer to the exact value the long double evaluation is than float64, at least.
@@ -290,6 +296,8 @@ def evaluate_mp_checked(d: "Derivation", V0: float, point: Mapping[str, float], 
     Round-off of a quantity that vanishes identically, or a genuine value far below its
     terms (|h − f| ~ 1e34·|h|), still climbs it."""
     ladder = MP_LADDER
+    if any(x != 0 and abs(math.log10(abs(x))) > EXTREME for x in (V0, *point.values())):
+        ladder = ladder + MP_LADDER_EXTREME
     hi = d.evaluate_mp(V0, point, names, dps=ladder[0])
     if sign_estimate is not None and all(
             n in DERIVED or (hi[n] != 0 and sign_estimate.get(n, 0.0) != 0

@@ -89,3 +89,19 @@ def test_a_hopf_result_never_carries_nan():
     with pytest.raises(SingularPointError, match="c1 = "):
         HopfResult("s", "p", 1.0, 1.0, (0.0,), complex(1, 0), -1.0, 0.0, c1=complex(float("inf"), 0))
     assert HopfResult("s", "p", 1.0, 1.0, (0.0,), complex(1, 0), -1.0, 0.0).Lambda == -1.0
+
+
+def test_tiny_mass_settles_beyond_550_digits(dieterich):
+    # Λ ∝ M: at M = 1e-308 its terms cancel over ~315 orders, beyond the 550-digit ladder (was: Λ = 0,
+    # "degenerate", C = null); the value follows Λ(M = 1e-300)·1e-8 (Λ linear in M as M → 0)
+    t = dieterich.evaluate([1.0], {"M": 1e-308}, ["Gamma_bar", "Lambda", "C"])
+    ref = dieterich.evaluate([1.0], {"M": 1e-300}, ["Lambda"])["Lambda"][0] * 1e-8
+    assert not t["degenerate"][0]
+    assert t["Lambda"][0] == pytest.approx(ref, rel=1e-9)
+    assert np.isfinite(t["C"][0])
+
+
+def test_C_beyond_float64_is_named(dieterich):
+    # L = 1e300: Λ = 4.7e-1219 underflows, C = 4.6e606 overflows (was: "degenerate", C = null)
+    with pytest.raises(DomainError, match=r"C = 4\.55131e\+606 .* L = 1e\+300"):
+        dieterich.evaluate([1e-6], {"L": 1e300}, ["Gamma_bar", "Lambda", "C"])
