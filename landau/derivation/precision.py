@@ -106,8 +106,9 @@ def agree(x: np.ndarray, y: np.ndarray, rel: float) -> np.ndarray:
     precision), and two equal infinities.  A finite value never agrees with an infinite one
     (|x − ∞| ≤ rel·∞ would hold: a float32 overflow must not pass a float64 value unscreened)."""
     with np.errstate(all="ignore"):
-        close = np.isfinite(x) & np.isfinite(y) & (np.abs(x - y) <= rel * np.abs(y))
-        return close | (np.isnan(x) & np.isnan(y)) | (np.isinf(x) & (x == y))
+        d = np.abs(x - y)
+        # d = ∞ only where one value is infinite and the other is not (equal infinities give NaN)
+        return ((d <= rel * np.abs(y)) & (d != np.inf)) | (x == y) | (np.isnan(x) & np.isnan(y))
 
 
 def sign_settled(x64: np.ndarray, x80: np.ndarray) -> np.ndarray:
