@@ -45,7 +45,15 @@ import scipy.linalg
 import scipy.optimize
 import sympy as sp
 
-from landau.derivation.fredholm import _minor, _pencil, best_drop, cubic_coefficient, linear_coefficient, null_vectors, row_dot
+from landau.derivation.fredholm import (
+    _minor,
+    _pencil,
+    best_drop,
+    cubic_coefficient,
+    linear_coefficient,
+    null_vectors,
+    row_dot,
+)
 from landau.derivation.hopf import GENERAL, HopfResult
 from landau.derivation.jets import Jets, TaylorJets
 from landau.errors import InputError, NoHopfError, SingularPointError

@@ -43,7 +43,6 @@ g = 10 m/s²; g = 9.81 moves them to ≈ 0.40986 and ≈ 0.3541.  g stays a para
 from __future__ import annotations
 
 import warnings
-
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any, Callable, Mapping
