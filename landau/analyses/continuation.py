@@ -455,6 +455,7 @@ def _locate_gh(system: DynamicalSystem, tracker: _HopfTracker, a: float, b: floa
     def l1(v):
         r = tracker.at(v)
         last["r"] = r
+        assert r.l1 is not None  # the normal form computes l1
         seen[v] = r.l1
         return r.l1
 
@@ -466,7 +467,7 @@ def _locate_gh(system: DynamicalSystem, tracker: _HopfTracker, a: float, b: floa
     # over the bracket times the bracket's tolerance, with a margin of 1e3); a Newton step of the
     # tracker that jumped to another branch of Hopf points leaves l₁ of order one there
     bound = max(1e3 * abs(lb - la) / abs(b - a) * (xtol + 1e-13 * abs(p2)), 1e-12 * max(abs(la), abs(lb)))
-    if not (abs(r.l1) <= bound):
+    if r.l1 is None or not (abs(r.l1) <= bound):
         raise NoHopfError(f"{system.name}: the point located at {tracker.second} = {p2:.10g} is not a "
                           f"generalised-Hopf point (l1 = {r.l1:.3g}, more than {bound:.2g} from 0): the Hopf point "
                           "jumped to another branch between the bracket's ends; narrow the bracket or follow the "
