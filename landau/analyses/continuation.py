@@ -181,7 +181,7 @@ def equilibrium_branch(system: DynamicalSystem, params: Mapping[str, float] | No
     lams = [num.eigenvalues(y, p) for y, p in zip(Y, P, strict=True)]
     nus = [_n_unstable(lam) for lam in lams]
     tfs = [hopf_test_function(lam) for lam in lams]
-    folds = [_refine_fold(num, Y[f.index - 1], P[f.index - 1], Y[f.index], P[f.index]) for f in br.folds]
+    folds = [_refine_fold(num, Y, P, f.index) for f in br.folds]
     hopfs: list[HopfResult] = []
     if locate_hopf:
         cache: dict = {}
@@ -203,16 +203,25 @@ def equilibrium_branch(system: DynamicalSystem, params: Mapping[str, float] | No
                              hopf=tuple(hopfs), folds=tuple(folds))
 
 
-def _refine_fold(num: NumericSystem, ya, pa, yb, pb) -> float:
-    """The extremal parameter of the branch between two points on either side of a fold.
+def _refine_fold(num: NumericSystem, Y: np.ndarray, P: np.ndarray, index: int) -> float:
+    """The extremal parameter of the branch at the fold detected between points ``index − 1`` and
+    ``index`` (the tangent's p component changed sign there).
 
-    Near a fold p is a smooth function of the state component that changes most between the
-    two points; p(s) comes from Newton's method with that component fixed and its extremum from
-    Brent's method (p at a quadratic extremum is accurate to round-off).
+    The extremum may lie on either side of the branch point nearest to it: the bracket is the
+    two neighbours of the most extreme of points ``index − 2 … index + 1`` (a maximum where p rises
+    into the window, else a minimum).  Near a fold p is a smooth function of the state component
+    that changes most across the bracket; p(s) comes from Newton's method with that component
+    fixed and its extremum from Brent's method (p at a quadratic extremum is accurate to round-off).
     """
     n = num.n
-    k = int(np.argmax(np.abs(np.asarray(yb) - np.asarray(ya))))
-    guess = {"y": np.asarray(ya, float).copy(), "p": float(pa)}
+    window = np.arange(max(index - 2, 0), min(index + 1, len(P) - 1) + 1)
+    pw = P[window]
+    is_max = (pw.max() - max(pw[0], pw[-1])) >= (min(pw[0], pw[-1]) - pw.min())
+    m = int(window[np.argmax(pw) if is_max else np.argmin(pw)])
+    ia, ib = max(m - 1, 0), min(m + 1, len(P) - 1)
+    ya, yb = np.asarray(Y[ia], float), np.asarray(Y[ib], float)
+    k = int(np.argmax(np.abs(yb - ya)))
+    guess = {"y": ya.copy(), "p": float(P[ia])}
 
     def p_of(s):
         y, p = guess["y"].copy(), guess["p"]
@@ -229,7 +238,7 @@ def _refine_fold(num: NumericSystem, ya, pa, yb, pb) -> float:
         guess["y"], guess["p"] = y, p
         return p
 
-    sign = 1.0 if (pa + pb) / 2 >= min(pa, pb) and p_of((ya[k] + yb[k]) / 2) > max(pa, pb) else -1.0
+    sign = 1.0 if is_max else -1.0
     lo, hi = sorted((float(ya[k]), float(yb[k])))
     res = scipy.optimize.minimize_scalar(lambda s: -sign * p_of(s), bounds=(lo, hi), method="bounded",
                                          options={"xatol": 1e-10 * (1 + abs(hi))})

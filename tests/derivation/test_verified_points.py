@@ -122,4 +122,29 @@ def test_a_point_that_is_not_a_fold_is_refused():
     line = DynamicalSystem("line", (_yf,), (_pf - _yf,), (1,), _pf, (_pf,))
     num = NumericSystem(line, {})
     with pytest.raises(SingularPointError, match="fails its check"):
-        _refine_fold(num, np.array([0.2]), 0.2, np.array([0.4]), 0.4)
+        _refine_fold(num, np.array([[0.2], [0.3], [0.4]]), np.array([0.2, 0.3, 0.4]), 2)
+
+
+def test_lorenz84_fold_where_the_jacobian_is_singular():
+    # Lorenz (1984) with alpha = 0.25, beta = 4, G = 0.5: the branch from F = 0 turns at two folds.  The
+    # first was reported at F = 1.1177295 (the branch point after the fold: the bracket missed the
+    # extremum); the fold solves f = 0, det ∂f/∂y = 0 (solved here independently by scipy's fsolve)
+    import numpy as np
+    import scipy.optimize
+
+    from landau.analyses.continuation import equilibrium_branch
+
+    X, Y, Z = sp.symbols("X Y Z", real=True)
+    al, be, F, G = sp.symbols("alpha beta F G", real=True)
+    rhs = (-Y**2 - Z**2 - al*X + al*F, X*Y - be*X*Z - Y + G, be*X*Y + X*Z - Z)
+    lor = DynamicalSystem("lorenz84", (X, Y, Z), rhs, (1, 1, 1), F, (sp.Float(1.0), sp.Float(0.5), sp.Float(0.5)))
+    par = {"alpha": 0.25, "beta": 4.0, "G": 0.5}
+    br = equilibrium_branch(lor, par, (0.0, 2.0), start=0.0, locate_hopf=False)
+    vals = {al: 0.25, be: 4.0, G: 0.5}
+    f = sp.lambdify([X, Y, Z, F], [e.subs(vals) for e in rhs])
+    detJ = sp.lambdify([X, Y, Z, F], sp.Matrix(rhs).jacobian([X, Y, Z]).subs(vals).det())
+    refs = []
+    for guess in ([0.0856, 0.4796, 0.1795, 1.1345], [0.453, 0.0763, 0.2529, 0.7321]):
+        sol = scipy.optimize.fsolve(lambda u: [*f(*u), detJ(*u)], guess, xtol=1e-14)
+        refs.append(sol[3])
+    assert np.allclose(sorted(br.folds), sorted(refs), rtol=1e-9, atol=0)
