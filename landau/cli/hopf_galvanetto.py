@@ -55,20 +55,26 @@ def _galvanetto_one_block(args):
         V = float(args.V) if args.V is not None else 0.5
     except ValueError:
         raise InputError(f"--V: {args.V!r} is not a number") from None
-    if not V > 0:
-        raise InputError(f"galvanetto-one-block: belt velocity V must be > 0, got {V!r}")
-    from landau.errors import DomainError
-
+    if not (math.isfinite(V) and V > 0):
+        raise InputError(f"galvanetto-one-block: belt velocity V must be finite and > 0, got {V!r}")
+    where = f"at V = {V:g} with gamma = {g:g}, delta = {d:g}"
     with np.errstate(all="raise"):
         try:
             c1 = hopf_c1(V, law=law)
-        except (FloatingPointError, OverflowError, ZeroDivisionError):
-            raise DomainError(f"galvanetto-one-block: F_k'(-V) leaves the floating-point range at V = {V:g} "
-                              f"({law!r}): the belt velocity or the law's parameters are out of range") from None
+        except (OverflowError, ZeroDivisionError, FloatingPointError) as exc:
+            raise InputError(f"galvanetto-one-block: F_k'(-V) leaves the float64 range {where} ({exc}): bring V "
+                             "and the law's parameters nearer their physical scale") from None
     if not math.isfinite(c1):
-        raise DomainError(f"galvanetto-one-block: F_k'(-V) = {c1} at V = {V:g}: the kinetic law is not "
-                          f"differentiable at steady sliding, r = -V ({law!r})")
+        raise InputError(f"galvanetto-one-block: F_k'(-V) = {c1} {where}: the kinetic law is not differentiable "
+                         f"at steady sliding, r = -V, or leaves the float64 range ({law!r})")
+    if c1 == 0 and law.dneg(-V * (1 - 1e-6)) != 0:
+        raise InputError(f"galvanetto-one-block: F_k'(-V) underflows to 0 {where} (its exact value is below "
+                         "float64's smallest number): bring V and the law's parameters nearer their physical scale")
     if not c1 > 0:
         raise NoHopfError(f"galvanetto-one-block: F_k'(-V) = {c1:.6g} <= 0 at V = {V:g}: steady sliding is "
                           f"stable for every damping c >= 0 ({law!r})")
-    return hopf_c1_normal_form(V, law=law)
+    try:
+        return hopf_c1_normal_form(V, law=law)
+    except (OverflowError, ZeroDivisionError, FloatingPointError) as exc:
+        raise InputError(f"galvanetto-one-block: the normal form leaves the float64 range {where} ({exc}): "
+                         "bring V and the law's parameters nearer their physical scale") from None

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from functools import cached_property
 from typing import Any, Mapping, Sequence
 
+import mpmath
 import numpy as np
 import sympy as sp
 from sympy.polys.matrices import DomainMatrix
@@ -231,6 +232,26 @@ class HopfLine:
         return CompiledFormula(kc, self.args, atoms), CompiledFormula(W_c, self.args, atoms)
 
     @cached_property
+    def _compiled_closed_mp(self):
+        kc, W_c = self.closed_form
+        atoms = self.jets.atoms
+        return CompiledFormula(kc, self.args, atoms, "mpmath"), CompiledFormula(W_c, self.args, atoms, "mpmath")
+
+    def _rescue_closed(self, kc: np.ndarray, W_c: np.ndarray, vals) -> None:
+        """In place: k_c, ω_c² where the float64 closed form overflowed, underflowed to 0 or gave NaN
+        (σ = 1e300: k_c = 1.6e304 is representable, an intermediate is not), from mpmath (unbounded
+        exponent); a value beyond float64's range stays non-finite."""
+        lost = ~np.isfinite(kc) | ~np.isfinite(W_c) | (kc == 0) | (W_c == 0)
+        if not lost.any():
+            return
+        fk, fW = self._compiled_closed_mp
+        with mpmath.workdps(30):
+            for i in map(tuple, np.argwhere(lost)):
+                point = [mpmath.mpf(float(np.broadcast_to(v, kc.shape)[i])) for v in vals]
+                with np.errstate(over="ignore"):
+                    kc[i], W_c[i] = float(fk(*point)), float(fW(*point))
+
+    @cached_property
     def _compiled_poly(self):
         H, re, q2 = self._hopf_polys
         atoms = self.jets.atoms
@@ -333,8 +354,10 @@ class HopfLine:
         if self.closed_form is not None and method == "auto":
             fk, fW = self._compiled_closed
             vals = self._argvals(Vs, p)
-            kc = np.asarray(fk(*vals), dtype=float)
-            W_c = np.asarray(fW(*vals), dtype=float)
+            with np.errstate(all="ignore"):
+                kc = np.array(np.broadcast_to(np.asarray(fk(*vals), dtype=float), Vs.shape))
+                W_c = np.array(np.broadcast_to(np.asarray(fW(*vals), dtype=float), Vs.shape))
+            self._rescue_closed(kc, W_c, vals)
             ok = (W_c > 0) & (kc > 0) & np.isfinite(kc)
             return np.where(ok, kc, np.nan), np.where(ok, np.sqrt(np.where(ok, W_c, 1.0)), np.nan)
         coeffs, fre, fq2 = self._compiled_poly
