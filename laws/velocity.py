@@ -34,6 +34,7 @@ from typing import Callable, Mapping
 import numpy as np
 import sympy as sp
 
+from landau.codegen.names import lambdify_positional
 from landau.errors import DomainError, InputError
 from landau.laws.base import Law
 from landau.laws.law import Parameter, user_parameter
@@ -237,7 +238,7 @@ class VelocityFriction(Law):
         cache = self._lambdified
         if key not in cache:
             args = [V_SLIP, *(p.symbol for p in self.parameters)]
-            cache[key] = sp.lambdify(args, self.branch(side, order), modules="numpy")
+            cache[key] = lambdify_positional(args, self.branch(side, order), modules="numpy")
         return cache[key]
 
     @cached_property

@@ -36,6 +36,7 @@ import numpy as np
 import sympy as sp
 
 from landau.codegen.kernels import DerivedParameters, compile_source, hoist_parameters, kernel_source
+from landau.codegen.names import lambdify_positional
 from landau.errors import InputError
 from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
@@ -311,7 +312,7 @@ def _steady_state(law: FrictionLaw, V: float, p: Mapping[str, float]) -> list[fl
     else:
         from scipy.optimize import root
 
-        fn = sp.lambdify([law.states], [r.subs({v_slip: V, **vals}) for r in law.rates], "math")
+        fn = lambdify_positional([law.states], [r.subs({v_slip: V, **vals}) for r in law.rates], "math")
         guess = [p.get("L", 1.0) / V] * len(law.states)
         sol = root(lambda z: fn(list(z)), guess, tol=1e-14)
         if not sol.success:
