@@ -271,14 +271,14 @@ def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
                 raise ParseError(f"{what}: exponent in {token!r} exceeds {MAX_EXPONENT} in magnitude")
         if ex.is_Number and not ex.is_Integer and base.is_extended_negative:
             raise not_real(token, "a negative base to a non-integer power")
-        if ex.is_Rational:
+        if ex.is_Number:
             # sympy distributes a numeric power over the numbers of a product: bound their size and cost
             numbers = _exact_factors(base) + [(f, sp.Integer(1)) for f in sp.Mul.make_args(base) if f.is_Float]
             for c, r in numbers:
                 dec = _number_decades(c)
                 if dec is not None and abs(float(r * ex)) * abs(dec) > MAX_DECADES:
                     raise out_of_range(token)
-            if not _exact_ok(base, ex):
+            if ex.is_Rational and not _exact_ok(base, ex):
                 ex = sp.Float(ex, 30)
         return base ** ex
 
@@ -288,7 +288,8 @@ def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
         powers, rest = [], []
         for t in sp.Add.make_args(arg):
             c, m = t.as_coeff_Mul()
-            fs = sp.Mul.make_args(m)
+            # as sympy's exp does: a factor that logcombine makes a log (log(2) + log(3)) counts as one
+            fs = [sp.logcombine(f) if not isinstance(f, sp.log) and f.has(sp.log) else f for f in sp.Mul.make_args(m)]
             logs = [f for f in fs if isinstance(f, sp.log)]
             if len(logs) == 1 and all(f.is_comparable for f in fs if f is not logs[0]):
                 powers.append(power(logs[0].args[0], c * sp.Mul(*[f for f in fs if f is not logs[0]]), token))
