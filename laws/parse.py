@@ -5,7 +5,14 @@ executed: only numbers, declared names, the arithmetic operators and a whitelist
 functions are accepted, each translated to its sympy counterpart.  Anything else —
 attribute access, subscripts, keywords, lambdas, ``__import__``, unknown functions or
 symbols — is rejected with a :class:`~landau.errors.ParseError` that names the token.
-``^`` is read as a power (``**``), as in most papers.
+``^`` is read as a power (``**``), as in most papers; a ``#`` is refused (Python would read
+the rest as a comment).
+
+The cost of what is built is bounded, not only the size of its values: a power of exact
+numbers is kept exact only for an integer exponent or a root of denominator at most
+:data:`MAX_ROOT`, at a bit cost below :data:`MAX_EXACT_COST`; otherwise it is evaluated as a
+30-digit float (sympy's exact simplification of ``45**(-1/823543)`` took minutes).  ``exp`` of
+``c*log(x)``, which sympy turns into ``x**c``, takes the same route.
 """
 
 from __future__ import annotations
@@ -160,9 +167,11 @@ def parse_expression(text: str, symbols: Mapping[str, sp.Symbol], *, what: str =
     Every cost is bounded before sympy sees the text: its length (:data:`MAX_LENGTH`,
     checked first), the depth and size of the syntax tree, the size of every number built
     (|x| <= 1e300), numeric exponents of symbolic bases (|e| <= :data:`MAX_EXPONENT`) and
-    arguments of exp of pure numbers.  The result must be real where the symbols are (v > 0,
-    states > 0): an expression that sympy shows complex (``sqrt(-v)``, ``log(-1)``) or not
-    finite (``0/0``, ``log(0)``) is refused.
+    arguments of exp of pure numbers, and the work of every power of numbers (exact only while
+    cheap, else a 30-digit float).  The result must be real where the symbols are (v > 0,
+    states > 0): an expression that sympy shows complex (``sqrt(-v)``, ``log(-1)``), a negative
+    number or base to a non-integer power (``(-1)**(1/3)``) or a value that is not finite
+    (``0/0``, ``log(0)``) is refused.
 
     Parameters
     ----------
