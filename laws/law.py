@@ -30,6 +30,7 @@ from typing import Mapping
 import numpy as np
 import sympy as sp
 
+from landau.codegen.names import lambdify_positional
 from landau.errors import DomainError, InputError
 from landau.laws.base import Law
 from landau.laws.parse import parse_expression
@@ -410,8 +411,8 @@ class FrictionLaw(Law):
         """Compiled (rates, ∂rates/∂φ) over (v, φ…, parameters…)."""
         args = [v, *self.states, *(p.symbol for p in self.parameters)]
         jac = sp.Matrix(self.rates).jacobian(list(self.states))
-        f = sp.lambdify(args, list(self.rates), modules="numpy", cse=True)
-        J = sp.lambdify(args, jac.tolist(), modules="numpy", cse=True)
+        f = lambdify_positional(args, list(self.rates), modules="numpy", cse=True)
+        J = lambdify_positional(args, jac.tolist(), modules="numpy", cse=True)
         return f, J
 
     def steady_state_values(self, vs, params: Mapping[str, float | np.ndarray]) -> np.ndarray:
@@ -468,8 +469,8 @@ class FrictionLaw(Law):
 
     @cached_property
     def _closed_steady_state(self):
-        return sp.lambdify([v, *(p.symbol for p in self.parameters)], list(self.steady_state_closed_form),
-                           modules="numpy")
+        return lambdify_positional([v, *(p.symbol for p in self.parameters)], list(self.steady_state_closed_form),
+                                   modules="numpy")
 
     def _check_stable(self, vs: np.ndarray, phis: np.ndarray, params: Mapping[str, float | np.ndarray]) -> None:
         """Refuse a closed-form steady state that is unstable at fixed slip rate (the state runs
@@ -614,7 +615,7 @@ class FrictionLaw(Law):
             exprs += [(f"d({label})/d{x}", sp.diff(e, x)) for x in (v, *self.states) if x in e.free_symbols]
         if all(e.is_extended_real and e.is_finite for _, e in exprs):
             return []
-        return [(label, sp.lambdify(args, e, modules="numpy")) for label, e in exprs]
+        return [(label, lambdify_positional(args, e, modules="numpy")) for label, e in exprs]
 
     def mu_ss(self) -> sp.Expr:
         """Steady-state friction coefficient μ_ss(v) (closed form).

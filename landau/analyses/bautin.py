@@ -44,9 +44,9 @@ import math
 from typing import Mapping
 
 import mpmath
-import sympy as sp
 
 from landau.analyses.codim2 import SPRING_BLOCK_PARAMETERS, FoldOfCycles, GeneralisedHopfPoint
+from landau.codegen.names import lambdify_positional
 from landau.derivation.fredholm import _pencil, best_drop, linear_coefficient, null_vectors, quintic_coefficient
 from landau.derivation.hopf import GENERAL, HopfResult
 from landau.derivation.jets import Jets
@@ -137,7 +137,7 @@ def quintic_normal_form(system: DynamicalSystem, values: Mapping[str, float], p_
         missing = [s.name for s in syms if s not in vals]
         if missing:
             raise InputError(f"{system.name}: no value for {', '.join(missing)}")
-        pfn = sp.lambdify([system.parameter, *syms], pexprs, modules="mpmath")
+        pfn = lambdify_positional([system.parameter, *syms], pexprs, modules="mpmath")
         n = nj.n
 
         def det_eq(p, om):

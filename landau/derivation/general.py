@@ -45,6 +45,7 @@ import scipy.linalg
 import scipy.optimize
 import sympy as sp
 
+from landau.codegen.names import lambdify_positional
 from landau.derivation.fredholm import (
     _minor,
     _pencil,
@@ -103,9 +104,9 @@ class NumericSystem:
         Em = system.mass_matrix
         # f and its first derivatives (J, f_p) by Taylor arithmetic: no symbolic differentiation
         self.taylor1 = TaylorJets(system.rhs, [*system.states, self.p], 1)
-        self._E = sp.lambdify([self.p, *self.params], Em.tolist(), "mpmath")
-        self._Ep = sp.lambdify([self.p, *self.params], Em.diff(self.p).tolist(), "mpmath")
-        self._Ef = sp.lambdify([self.p, *self.params], Em.tolist(), "numpy")
+        self._E = lambdify_positional([self.p, *self.params], Em.tolist(), "mpmath")
+        self._Ep = lambdify_positional([self.p, *self.params], Em.diff(self.p).tolist(), "mpmath")
+        self._Ef = lambdify_positional([self.p, *self.params], Em.tolist(), "numpy")
         self.mass_depends_on_p = self.p in Em.free_symbols
         self.diagonal_mass = system.mass_is_diagonal
         self._pv = list(self.params.values())
@@ -120,7 +121,7 @@ class NumericSystem:
                     raise InputError(f"{system.name}: the equilibrium has no closed form; give unknown_guess "
                                      "or an equilibrium guess")
                 eq = [as_expr(e).xreplace(dict(zip(system.unknowns, system.unknown_guess, strict=True))) for e in eq]
-            fn = sp.lambdify([self.p, *self.params], eq, "numpy")
+            fn = lambdify_positional([self.p, *self.params], eq, "numpy")
             self._guess = lambda p: [float(x) for x in fn(p, *self._pv)]
 
     # --- float64 ------------------------------------------------------------------------------
@@ -361,7 +362,7 @@ def _symbolic_tensors(num: NumericSystem, y0, pc, jets_cache: dict) -> dict[int,
                     return e
                 e = as_expr(e).xreplace(atoms)
             return e
-        fn = sp.lambdify([*y0s, sysm.parameter, *num.params], [expand(v) for _, v in entries], "mpmath")
+        fn = lambdify_positional([*y0s, sysm.parameter, *num.params], [expand(v) for _, v in entries], "mpmath")
         jets_cache[key] = ([k for k, _ in entries], fn)
     keys, fn = jets_cache[key]
     vals = fn(*y0, pc, *num._pv)

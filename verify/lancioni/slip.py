@@ -50,6 +50,7 @@ from typing import Any, Callable, Mapping
 import numpy as np
 import sympy as sp
 
+from landau.codegen.names import lambdify_positional
 from landau.derivation.general import hopf_normal_form
 from landau.derivation.hopf import HopfResult
 from landau.errors import InputError, NoHopfError
@@ -246,8 +247,9 @@ def _numeric(s: int, Fs: sp.Expr, law_names: tuple[str, ...]) -> SlipFunctions:
     names = (*PARAM_NAMES, "v_belt", *law_names)
     args = [phi, omega, *MECHANICAL.values(), v_belt, *map(_law_symbol, law_names)]
     J = sp.Matrix([omega, F]).jacobian([phi, omega])
-    return SlipFunctions(names, sp.lambdify(args, F, "math"), sp.lambdify(args, L, "math"),
-                         sp.lambdify(args, F.subs(omega, 0)), sp.lambdify(args, J))
+    # positional names: a law parameter named like a printed function (cos, array) cannot shadow it
+    return SlipFunctions(names, lambdify_positional(args, F, "math"), lambdify_positional(args, L, "math"),
+                         lambdify_positional(args, F.subs(omega, 0)), lambdify_positional(args, J))
 
 
 def belt_velocity(s: int = 1, v: float | None = None) -> float:
