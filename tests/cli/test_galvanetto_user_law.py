@@ -100,3 +100,18 @@ def test_model_parameters_are_checked(kw, needle):
 def test_non_real_law_is_refused_from_python():
     with pytest.raises(DomainError, match="not real"):
         KineticFriction.from_expression("sqrt(r) + gamma")
+
+
+def test_simulate_takes_the_parameters_of_the_users_law(capsys, tmp_path):
+    # was: "unknown parameter(s) eta" — the simulation knew only gamma and delta
+    code, out, err = run(capsys, "simulate", "galvanetto-one-block", "--kinetic", LAW, "--param", "eta=0.05",
+                         "--t-end", "5", "--out", str(tmp_path / "run.csv"), "--json")
+    assert code == 0, err
+    doc = json.loads(out)
+    assert doc["parameters"]["eta"] == 0.05
+    # the value reaches the law: the r < 0 branch at r = -0.1 is F(-0.1) = 1/1.3**2 + 0.05*0.1
+    law = KineticFriction.from_expression(doc["parameters"]["kinetic"])
+    assert float(law.neg(-0.1)) == pytest.approx(1 / 1.3 ** 2 + 0.005, rel=1e-12)
+    code, _, err = run(capsys, "simulate", "galvanetto-one-block", "--kinetic", LAW, "--t-end", "5",
+                       "--out", str(tmp_path / "run2.csv"))
+    assert code == 2 and "eta without a value" in err
