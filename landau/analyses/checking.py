@@ -38,6 +38,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from landau.codegen.names import lambdify_positional
 from landau.derivation.hopf import Criticality, HopfResult
 from landau.errors import InputError, IntegratorError, LandauError
 
@@ -296,9 +297,9 @@ def _numeric_field(system, params: Mapping[str, float]):
         raise InputError(f"{system.name}: missing parameter(s) {', '.join(missing)}")
     vals = [float(params[s.name]) for s in system.parameters]
     args = [*system.states, system.parameter, *system.parameters]
-    f = sp.lambdify(args, list(system.rhs), "numpy")
-    J = sp.lambdify(args, sp.Matrix(system.rhs).jacobian(system.states), "numpy")
-    E_of = sp.lambdify([system.parameter, *system.parameters], system.mass_matrix, "numpy")
+    f = lambdify_positional(args, list(system.rhs), "numpy")
+    J = lambdify_positional(args, sp.Matrix(system.rhs).jacobian(system.states), "numpy")
+    E_of = lambdify_positional([system.parameter, *system.parameters], system.mass_matrix, "numpy")
 
     def E_inverse(p: float) -> np.ndarray:
         E = np.asarray(E_of(p, *vals), dtype=float)

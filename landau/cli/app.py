@@ -217,8 +217,13 @@ def _main(argv: list[str]) -> int:
         where = f" {exc.filename}" if getattr(exc, "filename", None) else ""
         print(f"landau: error: cannot write{where}: {exc.strerror or exc}", file=sys.stderr)
         return 2
-    except (RecursionError, MemoryError) as exc:
-        print(f"landau: error: the input is too large or too deeply nested ({type(exc).__name__})", file=sys.stderr)
+    except RecursionError:
+        print("landau: error: the input is too deeply nested (RecursionError)", file=sys.stderr)
+        return 2
+    except MemoryError:
+        # a memory limit (ulimit -v, a container) or a computation too large for this machine: not the input's size
+        print("landau: error: out of memory (MemoryError): the computation needs more memory than this process "
+              "may use; raise the memory limit or ask for fewer points", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         raise

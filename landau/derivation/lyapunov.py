@@ -38,6 +38,7 @@ from typing import Any, Mapping, Sequence
 import mpmath
 import sympy as sp
 
+from landau.codegen.names import lambdify_positional
 from landau.derivation.hopf import GENERAL, HopfResult, spring_block_result
 from landau.derivation.jets import Jets
 from landau.errors import InputError, NoHopfError, SingularPointError
@@ -76,7 +77,7 @@ class _NumericJets:
         if missing:
             raise InputError(f"{system.name}: no value for {', '.join(missing)}")
         syms = sorted(free, key=lambda s: s.name)
-        self._fn = sp.lambdify([self.p, *syms], exprs, modules="mpmath")
+        self._fn = lambdify_positional([self.p, *syms], exprs, modules="mpmath")
         self._vals = [values[s] for s in syms]
 
     def expand(self, e: sp.Expr) -> sp.Expr:
