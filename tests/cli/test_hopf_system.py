@@ -65,7 +65,8 @@ def test_guess_negative_bracket_and_mass(capsys):
     (["--rhs", "x=p*x", "--parameter", "p", "--guess", "x=zz", "--bracket", "0:1"], "--guess"),
     (["--rhs", "x=p*x", "--rhs", "x=1", "--parameter", "p", "--guess", "x=0", "--bracket", "0:1"], "twice"),
     (["dieterich", "--rhs", "x=p*x", "--parameter", "p", "--guess", "x=0", "--bracket", "0:1"], "another model"),
-    (["--rhs", "x=y", "--rhs", "y=-x", "--parameter", "p", "--guess", "x=0", "--bracket", "0:1"], "Hopf"),
+    (["--rhs", "x=p*x - y", "--rhs", "y=x + p*y", "--parameter", "p", "--guess", "x=0", "--bracket", "0.5:1"],
+     "no Hopf crossing"),
 ])
 def test_bad_input_exits_2_with_one_line(capsys, argv, needle):
     code, out, err = run(capsys, "hopf", "system", *argv, "--json")
