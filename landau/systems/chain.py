@@ -266,14 +266,16 @@ def chain_hopf(chain: SpringBlockChain, params: Mapping[str, float] | None = Non
     HopfResult
         From the general engine (:func:`landau.derivation.general.normal_form_at`), normalised on
         the slip of the block that moves most; ``extra`` holds ``blocks``, ``mode_shape`` (the slips
-        X_i of the critical mode as ``[re, im]`` pairs, largest 1) and ``mode`` ("in-phase",
-        "anti-phase", "mixed" or "travelling").
+        X_i of the critical mode as ``[re, im]`` pairs, largest 1), ``mode`` ("in-phase",
+        "anti-phase", "mixed" or "travelling") and Λ's round-off bound; where Λ vanishes, the
+        next order (:func:`landau.derivation.degenerate.with_verdict`).
 
     Raises
     ------
     NoHopfError
         No crossing in the bracket (e.g. velocity-strengthening friction).
     """
+    from landau.derivation.degenerate import with_verdict
     from landau.derivation.general import NumericSystem, normal_form_at, refine_hopf, scan_hopf
     from landau.derivation.hopf import SPRING_BLOCK_UNITS
 
@@ -314,10 +316,18 @@ def chain_hopf(chain: SpringBlockChain, params: Mapping[str, float] | None = Non
     biggest = chain.slip_indices()[int(np.argmax(np.abs(shape)))]
     system_n = replace(system, normalise=biggest)
     num = NumericSystem(system_n, p, chain.equilibrium_values(p))
+    jets_cache: dict = {}
+
+    def at(digits: int):
+        with mpmath.workdps(digits):
+            pc, wc, y = refine_hopf(num, p0, abs(lam.imag), y0)
+            return normal_form_at(num, pc, wc, y, jets_cache=jets_cache, params=p), (pc, wc, y)
+
+    first, (pc, wc, y) = at(dps)
     with mpmath.workdps(dps):
-        pc, wc, y = refine_hopf(num, p0, abs(lam.imag), y0)
-        res = normal_form_at(num, pc, wc, y, params=p)
         shape = _mode_shape_mp(num, pc, wc, y, chain.slip_indices(), biggest)
+    # Λ with its round-off bound; where it vanishes, Λ = 0 (degenerate) and the next order
+    res = with_verdict(system_n, p, first, dps, lambda d: at(d)[0])
     if np.all(shape.imag == 0):
         mode = "in-phase" if np.all(shape.real > 0) else ("anti-phase" if np.all(shape.real != 0) else "mixed")
     else:
@@ -325,4 +335,4 @@ def chain_hopf(chain: SpringBlockChain, params: Mapping[str, float] | None = Non
     units = {key: val for key, val in SPRING_BLOCK_UNITS.items() if key in ("V", "p_c", "omega_c")}
     return replace(res, units=units, at=("V",),
                    extra={"blocks": chain.blocks, "mode": mode,
-                          "mode_shape": [[float(z.real), float(z.imag)] for z in shape]})
+                          "mode_shape": [[float(z.real), float(z.imag)] for z in shape], **res.extra})

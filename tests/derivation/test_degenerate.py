@@ -77,3 +77,13 @@ def test_second_lyapunov_of_a_dae_matches_the_explicit_reduction():
     assert dae.Lambda == pytest.approx(ref.Lambda, rel=1e-10)
     assert dae.l2 == pytest.approx(ref.l2, rel=1e-9)
     assert second_lyapunov(b.system, p, dae) == pytest.approx(ref.l2, rel=1e-9)
+
+
+def test_identical_quasi_static_chain_is_degenerate_in_phase():
+    # two identical quasi-static aging-law blocks: the in-phase mode is the single block's centre
+    from landau.systems.chain import SpringBlockChain, chain_hopf
+
+    r = chain_hopf(SpringBlockChain("dieterich", 2), {"M_1": 0.0, "M_2": 0.0, "k_coupling": 2e4})
+    assert r.p_c == pytest.approx(11.772 * (0.0489 - 0.0349) / 9e-7, rel=1e-12)
+    assert r.criticality == "degenerate" and r.extra["mode"] == "in-phase"
+    assert r.extra["degenerate_at_every_order_computed"] is True
