@@ -334,6 +334,14 @@ def _unresolved(pt: _Point, subcritical: bool) -> str:
     return ""
 
 
+def _agreed(main: _Point, sc: Scaling, tolerance: float | None, pts: list[_Point]):
+    """The contract holds: agrees, unless the caller's extra tolerance is exceeded."""
+    if tolerance is not None and abs(main.rel_error) > tolerance:
+        return (main, sc, Verdict.DISAGREES, f"amplitude off by {main.rel_error:+.2%}, beyond the requested "
+                                             f"tolerance {tolerance:.2%}", None, pts)
+    return main, sc, Verdict.AGREES, "", None, pts
+
+
 def _run_contract(measure: Callable[[float, bool], _Point], eps2_request, primary: float, lo: float, hi: float,
                   subcritical: bool, tolerance: float | None, gap_of: Callable[[float], float]):
     """Measure at the contract's ε² and decide.
@@ -358,25 +366,30 @@ def _run_contract(measure: Callable[[float, bool], _Point], eps2_request, primar
     for e in eset:
         pts.append(measure(e, e == primary))
     main = next(p for p in pts if p.eps2 == primary)
-    for pt in pts:
-        bad = _unresolved(pt, subcritical)
-        if bad:
-            return main, None, Verdict.FAILED, cannot(pt.eps2, bad), None, pts
-    for pt in pts:
-        if pt.stable is not None and pt.stable == subcritical:
-            return (main, None, Verdict.DISAGREES,
-                    f"the cycle at eps2 = {pt.eps2:.3g} is {'stable' if pt.stable else 'unstable'} (Floquet "
-                    f"multiplier gap {pt.gap:.3g}), the prediction is {'un' if subcritical else ''}stable", None, pts)
-    sc = fit_scaling([p.eps2 for p in pts], [p.rel_error for p in pts], [p.floor for p in pts])
-    if sc.holds:
-        if tolerance is not None and abs(main.rel_error) > tolerance:
-            return (main, sc, Verdict.DISAGREES, f"amplitude off by {main.rel_error:+.2%}, beyond the requested "
-                                                 f"tolerance {tolerance:.2%}", None, pts)
-        return main, sc, Verdict.AGREES, "", None, pts
-    # the scaling fails: is the requested ε² merely beyond the weakly nonlinear range?
-    tail = sorted(pts, key=lambda q: -q.eps2)
+    bad = [(pt, _unresolved(pt, subcritical)) for pt in pts]
+    bad = [(pt, why) for pt, why in bad if why]
+    top = max(pts, key=lambda q: q.eps2)
+    if any(pt is not top or pt.gap is not None and pt.gap < contract.MULTIPLIER_RESOLUTION for pt, _ in bad):
+        pt, why = bad[0]
+        return main, None, Verdict.FAILED, cannot(pt.eps2, why), None, pts
+    good = [pt for pt in pts if not any(pt is q for q, _ in bad)]
+    wrong = [pt for pt in good if pt.stable is not None and pt.stable == subcritical]
+    sc = fit_scaling([p.eps2 for p in good], [p.rel_error for p in good], [p.floor for p in good])
+    if sc.holds and not wrong and not bad:
+        return _agreed(main, sc, tolerance, pts)
+    if bad:         # the largest ε² found no cycle, or the steady state: is it beyond the weakly nonlinear range?
+        failure, sc = f"{bad[0][1]} at eps2 = {top.eps2:.3g}", None
+    elif wrong:
+        failure = (f"the cycle at eps2 = {wrong[0].eps2:.3g} is {'stable' if wrong[0].stable else 'unstable'} "
+                   f"(Floquet multiplier gap {wrong[0].gap:.3g}) where the prediction is "
+                   f"{'un' if subcritical else ''}stable")
+    else:
+        failure = f"{sc.reason} at eps2 = {', '.join(f'{q:.3g}' for q in sc.eps2)}"
+    # the scaling fails: an ε⁴ term (fitted from a third ε²), or is the requested ε² beyond the weakly
+    # nonlinear range (or on another solution)?
+    tail = sorted(good, key=lambda q: -q.eps2)
     for _ in range(contract.REFINEMENTS):
-        e = tail[-1].eps2 / contract.RATIO
+        e = min(q.eps2 for q in pts) / contract.RATIO
         if e < lo:
             break
         pt = measure(e, False)
@@ -384,14 +397,22 @@ def _run_contract(measure: Callable[[float, bool], _Point], eps2_request, primar
         if _unresolved(pt, subcritical) or (pt.stable is not None and pt.stable == subcritical):
             break
         tail.append(pt)
+        if not wrong and not bad:
+            full = fit_scaling([q.eps2 for q in tail], [q.rel_error for q in tail], [q.floor for q in tail])
+            if full.holds:
+                return _agreed(main, full, tolerance, pts)
+        if len(tail) < 2 or tail[-2].stable is not None and tail[-2].stable == subcritical:
+            continue
         below = fit_scaling([q.eps2 for q in tail[-2:]], [q.rel_error for q in tail[-2:]],
                             [q.floor for q in tail[-2:]])
         if below.holds:
             emax = tail[-2].eps2
             return (main, sc, Verdict.OUTSIDE_VALIDITY,
-                    f"{sc.reason} at eps2 = {', '.join(f'{q:.3g}' for q in sc.eps2)}; the amplitude equation holds "
-                    f"below eps2 = {emax:.3g} ({below.describe()})", emax, pts)
-    return main, sc, Verdict.DISAGREES, sc.reason, None, pts
+                    f"{failure}; the amplitude equation holds below eps2 = {emax:.3g} "
+                    f"({below.describe() or 'errors at the resolution floor'})", emax, pts)
+    if bad:
+        return main, None, Verdict.FAILED, cannot(top.eps2, bad[0][1]), None, pts
+    return main, sc, Verdict.DISAGREES, failure, None, pts
 
 
 def _result(common: dict, main: _Point | None, pr, p: float, verdict: Verdict, reason: str, sc: Scaling | None,

@@ -10,8 +10,10 @@ wrong Λ with a small error passes it); the two measured properties can:
 
 * the **fitted exponent** p of |e| ∝ (ε²)^p over the measured ε² lies in :data:`EXPONENT_BAND`
   (1 when κ ≠ 0; 2 when κ vanishes by symmetry, as for van der Pol's half peak-to-peak swing);
-* the **extrapolated error** e₀ of the fit e = e₀ + κ·ε² is at most :data:`EXTRAPOLATION_BOUND`
-  in magnitude (κ is the *measured next-order coefficient*).
+* the **extrapolated error** e₀ of the fit e = e₀ + κ·ε² (+ κ₂·ε⁴ when three or more ε² are
+  measured) is at most :data:`EXTRAPOLATION_BOUND` in magnitude (κ is the *measured next-order
+  coefficient*).  From two points the fit leaves −κ₂ε⁴/4 in e₀; where that exceeds the bound the
+  check measures a third ε² (:func:`landau.check` refines by ε²/4) and fits the ε⁴ term as well.
 
 An error below its point's resolution — :data:`ERROR_FLOOR`, or 3·rtol/|1 − m| where the
 shooting's residual rtol is amplified by the amplitude multiplier m, whichever is larger — carries
@@ -129,9 +131,9 @@ class Scaling:
     exponent : float or None
         Fitted p in |e| ∝ (ε²)^p over the errors above :data:`ERROR_FLOOR` (None when fewer than two).
     coefficient : float or None
-        κ, the measured next-order coefficient (slope of e against ε²).
+        κ, the measured next-order coefficient (slope of e against ε² at ε² = 0).
     extrapolated : float or None
-        e₀, the error extrapolated to ε² → 0.
+        e₀, the error extrapolated to ε² → 0 (linear in ε² from two points, quadratic from three on).
     holds : bool
         Whether the contract holds (exponent in band, |e₀| within bound, or all errors below the floor).
     reason : str
@@ -188,7 +190,8 @@ def fit_scaling(eps2s: Sequence[float], rel_errors: Sequence[float],
     ex, ee = tuple(float(v) for v in x), tuple(float(v) for v in e)
     if x.size < 2 or np.unique(x).size < 2:
         return Scaling(ex, ee, None, None, None, False, "fewer than two eps2 measured")
-    kappa, e0 = (float(v) for v in np.polyfit(x, e, 1))
+    coef = np.polyfit(x, e, min(2, np.unique(x).size - 1))     # e₀ + κε² (+ κ₂ε⁴ from three ε² on)
+    kappa, e0 = float(coef[-2]), float(coef[-1])
     big = np.abs(e) > fl
     if not big.any():
         return Scaling(ex, ee, None, kappa, e0, True, "")
