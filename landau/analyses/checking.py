@@ -368,17 +368,16 @@ def _run_contract(measure: Callable[[float, bool], _Point], eps2_request, primar
     main = next(p for p in pts if p.eps2 == primary)
     bad = [(pt, _unresolved(pt, subcritical)) for pt in pts]
     bad = [(pt, why) for pt, why in bad if why]
-    top = max(pts, key=lambda q: q.eps2)
-    if any(pt is not top or pt.gap is not None and pt.gap < contract.MULTIPLIER_RESOLUTION for pt, _ in bad):
-        pt, why = bad[0]
-        return main, None, Verdict.FAILED, cannot(pt.eps2, why), None, pts
+    for pt, why in bad:      # below float64 resolution: no smaller ε² can do better
+        if pt.gap is not None and pt.gap < contract.MULTIPLIER_RESOLUTION:
+            return main, None, Verdict.FAILED, cannot(pt.eps2, why), None, pts
     good = [pt for pt in pts if not any(pt is q for q, _ in bad)]
     wrong = [pt for pt in good if pt.stable is not None and pt.stable == subcritical]
     sc = fit_scaling([p.eps2 for p in good], [p.rel_error for p in good], [p.floor for p in good])
     if sc.holds and not wrong and not bad:
         return _agreed(main, sc, tolerance, pts)
-    if bad:         # the largest ε² found no cycle, or the steady state: is it beyond the weakly nonlinear range?
-        failure, sc = f"{bad[0][1]} at eps2 = {top.eps2:.3g}", None
+    if bad:         # no cycle found, or the steady state: is that ε² beyond the weakly nonlinear range?
+        failure, sc = f"{bad[0][1]} at eps2 = {bad[0][0].eps2:.3g}", None
     elif wrong:
         failure = (f"the cycle at eps2 = {wrong[0].eps2:.3g} is {'stable' if wrong[0].stable else 'unstable'} "
                    f"(Floquet multiplier gap {wrong[0].gap:.3g}) where the prediction is "
@@ -411,7 +410,9 @@ def _run_contract(measure: Callable[[float, bool], _Point], eps2_request, primar
                     f"{failure}; the amplitude equation holds below eps2 = {emax:.3g} "
                     f"({below.describe() or 'errors at the resolution floor'})", emax, pts)
     if bad:
-        return main, None, Verdict.FAILED, cannot(top.eps2, bad[0][1]), None, pts
+        return (main, None, Verdict.FAILED, f"cannot resolve at this eps2 ({bad[0][0].eps2:.3g}): {bad[0][1]}; "
+                f"the Floquet multiplier is {_resolvable_text(lo, hi)}, the simulation found no cycle matching the "
+                f"prediction below either", None, pts)
     return main, sc, Verdict.DISAGREES, failure, None, pts
 
 

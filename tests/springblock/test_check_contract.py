@@ -203,3 +203,29 @@ def test_a_cycle_on_another_solution_is_outside_validity_not_disagrees():
     r = check(fhn, eps2=1e-2, bracket=(0.2, 0.5))
     assert r.verdict is Verdict.OUTSIDE_VALIDITY and r.eps2_max_valid == pytest.approx(2.5e-3)
     assert "holds below eps2 = 0.0025" in r.reason
+
+
+def _brusselator_a10():
+    s, _, _ = _brusselator()
+    return s, {"a": 10.0}, (90.0, 110.0)
+
+
+def test_a_large_next_order_coefficient_is_not_a_disagreement():
+    """Brusselator, a = 10 (b_c = 101, ω_c = 10): +9.2 % at ε² = 1e-3 — the old fixed margin (2 %) said
+    "disagrees" — and +1.9 % at 2.5e-4: the next-order coefficient is ≈ 100, the error falls like
+    (ε²)^1.15 and extrapolates to −0.6 %, so it agrees; at ε² = 1e-4 it is +0.73 % (exponent 1.01)."""
+    s, par, br = _brusselator_a10()
+    r = check(s, eps2=1e-3, params=par, bracket=br)
+    assert r.rel_error == pytest.approx(0.0922, abs=2e-3)
+    assert r.verdict is Verdict.AGREES and r.exponent == pytest.approx(1.15, abs=0.05)
+    assert abs(r.extrapolated_error) < 0.008 and r.next_order_coefficient == pytest.approx(98, rel=0.05)
+
+
+@pytest.mark.slow
+def test_a_relaxation_cycle_beyond_the_weakly_nonlinear_range_is_outside_validity():
+    """Same Brusselator at ε² = 1e-2: the cycle is a relaxation oscillation (half swing ≈ 135 against the
+    predicted 2.0, solve_ivp) and the shooting fails at 1e-2 and 2.5e-3; the error falls like ε² at
+    6.25e-4 and 1.6e-4 — outside validity, eps2_max_valid = 6.25e-4, never "disagrees".  (≈ 50 s)"""
+    s, par, br = _brusselator_a10()
+    r = check(s, eps2=1e-2, params=par, bracket=br)
+    assert r.verdict is Verdict.OUTSIDE_VALIDITY and r.eps2_max_valid == pytest.approx(6.25e-4)
