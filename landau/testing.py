@@ -14,12 +14,12 @@ Example — a CI test for your own law::
 
 from __future__ import annotations
 
-from typing import Any, Mapping
+from typing import Any, Mapping, Sequence
 
 from landau.analyses.checking import CheckResult, Verdict, check
 
 
-def assert_prediction(target: Any, V: float | None = None, eps2: float = 1e-3,
+def assert_prediction(target: Any, V: float | None = None, eps2: float | Sequence[float] = 1e-3,
                       params: Mapping[str, float] | None = None, **kwargs: Any) -> CheckResult:
     """Assert that the amplitude equation of ``target`` agrees with a direct simulation.
 
