@@ -779,7 +779,9 @@ def check(target, V: float | None = None, eps2: float | Sequence[float] = 1e-3,
                          f"got {type(target).__name__}")
     if V is None:
         raise InputError("check() of a spring–block needs the driving velocity V [m/s]")
-    V = float(V)
+    from landau.derivation.linear import one_velocity
+
+    V = one_velocity(V, "V", "a loop of check() calls, or `landau sweep check`")
     if not (V > 0 and math.isfinite(V)):
         raise InputError(f"V must be a positive velocity in m/s, got {V!r}")
     return _check_spring_block(target, V, eps2, params, tolerance, bistability)
