@@ -284,14 +284,13 @@ def _galvanetto(args, t_end: float, n: int):
 
         own = referenced_names(args.kinetic, what="--kinetic") | (
             referenced_names(args.kinetic_pos, what="--kinetic-pos") if args.kinetic_pos is not None else set())
-        known += sorted(own - set(known) - {"r"})
     given_V = [it for it in args.param if it.split("=", 1)[0].strip() == "V"]
     if given_V:
         if V is not None or len(given_V) > 1:
             raise InputError(f"{name}: the belt velocity V is given twice")
         V = given_V[0].split("=", 1)[1]
     over = parse_params([it for it in args.param if it not in given_V])
-    _only_known(over, known, name)
+    _only_known(over, known + sorted(own - set(known) - {"r"}), name)
     if V is not None:
         over["V"] = _positive(V, "--V")
     if args.kinetic_pos is not None and args.kinetic is None:
@@ -323,7 +322,7 @@ def _galvanetto(args, t_end: float, n: int):
                    EngineOptions(record=True, samples=8, max_steps=_max_steps(args), max_events=MAX_EVENTS,
                                  max_samples=MAX_POINTS))
     sim = replace(sol.simulation(name), state_names=names)
-    used = {k: getattr(p, k) for k in known if k not in extra}
+    used = {k: getattr(p, k) for k in known}
     used.update(extra)
     notes = ["dimensionless time and displacements; " + start]
     if not p.law.is_paper_law:

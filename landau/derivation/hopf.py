@@ -164,7 +164,8 @@ class HopfResult:
     normalise : str
         The state component of the critical mode that is normalised to 1.
     l1 : float, optional
-        First Lyapunov coefficient in Kuznetsov's normalisation, Re c₁/ω.
+        First Lyapunov coefficient in Kuznetsov's normalisation, Re c₁/ω.  It depends on the
+        declared state coordinates; C, Λ and the criticality do not.
     c1 : complex, optional
         Kuznetsov's c₁(0) (⟨q, q⟩ = 1, ⟨p, q⟩ = 1); MatCont and BifurcationKit print its real part.
     Lambda5 : float, optional
@@ -349,7 +350,9 @@ class HopfResult:
         return 0 if s == 0 or not math.isfinite(s) else (-1 if s > 0 else 1)
 
     def amplitude(self, p: float) -> float:
-        """Predicted cycle amplitude max|y_n − y₀,n| at parameter p (NaN on the side without a cycle).
+        """Predicted cycle amplitude at p: the half peak-to-peak swing (max y_n − min y_n)/2 of the normalised
+        component (NaN on the side without a cycle).  max|y_n − y₀,n| differs from it by the cycle's O(ε²)
+        mean shift, i.e. by O(ε) relative.
 
         Parameters
         ----------

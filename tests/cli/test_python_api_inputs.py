@@ -47,3 +47,24 @@ def test_bautin_point_refuses_a_vector():
 
     with pytest.raises(InputError, match="one velocity"):
         bautin_point(landau.derive("modified-dieterich"), [1.1e-3])
+
+
+def test_check_refuses_a_vector_velocity_by_name():
+    # was: a raw TypeError (float() of a list) from inside check()
+    import landau
+
+    with pytest.raises(InputError, match="V must be one velocity"):
+        landau.check("dieterich", V=[1e-4, 1e-3])
+
+
+def test_check_no_hopf_names_the_velocity_weakening_range(capsys):
+    # was: "law 'dieterich' has no Hopf point at V = 0.0001 m/s" without the range that `derive` prints
+    import landau
+    from landau.errors import NoHopfError
+
+    with pytest.raises(NoHopfError, match="velocity strengthening"):
+        landau.check("dieterich", V=1e-4, params={"b": 0.01})
+    from landau.cli import main
+
+    code = main(["verify", "dieterich", "--V", "1e-4", "--param", "b=0.01"])
+    assert code != 0 and "velocity strengthening" in capsys.readouterr().err
