@@ -60,23 +60,30 @@ def test_bautin_normal_form_is_decided_at_fifth_order(s2):
     assert r.extra["degenerate_at_every_order_computed"] is False
 
 
-def test_second_lyapunov_of_a_dae_matches_the_explicit_reduction():
-    # ruina law, M = 0: the u-row a ln((V+u)/V) + b ln(phi V/L) = -kX/sigma solves for u explicitly,
-    # so the DAE is the 2-state ODE below (written independently, no algebraic row)
-    b = SpringBlock("ruina")
+def test_next_order_of_a_dae_matches_the_explicit_reduction():
+    # modified-dieterich law, M = 0 (Λ ≠ 0 there, unlike the aging and slip laws): the u-row
+    # a ln((V+u)/V) + b ln((c + V_s phi/L)/(c + V_s/V)) = -kX/sigma solves for u explicitly, so the
+    # DAE is the 2-state ODE below (written independently, no algebraic row)
+    from landau.derivation.degenerate import next_order
+
+    b = SpringBlock("modified-dieterich")
     p = b.resolve(QS)
     p["V"] = 1e-4
-    kcr = p["sigma"] * (p["b"] - p["a"]) / p["L"]
-    dae = hopf_normal_form(b.system, p, (0.8 * kcr, 1.2 * kcr), l2=True)
-    u = "V*exp(-(k*X/sigma + b*log(phi*V/L))/a) - V"
-    ode = DynamicalSystem.from_strings(
-        {"X": u, "phi": f"-(phi*(V + {u})/L)*log(phi*(V + {u})/L)"}, "k",
-        {n: p[n] for n in ("V", "a", "b", "L", "sigma")}, equilibrium={"X": "0", "phi": "L/V"})
-    ref = hopf_normal_form(ode, ode.defaults, (0.8 * kcr, 1.2 * kcr), l2=True)
+    br = (0.5 * p["sigma"] * (p["b"] - p["a"]) / p["L"], 1.2 * p["sigma"] * (p["b"] - p["a"]) / p["L"])
+    dae = hopf_normal_form(b.system, p, br, l2=True)
+    u = "V*exp(-(k*X/sigma + b*log((c + V_s*phi/L)/(c + V_s/V)))/a) - V"
+    ode = DynamicalSystem.from_strings({"X": u, "phi": f"1 - phi*(V + {u})/L"}, "k",
+                                       {n: p[n] for n in ("V", "a", "b", "L", "sigma", "c", "V_s")},
+                                       equilibrium={"X": "0", "phi": "L/V"})
+    ref = hopf_normal_form(ode, ode.defaults, br, l2=True)
     assert dae.p_c == pytest.approx(ref.p_c, rel=1e-13)
-    assert dae.Lambda == pytest.approx(ref.Lambda, rel=1e-10)
-    assert dae.l2 == pytest.approx(ref.l2, rel=1e-9)
-    assert second_lyapunov(b.system, p, dae) == pytest.approx(ref.l2, rel=1e-9)
+    assert dae.Lambda == pytest.approx(ref.Lambda, rel=1e-10) and dae.Lambda < 0
+    nd, nr = next_order(b.system, p, dae, 50), next_order(ode, ode.defaults, ref, 50)
+    assert nd["Lambda5"] == pytest.approx(nr["Lambda5"], rel=1e-9)      # both normalised on X = 1
+    # Kuznetsov's <q, q> = 1 spans (X, u, phi) in the DAE and (X, phi) in the ODE: l2 = Re c2 scales
+    # with the square of the factor by which l1 = Re c1/omega does
+    assert nd["l2"] / nr["l2"] == pytest.approx((dae.l1 / ref.l1) ** 2, rel=1e-9)
+    assert second_lyapunov(b.system, p, dae) == pytest.approx(dae.l2, rel=1e-12)
 
 
 def test_identical_quasi_static_chain_is_degenerate_in_phase():
