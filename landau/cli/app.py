@@ -33,6 +33,7 @@ COMMANDS: dict[str, str] = {
     "plot": "landau.cli.plot",
     "simulate": "landau.cli.simulate",
     "hopf": "landau.cli.hopf",
+    "sweep": "landau.cli.sweep",
     "figures": "landau.paper_figures.cli",
     "verify": "landau.verify.cli",
 }
