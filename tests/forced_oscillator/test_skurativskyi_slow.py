@@ -121,10 +121,15 @@ def test_sweep_resumes_after_interruption(tmp_path):
     om = np.round(np.arange(21.6, 21.8 + 1e-9, 0.05), 6)
     spec = SweepSpec(n_first=40, n_step=20, n_keep=10, rtol=1e-7, overlap=1)
     full = run_sweep(om, "up", out=tmp_path / "a", spec=spec, workers=1, progress=False)
-    # interrupt: keep the first two records of the single chunk and a truncated third line
-    f = tmp_path / "a" / "chunk_0000.jsonl"
-    lines = f.read_text().splitlines()
-    f.write_text("\n".join(lines[:2]) + "\n" + lines[2][:25])
+    # interrupt: keep the first two points of the single chunk, the rest pending again
+    import xarray as xr
+
+    f = tmp_path / "a" / "sweep.nc"
+    with xr.open_dataset(f) as stored:
+        ds = stored.load()
+    ds["status"] = ds.status.astype(object)
+    ds["status"][2:] = "pending"
+    ds.to_netcdf(f)
     again = run_sweep(om, "up", out=tmp_path / "a", spec=spec, workers=1, progress=False)
     for a, b in zip(full.attractors, again.attractors, strict=True):
         assert np.allclose(a.x_section, b.x_section, rtol=0, atol=1e-12)
