@@ -96,6 +96,7 @@ def sweep(task: str, grid: Any, *, model: str = "spring-block", law: Any = None,
     t = make_task(task, model, law_spec(law), dict(params or {}), dict(options or {}))
     g = make_grid(grid, t.units())
     t.check_grid(g)
+    t = t.for_grid(g)
     ds, counts = execute(t, g, executor=executor, workers=workers, out=out, attrs=t.attrs(), progress=progress)
     if return_counts:
         return ds, {"computed": counts.computed, "reused": counts.reused, "failed": counts.failed}

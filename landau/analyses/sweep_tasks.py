@@ -127,6 +127,10 @@ class Task:
     def check_grid(self, grid: Grid) -> None:
         """Refuse (InputError) a grid this task cannot run."""
 
+    def for_grid(self, grid: Grid) -> "Task":
+        """The task as it runs on ``grid`` (a choice made once, in the calling process)."""
+        return self
+
     def chunks(self, grid: Grid) -> list[Chunk]:
         return chunks(grid, self.chunk_size)
 
@@ -166,13 +170,32 @@ HOPF_NAMES = ["kc", "omega_c", "Gamma_bar", "Omega_bar", "Lambda", "chi", "C"]
 class SpringBlockHopf(Task):
     """k_c, ω_c and the amplitude-equation coefficients over a chunk (vectorised)."""
 
-    method: str = "general"
+    method: str = "auto"
 
     def check_grid(self, grid: Grid) -> None:
         if "k" in grid.names or "k" in dict(self.fixed):
             raise InputError("hopf spring-block: k is the bifurcation parameter (its critical value k_c is "
                              "computed), it cannot be swept")
         _spring_block_grid(self, grid)
+
+    def for_grid(self, grid: Grid) -> "SpringBlockHopf":
+        """One evaluation route for every chunk, so that no number depends on how the grid was cut:
+        the exactly cancelled form (:mod:`landau.derivation.rational`) when only V is swept and the
+        law's derivatives are rational in V, else the screened float route ("general")."""
+        if self.method != "auto":
+            return self
+        from dataclasses import replace
+
+        method = "general"
+        if grid.names == ("V",):
+            fixed = {k: v for k, v in self.fixed if k != "V"}
+            try:
+                _derivation(self.law).evaluate(np.array([grid.axes[0].values[0]]), fixed, HOPF_NAMES,
+                                               method="rational")
+                method = "rational"
+            except InputError:
+                pass
+        return replace(self, method=method)
 
     def prepare(self) -> None:
         _derivation(self.law)
@@ -366,7 +389,7 @@ def make_task(task: str, model: str, law: LawSpec | None, fixed: dict[str, Any],
     if task == "hopf":
         if model == "spring-block":
             return SpringBlockHopf("hopf", model, law, fx, opts, chunk_size=int(options.get("chunk_size", 4096)),
-                                   method=str(options.get("method", "general")))
+                                   method=str(options.get("method", "auto")))
         return PointwiseHopf("hopf", model, None, fx, opts, chunk_size=int(options.get("chunk_size", 1)))
     if task == "check":
         if model != "spring-block":

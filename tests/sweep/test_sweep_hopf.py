@@ -106,3 +106,17 @@ def test_hopf_sweep_bad_input():
         landau.sweep("hopf", {"V": [1e-4], "zeta": [1.0]}, law="dieterich", progress=False)
     with pytest.raises(InputError, match="unknown sweep task"):
         landau.sweep("hopff", {"V": [1e-4]}, law="dieterich", progress=False)
+
+
+def test_velocity_only_sweep_uses_one_route_and_equals_landau_hopf():
+    from landau.laws import get_law
+    from landau.verify.springblock.checks import predict
+
+    Vs = [1e-6, 3e-5, 1e-3]
+    a = landau.sweep("hopf", {"V": Vs}, law="dieterich", workers=1, progress=False)
+    b = landau.sweep("hopf", {"V": Vs}, law="dieterich", workers=1, progress=False, options={"chunk_size": 1})
+    _same(a, b)  # the route does not depend on how the grid is cut
+    for V in Vs:
+        pr = predict(get_law("dieterich"), V)
+        assert float(a.kc.sel(V=V)) == pytest.approx(pr.p_c, rel=1e-10)
+        assert float(a.Lambda.sel(V=V)) == pytest.approx(pr.Lambda, rel=1e-10)
