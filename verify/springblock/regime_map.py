@@ -7,16 +7,19 @@ Each run is followed through its maxima of X (the crossings of v = V from above)
 (a run that fails is repeated once at a tolerance 100 times tighter: a fast decay into the
 tolerance's noise stalls the step-size control)
 
-* decays (the maxima fall below 10⁻⁶ ℓ, or keep shrinking by the last check): **steady** sliding;
+* decays (three maxima below 10⁻⁶ ℓ, or 21 maxima shrinking at a constant ratio per cycle, the
+  linear decay): **steady** sliding;
 * settles on a cycle (successive maxima within 10⁻⁴, the chunk within 10⁻³): a **small cycle** when
   the slip rate stays above V/10 over it, a **stick–slip** cycle when it falls below (the block
   nearly stops: the large relaxation oscillation of Sec. 3.2).
 
 The point's ``regime`` is the common verdict, or **bistable** when the two starts end on
 different attractors (steady sliding and a cycle, or two cycles: the subcritical side of the
-Hopf line, Putelat et al. 2010 Figs 5b and 12).  The amplitude equation predicts the boundaries:
-the Hopf line k = k_c(V) with Λ < 0 (supercritical: a small cycle for k < k_c) or Λ > 0
-(subcritical: bistability for k slightly above k_c), drawn on the map by
+Hopf line, Putelat et al. 2010 Figs 5b and 12), or **undecided** when a run has not settled after
+:data:`MAX_EVENTS` cycles and the two could still end on one attractor (the approach slows down
+as |k − k_c| → 0, so a band along the Hopf line stays undecided at any finite length).  The
+amplitude equation predicts the boundaries: the Hopf line k = k_c(V) with Λ < 0 (supercritical:
+a small cycle for k < k_c) or Λ > 0 (subcritical: bistability for k slightly above k_c), drawn on the map by
 :func:`plot_regime_map`.  This is the comparison Putelat et al. made with AUTO (their Fig. 12),
 here by an independent route.
 """
@@ -39,7 +42,7 @@ STICK_FRACTION = 0.1
 NEAR, FAR = 1e-3, 100.0
 #: crossings per integration chunk, and at most
 CHUNK_EVENTS, MAX_EVENTS = 20, 400
-REGIMES = ("steady", "small-cycle", "stick-slip", "bistable")
+REGIMES = ("steady", "small-cycle", "stick-slip", "bistable", "undecided")
 UNITS = {"amplitude_near": "m", "amplitude_far": "m", "period_near": "s", "period_far": "s",
          "v_min_near": "1", "v_min_far": "1"}
 
@@ -66,30 +69,42 @@ def check_grid(task: ModelTask, grid) -> None:
         raise InputError("regime spring-block: direct simulation needs a block mass M > 0")
 
 
-def _follow(model: SpringBlockModel, y0: np.ndarray, rtol: float) -> tuple[str, float, float, float]:
-    """(regime, amplitude [m], v_min/V, period [s]) of the attractor reached from ``y0``."""
+class _Fate:
+    """Where one run went: regime, amplitude (last max of X − x₀, m), slowest slip / V, period (s),
+    whether it settled, and its trend when it did not (+1 growing, −1 shrinking)."""
+
+    def __init__(self, regime, amplitude=0.0, v_min=1.0, period=float("nan"), settled=True, trend=0):
+        self.regime, self.amplitude, self.v_min, self.period = regime, amplitude, v_min, period
+        self.settled, self.trend = settled, trend
+
+
+def _follow(model: SpringBlockModel, y0: np.ndarray, rtol: float) -> _Fate:
+    """The attractor reached from ``y0`` (see the module docstring)."""
     lam, _ = model.critical_mode()
     period = 2 * math.pi / abs(lam.imag) * model.time_unit if lam.imag else 1e3 * model.time_unit
     y, t, xs, ts = np.asarray(y0, dtype=float), 0.0, [], []
+    settled, new = False, []
+    tiny = 1e-6 * model.ell
     while len(xs) < MAX_EVENTS:
         run = integrate(model, y, (t, t + 50 * CHUNK_EVENTS * period), rtol=rtol, event_index=W_INDEX,
                         event_direction=-1, stop_after=CHUNK_EVENTS)
         down = run.event_y[run.event_dir < 0]
         if len(down) == 0:  # no oscillation left in 50 periods per crossing wanted: relaxed
-            return "steady", 0.0, 1.0, float("nan")
+            return _Fate("steady")
         new = list(down[:, 0] * model.ell)
         xs += new
         ts += list(run.event_t[run.event_dir < 0])
-        if abs(xs[-1]) < 1e-6 * model.ell:
-            return "steady", 0.0, 1.0, float("nan")
+        if len(xs) >= 3 and all(abs(x) < tiny for x in xs[-3:]):
+            return _Fate("steady")
+        if len(xs) >= 21 and _geometric_decay(xs[-21:]):
+            return _Fate("steady")
         a = abs(new[-1])
         if len(new) > 2 and abs(new[-1] - new[-2]) < 1e-4 * a and abs(new[-1] - new[0]) < 1e-3 * a:
+            settled = True
             break
         y = run.y.copy()
         t = float(run.t)
-    else:
-        if abs(xs[-1]) < 0.5 * max(abs(x) for x in xs[:CHUNK_EVENTS]):
-            return "steady", 0.0, 1.0, float("nan")   # still shrinking: a slow decay near the Hopf line
+    trend = 0 if settled else (1 if abs(new[-1]) > abs(new[0]) else -1)
     T = float(ts[-1] - ts[-2]) if len(ts) > 1 else period
     # one more cycle with its steps recorded: the slowest slip over it
     y_last = run.event_y[run.event_dir < 0][-1].copy()
@@ -98,12 +113,45 @@ def _follow(model: SpringBlockModel, y0: np.ndarray, rtol: float) -> tuple[str, 
                     stop_after=1, record=200_000)
     v_min = float(np.exp(rec.rec_y[:, W_INDEX].min()))
     regime = "stick-slip" if v_min < STICK_FRACTION else "small-cycle"
-    return regime, float(xs[-1]), v_min, T
+    return _Fate(regime, float(xs[-1]), v_min, T, settled, trend)
+
+
+def _geometric_decay(x) -> bool:
+    """Whether 21 successive maxima shrink at a constant ratio per cycle (to 10 %): the linear decay onto
+    steady sliding.  An approach to a cycle from above slows down instead (its ratio tends to 1)."""
+    a = np.abs(np.asarray(x, dtype=float))
+    if np.any(a <= 0) or not np.all(np.diff(a) < 0):
+        return False
+    r1, r2 = math.log(a[10] / a[0]), math.log(a[20] / a[10])
+    return abs(r2 - r1) <= 0.1 * abs(r1)
 
 
 def _far_start(model: SpringBlockModel) -> np.ndarray:
     n_states = len(model.law.states)
     return np.array([0.0, -math.log(FAR), *([math.log(FAR)] * n_states)])
+
+
+def _combine(near: _Fate, far: _Fate) -> str:
+    """The point's regime from the two runs; ``undecided`` where a run has not settled and the two
+    could still end on one attractor or on two (a slow approach close to the Hopf line)."""
+    if near.regime == far.regime == "steady":
+        return "steady"
+    if "steady" in (near.regime, far.regime):
+        cycle = far if near.regime == "steady" else near
+        # steady sliding attracts the near start and a cycle holds the other: bistable
+        return "bistable" if near.regime == "steady" and (cycle.settled or cycle.trend > 0) else "undecided"
+    lo, hi = sorted((near, far), key=lambda f: abs(f.amplitude))
+    if abs(hi.amplitude - lo.amplitude) <= 1e-2 * abs(hi.amplitude):
+        return hi.regime if near.regime == far.regime else "undecided"
+    if lo.settled and hi.settled:
+        return "bistable"   # two distinct cycles
+    if lo.trend > 0 and hi.settled:
+        return hi.regime    # the smaller run grows towards the cycle the larger one settled on
+    if hi.trend < 0 and lo.settled:
+        return lo.regime
+    if lo.trend > 0 and hi.trend < 0 and lo.regime == hi.regime:
+        return lo.regime    # closing in on one cycle from both sides
+    return "undecided"
 
 
 def regime_at(law, V: float, k: float, params=None, rtol: float = 1e-8) -> dict:
@@ -112,21 +160,23 @@ def regime_at(law, V: float, k: float, params=None, rtol: float = 1e-8) -> dict:
     Returns
     -------
     dict
-        ``regime``, ``regime_near``, ``regime_far`` and per start the amplitude (max X − x₀, m),
-        the slowest slip rate over the cycle as a fraction of V and the period (s).
+        ``regime`` (steady, small-cycle, stick-slip, bistable, or undecided where a run has not
+        settled after :data:`MAX_EVENTS` cycles), ``regime_near``, ``regime_far`` and per start the
+        amplitude (max X − x₀, m), the slowest slip rate over the cycle as a fraction of V, the
+        period (s) and whether it settled.
     """
     model = SpringBlockModel.build(law, V, k, params)
     out: dict = {}
+    fates = {}
     for side, y0 in (("near", model.perturbed(NEAR * model.ell)), ("far", _far_start(model))):
         try:
-            r, amp, vmin, T = _follow(model, y0, rtol)
+            f = _follow(model, y0, rtol)
         except IntegratorError:  # a run decaying into the tolerance's noise: once more, 100 times tighter
-            r, amp, vmin, T = _follow(model, y0, rtol * 1e-2)
-        out.update({f"regime_{side}": r, f"amplitude_{side}": amp, f"v_min_{side}": vmin, f"period_{side}": T})
-    a, b = out["regime_near"], out["regime_far"]
-    same = a == b and (a == "steady" or abs(out["amplitude_near"] - out["amplitude_far"])
-                       <= 1e-2 * max(abs(out["amplitude_near"]), abs(out["amplitude_far"])))
-    out["regime"] = a if same else "bistable"
+            f = _follow(model, y0, rtol * 1e-2)
+        fates[side] = f
+        out.update({f"regime_{side}": f.regime, f"amplitude_{side}": f.amplitude, f"v_min_{side}": f.v_min,
+                    f"period_{side}": f.period, f"settled_{side}": float(f.settled)})
+    out["regime"] = _combine(fates["near"], fates["far"])
     return out
 
 
@@ -141,11 +191,14 @@ def regime_chunk(task: ModelTask, chunk: Chunk) -> ChunkResult:
         pt = {**dict(task.fixed), **{k: float(v[j]) for k, v in chunk.points.items()}}
         V, k = pt.pop("V"), pt.pop("k")
         try:
-            rows.append(regime_at(law, V, k, pt, rtol))
-            status.append("ok"), message.append("")
+            row = regime_at(law, V, k, pt, rtol)
+            rows.append(row)
+            status.append("ok")
+            message.append("" if row["regime"] != "undecided" else
+                           f"a run has not settled after {MAX_EVENTS} cycles (a slow approach near the Hopf line)")
         except (IntegratorError, InputError, ArithmeticError) as exc:
             rows.append({}), status.append("failed"), message.append(_first_line(exc))
-    names = [f"{q}_{s}" for q in ("amplitude", "v_min", "period") for s in ("near", "far")]
+    names = [f"{q}_{s}" for q in ("amplitude", "v_min", "period", "settled") for s in ("near", "far")]
     vals = {n: np.array([r.get(n, np.nan) for r in rows], dtype=float) for n in names}
     strs = {n: [r.get(n, "") for r in rows] for n in ("regime", "regime_near", "regime_far")}
     return ChunkResult(chunk.index, status, message, vals, strs)
@@ -162,7 +215,7 @@ def prepare(task: ModelTask) -> None:
 # the map with the amplitude equation's boundaries
 # ---------------------------------------------------------------------------------------------
 COLOURS = {"steady": "#dde6f0", "small-cycle": "#8fc98f", "stick-slip": "#e8a33d", "bistable": "#b04a7a",
-           "": "#ffffff"}
+           "undecided": "#9a9a9a", "": "#ffffff"}
 
 
 def plot_regime_map(ds, ax=None, n_line: int = 300):
