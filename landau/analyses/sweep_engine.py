@@ -478,7 +478,7 @@ def execute(task, grid: Grid, *, executor: Executor | None = None, workers: int 
                 take(run_chunk(task, ch))
         else:
             queue = list(reversed(work))
-            inflight = set()
+            inflight: set = set()
             try:
                 while queue or inflight:
                     while queue and len(inflight) < 2 * workers:

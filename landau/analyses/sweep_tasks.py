@@ -43,6 +43,15 @@ IMPLEMENTATIONS: dict[str, dict[str, str]] = {
 SPRING_BLOCK_UNITS = {"V": "m/s", "k": "N/m", "M": "kg", "g": "m/s^2", "sigma": "Pa", "eps2": "1"}
 
 
+def _skip(status: list, message: list, rows: list, why: str, exc: BaseException) -> None:
+    """Record a point without a result: its status, the exception's first line, no values."""
+    from landau.analyses.sweep_engine import _first_line
+
+    status.append(why)
+    message.append(_first_line(exc))
+    rows.append({})
+
+
 def _resolve(ref: str):
     mod, fn = ref.split(":")
     return getattr(importlib.import_module(mod), fn)
@@ -106,6 +115,13 @@ class Task:
     chunk_size: int = 1
     continuation: bool = False
 
+    @property
+    def spec(self) -> LawSpec:
+        """The friction law (InputError for a model without one)."""
+        if self.law is None:
+            raise InputError(f"{self.name} {self.model}: this model has no rate-and-state law")
+        return self.law
+
     def units(self) -> dict[str, str]:
         from landau.derivation.multiscale import UNITS
 
@@ -144,7 +160,7 @@ class Task:
 def _spring_block_grid(task: Task, grid: Grid, allowed_extra: tuple[str, ...] = ()) -> None:
     from landau.systems.system import SpringBlock
 
-    block = SpringBlock(task.law.build())
+    block = SpringBlock(task.spec.build())
     known = {p.name for p in block.law.parameters} | set(block.defaults) | {"V", *allowed_extra}
     for name in (*grid.names, *dict(task.fixed)):
         if name not in known:
@@ -190,7 +206,7 @@ class SpringBlockHopf(Task):
         if grid.names == ("V",):
             fixed = {k: v for k, v in self.fixed if k != "V"}
             try:
-                _derivation(self.law).evaluate(np.array([grid.axes[0].values[0]]), fixed, HOPF_NAMES,
+                _derivation(self.spec).evaluate(np.array([grid.axes[0].values[0]]), fixed, HOPF_NAMES,
                                                method="rational")
                 method = "rational"
             except InputError:
@@ -198,10 +214,10 @@ class SpringBlockHopf(Task):
         return replace(self, method=method)
 
     def prepare(self) -> None:
-        _derivation(self.law)
+        _derivation(self.spec)
 
     def run(self, chunk: Chunk) -> ChunkResult:
-        d = _derivation(self.law)
+        d = _derivation(self.spec)
         pts = dict(chunk.points)
         fixed = dict(self.fixed)
         V = pts.pop("V") if "V" in pts else np.full(len(chunk.index), float(fixed.pop("V")))
@@ -244,14 +260,16 @@ class PointwiseHopf(Task):
     ``--param NAME=VALUE``, ``V`` as ``--V``)."""
 
     def run(self, chunk: Chunk) -> ChunkResult:
-        from landau.analyses.sweep_engine import _first_line
 
         hopf = importlib.import_module("landau.cli.hopf")
         hopf._load_models()
         if self.model not in hopf.MODELS:
             raise InputError(f"hopf: unknown model {self.model!r}; known: {', '.join(hopf.MODELS)}")
         fn = hopf.MODELS[self.model][1]
-        status, message, rows, crit = [], [], [], []
+        status: list[str] = []
+        message: list[str] = []
+        rows: list[dict[str, float]] = []
+        crit: list[str] = []
         opts = dict(self.options)
         for j in range(len(chunk.index)):
             point = {**dict(self.fixed), **{k: float(v[j]) for k, v in chunk.points.items()}}
@@ -265,10 +283,12 @@ class PointwiseHopf(Task):
             try:
                 res = fn(args)
             except NoHopfError as exc:
-                status.append("no-hopf"), message.append(_first_line(exc)), rows.append({}), crit.append("")
+                _skip(status, message, rows, "no-hopf", exc)
+                crit.append("")
                 continue
             except (LandauError, ArithmeticError, ValueError) as exc:
-                status.append("failed"), message.append(_first_line(exc)), rows.append({}), crit.append("")
+                _skip(status, message, rows, "failed", exc)
+                crit.append("")
                 continue
             doc = res.as_dict()
             c = str(doc.get("criticality", ""))
@@ -300,20 +320,23 @@ class SpringBlockCheck(Task):
 
     def run(self, chunk: Chunk) -> ChunkResult:
         from landau.analyses.checking import check
-        from landau.analyses.sweep_engine import _first_line
 
         opts = dict(self.options)
-        status, message, rows, strs = [], [], [], {"verdict": [], "criticality_predicted": []}
+        status: list[str] = []
+        message: list[str] = []
+        rows: list[dict[str, float]] = []
+        strs: dict[str, list[str]] = {"verdict": [], "criticality_predicted": []}
         for j in range(len(chunk.index)):
             point = {**dict(self.fixed), **{k: float(v[j]) for k, v in chunk.points.items()}}
             V = point.pop("V")
             eps2 = point.pop("eps2", opts.get("eps2", 1e-3))
             try:
-                res = check(self.law.build(), V=V, eps2=eps2, params=point,
+                res = check(self.spec.build(), V=V, eps2=eps2, params=point,
                             bistability=bool(opts.get("bistability", False)))
             except NoHopfError as exc:
-                status.append("no-hopf"), message.append(_first_line(exc)), rows.append({})
-                strs["verdict"].append(""), strs["criticality_predicted"].append("")
+                _skip(status, message, rows, "no-hopf", exc)
+                strs["verdict"].append("")
+                strs["criticality_predicted"].append("")
                 continue
             doc = res.as_dict()
             rows.append({k: (np.nan if doc.get(k) is None else float(doc[k])) for k in CHECK_FLOATS}

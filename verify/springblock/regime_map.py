@@ -82,7 +82,9 @@ def _follow(model: SpringBlockModel, y0: np.ndarray, rtol: float) -> _Fate:
     """The attractor reached from ``y0`` (see the module docstring)."""
     lam, _ = model.critical_mode()
     period = 2 * math.pi / abs(lam.imag) * model.time_unit if lam.imag else 1e3 * model.time_unit
-    y, t, xs, ts = np.asarray(y0, dtype=float), 0.0, [], []
+    y, t = np.asarray(y0, dtype=float), 0.0
+    xs: list[float] = []
+    ts: list[float] = []
     settled, new = False, []
     tiny = 1e-6 * model.ell
     while len(xs) < MAX_EVENTS:
@@ -184,7 +186,7 @@ def regime_chunk(task: ModelTask, chunk: Chunk) -> ChunkResult:
     """The ``regime`` of each point of a chunk (a point whose simulation fails is ``failed``)."""
     from landau.analyses.sweep_engine import _first_line
 
-    law = task.law.build()
+    law = task.spec.build()
     rtol = float(dict(task.options).get("rtol", 1e-8))
     status, message, rows = [], [], []
     for j in range(len(chunk.index)):
@@ -197,7 +199,9 @@ def regime_chunk(task: ModelTask, chunk: Chunk) -> ChunkResult:
             message.append("" if row["regime"] != "undecided" else
                            f"a run has not settled after {MAX_EVENTS} cycles (a slow approach near the Hopf line)")
         except (IntegratorError, InputError, ArithmeticError) as exc:
-            rows.append({}), status.append("failed"), message.append(_first_line(exc))
+            rows.append({})
+            status.append("failed")
+            message.append(_first_line(exc))
     names = [f"{q}_{s}" for q in ("amplitude", "v_min", "period", "settled") for s in ("near", "far")]
     vals = {n: np.array([r.get(n, np.nan) for r in rows], dtype=float) for n in names}
     strs = {n: [r.get(n, "") for r in rows] for n in ("regime", "regime_near", "regime_far")}
@@ -208,7 +212,7 @@ def prepare(task: ModelTask) -> None:
     """Compile the law's callbacks and the integrator in this process (before local workers fork)."""
     from landau.verify.springblock.model import compile_law
 
-    compile_law(task.law.build())
+    compile_law(task.spec.build())
 
 
 # ---------------------------------------------------------------------------------------------
