@@ -15,8 +15,9 @@ own warm-up points), so the numbers are the same, bit for bit, whichever executo
   a chunk marks its points ``failed`` with the exception's first line instead of ending the run.
 * Storage: the results are written to netCDF (``ds.to_netcdf`` to a temporary file next to the
   target, then :func:`os.replace`) every few seconds and at the end, also when the run is
-  interrupted (Ctrl-C); a re-run with the same file reuses every finished point (``pending`` is
-  the status of a point not computed yet).
+  interrupted (Ctrl-C); a re-run with the same file reuses every finished point and computes the
+  rest: the ``pending`` ones (not computed yet) and the ``failed`` ones (a worker lost, a run that
+  failed), tried again.
 
 xarray and a netCDF backend (h5netcdf, netCDF4 or scipy) are needed only here, imported on first
 use (``pip install landau-friction[sweep]``).
@@ -432,7 +433,7 @@ def execute(task, grid: Grid, *, executor: Executor | None = None, workers: int 
             raise InputError(f"--out {str(path)!r} is not a regular file")
         if path.exists():
             table.load(read_stored(path, grid, attrs))
-    todo_mask = table.status == PENDING
+    todo_mask = (table.status == PENDING) | (table.status == "failed")  # a failed point is tried again
     counts.reused = int(grid.size - np.count_nonzero(todo_mask))
     work = []
     for ch in task.chunks(grid):

@@ -120,3 +120,19 @@ def test_velocity_only_sweep_uses_one_route_and_equals_landau_hopf():
         pr = predict(get_law("dieterich"), V)
         assert float(a.kc.sel(V=V)) == pytest.approx(pr.p_c, rel=1e-10)
         assert float(a.Lambda.sel(V=V)) == pytest.approx(pr.Lambda, rel=1e-10)
+
+
+def test_a_failed_point_is_tried_again_on_a_rerun(tmp_path, serial):
+    import xarray as xr
+
+    out = tmp_path / "kc.nc"
+    landau.sweep("hopf", GRID, law="dieterich", workers=1, out=out, progress=False, options={"chunk_size": 5})
+    with xr.open_dataset(out) as stored:
+        ds = stored.load()
+    ds["status"] = ds.status.astype(object)
+    ds["status"][0, 0] = "failed"  # e.g. a worker that died
+    ds.to_netcdf(out)
+    again, counts = landau.sweep("hopf", GRID, law="dieterich", workers=1, out=out, progress=False,
+                                 options={"chunk_size": 5}, return_counts=True)
+    assert counts["computed"] == 1 and counts["reused"] == 11
+    _same(serial.drop_attrs(), again.drop_attrs())

@@ -4,8 +4,9 @@ At each (V, k) the spring–block of Putelat, Dawes & Willis (2010), eq. (4), is
 starts: *near* steady sliding (displaced by 10⁻³ ℓ along the critical mode) and *far* from it (a
 block that has almost stopped and healed: v = V/100, φᵢ = 100 φᵢ,ss, spring at its steady load).
 Each run is followed through its maxima of X (the crossings of v = V from above) until it
-(a run that fails is repeated once at a tolerance 100 times tighter: a fast decay into the
-tolerance's noise stalls the step-size control)
+(a run whose step size collapses at steady sliding itself, where the crossings of v = V
+dissolve in round-off, has decayed; any other failing run is repeated once at a tolerance 100
+times tighter)
 
 * decays (three maxima below 10⁻⁶ ℓ, or 21 maxima shrinking at a constant ratio per cycle, the
   linear decay): **steady** sliding;
@@ -88,8 +89,13 @@ def _follow(model: SpringBlockModel, y0: np.ndarray, rtol: float) -> _Fate:
     settled, new = False, []
     tiny = 1e-6 * model.ell
     while len(xs) < MAX_EVENTS:
-        run = integrate(model, y, (t, t + 50 * CHUNK_EVENTS * period), rtol=rtol, event_index=W_INDEX,
-                        event_direction=-1, stop_after=CHUNK_EVENTS)
+        try:
+            run = integrate(model, y, (t, t + 50 * CHUNK_EVENTS * period), rtol=rtol, event_index=W_INDEX,
+                            event_direction=-1, stop_after=CHUNK_EVENTS)
+        except IntegratorError as exc:
+            if _at_rest(model, exc.state):  # the crossings of v = V dissolved in round-off: decayed
+                return _Fate("steady")
+            raise
         down = run.event_y[run.event_dir < 0]
         if len(down) == 0:  # no oscillation left in 50 periods per crossing wanted: relaxed
             return _Fate("steady")
@@ -116,6 +122,15 @@ def _follow(model: SpringBlockModel, y0: np.ndarray, rtol: float) -> _Fate:
     v_min = float(np.exp(rec.rec_y[:, W_INDEX].min()))
     regime = "stick-slip" if v_min < STICK_FRACTION else "small-cycle"
     return _Fate(regime, float(xs[-1]), v_min, T, settled, trend)
+
+
+def _at_rest(model: SpringBlockModel, state) -> bool:
+    """Whether a physical state (X, v, φ…) is steady sliding to within 1e-9 (relative; X against ℓ)."""
+    if state is None:
+        return False
+    X, v, *phis = state
+    return (abs(X) <= 1e-9 * model.ell and abs(v / model.V - 1) <= 1e-9
+            and all(abs(ph / p0 - 1) <= 1e-9 for ph, p0 in zip(phis, model.phi0, strict=True)))
 
 
 def _geometric_decay(x) -> bool:
