@@ -284,7 +284,8 @@ def plot_regime_map(ds, ax=None, n_line: int = 300):
         kc, lam = np.asarray(table["kc"]), np.asarray(table["Lambda"])
         ax.plot(Vs, np.where(lam < 0, kc, np.nan), "k-", lw=1.6, label="k_c(V), Λ < 0 (supercritical)")
         ax.plot(Vs, np.where(lam > 0, kc, np.nan), "k--", lw=1.6, label="k_c(V), Λ > 0 (subcritical)")
-        flips = np.flatnonzero(np.diff(np.sign(lam)) != 0)
+        sg = np.sign(lam)
+        flips = np.flatnonzero(np.isfinite(lam[:-1]) & np.isfinite(lam[1:]) & (sg[:-1] * sg[1:] < 0))
         for i in flips:
             ax.axvline(Vs[i], color="0.3", lw=0.8, ls=":")
     ax.set_xscale("log")
