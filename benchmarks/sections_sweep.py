@@ -71,7 +71,7 @@ def section_sweep(quick: bool = False) -> None:
     rows = []
     # --- 1 -> 2 workers, >= 64 simulation points
     n = 64
-    periods = 20 if quick else 50
+    periods = 50 if quick else 200
     _omega_sweep(8, 1, 5, True)  # loads every compiled piece in this process
     walls = {w: _omega_sweep(n, w, periods, quick) for w in (1, 2)}
     speedup = walls[1] / walls[2]
