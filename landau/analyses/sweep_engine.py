@@ -8,8 +8,9 @@ own warm-up points), so the numbers are the same, bit for bit, whichever executo
 
 * Executors: any :class:`concurrent.futures.Executor` (``submit`` returning a future); local
   processes by default, the calling process for one worker, ``distributed.Client(...)
-  .get_executor()`` for a dask cluster.  At most ``2 × workers`` chunks are in flight, so a grid
-  of a million points does not queue a million tasks.
+  .get_executor()`` for a dask cluster.  At most ``2 × workers`` chunks (:data:`IN_FLIGHT` on an
+  executor of unknown size) are in flight, so a grid of a million points does not queue a
+  million tasks.
 * Status per point: a task returns ``ok`` or the reason a point has no result (``no-hopf``,
   ``degenerate``, ``outside-validity``, ``failed``) with a one-line message; an exception inside
   a chunk marks its points ``failed`` with the exception's first line instead of ending the run.
@@ -37,6 +38,8 @@ import numpy as np
 
 from landau.errors import InputError
 
+#: chunks kept in flight on an executor of unknown size (a dask cluster): twice its workers otherwise
+IN_FLIGHT = 1024
 #: the status of a point not computed yet
 PENDING = "pending"
 #: the statuses a task may give a point
@@ -457,8 +460,8 @@ def execute(task, grid: Grid, *, executor: Executor | None = None, workers: int 
         if workers > 1 and len(work) > 1:
             task.prepare()  # compile (or load) in this process: forked workers inherit it
             own = executor = ProcessPoolExecutor(max_workers=workers)
-    else:
-        workers = int(workers or getattr(executor, "_max_workers", None) or os.cpu_count() or 2)
+    else:  # a foreign executor (a cluster's size is not known here): many chunks in flight
+        workers = int(workers or getattr(executor, "_max_workers", None) or IN_FLIGHT // 2)
     last = time.monotonic()
     bar = bar_for(total=n_todo, desc=f"sweep {task.name}", unit="pt") if progress else None
 

@@ -259,13 +259,22 @@ class PointwiseHopf(Task):
     function is called with the arguments the command line would give it (swept values as
     ``--param NAME=VALUE``, ``V`` as ``--V``)."""
 
-    def run(self, chunk: Chunk) -> ChunkResult:
-
+    def _function(self):
         hopf = importlib.import_module("landau.cli.hopf")
         hopf._load_models()
         if self.model not in hopf.MODELS:
             raise InputError(f"hopf: unknown model {self.model!r}; known: {', '.join(hopf.MODELS)}")
-        fn = hopf.MODELS[self.model][1]
+        return hopf.MODELS[self.model][1]
+
+    def check_grid(self, grid: Grid) -> None:
+        self._function()
+        unknown = sorted(set(dict(self.options)) - {"friction", "friction_neg", "friction_name", "kinetic",
+                                                     "kinetic_pos", "parameter", "chunk_size"})
+        if unknown:
+            raise InputError(f"hopf {self.model}: option(s) {', '.join(unknown)} do not apply")
+
+    def run(self, chunk: Chunk) -> ChunkResult:
+        fn = self._function()
         status: list[str] = []
         message: list[str] = []
         rows: list[dict[str, float]] = []

@@ -11,7 +11,8 @@ sliding, small cycle, large stick-slip or bistable, by simulation started on bot
 The result is an xarray Dataset in FILE.nc (dimensions: the swept parameters; variables: the
 task's quantities as in ``--json``, ``status`` and ``message`` per point).  It is written as the
 sweep goes; running the same command again reuses the finished points (``computed``/``reused``
-in the summary), also after Ctrl-C.
+in the summary), also after Ctrl-C, and tries the failed ones again.  Exit code 0, or 1 when every
+point computed in the run failed (each point's ``status`` and ``message`` say why).
 
 Examples::
 
@@ -155,7 +156,9 @@ def run(args) -> dict:
             "dims": {k: int(v) for k, v in ds.sizes.items() if k in ds.status.dims},
             "points": int(ds.status.size), **counts, "status": statuses,
             "variables": [v for v in ds.data_vars if v not in ("status", "message")],
-            "fixed_parameters": fixed}
+            "fixed_parameters": fixed,
+            # every point computed in this run failed: the run as a whole did not work
+            "exit_code": 1 if counts["computed"] and counts["failed"] == counts["computed"] else 0}
 
 
 def render(doc: dict) -> str:

@@ -88,3 +88,16 @@ def test_cli_sweep_bad_input_one_line_exit_2(tmp_path, capsys, monkeypatch, args
     assert main(["sweep", "hopf", "spring-block", "dieterich", *args]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and what in err
+
+
+def test_hopf_sweep_of_another_model_point_by_point_equals_landau_hopf(capsys):
+    # Galvanetto (2004) one block: c_1 = F_k'(-V), the engine's Λ; the sweep calls the same analysis
+    ds = landau.sweep("hopf", {"V": [0.3, 0.5], "gamma": [2.0, 3.0]}, model="galvanetto-one-block", workers=1,
+                      progress=False)
+    assert (ds.status == "ok").all()
+    assert main(["hopf", "galvanetto-one-block", "--V", "0.5", "--param", "gamma=3.0", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    pt = ds.sel(V=0.5, gamma=3.0)
+    for name in ("p_c", "omega_c", "Lambda", "C"):
+        assert float(pt[name]) == doc[name], name
+    assert str(pt.criticality.values) == doc["criticality"]
