@@ -167,3 +167,52 @@ def render(doc: dict) -> str:
     return (f"sweep {doc['task']} {doc['model']}{' ' + doc['law'] if doc['law'] else ''} over {dims}: "
             f"{doc['points']} points ({doc['computed']} computed, {doc['reused']} reused) written to {doc['out']}\n"
             f"  status: {st}\n  variables: {', '.join(doc['variables'])}")
+
+
+def plot_file(path, out, formats=("png", "pdf", "svg")) -> dict:
+    """``landau plot --sweep FILE.nc --out FIG``: a ``regime`` map with k_c(V) on top
+    (:func:`landau.verify.springblock.regime_map.plot_regime_map`) or a ``simulate`` bifurcation
+    diagram of the forced oscillator (:func:`landau.verify.skurativskyi.sweep.plot_diagram`); the
+    JSON document of the command."""
+    from pathlib import Path
+
+    import numpy as np
+
+    from landau.analyses.sweep_engine import _engine, xarray
+    from landau.support.io import atomic_savefig
+
+    if out is None:
+        raise InputError(f"--out FILE is required ({', '.join('.' + f for f in formats)})")
+    if Path(out).suffix.lstrip(".").lower() not in formats:
+        raise InputError(f"--out {out!r}: unknown figure type (use .{', .'.join(formats)})")
+    if not Path(path).is_file():
+        raise InputError(f"--sweep {path!r}: no such file")
+    xr = xarray()
+    try:
+        with xr.open_dataset(path, engine=_engine()) as ds:
+            ds = ds.load()
+    except (OSError, ValueError):
+        raise InputError(f"--sweep {path!r} is not a netCDF sweep file") from None
+    from matplotlib.figure import Figure
+
+    task = ds.attrs.get("task")
+    if task == "regime" and "regime" in ds:
+        from landau.verify.springblock.regime_map import plot_regime_map
+
+        fig = Figure(figsize=(6.4, 4.8))
+        plot_regime_map(ds, fig.subplots())
+        vals, counts = np.unique(ds.regime.values.astype(str), return_counts=True)
+        doc = {"kind": "regime-map", "regimes": {str(v): int(c) for v, c in zip(vals, counts, strict=True)}}
+    elif task == "simulate" and ds.attrs.get("model") == "forced-oscillator":
+        from landau.verify.skurativskyi.sweep import plot_diagram
+
+        fig = Figure(figsize=(7.2, 5.6))
+        plot_diagram(ds, fig)
+        doc = {"kind": "bifurcation-diagram"}
+    else:
+        raise InputError(f"--sweep {path!r} holds a {task or 'non-sweep'!r} sweep: landau plot draws a regime map "
+                         "(landau sweep regime) or a bifurcation diagram (landau sweep simulate forced-oscillator)")
+    fig.tight_layout()
+    doc.update({"law": ds.attrs.get("law", ""), "model": ds.attrs.get("model", ""), "points": int(ds.status.size),
+                "out": str(atomic_savefig(fig, out, dpi=120))})
+    return doc

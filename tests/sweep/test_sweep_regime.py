@@ -33,4 +33,4 @@ def test_plot_sweep_refuses_another_task(tmp_path, capsys):
     out = tmp_path / "kc.nc"
     landau.sweep("hopf", {"V": [1e-4]}, law="dieterich", workers=1, progress=False, out=out)
     assert main(["plot", "--sweep", str(out), "--out", str(tmp_path / "x.png")]) == 2
-    assert "not a regime map" in capsys.readouterr().err
+    assert "landau plot draws a regime map" in capsys.readouterr().err

@@ -59,6 +59,9 @@ def test_simulate_sweep_of_the_forced_oscillator_reproduces_the_omega_sweep(tmp_
                                  progress=False, options=OPTIONS, out=tmp_path / "om.nc", return_counts=True)
     assert counts["computed"] == 1 and counts["reused"] == 4
     assert np.array_equal(again.x_section.values, ds.x_section.values, equal_nan=True)
+    png = tmp_path / "omega.png"
+    assert main(["plot", "--sweep", str(tmp_path / "om.nc"), "--out", str(png)]) == 0
+    assert png.stat().st_size > 1000
 
 
 def test_cli_sweep_json_and_resume(tmp_path, capsys):

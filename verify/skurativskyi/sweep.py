@@ -166,6 +166,38 @@ def attractors_of(ds) -> list[Attractor]:
     return out
 
 
+def plot_diagram(ds, fig):
+    """The bifurcation diagram of a ``simulate`` sweep in ω: the Poincaré points x(2πi/ω) and the
+    impacts per forcing period against ω (Skurativskyi et al. 2019, Figs 2–4), on two axes of ``fig``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The result of ``landau.sweep("simulate", {"omega": ...}, model="forced-oscillator")``.
+    fig : matplotlib Figure
+
+    Returns
+    -------
+    tuple of Axes
+    """
+    if tuple(ds.status.dims) != ("omega",):
+        raise InputError("the bifurcation diagram needs a sweep over omega alone")
+    a, b = fig.subplots(2, 1, sharex=True)
+    om = np.asarray(ds.omega.values)
+    xs = np.asarray(ds.x_section.values)
+    a.plot(np.repeat(om, xs.shape[1]), xs.ravel() * 1e3, "k.", ms=1.5)
+    import json
+
+    xI = json.loads(ds.attrs.get("fixed_parameters", "{}")).get("xI", PAPER.xI)
+    a.axhline(float(xI) * 1e3, color="r", lw=0.6)  # the obstacle
+    a.set_ylabel("x [mm] at t = 2πi/ω")
+    b.plot(om, np.asarray(ds.impacts_per_period.values), "k.-", ms=3, lw=0.6)
+    b.set_ylabel("impacts per period")
+    b.set_xlabel("ω [rad/s]")
+    a.set_title("forced oscillator: Poincaré section and impacts per period", fontsize=9)
+    return a, b
+
+
 def warm_up(params=PAPER) -> None:
     """Compile the event-driven loop and the friction law's callbacks in this process, before
     any worker starts: both are cached on disk by numba (``cache=True``), so the workers load
@@ -269,5 +301,5 @@ def run_sweep(omegas, direction: str = "up", out: str | os.PathLike | None = Non
     return SweepResult(direction, tuple(atts), str(path) if path else None)
 
 
-__all__ = ["CHUNK_SIZE", "MECHANICAL", "SweepResult", "SweepSpec", "attractors_of", "make_task", "run_sweep",
-           "simulate_chunk", "warm_up"]
+__all__ = ["CHUNK_SIZE", "MECHANICAL", "SweepResult", "SweepSpec", "attractors_of", "make_task", "plot_diagram",
+           "run_sweep", "simulate_chunk", "warm_up"]

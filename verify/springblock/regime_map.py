@@ -308,35 +308,3 @@ def _builtin():
 
     return BUILTIN
 
-
-def plot_file(path, out, formats=("png", "pdf", "svg")) -> dict:
-    """Draw the ``regime`` sweep stored at ``path`` (netCDF) to the figure ``out``; the JSON document
-    of ``landau plot --sweep``."""
-    from pathlib import Path
-
-    from landau.analyses.sweep_engine import _engine, xarray
-    from landau.support.io import atomic_savefig
-
-    if out is None:
-        raise InputError(f"--out FILE is required ({', '.join('.' + f for f in formats)})")
-    if Path(out).suffix.lstrip(".").lower() not in formats:
-        raise InputError(f"--out {out!r}: unknown figure type (use .{', .'.join(formats)})")
-    if not Path(path).is_file():
-        raise InputError(f"--sweep {path!r}: no such file")
-    xr = xarray()
-    try:
-        with xr.open_dataset(path, engine=_engine()) as ds:
-            ds = ds.load()
-    except (OSError, ValueError):
-        raise InputError(f"--sweep {path!r} is not a netCDF sweep file") from None
-    if ds.attrs.get("task") != "regime" or "regime" not in ds:
-        raise InputError(f"--sweep {path!r} holds a {ds.attrs.get('task', 'non-sweep')!r} sweep, not a regime map")
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(6.4, 4.8))
-    plot_regime_map(ds, fig.subplots())
-    fig.tight_layout()
-    vals, counts = np.unique(ds.regime.values.astype(str), return_counts=True)
-    return {"kind": "regime-map", "law": ds.attrs.get("law", ""), "points": int(ds.regime.size),
-            "regimes": {str(v): int(c) for v, c in zip(vals, counts, strict=True)},
-            "out": str(atomic_savefig(fig, out, dpi=120))}
