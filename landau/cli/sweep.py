@@ -196,6 +196,7 @@ def plot_file(path, out, formats=("png", "pdf", "svg")) -> dict:
     from matplotlib.figure import Figure
 
     task = ds.attrs.get("task")
+    doc: dict[str, Any]
     if task == "regime" and "regime" in ds:
         from landau.verify.springblock.regime_map import plot_regime_map
 
