@@ -397,7 +397,7 @@ class ModelTask(Task):
 
 #: tasks and the models each runs on
 TASKS = {"hopf": "the Hopf point and amplitude-equation coefficients (any model of landau hopf)",
-         "check": "the direct-simulation verdict of landau check (spring-block)",
+         "check": "the direct-simulation verdict of landau.check (spring-block)",
          "simulate": "statistics of a settled run (forced-oscillator: continuation in omega)",
          "regime": "the regime by direct simulation started on both sides (spring-block)"}
 

@@ -4,7 +4,7 @@
 [--param NAME=VALUE ...] [--workers N | --dask ADDRESS | --dask local:N] --out FILE.nc [--json]``
 
 Tasks: ``hopf`` (any model of ``landau hopf``; the spring–block's a whole chunk at a time),
-``check`` (spring-block: the verdict of ``landau check`` and its numbers), ``simulate``
+``check`` (spring-block: the direct-simulation verdict of ``landau.check`` and its numbers), ``simulate``
 (forced-oscillator: the attractor by continuation in omega), ``regime`` (spring-block: steady
 sliding, small cycle, large stick-slip or bistable, by simulation started on both sides).
 
