@@ -249,6 +249,16 @@ class ChunkResult:
     strings: dict[str, list[str]] = field(default_factory=dict)
 
 
+def _only(res: ChunkResult, mask: np.ndarray) -> ChunkResult:
+    """The points of ``res`` whose flat index is set in ``mask``."""
+    keep = np.flatnonzero(mask[np.asarray(res.index, dtype=np.int64)])
+    if len(keep) == len(res.index):
+        return res
+    return ChunkResult(np.asarray(res.index)[keep], [res.status[j] for j in keep], [res.message[j] for j in keep],
+                       {k: np.asarray(v)[keep] for k, v in res.values.items()},
+                       {k: [v[j] for j in keep] for k, v in res.strings.items()})
+
+
 def _first_line(exc: BaseException) -> str:
     text = str(exc).strip()
     return f"{type(exc).__name__}: {(text.splitlines()[0] if text else '')[:300]}"
@@ -443,13 +453,10 @@ def execute(task, grid: Grid, *, executor: Executor | None = None, workers: int 
         pending = todo_mask[ch.index]
         if not pending.any():
             continue
-        if not pending.all():
-            if task.continuation:
-                ch.done = {j: table.record(int(i)) for j, i in enumerate(ch.index) if not todo_mask[i]}
-            else:
-                keep = np.flatnonzero(pending)
-                ch.index = ch.index[keep]
-                ch.points = {k: v[keep] for k, v in ch.points.items()}
+        if not pending.all() and task.continuation:
+            ch.done = {j: table.record(int(i)) for j, i in enumerate(ch.index) if not todo_mask[i]}
+        # a partly finished chunk is computed whole (the same batch as in an uninterrupted run, so the
+        # same numbers to the last bit) and only its missing points are stored
         work.append(ch)
     n_todo = int(np.count_nonzero(todo_mask))
     own = None
@@ -467,6 +474,7 @@ def execute(task, grid: Grid, *, executor: Executor | None = None, workers: int 
 
     def take(res: ChunkResult):
         nonlocal last
+        res = _only(res, todo_mask)
         table.put(res)
         counts.computed += len(res.index)
         counts.failed += sum(1 for s in res.status if s == "failed")
