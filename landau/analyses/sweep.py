@@ -28,7 +28,7 @@ from landau.errors import InputError
 
 
 def law_spec(law: Any) -> LawSpec | None:
-    """A :class:`LawSpec` from a built-in law's name, a LawSpec, or None."""
+    """A :class:`LawSpec` from a built-in law's name, a :class:`~landau.laws.FrictionLaw`, a LawSpec, or None."""
     if law is None or isinstance(law, LawSpec):
         return law
     if isinstance(law, str):
@@ -38,8 +38,11 @@ def law_spec(law: Any) -> LawSpec | None:
             raise InputError(f"unknown law {law!r} (built-in: {', '.join(BUILTIN)}; an inline law: "
                              "LawSpec(name, mu, states))")
         return LawSpec(law)
-    raise InputError("law: give a built-in law's name or a landau.analyses.sweep_tasks.LawSpec "
-                     "(a law object cannot be sent to the workers; its declaration can)")
+    from landau.laws import FrictionLaw
+
+    if isinstance(law, FrictionLaw):
+        return LawSpec.of(law)
+    raise InputError(f"law: give a built-in law's name, a FrictionLaw or a LawSpec (got {type(law).__name__})")
 
 
 def sweep(task: str, grid: Any, *, model: str = "spring-block", law: Any = None,
@@ -58,8 +61,9 @@ def sweep(task: str, grid: Any, *, model: str = "spring-block", law: Any = None,
     model : str
         ``spring-block`` (Putelat et al. 2010; the default), ``forced-oscillator``
         (Skurativskyi et al. 2019), or any model of ``landau hopf`` for the ``hopf`` task.
-    law : str or LawSpec, optional
-        The spring–block's friction law (built-in name or inline declaration).
+    law : str, FrictionLaw or LawSpec, optional
+        The spring–block's friction law: a built-in law's name, a law object (sent to the workers
+        as its declaration) or a :class:`~landau.analyses.sweep_tasks.LawSpec`.
     params : mapping, optional
         Fixed parameter values (law and system parameters; ``V`` if it is not swept).
     executor : concurrent.futures.Executor, optional

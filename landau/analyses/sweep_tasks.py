@@ -62,7 +62,19 @@ def _resolve(ref: str):
 # ---------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class LawSpec:
-    """A friction law by name (built-in) or by its inline declaration (``--mu``/``--state``)."""
+    """A friction law by name (built-in) or by its declaration, as the workers rebuild it.
+
+    Parameters
+    ----------
+    name : str
+        A built-in law's name (with ``mu`` None), or the declared law's name.
+    mu : str, optional
+        The friction coefficient μ(v, φ…) (:meth:`landau.laws.FrictionLaw.from_strings`).
+    states : tuple of (str, str)
+        Each state's name and its rate dφ/dt.
+    params : tuple of (str, float)
+        The declared law's parameter values.
+    """
 
     name: str
     mu: str | None = None
@@ -79,6 +91,18 @@ class LawSpec:
                    else FrictionLaw.from_strings(self.name, self.mu, dict(self.states), dict(self.params)))
             _LAWS[key] = law
         return law
+
+    @classmethod
+    def of(cls, law) -> "LawSpec":
+        """The spec of a :class:`~landau.laws.FrictionLaw` object (its name if it is the built-in law of
+        that name, else its declaration with its parameters' values)."""
+        from landau.laws import BUILTIN, get_law
+
+        if law.name in BUILTIN and get_law(law.name) == law:
+            return cls(law.name)
+        states = tuple((str(sym), str(rate)) for sym, rate in zip(law.states, law.rates, strict=True))
+        params = tuple((p.name, float(p.default)) for p in law.parameters if p.default is not None)
+        return cls(law.name, str(law.mu), states, params)
 
     def declaration(self) -> str:
         law = self.build()

@@ -136,3 +136,16 @@ def test_a_failed_point_is_tried_again_on_a_rerun(tmp_path, serial):
                                  options={"chunk_size": 5}, return_counts=True)
     assert counts["computed"] == 1 and counts["reused"] == 11
     _same(serial.drop_attrs(), again.drop_attrs())
+
+
+def test_a_declared_law_sweeps_like_the_same_built_in_law():
+    from landau.laws import FrictionLaw
+
+    # the Dieterich law of Putelat et al. (2010) eqs (26)+(28), declared from strings under another name
+    mine = FrictionLaw.from_strings("my-dieterich", "a_v + a*log(v/V_s) + b*log(V_s*phi/L)", {"phi": "1 - v*phi/L"})
+    Vs = [1e-5, 1e-4]
+    a = landau.sweep("hopf", {"V": Vs}, law=mine, workers=1, progress=False)
+    b = landau.sweep("hopf", {"V": Vs}, law="dieterich", workers=1, progress=False)
+    assert a.attrs["law"] == "my-dieterich" and "dphi/dt" in a.attrs["law_declaration"]
+    for name in ("kc", "omega_c", "Lambda", "C"):
+        assert np.allclose(a[name].values, b[name].values, rtol=1e-10, atol=0), name
