@@ -3,6 +3,8 @@
 * ``workers`` — wall-clock speed-up from 1 to 2 local worker processes on an ω-sweep of the
   forced oscillator (Skurativskyi et al. 2019) of at least 64 simulation points, both runs in this
   process one after the other (same-run ratio), caches warm.  Goal ≥ 1.8× on a 2-core machine.
+  A control in the same run — equal pure-Python loops on 1 and 2 processes — shows what the
+  machine gives a second process at that moment (on a shared machine, possibly nothing).
 * ``hopf`` — grid points per CPU second of the spring–block's ``hopf`` task in one process (the
   vectorised compiled kernels, a chunk of 4096 points per task), on a velocity grid (the exactly
   cancelled route; goal ≥ 1e5 points/s) and, for information, on a (V, a) grid (the screened
@@ -51,6 +53,24 @@ def _omega_sweep(n: int, workers: int, periods: int, quick: bool) -> float:
     return wall
 
 
+def _burn(n: int) -> int:
+    s = 0
+    for i in range(n):
+        s += i * i
+    return s
+
+
+def _control(workers: int, n: int = 4_000_000, tasks: int = 8) -> float:
+    """Wall seconds of ``tasks`` equal pure-Python loops on a pool of ``workers`` processes: what the
+    machine gives a second process at this moment (the control of the speed-up)."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    t0 = time.perf_counter()
+    with ProcessPoolExecutor(workers) as ex:
+        list(ex.map(_burn, [n] * tasks))
+    return time.perf_counter() - t0
+
+
 def _hopf_rate(grid: dict, repeat: int = 3) -> float:
     import landau
 
@@ -75,9 +95,13 @@ def section_sweep(quick: bool = False) -> None:
     _omega_sweep(8, 1, 5, True)  # loads every compiled piece in this process
     walls = {w: _omega_sweep(n, w, periods, quick) for w in (1, 2)}
     speedup = walls[1] / walls[2]
+    control = _control(1) / _control(2)
+    rows.append({"measure": "control: 8 equal pure-Python loops, speed-up 1 -> 2 processes (wall)", "value": control,
+                 "unit": "x"})
     rows.append({"measure": f"omega-sweep {n} points x {periods} periods, 1 worker", "value": walls[1], "unit": "s"})
     rows.append({"measure": f"omega-sweep {n} points x {periods} periods, 2 workers", "value": walls[2], "unit": "s"})
-    report(Goal("sweep", "sweep-1", f"speed-up 1 -> 2 local workers, {n} simulation points (wall)", speedup, 1.8))
+    report(Goal("sweep", "sweep-1", f"speed-up 1 -> 2 local workers, {n} simulation points (wall)", speedup, 1.8,
+                note=f"control on this machine now: {control:.2f}x"))
     if RAW["sweep_omega"][f"{n}x1"] != RAW["sweep_omega"][f"{n}x2"]:
         raise RuntimeError("the ω-sweep differs between 1 and 2 workers")
     # --- hopf points per CPU second in one process
