@@ -5,6 +5,9 @@
   *and* a new ``NUMBA_CACHE_DIR`` (numba then writes and reads every cache file of the package
   there, so nothing compiled by an earlier run is found), in a fresh process; then the same
   command again with the caches that first run left (warm).
+* ``help`` — ``landau --help`` and ``landau --version`` (the installed script beside the
+  interpreter), best of 5: what a user pays to be told what the commands are; neither imports
+  the engine (no sympy, numba or scipy; a unit test checks that in ``sys.modules``).
 * ``figures`` — ``landau figures`` for galvanetto2004, skurativskyi2019 and putelat2010 warm
   (the caches of a first run of the same command), and cold (new caches, as above) for
   skurativskyi2019 and putelat2010 each repeat; the first, cold run of galvanetto2004 is kept
@@ -112,6 +115,39 @@ def section_coldstart(quick: bool) -> None:
                      f"{cold['baseline/this max']:.2f} (min/median/max)")
         report(Goal("coldstart", goal, f"first `landau {name}`, truly cold [CPU s]", cold["CPU s median"], target,
                     "<=", note=note))
+
+
+#: (argv after ``landau``, goal number, target CPU s of the best of the repeats)
+HELP_COMMANDS = ((["--help"], "10", 0.3), (["--version"], "10", 0.3))
+
+
+def _script(py: str) -> list[str]:
+    """The ``landau`` console script installed beside ``py`` (``py -m landau`` without one)."""
+    script = Path(py).parent / "landau"
+    return [str(script)] if script.is_file() else [py, "-m", "landau"]
+
+
+def section_help(quick: bool) -> None:
+    repeats = 5
+    rows = []
+    for rep in range(repeats):
+        for argv, _, _ in HELP_COMMANDS:
+            for label, py in interpreters():      # interleaved: the same machine load for both
+                rows.append(_row(label, "landau " + " ".join(argv), "warm",
+                                 timed_process([*_script(py), *argv], cwd=NEUTRAL), rep))
+    summary = _summary(rows)
+    RAW["help"] = rows
+    RAW["help_summary"] = summary
+    TABLES["help"] = (
+        "`landau --help` and `landau --version` in a fresh process (the installed `landau` script); CPU s = "
+        f"user + sys of the child; {repeats} repeats, the goal on the best.\n\n" + table(summary, _cols(summary)))
+    for argv, goal, target in HELP_COMMANDS:
+        what = "landau " + " ".join(argv)
+        line = next(s for s in summary if s["command"] == what)
+        note = f"best of {line['repeats']}; median {line['CPU s median']:.3f} CPU s"
+        if "baseline CPU s median" in line:
+            note += f"; baseline median {line['baseline CPU s median']:.3f} CPU s"
+        report(Goal("help", goal, f"`{what}` [CPU s]", line["CPU s min"], target, "<=", note=note))
 
 
 def section_figures(quick: bool) -> None:

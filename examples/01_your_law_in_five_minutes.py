@@ -19,7 +19,6 @@
 # a script.
 
 # %%
-import matplotlib.pyplot as plt
 import numpy as np
 
 from landau import SpringBlock, derive
@@ -105,10 +104,13 @@ exponent
 # ## 5. Plot
 
 # %%
-from landau.report.plotting import plot_check
+from landau.plotting import plot_check
 
 plot_check(checks, title=f"{law.name}, V = {V:g} m/s")
 
+# %% [markdown]
+# The coefficients against V, with the supercritical (Λ < 0) range shaded.  Each plotting call
+# shows its figure once, whether it ends the cell or is assigned (`fig = d.plot(...)`).
+
 # %%
-fig = d.plot((1e-7, 1e-2), n=120)
-plt.close("all")
+d.plot((1e-7, 1e-2), n=120)

@@ -20,7 +20,6 @@
 # amplitude max|x| ≈ 2·sqrt(μ/β) (Strogatz, Nonlinear Dynamics and Chaos, 2nd ed., §7.6).
 
 # %%
-import matplotlib.pyplot as plt
 import numpy as np
 import sympy as sp
 
@@ -74,7 +73,6 @@ checks[-1]
 assert all(c.agrees for c in checks) and np.all(np.abs(rel) < 1e-2), rel
 
 # %%
-from landau.report.plotting import plot_check
+from landau.plotting import plot_check
 
 plot_check(checks, title="van der Pol: max|x| against 2 sqrt(mu/beta)", units="x")
-plt.close("all")

@@ -49,6 +49,9 @@ def __getattr__(name: str):
     if name == "__version__":
         value = globals()["__version__"] = _package_version()
         return value
+    if name == "plotting":  # ``import landau; landau.plotting.plot_check(...)``
+        import importlib
+        return importlib.import_module("landau.plotting")
     if name in _LAZY:
         import importlib
         value = getattr(importlib.import_module(_LAZY[name]), name)
@@ -58,7 +61,7 @@ def __getattr__(name: str):
 
 
 def __dir__():
-    return sorted(set(globals()) | set(_LAZY) | {"__version__"})
+    return sorted(set(globals()) | set(_LAZY) | {"__version__", "plotting"})
 
 
 __all__ = [

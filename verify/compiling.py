@@ -19,6 +19,16 @@ content: it hashes the source of every module the loop can reach through its mod
 cache (``<cache root>/jit/stamps``), and when it differs from the one recorded at the last build,
 removes numba's entries of the loop's file before building again.
 
+Trust.  numba reads its own cache files (it unpickles the index ``.nbi`` and loads the machine
+code of ``.nbc``); landau does not reach into that.  The ``__pycache__`` beside the package's
+modules is as trusted as the modules themselves.  When ``$NUMBA_CACHE_DIR`` is set, its files
+of the loop's module are verified before the build (:func:`landau.verify.jitcache.verify_numba_entries`:
+unsigned files are removed and the loop is built afresh) and signed after it, so a restored or
+shared ``NUMBA_CACHE_DIR`` cannot hand a compiled loop planted or swapped machine code; every other
+file in ``NUMBA_CACHE_DIR`` is numba's business, and that folder must be trusted.  A build whose
+files cannot be written (full disk, read-only folder) keeps its machine code in memory, with one
+warning.
+
 This module imports numba only when a function is compiled.
 """
 
@@ -115,6 +125,10 @@ def _invalidate_if_changed(dispatcher: Any, watched: tuple[str, ...]) -> str | N
     py_func = getattr(dispatcher, "py_func", None)
     if py_func is None:
         return None
+    from landau.support.cachedir import usable_code_dir
+
+    if usable_code_dir() is None:       # the cache is bypassed (already said so): nothing is kept
+        return None
     stamp = source_stamp(py_func, watched)
     path = _stamp_file(py_func)
     try:
@@ -140,13 +154,14 @@ def _invalidate_if_changed(dispatcher: Any, watched: tuple[str, ...]) -> str | N
 def _record(dispatcher: Any, stamp: str | None) -> None:
     if stamp is None:
         return
+    from landau.errors import OutputError
     from landau.support.io import atomic_write_text
 
     path = _stamp_file(dispatcher.py_func)
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
+        path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
         atomic_write_text(path, stamp + "\n")
-    except OSError:   # a read-only cache: the next process checks again
+    except (OSError, OutputError):   # a read-only or full cache: the next process checks again
         pass
 
 
@@ -175,6 +190,12 @@ def compile_once(dispatcher: Any, signature: Any, what: str, watched: tuple[str,
     if overloads is None or args in overloads:      # NUMBA_DISABLE_JIT=1: a Python function
         return dispatcher
     stamp = _invalidate_if_changed(dispatcher, watched)
+    shared = _shared_numba_folders()
+    py_file = Path(dispatcher.py_func.__code__.co_filename) if hasattr(dispatcher, "py_func") else None
+    if shared and py_file is not None:
+        from landau.verify.jitcache import verify_numba_entries
+
+        verify_numba_entries(py_file, shared)
     timer = None
     if os.environ.get(ENV_NOTICE, "1") != "0":
         timer = threading.Timer(NOTICE_AFTER, _notice, args=(what,))
@@ -182,8 +203,31 @@ def compile_once(dispatcher: Any, signature: Any, what: str, watched: tuple[str,
         timer.start()
     try:
         dispatcher.compile(args)
+    except OSError as exc:      # numba built the code (it is in memory) but could not write its files
+        if args not in dispatcher.overloads:
+            raise
+        from landau.support.cachedir import cache_root, warn_once
+
+        warn_once(f"write {cache_root()}", f"could not write {what} to numba's cache ({exc}); it is compiled again "
+                                 "in the next process")
+        return dispatcher
     finally:
         if timer is not None:
             timer.cancel()
     _record(dispatcher, stamp)
+    if shared and py_file is not None:
+        from landau.verify.jitcache import sign_numba_entries
+
+        sign_numba_entries(py_file)
     return dispatcher
+
+
+def _shared_numba_folders() -> list[Path]:
+    """The sub-folders of ``$NUMBA_CACHE_DIR`` (empty when it is not set)."""
+    root = os.environ.get("NUMBA_CACHE_DIR")
+    if not root or not Path(root).is_dir():
+        return []
+    try:
+        return [d for d in Path(root).iterdir() if d.is_dir()]
+    except OSError:
+        return []

@@ -24,22 +24,46 @@ process).
 The folder is ``$LANDAU_CACHE_DIR/jit`` when ``LANDAU_CACHE_DIR`` is set (the root of every
 landau cache), else ``$LANDAU_JIT_DIR`` (the folder itself, an older setting still accepted),
 else ``jit`` in the per-user cache folder (``~/.cache/landau/jit`` on Linux).
+
+Nothing is executed or handed to numba before it is verified:
+
+* a content-addressed source is compiled from the text in memory; its file is rewritten unless
+  it holds exactly that text;
+* a source stored under a caller's key (:func:`store_keyed_source`) carries an HMAC of its tag,
+  key and text under the per-user key of :mod:`landau.support.cachedir`, checked before the text is
+  returned (an edited or planted file is removed and rebuilt);
+* numba's files of a generated source (index ``.nbi``, machine code ``.nbc``) are signed: an
+  HMAC of each file's name and bytes is recorded (an empty file named by it in
+  ``<folder>/signatures``).  Before numba can read any file of a source in a process
+  (:func:`verify_numba_entries`, called when the source is executed and when a function of it is
+  compiled), every file of that source must carry its signature, else all of them are removed
+  and the code is compiled afresh: a planted index (a pickle numba would load), a truncated or
+  swapped machine-code file is never loaded.  Files written while a process runs are signed by
+  it (at the next verification of the same source, after a compilation of :func:`njit_cached`,
+  and at exit); a process killed before that leaves files that the next one rebuilds.
+
+The folder must be the user's own (:func:`landau.support.cachedir.secure_folder`); when it is not,
+or cannot be written, generated code runs from memory (compiled once per process).
 """
 
 from __future__ import annotations
 
+import atexit
 import builtins
 import hashlib
+import logging
 import os
-import pickle
 import sys
 import types
 from pathlib import Path
 from typing import Iterable, Mapping
 
 from landau.errors import OutputError
+from landau.support import cachedir
 from landau.support.cachedir import ENV_JIT, ENV_ROOT, code_dir  # noqa: F401  (re-exported names)
 from landau.support.io import atomic_write_text
+
+logger = logging.getLogger(__name__)
 
 #: file-name prefix of generated kernels (:func:`load_generated`)
 _KERNEL_TAG = "kernel"
@@ -94,6 +118,8 @@ def cached_source_file(source: str, tag: str = _KERNEL_TAG) -> Path | None:
     """
     try:
         path = source_path(source, tag)
+        if cachedir.usable_code_dir() is None:  # not the user's own folder, or no key: from memory
+            return None
     except (OSError, RuntimeError):             # no home directory to put the cache in
         return None
     try:
@@ -103,11 +129,12 @@ def cached_source_file(source: str, tag: str = _KERNEL_TAG) -> Path | None:
     if on_disk != source:                       # absent, truncated or otherwise not ours: (re)write
         try:
             atomic_write_text(path, source)
-        except (OSError, OutputError):          # read-only or missing home: run without a disk cache
+        except (OSError, OutputError) as exc:   # read-only or full: run without a disk cache
+            cachedir.warn_once(f"write {cachedir.cache_root()}",
+                               f"could not write generated code to the cache ({exc}); it is compiled in memory")
             return None
         _drop_numba_entries(path)
-    else:
-        _drop_unreadable_numba_entries(path)
+    verify_numba_entries(path)
     return path
 
 
@@ -118,17 +145,21 @@ def keyed_source_path(key: str, tag: str) -> Path:
     return cache_dir() / f"landau_{tag}_{key}.py"
 
 
-def _keyed_header(key: str, tag: str) -> str:
-    return f"# landau generated code: {tag} {key}\n"
+_KEYED_PREFIX = "# landau generated code: "
+
+
+def _keyed_header(key: str, tag: str, mac: str) -> str:
+    return f"{_KEYED_PREFIX}{tag} {key} {mac}\n"
 
 
 def load_keyed_source(key: str, tag: str) -> tuple[str, Path] | None:
     """The source stored under ``key`` by :func:`store_keyed_source`, with its file.
 
     For generated code whose key is a hash of what it was generated *from* (e.g. a formula)
-    rather than of the source itself.  A file that does not start with the header naming its
-    key, or is not text, is removed (and rebuilt by the caller): a truncated or foreign file is
-    never executed.
+    rather than of the source itself.  The file's header names the tag, the key and an HMAC of
+    both and of the source (:func:`landau.support.cachedir.sign`); a file whose header or HMAC does
+    not verify, or that is not text, is removed (and rebuilt by the caller): a truncated, edited
+    or planted file is never returned, so never executed.
 
     Parameters
     ----------
@@ -144,14 +175,25 @@ def load_keyed_source(key: str, tag: str) -> tuple[str, Path] | None:
     """
     try:
         path = keyed_source_path(key, tag)
+        if cachedir.usable_code_dir() is None:
+            return None
         text = path.read_text(encoding="utf-8")
-    except (OSError, RuntimeError, UnicodeDecodeError):
+    except FileNotFoundError:
         return None
-    header = _keyed_header(key, tag)
-    if not text.startswith(header) or not text.endswith("\n"):
+    except (OSError, RuntimeError, UnicodeDecodeError):
         discard_keyed_source(key, tag)
         return None
-    return text[len(header):], path
+    head, _, source = text.partition("\n")
+    fields = head[len(_KEYED_PREFIX):].split(" ") if head.startswith(_KEYED_PREFIX) else []
+    if len(fields) == 2 and fields == [tag, key]:   # written by an older release, unsigned: rebuilt
+        discard_keyed_source(key, tag)
+        return None
+    if (len(fields) != 3 or fields[:2] != [tag, key]
+            or not cachedir.verify(fields[2], "keyed-source", tag, key, source)):
+        logger.warning("ignoring generated code %s: its signature does not verify; it is rebuilt", path)
+        discard_keyed_source(key, tag)
+        return None
+    return source, path
 
 
 def store_keyed_source(key: str, tag: str, source: str) -> Path | None:
@@ -164,8 +206,20 @@ def store_keyed_source(key: str, tag: str, source: str) -> Path | None:
     """
     try:
         path = keyed_source_path(key, tag)
-        atomic_write_text(path, _keyed_header(key, tag) + source.rstrip("\n") + "\n")
-    except (OSError, RuntimeError, OutputError):
+        if cachedir.usable_code_dir() is None:
+            return None
+        source = source.rstrip("\n") + "\n"
+        mac = cachedir.sign("keyed-source", tag, key, source)
+        if mac is None:
+            return None
+        atomic_write_text(path, _keyed_header(key, tag, mac) + source)
+    except (OSError, RuntimeError) as exc:
+        logger.debug("generated code not kept (%s)", exc)
+        return None
+    except OutputError as exc:
+        cachedir.warn_once(f"write {cachedir.cache_root()}",
+                           f"could not write generated code to the cache ({exc}); it is generated again in the "
+                           "next process")
         return None
     return path
 
@@ -255,14 +309,21 @@ def njit_cached(fn, signature):
     import numba as nb
 
     path = Path(fn.__code__.co_filename)
-    if not path.is_file():                      # no cache file could be written: compile in memory
+    if not path.is_file() or not _cache_file(path):   # no verified cache file: compile in memory
         disp = nb.njit(signature)(fn)
     else:
+        verify_numba_entries(path)              # nothing unsigned reaches numba
         try:
             disp = nb.njit(signature, cache=True)(fn)
-        except Exception:                       # e.g. an index or object file numba cannot read
+        except OSError as exc:                  # numba could not write its files (e.g. a full disk)
+            cachedir.warn_once(f"write {cachedir.cache_root()}",
+                               f"could not write compiled code to the cache ({exc}); it is compiled in memory")
+            disp = nb.njit(signature)(fn)
+        except Exception:                       # a file numba cannot use: rebuilt
             _drop_numba_entries(path)
             disp = nb.njit(signature, cache=True)(fn)
+        if signature is not None:
+            sign_numba_entries(path)
     if fn.__globals__.get(fn.__name__) is fn:   # as a decorator would: importable by name
         fn.__globals__[fn.__name__] = disp
     return disp
@@ -305,19 +366,56 @@ def _drop_numba_entries(path: Path) -> None:
             pass
 
 
-def _readable_index(f: Path) -> bool:
-    """Whether a numba index file unpickles (its version header, then its stamp and overloads)."""
+def _cache_file(path: Path) -> bool:
+    """Whether ``path`` is a source file of the (usable) generated-code folder."""
+    folder = cachedir.usable_code_dir()
+    return folder is not None and path.parent == folder
+
+
+def _signature_dir() -> Path | None:
+    folder = cachedir.usable_code_dir()
+    if folder is None:
+        return None
+    sig = folder / "signatures"
+    if not cachedir.secure_folder(sig, "the signatures of compiled code"):
+        return None
+    if os.fspath(sig) not in _PRUNED:
+        _PRUNED.add(os.fspath(sig))
+        _prune(sig)
+    return sig
+
+
+#: days after which a signature nobody used is removed (its file, if still there, is rebuilt)
+SIGNATURE_DAYS = 30
+_PRUNED: set[str] = set()
+
+
+def _prune(sigdir: Path) -> None:
+    """Remove the signatures not refreshed for :data:`SIGNATURE_DAYS` days (those of files numba
+    has since replaced), once per process."""
+    import time
+
+    limit = time.time() - SIGNATURE_DAYS * 86400
     try:
-        with open(f, "rb") as fh:
-            pickle.load(fh)
-            pickle.loads(fh.read())
-        return True
-    except Exception:
-        return False
+        for e in os.scandir(sigdir):
+            if e.is_file(follow_symlinks=False) and e.stat(follow_symlinks=False).st_mtime < limit:
+                os.unlink(e.path)
+    except OSError:
+        pass
 
 
-def _readable_data(f: Path) -> bool:
-    """A cheap test of a numba code file: a pickle (protocol header) that ends with STOP."""
+def _entry_signature(f: Path) -> str | None:
+    """The signature of numba's file ``f`` (an HMAC of its name and bytes), or None (unreadable)."""
+    try:
+        data = f.read_bytes()
+    except OSError:
+        return None
+    return cachedir.sign("numba-entry", f.name, data)
+
+
+def _plausible(f: Path) -> bool:
+    """Whether ``f`` has the shape of a file numba writes (a pickle stream: protocol header first,
+    STOP last), tested on its bytes alone; what appears while a process runs is signed only then."""
     try:
         with open(f, "rb") as fh:
             head = fh.read(2)
@@ -328,9 +426,78 @@ def _readable_data(f: Path) -> bool:
     return len(head) == 2 and head[0] == 0x80 and tail == b"."
 
 
-def _drop_unreadable_numba_entries(path: Path) -> None:
-    """Remove every numba cache file of ``path`` when one of them cannot be read (numba would
-    raise while loading it, and templates compile lazily, at their first call)."""
-    entries = _numba_entries(path, "nb[ic]")
-    if any(not (_readable_index(f) if f.suffix == ".nbi" else _readable_data(f)) for f in entries):
-        _drop_numba_entries(path)
+#: source files whose numba entries were verified in this process (later files are its own)
+_VERIFIED: set[str] = set()
+_AT_EXIT = False
+
+
+def sign_numba_entries(path: Path) -> None:
+    """Record the signature of every numba file of the source ``path`` (written by this process,
+    or by another process of the same user while this one ran)."""
+    sigdir = _signature_dir()
+    if sigdir is None:
+        return
+    for f in _numba_entries(path, "nb[ic]"):
+        mac = _entry_signature(f)
+        if mac is None:
+            continue
+        try:
+            os.close(os.open(sigdir / mac, os.O_WRONLY | os.O_CREAT, 0o600))
+            os.utime(sigdir / mac)              # in use: kept by the pruning of old signatures
+        except OSError as exc:
+            cachedir.warn_once(f"write {cachedir.cache_root()}",
+                               f"could not record signatures of compiled code ({exc}); it is compiled again "
+                               "in the next process")
+            return
+
+
+def verify_numba_entries(path: Path, folders: list[Path] | None = None) -> None:
+    """Before numba may read any file of the source ``path``: remove all of them unless every one
+    carries its signature (:func:`sign_numba_entries`).
+
+    The first call for ``path`` in a process checks; later calls sign what appeared since (the
+    files numba wrote for this process).  Nothing here unpickles or loads a file: a file is only
+    read as bytes and hashed.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        A generated source file (or a module of the package, see
+        :func:`landau.verify.compiling.compile_once`).
+    folders : list of pathlib.Path, optional
+        Where to look for its files (default :func:`numba_cache_folders`).
+    """
+    key = os.fspath(path)
+    if key in _VERIFIED:
+        if any(not _plausible(f) for f in _numba_entries(path, "nb[ic]")):
+            _drop_numba_entries(path)           # damaged while this process ran: rebuilt
+        sign_numba_entries(path)
+        return
+    sigdir = _signature_dir()
+    if sigdir is None:
+        return
+    entries = [f for d in (folders if folders is not None else numba_cache_folders(path))
+               for f in d.glob(f"{path.stem}.*.nb[ic]")]
+    unsigned = [f for f in entries if not (sigdir / (_entry_signature(f) or "-")).is_file()]
+    if unsigned:
+        logger.info("removing numba's cache of %s: %s carries no valid signature (altered, planted or "
+                       "left by a killed process); it is compiled afresh", path.name, unsigned[0].name)
+        for f in entries:
+            try:
+                f.unlink()
+            except OSError:
+                pass
+    _VERIFIED.add(key)
+    global _AT_EXIT
+    if not _AT_EXIT:
+        _AT_EXIT = True
+        atexit.register(_sign_verified)
+
+
+def _sign_verified() -> None:
+    """At exit: sign the numba files of every source verified in this process."""
+    for key in list(_VERIFIED):
+        try:
+            sign_numba_entries(Path(key))
+        except Exception:                       # never fail an exit
+            pass

@@ -38,6 +38,28 @@ COMMANDS: dict[str, str] = {
     "verify": "landau.verify.cli",
 }
 
+#: what ``landau --help`` says first
+DESCRIPTION = ("Weakly nonlinear analysis of friction-driven oscillators: stability thresholds, amplitude "
+               "equations, simulations and the papers' published values.  Every command takes --json (one "
+               "JSON document on stdout); bad input exits with code 2 and one line naming what is wrong.")
+
+#: sub-command -> its one-line summary (the first line of its module's docstring, which a test
+#: keeps in step), so that ``landau --help`` lists the commands without importing any of them
+SUMMARIES: dict[str, str] = {
+    "linear": "Linear stability of steady sliding: critical stiffness k_c (eq. 7) and frequency ω_c (eq. 8).",
+    "derive": "Amplitude equation of the stick–slip Hopf bifurcation: Γ̄, Ω̄, Λ, χ, C (Putelat et al. 2010, "
+              "eqs 15–23).",
+    "scene": "Named, reproducible computations: landau scene list | landau scene run NAME|GLOB... [--all] "
+             "[--param K=V ...].",
+    "laws": "List the built-in friction laws with their equations, parameters and sources.",
+    "transition": "Transition velocity V*(p) where the Hopf bifurcation changes nature, and the critical p*",
+    "plot": "Plot a law's amplitude-equation coefficients against V, or its regime diagram, to a file.",
+    "simulate": "Simulate one of the toolkit's models and write its time series (CSV, NPZ) or a plot (PNG).",
+    "hopf": "Hopf point of a model's steady state, with its first Lyapunov coefficient and criticality.",
+    "figures": "Regenerate a paper's figures: landau figures PAPER [--only figN,...] [--out DIR].",
+    "verify": "Check the engine's amplitude-equation predictions by direct simulation of the spring–block.",
+}
+
 
 class _Parser(argparse.ArgumentParser):
     """argparse that raises instead of exiting, so every bad input becomes exit 2 with one line."""
@@ -85,15 +107,30 @@ class _VersionAction(argparse.Action):
         parser.exit()
 
 
+def _summary(modname: str) -> str | None:
+    """The first line of a sub-command module's docstring (imports the module)."""
+    doc = (importlib.import_module(modname).__doc__ or "").strip()
+    return doc.splitlines()[0] if doc else None
+
+
 def build_parser(only: str | None = None) -> tuple[argparse.ArgumentParser, dict[str, Any]]:
-    """The argument parser; with ``only``, just that sub-command's module is imported (fast start)."""
-    parser = _Parser(prog="landau", description=__doc__.splitlines()[0])
+    """The argument parser.
+
+    With ``only`` a command name, just that sub-command's module is imported (fast start); with
+    ``only=""`` none is (``landau --help`` lists the commands by their :data:`SUMMARIES`).
+    """
+    parser = _Parser(prog="landau", description=DESCRIPTION,
+                     epilog="`landau COMMAND --help` documents a command; `landau` alone runs `landau derive "
+                            "dieterich` at four driving velocities.")
     parser.add_argument("--version", action=_VersionAction)
-    sub = parser.add_subparsers(dest="command", parser_class=_Parser)
+    sub = parser.add_subparsers(dest="command", parser_class=_Parser, metavar="COMMAND")
     modules: dict[str, Any] = {}
     for name, modname in COMMANDS.items():
         if only is not None and name != only:
-            sub.add_parser(name)
+            summary = SUMMARIES.get(name) if only == "" else None
+            if only == "" and summary is None:  # a command without a summary: its docstring
+                summary = _summary(modname)
+            sub.add_parser(name, help=summary)
             continue
         if importlib.util.find_spec(modname.rsplit(".", 1)[0]) is None:
             continue
@@ -161,7 +198,8 @@ def _main(argv: list[str]) -> int:
             return 0
         if not argv:
             argv = ["derive", "dieterich", "--V", "1e-5,2.6e-5,1e-4,1e-3"]
-        parser, modules = build_parser(argv[0] if argv[0] in COMMANDS else None)
+        # the command named (or none: `landau --help` imports no sub-command)
+        parser, modules = build_parser(next((a for a in argv if a in COMMANDS), ""))
         args = parser.parse_args(argv)
         if args.command is None:
             parser.print_help()
@@ -179,8 +217,13 @@ def _main(argv: list[str]) -> int:
         where = f" {exc.filename}" if getattr(exc, "filename", None) else ""
         print(f"landau: error: cannot write{where}: {exc.strerror or exc}", file=sys.stderr)
         return 2
-    except (RecursionError, MemoryError) as exc:
-        print(f"landau: error: the input is too large or too deeply nested ({type(exc).__name__})", file=sys.stderr)
+    except RecursionError:
+        print("landau: error: the input is too deeply nested (RecursionError)", file=sys.stderr)
+        return 2
+    except MemoryError:
+        # a memory limit (ulimit -v, a container) or a computation too large for this machine: not the input's size
+        print("landau: error: out of memory (MemoryError): the computation needs more memory than this process "
+              "may use; raise the memory limit or ask for fewer points", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         raise

@@ -10,7 +10,7 @@ from __future__ import annotations
 from landau.cli.common import parse_params
 from landau.errors import InputError
 from landau.report.display import text_table
-from landau.scenes import SceneResult, all_scenes, run_scene, run_scenes, verdict
+from landau.scenes import SceneResult, all_scenes, failed, run_scene, run_scenes, verdict
 
 
 def configure(p) -> None:
@@ -38,15 +38,15 @@ def run(args) -> dict:
     overrides = parse_params(args.param, reserved={})  # a scene's own names (k, v, ...) are checked by the scene
     if not args.all and len(args.names) == 1 and not _is_pattern(args.names[0]):
         doc = run_scene(args.names[0], overrides)
-        if doc.get("agrees") is False and doc.get("at_defaults"):
+        if failed(doc):
             doc["exit_code"] = 1
         return doc
     results = run_scenes(None if args.all else args.names, overrides)
     counts: dict[str, int] = {}
     for r in results:
         counts[verdict(r)] = counts.get(verdict(r), 0) + 1
-    failed = any(r.get("error") or (r.get("agrees") is False and r.get("at_defaults")) for r in results)
-    return {"results": [dict(r) for r in results], "summary": counts, "exit_code": 1 if failed else 0}
+    return {"results": [dict(r) for r in results], "summary": counts,
+            "exit_code": 1 if any(failed(r) for r in results) else 0}
 
 
 def render(doc: dict) -> str:
@@ -69,12 +69,12 @@ def render(doc: dict) -> str:
     if doc.get("published") is not None:
         tag = verdict(doc)
         lines.append(f"  published {doc['published']:.10g} ({doc['source']}); relative difference {doc['rel_diff']:.2e}"
-                     + (f"  [{tag}]" if tag in ("agrees", "DISAGREES", "not comparable") else ""))
+                     + (f"  [{tag}]" if tag in ("agrees", "explained", "DISAGREES", "not comparable") else ""))
     else:
         lines.append(f"  source: {doc['source']}")
     for k, v in doc.items():
         if k not in {"scene", "parameter", "value", "units", "published", "source", "rel_diff", "agrees",
-                     "tolerance", "params", "seconds", "exit_code", "at_defaults", "comparable"}:
+                     "tolerance", "params", "seconds", "exit_code", "at_defaults", "comparable", "explained"}:
             lines.append(f"  {k}: {v}")
     lines.append(f"  ({doc['seconds']:.2f} s)")
     return "\n".join(lines)

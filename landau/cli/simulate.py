@@ -24,8 +24,15 @@ Models (defaults: the published parameters):
   the sliding velocity ``v`` [N] with its parameters by ``--param`` (the notes give the
   linearised grazing estimate of their Sec. 5 for that law).
 
+``spring-block LAW --V-history "V0@t0,V1@t1,..."`` drives the load point at a piecewise-constant
+velocity instead (velocity steps, slide-hold-slide; starts from steady sliding at V0); its CSV
+holds t, the load-point velocity V, the slip rate v, the friction coefficient mu and the states.
+
 The output format follows each ``--out`` suffix: ``.csv`` (header ``t [s], name [unit]...``),
-``.npz`` or ``.png`` (time series and phase portrait).  Exit 1 when the integrator fails.
+``.npz`` or ``.png`` (time series with the regimes shaded and the phase portrait, or the
+Poincaré section; ``--discard T`` leaves out t < T).  Every run is bounded: at ``--max-steps``
+(or the event and memory bounds) it ends with a named status, exit 1, and the files hold the
+run up to there.  Exit 1 when the integrator fails.
 """
 
 from __future__ import annotations
@@ -48,8 +55,17 @@ DEFAULT_T_END = {"spring-block": 20.0, "galvanetto-one-block": 60.0, "galvanetto
                  "impact-oscillator": 10.0, "forced-oscillator": 10.0}
 #: state components drawn in the phase portrait (position against its velocity); default (0, 1)
 PHASE_PLANE = {"galvanetto-two-blocks": (0, 2), "impact-oscillator": (0, 2)}
-#: accepted steps kept by the compiled integrators (spring-block, forced oscillator) as the time series
-RECORD = 1_000_000
+#: default step budget per model (``--max-steps``): a run that reaches it ends with status max-steps,
+#: exit 1 and the series up to there written (about 1–3 minutes of CPU time each)
+MAX_STEPS = {"spring-block": 5_000_000, "galvanetto-one-block": 300_000, "galvanetto-two-blocks": 300_000,
+             "impact-oscillator": 300_000, "forced-oscillator": 5_000_000}
+#: events kept by the hybrid models' runs (the run ends with status max-events past it)
+MAX_EVENTS = 200_000
+#: recorded points kept (decimated past it) by the spring-block and the hybrid models
+MAX_POINTS = 200_000
+#: state names and units of the hybrid and compiled models
+STATE_UNITS = {"impact-oscillator": {"phi": "rad", "y": "m", "phidot": "rad/s", "ydot": "m/s"},
+               "forced-oscillator": {"x": "m", "xdot": "m/s"}}
 
 
 def configure(p) -> None:
@@ -73,6 +89,21 @@ def configure(p) -> None:
                    help="galvanetto models: the r > 0 branch (default the odd reflection of --kinetic)")
     p.add_argument("--hopf", action="store_true",
                    help="galvanetto-one-block: also give the damped block's Hopf point c1, omega and criticality")
+    p.add_argument("--max-steps", default=None, metavar="N",
+                   help="step budget of the run; at it the run ends with status max-steps (exit 1) and the "
+                        "series up to there is written (default per model: "
+                        + ", ".join(f"{m} {n:g}" for m, n in MAX_STEPS.items()) + ")")
+    p.add_argument("--y0", default=None, metavar="VALUES",
+                   help="initial state, comma-separated in the order and units of the CSV columns "
+                        "(spring-block: X [m], v [m/s], the law's states; galvanetto: positions then velocities; "
+                        "impact-oscillator: phi, y, phidot, ydot; forced-oscillator: x, xdot)")
+    p.add_argument("--discard", default=None, metavar="T",
+                   help="leave out the transient t < T from what is written (CSV, NPZ and plots: the Poincaré "
+                        "section keeps the attractor)")
+    p.add_argument("--V-history", dest="V_history", default=None, metavar="V0@t0,V1@t1,...",
+                   help="spring-block: drive the load point at velocity V_i [m/s] from time t_i [s] on (0: a hold), "
+                        "starting from steady sliding at V0: velocity steps, slide-hold-slide; the CSV has "
+                        "t, V, v, mu and the states")
     p.add_argument("--plot", choices=("overview", "poincare"), default="overview",
                    help="what a .png shows: time series and phase portrait (default) or the Poincaré section "
                         "(the logged sections; the forced oscillator: stroboscopic at the forcing period)")
@@ -105,8 +136,9 @@ def _spring_block(args, t_end: float):
     from landau.derivation.linear import critical_stiffness
     from landau.systems.system import SpringBlock
     from landau.verify.hybrid import EventLog
+    from landau.verify.hybrid.plotting import regimes_from_mask
     from landau.verify.springblock.model import SpringBlockModel
-    from landau.verify.springblock.simulate import W_INDEX, integrate
+    from landau.verify.springblock.simulate import W_INDEX, record_run
 
     if args.law is None and args.mu is None and not args.state:
         args.law = "dieterich"
@@ -117,6 +149,8 @@ def _spring_block(args, t_end: float):
     block = SpringBlock(law)
     _only_known(overrides, list(block.defaults), "spring-block")
     params = block.resolve(overrides)
+    if args.V_history is not None:
+        return _load_history(args, law, params, t_end)
     V = _positive(args.V, "--V") if args.V is not None else 1e-4
     notes = []
     if args.k is None:
@@ -129,27 +163,108 @@ def _spring_block(args, t_end: float):
     else:
         k = _positive(args.k, "--k")
     model = SpringBlockModel.build(law, V, k, params)
-    y0 = model.perturbed(0.01 * model.ell)
-    # section events: the crossings of v = V (the extrema of X), marked in the phase portrait
-    run = integrate(model, y0, (0.0, t_end), rtol=1e-9, record=RECORD, event_index=W_INDEX)
-    sim = run.simulation("spring-block")
-    phys = model.to_physical(sim.y.T)
     names = ("X", "v") + tuple(s.name for s in law.states)
+    if args.y0 is not None:
+        vals = _y0(args.y0, names)
+        try:
+            y0 = model.from_physical(vals[0], vals[1], vals[2:])
+        except InputError as exc:
+            raise InputError(f"--y0: {exc}") from None
+        start = "starts at --y0"
+    else:
+        y0 = model.perturbed(0.01 * model.ell)
+        start = "starts X = 0.01 L (the law's memory length) off steady sliding along the critical mode"
+    # section events: the crossings of v = V (the extrema of X); the Poincaré section keeps the upward ones
+    sim = record_run(model, y0, (0.0, t_end), rtol=1e-9, max_steps=_max_steps(args), max_points=MAX_POINTS,
+                     event_index=W_INDEX if args.plot == "poincare" else -1)
+    phys = model.to_physical(sim.y.T)
 
     def physical(y):
         ph = model.to_physical(y)
         return np.array([float(ph[n]) for n in names])
 
     events = EventLog()
-    for e in sim.events:  # the located X extrema, in physical units like the series
-        events.append(replace(e, y=physical(e.y), y_after=physical(e.y)))
+    for e in sim.events:  # the located minima of X (v = V, rising), in physical units like the series
+        if e.note == "up":
+            events.append(replace(e, y=physical(e.y), y_after=physical(e.y)))
+    v = np.asarray(phys["v"])
     sim = replace(sim, y=np.vstack([np.asarray(phys[n]) for n in names]), f=None, events=events,
-                  y_final=physical(sim.y_final), state_names=names)
-    units = {"X": "m", "v": "m/s"}
+                  y_final=physical(sim.y_final), state_names=names,
+                  regimes=regimes_from_mask(sim.t, v < STICK_FRACTION * V, "stick (v < V/100)", "slip"))
+    units = {"X": "m", "v": "m/s", **law_state_units(law)}
     used = {"law": law.name, "V": V, "k": k, **params}
-    notes.append("X = x - x0(t) is the displacement from steady sliding; starts X = 0.01 L (the law's memory "
-                 "length) off steady sliding along the critical mode")
+    notes.append("X = x - x0(t) is the displacement from steady sliding; " + start)
     return sim, used, units, notes
+
+
+#: the spring–block's "stick" phases shaded in its plots: slip rate below this fraction of V
+STICK_FRACTION = 0.01
+
+
+def _load_history(args, law, params, t_end_given):
+    """``spring-block LAW --V-history ...``: the load point driven by a velocity history."""
+    from landau.derivation.linear import critical_stiffness
+    from landau.systems.system import SpringBlock
+    from landau.verify.springblock.history import parse_history, simulate_history
+
+    if args.V is not None:
+        raise InputError("spring-block: --V-history gives the load-point velocities; leave out --V")
+    if args.y0 is not None:
+        raise InputError("spring-block: --V-history starts from steady sliding at its first velocity; "
+                         "leave out --y0")
+    hist = parse_history(args.V_history)
+    notes = [f"load point: {hist} (m/s @ s); starts from steady sliding at V = {hist.velocities[0]:g} m/s"]
+    if args.k is None:
+        block = SpringBlock(law)
+        kcs = [float(np.ravel(critical_stiffness(block, V, params))[0]) for V in set(hist.velocities) if V > 0]
+        kcs = [kc for kc in kcs if math.isfinite(kc) and kc > 0]
+        if kcs:
+            k = 2.0 * max(kcs)
+            notes.append(f"k = 2 max k_c(V_i) = {k:.6g} N/m: steady sliding is stable at every velocity of "
+                         "the history (give --k for another machine stiffness)")
+        elif "L" in params:
+            k = params["sigma"] / params["L"]
+            notes.append(f"k = sigma/L = {k:.6g} N/m (the law has no Hopf point at these velocities)")
+        else:
+            raise InputError("spring-block --V-history: give --k (the law has no Hopf point and no L)")
+    else:
+        k = _positive(args.k, "--k")
+    t_end = t_end_given if args.t_end is not None else None
+    sim = simulate_history(law, hist, k, params, t_end)
+    units = {"V": "m/s", "v": "m/s", "mu": "1", **law_state_units(law)}
+    used = {"law": law.name, "V_history": str(hist), "k": k, **params}
+    notes.append("mu = mu(v, phi), the law's friction coefficient; V the load-point velocity")
+    return sim, used, units, notes
+
+
+def law_state_units(law) -> dict:
+    """The units of the law's states, inferred by dimensional analysis (:func:`infer_state_units`)."""
+    from landau.verify.springblock.units import infer_state_units
+
+    return infer_state_units(law)
+
+
+def _y0(text: str, names) -> np.ndarray:
+    """``--y0 a,b,...``: one finite number per state, in the order of ``names``."""
+    try:
+        vals = np.array([float(x) for x in str(text).split(",")])
+    except ValueError:
+        raise InputError(f"--y0 {text!r}: give {len(names)} comma-separated numbers ({', '.join(names)})") from None
+    if vals.shape != (len(names),) or not np.all(np.isfinite(vals)):
+        raise InputError(f"--y0 {text!r}: give {len(names)} finite numbers ({', '.join(names)})")
+    return vals
+
+
+def _max_steps(args) -> int:
+    if args.max_steps is None:
+        return MAX_STEPS[args.model]
+    try:
+        n = float(args.max_steps)
+    except ValueError:
+        n = float("nan")
+    if not (math.isfinite(n) and n >= 1 and n == int(n)):
+        raise InputError(f"--max-steps must be a whole number >= 1, got {args.max_steps!r}")
+    return int(n)
 
 
 def _galvanetto(args, t_end: float, n: int):
@@ -186,13 +301,22 @@ def _galvanetto(args, t_end: float, n: int):
         if not np.all(np.isfinite(vals)):
             raise InputError(f"{name}: the kinetic law's {side} branch is not finite on the slip velocities "
                              f"0 < |r| <= {p.V:g} ({p.law!r})")
-    mode = "s" * n
-    y0 = np.array([0.0] * n + [p.V] * n)
-    sol = simulate(model_for(p), mode, y0, (0.0, t_end), FIG_STEPPER, EngineOptions(record=True, samples=8))
     names = ("X", "Xdot") if n == 1 else ("X1", "X2", "X1dot", "X2dot")
+    if args.y0 is not None:
+        y0 = _y0(args.y0, names)
+        # each block sticks where it moves with the belt, else slips on the side of its relative velocity
+        mode = "".join("s" if y0[n + i] == p.V else ("n" if y0[n + i] < p.V else "p") for i in range(n))
+        start = f"starts at --y0 in mode {mode!r} (s: stuck, n/p: slipping with r = Xdot - V < 0 / > 0)"
+    else:
+        mode = "s" * n
+        y0 = np.array([0.0] * n + [p.V] * n)
+        start = "starts stuck at X = 0"
+    sol = simulate(model_for(p), mode, y0, (0.0, t_end), FIG_STEPPER,
+                   EngineOptions(record=True, samples=8, max_steps=_max_steps(args), max_events=MAX_EVENTS,
+                                 max_samples=MAX_POINTS))
     sim = replace(sol.simulation(name), state_names=names)
     used = {k: getattr(p, k) for k in known}
-    notes = ["dimensionless time and displacements; starts stuck at X = 0"]
+    notes = ["dimensionless time and displacements; " + start]
     if not p.law.is_paper_law:
         used["kinetic"] = str(p.law.neg_expr)
         used["kinetic_pos"] = str(p.law.pos_expr)
@@ -204,7 +328,7 @@ def _galvanetto(args, t_end: float, n: int):
         h = used["hopf"]
         notes.append(f"damped one block at V = {p.V:g}: Hopf point c1 = {h['c1']:.10g} (omega = {h['omega']:.6g}), "
                      f"{h['criticality']}" if h["c1"] is not None else h["note"])
-    return sim, used, {"t": "1"}, notes
+    return sim, used, {"t": "1", **{nm: "1" for nm in names}}, notes   # dimensionless (Galvanetto 2004, eq. 1)
 
 
 #: fractions of the belt velocity where a user's kinetic branch is checked to be finite
@@ -250,15 +374,22 @@ def _impact_oscillator(args, t_end: float):
     p = S.resolve(over)
     cm = build(None, eN, p, ConstantBelt(v), friction=law)
     s = 1 if v < 0 else -1
-    y0 = slip_state(cm.mech, S.equilibrium_phi(p, None, s, law, None, v) + 1e-3)
+    names = ("phi", "y", "phidot", "ydot")
+    if args.y0 is not None:
+        y0 = _y0(args.y0, names)
+        start = "starts at --y0"
+    else:
+        y0 = slip_state(cm.mech, S.equilibrium_phi(p, None, s, law, None, v) + 1e-3)
+        start = "starts on the belt 1e-3 rad off the slip equilibrium"
     sol = simulate(cm.model, cm.initial_mode(0.0, y0), y0, (0.0, t_end), CompiledDOP853(1e-10, 1e-12),
-                   default_options(record=True))
-    sim = replace(sol.simulation(name), state_names=("phi", "y", "phidot", "ydot"))
-    units = {"phi": "rad", "y": "m", "phidot": "rad/s", "ydot": "m/s"}
+                   default_options(record=True, max_steps=_max_steps(args), max_events=MAX_EVENTS,
+                                   max_samples=MAX_POINTS))
+    sim = replace(sol.simulation(name), state_names=names)
+    units = dict(STATE_UNITS[name])
     used = {**law.defaults(), "eN": eN, "v_belt": v, **p}
     if args.friction is not None:
         used["friction"] = f"{law.positive} (v > 0), {law.branch(-1)} (v < 0)"
-    return sim, used, units, ["starts on the belt 1e-3 rad off the slip equilibrium"]
+    return sim, used, units, [start]
 
 
 def _forced_oscillator(args, t_end: float):
@@ -266,7 +397,7 @@ def _forced_oscillator(args, t_end: float):
     from landau.laws.velocity import regularised_coulomb
     from landau.verify.skurativskyi.approx import grazing_linear, static_equilibrium
     from landau.verify.skurativskyi.model import MECHANICAL, Params
-    from landau.verify.skurativskyi.simulate import run
+    from landau.verify.skurativskyi.simulate import record_run
 
     name = "forced-oscillator"
     _no_law(args, name)
@@ -275,12 +406,13 @@ def _forced_oscillator(args, t_end: float):
     law = velocity_law_from_args(args, regularised_coulomb(), over, quantity="force")
     _only_known(over, list(MECHANICAL) + [q.name for q in law.parameters], name)
     p = Params(friction=law).with_(**over)
-    if p.xI < 0:  # the springs press the cart on the obstacle: rest is the static equilibrium in contact
+    if args.y0 is not None:
+        y0, note = _y0(args.y0, ("x", "xdot")), "starts at --y0"
+    elif p.xI < 0:  # the springs press the cart on the obstacle: rest is the static equilibrium in contact
         y0, note = None, "starts at rest at the static equilibrium (in contact)"
     else:  # the obstacle is not touched at rest
         y0, note = np.zeros(2), "starts at rest at x = 0 (free of the obstacle)"
-    r = run(p, t_end / p.period, y0=y0, record=RECORD)
-    sim = replace(r.simulation(), model=name)
+    sim = replace(record_run(p, t_end, y0, max_steps=_max_steps(args), max_points=MAX_POINTS), model=name)
     used = {"friction": law.name, **p.values()}
     neg = "the odd extension -F(-v)" if law.negative is None else str(law.branch(-1))
     notes = [note, f"friction F_R(v) = {law.branch(1)} [N] for v > 0, {neg} for v < 0"]
@@ -292,7 +424,7 @@ def _forced_oscillator(args, t_end: float):
                          f"{p.linear_damping:.6g} N s/m: omega = {grazing_linear(p):.6g} rad/s")
         except InputError as exc:
             notes.append(f"no linearised grazing estimate: {exc}")
-    return sim, used, {"x": "m", "xdot": "m/s"}, notes
+    return sim, used, dict(STATE_UNITS[name]), notes
 
 
 def simulate_model(args):
@@ -318,11 +450,18 @@ def simulate_model(args):
     return _forced_oscillator(args, t_end)
 
 
+#: what the Poincaré section of each model is (the legend of ``--plot poincare``)
+SECTION_LABEL = {"spring-block": "v = V with v rising (X minimal)"}
+
+
 def run(args) -> dict:
     outs = [Path(o) for o in args.out]
     for o in outs:
         if o.suffix.lower() not in FORMATS:
             raise InputError(f"--out {str(o)!r}: unknown format {o.suffix!r} (use {', '.join(FORMATS)})")
+    discard = None if args.discard is None else _positive(args.discard, "--discard")
+    if args.V_history is not None and args.model != "spring-block":
+        raise InputError(f"{args.model}: --V-history applies to spring-block only")
     from landau.support.progress import progress, set_quiet
 
     set_quiet(getattr(args, "json", False))
@@ -334,20 +473,39 @@ def run(args) -> dict:
     if len(sim.t) and sim.t[-1] < sim.t_final:
         notes.append(f"the time series holds the first {len(sim.t)} steps only (up to t = {sim.t[-1]:.6g}): "
                      "shorten --t-end for the whole run")
-    if sim.success and any(o.suffix.lower() == ".png" for o in outs):
-        period = 2 * math.pi / params["omega"] if args.model == "forced-oscillator" else None
+    if not sim.success:
+        notes.append(f"the run ended at its limit ({sim.status.value}) at t = {sim.t_final:.6g}: the files hold "
+                     "the run up to there" + (" (raise --max-steps or shorten --t-end for more)"
+                                              if sim.status.value == "max-steps" else ""))
+    written = sim
+    if discard is not None:
         try:
-            fig = sim.plot(args.plot, units=units, phase=PHASE_PLANE.get(args.model, (0, 1)),
-                           period=period if args.plot == "poincare" else None)
+            written = sim.after(discard)
+        except ValueError as exc:
+            raise InputError(f"--discard {args.discard}: {exc}") from None
+        notes.append(f"t < {discard:g} discarded from the files (transient)")
+    has_data = len(written.t) > 0
+    if has_data and any(o.suffix.lower() == ".png" for o in outs):
+        from matplotlib.figure import Figure  # a figure pyplot never shows: the command only saves it
+
+        period = 2 * math.pi / params["omega"] if args.model == "forced-oscillator" else None
+        phase = (1, 2) if args.V_history is not None else PHASE_PLANE.get(args.model, (0, 1))
+        if args.plot == "poincare" and args.model == "spring-block":
+            phase = (0, 2)   # v = V on the section: X against the first state
+        try:
+            size = (11, max(4.5, 1.7 * len(sim._names()) + 0.8)) if args.plot == "overview" else (6.0, 4.8)
+            fig = sim.plot(args.plot, discard=discard or 0.0, units=units, phase=phase,
+                           period=period if args.plot == "poincare" else None,
+                           section_label=SECTION_LABEL.get(args.model), fig=Figure(figsize=size, layout="constrained"))
         except ValueError as exc:
             raise InputError(f"--plot {args.plot}: {args.model}: {str(exc).split(':')[0]}") from None
-    if sim.success:
+    if has_data:
         for o in outs:
             suf = o.suffix.lower()
             if suf == ".csv":
-                sim.to_csv(o, units)
+                written.to_csv(o, units)
             elif suf == ".npz":
-                sim.to_npz(o)
+                written.to_npz(o)
             else:
                 from landau.support.io import atomic_savefig
 
@@ -365,12 +523,12 @@ def render(doc: dict) -> str:
     lines = [f"model {doc['model']}: {doc['status']} at t = {doc['t_final']:.6g} "
              f"({doc['points']} points, {doc['events']} events, {doc['steps']} steps)"]
     if doc["exit_code"]:
-        lines.append(f"integrator failed: {doc['message']}")
+        lines.append(f"run stopped ({doc['status']}): {doc['message']}")
     lines.append("parameters: " + ", ".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}"
                                             for k, v in doc["parameters"].items()))
     units = doc["units"]
     lines.append("final state: " + ", ".join(
-        f"{k} = {v:.6g}" + (f" {units[k]}" if k in units else "") for k, v in doc["final_state"].items()))
+        f"{k} = {v:.6g}" + (f" {units[k]}" if units.get(k, "1") != "1" else "") for k, v in doc["final_state"].items()))
     lines += doc["notes"]
     if doc["files"]:
         lines.append("wrote " + ", ".join(doc["files"]))

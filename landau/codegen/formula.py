@@ -183,8 +183,10 @@ def lambdify(args: Sequence[sp.Symbol], expr, modules: str = "numpy") -> Callabl
 
     The key is a SHA-256 of the structure of ``expr`` (:func:`structure_text`), the
     arguments, the module set and the sympy/numpy/mpmath versions; the source is stored
-    atomically in the code folder of :mod:`landau.verify.jitcache`.  A stored file that is
-    truncated or does not compile is removed and rebuilt.  Only code whose every global name
+    atomically in the code folder of :mod:`landau.verify.jitcache` with an HMAC of its text under
+    the per-user key of :mod:`landau.support.cachedir`, checked before the text is executed.  A
+    stored file that does not verify (edited, planted, truncated) or does not compile is removed
+    and rebuilt.  Only code whose every global name
     is the module set's own is stored (so executing it in that namespace is what sympy would
     have done); anything else is lambdified in every process.
 

@@ -244,6 +244,33 @@ class HopfResult:
                 object.__setattr__(self, name, extra.pop(name))
         if len(extra) != len(self.extra):
             object.__setattr__(self, "extra", extra)
+        self._check_finite()
+
+    #: the fields a Hopf result must carry as finite numbers (None: not computed)
+    _FINITE = ("p_c", "omega_c", "dlambda_dp", "Lambda", "chi", "l1", "c1", "Lambda5", "l2", "kc", "Gamma_bar",
+               "Omega_bar", "c2")
+
+    def _check_finite(self) -> None:
+        """No NaN or infinity passes as a result: a field that is not finite raises
+        :class:`~landau.errors.SingularPointError` naming it, the point and the parameters."""
+        for name in self._FINITE:
+            v = getattr(self, name)
+            if v is None:
+                continue
+            try:
+                finite = math.isfinite(v.real) and math.isfinite(v.imag) if isinstance(v, complex) \
+                    else math.isfinite(float(v))
+            except (TypeError, ValueError, OverflowError):
+                finite = False
+            if not finite:
+                from landau.errors import SingularPointError
+
+                where = f"{self.parameter} = {self.p_c:g}" if name != "p_c" else "the Hopf point"
+                params = ", ".join(f"{k} = {x:g}" if isinstance(x, (int, float)) else f"{k} = {x}"
+                                   for k, x in dict(self.params).items())
+                raise SingularPointError(
+                    f"{self.system}: {name} = {v} is not finite at {where}" + (f" ({params})" if params else "")
+                    + ": the computation leaves float64's range there or the point is singular")
 
     def route_fields(self) -> dict[str, Any]:
         """The route-specific entries that are set, by their :meth:`as_dict` names.

@@ -1,7 +1,7 @@
 """Plots of the toolkit's results (matplotlib, imported only when a plot is asked for).
 
 Every function returns the matplotlib object it drew on — a Figure for multi-panel plots,
-an Axes otherwise — so that a notebook shows it and a script can restyle or save it
+an Axes otherwise — so that a script can restyle or save it
 (:func:`landau.support.io.atomic_savefig`).  Nothing here computes more than it plots.
 
 * :func:`plot_coefficients` — k_c, Λ, C, … against the driving velocity V, with the
@@ -10,6 +10,26 @@ an Axes otherwise — so that a notebook shows it and a script can restyle or sa
   codimension-two points and the inertial boundary (Putelat et al. 2010, Figs 5b, 14a);
 * :func:`plot_check` — simulated against predicted cycle amplitude over ε², with the
   fitted exponent of the relative error.
+
+**The convention every plotting function and method of the toolkit follows** (this module's,
+``Derivation.plot``, ``CoefficientTable.plot``, ``RegimeDiagram.plot``, ``Simulation.plot``, the
+command line's): a figure is shown *exactly once* wherever it is drawn, so
+
+1. A function that makes its own figure makes it with :func:`landau.support.figures.new_figure`
+   (importable from every layer, the simulation engine's included; never with
+   ``matplotlib.figure.Figure(...)`` or ``plt.figure(...)`` directly).  The figure is managed by
+   pyplot — a script shows it with ``plt.show()``, a notebook's inline backend at the end of the
+   cell, whether the call is the cell's last line or assigned (``fig = d.plot()``) — and it does
+   not show a second time as the cell's value; evaluated again in a
+   later cell (pyplot has let it go by then) it shows once more, as a returned value should.
+   Importing pyplot first also switches a notebook's figure display on, so the first figure of
+   a session is an image, not ``<Figure …>`` text.
+2. A function that is given ``fig=`` or ``ax=`` draws there and returns that object untouched.
+3. No plotting function calls ``plt.show()``, ``plt.close()`` or ``savefig``: the caller
+   decides.  A caller that only saves (the command line) draws into a figure of its own given as
+   ``fig=`` (a ``matplotlib.figure.Figure``, which pyplot never shows), or closes the one it got
+   with ``plt.close(fig)`` after :func:`landau.support.io.atomic_savefig`.
+4. The function returns the Figure (several panels) or the Axes (one panel) it drew on.
 """
 
 from __future__ import annotations
@@ -20,6 +40,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from landau.errors import InputError
+from landau.support.figures import new_figure
 
 #: colours of the criticality bands
 BAND_COLOURS = {"supercritical": "tab:blue", "subcritical": "tab:red", "no Hopf point": "0.6"}
@@ -37,16 +58,10 @@ LABELS = {
 }
 
 
-def _pyplot():
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
 def _new_figure(fig, nrows: int, ncols: int = 1, **kw):
-    """Axes on ``fig`` (cleared) or on a new pyplot figure."""
+    """Axes on ``fig`` (cleared) or on a new figure (:func:`landau.support.figures.new_figure`)."""
     if fig is None:
-        fig = _pyplot().figure(figsize=kw.pop("figsize", (6.4, 2.2 * nrows + 0.8)))
+        fig = new_figure(figsize=kw.pop("figsize", (6.4, 2.2 * nrows + 0.8)))
     else:
         fig.clf()
     axes = fig.subplots(nrows, ncols, squeeze=False, **kw)
@@ -180,7 +195,7 @@ def plot_regime_diagram(diagram, ax=None):
     spring–block system. J. Mech. Phys. Solids 58, 27–53, Figs 5b and 14a.
     """
     if ax is None:
-        ax = _pyplot().figure(figsize=(6.4, 4.4)).subplots()
+        ax = new_figure(figsize=(6.4, 4.4)).subplots()
     V = np.asarray(diagram.V, dtype=float)
     ax.loglog(V, diagram.supercritical, color=BAND_COLOURS["supercritical"], lw=1.6,
               label=r"Hopf line, supercritical ($\Lambda<0$)")

@@ -6,15 +6,22 @@ Entries live in a per-user cache directory (``platformdirs.user_cache_dir("landa
 ``LANDAU_CACHE=off`` (or call :func:`set_enabled` with ``False``) to neither read nor write.
 
 An entry is keyed by a SHA-256 of the library version (with a fingerprint of the deriving
-modules' source), the kind of result and the canonical
-form of what it was computed from (:func:`system_key`: ``sympy.srepr`` of the mechanical
-system's equations, never its name), so a changed law, a changed system or a new release
-never sees an old entry.  Writes are atomic (a temporary file renamed into place): concurrent
-writers of the same entry each leave a complete file.  An entry that cannot be read — truncated,
-corrupt, from another format — is ignored, removed and rebuilt.
+modules' source and the versions of sympy, numba and python-flint), the kind of result and the
+canonical form of what it was computed from (:func:`system_key`: ``sympy.srepr`` of the
+mechanical system's equations, never its name), so a changed law, a changed system or a new
+release never sees an old entry.
 
-Values are pickled (sympy expressions keep their shared sub-expressions and assumptions); the
-directory is the user's own (created with mode 0700) and only this module writes to it.
+An entry verifies before it is trusted.  Its file is one header line, ``landau-cache/2 <HMAC>``,
+followed by the value in the JSON format of :mod:`landau.support.cachecodec` (sympy expressions as
+``srepr`` atoms and a table of whitelisted operations: nothing is unpickled or executed).  The
+HMAC-SHA256 covers the kind, the key and the JSON text, under the per-user key of
+:mod:`landau.support.cachedir`; it is checked before the JSON is parsed.  An entry that fails the
+check or cannot be read — truncated, edited, planted, from another format — is removed with a
+logged warning and rebuilt; it is never fatal.  Writes are atomic (a temporary file renamed into
+place): concurrent writers of the same entry each leave a complete file.  A write that fails
+(full disk, read-only folder) is one :class:`~landau.support.cachedir.CacheWarning`, never a failed
+command.  A cache folder that is not the user's own (another owner, writable by group or others)
+is refused with one warning and the cache bypassed.
 """
 
 from __future__ import annotations
@@ -22,19 +29,20 @@ from __future__ import annotations
 import hashlib
 import logging
 import os
-import pickle
 from pathlib import Path
 from typing import Any, Callable
 
 import sympy as sp
 
+from landau.support import cachecodec, cachedir
 from landau.support.cachedir import ENV_ROOT
 
 logger = logging.getLogger(__name__)
 
 ENV_DIR = ENV_ROOT
 ENV_SWITCH = "LANDAU_CACHE"
-_MAGIC = "landau-cache/1"
+_MAGIC = "landau-cache/2"
+_SUFFIX = ".json"
 _enabled: bool | None = None
 
 
@@ -43,12 +51,15 @@ _FINGERPRINT: str | None = None
 #: the package ``landau``)
 DERIVING_MODULES = ("support/cx.py", "derivation/fredholm.py", "derivation/jets.py", "derivation/linear.py",
                     "derivation/multiscale.py", "derivation/coefficients.py", "derivation/rational.py",
-                    "derivation/latex.py", "report/latex.py", "systems/system.py")
+                    "derivation/latex.py", "report/latex.py", "systems/system.py", "support/cachecodec.py")
+#: the libraries whose versions are part of every key
+KEYED_LIBRARIES = ("sympy", "numba", "python-flint")
 
 
 def _version() -> str:
-    """The library version and a fingerprint of the deriving code: a development tree that
-    changes a formula never reads an entry written before the change."""
+    """The library version, the versions of :data:`KEYED_LIBRARIES` and a fingerprint of the
+    deriving code: a development tree that changes a formula, or another sympy, never reads an
+    entry written before the change."""
     global _FINGERPRINT
     if _FINGERPRINT is None:
         from importlib.metadata import PackageNotFoundError, version
@@ -58,6 +69,11 @@ def _version() -> str:
         except PackageNotFoundError:  # a source tree that was never installed
             __version__ = "0+unknown"
         h = hashlib.sha256(__version__.encode())
+        for lib in KEYED_LIBRARIES:
+            try:
+                h.update(f"{lib} {version(lib)}".encode())
+            except PackageNotFoundError:
+                h.update(f"{lib} -".encode())
         package = Path(__file__).resolve().parent.parent
         for name in DERIVING_MODULES:
             try:
@@ -108,45 +124,98 @@ def make_key(kind: str, *parts: Any) -> str:
     return h.hexdigest()
 
 
+def _folder(kind: str) -> Path | None:
+    """The folder of ``kind``'s entries when the cache may be used (safe, key available), else None."""
+    if not (kind.isidentifier() or kind.replace("-", "_").isidentifier()):
+        raise ValueError(f"cache kind {kind!r} is not a plain name")
+    root = cachedir.usable_root()
+    if root is None:
+        return None
+    folder = root / kind
+    if not cachedir.secure_folder(folder):
+        return None
+    if os.fspath(folder) not in _SWEPT:         # entries of the pickled format of older releases
+        _SWEPT.add(os.fspath(folder))
+        for old in folder.glob("*.pkl"):
+            try:
+                old.unlink()
+            except OSError:
+                pass
+    return folder
+
+
+_SWEPT: set[str] = set()
+
+
 def _path(kind: str, key: str) -> Path:
-    return cache_dir() / kind / f"{key}.pkl"
+    if not key.isalnum():
+        raise ValueError(f"cache key {key!r} is not a plain name")
+    return cache_dir() / kind / f"{key}{_SUFFIX}"
+
+
+def _discard(path: Path, why: str) -> None:
+    logger.warning("ignoring cache entry %s (%s); it is rebuilt", path, why)
+    try:
+        path.unlink()
+    except OSError:
+        pass
 
 
 def get(kind: str, key: str) -> Any | None:
-    """The value stored under ``(kind, key)``, or None (missing, disabled or unreadable)."""
-    if not enabled():
+    """The value stored under ``(kind, key)``, or None (missing, disabled, unsafe or not verified).
+
+    The HMAC of the entry is checked before anything in it is parsed; an entry that fails the
+    check or does not parse is removed (and rebuilt by the caller)."""
+    if not enabled() or _folder(kind) is None:
         return None
     path = _path(kind, key)
     try:
         with open(path, "rb") as fh:
-            magic, k, value = pickle.load(fh)
-        if magic != _MAGIC or k != key:
-            raise ValueError("foreign entry")
-        return value
+            data = fh.read()
     except FileNotFoundError:
         return None
-    except Exception as exc:                     # corrupt or truncated: rebuild
-        logger.warning("ignoring unreadable cache entry %s (%s)", path, exc)
-        try:
-            path.unlink()
-        except OSError:
-            pass
+    except OSError as exc:
+        _discard(path, f"unreadable: {exc.strerror or exc}")
+        return None
+    head, sep, body = data.partition(b"\n")
+    fields = head.split(b" ")
+    if not sep or len(fields) != 2 or fields[0] != _MAGIC.encode():
+        _discard(path, "not an entry of this format")
+        return None
+    if not cachedir.verify(fields[1].decode("ascii", "replace"), _MAGIC, kind, key, body):
+        _discard(path, "its signature does not verify: written by someone else, or altered")
+        return None
+    try:
+        return cachecodec.loads(body)
+    except cachecodec.Undecodable as exc:
+        _discard(path, str(exc))
         return None
 
 
 def put(kind: str, key: str, value: Any) -> None:
-    """Store ``value`` atomically; a failure to write (read-only disk, full disk) is logged, not raised."""
-    if not enabled():
+    """Store ``value`` atomically, signed; a failure to write (read-only folder, full disk) is one
+    warning, never an error.  A value the format cannot hold is not stored (and computed again
+    next time)."""
+    if not enabled() or _folder(kind) is None:
         return
+    from landau.errors import OutputError
     from landau.support.io import atomic_write
 
     path = _path(kind, key)
     try:
-        path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
-        data = pickle.dumps((_MAGIC, key, value), protocol=pickle.HIGHEST_PROTOCOL)
+        body = cachecodec.dumps(value)
+    except (cachecodec.Unencodable, RecursionError) as exc:
+        logger.debug("not caching %s entry %s (%s)", kind, key, exc)
+        return
+    mac = cachedir.sign(_MAGIC, kind, key, body)
+    if mac is None:
+        return
+    data = f"{_MAGIC} {mac}\n".encode() + body
+    try:
         atomic_write(path, lambda fh: fh.write(data), mode="wb")
-    except (OSError, pickle.PicklingError, RecursionError, TypeError) as exc:
-        logger.warning("could not write cache entry %s (%s)", path, exc)
+    except (OSError, OutputError) as exc:
+        cachedir.warn_once(f"write {cachedir.cache_root()}",
+                           f"could not write to the cache ({exc}); results are computed and returned, but not kept")
 
 
 def cached(kind: str, key: str, build: Callable[[], Any]) -> Any:

@@ -160,7 +160,7 @@ def test_cache_hit_corrupt_entry_and_switch(tmp_path, monkeypatch):
     second = cache.cached("test", key, build)
     assert first == second and len(calls) == 1 and second["x"].free_symbols.pop().is_positive
     # a truncated entry (a writer killed mid-way, a full disk) is ignored and rebuilt
-    path = next((tmp_path / "cache" / "test").glob("*.pkl"))
+    path = next((tmp_path / "cache" / "test").glob("*.json"))
     path.write_bytes(path.read_bytes()[:7])
     assert cache.cached("test", key, build) == first and len(calls) == 2
     monkeypatch.setenv("LANDAU_CACHE", "off")

@@ -43,7 +43,7 @@ def test_spring_block_against_physical_ode(tmp_path, capsys):
     measured difference 3e-11, so 1e-8 leaves room for the error growth of the unstable run
     on other platforms."""
     doc, header, rows = _run(tmp_path, capsys, "spring-block", "--V", "1e-4", "--t-end", "0.3")
-    assert header == ["t [s]", "X [m]", "v [m/s]", "phi"]
+    assert header == ["t [s]", "X [m]", "v [m/s]", "phi [s]"]   # φ of the aging law: a time (dφ/dt = 1 − vφ/L)
     p = doc["parameters"]
     assert p["law"] == "dieterich"
     assert any("0.9 k_c" in n for n in doc["notes"])
@@ -101,7 +101,7 @@ def test_galvanetto_one_block_first_stick_phase(tmp_path, capsys):
     """Galvanetto (2004), one block: started stuck at X = 0 the block rides the belt, X = Vt,
     Ẋ = V, until the spring force reaches the static friction X = F_s = 1 at t = 1/V (closed form)."""
     doc, header, rows = _run(tmp_path, capsys, "galvanetto-one-block", "--t-end", "10")
-    assert header == ["t", "X", "Xdot"]
+    assert header == ["t [1]", "X [1]", "Xdot [1]"]   # dimensionless (Galvanetto 2004)
     V = doc["parameters"]["V"]
     stick = rows[:, 0] < 1.0 / V - 1e-9
     assert stick.sum() > 5
@@ -114,7 +114,7 @@ def test_galvanetto_two_blocks(tmp_path, capsys):
     """Two blocks (Galvanetto 2004, Sec. 3), started stuck: both ride the belt until block 1's
     spring force K₁ = X₁ + α(X₁ − X₂) = X₁ reaches F_s1 = 1 at t = 1/V (closed form)."""
     doc, header, rows = _run(tmp_path, capsys, "galvanetto-two-blocks", "--t-end", "8")
-    assert header == ["t", "X1", "X2", "X1dot", "X2dot"]
+    assert header == ["t [1]", "X1 [1]", "X2 [1]", "X1dot [1]", "X2dot [1]"]
     V = doc["parameters"]["V"]
     stick = rows[:, 0] < 1.0 / V - 1e-9
     np.testing.assert_allclose(rows[stick, 1:3], np.repeat(V * rows[stick, 0][:, None], 2, axis=1), rtol=0,
@@ -217,7 +217,8 @@ def test_simulation_html_and_files(tmp_path):
 
 
 def test_failed_run_exits_1(monkeypatch, capsys, tmp_path):
-    """A run that ends without reaching t_end: exit 1, the status and its advice, no files."""
+    """A run that ends without reaching t_end: exit 1, the status and its advice, and the files
+    hold the run up to where it stopped."""
     from dataclasses import replace
 
     import landau.cli.simulate as S
@@ -229,7 +230,8 @@ def test_failed_run_exits_1(monkeypatch, capsys, tmp_path):
     assert main(["simulate", "galvanetto-one-block", "--out", str(out)]) == 1
     text = capsys.readouterr().out
     assert "zeno" in text and "accumulate" in text
-    assert not out.exists()
+    rows = np.loadtxt(out, delimiter=",", skiprows=1)
+    np.testing.assert_array_equal(rows[:, 1:].T, failed.y)
 
 
 def test_stroboscopic_section_matches_the_integrators_strobe():

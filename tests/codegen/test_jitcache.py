@@ -202,7 +202,7 @@ def test_generated_source_is_kept_with_the_derivations(tmp_path, monkeypatch):
     x, v, w = sp.symbols("x v w")
     field = [v, -w ** 2 * x - sp.Rational(1, 10) * v]
     src = kernels.kernel_source([x, v], field, [w])
-    assert len(list((tmp_path / "kernel-source").glob("*.pkl"))) == 1
+    assert len(list((tmp_path / "kernel-source").glob("*.json"))) == 1
 
     def no_emission(*args):
         raise AssertionError("the source was derived again")
@@ -213,7 +213,7 @@ def test_generated_source_is_kept_with_the_derivations(tmp_path, monkeypatch):
     a, b, c = sp.symbols("a b c")
     assert kernels.kernel_source([a, b], [b, -c ** 2 * a - sp.Rational(1, 10) * b], [c]) == src
     # an entry that fails the whitelist of generated code is derived again, not executed
-    entry = next((tmp_path / "kernel-source").glob("*.pkl"))
+    entry = next((tmp_path / "kernel-source").glob("*.json"))
     dcache.put("kernel-source", entry.stem, "import os\n")
     monkeypatch.setattr(kernels, "_emit", real_emit)
     assert kernels.kernel_source([x, v], field, [w]) == src

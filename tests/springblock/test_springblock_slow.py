@@ -67,7 +67,7 @@ def test_subcritical_modified_dieterich_bistability():
     assert pc.criticality_predicted == "subcritical"
     assert pc.bistable is True
     assert abs(pc.detail["bracket_rel_error"]) <= 0.05 and abs(pc.rel_error) <= 0.05
-    assert max(pc.detail["stick_slip_cycle"]["floquet_multipliers"]) < 1
+    assert max(pc.detail["large_cycle"]["floquet_multipliers"]) < 1
     assert max(pc.detail["unstable_cycle"]["floquet_multipliers"]) > 1
 
 

@@ -104,6 +104,9 @@ class Simulation:
         The field at the recorded points, when known (enables cubic interpolation).
     state_names : tuple of str
         Names of the state components.
+    regimes : tuple of (float, float, str)
+        The run's regimes in time order, ``(t0, t1, name)`` with names such as ``"stick"``,
+        ``"slip"``, ``"flight"``, ``"contact"`` (empty when the model has none).
     """
 
     model: str
@@ -118,6 +121,7 @@ class Simulation:
     nfev: int = 0
     f: np.ndarray | None = field(default=None, repr=False)
     state_names: tuple[str, ...] = ()
+    regimes: tuple[tuple[float, float, str], ...] = field(default=(), repr=False)
 
     @property
     def success(self) -> bool:
@@ -160,6 +164,41 @@ class Simulation:
             out = h00 * y0 + h10 * h * f0 + h01 * y1 + h11 * h * f1
         return out[:, 0] if np.ndim(times) == 0 else out
 
+    def after(self, t_from: float) -> "Simulation":
+        """The run without its transient: the recorded points, events and regimes at t ≥ ``t_from``
+        (the final state and the counters unchanged).
+
+        Parameters
+        ----------
+        t_from : float
+            First time kept.
+
+        Returns
+        -------
+        Simulation
+
+        Raises
+        ------
+        ValueError
+            ``t_from`` is not finite or leaves no recorded point.
+        """
+        from dataclasses import replace
+
+        t_from = float(t_from)
+        if not np.isfinite(t_from):
+            raise ValueError(f"the time to discard before must be finite, got {t_from!r}")
+        keep = self.t >= t_from
+        if not keep.any():
+            last = f"{self.t[-1]:.6g}" if len(self.t) else "nothing"
+            raise ValueError(f"discarding t < {t_from:g} leaves no recorded point (the record ends at {last})")
+        log = EventLog()
+        for e in self.events:
+            if e.t >= t_from:
+                log.append(e)
+        regimes = tuple((max(a, t_from), b, nm) for a, b, nm in self.regimes if b > t_from)
+        return replace(self, t=self.t[keep], y=self.y[:, keep], events=log,
+                       f=None if self.f is None else self.f[:, keep], regimes=regimes)
+
     # --- output ---------------------------------------------------------------------
     def _names(self) -> tuple[str, ...]:
         m = self.y.shape[0] if self.y.ndim == 2 else len(self.y_final)
@@ -194,72 +233,39 @@ class Simulation:
         return ts, self.at(ts).reshape(self.y.shape[0], -1)
 
     def plot(self, kind: str = "overview", *, phase: tuple[int, int] = (0, 1), period: float | None = None,
-             units=None, fig=None):
-        """Draw the run with matplotlib and return the Figure.
+             units=None, fig=None, discard: float = 0.0, log=None, section_label: str | None = None):
+        """Draw the run with matplotlib (:func:`landau.verify.hybrid.plotting.plot_simulation`).
 
         Parameters
         ----------
         kind : {"overview", "poincare"}
-            ``"overview"``: the time series of every state and a phase portrait (section
-            events marked); ``"poincare"``: the Poincaré section (see :meth:`section_points`).
+            ``"overview"``: the time series of every state (regimes shaded, a logarithmic axis
+            for a positive quantity spanning decades) and a phase portrait coloured by regime;
+            ``"poincare"``: the Poincaré section (see :meth:`section_points`).
         phase : (int, int)
             The two state components of the phase plane (default the first two).
         period : float, optional
             Strobe period for ``"poincare"`` (default: the logged section events).
         units : mapping, optional
-            State name → unit for the axis labels.
+            State name (and ``"t"``) → unit for the axis labels.
         fig : matplotlib Figure, optional
             Draw into this figure instead of a new one.
+        discard : float, optional
+            Leave out the transient t < ``discard``.
+        log : sequence of str, optional
+            States on a logarithmic axis (default: chosen from the data).
+        section_label : str, optional
+            What the section events are, for the Poincaré plot's legend.
 
         Returns
         -------
         matplotlib.figure.Figure
+            A new figure (shown once in a notebook, by the toolkit's plotting convention) or ``fig``.
         """
-        from matplotlib.figure import Figure  # lazy: plotting is optional for the simulation layer
+        from landau.verify.hybrid.plotting import plot_simulation
 
-        if kind not in ("overview", "poincare"):
-            raise ValueError(f"kind must be 'overview' or 'poincare', got {kind!r}")
-        names = self._names()
-        units = dict(units or {})
-
-        def label(i: int) -> str:
-            u = units.get(names[i])
-            return f"{names[i]} [{u}]" if u else names[i]
-
-        i0, i1 = (int(phase[0]), int(phase[1])) if len(names) > 1 else (0, 0)
-        if not (0 <= i0 < len(names) and 0 <= i1 < len(names)):
-            raise ValueError(f"phase components {phase!r} out of range for {len(names)} states")
-        fig = fig if fig is not None else Figure(figsize=(10, 4.5), layout="constrained")
-        title = f"{self.model} — {self.status.value}"
-        if kind == "poincare":
-            ts, ys = self.section_points(period)
-            ax = fig.add_subplot(1, 1, 1)
-            ax.plot(ys[i0], ys[i1], ".", ms=3)
-            ax.set_xlabel(label(i0))
-            ax.set_ylabel(label(i1))
-            ax.set_title(f"Poincaré section ({len(ts)} points) — {title}")
-            return fig
-        n = len(names)
-        gs = fig.add_gridspec(n, 2)
-        for i in range(n):
-            ax = fig.add_subplot(gs[i, 0])
-            ax.plot(self.t, self.y[i], lw=0.8)
-            ax.set_ylabel(label(i))
-            if i < n - 1:
-                ax.tick_params(labelbottom=False)
-        tu = units.get("t", "s")
-        ax.set_xlabel("t" if tu == "1" else f"t [{tu}]")
-        ax = fig.add_subplot(gs[:, 1])
-        if n >= 2:
-            ax.plot(self.y[i0], self.y[i1], lw=0.6)
-            sec = [e for e in self.events if e.kind == "section"]
-            if sec:
-                ax.plot([e.y[i0] for e in sec], [e.y[i1] for e in sec], ".", ms=4, label="section")
-                ax.legend(loc="best")
-            ax.set_xlabel(label(i0))
-            ax.set_ylabel(label(i1))
-        ax.set_title(title)
-        return fig
+        return plot_simulation(self, kind, phase=phase, period=period, units=units, fig=fig, discard=discard,
+                               log=log, section_label=section_label)
 
     def to_csv(self, path, units=None):
         """Write the time series as CSV (header ``t [s], name [unit], ...``), atomically.
@@ -281,7 +287,7 @@ class Simulation:
         units = dict(units or {})
         names = self._names()
         tu = units.get("t", "s")
-        head = ["t" if tu == "1" else f"t [{tu}]"] + [f"{nm} [{units[nm]}]" if units.get(nm) else nm for nm in names]
+        head = [f"t [{tu}]" if tu else "t"] + [f"{nm} [{units[nm]}]" if units.get(nm) else nm for nm in names]
         rows = np.column_stack([self.t, self.y.T])
         lines = [",".join(head)] + [",".join(repr(float(v)) for v in r) for r in rows]
         return atomic_write_text(path, "\n".join(lines) + "\n")

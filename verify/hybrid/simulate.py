@@ -137,7 +137,23 @@ class HybridSolution:
         t, y, _ = self.trajectory()
         st = status_from_text(self.status)
         msg = st.advice + (f" ({self.zeno!r})" if self.zeno else "")
-        return Simulation(model, t, y, self.events, st, msg, self.t, self.y, self.nsteps, self.nfev)
+        return Simulation(model, t, y, self.events, st, msg, self.t, self.y, self.nsteps, self.nfev,
+                          regimes=self.regimes(t[0] if len(t) else self.t))
+
+    def regimes(self, t0: float) -> tuple[tuple[float, float, str], ...]:
+        """The run's regimes from ``t0`` to its end, ``(t_start, t_end, name)``, read off the
+        mode changes in the event log (:func:`regime_of` names each mode)."""
+        sw = [e for e in self.events if e.from_mode != e.to_mode]
+        mode = sw[0].from_mode if sw else self.mode
+        out, start = [], float(t0)
+        for e in sw:
+            if e.t > start:
+                out.append((start, float(e.t), regime_of(mode)))
+                start = float(e.t)
+            mode = e.to_mode
+        if self.t > start or not out:
+            out.append((start, float(self.t), regime_of(mode)))
+        return tuple(out)
 
     def trajectory(self) -> tuple[np.ndarray, np.ndarray, list[str]]:
         """Concatenated samples (t, y, mode per point) of the recorded segments."""
@@ -147,6 +163,19 @@ class HybridSolution:
         y = np.concatenate([s.y for s in self.segments], axis=1)
         modes = [s.mode for s in self.segments for _ in s.t]
         return t, y, modes
+
+
+def regime_of(mode: str) -> str:
+    """The regime a mode name stands for: ``"flight"`` (a mode named with flight), ``"stick"``
+    (``"stick"``, or a stick–slip code of ``s``/``n``/``p`` letters, one per block, all ``s``),
+    ``"partial stick"`` (some blocks stuck), else ``"slip"``."""
+    if "flight" in mode:
+        return "flight"
+    if mode == "stick":
+        return "stick"
+    if mode and set(mode) <= {"s", "n", "p"} and "s" in mode:
+        return "stick" if set(mode) == {"s"} else "partial stick"
+    return "slip"
 
 
 ARMED, PENDING, DISARMED = 1, 0, -1

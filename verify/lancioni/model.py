@@ -123,6 +123,14 @@ class Lancioni(ContactMechanics):
                                          p["phi0"], p["y0"], p["g"]))
         object.__setattr__(self, "_cv", np.array(self._c, dtype=float))
 
+    def __repr__(self) -> str:
+        # with a velocity-dependent law, ``mu`` is only its static level F(0+): say so, rather than
+        # print a bare ``mu=`` that reads like one of the law's parameters
+        friction = (f"friction={self.friction!r}, static level F(0+)={self.mu!r}" if self.velocity_dependent
+                    else f"mu={self.mu!r}")
+        return (f"Lancioni(params={dict(self.params)!r}, {friction}, eN={self.eN!r}, belt={self.belt!r}, "
+                f"n={self.n!r}, name={self.name!r})")
+
     def with_(self, **kw) -> "Lancioni":
         if "mu" in kw and "friction" not in kw:
             kw["friction"] = None  # a new Coulomb coefficient replaces the law

@@ -99,13 +99,17 @@ def _flight(p):
     from landau.verify.lancioni.analysis import flight_onset_mu
     r = flight_onset_mu(_params(p), bracket=(p["lo"], p["hi"]) if p["hi"] > p["lo"] else None)
     return {"value": r.mu, "bracket": list(r.bracket), "lamN_min_at_lo": r.lamN_min_below,
-            "note": "bisection on lift-off along the stick-slip attractor; differs from the printed "
-                    "'0.453' by 0.0031 (see verify/lancioni/analysis.py docstring)"}
+            "note": "bisection on lift-off along the stick-slip attractor (bracket width 1e-5)"}
 
 
 register(Scene(
     name="lancioni/free-flight", parameter="mu", units="dimensionless",
     source=f"{SRC}: set 2 'for mu > 0.453 a more complex free flight-slip-stick-slip motion takes place' (Fig. 4)",
     compute=_flight, defaults={**SET2, "lo": 0.0, "hi": 0.0}, published=0.453, tolerance=_half_digit(0.453, 3),
+    explained="the paper does not print the constant belt speed; its stick onset 0.360 allows |v| in "
+              "[0.954, 1.016] m/s, over which the flight onset runs from 0.466 to 0.444; |v| = 0.991 gives 0.4530 "
+              "with the other two set-2 values, |v| = 1 (kept) gives 0.44986 (docs/findings.md, Lancioni et al.; "
+              "landau.verify.lancioni.analysis.flight_onset_mu)",
+    known_value=0.44986, known_tolerance=5e-5,     # the bisection's bracket, 1e-5 in mu
     description="free flight first appears on the stick-slip attractor (e_N = 0, belt v = -1; lo = hi = 0: "
                 "the mu window starts at the computed stick onset and widens until the attractor flies)"))

@@ -15,7 +15,7 @@ Impacts are the crossings of x = x_I with increasing x (the paper's definition, 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -75,6 +75,8 @@ V_STIFF = 1e-5
 A_STICK = 0.05
 #: run(method=...) → the (v_stiff, a_stiff) arguments of rk.integrate_mixed (0: explicit only)
 METHODS = {"mixed": (V_STIFF, A_STICK), "dopri5": (0.0, 0.0)}
+#: bound on the stroboscopic samples one run keeps (memory; later samples are not kept)
+MAX_STROBES = 2_000_000
 
 
 @dataclass(frozen=True)
@@ -100,6 +102,7 @@ class Run:
     rec_t: np.ndarray = field(default_factory=lambda: np.empty(0), repr=False)   # recorded step ends
     rec_y: np.ndarray = field(default_factory=lambda: np.empty((0, 2)), repr=False)
     rec_f: np.ndarray = field(default_factory=lambda: np.empty((0, 2)), repr=False)
+    status: Status = Status.FINISHED   # MAX_STEPS / MAX_EVENTS: a run(..., at_limit="return") cut short
 
     @property
     def intervals(self) -> np.ndarray:
@@ -129,9 +132,21 @@ class Run:
         for t, v, g in ev:
             frm, to = ("free", "contact") if g == "impact" else ("contact", "free")
             log.append(Event(float(t), np.array([xI, v]), g, frm, to))
+        regimes = []   # in contact with the obstacle between an impact and the next detachment
+        start, inside = float(self.rec_t[0]) if len(self.rec_t) else 0.0, False
+        for e in log:
+            if e.t > start:
+                regimes.append((start, float(e.t), "contact" if inside else "free"))
+                start = float(e.t)
+            inside = e.guard == "impact"
+        if self.t > start:
+            regimes.append((start, float(self.t), "contact" if inside else "free"))
+        msg = self.status.advice
+        if self.status is not Status.FINISHED:
+            msg = f"stopped at t = {self.t:.6g} s by its limit: {self.status.advice}"
         return Simulation(f"skurativskyi2019(ω={self.params.omega:g})", self.rec_t, self.rec_y.T, log,
-                          Status.FINISHED, Status.FINISHED.advice, self.t, self.y, self.nsteps, self.nfev,
-                          self.rec_f.T, ("x", "xdot", "dx", "dxdot")[:self.rec_y.shape[1]])
+                          self.status, msg, self.t, self.y, self.nsteps, self.nfev,
+                          self.rec_f.T, ("x", "xdot", "dx", "dxdot")[:self.rec_y.shape[1]], tuple(regimes))
 
     def __repr__(self) -> str:
         return (f"Run(ω={self.params.omega:g}, t={self.t:.6g}, {len(self.impacts)} impacts, "
@@ -146,7 +161,8 @@ def rest_state(params: Params) -> np.ndarray:
 
 def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float = RTOL, atol=None,
         lyapunov: bool = False, strobe: bool = True, max_events: int = 200_000,
-        max_steps: int = 50_000_000, tangent0=(1.0, 0.0), method: str = "mixed", record: int = 0) -> Run:
+        max_steps: int = 50_000_000, tangent0=(1.0, 0.0), method: str = "mixed", record: int = 0,
+        at_limit: str = "raise") -> Run:
     """Integrate eq. (1) over ``n_periods`` forcing periods from (t0, y0) (default: rest at X₀).
 
     Strobe times are t0 + i·2π/ω.  ``lyapunov=True`` adds the variational equation and
@@ -180,6 +196,9 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
         The integrator (see above).
     record : int, optional
         Keep up to that many step ends as the time series.
+    at_limit : {"raise", "return"}, optional
+        At ``max_steps`` or ``max_events``: raise IntegratorError (default) or return the run
+        up to there with its ``status`` (:attr:`Status.MAX_STEPS`, :attr:`Status.MAX_EVENTS`).
 
     Returns
     -------
@@ -194,10 +213,17 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
     """
     if method not in METHODS:
         raise InputError(f"method must be one of {sorted(METHODS)} (got {method!r})")
+    if at_limit not in ("raise", "return"):
+        raise InputError(f"at_limit must be 'raise' or 'return' (got {at_limit!r})")
     if not (n_periods > 0 and np.isfinite(n_periods)):
         raise InputError(f"n_periods must be positive (got {n_periods!r})")
     if not (0 < rtol < 1):
         raise InputError(f"rtol must be in (0, 1) (got {rtol!r})")
+    if n_periods * 20 > max_steps:
+        # the largest step is a twentieth of the period: such a run cannot end within its step budget
+        raise InputError(f"the run spans {n_periods:.3g} forcing periods (omega = {params.omega:g} rad/s), and "
+                         f"takes at least 20 steps a period: more than its step budget of {max_steps} steps; lower "
+                         "omega or shorten the time span")
     y0 = rest_state(params) if y0 is None else np.asarray(y0, float)[:2]
     P = params.period
     p = params.packed()
@@ -209,7 +235,8 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
     else:
         y = y0.copy()
     t_end = t0 + n_periods * P if float(n_periods) != int(n_periods) else t0 + int(n_periods) * P
-    n_st = int(n_periods) + 2 if strobe else 1
+    # strobe samples past the buffer are not kept (the steps still end on the strobe times)
+    n_st = min(int(n_periods) + 2, MAX_STROBES) if strobe else 1
     fr = compiled_field(params).pointers
     loop = R.mixed_loop()
     with quiet_first_class():
@@ -218,14 +245,16 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
                    int(max_steps), *METHODS[method], int(record), fr)
     (t, yend, status, ev_t, ev_k, ev_v, st_t, st_y, ly, nly, nsteps, nfev, nrej, mism, nstiff,
      rec_t, rec_y, rec_f) = out
+    st = Status.FINISHED
     if status != R.OK:
         st = {R.MAX_STEPS: Status.MAX_STEPS, R.STEP_TOO_SMALL: Status.STEP_SIZE_UNDERFLOW,
               R.MAX_EVENTS: Status.MAX_EVENTS}.get(status, Status.FAILED)
+    if st is not Status.FINISHED and not (at_limit == "return" and st in (Status.MAX_STEPS, Status.MAX_EVENTS)):
         raise IntegratorError(f"compiled {method} integrator stopped: {R.STATUS[status]} (ω={params.omega}): "
                               f"{st.advice}", t=t, state=yend)
     up = ev_k > 0
     return Run(params, t, yend, ev_t[up], ev_v[up], ev_t[~up], st_t, st_y, ly, nly, nsteps, nfev, nrej, mism,
-               nstiff, method, rec_t, rec_y, rec_f)
+               nstiff, method, rec_t, rec_y, rec_f, st)
 
 
 def hybrid_model(params: Params) -> HybridModel:
@@ -245,3 +274,115 @@ def hybrid_model(params: Params) -> HybridModel:
     contact = Mode("contact", fld, (Guard("detach", lambda t, y: y[0] - xI, to_free,
                                           rate=lambda t, y: y[1]),))
     return HybridModel.from_modes(free, contact, name="skurativskyi2019")
+
+
+def _thin(n: int) -> np.ndarray:
+    """Every other index of range(n), the last one kept."""
+    idx = np.arange(0, n, 2)
+    return idx if n == 0 or idx[-1] == n - 1 else np.append(idx, n - 1)
+
+
+def record_run(params: Params, t_end: float, y0=None, *, rtol: float = RTOL, max_steps: int = 5_000_000,
+               max_events: int = 200_000, max_points: int = 200_000, chunk_steps: int = 200_000,
+               method: str = "mixed") -> Simulation:
+    """Eq. (1) from t = 0 to ``t_end`` [s] with bounded steps, events and memory, as a :class:`Simulation`.
+
+    The run is taken in compiled calls of at most ``chunk_steps`` steps (each continuing from the
+    previous one's state, the stroboscopic phase kept at t = 2πi/ω); the recorded step ends are
+    streamed out of each call and decimated (every other point dropped, then every 2ᵏ-th step
+    end kept) whenever they would exceed ``max_points``, so that a run of any length keeps at most
+    about ``max_points`` points spread over its whole span.  At ``max_steps`` steps or
+    ``max_events`` contact events it ends with status ``max-steps`` / ``max-events`` and the
+    record up to there.  A run shorter than ``chunk_steps`` is the one call of :func:`run`.
+
+    Parameters
+    ----------
+    params : Params
+        Model parameters.
+    t_end : float
+        End time [s].
+    y0 : array_like, optional
+        Starting (x, ẋ) (default: rest at X₀).
+    rtol : float, optional
+        Relative tolerance (absolute tolerances as in :func:`run`).
+    max_steps, max_events, max_points, chunk_steps : int, optional
+        The bounds (see above).
+    method : {"mixed", "dopri5"}
+        The integrator (:func:`run`).
+
+    Returns
+    -------
+    Simulation
+        Times in s, states (x, ẋ) with the field at each point; impacts and detachments as events.
+    """
+    if method not in METHODS:
+        raise InputError(f"method must be one of {sorted(METHODS)} (got {method!r})")
+    if not (np.isfinite(t_end) and t_end > 0):
+        raise InputError(f"t_end must be a finite time > 0 (got {t_end!r})")
+    if not (int(max_steps) >= 1 and int(chunk_steps) >= 1 and int(max_points) >= 16 and int(max_events) >= 1):
+        raise InputError("max_steps, max_events and chunk_steps must be >= 1 and max_points >= 16")
+    y = rest_state(params) if y0 is None else np.asarray(y0, float)[:2].copy()
+    P = params.period
+    if not P > 2e-13 * max(1.0, t_end):
+        # the loop takes at least 20 steps a period and stops below a step of 1e-15·max(1, t)
+        raise InputError(f"the forcing period {P:.3g} s (omega = {params.omega:g} rad/s) is shorter than the "
+                         f"integrator resolves up to t = {t_end:g} s (its steps would fall below "
+                         "1e-15·max(1, t)): lower omega or shorten the time span")
+    p = params.packed()
+    at = np.ascontiguousarray((rtol * 1e-4, rtol * 1e-2), float)
+    fr = compiled_field(params).pointers
+    loop = R.mixed_loop()
+    t = 0.0
+    rec_t, rec_y, rec_f, kept, stride = [], [], [], 0, 1
+    ev_t, ev_k, ev_v = [], [], []
+    steps = nfev = 0
+    status = Status.FINISHED
+    while True:
+        budget = min(int(chunk_steps), int(max_steps) - steps)
+        room = int(max_events) - sum(len(e) for e in ev_t)
+        with quiet_first_class():
+            out = loop(p, float(t), y, float(t_end), float(rtol), at, 1e-5, float(P / 20), float(params.xI), True,
+                       0.0, float(P), 1, False, int(room), int(budget), *METHODS[method], int(budget) + 1, fr)
+        (tn, yn, st, et, ek, ev, _, _, _, _, ns, nf, _, _, _, rt, ry, rf) = out
+        steps += int(ns)
+        nfev += int(nf)
+        ev_t.append(et)
+        ev_k.append(ek)
+        ev_v.append(ev)
+        if rec_t:   # the call's first point is the previous call's last
+            rt, ry, rf = rt[1:], ry[1:], rf[1:]
+        if stride > 1 and len(rt):   # every stride-th step end, and the call's last (the state it ends in)
+            sel = np.unique(np.append(np.arange(stride - 1, len(rt), stride), len(rt) - 1))
+            rt, ry, rf = rt[sel], ry[sel], rf[sel]
+        rec_t.append(rt)
+        rec_y.append(ry)
+        rec_f.append(rf)
+        kept += len(rt)
+        while kept > max_points:
+            tt, yy, ff = np.concatenate(rec_t), np.concatenate(rec_y), np.concatenate(rec_f)
+            keep = _thin(len(tt))
+            rec_t, rec_y, rec_f, kept = [tt[keep]], [yy[keep]], [ff[keep]], len(keep)
+            stride *= 2
+        t, y = float(tn), np.array(yn[:2], float)
+        if st == R.OK:
+            break
+        if st == R.MAX_EVENTS:
+            status = Status.MAX_EVENTS
+            break
+        if st != R.MAX_STEPS:
+            raise IntegratorError(f"compiled {method} integrator stopped: {R.STATUS[st]} (ω={params.omega})",
+                                  t=t, state=y)
+        if steps >= max_steps:
+            status = Status.MAX_STEPS
+            break
+    tt, yy, ff = np.concatenate(rec_t), np.concatenate(rec_y), np.concatenate(rec_f)
+    ek_all, et_all, ev_all = np.concatenate(ev_k), np.concatenate(ev_t), np.concatenate(ev_v)
+    up = ek_all > 0
+    r = Run(params, t, y, et_all[up], ev_all[up], et_all[~up], np.empty(0), np.empty((0, 2)), 0.0, 0, steps, nfev,
+            0, 0.0, 0, method, tt, yy, ff, status)
+    sim = r.simulation()
+    if status is not Status.FINISHED:
+        sim = replace(sim, message=f"stopped at the {'step' if status is Status.MAX_STEPS else 'event'} limit "
+                                   f"({int(max_steps) if status is Status.MAX_STEPS else int(max_events)}) at "
+                                   f"t = {t:.6g} s before the end t = {t_end:.6g} s: {status.advice}")
+    return sim

@@ -4,7 +4,10 @@ the amplitude-equation engine against it.
 * :mod:`.model` — eq. (4) in log variables, right-hand side and exact Jacobian generated from the
   symbolic law and compiled with numba; dimensional or dimensionless (m, κ) construction.
 * :mod:`.radau` — compiled Radau IIA (order 5) integrator with dense output and section crossings.
-* :mod:`.simulate` — :func:`integrate` (raises ``IntegratorError`` with time and state on failure).
+* :mod:`.simulate` — :func:`integrate` (raises ``IntegratorError`` with time and state on failure) and
+  ``record_run`` (bounded steps and memory, a ``Simulation`` with a named status at its limit).
+* :mod:`.history` — the load point driven by a velocity history (velocity steps, slide-hold-slide).
+* :mod:`.units` — the units of a law's states by dimensional analysis.
 * :mod:`.orbits` — shooting on the Poincaré section, monodromy, Floquet multipliers, Hopf points.
 * :mod:`.checks` — supercritical / subcritical prediction checks (``landau verify``).
 * :mod:`.continuation` — pseudo-arclength continuation, folds of cycles, codimension-two points.

@@ -316,7 +316,12 @@ def subcritical_check(law: FrictionLaw, V: float, eps2: float, params: Mapping[s
 
 
 def _bistability(model: SpringBlockModel, A: float, bisections: int, detail: dict, a_ref: float | None = None):
-    """(bistable, bracket of the initial max slip separating decay from growth) — see subcritical_check."""
+    """(bistable, bracket of the initial max slip separating decay from growth) — see subcritical_check.
+
+    ``detail["large_cycle"]`` describes the attractor beyond the unstable cycle: the large
+    relaxation cycle a trajectory started past the threshold settles on (the block slows to
+    ``v_min`` > 0 but, in this smooth model, never sticks).
+    """
     lo, hi = 0.5 * A, 2.0 * A
     # a trajectory that settles on a cycle 20 % above the unstable one has reached the other attractor
     sa = 1.2 * (a_ref if a_ref is not None else A)
@@ -349,16 +354,16 @@ def _bistability(model: SpringBlockModel, A: float, bisections: int, detail: dic
     # the large attractor: follow a trajectory started beyond the threshold until it settles, then shoot
     fate, row = _fate(model, section_point(model, 1.5 * hi), low, high, settle_above=sa)
     if fate != "grows":
-        detail["stick_slip_cycle"] = {"error": f"trajectory from 1.5x the threshold {fate}"}
+        detail["large_cycle"] = {"error": f"trajectory from 1.5x the threshold {fate}"}
         return None, (float(lo), float(hi))
     y = settle(model, row)
     try:
         big = shoot(model, np.delete(y, W_INDEX), rtol=1e-10, tol=1e-9)
-        detail["stick_slip_cycle"] = {"max_slip": big.amplitude, "v_min": big.v_min, "v_max": big.v_max,
+        detail["large_cycle"] = {"max_slip": big.amplitude, "v_min": big.v_min, "v_max": big.v_max,
                                       "period_s": big.period, "floquet_multipliers": [abs(m) for m in big.multipliers]}
         bistable = bool(big.stable and big.amplitude > sa)
     except ShootingError as exc:
-        detail["stick_slip_cycle"] = {"error": str(exc), "last_max_slip": float(y[0] * model.ell)}
+        detail["large_cycle"] = {"error": str(exc), "last_max_slip": float(y[0] * model.ell)}
         bistable = bool(y[0] * model.ell > sa)
     return bistable, (float(lo), float(hi))
 

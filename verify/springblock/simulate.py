@@ -21,7 +21,7 @@ import numpy as np
 from landau.errors import InputError, IntegratorError
 from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.radau import STATUS, radau_core
-from landau.verify.hybrid.result import Simulation, status_from_text
+from landau.verify.hybrid.result import Simulation, Status, status_from_text
 from landau.verify.springblock.model import SpringBlockModel, compile_variational
 
 #: index of w = ln(v/V) in the scaled state; w = 0 ⇔ ẋ = V ⇔ X = x − x₀ extremal
@@ -159,3 +159,127 @@ def integrate(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol:
                               f"{status_from_text(STATUS[int(st)]).advice}", t=float(t * tu), state=state)
     return Run(float(t * tu), y.copy(), STATUS[int(st)], int(cnt[0]), int(cnt[1]), int(cnt[2]), int(cnt[3]),
                int(cnt[4]), cpu, et * tu, ey, evdir[:len(et)].astype(int).copy(), rt * tu, ry)
+
+
+#: step attempts per compiled call of :func:`record_run` (its accepted steps are recorded)
+CHUNK_STEPS = 200_000
+#: default bound on the points :func:`record_run` keeps (decimated past it)
+MAX_POINTS = 200_000
+
+
+def _thin_every_other(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Every other point of a recorded series, the last one kept."""
+    idx = np.arange(0, len(t), 2)
+    if len(t) and idx[-1] != len(t) - 1:
+        idx = np.append(idx, len(t) - 1)
+    return t[idx], y[idx]
+
+
+def record_run(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol: float = 1e-9,
+               max_steps: int = 5_000_000, max_points: int = MAX_POINTS, event_index: int = -1,
+               event_value: float = 0.0, max_events: int = 100_000, chunk_steps: int = CHUNK_STEPS) -> Simulation:
+    """Integrate eq. (4) over ``t_span`` with bounded steps and memory, as a :class:`Simulation`.
+
+    The run is taken in compiled calls of at most ``chunk_steps`` step attempts each, every call
+    continuing from the previous one's state and step size; the recorded series is streamed
+    out of each call and decimated (every other point dropped, then every 2ᵏ-th step end
+    kept) whenever it would exceed ``max_points``, so that a run of any length keeps at most
+    about ``max_points`` points spread over its whole span.  After ``max_steps`` step attempts the
+    run ends with status :attr:`~landau.verify.hybrid.result.Status.MAX_STEPS` and the series
+    up to there (it does not raise); the other integrator failures raise as in
+    :func:`integrate`.  A run shorter than ``chunk_steps`` is the same computation as one call
+    of :func:`integrate`.
+
+    Parameters
+    ----------
+    model : SpringBlockModel
+        Eq. (4) of Putelat et al. (2010) for one law, V and k.
+    y0 : array_like
+        Initial scaled state.
+    t_span : (float, float)
+        Start and end times (s).
+    rtol : float, optional
+        Relative (and absolute) tolerance of the Radau IIA.
+    max_steps : int, optional
+        Budget of step attempts (accepted and rejected) of the whole run.
+    max_points : int, optional
+        Bound on the recorded points (times in seconds, scaled states).
+    event_index, event_value : int, float, optional
+        Crossings of ``y[event_index] = event_value`` logged as ``"section"`` events (−1: none).
+    max_events : int, optional
+        Bound on the logged crossings (later ones are not logged; the run goes on).
+    chunk_steps : int, optional
+        Step attempts per compiled call.
+
+    Returns
+    -------
+    Simulation
+        Status ``finished`` or ``max-steps``; ``t`` in seconds, ``y`` scaled.
+    """
+    if not (int(max_steps) >= 1 and int(max_points) >= 16 and int(chunk_steps) >= 1):
+        raise InputError("max_steps and chunk_steps must be >= 1 and max_points >= 16")
+    tu = model.time_unit
+    t0, t1 = float(t_span[0]), float(t_span[1])
+    if not (np.isfinite(t0) and np.isfinite(t1) and t1 > t0):
+        raise InputError(f"t_span must be finite and increasing, got {tuple(t_span)!r}")
+    c = model.compiled
+    nn = c.n
+    y = np.ascontiguousarray(y0, dtype=float)
+    if y.shape != (nn,):
+        raise InputError(f"initial state must have {nn} components, got shape {y.shape}")
+    at = np.full(nn, float(rtol))
+    t, h = t0 / tu, min(1e-3 * (t1 - t0) / tu, 1e-4)
+    rec_t, rec_y = [np.array([t0])], [y[None, :].copy()]
+    kept, stride = 1, 1
+    ev_t, ev_y, ev_d = [], [], []
+    steps = nfev = 0
+    status = "finished"
+    while True:
+        budget = min(int(chunk_steps), int(max_steps) - steps)
+        room = max(int(max_events) - len(ev_t), 0)
+        evbuf = np.empty((max(room, 1) if event_index >= 0 else 1, nn + 1))
+        evdir = np.empty(evbuf.shape[0])
+        # a budget of step attempts (accepted and rejected), as integrate's max_steps
+        st, tn, yn, cnt, et, ey, rt, ry, hn, _ = radau_core(
+            c.rhs, c.jac, t, y, t1 / tu, model.p, float(rtol), at, float(h), np.inf, budget,
+            int(event_index) if room else -1, float(event_value), 0, 0, budget, None, None, evbuf, evdir)
+        steps += int(cnt[0]) + int(cnt[1])
+        nfev += int(cnt[2])
+        if st == -1 or st == -3:
+            phys = model.to_physical(yn[:model.n])
+            state = [float(phys["X"]), float(phys["v"])] + [float(phys[s.name]) for s in model.law.states]
+            raise IntegratorError(f"spring-block[{model.law.name}] integration failed: {STATUS[int(st)]} after "
+                                  f"{steps} steps (state = X [m], v [m/s], phi...): "
+                                  f"{status_from_text(STATUS[int(st)]).advice}", t=float(tn * tu), state=state)
+        ev_t += list(et * tu)
+        ev_y += list(ey)
+        ev_d += list(evdir[:len(et)])
+        rt = rt * tu
+        if stride > 1:   # decimated recording: every stride-th step end of this call
+            rt, ry = rt[stride - 1::stride], ry[stride - 1::stride]
+        rec_t.append(rt)
+        rec_y.append(ry)
+        kept += len(rt)
+        while kept > max_points:
+            tt, yy = _thin_every_other(np.concatenate(rec_t), np.concatenate(rec_y))
+            rec_t, rec_y, kept = [tt], [yy], len(tt)
+            stride *= 2
+        t, y, h = float(tn), yn.copy(), float(hn)
+        if st == 0 or st == 1:
+            break
+        if steps >= max_steps:
+            status = "max_steps"
+            break
+    tt, yy = np.concatenate(rec_t), np.concatenate(rec_y)
+    if tt[-1] < t * tu:   # a decimated record keeps the final state
+        tt, yy = np.append(tt, t * tu), np.vstack([yy, y[None, :]])
+    log = EventLog()
+    for te, ye, d in zip(ev_t, ev_y, ev_d, strict=True):
+        log.append(Event(float(te), np.asarray(ye), "crossing", "slip", "slip", "section", np.asarray(ye),
+                         "up" if d > 0 else "down"))
+    sts = status_from_text(status)
+    msg = sts.advice
+    if sts is Status.MAX_STEPS:
+        msg = (f"stopped at the step limit ({int(max_steps)} steps) at t = {t * tu:.6g} s before the end "
+               f"t = {t1:.6g} s: {sts.advice}")
+    return Simulation("spring-block", tt, yy.T, log, sts, msg, t * tu, y, steps, nfev)

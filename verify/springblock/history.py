@@ -1,0 +1,229 @@
+"""The spring–block driven by a load-point velocity history: velocity steps and slide-hold-slide.
+
+The laboratory protocols of rate-and-state friction (Dieterich 1979; Ruina 1983; Marone 1998)
+drive the spring's far end — the load point — at a piecewise-constant velocity V(t): a
+*velocity step* V₁ → V₂, or a *slide-hold-slide* V → 0 → V.  With the load point at
+x_lp(t) = ∫V dt, the block of Putelat et al. (2010), eq. (4), obeys
+
+    M ẍ = k (x_lp(t) − x) − σ μ(ẋ, φ),    dφᵢ/dt = rateᵢ(ẋ, φ),
+
+which this module integrates in the variables u = x_lp − x (the spring's stretch, m),
+w = ln v and ψᵢ = ln φᵢ (v and φ stay positive and are resolved over the tens of decades a
+hold spans):
+
+    u' = V(t) − v,    w' = (k u − σ μ) / (M v),    ψᵢ' = rateᵢ / φᵢ,
+
+one constant-velocity piece at a time with scipy's Radau IIA (exact Jacobian from the symbolic
+law), starting from steady sliding at the first velocity (v = V₀, φ = φ_ss(V₀), k u = σ μ_ss(V₀)).
+:func:`parse_history` reads the command line's ``"V0@t0,V1@t1,..."``; :func:`simulate_history`
+returns a :class:`~landau.verify.hybrid.result.Simulation` whose series are the load-point
+velocity ``V``, the slip rate ``v``, the friction coefficient ``mu`` = μ(v, φ) and the states.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Mapping
+
+import numpy as np
+import sympy as sp
+
+from landau.errors import InputError, IntegratorError
+from landau.laws.law import FrictionLaw
+from landau.laws.law import v as v_slip
+from landau.verify.hybrid.log import EventLog
+from landau.verify.hybrid.result import Simulation, Status
+
+
+@dataclass(frozen=True)
+class LoadHistory:
+    """A piecewise-constant load-point velocity: ``velocities[i]`` [m/s] from ``times[i]`` [s] on.
+
+    ``times[0]`` is the start of the run, where the block slides steadily at ``velocities[0]``
+    (> 0); a velocity 0 is a hold.
+    """
+
+    velocities: tuple[float, ...]
+    times: tuple[float, ...]
+
+    def __post_init__(self):
+        V, T = self.velocities, self.times
+        if len(V) != len(T) or not V:
+            raise InputError("a load-point history needs one start time per velocity, at least one")
+        if not all(math.isfinite(x) and x >= 0 for x in V):
+            raise InputError(f"load-point velocities must be finite and >= 0 (0: a hold), got {list(V)}")
+        if not V[0] > 0:
+            raise InputError("the first load-point velocity must be > 0: the run starts from steady sliding there")
+        if not all(math.isfinite(t) for t in T) or any(b <= a for a, b in zip(T, T[1:], strict=False)):
+            raise InputError(f"the times of a load-point history must be finite and increasing, got {list(T)}")
+
+    def velocity(self, t) -> np.ndarray:
+        """The load-point velocity at ``t`` (the piece that starts at or before ``t``)."""
+        i = np.clip(np.searchsorted(self.times, np.asarray(t, float), side="right") - 1, 0, len(self.times) - 1)
+        return np.asarray(self.velocities, float)[i]
+
+    def __str__(self) -> str:
+        return ",".join(f"{v:g}@{t:g}" for v, t in zip(self.velocities, self.times, strict=True))
+
+
+def parse_history(text: str) -> LoadHistory:
+    """``"V0@t0,V1@t1,..."`` (m/s @ s) as a :class:`LoadHistory`.
+
+    Examples: ``"1e-6@0,1e-5@20"`` (a velocity step at t = 20 s), ``"1e-5@0,0@10,1e-5@110"``
+    (a 100 s hold).
+    """
+    if not isinstance(text, str) or not text.strip():
+        raise InputError("--V-history: give 'V0@t0,V1@t1,...' (velocity in m/s from each time in s on)")
+    vel, times = [], []
+    for item in text.split(","):
+        parts = item.split("@")
+        if len(parts) != 2:
+            raise InputError(f"--V-history: {item.strip()!r} is not 'V@t' (velocity @ start time)")
+        try:
+            vel.append(float(parts[0]))
+            times.append(float(parts[1]))
+        except ValueError:
+            raise InputError(f"--V-history: {item.strip()!r}: velocity and time must be numbers") from None
+    return LoadHistory(tuple(vel), tuple(times))
+
+
+def _steady_state(law: FrictionLaw, V: float, p: Mapping[str, float]) -> tuple[list[float], float]:
+    from landau.verify.springblock.model import _steady_state as ss
+
+    phi = ss(law, V, p)
+    vals = {prm.symbol: p[prm.name] for prm in law.parameters}
+    mu = float(law.mu.subs({v_slip: V, **dict(zip(law.states, phi, strict=True)), **vals}))
+    if not math.isfinite(mu):
+        raise InputError(f"law {law.name!r}: the friction coefficient is not finite at steady sliding V = {V:g} m/s")
+    return phi, mu
+
+
+def _field(law: FrictionLaw, p: Mapping[str, float], k: float):
+    """f(t, y; V) and its Jacobian in (u, w, ψ…), and μ(w, ψ…), compiled by lambdify from the law."""
+    ns = len(law.states)
+    u, w = sp.symbols("u_ w_", real=True)
+    psi = sp.symbols(f"psi_0:{ns}", real=True)
+    Vlp = sp.Symbol("V_lp_", real=True)
+    vals = {prm.symbol: p[prm.name] for prm in law.parameters}
+    sub = {v_slip: sp.exp(w), **{s: sp.exp(q) for s, q in zip(law.states, psi, strict=True)}}
+
+    def tidy(e):
+        return sp.expand_log(e.subs(vals).xreplace(sub), force=True)
+
+    mu = tidy(law.mu)
+    M, sigma = float(p["M"]), float(p["sigma"])
+    f = [Vlp - sp.exp(w), (k * u - sigma * mu) * sp.exp(-w) / M]
+    f += [sp.expand(tidy(r) * sp.exp(-q)) for r, q in zip(law.rates, psi, strict=True)]
+    ys = [u, w, *psi]
+    J = sp.Matrix(f).jacobian(sp.Matrix(ys))
+    fn = sp.lambdify([ys, Vlp], f, "numpy")
+    jn = sp.lambdify([ys], J, "numpy")
+    mun = sp.lambdify([ys], mu, "numpy")
+    return fn, jn, mun
+
+
+def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
+                     params: Mapping[str, float] | None = None, t_end: float | None = None, *,
+                     rtol: float = 1e-9, max_points: int = 200_000) -> Simulation:
+    """The spring–block under a load-point velocity history (module docstring).
+
+    Parameters
+    ----------
+    law : FrictionLaw
+        The rate-and-state law μ(v, φ), dφᵢ/dt.
+    history : LoadHistory or str
+        The load-point velocities and their start times (or ``"V0@t0,V1@t1,..."``).
+    k : float
+        Spring (machine) stiffness [N/m]; steady sliding is stable above k_c at each velocity.
+    params : mapping, optional
+        Law and block parameters (:meth:`landau.systems.system.SpringBlock.resolve`: M, g, sigma).
+    t_end : float, optional
+        End of the run [s] (default: the last piece's start plus as long as the longest earlier piece).
+    rtol : float, optional
+        Relative tolerance of the Radau IIA (absolute: ``rtol`` in u/L, w and ψ).
+    max_points : int, optional
+        Bound on the recorded points (evenly thinned past it).
+
+    Returns
+    -------
+    Simulation
+        ``state_names`` = (V, v, mu, states…): the load-point velocity [m/s], the slip rate
+        [m/s], μ(v, φ) and the states, sampled at the integrator's steps; status ``finished``.
+
+    Raises
+    ------
+    InputError
+        A bad history, stiffness or end time; M ≤ 0.
+    IntegratorError
+        The integrator failed (with the time and state).
+
+    References
+    ----------
+    Putelat, T., Dawes, J. H. P. & Willis, J. R. (2010), J. Mech. Phys. Solids 58, 27–53, eq. (4).
+    Marone, C. (1998), Laboratory-derived friction laws and their application to seismic
+    faulting, Annu. Rev. Earth Planet. Sci. 26, 643–696 (velocity steps, slide-hold-slide).
+    """
+    from scipy.integrate import solve_ivp
+
+    from landau.systems.system import SpringBlock
+
+    h = parse_history(history) if isinstance(history, str) else history
+    if not (math.isfinite(k) and k > 0):
+        raise InputError(f"stiffness k must be a finite number > 0, got {k!r}")
+    p = SpringBlock(law).resolve(params)
+    if not p["M"] > 0:
+        raise InputError("a load-point history is simulated with a block mass M > 0")
+    T = list(h.times)
+    if t_end is None:
+        longest = max([b - a for a, b in zip(T, T[1:], strict=False)] or [100 * p.get("L", 1e-6) / h.velocities[0]])
+        t_end = T[-1] + longest
+    if not (math.isfinite(t_end) and t_end > T[-1]):
+        raise InputError(f"the end time must be after the last piece's start t = {T[-1]:g} s, got {t_end!r}")
+    phi0, mu0 = _steady_state(law, h.velocities[0], p)
+    fn, jn, mun = _field(law, p, k)
+    sigma = float(p["sigma"])
+    y = np.array([sigma * mu0 / k, math.log(h.velocities[0]), *(math.log(x) for x in phi0)])
+    scale = np.array([p.get("L", 1e-6)] + [1.0] * (len(y) - 1))
+    ts, ys, vs = [np.array([T[0]])], [y[:, None]], [np.array([h.velocities[0]])]
+    ends = T[1:] + [t_end]
+    nsteps = nfev = 0
+    for V, a, b in zip(h.velocities, T, ends, strict=True):
+        if a >= t_end:
+            break
+        b = min(b, t_end)
+        sol = solve_ivp(lambda t, yy, V=V: fn(yy, V), (a, b), y, method="Radau", rtol=rtol, atol=rtol * scale,
+                        jac=lambda t, yy: np.asarray(jn(yy), float))
+        if not sol.success or not np.all(np.isfinite(sol.y[:, -1])):
+            raise IntegratorError(f"load-point history, piece V = {V:g} m/s from t = {a:g} s: {sol.message}",
+                                  t=float(sol.t[-1]), state=sol.y[:, -1])
+        ts.append(sol.t[1:])
+        ys.append(sol.y[:, 1:])
+        vs.append(np.full(len(sol.t) - 1, V))
+        nsteps += len(sol.t) - 1
+        nfev += int(sol.nfev)
+        y = sol.y[:, -1]
+    t = np.concatenate(ts)
+    Y = np.concatenate(ys, axis=1)
+    Vl = np.concatenate(vs)
+    if len(t) > max_points:
+        keep = np.unique(np.linspace(0, len(t) - 1, max_points).astype(int))
+        t, Y, Vl = t[keep], Y[:, keep], Vl[keep]
+    mu = np.broadcast_to(np.asarray(mun(Y), float), t.shape)
+    out = np.vstack([Vl, np.exp(Y[1]), mu, np.exp(Y[2:])])
+    names = ("V", "v", "mu") + tuple(s.name for s in law.states)
+    regimes = tuple((a, min(b, t_end), "hold" if V == 0 else "slide")
+                    for V, a, b in zip(h.velocities, T, ends, strict=True) if a < t_end)
+    final = out[:, -1].copy()
+    return Simulation("spring-block (load-point history)", t, out, EventLog(), Status.FINISHED,
+                      Status.FINISHED.advice, float(t[-1]), final, nsteps, nfev, None, names, regimes)
+
+
+def peak_after(sim: Simulation, t_from: float) -> float:
+    """The largest friction coefficient μ of ``sim`` at t ≥ ``t_from`` (a slide-hold-slide's
+    peak on reloading)."""
+    i = list(sim.state_names).index("mu")
+    keep = sim.t >= t_from
+    if not keep.any():
+        raise InputError(f"no recorded point at t >= {t_from:g}")
+    return float(sim.y[i, keep].max())
