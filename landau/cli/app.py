@@ -58,6 +58,7 @@ SUMMARIES: dict[str, str] = {
     "hopf": "Hopf point of a model's steady state, with its first Lyapunov coefficient and criticality.",
     "figures": "Regenerate a paper's figures: landau figures PAPER [--only figN,...] [--out DIR].",
     "verify": "Check the engine's amplitude-equation predictions by direct simulation of the spring–block.",
+    "sweep": "Run an analysis over a parameter grid on local processes or a dask cluster, written to netCDF.",
 }
 
 
