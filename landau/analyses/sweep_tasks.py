@@ -15,6 +15,8 @@ variables are named as in the matching ``--json`` output.
   Lyapunov exponent on request), :mod:`landau.verify.skurativskyi.sweep`.
 * ``regime`` (spring–block): the regime by direct simulation started on both sides,
   :mod:`landau.verify.springblock.regime_map`.
+* ``scene``: a published value (a scene of ``landau scene list``, named as the model) as a function
+  of the scene's parameters, with its difference to the published number.
 
 The models above this layer are reached through :data:`IMPLEMENTATIONS` (module and function
 names, imported in the worker).
@@ -385,6 +387,57 @@ class SpringBlockCheck(Task):
 
 
 # ---------------------------------------------------------------------------------------------
+# scene
+# ---------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class SceneTask(Task):
+    """A published value as a function of parameters: the scene ``model`` (``landau scene list``) run
+    at each point with the swept values as its parameters (:func:`landau.scenes.run_scene`)."""
+
+    def _scene(self):
+        from landau.scenes import get_scene
+
+        return get_scene(self.model)
+
+    def units(self) -> dict[str, str]:
+        return {"value": self._scene().units, "published": self._scene().units, "rel_diff": "1"}
+
+    def attrs(self) -> dict[str, Any]:
+        sc = self._scene()
+        return {**super().attrs(), "scene_parameter": sc.parameter, "source": sc.source}
+
+    def check_grid(self, grid: Grid) -> None:
+        known = set(self._scene().defaults)
+        for name in (*grid.names, *dict(self.fixed)):
+            if name not in known:
+                raise InputError(f"scene {self.model!r} has no parameter {name!r} (known: "
+                                 f"{', '.join(sorted(known)) or 'none'})")
+
+    def run(self, chunk: Chunk) -> ChunkResult:
+        from landau.scenes import run_scene
+
+        status: list[str] = []
+        message: list[str] = []
+        rows: list[dict[str, float]] = []
+        agrees: list[str] = []
+        for j in range(len(chunk.index)):
+            point = {**dict(self.fixed), **{k: float(v[j]) for k, v in chunk.points.items()}}
+            try:
+                doc = run_scene(self.model, point)
+            except (LandauError, ArithmeticError, ValueError) as exc:
+                _skip(status, message, rows, "failed", exc)
+                agrees.append("")
+                continue
+            rows.append({k: float(doc[k]) for k in ("value", "published", "rel_diff", "tolerance")
+                         if isinstance(doc.get(k), (int, float)) and not isinstance(doc.get(k), bool)})
+            agrees.append("" if doc.get("agrees") is None else str(bool(doc["agrees"])).lower())
+            status.append("ok")
+            message.append("")
+        vals = {k: np.array([r.get(k, np.nan) for r in rows]) for k in ("value", "published", "rel_diff", "tolerance")}
+        return ChunkResult(chunk.index, status, message, vals, {"agrees": agrees})
+
+
+# ---------------------------------------------------------------------------------------------
 # tasks implemented by the models' own modules (simulate, regime)
 # ---------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
@@ -423,7 +476,8 @@ class ModelTask(Task):
 TASKS = {"hopf": "the Hopf point and amplitude-equation coefficients (any model of landau hopf)",
          "check": "the direct-simulation verdict of landau.check (spring-block)",
          "simulate": "statistics of a settled run (forced-oscillator: continuation in omega)",
-         "regime": "the regime by direct simulation started on both sides (spring-block)"}
+         "regime": "the regime by direct simulation started on both sides (spring-block)",
+         "scene": "a published value as a function of parameters (MODEL: a scene of landau scene list)"}
 
 
 def make_task(task: str, model: str, law: LawSpec | None, fixed: dict[str, Any], options: dict[str, Any]) -> Task:
@@ -447,6 +501,10 @@ def make_task(task: str, model: str, law: LawSpec | None, fixed: dict[str, Any],
             return SpringBlockHopf("hopf", model, law, fx, opts, chunk_size=int(options.get("chunk_size", 4096)),
                                    method=str(options.get("method", "auto")))
         return PointwiseHopf("hopf", model, None, fx, opts, chunk_size=int(options.get("chunk_size", 1)))
+    if task == "scene":
+        if law is not None:
+            raise InputError(f"scene {model}: a scene takes no law (its model and law are the paper's)")
+        return SceneTask("scene", model, None, fx, opts, chunk_size=int(options.get("chunk_size", 1)))
     if task == "check":
         if model != "spring-block":
             raise InputError(f"check: the sweep runs the spring-block's check (got model {model!r})")

@@ -6,7 +6,8 @@
 Tasks: ``hopf`` (any model of ``landau hopf``; the spring–block's a whole chunk at a time),
 ``check`` (spring-block: the direct-simulation verdict of ``landau.check`` and its numbers), ``simulate``
 (forced-oscillator: the attractor by continuation in omega), ``regime`` (spring-block: steady
-sliding, small cycle, large stick-slip or bistable, by simulation started on both sides).
+sliding, small cycle, large stick-slip or bistable, by simulation started on both sides), ``scene``
+(MODEL is a scene of ``landau scene list``: its value as a function of its parameters).
 
 The result is an xarray Dataset in FILE.nc (dimensions: the swept parameters; variables: the
 task's quantities as in ``--json``, ``status`` and ``message`` per point).  It is written as the
@@ -20,6 +21,7 @@ Examples::
     landau sweep check spring-block dieterich --grid V=1e-5,1e-4 --eps2 1e-3 --out check.nc
     landau sweep simulate forced-oscillator --grid omega=19.9:23.2:67 --direction down --out om.nc
     landau sweep regime spring-block dieterich --grid V=1e-6:1e-3:40:log --grid k=1e4:1e6:40:log --out map.nc
+    landau sweep scene skurativskyi2019/static-equilibrium --grid kI=1e8:1e9:10:log --out x0.nc
 """
 
 from __future__ import annotations
@@ -35,8 +37,8 @@ _RESERVED = {"v": "v is the slip rate, the variable of the friction law, not a p
 
 
 def configure(p) -> None:
-    p.add_argument("task", help="hopf, check, simulate or regime")
-    p.add_argument("model", help="spring-block, forced-oscillator, or any model of landau hopf")
+    p.add_argument("task", help="hopf, check, simulate, regime or scene")
+    p.add_argument("model", help="spring-block, forced-oscillator, any model of landau hopf, or a scene's name")
     add_law_arguments(p)
     p.add_argument("--grid", action="append", default=[], metavar="NAME=LO:HI:N[:log] | NAME=v1,v2,...",
                    help="a swept parameter (repeatable; the grid is their product)")

@@ -104,3 +104,19 @@ def test_hopf_sweep_of_another_model_point_by_point_equals_landau_hopf(capsys):
     for name in ("p_c", "omega_c", "Lambda", "C"):
         assert float(pt[name]) == doc[name], name
     assert str(pt.criticality.values) == doc["criticality"]
+
+
+def test_scene_sweep_equals_the_scene_and_its_published_value_at_the_defaults():
+    from landau.scenes import get_scene, run_scene
+
+    name = "skurativskyi2019/static-equilibrium"
+    kI = get_scene(name).defaults["kI"]
+    ds = landau.sweep("scene", {"kI": [0.5 * kI, kI, 2 * kI]}, model=name, workers=1, progress=False)
+    assert ds.value.attrs["units"] == "m" and ds.attrs["scene_parameter"] == "X0"
+    at = ds.sel(kI=kI)
+    assert float(at.value) == run_scene(name)["value"]
+    # Skurativskyi et al. (2019) Sec. 5: X0 = -2.0807e-3 m at the identified parameters
+    assert str(at.agrees.values) == "true" and float(at.published) == -2.0807e-3
+    # a stiffer obstacle holds the cart closer to it: X0 moves towards x_I = -2.086e-3 m
+    assert float(ds.value.sel(kI=2 * kI)) < float(at.value) < float(ds.value.sel(kI=0.5 * kI))
+    assert list(ds.agrees.values[[0, 2]]) == ["", ""]  # other parameters: compared, not judged
