@@ -40,9 +40,9 @@ def _numeric(expr: sp.Expr):
     """expr(r, γ, δ) compiled once (per expression, shared by every law that uses it: sweeps build
     many laws with the same branches) to a numpy function of (r, gamma, delta).  The derivative of
     a jump (``sign(r + 0.5)`` → DiracDelta) is zero away from it and infinite on it."""
-    from landau.codegen.formula import _modules
+    from landau.support.lambdify import numeric_modules
 
-    return sp.lambdify((R, GAMMA, DELTA), expr, modules=_modules("numpy"))
+    return sp.lambdify((R, GAMMA, DELTA), expr, modules=numeric_modules("numpy"))
 
 
 #: |r| where a branch is checked to be real when the law is built (a NaN there: sqrt or log of a

@@ -30,10 +30,10 @@ from typing import Mapping
 import numpy as np
 import sympy as sp
 
-from landau.codegen.names import lambdify_positional
 from landau.errors import DomainError, InputError
 from landau.laws.base import Law
 from landau.laws.parse import parse_expression
+from landau.support.lambdify import lambdify_positional
 
 #: the slip-rate symbol shared by every law
 v = sp.Symbol("v", positive=True)

@@ -34,11 +34,11 @@ from typing import Callable, Mapping
 import numpy as np
 import sympy as sp
 
-from landau.codegen.names import lambdify_positional
 from landau.errors import DomainError, InputError
 from landau.laws.base import Law
 from landau.laws.law import Parameter, user_parameter
 from landau.laws.parse import parse_expression
+from landau.support.lambdify import lambdify_positional
 
 #: the sliding-velocity symbol of every velocity-only law (real: both signs occur)
 V_SLIP = sp.Symbol("v", real=True)

@@ -46,13 +46,13 @@ from typing import Mapping
 import mpmath
 
 from landau.analyses.codim2 import SPRING_BLOCK_PARAMETERS, FoldOfCycles, GeneralisedHopfPoint
-from landau.codegen.names import lambdify_positional
 from landau.derivation.fredholm import _pencil, best_drop, linear_coefficient, null_vectors, quintic_coefficient
 from landau.derivation.hopf import GENERAL, HopfResult
 from landau.derivation.jets import Jets
 from landau.derivation.lyapunov import _NumericJets, equilibrium_floats, numeric_values
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.support.cx import as_expr
+from landau.support.lambdify import lambdify_positional
 from landau.systems.system import DynamicalSystem
 
 

@@ -52,9 +52,9 @@ import numpy as np
 
 from landau.analyses import contract
 from landau.analyses.contract import Scaling, fit_scaling
-from landau.codegen.names import lambdify_positional
 from landau.derivation.hopf import Criticality, HopfResult
 from landau.errors import InputError, IntegratorError, LandauError
+from landau.support.lambdify import lambdify_positional
 
 #: bracket tolerance of the supercritical route's legacy single-point procedure at ε² = 1e-3
 SUPERCRITICAL_TOLERANCE = 0.02
@@ -335,9 +335,15 @@ def _unresolved(pt: _Point, subcritical: bool) -> str:
     return ""
 
 
+def _err(pt: "_Point") -> float:
+    """The relative amplitude error of a point that has one (a measured cycle)."""
+    assert pt.rel_error is not None, "a point without a measured cycle has no amplitude error"
+    return pt.rel_error
+
+
 def _agreed(main: _Point, sc: Scaling, tolerance: float | None, pts: list[_Point]):
     """The contract holds: agrees, unless the caller's extra tolerance is exceeded."""
-    if tolerance is not None and abs(main.rel_error) > tolerance:
+    if tolerance is not None and abs(_err(main)) > tolerance:
         return (main, sc, Verdict.DISAGREES, f"amplitude off by {main.rel_error:+.2%}, beyond the requested "
                                              f"tolerance {tolerance:.2%}", None, pts)
     return main, sc, Verdict.AGREES, "", None, pts
@@ -374,7 +380,7 @@ def _run_contract(measure: Callable[[float, bool], _Point], eps2_request, primar
             return main, None, Verdict.FAILED, cannot(pt.eps2, why), None, pts
     good = [pt for pt in pts if not any(pt is q for q, _ in bad)]
     wrong = [pt for pt in good if pt.stable is not None and pt.stable == subcritical]
-    sc = fit_scaling([p.eps2 for p in good], [p.rel_error for p in good], [p.floor for p in good])
+    sc = fit_scaling([p.eps2 for p in good], [_err(p) for p in good], [p.floor for p in good])
     if sc.holds and not wrong and not bad:
         return _agreed(main, sc, tolerance, pts)
     if bad:         # no cycle found, or the steady state: is that ε² beyond the weakly nonlinear range?
@@ -398,12 +404,12 @@ def _run_contract(measure: Callable[[float, bool], _Point], eps2_request, primar
             break
         tail.append(pt)
         if not wrong and not bad:
-            full = fit_scaling([q.eps2 for q in tail], [q.rel_error for q in tail], [q.floor for q in tail])
+            full = fit_scaling([q.eps2 for q in tail], [_err(q) for q in tail], [q.floor for q in tail])
             if full.holds:
                 return _agreed(main, full, tolerance, pts)
         if len(tail) < 2 or tail[-2].stable is not None and tail[-2].stable == subcritical:
             continue
-        below = fit_scaling([q.eps2 for q in tail[-2:]], [q.rel_error for q in tail[-2:]],
+        below = fit_scaling([q.eps2 for q in tail[-2:]], [_err(q) for q in tail[-2:]],
                             [q.floor for q in tail[-2:]])
         if below.holds:
             emax = tail[-2].eps2

@@ -33,6 +33,7 @@ COMMANDS: dict[str, str] = {
     "plot": "landau.cli.plot",
     "simulate": "landau.cli.simulate",
     "hopf": "landau.cli.hopf",
+    "sweep": "landau.cli.sweep",
     "figures": "landau.paper_figures.cli",
     "verify": "landau.verify.cli",
 }
@@ -57,6 +58,7 @@ SUMMARIES: dict[str, str] = {
     "hopf": "Hopf point of a model's steady state, with its first Lyapunov coefficient and criticality.",
     "figures": "Regenerate a paper's figures: landau figures PAPER [--only figN,...] [--out DIR].",
     "verify": "Check the engine's amplitude-equation predictions by direct simulation of the spring–block.",
+    "sweep": "Run an analysis over a parameter grid on local processes or a dask cluster, written to netCDF.",
 }
 
 

@@ -45,7 +45,6 @@ import scipy.linalg
 import scipy.optimize
 import sympy as sp
 
-from landau.codegen.names import lambdify_positional
 from landau.derivation.fredholm import (
     _minor,
     _pencil,
@@ -59,6 +58,7 @@ from landau.derivation.hopf import GENERAL, HopfResult
 from landau.derivation.jets import Jets, TaylorJets
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.support.cx import Cx, as_expr
+from landau.support.lambdify import lambdify_positional
 from landau.systems.system import DynamicalSystem
 
 #: default working precision of the located point and its coefficients (decimal digits)

@@ -38,11 +38,11 @@ from typing import Any, Mapping, Sequence
 import mpmath
 import sympy as sp
 
-from landau.codegen.names import lambdify_positional
 from landau.derivation.hopf import GENERAL, HopfResult, spring_block_result
 from landau.derivation.jets import Jets
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.support.cx import as_expr
+from landau.support.lambdify import lambdify_positional
 from landau.systems.system import DynamicalSystem, SpringBlock
 
 #: digits used when the caller does not say (≥ 30: far above the float64 engine it checks)

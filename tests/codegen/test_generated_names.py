@@ -12,8 +12,8 @@ import pytest
 import sympy as sp
 
 from landau import DynamicalSystem, Verdict, check
-from landau.codegen.names import lambdify_positional
 from landau.laws.velocity import VelocityFriction
+from landau.support.lambdify import lambdify_positional
 
 
 @pytest.mark.parametrize("name", ["cos", "array", "exp", "select", "_a1"])

@@ -239,7 +239,7 @@ def plot_simulation(sim, kind: str = "overview", *, phase: tuple[int, int] = (0,
     regimes = [r for r in getattr(sim, "regimes", ()) if r[1] > (sim.t[0] if len(sim.t) else -np.inf)]
     span = (sim.t[-1] - sim.t[0]) if len(sim.t) > 1 else 1.0
     shaded = merged_intervals(regimes, gap=span / 4000)
-    axes = []
+    axes: list = []
     for i in range(n):
         ax = fig.add_subplot(gs[i, 0], sharex=axes[0] if axes else None)
         axes.append(ax)

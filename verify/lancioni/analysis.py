@@ -175,7 +175,7 @@ def _lam_n_array(s: int, friction):
 
 @lru_cache(maxsize=16)
 def _lam_n_numpy(s: int, Fs, law_names: tuple):
-    from landau.codegen.names import lambdify_positional
+    from landau.support.lambdify import lambdify_positional
 
     _, L = S._accelerations(s, Fs)
     args = [S.phi, S.omega, *S.MECHANICAL.values(), S.v_belt, *map(S._law_symbol, law_names)]

@@ -50,11 +50,11 @@ from typing import Any, Callable, Mapping
 import numpy as np
 import sympy as sp
 
-from landau.codegen.names import lambdify_positional
 from landau.derivation.general import hopf_normal_form
 from landau.derivation.hopf import HopfResult
 from landau.errors import InputError, NoHopfError
 from landau.laws.velocity import V_SLIP, VelocityFriction
+from landau.support.lambdify import lambdify_positional
 from landau.systems.system import DynamicalSystem
 
 phi, omega = sp.symbols("phi omega", real=True)

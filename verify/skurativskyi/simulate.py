@@ -333,8 +333,13 @@ def record_run(params: Params, t_end: float, y0=None, *, rtol: float = RTOL, max
     fr = compiled_field(params).pointers
     loop = R.mixed_loop()
     t = 0.0
-    rec_t, rec_y, rec_f, kept, stride = [], [], [], 0, 1
-    ev_t, ev_k, ev_v = [], [], []
+    rec_t: list = []
+    rec_y: list = []
+    rec_f: list = []
+    kept, stride = 0, 1
+    ev_t: list = []
+    ev_k: list = []
+    ev_v: list = []
     steps = nfev = 0
     status = Status.FINISHED
     while True:

@@ -36,10 +36,10 @@ import numpy as np
 import sympy as sp
 
 from landau.codegen.kernels import DerivedParameters, compile_source, hoist_parameters, kernel_source
-from landau.codegen.names import lambdify_positional
 from landau.errors import InputError
 from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
+from landau.support.lambdify import lambdify_positional
 from landau.systems.system import SpringBlock
 
 

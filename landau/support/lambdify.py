@@ -9,13 +9,49 @@ value).  :func:`lambdify_positional` renames every argument, all at once (``xrep
 internal name no user symbol can take (a leading underscore, which the law, velocity-law and
 system constructors refuse), and lambdifies the renamed expression: the generated code then
 contains no name a user chose.
+
+:func:`numeric_modules` is the module set every numeric function of the toolkit is printed
+against: numpy or mpmath, plus the distributions a non-smooth law's derivatives produce
+(|v − v₀| → sign → DiracDelta), zero away from the kink and infinite on it.
+
+This module sits below the friction laws (which compile their own numeric functions) and the
+code generators, which all import it from here.
 """
 
 from __future__ import annotations
 
 from typing import Any, Callable
 
+import numpy as np
 import sympy as sp
+
+
+def _dirac_np(x, *_):
+    return np.where(np.asarray(x) == 0, np.inf, 0.0)
+
+
+def _heaviside_np(x, h0=0.5):
+    return np.heaviside(x, h0)
+
+
+def _dirac_mp(x, *_):
+    import mpmath
+    return mpmath.inf if x == 0 else mpmath.mpf(0)
+
+
+def _heaviside_mp(x, h0=0.5):
+    import mpmath
+    return mpmath.mpf(1) if x > 0 else (mpmath.mpf(0) if x < 0 else mpmath.mpf(h0))
+
+
+def numeric_modules(modules: Any) -> Any:
+    """lambdify modules with the distributions a non-smooth law's derivatives produce
+    (|v − v₀| → sign → DiracDelta): zero away from the kink, infinite on it."""
+    if modules == "numpy":
+        return [{"DiracDelta": _dirac_np, "Heaviside": _heaviside_np}, "numpy"]
+    if modules == "mpmath":
+        return [{"DiracDelta": _dirac_mp, "Heaviside": _heaviside_mp}, "mpmath"]
+    return modules
 
 
 def _rename(args: Any, table: dict[sp.Symbol, sp.Symbol]) -> Any:
