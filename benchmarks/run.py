@@ -20,7 +20,8 @@ Sections (``--only``), each described in its module:
 * ``springblock``, ``forced``, ``galvanetto`` — work-precision against compiled peers at equal
   error (``sections_solvers.py``);
 * ``lambda``, ``derive`` — Λ(V) throughput and accuracy, derivation cost (``sections_engine.py``);
-* ``coldstart``, ``help``, ``figures`` — commands in fresh processes, cold and warm (``sections_cli.py``).
+* ``coldstart``, ``help``, ``figures`` — commands in fresh processes, cold and warm (``sections_cli.py``);
+* ``sweep`` — landau.sweep: 1 → 2 workers, hopf points per second, executor overhead (``sections_sweep.py``).
 
 ``LANDAU_BENCH_BASELINE_PYTHON=/path/to/other/checkout/.venv/bin/python`` times that
 interpreter side by side with this one in ``coldstart`` and ``figures`` (per-repeat ratios,
@@ -46,11 +47,12 @@ from benchlib import GOALS, RAW, TABLES, load, machine  # noqa: E402
 from sections_cli import section_coldstart, section_figures, section_help  # noqa: E402
 from sections_engine import section_derive, section_lambda  # noqa: E402
 from sections_solvers import section_forced, section_galvanetto, section_springblock  # noqa: E402
+from sections_sweep import section_sweep  # noqa: E402
 
-SECTIONS = ("springblock", "forced", "galvanetto", "lambda", "derive", "coldstart", "help", "figures")
+SECTIONS = ("springblock", "forced", "galvanetto", "lambda", "derive", "coldstart", "help", "figures", "sweep")
 RUNNERS = {"springblock": section_springblock, "forced": section_forced, "galvanetto": section_galvanetto,
            "lambda": section_lambda, "coldstart": section_coldstart, "help": section_help,
-           "figures": section_figures}
+           "figures": section_figures, "sweep": section_sweep}
 
 
 def main(argv=None) -> int:

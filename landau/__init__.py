@@ -13,6 +13,7 @@ from landau.errors import InputError, IntegratorError, LandauError, NoHopfError,
 if TYPE_CHECKING:  # the same names as _LAZY, for type checkers and the API documentation
     __version__: str
     from landau.analyses.checking import CheckResult, Verdict, check
+    from landau.analyses.sweep import sweep
     from landau.derivation.general import hopf_normal_form
     from landau.derivation.linear import HopfLine, HopfPoint, critical_stiffness
     from landau.derivation.multiscale import CONVENTION, Coefficient, Derivation, derive
@@ -30,6 +31,7 @@ _LAZY = {
     "DynamicalSystem": "landau.systems.system", "SpringBlock": "landau.systems.system",
     "CheckResult": "landau.analyses.checking", "Verdict": "landau.analyses.checking",
     "check": "landau.analyses.checking",
+    "sweep": "landau.analyses.sweep",
 }
 
 
@@ -67,5 +69,5 @@ __all__ = [
     "CONVENTION", "CheckResult", "Coefficient", "Convention", "Criticality", "Derivation", "DynamicalSystem",
     "HopfLine", "HopfPoint", "HopfResult", "InputError", "IntegratorError", "LandauError",
     "NoHopfError", "SingularPointError", "SpringBlock", "Verdict", "check", "critical_stiffness",
-    "derive", "hopf_normal_form",
+    "derive", "hopf_normal_form", "sweep",
 ]

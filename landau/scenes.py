@@ -20,7 +20,7 @@ import time
 from dataclasses import dataclass, field
 from typing import Any, Callable, Mapping, Sequence
 
-from landau.errors import InputError
+from landau.errors import InputError, LandauError
 
 #: Modules that register scenes (imported on first use of the registry).
 SCENE_MODULES: list[str] = [
@@ -242,7 +242,15 @@ def run_scene(name: str, overrides: Mapping[str, float] | None = None) -> SceneR
             raise InputError(f"scene {name!r} has no parameter {key!r} (known: {known})")
         params[key] = float(val)
     t0 = time.perf_counter()
-    out = scene.compute(params)
+    try:
+        out = scene.compute(params)
+    except (ArithmeticError, ValueError) as exc:
+        if isinstance(exc, LandauError):
+            raise
+        # a formula of the scene undefined at the parameters given (M = 0 in sqrt(a σ L / M), a < 0 under a root)
+        moved = ", ".join(f"{k} = {params[k]:g}" for k in sorted(overrides or {}))
+        raise InputError(f"scene {name!r} is undefined for {moved or 'its parameters'} ({type(exc).__name__}: "
+                         f"{exc}): give values in the scene's physical range") from None
     elapsed = time.perf_counter() - t0
     extra: dict[str, Any] = {}
     if isinstance(out, Mapping):

@@ -14,12 +14,12 @@ Example — a CI test for your own law::
 
 from __future__ import annotations
 
-from typing import Any, Mapping
+from typing import Any, Mapping, Sequence
 
 from landau.analyses.checking import CheckResult, Verdict, check
 
 
-def assert_prediction(target: Any, V: float | None = None, eps2: float = 1e-3,
+def assert_prediction(target: Any, V: float | None = None, eps2: float | Sequence[float] = 1e-3,
                       params: Mapping[str, float] | None = None, **kwargs: Any) -> CheckResult:
     """Assert that the amplitude equation of ``target`` agrees with a direct simulation.
 
@@ -36,15 +36,23 @@ def assert_prediction(target: Any, V: float | None = None, eps2: float = 1e-3,
     Raises
     ------
     AssertionError
-        With the prediction, the simulated value, the relative error, the tolerance and the verdict's
-        advice (e.g. the largest valid ε² when the point is outside the range of validity).
+        With the prediction, the simulated value, the relative error, the fitted exponent of the error
+        in ε² and its value extrapolated to ε² → 0 (the contract of :func:`landau.check`), and the
+        verdict's advice (the largest valid ε² outside the range of validity, the resolvable range
+        when the simulation cannot resolve the cycle).
     """
     result = check(target, V, eps2, params, **kwargs)
     if result.verdict is not Verdict.AGREES:
         lines = [f"prediction not confirmed by simulation: {result.verdict.value}",
                  f"  {result.summary()}",
+                 f"  fitted exponent of the error in eps2: {_num(result.exponent, '.3f')} (the theory: 1); "
+                 f"extrapolated error at eps2 -> 0: {_num(result.extrapolated_error, '+.3%')}",
                  f"  {result.verdict.message}"]
         if result.eps2_max_valid is not None and result.verdict is Verdict.OUTSIDE_VALIDITY:
             lines.append(f"  largest valid eps2: {result.eps2_max_valid:.3g}")
         raise AssertionError("\n".join(lines))
     return result
+
+
+def _num(x: float | None, spec: str) -> str:
+    return "not measured" if x is None else format(x, spec)

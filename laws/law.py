@@ -33,6 +33,7 @@ import sympy as sp
 from landau.errors import DomainError, InputError
 from landau.laws.base import Law
 from landau.laws.parse import parse_expression
+from landau.support.lambdify import lambdify_positional
 
 #: the slip-rate symbol shared by every law
 v = sp.Symbol("v", positive=True)
@@ -99,9 +100,16 @@ def _solve_steady_state(rates, states):
     except (NotImplementedError, ValueError, TypeError):
         return None
     good = []
+    allowed = _allowed_functions()
     for sol in sols:
         if all(s in sol for s in states):
             vals = tuple(sp.simplify(sol[s]) for s in states)
+            # a closed form in a function outside the law's own vocabulary (LambertW, Piecewise, …)
+            # is not one the code generators compile, and often not one float64 can evaluate
+            # (LambertW(v·exp(v/c)/c) overflows long before its value does): the steady state is
+            # then solved numerically, as for a law sympy cannot solve
+            if any(not isinstance(f, allowed) for val in vals for f in val.atoms(sp.Function)):
+                return None
             if all(val.is_positive is not False and not val.has(sp.I) and val.is_extended_real is not False
                    for val in vals):
                 good.append(vals)
@@ -260,6 +268,12 @@ class FrictionLaw(Law):
             raise InputError(f"law {self.name!r}: mu does not depend on the slip rate v")
         if self.steady_state is not None and len(self.steady_state) != len(self.states):
             raise InputError(f"law {self.name!r}: {len(self.states)} states but {len(self.steady_state)} steady states")
+        for e in self.steady_state or ():
+            bad = [f for f in sp.sympify(e).atoms(sp.Function) if not isinstance(f, allowed)]
+            if bad:
+                raise InputError(f"law {self.name!r}: the declared steady state uses the function "
+                                 f"{type(bad[0]).__name__!r}, which the toolkit cannot compile; leave steady_state "
+                                 "out and it is solved numerically")
 
     # --- construction -------------------------------------------------------------
     @classmethod
@@ -397,8 +411,8 @@ class FrictionLaw(Law):
         """Compiled (rates, ∂rates/∂φ) over (v, φ…, parameters…)."""
         args = [v, *self.states, *(p.symbol for p in self.parameters)]
         jac = sp.Matrix(self.rates).jacobian(list(self.states))
-        f = sp.lambdify(args, list(self.rates), modules="numpy", cse=True)
-        J = sp.lambdify(args, jac.tolist(), modules="numpy", cse=True)
+        f = lambdify_positional(args, list(self.rates), modules="numpy", cse=True)
+        J = lambdify_positional(args, jac.tolist(), modules="numpy", cse=True)
         return f, J
 
     def steady_state_values(self, vs, params: Mapping[str, float | np.ndarray]) -> np.ndarray:
@@ -440,8 +454,11 @@ class FrictionLaw(Law):
             flat = vs.ravel()
             pars = [np.broadcast_to(np.asarray(x, dtype=float), vs.shape).ravel() for x in values]
             out = np.empty((len(self.states), flat.size))
-            for i, vi in enumerate(flat):
-                out[:, i] = self._numeric_steady_state(float(vi), [float(x[i]) for x in pars])
+            if len(self.states) == 1:
+                out[0] = self._numeric_steady_state_1(flat, pars)
+            else:
+                for i, vi in enumerate(flat):
+                    out[:, i] = self._numeric_steady_state(float(vi), [float(x[i]) for x in pars])
             out = out.reshape((len(self.states), *vs.shape))
         if not np.all(np.isfinite(out)) or np.any(out <= 0):
             idx = np.argwhere(~(np.isfinite(out) & (out > 0)))[0]
@@ -452,8 +469,8 @@ class FrictionLaw(Law):
 
     @cached_property
     def _closed_steady_state(self):
-        return sp.lambdify([v, *(p.symbol for p in self.parameters)], list(self.steady_state_closed_form),
-                           modules="numpy")
+        return lambdify_positional([v, *(p.symbol for p in self.parameters)], list(self.steady_state_closed_form),
+                                   modules="numpy")
 
     def _check_stable(self, vs: np.ndarray, phis: np.ndarray, params: Mapping[str, float | np.ndarray]) -> None:
         """Refuse a closed-form steady state that is unstable at fixed slip rate (the state runs
@@ -479,39 +496,46 @@ class FrictionLaw(Law):
             raise DomainError(f"law {self.name!r}: the steady state at v = {float(vs[at]):g} m/s is not stable at "
                               "fixed slip rate (an eigenvalue of d(rates)/d(states) has a non-negative real part)")
 
-    def _numeric_steady_state(self, vi: float, values: list[float]) -> list[float]:
-        from scipy.optimize import brentq, root
+    #: the log grid of φ on which the sign changes of a single state's rate are looked for (60 decades)
+    _PHI_GRID = np.logspace(-30, 30, 1201)
+
+    def _numeric_steady_state_1(self, vs: np.ndarray, pars: list[np.ndarray]) -> np.ndarray:
+        """φ_ss of a one-state law at every slip rate of ``vs`` (1-D): every sign change of the rate
+        on a log grid of φ over 60 decades (one vectorised evaluation for all points), refined by
+        Brent in log φ; the stable root (∂(dφ/dt)/∂φ < 0) is kept, exactly one per point."""
+        from scipy.optimize import brentq
 
         f, J = self._numeric_rates
-        n = len(self.states)
-        roots: list[np.ndarray] = []
+        grid = self._PHI_GRID
+        out = np.empty(vs.size)
+        chunk = 512   # points per vectorised evaluation (512 × 1201 values, 5 MB)
         with np.errstate(all="ignore"):
-            if n == 1:
-                # every sign change of the rate on a log grid of φ over 60 decades, then Brent in log φ
-                grid = np.logspace(-30, 30, 1201)
-                r = np.asarray(f(vi, grid, *values)[0], dtype=float) * np.ones_like(grid)
-                g = lambda lp: float(np.asarray(f(vi, math.exp(lp), *values)[0], dtype=float))
-                for j in range(grid.size - 1):
-                    if np.isfinite(r[j]) and np.isfinite(r[j + 1]):
-                        if r[j] == 0:
-                            roots.append(np.array([grid[j]]))
-                        elif r[j] * r[j + 1] < 0:
-                            lp = brentq(g, math.log(grid[j]), math.log(grid[j + 1]), xtol=1e-15)
-                            roots.append(np.array([math.exp(lp)]))
-            else:
-                fun = lambda z: np.asarray(f(vi, *np.exp(z), *values), dtype=float)
-                for start in np.linspace(-25, 25, 51):
-                    sol = root(fun, np.full(n, start), method="hybr", tol=1e-14)
-                    if np.all(np.isfinite(sol.x)):
-                        x = np.exp(sol.x)
-                        res = fun(sol.x)
-                        # a root, not a stall: the residual is round-off of the rate's own terms
-                        jac = np.asarray(J(vi, *x, *values), dtype=float).reshape(n, n)
-                        scale = np.abs(jac) @ np.abs(x) + 1e-300
-                        if (np.all(np.isfinite(res)) and np.all(np.abs(res) <= 1e-9 * np.maximum(scale, 1.0))
-                                and not any(np.allclose(x, y, rtol=1e-8) for y in roots)):
-                            roots.append(x)
-            stable = []
+            for start in range(0, vs.size, chunk):
+                sl = slice(start, min(start + chunk, vs.size))
+                n = sl.stop - sl.start
+                r = np.asarray(f(vs[sl, None], grid[None, :], *(x[sl, None] for x in pars))[0], dtype=float)
+                r = np.broadcast_to(r, (n, grid.size))
+                fin = np.isfinite(r)
+                change = fin[:, :-1] & fin[:, 1:] & (r[:, :-1] * r[:, 1:] < 0)
+                exact = fin & (r == 0)
+                for k in range(n):
+                    i = sl.start + k
+                    vi, values = float(vs[i]), [float(x[i]) for x in pars]
+                    g = lambda lp, vi=vi, values=values: float(np.asarray(f(vi, math.exp(lp), *values)[0],
+                                                                          dtype=float))
+                    roots = [float(grid[j]) for j in np.flatnonzero(exact[k])]
+                    roots += [math.exp(brentq(g, math.log(grid[j]), math.log(grid[j + 1]), xtol=1e-15))
+                              for j in np.flatnonzero(change[k])]
+                    out[i] = self._pick_stable(vi, values, [np.array([x]) for x in roots])[0]
+        return out
+
+    def _pick_stable(self, vi: float, values: list[float], roots: list[np.ndarray]) -> list[float]:
+        """The one root at which every eigenvalue of ∂(rates)/∂φ has a negative real part; a
+        :class:`DomainError` when there is none or more than one."""
+        _, J = self._numeric_rates
+        n = len(self.states)
+        stable = []
+        with np.errstate(all="ignore"):
             for x in roots:
                 jac = np.asarray(J(vi, *x, *values), dtype=float).reshape(n, n)
                 if np.all(np.isfinite(jac)) and np.all(np.linalg.eigvals(jac).real < 0):
@@ -524,6 +548,29 @@ class FrictionLaw(Law):
                               f"(positive roots of the rates: {what})")
         raise DomainError(f"law {self.name!r}: {len(stable)} stable positive steady states at v = {vi:g} m/s: "
                           f"{what}; declare the one you mean with FrictionLaw(..., steady_state=...)")
+
+    def _numeric_steady_state(self, vi: float, values: list[float]) -> list[float]:
+        """The stable positive steady state of a law with several states at slip rate ``vi``:
+        Powell's hybrid method in log φ from 51 starts, the distinct genuine roots kept."""
+        from scipy.optimize import root
+
+        f, J = self._numeric_rates
+        n = len(self.states)
+        roots: list[np.ndarray] = []
+        with np.errstate(all="ignore"):
+            fun = lambda z: np.asarray(f(vi, *np.exp(z), *values), dtype=float)
+            for start in np.linspace(-25, 25, 51):
+                sol = root(fun, np.full(n, start), method="hybr", tol=1e-14)
+                if np.all(np.isfinite(sol.x)):
+                    x = np.exp(sol.x)
+                    res = fun(sol.x)
+                    # a root, not a stall: the residual is round-off of the rate's own terms
+                    jac = np.asarray(J(vi, *x, *values), dtype=float).reshape(n, n)
+                    scale = np.abs(jac) @ np.abs(x) + 1e-300
+                    if (np.all(np.isfinite(res)) and np.all(np.abs(res) <= 1e-9 * np.maximum(scale, 1.0))
+                            and not any(np.allclose(x, y, rtol=1e-8) for y in roots)):
+                        roots.append(x)
+        return self._pick_stable(vi, values, roots)
 
     def check_real(self, vs, phis, params: Mapping[str, float | np.ndarray]) -> None:
         """Refuse (:class:`DomainError`) a law whose μ, rates or their first derivatives are not
@@ -568,7 +615,7 @@ class FrictionLaw(Law):
             exprs += [(f"d({label})/d{x}", sp.diff(e, x)) for x in (v, *self.states) if x in e.free_symbols]
         if all(e.is_extended_real and e.is_finite for _, e in exprs):
             return []
-        return [(label, sp.lambdify(args, e, modules="numpy")) for label, e in exprs]
+        return [(label, lambdify_positional(args, e, modules="numpy")) for label, e in exprs]
 
     def mu_ss(self) -> sp.Expr:
         """Steady-state friction coefficient μ_ss(v) (closed form).

@@ -5,7 +5,14 @@ executed: only numbers, declared names, the arithmetic operators and a whitelist
 functions are accepted, each translated to its sympy counterpart.  Anything else —
 attribute access, subscripts, keywords, lambdas, ``__import__``, unknown functions or
 symbols — is rejected with a :class:`~landau.errors.ParseError` that names the token.
-``^`` is read as a power (``**``), as in most papers.
+``^`` is read as a power (``**``), as in most papers; a ``#`` is refused (Python would read
+the rest as a comment).
+
+The cost of what is built is bounded, not only the size of its values: a power of exact
+numbers is kept exact only for an integer exponent or a root of denominator at most
+:data:`MAX_ROOT`, at a bit cost below :data:`MAX_EXACT_COST`; otherwise it is evaluated as a
+30-digit float (sympy's exact simplification of ``45**(-1/823543)`` took minutes).  ``exp`` of
+``c*log(x)``, which sympy turns into ``x**c``, takes the same route.
 """
 
 from __future__ import annotations
@@ -51,6 +58,13 @@ MAX_EXPONENT = 100
 MAX_DECADES = 300.0
 #: largest argument of exp/sinh/cosh of a pure number (exp(700) ~ 1e304)
 MAX_EXP_ARG = 690.0
+#: largest denominator of an exponent kept exact on an exact number (2**(1/3) stays a radical;
+#: 45**(1/823543) is evaluated as a float: sympy's radical simplification of b**(p/q) costs
+#: work that grows with q and the size of b, minutes for 45**(-1/823543))
+MAX_ROOT = 4
+#: largest work allowed for an exact power of an exact number: bits of the number times the size
+#: of the exponent (max(|p|, q) of p/q); beyond it the power is evaluated as a float
+MAX_EXACT_COST = 2 ** 16
 
 
 def _number_decades(x: sp.Expr) -> float | None:
@@ -84,6 +98,36 @@ def _finite_real(x: sp.Expr) -> float | None:
     return z.real
 
 
+def _bits(x: sp.Rational) -> int:
+    return int(x.p).bit_length() + int(x.q).bit_length()
+
+
+def _exact_factors(base: sp.Expr) -> list[tuple[sp.Rational, sp.Rational]]:
+    """(c, r) for each factor c**r of ``base`` with c an exact number and r rational (r = 1 for a
+    plain number): the numbers that ``base**e`` raises exactly to c**(r*e)."""
+    out = []
+    for f in sp.Mul.make_args(base):
+        if f.is_Rational:
+            out.append((f, sp.Integer(1)))
+        elif f.is_Pow and f.base.is_Rational and f.exp.is_Rational:
+            out.append((f.base, f.exp))
+    return out
+
+
+def _exact_ok(base: sp.Expr, ex: sp.Rational) -> bool:
+    """Whether sympy may raise ``base`` to the rational ``ex`` exactly at a bounded cost: every exact
+    number it raises gets an exponent with a denominator of at most :data:`MAX_ROOT`, a positive
+    base if that exponent is not an integer, and work (bits × exponent size) below
+    :data:`MAX_EXACT_COST`."""
+    for c, r in _exact_factors(base):
+        e = r * ex
+        if not e.is_Integer and (e.q > MAX_ROOT or c < 0):
+            return False
+        if _bits(c) * max(abs(int(e.p)), int(e.q)) > MAX_EXACT_COST:
+            return False
+    return True
+
+
 def _checked_text(text, what: str) -> str:
     """The text after the checks that come before any parsing: type, encoding, length."""
     if isinstance(text, bytes):
@@ -101,6 +145,8 @@ def _checked_text(text, what: str) -> str:
         raise ParseError(f"{what} contains bytes that are not valid UTF-8 text") from None
     if not text.isprintable():
         raise ParseError(f"{what} contains control characters")
+    if "#" in text:   # Python would read the rest of the line as a comment and drop it silently
+        raise ParseError(f"{what}: '#' is not part of the expression language (at column {text.index('#') + 1})")
     return text
 
 
@@ -121,9 +167,11 @@ def parse_expression(text: str, symbols: Mapping[str, sp.Symbol], *, what: str =
     Every cost is bounded before sympy sees the text: its length (:data:`MAX_LENGTH`,
     checked first), the depth and size of the syntax tree, the size of every number built
     (|x| <= 1e300), numeric exponents of symbolic bases (|e| <= :data:`MAX_EXPONENT`) and
-    arguments of exp of pure numbers.  The result must be real where the symbols are (v > 0,
-    states > 0): an expression that sympy shows complex (``sqrt(-v)``, ``log(-1)``) or not
-    finite (``0/0``, ``log(0)``) is refused.
+    arguments of exp of pure numbers, and the work of every power of numbers (exact only while
+    cheap, else a 30-digit float).  The result must be real where the symbols are (v > 0,
+    states > 0): an expression that sympy shows complex (``sqrt(-v)``, ``log(-1)``), a negative
+    number or base to a non-integer power (``(-1)**(1/3)``) or a value that is not finite
+    (``0/0``, ``log(0)``) is refused.
 
     Parameters
     ----------
@@ -181,17 +229,48 @@ def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
                 raise ParseError(f"{what}: {token!r} is out of range (|x| must lie between 1e-300 and 1e300)")
         return result
 
-    def power(base: sp.Expr, ex: sp.Expr, token: str) -> sp.Expr:
+    def out_of_range(token: str) -> ParseError:
+        return ParseError(f"{what}: {token!r} is out of range (|x| must lie between 1e-300 and 1e300)")
+
+    def not_real(token: str, why: str) -> ParseError:
+        return ParseError(f"{what}: {token!r} is not real ({why})")
+
+    def number_power(base: sp.Expr, ex: sp.Expr, token: str) -> sp.Expr:
+        """base**ex for symbol-free base and exponent: exact while that is cheap (an exact number
+        to a small integer or a small root), else a float computed by mpmath (30 digits)."""
         import math
 
+        b, e = _finite_real(base), _finite_real(ex)
+        if b is None or e is None:
+            raise ParseError(f"{what}: {token!r} is not a finite real number")
+        if b == 0:
+            if e <= 0:
+                raise ParseError(f"{what}: {token!r} divides by zero (not finite)")
+            return sp.Integer(0)
+        if e * math.log10(abs(b)) > MAX_DECADES or e * math.log10(abs(b)) < -MAX_DECADES:
+            raise out_of_range(token)
+        integral = ex.is_Integer or (ex.is_Float and float(ex).is_integer())
+        if b < 0 and not integral:
+            raise not_real(token, "a negative number to a non-integer power")
+        if ex.is_Rational and (base.is_Rational or (not base.is_Number and abs(e) <= MAX_EXPONENT)) \
+                and _exact_ok(base, ex):
+            return base ** ex
+        if base.is_Float and ex.is_Number:
+            return base ** ex                       # mpmath arithmetic: no exact work
+        if integral and abs(e) <= 2 ** 31:
+            return sp.Float(base.evalf(30), 30) ** int(e)
+        return sp.Float(base.evalf(30), 30) ** sp.Float(ex.evalf(30), 30)
+
+    def power(base: sp.Expr, ex: sp.Expr, token: str) -> sp.Expr:
+        if not base.free_symbols:
+            if not ex.free_symbols:
+                return number_power(base, ex, token)
+            b = _finite_real(base)
+            if b is None or b < 0:
+                raise not_real(token, "a negative number to a symbolic power")
+            return exp_of(ex, token) if base == sp.E else base ** ex
         if ex.is_Number:
-            if not base.free_symbols:
-                b = _finite_real(base)
-                e = float(ex)
-                if b is not None and b != 0:
-                    if abs(e) * abs(math.log10(abs(b))) > MAX_DECADES:
-                        raise ParseError(f"{what}: {token!r} is out of range (|x| must lie between 1e-300 and 1e300)")
-            elif abs(float(ex)) > MAX_EXPONENT:
+            if abs(float(ex)) > MAX_EXPONENT:
                 raise ParseError(f"{what}: exponent in {token!r} exceeds {MAX_EXPONENT} in magnitude")
         elif not ex.free_symbols:
             ev = _finite_real(ex)
@@ -199,13 +278,43 @@ def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
                 raise ParseError(f"{what}: exponent in {token!r} is not a finite real number")
             if abs(ev) > MAX_EXPONENT:
                 raise ParseError(f"{what}: exponent in {token!r} exceeds {MAX_EXPONENT} in magnitude")
+        if ex.is_Number and not ex.is_Integer and base.is_extended_negative:
+            raise not_real(token, "a negative base to a non-integer power")
+        if ex.is_Number:
+            # sympy distributes a numeric power over the numbers of a product: bound their size and cost
+            numbers = _exact_factors(base) + [(f, sp.Integer(1)) for f in sp.Mul.make_args(base) if f.is_Float]
+            for c, r in numbers:
+                dec = _number_decades(c)
+                if dec is not None and abs(float(r * ex)) * abs(dec) > MAX_DECADES:
+                    raise out_of_range(token)
+            if ex.is_Rational and not _exact_ok(base, ex):
+                ex = sp.Float(ex, 30)
         return base ** ex
+
+    def exp_of(arg: sp.Expr, token: str) -> sp.Expr:
+        """exp(arg) with the powers sympy makes of it (exp(c*log(x)) is x**c) built by :func:`power`,
+        under its cost bound."""
+        powers, rest = [], []
+        for t in sp.Add.make_args(arg):
+            c, m = t.as_coeff_Mul()
+            # as sympy's exp does: a factor that logcombine makes a log (log(2) + log(3)) counts as one
+            fs = [sp.logcombine(f) if not isinstance(f, sp.log) and f.has(sp.log) else f for f in sp.Mul.make_args(m)]
+            logs = [f for f in fs if isinstance(f, sp.log)]
+            if len(logs) == 1 and all(f.is_comparable for f in fs if f is not logs[0]):
+                powers.append(power(logs[0].args[0], c * sp.Mul(*[f for f in fs if f is not logs[0]]), token))
+            else:
+                rest.append(t)
+        return sp.Mul(*powers) * sp.exp(sp.Add(*rest))
 
     def call(name: str, arg: sp.Expr, token: str) -> sp.Expr:
         if name in ("exp", "sinh", "cosh") and not arg.free_symbols:
             x = _finite_real(arg)
             if x is not None and abs(x) > MAX_EXP_ARG:
                 raise ParseError(f"{what}: {token!r} is out of range (argument above {MAX_EXP_ARG:g})")
+        if name == "sqrt":
+            return power(arg, sp.Rational(1, 2), token)
+        if name == "exp":
+            return exp_of(arg, token)
         return FUNCTIONS[name](arg)
 
     def walk(node: ast.AST) -> sp.Expr:

@@ -38,6 +38,7 @@ from landau.errors import DomainError, InputError
 from landau.laws.base import Law
 from landau.laws.law import Parameter, user_parameter
 from landau.laws.parse import parse_expression
+from landau.support.lambdify import lambdify_positional
 
 #: the sliding-velocity symbol of every velocity-only law (real: both signs occur)
 V_SLIP = sp.Symbol("v", real=True)
@@ -119,6 +120,11 @@ class VelocityFriction(Law):
                 raise InputError(f"law {self.name!r}: the {side} branch is not finite")
             if e.has(sp.I):
                 raise DomainError(f"law {self.name!r}: the {side} branch {str(e)[:80]} is not real")
+            # the branch is used on its own side of v = 0 only: sqrt(-v) for v > 0 is imaginary
+            on_side = e.xreplace({V_SLIP: (1 if side == "positive" else -1) * sp.Dummy("w", positive=True)})
+            if on_side.has(sp.I) or on_side.is_extended_real is False:
+                raise DomainError(f"law {self.name!r}: the {side} branch {str(e)[:80]} is not real for "
+                                  f"{'v > 0' if side == 'positive' else 'v < 0'}")
         for p in self.parameters:
             if p.default is not None and not math.isfinite(p.default):
                 raise InputError(f"law {self.name!r}: parameter {p.name!r} must be finite, got {p.default!r}")
@@ -237,7 +243,7 @@ class VelocityFriction(Law):
         cache = self._lambdified
         if key not in cache:
             args = [V_SLIP, *(p.symbol for p in self.parameters)]
-            cache[key] = sp.lambdify(args, self.branch(side, order), modules="numpy")
+            cache[key] = lambdify_positional(args, self.branch(side, order), modules="numpy")
         return cache[key]
 
     @cached_property

@@ -45,6 +45,9 @@ def run(args) -> dict:
         if unknown:
             raise InputError(f"unknown figure(s) {', '.join(unknown)} for {args.paper} (known: {', '.join(names)})")
         names = wanted
+    if not args.out.strip():
+        raise InputError("--out: the output folder is empty (give a folder, e.g. --out figures; '.' for the "
+                         "current one)")
     out = Path(args.out)
     rows = []
     bar = None

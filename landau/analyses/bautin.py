@@ -44,7 +44,6 @@ import math
 from typing import Mapping
 
 import mpmath
-import sympy as sp
 
 from landau.analyses.codim2 import SPRING_BLOCK_PARAMETERS, FoldOfCycles, GeneralisedHopfPoint
 from landau.derivation.fredholm import _pencil, best_drop, linear_coefficient, null_vectors, quintic_coefficient
@@ -53,6 +52,7 @@ from landau.derivation.jets import Jets
 from landau.derivation.lyapunov import _NumericJets, equilibrium_floats, numeric_values
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.support.cx import as_expr
+from landau.support.lambdify import lambdify_positional
 from landau.systems.system import DynamicalSystem
 
 
@@ -137,7 +137,7 @@ def quintic_normal_form(system: DynamicalSystem, values: Mapping[str, float], p_
         missing = [s.name for s in syms if s not in vals]
         if missing:
             raise InputError(f"{system.name}: no value for {', '.join(missing)}")
-        pfn = sp.lambdify([system.parameter, *syms], pexprs, modules="mpmath")
+        pfn = lambdify_positional([system.parameter, *syms], pexprs, modules="mpmath")
         n = nj.n
 
         def det_eq(p, om):
@@ -190,8 +190,8 @@ def _unit_mode_slip(d, params: Mapping[str, float], V: float, kc, omega, dps: in
     """|q_X| of the critical eigenvector of E⁻¹J normalised to ⟨q, q⟩ = 1 (the factor between landau's
     and Kuznetsov's normalisation)."""
     with mpmath.workdps(dps):
-        vals = {s: mpmath.mpf(params[s.name]) for s in d.system.parameters if s.name in params}
-        vals[next(s for s in d.system.parameters if s.name == "V")] = mpmath.mpf(V)
+        # every compiled argument: V, the parameters and, without a closed-form steady state, φᵢ,₀
+        vals = {s: mpmath.mpf(x) for s, x in zip(d.block.args, d.block.argvals(float(V), params), strict=True)}
         nj = _NumericJets(d.system, d.jets, vals, max_order=1)
         A, _, _ = nj.at(kc)
         ev, ER = mpmath.eig(A)
@@ -224,6 +224,9 @@ def bautin_point(d, V: float, params: Mapping[str, float] | None = None, *, sign
         M = 0, a DAE), Re a = −Γ̄ and dΛ/dV, hence the fold of cycles
         k_fold − k_c(V) ≈ −Λ'²/(8Λ₅Γ̄)(V − V*)² with slip amplitude sqrt(2|Λ'|/|Λ₅|)|V − V*|^{1/2}.
     """
+    from landau.derivation.linear import one_velocity
+
+    V = one_velocity(V, "V", "bautin_points(d, lo, hi)")
     p = d.block.resolve(params)
     mp = d.evaluate_mp(V, p, ["Gamma_bar", "Lambda", "Lambda5"])
     h = V * rel_step
@@ -255,6 +258,9 @@ def spring_block_fold(d, V: float, params: Mapping[str, float] | None = None) ->
     """The fold of cycles at driving velocity V predicted from the quintic amplitude equation with the
     coefficients at V itself (k_fold = k_c − Λ²/(8Λ₅Γ̄); amplitude = max slip, m), or None where Λ and
     Λ₅ have the same sign."""
+    from landau.derivation.linear import one_velocity
+
+    V = one_velocity(V, "V", "a loop over V")
     p = d.block.resolve(params)
     mp = d.evaluate_mp(V, p, ["Gamma_bar", "Lambda", "Lambda5"])
     return fold_of_cycles(float(mp["Lambda"]), float(mp["Lambda5"]), -float(mp["Gamma_bar"]), float(mp["kc"]),

@@ -181,7 +181,7 @@ def equilibrium_branch(system: DynamicalSystem, params: Mapping[str, float] | No
     lams = [num.eigenvalues(y, p) for y, p in zip(Y, P, strict=True)]
     nus = [_n_unstable(lam) for lam in lams]
     tfs = [hopf_test_function(lam) for lam in lams]
-    folds = [_refine_fold(num, Y[f.index - 1], P[f.index - 1], Y[f.index], P[f.index]) for f in br.folds]
+    folds = [_refine_fold(num, Y, P, f.index) for f in br.folds]
     hopfs: list[HopfResult] = []
     if locate_hopf:
         cache: dict = {}
@@ -203,16 +203,25 @@ def equilibrium_branch(system: DynamicalSystem, params: Mapping[str, float] | No
                              hopf=tuple(hopfs), folds=tuple(folds))
 
 
-def _refine_fold(num: NumericSystem, ya, pa, yb, pb) -> float:
-    """The extremal parameter of the branch between two points on either side of a fold.
+def _refine_fold(num: NumericSystem, Y: np.ndarray, P: np.ndarray, index: int) -> float:
+    """The extremal parameter of the branch at the fold detected between points ``index − 1`` and
+    ``index`` (the tangent's p component changed sign there).
 
-    Near a fold p is a smooth function of the state component that changes most between the
-    two points; p(s) comes from Newton's method with that component fixed and its extremum from
-    Brent's method (p at a quadratic extremum is accurate to round-off).
+    The extremum may lie on either side of the branch point nearest to it: the bracket is the
+    two neighbours of the most extreme of points ``index − 2 … index + 1`` (a maximum where p rises
+    into the window, else a minimum).  Near a fold p is a smooth function of the state component
+    that changes most across the bracket; p(s) comes from Newton's method with that component
+    fixed and its extremum from Brent's method (p at a quadratic extremum is accurate to round-off).
     """
     n = num.n
-    k = int(np.argmax(np.abs(np.asarray(yb) - np.asarray(ya))))
-    guess = {"y": np.asarray(ya, float).copy(), "p": float(pa)}
+    window = np.arange(max(index - 2, 0), min(index + 1, len(P) - 1) + 1)
+    pw = P[window]
+    is_max = (pw.max() - max(pw[0], pw[-1])) >= (min(pw[0], pw[-1]) - pw.min())
+    m = int(window[np.argmax(pw) if is_max else np.argmin(pw)])
+    ia, ib = max(m - 1, 0), min(m + 1, len(P) - 1)
+    ya, yb = np.asarray(Y[ia], float), np.asarray(Y[ib], float)
+    k = int(np.argmax(np.abs(yb - ya)))
+    guess = {"y": ya.copy(), "p": float(P[ia])}
 
     def p_of(s):
         y, p = guess["y"].copy(), guess["p"]
@@ -229,11 +238,25 @@ def _refine_fold(num: NumericSystem, ya, pa, yb, pb) -> float:
         guess["y"], guess["p"] = y, p
         return p
 
-    sign = 1.0 if (pa + pb) / 2 >= min(pa, pb) and p_of((ya[k] + yb[k]) / 2) > max(pa, pb) else -1.0
+    sign = 1.0 if is_max else -1.0
     lo, hi = sorted((float(ya[k]), float(yb[k])))
     res = scipy.optimize.minimize_scalar(lambda s: -sign * p_of(s), bounds=(lo, hi), method="bounded",
                                          options={"xatol": 1e-10 * (1 + abs(hi))})
-    return float(p_of(res.x))
+    pf = float(p_of(res.x))
+    # verified before it is returned: at a fold of equilibria ∂f/∂y is singular (the derivative of
+    # the branch's p vanishes); the extremum located to 1e-10 leaves σ_min(J) ~ 1e-10 |[J | f_p]|
+    _, J, fp = num.first(guess["y"], pf, True)
+    smin = np.linalg.svd(J, compute_uv=False)[-1]
+    scale = np.linalg.norm(np.column_stack([J, fp]), 2)
+    if not (smin <= FOLD_TOL * scale):
+        raise SingularPointError(f"{num.sys.name}: the fold located at {num.p.name} = {pf:.10g} fails its check: "
+                                 f"the Jacobian is regular there (smallest singular value {smin / scale:.2g} of "
+                                 "|[J | f_p]|)")
+    return pf
+
+
+#: a located fold must make ∂f/∂y singular to this size relative to |[∂f/∂y | ∂f/∂p]| (its smallest singular value)
+FOLD_TOL = 1e-6
 
 
 # --- two-parameter continuation of a Hopf point -------------------------------------------------------
@@ -436,13 +459,28 @@ def _locate_gh(system: DynamicalSystem, tracker: _HopfTracker, a: float, b: floa
                with_l2: bool) -> GeneralisedHopfPoint:
     last = {}
 
+    seen: dict[float, float] = {}
+
     def l1(v):
         r = tracker.at(v)
         last["r"] = r
+        assert r.l1 is not None  # the normal form computes l1
+        seen[v] = r.l1
         return r.l1
 
-    p2 = scipy.optimize.brentq(l1, a, b, xtol=1e-14 * max(1.0, abs(a), abs(b)), rtol=1e-13)
+    xtol = 1e-14 * max(1.0, abs(a), abs(b))
+    p2 = scipy.optimize.brentq(l1, a, b, xtol=xtol, rtol=1e-13)
+    la, lb = seen.get(a, 0.0), seen.get(b, 0.0)
     r = tracker.at(p2, dps=max(tracker.dps, 40))
+    # verified before it is returned: l₁ vanishes to the accuracy of the located p₂ (its slope
+    # over the bracket times the bracket's tolerance, with a margin of 1e3); a Newton step of the
+    # tracker that jumped to another branch of Hopf points leaves l₁ of order one there
+    bound = max(1e3 * abs(lb - la) / abs(b - a) * (xtol + 1e-13 * abs(p2)), 1e-12 * max(abs(la), abs(lb)))
+    if r.l1 is None or not (abs(r.l1) <= bound):
+        raise NoHopfError(f"{system.name}: the point located at {tracker.second} = {p2:.10g} is not a "
+                          f"generalised-Hopf point (l1 = {r.l1:.3g}, more than {bound:.2g} from 0): the Hopf point "
+                          "jumped to another branch between the bracket's ends; narrow the bracket or follow the "
+                          "curve with hopf_curve")
     l2v = second_lyapunov(system, tracker.params, r, max(tracker.dps, 40)) if with_l2 else None
     if l2v is not None:
         r = replace(r, l2=l2v)
@@ -452,7 +490,7 @@ def _locate_gh(system: DynamicalSystem, tracker: _HopfTracker, a: float, b: floa
 
 def generalised_hopf(system: DynamicalSystem, params: Mapping[str, float], second: str,
                      p2_bracket: tuple[float, float], p1_bracket: tuple[float, float], *, dps: int = 40,
-                     jets: str = "taylor", l2: bool = True) -> GeneralisedHopfPoint:
+                     jets: str = "taylor", l2: bool = True, steps: int = 40) -> GeneralisedHopfPoint:
     """Locate the generalised-Hopf (Bautin) point — l₁ = 0 on the Hopf curve — with p₂ inside ``p2_bracket``.
 
     Parameters
@@ -473,26 +511,36 @@ def generalised_hopf(system: DynamicalSystem, params: Mapping[str, float], secon
     l2 : bool
         Compute the second Lyapunov coefficient at the point by
         :func:`landau.derivation.lyapunov.lyapunov_coefficients` (Re c₂, as MatCont and BifurcationKit print it).
+    steps : int
+        The Hopf curve from p₂ = ``p2_bracket[0]`` is followed with arclength steps of at most the
+        bracket's width over ``steps`` (:func:`hopf_curve`).
 
     Returns
     -------
     GeneralisedHopfPoint
+        The first one met on the Hopf curve from p₂ = ``p2_bracket[0]``, verified: |l₁| there is
+        within the accuracy of the located p₂.
 
     Raises
     ------
     NoHopfError
-        l₁ has the same sign at both ends of ``p2_bracket``.
+        l₁ does not change sign on the Hopf curve inside ``p2_bracket``, or the located point fails
+        its check.
     """
     from landau.derivation.general import hopf_normal_form
 
     a, b = map(float, p2_bracket)
+    if not (math.isfinite(a) and math.isfinite(b)) or a == b:
+        raise InputError(f"{system.name}: p2_bracket must be two different finite numbers, got {p2_bracket!r}")
     prm = {**params, second: a}
     start = hopf_normal_form(system, prm, p1_bracket, dps=dps, jets=jets)
-    tracker = _HopfTracker(system, prm, second, start, dps, jets)
-    end = tracker.at(b)
-    assert start.l1 is not None and end.l1 is not None  # the normal form computes l1
-    if start.l1 * end.l1 > 0:
-        raise NoHopfError(f"{system.name}: l1 has the same sign at {second} = {a:g} and {b:g} "
-                          f"({start.l1:.3g}, {end.l1:.3g}); no generalised-Hopf point bracketed")
-    tracker.last = (start.p_c, start.omega_c, start.equilibrium)
-    return _locate_gh(system, tracker, a, b, l2)
+    # the Hopf curve followed by pseudo-arclength from p₂ = a (a Newton jump straight to p₂ = b can
+    # land on another branch of Hopf points, whose l₁ has another sign)
+    curve = hopf_curve(system, prm, second, (a, b), start, steps=steps, dps=dps, jets=jets, l2=l2)
+    if not curve.generalised_hopf:
+        l1s = curve.l1
+        ends = f" ({l1s[0]:.3g} … {l1s[-1]:.3g} along the curve)" if len(l1s) else ""
+        raise NoHopfError(f"{system.name}: l1 does not change sign on the Hopf curve from {second} = {a:g} "
+                          f"towards {b:g}{ends}; no generalised-Hopf point bracketed")
+    # the first one met from p₂ = a
+    return min(curve.generalised_hopf, key=lambda g: abs(g.p2 - a))

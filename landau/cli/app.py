@@ -33,6 +33,7 @@ COMMANDS: dict[str, str] = {
     "plot": "landau.cli.plot",
     "simulate": "landau.cli.simulate",
     "hopf": "landau.cli.hopf",
+    "sweep": "landau.cli.sweep",
     "figures": "landau.paper_figures.cli",
     "verify": "landau.verify.cli",
 }
@@ -57,6 +58,7 @@ SUMMARIES: dict[str, str] = {
     "hopf": "Hopf point of a model's steady state, with its first Lyapunov coefficient and criticality.",
     "figures": "Regenerate a paper's figures: landau figures PAPER [--only figN,...] [--out DIR].",
     "verify": "Check the engine's amplitude-equation predictions by direct simulation of the spring–block.",
+    "sweep": "Run an analysis over a parameter grid on local processes or a dask cluster, written to netCDF.",
 }
 
 
@@ -148,8 +150,9 @@ def build_parser(only: str | None = None) -> tuple[argparse.ArgumentParser, dict
     return parser, modules
 
 
-#: a negative number in exponent notation ("-1e-3"), which argparse would read as an option
-_NEGATIVE_NUMBER = re.compile(r"-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?(,.*)?")
+#: a negative number in exponent notation ("-1e-3"), or a list or range starting with one ("-1:1"),
+#: which argparse would read as an option
+_NEGATIVE_NUMBER = re.compile(r"-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?([,:].*)?")
 
 
 def _join_negative_values(argv: list[str]) -> list[str]:
@@ -216,8 +219,13 @@ def _main(argv: list[str]) -> int:
         where = f" {exc.filename}" if getattr(exc, "filename", None) else ""
         print(f"landau: error: cannot write{where}: {exc.strerror or exc}", file=sys.stderr)
         return 2
-    except (RecursionError, MemoryError) as exc:
-        print(f"landau: error: the input is too large or too deeply nested ({type(exc).__name__})", file=sys.stderr)
+    except RecursionError:
+        print("landau: error: the input is too deeply nested (RecursionError)", file=sys.stderr)
+        return 2
+    except MemoryError:
+        # a memory limit (ulimit -v, a container) or a computation too large for this machine: not the input's size
+        print("landau: error: out of memory (MemoryError): the computation needs more memory than this process "
+              "may use; raise the memory limit or ask for fewer points", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         raise

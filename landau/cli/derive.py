@@ -90,10 +90,18 @@ def run(args) -> dict:
     return doc
 
 
+def _side(sign: int) -> str:
+    """The criticality on one side of a codimension-two point, from the sign of Λ there."""
+    return {-1: "supercritical", 1: "subcritical"}.get(sign, "degenerate")
+
+
 def render(doc: dict) -> str:
     out = [f"Amplitude equation — law {doc['law']} ({doc['source']})", f"Convention: {doc['convention']}"]
     if "points" in doc:
-        names = [n for n in doc["units"] if n != "V"]
+        # the table's columns: the quantities of the rows (units also names --codim2's Lambda5 and l2)
+        ok = [p for p in doc["points"] if p["status"] == "ok"]
+        names = [n for n in doc["units"] if n != "V" and (any(n in p for p in ok) if ok else
+                                                          not ("codim2" in doc and n in ("Lambda5", "l2")))]
         out.append(f"{'V [m/s]':>12} " + " ".join(f"{n:>12}" for n in names) + "  criticality")
         for p in doc["points"]:
             if p["status"] != "ok":
@@ -101,14 +109,20 @@ def render(doc: dict) -> str:
                 continue
             out.append(f"{fmt(p['V'])} " + " ".join(fmt(p[n]) for n in names) + f"  {p.get('criticality', '')}")
         out.append("units: " + ", ".join(f"{k} [{v}]" for k, v in doc["units"].items()))
-    for c in doc.get("codim2", []):
-        out.append(f"codimension-two point (Lambda = 0): V = {c['V']:.10g} m/s, k_c = {c['kc']:.8g} N/m, "
-                   f"omega_c = {c['omega_c']:.6g} rad/s, {c['sign_below']} below / {c['sign_above']} above")
-        if "Lambda5" in c:
-            fc = c["fold_of_cycles"]
-            out.append(f"  Lambda5 = {c['Lambda5']:.6g} 1/(m^4 s), l2 = {c['l2']:.6g} (Re c2, <q,q> = 1); "
-                       f"fold of cycles for {fc['side']}: k - k_c = {fc['k_minus_kc_per_dV2']:.4g} (V - V*)^2 N/m, "
-                       f"slip amplitude {fc['amplitude_per_sqrt_dV']:.4g} |V - V*|^(1/2) m")
+    if doc.get("codim2"):
+        out.append("codimension-two (generalised-Hopf) points, Lambda = 0 on the Hopf line; "
+                   "l2 = Re c2 with <q,q> = 1 (MatCont/BifurcationKit):")
+        out.append(f"{'V* [m/s]':>16} {'k_c [N/m]':>12} {'omega_c':>12} {'Lambda5':>12} {'l2':>12}  criticality")
+        out.append(f"{'':>16} {'':>12} {'[rad/s]':>12} {'[1/(m^4 s)]':>12} {'':>12}  below / above V*")
+        for c in doc["codim2"]:
+            out.append(f"{c['V']:16.10g} {fmt(c['kc'])} {fmt(c['omega_c'])} {fmt(c.get('Lambda5'))} {fmt(c.get('l2'))}"
+                       f"  {_side(c['sign_below'])} / {_side(c['sign_above'])}")
+        for c in doc["codim2"]:
+            fc = c.get("fold_of_cycles")
+            if fc:
+                out.append(f"fold of cycles from V* = {c['V']:.6g} m/s, for {fc['side']}: k - k_c = "
+                           f"{fc['k_minus_kc_per_dV2']:.4g} (V - V*)^2 N/m, slip amplitude "
+                           f"{fc['amplitude_per_sqrt_dV']:.4g} |V - V*|^(1/2) m")
     if "codim2" in doc and not doc["codim2"]:
         out.append("no change of sign of Lambda on the Hopf line in the requested range")
     if "latex" in doc:

@@ -15,6 +15,8 @@ def _parameters(law) -> list[dict]:
 
 
 def run(args) -> dict:
+    if args.name is not None and not args.name.strip():
+        raise InputError("empty law name: give a law's name (landau laws dieterich), or none to list them all")
     if args.name in BUILTIN_VELOCITY:
         names, vnames = [], [args.name]
     elif args.name:

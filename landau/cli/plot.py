@@ -3,6 +3,8 @@
 Example: landau plot dieterich --V 1e-7:1e-2 --out dieterich.png
          landau plot ruina --V 1e-6:1e-2 --quantities kc,omega_c,Lambda --out ruina.pdf
          landau plot dieterich --V 1e-7:1e-2 --kind regime --out regimes.png
+         landau plot --sweep map.nc --out map.png   (a `landau sweep regime` map with k_c(V) on top,
+                                                     or a `landau sweep simulate` diagram in omega)
 """
 
 from __future__ import annotations
@@ -29,9 +31,16 @@ def configure(p) -> None:
     p.add_argument("--quantities", default="kc,Lambda,C",
                    help=f"comma-separated subset of {','.join(QUANTITIES)} (coefficients plot; default kc,Lambda,C)")
     p.add_argument("--points", type=int, default=200, help="log-spaced velocities in the range (default 200)")
+    p.add_argument("--sweep", default=None, metavar="FILE.nc",
+                   help="draw a sweep: a regime map (landau sweep regime, over V and k) with k_c(V) on top, or "
+                        "the forced oscillator's bifurcation diagram (landau sweep simulate)")
 
 
 def run(args) -> dict:
+    if args.sweep is not None:
+        from landau.cli.sweep import plot_file
+
+        return plot_file(args.sweep, args.out, FORMATS)
     if args.V is None:
         raise InputError("--V LO:HI is required (driving-velocity range in m/s)")
     if args.out is None:
@@ -76,6 +85,10 @@ def run(args) -> dict:
 
 
 def render(doc: dict) -> str:
+    if doc.get("kind") == "regime-map":
+        return f"regime map of {doc['law']} ({doc['points']} points: {doc['regimes']}) written to {doc['out']}"
+    if doc.get("kind") == "bifurcation-diagram":
+        return f"bifurcation diagram of the {doc['model']} ({doc['points']} points) written to {doc['out']}"
     out = [f"{doc['kind']} plot of law {doc['law']} over V = {doc['V_range'][0]:g} .. {doc['V_range'][1]:g} m/s "
            f"({doc['points']} points) written to {doc['out']}"]
     for b in doc["bands"]:

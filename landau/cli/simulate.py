@@ -285,20 +285,27 @@ def _galvanetto(args, t_end: float, n: int):
     V, args.V = args.V, None   # --V (or --param V=...) is the (dimensionless) belt velocity here
     _no_law(args, name)
     known = ["V", "gamma", "delta", "c"] + (["alpha", "beta"] if n == 2 else [])
+    own: set[str] = set()   # a user's law may have parameters of its own (--param eta=0.05)
+    if args.kinetic is not None:
+        from landau.laws.parse import referenced_names
+
+        own = referenced_names(args.kinetic, what="--kinetic") | (
+            referenced_names(args.kinetic_pos, what="--kinetic-pos") if args.kinetic_pos is not None else set())
     given_V = [it for it in args.param if it.split("=", 1)[0].strip() == "V"]
     if given_V:
         if V is not None or len(given_V) > 1:
             raise InputError(f"{name}: the belt velocity V is given twice")
         V = given_V[0].split("=", 1)[1]
     over = parse_params([it for it in args.param if it not in given_V])
-    _only_known(over, known, name)
+    _only_known(over, known + sorted(own - set(known) - {"r"}), name)
     if V is not None:
         over["V"] = _positive(V, "--V")
     if args.kinetic_pos is not None and args.kinetic is None:
         raise InputError(f"{name}: --kinetic-pos needs --kinetic (the r < 0 branch)")
+    extra = {k: over.pop(k) for k in list(over) if k in own and k not in ("V", "gamma", "delta", "c", "alpha", "beta")}
     law = (KineticFriction() if args.kinetic is None
            else KineticFriction.from_expression(args.kinetic, args.kinetic_pos,   # parsed, never evaluated
-                                                names=("--kinetic", "--kinetic-pos")))
+                                                names=("--kinetic", "--kinetic-pos"), **extra))
     p = StickSlipParams(n=n, law=law).with_(**over)
     if not p.V > 0:
         raise InputError(f"{name}: belt velocity V must be > 0, got {p.V!r}")
@@ -323,6 +330,7 @@ def _galvanetto(args, t_end: float, n: int):
                                  max_samples=MAX_POINTS))
     sim = replace(sol.simulation(name), state_names=names)
     used = {k: getattr(p, k) for k in known}
+    used.update(extra)
     notes = ["dimensionless time and displacements; " + start]
     if not p.law.is_paper_law:
         used["kinetic"] = str(p.law.neg_expr)

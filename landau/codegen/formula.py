@@ -22,36 +22,10 @@ from typing import Any, Callable, Mapping, Sequence
 import numpy as np
 import sympy as sp
 
+from landau.support.lambdify import _dirac_mp, _dirac_np, _heaviside_mp, _heaviside_np
+from landau.support.lambdify import numeric_modules as _modules
+
 logger = logging.getLogger(__name__)
-
-
-def _dirac_np(x, *_):
-    return np.where(np.asarray(x) == 0, np.inf, 0.0)
-
-
-def _heaviside_np(x, h0=0.5):
-    return np.heaviside(x, h0)
-
-
-def _dirac_mp(x, *_):
-    import mpmath
-    return mpmath.inf if x == 0 else mpmath.mpf(0)
-
-
-def _heaviside_mp(x, h0=0.5):
-    import mpmath
-    return mpmath.mpf(1) if x > 0 else (mpmath.mpf(0) if x < 0 else mpmath.mpf(h0))
-
-
-def _modules(modules: str):
-    """lambdify modules with the distributions a non-smooth law's derivatives produce
-    (|v − v₀| → sign → DiracDelta): zero away from the kink, infinite on it."""
-    if modules == "numpy":
-        return [{"DiracDelta": _dirac_np, "Heaviside": _heaviside_np}, "numpy"]
-    if modules == "mpmath":
-        return [{"DiracDelta": _dirac_mp, "Heaviside": _heaviside_mp}, "mpmath"]
-    return modules
-
 
 #: changes whenever the generated code for the same inputs would change (a new cache key)
 _LAMBDIFY_FORMAT = "landau-lambdify/1"

@@ -45,11 +45,20 @@ import scipy.linalg
 import scipy.optimize
 import sympy as sp
 
-from landau.derivation.fredholm import _pencil, best_drop, cubic_coefficient, linear_coefficient, null_vectors, row_dot
+from landau.derivation.fredholm import (
+    _minor,
+    _pencil,
+    best_drop,
+    cubic_coefficient,
+    linear_coefficient,
+    null_vectors,
+    row_dot,
+)
 from landau.derivation.hopf import GENERAL, HopfResult
 from landau.derivation.jets import Jets, TaylorJets
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.support.cx import Cx, as_expr
+from landau.support.lambdify import lambdify_positional
 from landau.systems.system import DynamicalSystem
 
 #: default working precision of the located point and its coefficients (decimal digits)
@@ -87,13 +96,17 @@ class NumericSystem:
         bad = [s.name for s, v in self.params.items() if not math.isfinite(v)]
         if bad:
             raise InputError(f"{system.name}: parameter(s) {', '.join(bad)} must be finite")
+        norm = system.normalise
+        if isinstance(norm, bool) or not isinstance(norm, (int, np.integer)) or not 0 <= norm < self.n:
+            raise InputError(f"{system.name}: normalise must be the index (0 to {self.n - 1}) of a state of "
+                             f"{', '.join(s.name for s in system.states)}, got {norm!r}")
         self.p = system.parameter
         Em = system.mass_matrix
         # f and its first derivatives (J, f_p) by Taylor arithmetic: no symbolic differentiation
         self.taylor1 = TaylorJets(system.rhs, [*system.states, self.p], 1)
-        self._E = sp.lambdify([self.p, *self.params], Em.tolist(), "mpmath")
-        self._Ep = sp.lambdify([self.p, *self.params], Em.diff(self.p).tolist(), "mpmath")
-        self._Ef = sp.lambdify([self.p, *self.params], Em.tolist(), "numpy")
+        self._E = lambdify_positional([self.p, *self.params], Em.tolist(), "mpmath")
+        self._Ep = lambdify_positional([self.p, *self.params], Em.diff(self.p).tolist(), "mpmath")
+        self._Ef = lambdify_positional([self.p, *self.params], Em.tolist(), "numpy")
         self.mass_depends_on_p = self.p in Em.free_symbols
         self.diagonal_mass = system.mass_is_diagonal
         self._pv = list(self.params.values())
@@ -108,7 +121,7 @@ class NumericSystem:
                     raise InputError(f"{system.name}: the equilibrium has no closed form; give unknown_guess "
                                      "or an equilibrium guess")
                 eq = [as_expr(e).xreplace(dict(zip(system.unknowns, system.unknown_guess, strict=True))) for e in eq]
-            fn = sp.lambdify([self.p, *self.params], eq, "numpy")
+            fn = lambdify_positional([self.p, *self.params], eq, "numpy")
             self._guess = lambda p: [float(x) for x in fn(p, *self._pv)]
 
     # --- float64 ------------------------------------------------------------------------------
@@ -227,6 +240,10 @@ def locate_crossing(num: NumericSystem, pa: float, pb: float, ya) -> tuple[float
         cache[p] = y
         return hopf_test_function(num.eigenvalues(y, p))
 
+    ga, gb = g(pa), g(pb)
+    if ga * gb >= 0:               # an end is the root to round-off (its sign is round-off)
+        hits = [h for h in (_exact_crossing(num, end, cache[end]) for end in (pa, pb)) if h is not None]
+        return min(hits, key=lambda h: abs(h[2].real)) if hits else None
     p0 = scipy.optimize.brentq(g, pa, pb, xtol=1e-13 * max(1.0, abs(pa), abs(pb)), rtol=1e-13)
     y0 = num.equilibrium_float(p0, cache.get(p0, ya))
     lam = critical_pair(num.eigenvalues(y0, p0))
@@ -267,18 +284,58 @@ def scan_hopf(num: NumericSystem, lo: float, hi: float, samples: int = SCAN_SAMP
     from the previous sample.
     """
     ps = np.linspace(lo, hi, samples + 1)
-    y = num.equilibrium_float(ps[0], y_start)
-    tf = hopf_test_function(num.eigenvalues(y, ps[0]))
-    found = []
-    for pa, pb in zip(ps[:-1], ps[1:], strict=True):
-        yb = num.equilibrium_float(pb, y)
-        tfb = hopf_test_function(num.eigenvalues(yb, pb))
-        if tf == 0 or tf * tfb < 0:
-            hit = locate_crossing(num, min(pa, pb), max(pa, pb), y)
+    ys = [num.equilibrium_float(ps[0], y_start)]
+    for p in ps[1:]:
+        ys.append(num.equilibrium_float(p, ys[-1]))
+    lams = [num.eigenvalues(y, p) for y, p in zip(ys, ps, strict=True)]
+    tfs = [hopf_test_function(lam) for lam in lams]
+    zeros = sum(1 for t in tfs if t == 0)
+    if zeros > 2:
+        raise InputError(f"{num.sys.name}: the eigenvalues' real parts vanish to round-off at {zeros} of the "
+                         f"{len(ps)} scanned values of {num.p.name} in [{min(lo, hi):g}, {max(lo, hi):g}], so no "
+                         "isolated crossing can be told: the crossing is below float64's resolution at this scale "
+                         "(bring the parameters nearer their physical scale), or the pair stays on the axis")
+    found: list[tuple[float, np.ndarray, complex]] = []
+    on_grid: set[int] = set()
+    for i in range(len(ps)):
+        # a grid point that is the crossing itself (the test function exactly 0 there, or, at an
+        # end of the scan, the pair on the axis to round-off): the exact root, not a bracket
+        end = i in (0, len(ps) - 1)
+        if tfs[i] == 0 or (end and _end_on_axis(lams[i], lams[1 if i == 0 else i - 1])):
+            hit = _exact_crossing(num, float(ps[i]), ys[i])
             if hit is not None:
                 found.append(hit)
-        y, tf = yb, tfb
-    return found
+                on_grid.add(i)
+    for i in range(len(ps) - 1):
+        if tfs[i] * tfs[i + 1] < 0 and not ({i, i + 1} & on_grid):
+            hit = locate_crossing(num, min(ps[i], ps[i + 1]), max(ps[i], ps[i + 1]), ys[i])
+            if hit is not None:
+                found.append(hit)
+    return sorted(found, key=lambda h: h[0] if lo <= hi else -h[0])
+
+
+def _end_on_axis(lam: np.ndarray, lam_next: np.ndarray) -> bool:
+    """Whether the critical pair at a scan's end lies on the imaginary axis to round-off: its real
+    part below :data:`ON_AXIS` of its modulus and below 1e-8 of its real part at the next sample
+    (the pair moves across the bracket; round-off does not)."""
+    pair, nxt = critical_pair(lam), critical_pair(lam_next)
+    if pair is None or nxt is None:
+        return False
+    return abs(pair.real) <= ON_AXIS * abs(pair) and abs(pair.real) <= 1e-8 * abs(nxt.real)
+
+
+#: a critical pair whose real part is below this fraction of its modulus lies on the imaginary
+#: axis to round-off: the point is taken as the crossing itself
+ON_AXIS = 1e-10
+
+
+def _exact_crossing(num: NumericSystem, p: float, y) -> tuple[float, np.ndarray, complex] | None:
+    """(p, y₀, λ) when a complex pair lies on the imaginary axis at p to round-off
+    (|Re λ| ≤ :data:`ON_AXIS`·|λ|), else None."""
+    lam = critical_pair(num.eigenvalues(y, p))
+    if lam is None or abs(lam.real) > ON_AXIS * abs(lam):
+        return None
+    return p, np.asarray(y, dtype=float), lam
 
 
 def _symbolic_tensors(num: NumericSystem, y0, pc, jets_cache: dict) -> dict[int, dict]:
@@ -305,7 +362,7 @@ def _symbolic_tensors(num: NumericSystem, y0, pc, jets_cache: dict) -> dict[int,
                     return e
                 e = as_expr(e).xreplace(atoms)
             return e
-        fn = sp.lambdify([*y0s, sysm.parameter, *num.params], [expand(v) for _, v in entries], "mpmath")
+        fn = lambdify_positional([*y0s, sysm.parameter, *num.params], [expand(v) for _, v in entries], "mpmath")
         jets_cache[key] = ([k for k, _ in entries], fn)
     keys, fn = jets_cache[key]
     vals = fn(*y0, pc, *num._pv)
@@ -412,8 +469,13 @@ def normal_form_at(num: NumericSystem, pc, wc, y0, *, jets: str = "taylor", jets
 
     normalise = num.sys.normalise
     r, c = best_drop(A, normalise, absdet)
+    _check_normalise(num, A, r, normalise, absdet)
     vec = null_vectors(J, E, wc, normalise, r, c)
-    a = linear_coefficient(vec, J, Jp, fp, B2)
+    try:
+        a = linear_coefficient(vec, J, Jp, fp, B2)
+    except ZeroDivisionError:
+        raise SingularPointError(f"{num.sys.name}: ψ·E·q = 0 at {num.p.name} = {float(pc):.10g}: the critical "
+                                 "eigenvalue is not simple (no amplitude equation of a simple Hopf point)") from None
     if Ep is not None:
         # E(p_c + ε²p₂)·ẏ adds −p₂ iω E_p q A to the resonant forcing at O(ε³)
         Epq = [Cx(0, 0)] * n
@@ -426,6 +488,7 @@ def normal_form_at(num: NumericSystem, pc, wc, y0, *, jets: str = "taylor", jets
     qq = sum(z.re ** 2 + z.im ** 2 for z in vec.q)
     c1 = complex(float(b.re / qq), float(b.im / qq))
     Lam = float(2 * b.re)
+    _verify_crossing(num, pc, wc, y0, complex(float(a.re), float(a.im)))
     return HopfResult(
         system=num.sys.name, parameter=num.p.name, p_c=float(pc), omega_c=float(wc),
         equilibrium=tuple(float(x) for x in y0), dlambda_dp=complex(float(a.re), float(a.im)),
@@ -433,6 +496,51 @@ def normal_form_at(num: NumericSystem, pc, wc, y0, *, jets: str = "taylor", jets
         l1=float(b.re / qq / wc), c1=c1, params={s.name: v for s, v in num.params.items()} if params is None
         else dict(params),
     )
+
+
+def _check_normalise(num: NumericSystem, A, r: int, normalise: int, absdet) -> None:
+    """Refuse by name a ``normalise`` state whose component of the critical mode q is 0 (q cannot
+    be scaled to q[normalise] = 1).  The cofactors of a row of A = iωE − J are proportional to q,
+    so the cofactor in the ``normalise`` column is compared with the largest one."""
+    n = len(A)
+    if n < 2:
+        return
+    tiny = 10.0 ** (-(mpmath.mp.dps // 2))
+    m_n = absdet(_minor(A, r, normalise))
+    entries = [abs(complex(float(z.re), float(z.im))) for row in A for z in row]
+    scale = max(entries) ** (n - 1) if entries else 1.0
+    if m_n > tiny * scale:
+        return
+    cof = [[absdet(_minor(A, i, j)) for j in range(n)] for i in range(n)]
+    best_row = max(range(n), key=lambda i: max(cof[i]))
+    top = max(cof[best_row])
+    if top == 0 or m_n > tiny * top:
+        return
+    names = [s.name for s in num.sys.states]
+    carried = [names[j] for j in range(n) if cof[best_row][j] > tiny * top]
+    raise InputError(f"{num.sys.name}: the state {names[normalise]!r} chosen to normalise the critical mode "
+                     f"(normalise={normalise}) has no component in it at the Hopf point; normalise on one of "
+                     f"{', '.join(carried)} (DynamicalSystem(..., normalise=INDEX))")
+
+
+def _verify_crossing(num: NumericSystem, pc, wc, y0, dlambda_dp: complex) -> None:
+    """A Hopf point is verified before it is returned: the pencil has the pair ±iω_c at (y₀, p_c)
+    (to 1e-6 of the spectrum's scale, in float64) and the pair crosses, Re dλ/dp ≠ 0; else
+    :class:`~landau.errors.SingularPointError`."""
+    p, w = float(pc), float(wc)
+    y = np.array([float(v) for v in y0])
+    try:
+        lam = num.eigenvalues(y, p)
+    except (np.linalg.LinAlgError, ValueError):
+        return                     # the float64 pencil cannot be formed: the mpmath refinement stands
+    scale = max(w, float(np.max(np.abs(lam))) if lam.size else 0.0, 1e-300)
+    if not (w > 0 and lam.size and np.min(np.abs(lam - 1j * w)) <= 1e-6 * scale):
+        near = complex(lam[np.argmin(np.abs(lam - 1j * w))]) if lam.size else None
+        raise SingularPointError(f"{num.sys.name}: the point {num.p.name} = {p:.10g} is not a Hopf point: no "
+                                 f"eigenvalue pair ±i·{w:.6g} (nearest eigenvalue {near})")
+    if not (abs(dlambda_dp.real) > 1e-12 * abs(dlambda_dp)):
+        raise SingularPointError(f"{num.sys.name}: at {num.p.name} = {p:.10g} the pair ±i·{w:.6g} touches the "
+                                 "imaginary axis without crossing it (Re dλ/dp = 0): not a Hopf bifurcation")
 
 
 def hopf_normal_form(system: DynamicalSystem, params: Mapping[str, float] | None, bracket: tuple[float, float],
@@ -500,10 +608,18 @@ def hopf_normal_form(system: DynamicalSystem, params: Mapping[str, float] | None
                          + ", ".join(f"{h[0]:.8g}" for h in hits) + "); narrow the bracket or use "
                          "landau.analyses.continuation.equilibrium_branch")
     p0, y0, lam = hits[0]
-    with mpmath.workdps(dps):
-        pc, wc, y = refine_hopf(num, p0, abs(lam.imag), y0)
-        res = normal_form_at(num, pc, wc, y, jets=jets, params=params)
-    if l2:
+    jets_cache: dict = {}
+
+    def at(digits: int) -> HopfResult:
+        with mpmath.workdps(digits):
+            pc, wc, y = refine_hopf(num, p0, abs(lam.imag), y0)
+            return normal_form_at(num, pc, wc, y, jets=jets, jets_cache=jets_cache, params=params)
+
+    from landau.derivation.degenerate import with_verdict
+
+    # Λ with its round-off bound; where it vanishes, Λ = 0 (degenerate) and the next order (l₂)
+    res = with_verdict(system, params, at(dps), dps, at)
+    if l2 and res.l2 is None:
         res = replace(res, l2=second_lyapunov(system, params, res, max(dps, 40)))
     return res
 
@@ -572,8 +688,11 @@ def second_lyapunov(system: DynamicalSystem, params: Mapping[str, float] | None,
     :func:`kuznetsov_check`), so no closed form is needed; the point is not re-located (the
     equilibrium is frozen at p_c, as in :func:`kuznetsov_check`).
     """
+    from landau.derivation.degenerate import ode_on_constraint
     from landau.derivation.lyapunov import lyapunov_coefficients
 
+    # a DAE (zero mass entry) as the ODE with the same flow on its constraint manifold
+    system = ode_on_constraint(system, dict(params or {}), result.p_c, max(abs(result.omega_c), 1e-300))
     with mpmath.workdps(dps):
         probe, values, pc = _frozen_equilibrium(system, params, result)
         out = lyapunov_coefficients(probe, values, pc, dps=dps, omega_c=result.omega_c, relocate=False)

@@ -164,7 +164,8 @@ class HopfResult:
     normalise : str
         The state component of the critical mode that is normalised to 1.
     l1 : float, optional
-        First Lyapunov coefficient in Kuznetsov's normalisation, Re c₁/ω.
+        First Lyapunov coefficient in Kuznetsov's normalisation, Re c₁/ω.  It depends on the
+        declared state coordinates; C, Λ and the criticality do not.
     c1 : complex, optional
         Kuznetsov's c₁(0) (⟨q, q⟩ = 1, ⟨p, q⟩ = 1); MatCont and BifurcationKit print its real part.
     Lambda5 : float, optional
@@ -244,6 +245,33 @@ class HopfResult:
                 object.__setattr__(self, name, extra.pop(name))
         if len(extra) != len(self.extra):
             object.__setattr__(self, "extra", extra)
+        self._check_finite()
+
+    #: the fields a Hopf result must carry as finite numbers (None: not computed)
+    _FINITE = ("p_c", "omega_c", "dlambda_dp", "Lambda", "chi", "l1", "c1", "Lambda5", "l2", "kc", "Gamma_bar",
+               "Omega_bar", "c2")
+
+    def _check_finite(self) -> None:
+        """No NaN or infinity passes as a result: a field that is not finite raises
+        :class:`~landau.errors.SingularPointError` naming it, the point and the parameters."""
+        for name in self._FINITE:
+            v = getattr(self, name)
+            if v is None:
+                continue
+            try:
+                finite = math.isfinite(v.real) and math.isfinite(v.imag) if isinstance(v, complex) \
+                    else math.isfinite(float(v))
+            except (TypeError, ValueError, OverflowError):
+                finite = False
+            if not finite:
+                from landau.errors import SingularPointError
+
+                where = f"{self.parameter} = {self.p_c:g}" if name != "p_c" else "the Hopf point"
+                params = ", ".join(f"{k} = {x:g}" if isinstance(x, (int, float)) else f"{k} = {x}"
+                                   for k, x in dict(self.params).items())
+                raise SingularPointError(
+                    f"{self.system}: {name} = {v} is not finite at {where}" + (f" ({params})" if params else "")
+                    + ": the computation leaves float64's range there or the point is singular")
 
     def route_fields(self) -> dict[str, Any]:
         """The route-specific entries that are set, by their :meth:`as_dict` names.
@@ -322,7 +350,9 @@ class HopfResult:
         return 0 if s == 0 or not math.isfinite(s) else (-1 if s > 0 else 1)
 
     def amplitude(self, p: float) -> float:
-        """Predicted cycle amplitude max|y_n − y₀,n| at parameter p (NaN on the side without a cycle).
+        """Predicted cycle amplitude at p: the half peak-to-peak swing (max y_n − min y_n)/2 of the normalised
+        component (NaN on the side without a cycle).  max|y_n − y₀,n| differs from it by the cycle's O(ε²)
+        mean shift, i.e. by O(ε) relative.
 
         Parameters
         ----------

@@ -116,7 +116,7 @@ def _derivation_latex(d, quantities: Sequence[str], fragment: bool, progress) ->
     if numeric_hopf:
         H, re_pq, q2 = d.hopf._hopf_polys
         Wsym = sp.Symbol("W")
-        text(r"The Hopf line has no closed form ($n>1$ state variables): $k_c$ and $\omega_c$ are computed "
+        text(rf"The Hopf line has no closed form ({_why_numeric(d)}): $k_c$ and $\omega_c$ are computed "
              r"numerically. $\omega_c^2$ is the positive root $W$ of the Hopf polynomial below at which the "
              r"stiffness $k = -\mathrm{Re}(P\bar Q)/|Q|^2$ is largest ($\det(\lambda E - J) = P(\lambda) + k "
              r"Q(\lambda)$, "
@@ -220,8 +220,8 @@ def _coefficient_latex(d, q: str) -> str:
     rational = not numeric_hopf and _rational_in_parameters(d)
     if q in ("kc", "omega_c"):
         if numeric_hopf:
-            return (r"k_c,\ \omega_c:\ \text{numerical (largest-stiffness root of the Hopf polynomial;"
-                    r" several state variables)}")
+            return (r"k_c,\ \omega_c:\ \text{numerical (largest-stiffness root of the Hopf polynomial; "
+                    + _why_numeric(d) + ")}")
         kc, W = d.hopf.closed_form
         if rational:
             parts = _cached_parts(d, [])
@@ -241,6 +241,15 @@ def _coefficient_latex(d, q: str) -> str:
             eqs += equation_lines(symbol_latex(a.name), d.jets.atoms[a], names, letter="A")
     rows = [r for eq in eqs for r in eq.align_rows()]
     return "\\begin{aligned}\n" + " \\\\\n".join(rows) + "\n\\end{aligned}"
+
+
+def _why_numeric(d) -> str:
+    """Why the Hopf line k_c(V), ω_c(V) has no closed form, as LaTeX text: a steady state that is
+    solved numerically, or a Hopf polynomial of degree ≥ 2 in ω² (several state variables)."""
+    if d.system.unknowns:
+        return "it depends on the steady state, which has no closed form"
+    n = len(d.block.law.states)
+    return f"{n} state variables: the Hopf polynomial in $\\omega^2$ has degree {d.hopf._hopf_polys[0].degree()}"
 
 
 def _letter(q: str) -> str:

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from functools import cached_property
 from typing import Any, Mapping, Sequence
 
+import mpmath
 import numpy as np
 import sympy as sp
 from sympy.polys.matrices import DomainMatrix
@@ -234,6 +235,26 @@ class HopfLine:
         return CompiledFormula(kc, self.args, atoms), CompiledFormula(W_c, self.args, atoms)
 
     @cached_property
+    def _compiled_closed_mp(self):
+        kc, W_c = self.closed_form
+        atoms = self.jets.atoms
+        return CompiledFormula(kc, self.args, atoms, "mpmath"), CompiledFormula(W_c, self.args, atoms, "mpmath")
+
+    def _rescue_closed(self, kc: np.ndarray, W_c: np.ndarray, vals) -> None:
+        """In place: k_c, ω_c² where the float64 closed form overflowed, underflowed to 0 or gave NaN
+        (σ = 1e300: k_c = 1.6e304 is representable, an intermediate is not), from mpmath (unbounded
+        exponent); a value beyond float64's range stays non-finite."""
+        lost = ~np.isfinite(kc) | ~np.isfinite(W_c) | (kc == 0) | (W_c == 0)
+        if not lost.any():
+            return
+        fk, fW = self._compiled_closed_mp
+        with mpmath.workdps(30):
+            for i in map(tuple, np.argwhere(lost)):
+                point = [mpmath.mpf(float(np.broadcast_to(v, kc.shape)[i])) for v in vals]
+                with np.errstate(over="ignore"):
+                    kc[i], W_c[i] = float(fk(*point)), float(fW(*point))
+
+    @cached_property
     def _compiled_poly(self):
         H, re, q2 = self._hopf_polys
         atoms = self.jets.atoms
@@ -304,7 +325,7 @@ class HopfLine:
         return [compile_expr(e, self.args) for e in self._mu_ss_exprs[2]]
 
     def evaluate(self, Vs: Sequence[float] | float | np.ndarray, params: Mapping[str, float] | None = None,
-                 method: str = "auto") -> tuple[np.ndarray, np.ndarray]:
+                 method: str = "auto", **overrides: float) -> tuple[np.ndarray, np.ndarray]:
         """Vectorised (k_c, ω_c) over velocities; NaN where there is no Hopf point.
 
         ``method="polynomial"`` forces the general n-state route (roots of the Hopf
@@ -318,6 +339,8 @@ class HopfLine:
             Parameter overrides (defaults: :meth:`SpringBlock.resolve`); values may be arrays.
         method : {"auto", "polynomial"}
             The route (see above).
+        **overrides : float
+            Parameter values as keywords, merged with ``params`` (``evaluate(1e-4, M=1.2)``).
 
         Returns
         -------
@@ -327,19 +350,25 @@ class HopfLine:
         """
         if method not in ("auto", "polynomial"):
             raise InputError(f"unknown method {method!r}")
-        p = self.block.resolve(params)
+        from landau.derivation.multiscale import _merged
+
+        p = self.block.resolve(_merged(params, overrides))
         Vs = np.atleast_1d(np.asarray(Vs, dtype=float))
         if self.closed_form is not None and method == "auto":
             fk, fW = self._compiled_closed
             vals = self._argvals(Vs, p)
-            kc = np.asarray(fk(*vals), dtype=float)
-            W_c = np.asarray(fW(*vals), dtype=float)
+            with np.errstate(all="ignore"):
+                kc = np.array(np.broadcast_to(np.asarray(fk(*vals), dtype=float), Vs.shape))
+                W_c = np.array(np.broadcast_to(np.asarray(fW(*vals), dtype=float), Vs.shape))
+            self._rescue_closed(kc, W_c, vals)
             ok = (W_c > 0) & (kc > 0) & np.isfinite(kc)
             return np.where(ok, kc, np.nan), np.where(ok, np.sqrt(np.where(ok, W_c, 1.0)), np.nan)
         coeffs, fre, fq2 = self._compiled_poly
         kcs, oms = np.full(Vs.shape, np.nan), np.full(Vs.shape, np.nan)
-        for n, Vn in enumerate(Vs):
-            vals = self._argvals(np.float64(Vn), p)
+        # every argument at once (the numeric steady states are solved together), then point by point
+        table = [np.broadcast_to(np.asarray(x, dtype=float), Vs.shape) for x in self._argvals(Vs, p)]
+        for n in range(Vs.size):
+            vals = [np.float64(x[n]) for x in table]
             cs = [float(c(*vals)) for c in coeffs]
             kk, Wr = _stiffest_hopf_root(np.roots(cs),
                                          lambda Wr, vals=vals: -float(fre(Wr, *vals)) / float(fq2(Wr, *vals)),
@@ -362,7 +391,7 @@ class HopfLine:
         -------
         list of HopfPoint
         """
-        Vs = np.atleast_1d(np.asarray(Vs, dtype=float))
+        Vs = _velocities(Vs)
         if np.any(~np.isfinite(Vs)) or np.any(Vs <= 0):
             bad = [x for x in Vs if not (np.isfinite(x) and x > 0)][0]
             raise InputError(f"driving velocity V must be > 0, got {bad!r}")
@@ -455,7 +484,7 @@ class HopfLine:
         HopfPoint
             Its ``status`` is ``"no-hopf"`` where there is no Hopf point.
         """
-        return self.points([V0], params)[0]
+        return self.points([one_velocity(V0, "V", "points(V)")], params)[0]
 
     def require(self, V0: float, params: Mapping[str, float] | None = None) -> HopfPoint:
         """The :class:`HopfPoint` at one velocity, which must exist.
@@ -481,6 +510,54 @@ class HopfLine:
         if pt.status != "ok":
             raise NoHopfError(f"V = {V0:g} m/s: {pt.reason}; {pt.weakening}")
         return pt
+
+
+def _velocities(Vs: Any) -> np.ndarray:
+    """Velocities for a per-point function: a number or a 1-D sequence, as a 1-D float array."""
+    try:
+        arr = np.atleast_1d(np.asarray(Vs, dtype=float))
+    except (TypeError, ValueError):
+        raise InputError(f"V must be a number or a sequence of numbers (m/s), got {type(Vs).__name__}") from None
+    if arr.ndim != 1:
+        raise InputError(f"V must be a number or a 1-D sequence of velocities, got shape {arr.shape} "
+                         "(evaluate(V) takes arrays of any shape)")
+    return arr
+
+
+def one_velocity(V: Any, what: str = "V", several: str = "points(V) or evaluate(V)") -> float:
+    """A driving velocity given to a one-point function, as a float.
+
+    Parameters
+    ----------
+    V : float
+        The velocity (m/s).
+    what : str
+        Its name in the error message.
+    several : str
+        The functions that take several velocities, named in the error message.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    InputError
+        ``V`` is a sequence or an array of more than one value, not a number, not finite or not > 0.
+    """
+    if isinstance(V, (str, bytes)):
+        raise InputError(f"{what} must be a number (m/s), got {V!r}")
+    try:
+        arr = np.asarray(V, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{what} must be a number (m/s), got {type(V).__name__}") from None
+    if arr.ndim:
+        raise InputError(f"{what} must be one velocity (a number), got {arr.size} value(s) of shape {arr.shape}: "
+                         f"for several velocities use {several}")
+    x = float(arr)
+    if not (np.isfinite(x) and x > 0):
+        raise InputError(f"{what}: driving velocity must be finite and > 0 m/s, got {x!r}")
+    return x
 
 
 def _stiffest_hopf_root(roots, stiffness, real_tol, nan) -> tuple[Any, Any]:

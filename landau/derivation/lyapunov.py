@@ -42,6 +42,7 @@ from landau.derivation.hopf import GENERAL, HopfResult, spring_block_result
 from landau.derivation.jets import Jets
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.support.cx import as_expr
+from landau.support.lambdify import lambdify_positional
 from landau.systems.system import DynamicalSystem, SpringBlock
 
 #: digits used when the caller does not say (≥ 30: far above the float64 engine it checks)
@@ -76,7 +77,7 @@ class _NumericJets:
         if missing:
             raise InputError(f"{system.name}: no value for {', '.join(missing)}")
         syms = sorted(free, key=lambda s: s.name)
-        self._fn = sp.lambdify([self.p, *syms], exprs, modules="mpmath")
+        self._fn = lambdify_positional([self.p, *syms], exprs, modules="mpmath")
         self._vals = [values[s] for s in syms]
 
     def expand(self, e: sp.Expr) -> sp.Expr:

@@ -307,7 +307,13 @@ class Derivation:
         dict
             Quantity name -> mpmath value (NaN where there is no Hopf point).
         """
-        p = self.block.resolve(params)
+        from landau.derivation.linear import one_velocity
+
+        V0 = one_velocity(V0, "V", "evaluate(V)") if not isinstance(V0, mpmath.mpf) else V0
+        # a point read back from a table of argument values carries the numeric steady states φᵢ,₀
+        # too: they are recomputed here, never taken as parameters
+        unknowns = {s.name for s in self.block.phi0}   # names a law may not declare ("phi_0")
+        p = self.block.resolve({k: x for k, x in params.items() if k not in unknowns})
         with mpmath.workdps(dps):
             vals = [mpmath.mpf(x) for x in self.block.argvals(V0, p)]
             if self.hopf.closed_form is None:
@@ -331,7 +337,7 @@ class Derivation:
 
     def evaluate(self, Vs, params: Mapping[str, float] | None = None,
                  names: Sequence[str] = ("kc", "omega_c", "Gamma_bar", "Lambda"),
-                 method: str = "auto", sign_only: bool = False) -> CoefficientTable:
+                 method: str = "auto", sign_only: bool = False, **overrides: Any) -> CoefficientTable:
         """Vectorised evaluation over velocities (any parameter may also be an array).
 
         NaN where there is no Hopf point.  Every value is accurate to 1e-10 relative or
@@ -366,6 +372,9 @@ class Derivation:
             The evaluation route (see above).
         sign_only : bool, optional
             Whether only the signs are needed (see above).
+        **overrides : float or array_like
+            Parameter values as keywords, merged with ``params``:
+            ``d.evaluate([1e-4, 1e-3], M=1.2, names=["kc", "Lambda"])``.
 
         Returns
         -------
@@ -376,6 +385,7 @@ class Derivation:
             raise InputError(f"unknown evaluation method {method!r} (auto, general, rational)")
         if isinstance(names, str):  # evaluate(Vs, None, "Lambda"): one quantity, not its letters
             names = [names]
+        params = _merged(params, overrides)
         p = self.block.resolve({k: v for k, v in (params or {}).items() if np.ndim(v) == 0})
         arr = {k: np.asarray(v, dtype=float) for k, v in (params or {}).items() if np.ndim(v) > 0}
         Vs = np.asarray(Vs, dtype=float)
@@ -409,7 +419,7 @@ class Derivation:
         return precision.evaluate_mp_checked(self, V0, point, names, sign_estimate)
 
     def points(self, Vs, params: Mapping[str, float] | None = None,
-               names: Sequence[str] = ("Gamma_bar", "Lambda", "C")) -> list[Any]:
+               names: Sequence[str] = ("Gamma_bar", "Lambda", "C"), **overrides: float) -> list[Any]:
         """Per-velocity :class:`~landau.derivation.hopf.HopfResult` (or the linear :class:`HopfPoint` when
         there is no Hopf point).
 
@@ -427,13 +437,18 @@ class Derivation:
             those of :meth:`evaluate` with these names); Ω̄ and χ, which every point carries,
             are evaluated separately where not named.  Any other quantity named (``"Lambda5"``)
             is carried too.
+        **overrides : float
+            Parameter values as keywords, merged with ``params`` (``d.points(1e-4, M=1.2)``).
 
         Returns
         -------
         list of HopfResult or HopfPoint
             A :class:`~landau.report.display.ResultList` (one table in a notebook).
         """
-        Vs = np.atleast_1d(np.asarray(Vs, dtype=float))
+        from landau.derivation.linear import _velocities
+
+        Vs = _velocities(Vs)
+        params = _merged(params, overrides)
         res = self.evaluate(Vs, params, ["kc", "omega_c", *names])
         rest = [n for n in ("Gamma_bar", "Omega_bar", "Lambda", "chi") if n not in names]
         more = self.evaluate(Vs, params, rest) if rest else {}
@@ -474,6 +489,18 @@ class Derivation:
             return lambda Vi, k: ()
         fn = sp.lambdify([V, self.k], exprs, modules="math")
         return lambda Vi, k: tuple(float(y) for y in fn(Vi, k))
+
+
+def _merged(params: Mapping[str, Any] | None, overrides: Mapping[str, Any]) -> dict[str, Any] | None:
+    """``params`` with the keyword ``overrides`` added; a name given both ways is an InputError."""
+    if not overrides:
+        return params if params is None else dict(params)
+    if params is not None and not isinstance(params, Mapping):
+        raise InputError(f"params must be a mapping of parameter names to values, got {type(params).__name__}")
+    both = sorted(set(params or {}) & set(overrides))
+    if both:
+        raise InputError(f"parameter {both[0]!r} is given twice (in params and as a keyword)")
+    return {**(params or {}), **overrides}
 
 
 def _as_block(block) -> SpringBlock:

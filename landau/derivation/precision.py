@@ -25,6 +25,7 @@ than float64 (Higham 2002, *Accuracy and Stability of Numerical Algorithms*, Sec
 from __future__ import annotations
 
 import logging
+import math
 import os
 import warnings
 from concurrent.futures import ThreadPoolExecutor
@@ -60,6 +61,11 @@ WORKERS = max(1, min(8, os.cpu_count() or 1))
 REL_SCREEN = 2e-5
 #: digits of the successive mpmath evaluations that decide whether a tiny value is genuine
 MP_LADDER = (50, 80, 120, 200, 330, 550)
+#: further digits for a point with a parameter (or V) beyond 1e±EXTREME: the terms of a coefficient
+#: then cancel over as many orders as the parameter has (Λ ∝ M = 1e-308 lies 315 orders below
+#: its terms), more than the 550 digits of :data:`MP_LADDER` can settle to 1e-20
+MP_LADDER_EXTREME = (900, 1500)
+EXTREME = 100
 #: extended precision available (x86 80-bit long double: eps 1.1e-19, ~1000x float64)
 EXTENDED = np.finfo(np.longdouble).eps < 1e-18
 #: how much closer to the exact value the long double evaluation is than float64, at least.
@@ -96,9 +102,13 @@ class Raw:
 
 
 def agree(x: np.ndarray, y: np.ndarray, rel: float) -> np.ndarray:
-    """|x − y| ≤ rel·|y| elementwise; two NaNs agree (no Hopf point in either precision)."""
+    """|x − y| ≤ rel·|y| elementwise, both finite; two NaNs agree (no Hopf point in either
+    precision), and two equal infinities.  A finite value never agrees with an infinite one
+    (|x − ∞| ≤ rel·∞ would hold: a float32 overflow must not pass a float64 value unscreened)."""
     with np.errstate(all="ignore"):
-        return (np.abs(x - y) <= rel * np.abs(y)) | (np.isnan(x) & np.isnan(y))
+        d = np.abs(x - y)
+        # d = ∞ only where one value is infinite and the other is not (equal infinities give NaN)
+        return ((d <= rel * np.abs(y)) & (d != np.inf)) | (x == y) | (np.isnan(x) & np.isnan(y))
 
 
 def sign_settled(x64: np.ndarray, x80: np.ndarray) -> np.ndarray:
@@ -205,7 +215,8 @@ def screened_route(d: "Derivation", Vs, vals, shape, bases, p, exact: bool, sign
     ``sign_only``: a suspect whose long double value is certain in sign is not doubtful."""
     law = d.block.law.name
     values = raw(d, vals, shape, bases, np.float64)
-    r32 = raw(d, [v.astype(np.float32) for v in vals], shape, bases, np.float32)
+    with np.errstate(over="ignore"):    # a value beyond float32's range: a suspect, settled below
+        r32 = raw(d, [v.astype(np.float32) for v in vals], shape, bases, np.float32)
     suspect = np.zeros(shape, dtype=bool)
     for key in values:
         suspect |= ~agree(values[key], r32[key].astype(float), REL_SCREEN)
@@ -216,7 +227,8 @@ def screened_route(d: "Derivation", Vs, vals, shape, bases, p, exact: bool, sign
         sub = [v[suspect].astype(np.longdouble) for v in vals]
         ext = raw(d, sub, sub[0].shape, bases, np.longdouble)
         for key in values:
-            x64, x80 = values[key][suspect], ext[key].astype(float)
+            with np.errstate(over="ignore"):
+                x64, x80 = values[key][suspect], ext[key].astype(float)
             values[key][suspect] = np.where(agree(x64, x80, REL_GOOD), x64, x80)
             bad[key][suspect] = ~agree(x64, x80, REL_GOOD * EXT_GAIN)
             if sign_only:
@@ -285,6 +297,8 @@ def evaluate_mp_checked(d: "Derivation", V0: float, point: Mapping[str, float], 
     Round-off of a quantity that vanishes identically, or a genuine value far below its
     terms (|h − f| ~ 1e34·|h|), still climbs it."""
     ladder = MP_LADDER
+    if any(x != 0 and abs(math.log10(abs(x))) > EXTREME for x in (V0, *point.values())):
+        ladder = ladder + MP_LADDER_EXTREME
     hi = d.evaluate_mp(V0, point, names, dps=ladder[0])
     if sign_estimate is not None and all(
             n in DERIVED or (hi[n] != 0 and sign_estimate.get(n, 0.0) != 0
@@ -310,8 +324,9 @@ def evaluate_mp_checked(d: "Derivation", V0: float, point: Mapping[str, float], 
         else:
             res[n] = mpmath.mpf(0)
             degenerate = degenerate or n == "Lambda"
-    if degenerate and "C" in res:
-        res["C"] = mpmath.inf
+    if "C" in res:      # from the settled Γ̄ and Λ (the 50-digit C used the 50-digit Λ)
+        lam = res["Lambda"]
+        res["C"] = mpmath.inf if degenerate or lam == 0 else 2 * mpmath.sqrt(2 * res["Gamma_bar"] / abs(lam))
     return res, degenerate
 
 
@@ -343,29 +358,103 @@ def refine_mpmath(d: "Derivation", out: dict[str, np.ndarray], vals, where: np.n
         out["degenerate"][idx] = degenerate
 
 
+#: smallest normal float64: a value below it (or 0) may be an underflow of a representable quotient
+TINY = float(np.finfo(float).tiny)
+#: largest float64
+HUGE = float(np.finfo(float).max)
+
+
+def _extreme_params(point: Mapping[str, float]) -> str:
+    """The point's parameters far from unity (|log10| ≥ 30), else all of them, as ``a = 1, b = 2``."""
+    far = {k: v for k, v in point.items() if v != 0 and abs(np.log10(abs(v))) >= 30}
+    return ", ".join(f"{k} = {v:g}" for k, v in (far or point).items())
+
+
+def _point(d: "Derivation", vals, idx) -> tuple[float, dict[str, float]]:
+    return float(vals[0][idx]), {s.name: float(vals[i + 1][idx]) for i, s in enumerate(d.args[1:])}
+
+
+def rescue_range(d: "Derivation", out: dict[str, np.ndarray], vals, where: np.ndarray, extra: Sequence[str]) -> None:
+    """The points ``where`` (a float64 value overflowed, underflowed to 0 or came out NaN
+    although the exact value may be representable: k_c = 1.6e304 at σ = 1e300, C = 2e-112 at
+    M = 1e200 where Γ̄ = 1e-413 underflows) evaluated with mpmath, whose exponent is unbounded
+    (a scaled form), in place in ``out``; derived quantities (C) from the mpmath values too.
+
+    Where mpmath finds no Hopf point the point keeps NaN (no Hopf point).  A value whose exact
+    magnitude exceeds float64's range raises :class:`~landau.errors.DomainError` naming the
+    quantity, the velocity and the parameters; a value that mpmath cannot give either raises
+    :class:`~landau.errors.SingularPointError` (the law is singular there)."""
+    from landau.errors import DomainError, NoHopfError
+
+    law = d.block.law.name
+    for idx in map(tuple, np.argwhere(where)):
+        V0, point = _point(d, vals, idx)
+        try:
+            mp, degenerate = d._evaluate_mp_checked(V0, point, list(extra))
+        except NoHopfError:
+            for n in ("kc", "omega_c", *extra):
+                out[n][idx] = np.nan
+            continue
+        for n in ("kc", "omega_c", *extra):
+            x = mp[n]
+            if n == "C" and degenerate:
+                out[n][idx] = np.inf
+                continue
+            if not mpmath.isfinite(x):
+                raise SingularPointError(
+                    f"{law}: {n} is not finite at V = {V0:g} m/s although a Hopf point exists there: the "
+                    "law's derivatives are singular at this steady state")
+            if abs(x) > HUGE:
+                raise DomainError(
+                    f"{law}: {n} = {mpmath.nstr(x, 6)} {_unit(n)}at V = {V0:g} m/s lies beyond the float64 range "
+                    f"(|x| ≤ {HUGE:.3g}) for {_extreme_params(point)}: bring the parameters nearer to their "
+                    "physical scale")
+            out[n][idx] = float(x)
+        out["degenerate"][idx] = degenerate
+
+
+def _unit(name: str) -> str:
+    from landau.derivation.coefficients import UNITS
+
+    return f"{UNITS[name]} " if name in UNITS else ""
+
+
 def finish(d: "Derivation", Vs, vals, r: Raw, names, bases, sign_only: bool,
            params: dict[str, Any]) -> CoefficientTable:
     """The table of a route's values: NaN where there is no Hopf point, doubtful points from
-    :func:`refine_mpmath`, C composed from Γ̄ and Λ; a coefficient that is not finite where a
-    Hopf point exists raises :class:`~landau.errors.SingularPointError`."""
+    :func:`refine_mpmath`, C composed from Γ̄ and Λ.
+
+    Every value returned is finite where a Hopf point exists (only C is infinite, where Λ
+    vanishes identically, flagged ``degenerate``): a float64 overflow, an underflow to 0 of
+    k_c or ω_c², a NaN from ∞ − ∞, and a C whose Γ̄ or Λ left the normal float64 range are
+    evaluated again with mpmath (:func:`rescue_range`); a value beyond float64's range raises
+    :class:`~landau.errors.DomainError`, a singular one :class:`~landau.errors.SingularPointError`."""
     shape = r.doubtful.shape
     kc, W_c = r.values["kc"], r.values["W"]
-    ok = (kc > 0) & (W_c > 0)
-    out: dict[str, np.ndarray] = {"V": Vs * np.ones(shape), "kc": np.where(ok, kc, np.nan),
-                                  "omega_c": np.sqrt(np.where(ok, W_c, np.nan))}
+    with np.errstate(all="ignore"):
+        ok = (kc > 0) & (W_c > 0) & np.isfinite(kc) & np.isfinite(W_c)
+        if d.hopf.closed_form is not None:   # NaN, ±inf or 0 from a closed form: a float64 range problem
+            lost = ~np.isfinite(kc) | ~np.isfinite(W_c) | (kc == 0) | (W_c == 0)
+        else:                                # the numeric Hopf line gives NaN where there is none
+            lost = np.isinf(kc) | np.isinf(W_c)
+        out: dict[str, np.ndarray] = {"V": Vs * np.ones(shape), "kc": np.where(ok, kc, np.nan),
+                                      "omega_c": np.sqrt(np.where(ok, W_c, np.nan))}
     for n in bases:
-        out[n] = r.values[n]
+        out[n] = np.array(r.values[n], dtype=float)
     out["degenerate"] = r.degenerate & ok
     extra = [n for n in _with_bases(names) if n not in ("kc", "omega_c")]
-    refine_mpmath(d, out, vals, r.doubtful & ok, extra, sign_only)
+    refine_mpmath(d, out, vals, r.doubtful & ok & ~lost, extra, sign_only)
     if "C" in names:
         with np.errstate(all="ignore"):
             out["C"] = 2 * np.sqrt(2 * out["Gamma_bar"] / np.abs(out["Lambda"]))
+            # a quotient of values outside the normal range (Γ̄ = 1e-413 underflowed at M = 1e200)
+            lost |= ok & ~out["degenerate"] & (
+                (np.abs(out["Gamma_bar"]) < TINY) | (np.abs(out["Lambda"]) < TINY)
+                | ~np.isfinite(out["C"]) | (out["C"] == 0))
     for n in bases:
-        singular = np.isfinite(out["kc"]) & ~np.isfinite(out[n])
-        if np.any(singular):
-            i = tuple(np.argwhere(singular)[0])
-            raise SingularPointError(
-                f"{d.block.law.name}: {n} is not finite at V = {float(out['V'][i]):g} m/s although a Hopf "
-                "point exists there: the law's derivatives are singular at this steady state")
+        lost |= ok & ~np.isfinite(out[n])
+    if lost.any():
+        for n in extra:
+            out.setdefault(n, np.full(shape, np.nan))
+        rescue_range(d, out, vals, lost, extra)
     return CoefficientTable(out, law=d.block.law.name, params=params)

@@ -375,7 +375,12 @@ class _FlintFraction:
     def factored(self) -> sp.Expr:
         """num/den factored over ℤ (FLINT), as an unevaluated sympy product."""
         def parts(p):
-            c, fs = p.factor()
+            try:
+                c, fs = p.factor()
+            except OverflowError:
+                # python-flint sorts the factors by a key that overflows on large coefficients or
+                # degrees (a law with 3e-9 (v/V_s)^4): the polynomial is kept whole (correct, unfactored)
+                return sp.Integer(1), [(self._poly_expr(p), 1)]
             return sp.Integer(int(c)), [(self._poly_expr(f), e) for f, e in fs]
 
         if self.num.is_zero():

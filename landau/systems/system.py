@@ -144,9 +144,160 @@ class DynamicalSystem:
         syms -= set(self.states) | {self.parameter} | set(self.unknowns)
         return tuple(sorted(syms, key=lambda s: s.name))
 
+    # --- construction from strings --------------------------------------------------------
+    @classmethod
+    def from_strings(cls, rhs: Mapping[str, str], parameter: str, params: Mapping[str, float] | None = None, *,
+                     equilibrium: Mapping[str, str] | None = None, guess: Mapping[str, float] | None = None,
+                     mass: Mapping[str, str] | None = None, name: str = "system", normalise: str | None = None,
+                     description: str = "") -> "DynamicalSystem":
+        """A system E·ẏ = f(y; p) written as strings, parsed by the friction laws' whitelist parser.
+
+        Every expression goes through :func:`landau.laws.parse.parse_expression`: only numbers,
+        the declared names, the arithmetic operators and the whitelisted functions; anything else
+        is a :class:`~landau.errors.ParseError` naming the token.  Every name an expression uses
+        must be a state, the Hopf parameter or a key of ``params``.
+
+        Parameters
+        ----------
+        rhs : mapping of str to str
+            Each state's name and its right-hand side f_i, in order, e.g.
+            ``{"x": "a - (b + 1)*x + x^2*y", "y": "b*x - x^2*y"}`` (the Brusselator).
+        parameter : str
+            The Hopf parameter p (a name the expressions may use; not a state, not in ``params``).
+        params : mapping of str to float, optional
+            Every other parameter and its default value.
+        equilibrium : mapping of str to str, optional
+            The equilibrium y₀ of each state as an expression of the parameters and p.
+        guess : mapping of str to float, optional
+            Instead of ``equilibrium``: a starting guess of y₀ for Newton's method (states
+            left out start at 0).
+        mass : mapping of str to str, optional
+            Diagonal entries E_ii (default 1; ``"0"`` makes the row algebraic, a DAE), as
+            expressions of the parameters and p, not of the states.
+        name, description : str, optional
+            A name for reprs and results, and one line describing the system.
+        normalise : str, optional
+            The state whose component of the critical mode is 1 (default: the first).
+
+        Returns
+        -------
+        DynamicalSystem
+
+        Raises
+        ------
+        InputError
+            An empty system, a bad or reserved name, a name an expression uses but nobody
+            declares, ``equilibrium`` and ``guess`` both or neither given, a mass entry that
+            depends on a state; :class:`~landau.errors.ParseError` for a token outside the
+            whitelist.
+        """
+        from landau.laws.parse import parse_expression, referenced_names
+
+        if not isinstance(rhs, Mapping) or not rhs:
+            raise InputError("a system needs at least one state: rhs={'x': 'EXPR', ...}")
+        params = dict(params or {})
+        if (equilibrium is None) == (guess is None):
+            raise InputError("give either the equilibrium (closed-form expressions) or a guess of it (numbers), "
+                             "not both and not neither")
+        states = list(rhs)
+        for s in states:
+            _check_system_name(s, "state")
+        _check_system_name(parameter, "Hopf parameter")
+        for pname in params:
+            _check_system_name(pname, "parameter")
+        if parameter in rhs:
+            raise InputError(f"{parameter!r} is a state and cannot also be the Hopf parameter")
+        if parameter in params:
+            raise InputError(f"{parameter!r} is the Hopf parameter: its critical value is computed, not given")
+        both = sorted(set(states) & set(params))
+        if both:
+            raise InputError(f"{both[0]!r} is a state and cannot also be a parameter")
+        values: dict[str, float] = {}
+        for pname, val in params.items():
+            values[pname] = _finite(val, f"parameter {pname!r}")
+        state_syms = {s: sp.Symbol(s, real=True) for s in states}
+        p_sym = sp.Symbol(parameter, real=True)
+        par_syms = {n: sp.Symbol(n, real=True) for n in values}
+        every = {**state_syms, parameter: p_sym, **par_syms}
+        no_states = {parameter: p_sym, **par_syms}
+
+        def parse(text, what, symbols):
+            if not isinstance(text, str):
+                text = str(text) if isinstance(text, (int, float)) and not isinstance(text, bool) else text
+            if not isinstance(text, str):
+                raise InputError(f"{what}: expected an expression string, got {type(text).__name__}")
+            states_used = sorted((referenced_names(text, what=what) & set(state_syms)) - set(symbols))
+            if states_used:
+                raise InputError(f"{what}: {states_used[0]!r} is a state; the equilibrium and the mass are "
+                                 "expressions of the parameters only")
+            return parse_expression(text, symbols, what=what)
+
+        f = tuple(parse(rhs[s], f"d{s}/dt", every) for s in states)
+        for what, mp in (("equilibrium", equilibrium), ("guess", guess), ("mass", mass)):
+            if mp is not None:
+                if not isinstance(mp, Mapping):
+                    raise InputError(f"{what} must map state names to values")
+                extra = sorted(set(mp) - set(states))
+                if extra:
+                    raise InputError(f"{what}: {extra[0]!r} is not a state (states: {', '.join(states)})")
+        if equilibrium is not None:
+            missing = [s for s in states if s not in equilibrium]
+            if missing:
+                raise InputError(f"equilibrium: no expression for state {missing[0]!r}")
+            eq = tuple(parse(equilibrium[s], f"equilibrium {s}", no_states) for s in states)
+        else:
+            eq = tuple(sp.Float(_finite(guess.get(s, 0.0), f"guess {s}")) for s in states)
+        E = tuple(parse(mass[s], f"mass {s}", no_states) if mass and s in mass else sp.Integer(1) for s in states)
+        norm = 0
+        if normalise is not None:
+            if normalise not in state_syms:
+                raise InputError(f"normalise: {normalise!r} is not a state (states: {', '.join(states)})")
+            norm = states.index(normalise)
+        if all(e == 0 for e in E):
+            raise InputError("mass: every row is algebraic; at least one state needs a non-zero mass")
+        return cls(name=name, states=tuple(state_syms.values()), rhs=f, mass=E, parameter=p_sym, equilibrium=eq,
+                   defaults=values, normalise=norm, description=description)
+
     def __repr__(self) -> str:
         return (f"DynamicalSystem({self.name!r}, states={[s.name for s in self.states]}, "
                 f"parameter={self.parameter.name}, parameters={[s.name for s in self.parameters]})")
+
+
+#: names of the expression language (functions and constants), never a state or a parameter
+def _language() -> set[str]:
+    from landau.laws.parse import CONSTANTS, FUNCTIONS
+
+    return set(FUNCTIONS) | set(CONSTANTS)
+
+
+_LANGUAGE = _language()
+
+
+def _check_system_name(name, what: str) -> None:
+    """A state or parameter name of :meth:`DynamicalSystem.from_strings`: a plain identifier that
+    is not a Python keyword, a function or constant of the expression language, or an engine name
+    (``__`` is reserved for the engine's equilibrium symbols)."""
+    import keyword
+    import re
+
+    if not isinstance(name, str) or not re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", name) or keyword.iskeyword(name):
+        raise InputError(f"{what} name {name!r} must be a plain identifier (a letter, then letters, digits, _)")
+    if name in _LANGUAGE:
+        raise InputError(f"{what} name {name!r} is reserved: it is a function or constant of the expression language")
+    if "__" in name or re.fullmatch(r"d\d+_\w*|dp_\w*", name):
+        raise InputError(f"{what} name {name!r} is reserved for the engine's symbols; choose another name")
+
+
+def _finite(val, what: str) -> float:
+    if isinstance(val, bool):
+        raise InputError(f"{what} must be a number, got {val!r}")
+    try:
+        x = float(val)
+    except (TypeError, ValueError):
+        raise InputError(f"{what} must be a number, got {val!r}") from None
+    if not np.isfinite(x):
+        raise InputError(f"{what} must be finite, got {val!r}")
+    return x
 
 
 @dataclass(frozen=True, eq=False)

@@ -51,9 +51,13 @@ class SharedDerivation(Derivation):
 
     def evaluate(self, Vs, params: Mapping[str, float] | None = None,
                  names: Sequence[str] = ("kc", "omega_c", "Gamma_bar", "Lambda"),
-                 method: str = "auto", sign_only: bool = False) -> CoefficientTable:
+                 method: str = "auto", sign_only: bool = False, **overrides) -> CoefficientTable:
         if isinstance(names, str):
             names = [names]
+        if overrides:   # parameters as keywords, as Derivation.evaluate takes them
+            from landau.derivation.multiscale import _merged
+
+            params = _merged(params, overrides)
         V = np.asarray(Vs, dtype=float)
         if sign_only or method != "auto" or any(np.ndim(v) for v in (params or {}).values()) or V.size < 2:
             return super().evaluate(Vs, params, names, method, sign_only)

@@ -8,7 +8,8 @@
   Comments on the statement's own line are explanations and are not checked.
 * ```` ```bash ```` and ```` ```console ```` blocks: every line that starts with ``landau ``
   (``$ `` prompts dropped, ``\\`` continuations joined, comments dropped) runs through the
-  command line's entry point and must exit 0.
+  command line's entry point and must exit 0 — or the status a trailing ``# exits N`` comment
+  names (a run documented to stop at its limit exits 1).
 * ``<!-- test: slow -->`` on the line before a block puts it (a Python block, or every command
   of a shell block) in the opt-in slow suite (``pytest -m slow``): the default suite skips it.
 """
@@ -67,6 +68,10 @@ class Command:
     text: str
     where: str
     slow: bool
+    exit: int = 0
+
+
+_EXITS = re.compile(r"#\s*exits\s+(\d+)\b")
 
 
 def commands(page: Path) -> list[Command]:
@@ -80,7 +85,9 @@ def commands(page: Path) -> list[Command]:
                 line = line[2:].strip()
             if line.startswith("landau ") or line == "landau":
                 argv = shlex.split(line, comments=True)[1:]
-                out.append(Command(argv, line, f"{b.where}+{i + 1}", b.slow))
+                status = _EXITS.search(line)
+                out.append(Command(argv, line, f"{b.where}+{i + 1}", b.slow,
+                                   int(status[1]) if status else 0))
     return out
 
 

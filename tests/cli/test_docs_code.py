@@ -83,7 +83,7 @@ def test_python_blocks_run_and_show_what_the_page_says(page, with_slow, session)
 def test_shell_command_runs(cmd, session, capsys):
     code = main(cmd.argv)
     out, err = capsys.readouterr()
-    assert code == 0, f"{cmd.where}: {cmd.text!r} exited {code}: {err.strip()[:400]}"
+    assert code == cmd.exit, f"{cmd.where}: {cmd.text!r} exited {code}: {err.strip()[:400]}"
 
 
 def test_the_pages_show_code():

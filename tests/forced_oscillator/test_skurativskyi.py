@@ -171,7 +171,10 @@ def test_sweep_dask_matches_local_and_streams(tmp_path):
     om = [21.7, 21.75, 21.8]
     spec = SweepSpec(n_first=30, n_step=10, n_keep=6, rtol=1e-7, overlap=1)
     local = run_sweep(om, "down", out=tmp_path / "local", spec=spec, workers=1, chunk_size=2, progress=False)
-    assert len((tmp_path / "local" / "chunk_0000.jsonl").read_text().splitlines()) == 2
+    import xarray as xr
+
+    with xr.open_dataset(tmp_path / "local" / "sweep.nc") as stored:  # written to netCDF, every point ok
+        assert list(stored.omega.values) == sorted(om) and (stored.status == "ok").all()
     with LocalCluster(n_workers=1, processes=False, dashboard_address=None) as cluster, Client(cluster) as client:
         remote = run_sweep(om, "down", out=tmp_path / "dask", spec=spec, scheduler=client, chunk_size=2,
                            progress=False)

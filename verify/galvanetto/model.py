@@ -30,6 +30,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from landau.errors import InputError
 from landau.laws.kinetic import KineticFriction, resolve_kinetic_law
 from landau.verify.hybrid import Guard, HybridModel, Jump, Mode
 
@@ -54,9 +55,22 @@ class StickSlipParams:
     def __init__(self, V: float = 0.25, gamma: float | None = None, delta: float | None = None, c: float = 0.0,
                  alpha: float = 1.2, beta: float = 1.3, n: int = 1, law: KineticFriction | None = None):
         law = resolve_kinetic_law(law, gamma, delta)
-        for k, v in (("V", float(V)), ("c", float(c)), ("alpha", float(alpha)), ("beta", float(beta)),
-                     ("n", int(n)), ("law", law)):
+        values = {k: _number(k, x) for k, x in (("V", V), ("c", c), ("alpha", alpha), ("beta", beta))}
+        if n not in (1, 2):
+            raise InputError(f"the Galvanetto models have one or two blocks, got n = {n!r}")
+        for k, v in (*values.items(), ("n", int(n)), ("law", law)):
             object.__setattr__(self, k, v)
+        self._check()
+
+    def _check(self) -> None:
+        """Domain of the paper's parameters: V > 0 (the belt moves), c >= 0 (damping dissipates),
+        alpha >= 0 (a spring between the blocks) and beta > 0 (block 2's static level)."""
+        for k, ok, what in (("V", self.V > 0, "> 0 (the belt velocity)"),
+                            ("c", self.c >= 0, ">= 0 (viscous damping)"),
+                            ("alpha", self.alpha >= 0, ">= 0 (the stiffness between the blocks)"),
+                            ("beta", self.beta > 0, "> 0 (block 2's static friction level)")):
+            if not ok:
+                raise InputError(f"Galvanetto model: {k} must be {what}, got {getattr(self, k)!r}")
 
     @property
     def gamma(self) -> float:
@@ -74,9 +88,23 @@ class StickSlipParams:
 
     def with_(self, **kw) -> "StickSlipParams":
         """A copy with some parameters changed; ``gamma``/``delta`` change the kinetic law's values."""
-        lawkw = {k: float(kw.pop(k)) for k in ("gamma", "delta") if k in kw}
+        own = {prm.name for prm in self.law.parameters}
+        lawkw = {k: float(kw.pop(k)) for k in list(kw) if k in own}
         p = replace(self, **kw)
-        return replace(p, law=replace(p.law, **lawkw)) if lawkw else p
+        return replace(p, law=p.law.with_defaults(**lawkw)) if lawkw else p
+
+
+def _number(name: str, x) -> float:
+    """``x`` as a finite float, else an InputError naming the parameter."""
+    import math
+
+    try:
+        v = float(x)
+    except (TypeError, ValueError):
+        raise InputError(f"Galvanetto model: {name} must be a number, got {x!r}") from None
+    if not math.isfinite(v):
+        raise InputError(f"Galvanetto model: {name} must be finite, got {x!r}")
+    return v
 
 
 def one_block(V: float, gamma: float | None = None, delta: float | None = None, c: float = 0.0, *,

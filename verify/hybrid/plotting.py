@@ -66,14 +66,10 @@ def display_indices(y: np.ndarray, bins: int = DRAWN_BINS) -> np.ndarray:
 
 
 def _new_figure(**kw):
-    """A figure by the toolkit's convention (``landau.support.figures.new_figure``), or a pyplot
-    figure where that helper is not available."""
-    try:
-        from landau.support.figures import new_figure
-    except ImportError:   # an installation without the figures helper: a plain pyplot figure
-        import matplotlib.pyplot as plt
+    """A figure by the toolkit's convention: ``landau.support.figures.new_figure`` (a notebook shows
+    it exactly once)."""
+    from landau.support.figures import new_figure
 
-        return plt.figure(**kw)
     return new_figure(**kw)
 
 
@@ -243,7 +239,7 @@ def plot_simulation(sim, kind: str = "overview", *, phase: tuple[int, int] = (0,
     regimes = [r for r in getattr(sim, "regimes", ()) if r[1] > (sim.t[0] if len(sim.t) else -np.inf)]
     span = (sim.t[-1] - sim.t[0]) if len(sim.t) > 1 else 1.0
     shaded = merged_intervals(regimes, gap=span / 4000)
-    axes = []
+    axes: list = []
     for i in range(n):
         ax = fig.add_subplot(gs[i, 0], sharex=axes[0] if axes else None)
         axes.append(ax)

@@ -175,11 +175,11 @@ def _lam_n_array(s: int, friction):
 
 @lru_cache(maxsize=16)
 def _lam_n_numpy(s: int, Fs, law_names: tuple):
-    import sympy as sp
+    from landau.support.lambdify import lambdify_positional
 
     _, L = S._accelerations(s, Fs)
     args = [S.phi, S.omega, *S.MECHANICAL.values(), S.v_belt, *map(S._law_symbol, law_names)]
-    return sp.lambdify(args, L, "numpy")
+    return lambdify_positional(args, L, "numpy")
 
 
 def _parabola_min(f, tt, i):

@@ -42,6 +42,7 @@ g = 10 m/s²; g = 9.81 moves them to ≈ 0.40986 and ≈ 0.3541.  g stays a para
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any, Callable, Mapping
@@ -53,6 +54,7 @@ from landau.derivation.general import hopf_normal_form
 from landau.derivation.hopf import HopfResult
 from landau.errors import InputError, NoHopfError
 from landau.laws.velocity import V_SLIP, VelocityFriction
+from landau.support.lambdify import lambdify_positional
 from landau.systems.system import DynamicalSystem
 
 phi, omega = sp.symbols("phi omega", real=True)
@@ -245,8 +247,9 @@ def _numeric(s: int, Fs: sp.Expr, law_names: tuple[str, ...]) -> SlipFunctions:
     names = (*PARAM_NAMES, "v_belt", *law_names)
     args = [phi, omega, *MECHANICAL.values(), v_belt, *map(_law_symbol, law_names)]
     J = sp.Matrix([omega, F]).jacobian([phi, omega])
-    return SlipFunctions(names, sp.lambdify(args, F, "math"), sp.lambdify(args, L, "math"),
-                         sp.lambdify(args, F.subs(omega, 0)), sp.lambdify(args, J))
+    # positional names: a law parameter named like a printed function (cos, array) cannot shadow it
+    return SlipFunctions(names, lambdify_positional(args, F, "math"), lambdify_positional(args, L, "math"),
+                         lambdify_positional(args, F.subs(omega, 0)), lambdify_positional(args, J))
 
 
 def belt_velocity(s: int = 1, v: float | None = None) -> float:
@@ -363,6 +366,13 @@ def resolve(params: Mapping[str, float] | None = None) -> dict[str, float]:
     for k_ in ("m1", "m2", "l"):
         if p[k_] <= 0:
             raise InputError(f"parameter {k_!r} must be > 0, got {p[k_]!r}")
+    for k_, what in (("k_y", "a spring stiffness"), ("k_phi", "a spring stiffness"), ("c_y", "a damping"),
+                     ("c_phi", "a damping"), ("g", "the gravitational acceleration")):
+        if p[k_] < 0:
+            raise InputError(f"parameter {k_!r} is {what} and must be >= 0, got {p[k_]!r}")
+    if abs(p["phi0"]) > 2 * np.pi:
+        raise InputError(f"parameter 'phi0' is the rest angle of the rotational spring (rad) and must lie in "
+                         f"[-2 pi, 2 pi], got {p['phi0']!r}")
     return p
 
 
@@ -447,19 +457,30 @@ def hopf_bracket(params: Mapping[str, float] | None = None, s: int = 1, n: int =
     fns = slip_functions(s, friction)
     base = slip_values(params, s, friction, v)
     prev = None
+    failed = 0
     for m_ in grid:
         try:
             vals = {**base, par: m_}
-            pe = _equilibrium(fns, vals)
-            lam = np.linalg.eigvals(np.array(fns.J(pe, 0.0, *_args(fns, vals)), float))
+            with np.errstate(all="ignore"), warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)   # overflow is counted below, not printed
+                pe = _equilibrium(fns, vals)
+                J = np.array(fns.J(pe, 0.0, *_args(fns, vals)), float)
+            if not np.all(np.isfinite(J)):
+                raise OverflowError
+            lam = np.linalg.eigvals(J)
         except (ValueError, RuntimeError, ZeroDivisionError, OverflowError, np.linalg.LinAlgError):
             prev = None
+            failed += 1
             continue
         cplx = lam[np.abs(lam.imag) > 1e-12 * (1 + np.abs(lam.real))]
         r = float(np.max(cplx.real)) if cplx.size else None
         if r is not None and np.isfinite(r) and prev is not None and prev[1] * r < 0:
             return float(prev[0]), float(m_)
         prev = (m_, r) if r is not None and np.isfinite(r) else None
+    if failed * 2 >= len(grid):
+        raise InputError(f"the slip equilibrium or its Jacobian cannot be evaluated in float64 at {failed} of the "
+                         f"{len(grid)} values of {par} between 0 and {far:g} scanned for a Hopf point (overflow or "
+                         "no equilibrium): bring the parameters nearer their physical scale")
     raise NoHopfError(f"no Hopf point of the slip equilibrium (slip sign {s:+d}) for {par} between 0 and {far:g}")
 
 

@@ -219,6 +219,11 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
         raise InputError(f"n_periods must be positive (got {n_periods!r})")
     if not (0 < rtol < 1):
         raise InputError(f"rtol must be in (0, 1) (got {rtol!r})")
+    if n_periods * 20 > max_steps:
+        # the largest step is a twentieth of the period: such a run cannot end within its step budget
+        raise InputError(f"the run spans {n_periods:.3g} forcing periods (omega = {params.omega:g} rad/s), and "
+                         f"takes at least 20 steps a period: more than its step budget of {max_steps} steps; lower "
+                         "omega or shorten the time span")
     y0 = rest_state(params) if y0 is None else np.asarray(y0, float)[:2]
     P = params.period
     p = params.packed()
@@ -318,13 +323,23 @@ def record_run(params: Params, t_end: float, y0=None, *, rtol: float = RTOL, max
         raise InputError("max_steps, max_events and chunk_steps must be >= 1 and max_points >= 16")
     y = rest_state(params) if y0 is None else np.asarray(y0, float)[:2].copy()
     P = params.period
+    if not P > 2e-13 * max(1.0, t_end):
+        # the loop takes at least 20 steps a period and stops below a step of 1e-15·max(1, t)
+        raise InputError(f"the forcing period {P:.3g} s (omega = {params.omega:g} rad/s) is shorter than the "
+                         f"integrator resolves up to t = {t_end:g} s (its steps would fall below "
+                         "1e-15·max(1, t)): lower omega or shorten the time span")
     p = params.packed()
     at = np.ascontiguousarray((rtol * 1e-4, rtol * 1e-2), float)
     fr = compiled_field(params).pointers
     loop = R.mixed_loop()
     t = 0.0
-    rec_t, rec_y, rec_f, kept, stride = [], [], [], 0, 1
-    ev_t, ev_k, ev_v = [], [], []
+    rec_t: list = []
+    rec_y: list = []
+    rec_f: list = []
+    kept, stride = 0, 1
+    ev_t: list = []
+    ev_k: list = []
+    ev_v: list = []
     steps = nfev = 0
     status = Status.FINISHED
     while True:

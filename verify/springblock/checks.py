@@ -68,6 +68,9 @@ def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = Non
     NoHopfError
         If steady sliding at V has no Hopf point (e.g. velocity strengthening).
     """
+    from landau.derivation.linear import one_velocity
+
+    V = one_velocity(V, "V", "a loop over velocities")
     block = SpringBlock.for_params(law, params)   # with the optional terms given (eta, gamma_ld, alpha_ld)
     if "alpha_ld" in block.terms:
         from landau.systems.springblock_routes import hopf_point
@@ -82,6 +85,7 @@ def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = Non
     r = d.evaluate(np.array([float(V)]), resolved, names)
     vals = {n: float(np.ravel(r[n])[0]) for n in names}
     if not np.isfinite(vals["kc"]) or vals["kc"] <= 0:
+        d.hopf.require(V, resolved)   # raises with the velocity-weakening range, as `landau derive` prints it
         raise NoHopfError(f"law {law.name!r} has no Hopf point at V = {V!r} m/s")
     terms = {t: float(resolved[t]) for t in block.terms}   # the optional terms named in the result
     return spring_block_result(law.name, float(V), params={k: float(v) for k, v in resolved.items()},

@@ -39,6 +39,7 @@ from landau.codegen.kernels import DerivedParameters, compile_source, hoist_para
 from landau.errors import InputError
 from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
+from landau.support.lambdify import lambdify_positional
 from landau.systems.system import SpringBlock
 
 
@@ -93,19 +94,27 @@ def compile_law(law: FrictionLaw, terms: tuple[str, ...] = ()) -> CompiledLaw:
         return _CACHE[key]
     ns = len(law.states)
     n = 2 + ns
-    ys = sp.symbols(f"y0:{n}", real=True)
+    # the model's own symbols carry names no law symbol can take (a law's names are plain
+    # identifiers starting with a letter), and the law's symbols are replaced all at once
+    # (xreplace): a law parameter named like an internal symbol is renamed once, never twice
+    ys = sp.symbols(f"_y0:{n}", real=True)
     xi, w, psis = ys[0], ys[1], ys[2:]
-    lp = [sp.Symbol(f"q{i}", positive=True) for i in range(len(law.parameters))]
-    Msym, sig, ksym, Vsym, ell, mu0 = sp.symbols("M_ sigma_ k_ V_ ell_ mu0_", positive=True)
-    phi0 = [sp.Symbol(f"phi0_{i}", positive=True) for i in range(ns)]
-    tsyms = [sp.Symbol(f"{t}_", real=True) for t in terms]
+    lp = [sp.Symbol(f"_q{i}", positive=True) for i in range(len(law.parameters))]
+    Msym, sig, ksym, Vsym, ell, mu0 = sp.symbols("_M _sigma _k _V _ell _mu0", positive=True)
+    phi0 = [sp.Symbol(f"_phi0_{i}", positive=True) for i in range(ns)]
+    tsyms = [sp.Symbol(f"_{t}", real=True) for t in terms]
     sub = {p.symbol: s for p, s in zip(law.parameters, lp, strict=True)}
     vv = Vsym * sp.exp(w)
     phis = [p0 * sp.exp(ps) for p0, ps in zip(phi0, psis, strict=True)]
     sub.update({v_slip: vv, **dict(zip(law.states, phis, strict=True))})
+    internal = {*ys, *lp, Msym, sig, ksym, Vsym, ell, mu0, *phi0, *tsyms}
 
     def tidy(e):
-        return sp.expand_log(e.subs(sub), force=True)
+        out = sp.expand_log(e.xreplace(sub), force=True)
+        stray = out.free_symbols - internal
+        if stray:   # FrictionLaw declares every symbol; a stray one would be a wrong field
+            raise InputError(f"law {law.name!r}: undeclared symbol(s) {sorted(map(str, stray))} in the field")
+        return out
 
     mu = tidy(law.mu)
     tv = dict(zip(terms, tsyms, strict=True))
@@ -161,7 +170,7 @@ def compile_variational(law: FrictionLaw, terms: tuple[str, ...] = ()) -> Compil
     ys, f, psyms = _SYMBOLIC[key]
     n = len(ys)
     Jm = sp.Matrix(f).jacobian(sp.Matrix(ys))
-    Phi = sp.Matrix(n, n, sp.symbols(f"y{n}:{n + n * n}", real=True))
+    Phi = sp.Matrix(n, n, sp.symbols(f"_y{n}:{n + n * n}", real=True))
     JP = Jm * Phi
     faug = list(f) + [JP[i, j] for i in range(n) for j in range(n)]
     yaug = list(ys) + [Phi[i, j] for i in range(n) for j in range(n)]
@@ -331,7 +340,7 @@ def _steady_state(law: FrictionLaw, V: float, p: Mapping[str, float]) -> list[fl
     else:
         from scipy.optimize import root
 
-        fn = sp.lambdify([law.states], [r.subs({v_slip: V, **vals}) for r in law.rates], "math")
+        fn = lambdify_positional([law.states], [r.subs({v_slip: V, **vals}) for r in law.rates], "math")
         guess = [p.get("L", 1.0) / V] * len(law.states)
         sol = root(lambda z: fn(list(z)), guess, tol=1e-14)
         if not sol.success:

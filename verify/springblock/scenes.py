@@ -26,7 +26,29 @@ def _v_hat(p: dict) -> float:
 
 def _v_m_eq41(p: dict) -> float:
     """The minimum of μ_ss of law (39) in closed form, V_m = (b/a − 1) V_*/c (eq. 41)."""
+    if p["c"] == 0:
+        return math.inf
     return (p["b"] / p["a"] - 1) * p["V_s"] / p["c"]
+
+
+#: the velocity window (m/s) where the extrema of μ_ss are searched: beyond it powers of V leave float64
+V_WINDOW = (1e-20, 1e20)
+
+
+def _window(law: str, kind: str, p: dict, scales: dict[str, float]) -> tuple[float, float]:
+    """Three decades beyond the law's velocity scales (name -> value), refused by name where a
+    scale is not a positive finite velocity or the window leaves :data:`V_WINDOW`."""
+    for what, v in scales.items():
+        if not (math.isfinite(v) and v > 0):
+            raise InputError(f"the {law} law's velocity scale {what} = {v:g} m/s is not positive and finite for "
+                             f"these parameters, so mu_ss has no {kind} to find (c, L, t_ss, V_s > 0 and b > a)")
+    lo, hi = 1e-3 * min(scales.values()), 1e3 * max(scales.values())
+    if lo < V_WINDOW[0] or hi > V_WINDOW[1]:
+        scale = ", ".join(f"{k} = {v:.3g} m/s" for k, v in scales.items())
+        raise InputError(f"the {law} law's velocity scales ({scale}) put the search for the {kind} of mu_ss "
+                         f"outside {V_WINDOW[0]:g} to {V_WINDOW[1]:g} m/s: bring the parameters nearer their "
+                         "physical scale")
+    return lo, hi
 
 
 def _first_extremum(law: str, kind: str, p: dict, lo: float, hi: float):
@@ -41,16 +63,17 @@ def _spinodal_extremum(kind: str):
     def compute(p: dict) -> dict:
         # V window from the law's velocity scales: L/t_ss (healing; V_M ≈ 2.5 L/t_ss for Table 1)
         # and V_m of eq. (41) (V_m ≈ 1.01 × eq. 41), three decades beyond each
-        scales = (p["L"] / p["t_ss"], _v_m_eq41(p))
-        e = _first_extremum("spinodal", kind, p, 1e-3 * min(scales), 1e3 * max(scales))
+        scales = {"L/t_ss": p["L"] / p["t_ss"] if p["t_ss"] != 0 else math.inf, "V_m (eq. 41)": _v_m_eq41(p)}
+        e = _first_extremum("spinodal", kind, p, *_window("spinodal", kind, p, scales))
         return {"value": e.V, "mu_ss": e.mu}
     return compute
 
 
 def _modified_dieterich_vm(p: dict) -> dict:
     closed = _v_m_eq41(p)
-    e = _first_extremum("modified-dieterich", "minimum", p, 1e-3 * closed,
-                        1e3 * closed)  # three decades around eq. (41)
+    # three decades around eq. (41)
+    e = _first_extremum("modified-dieterich", "minimum", p, *_window("modified-dieterich", "minimum", p,
+                                                                    {"V_m (eq. 41)": closed}))
     return {"value": e.V, "closed_form_eq41": closed}
 
 

@@ -231,7 +231,9 @@ def record_run(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol
     t, h = t0 / tu, min(1e-3 * (t1 - t0) / tu, 1e-4)
     rec_t, rec_y = [np.array([t0])], [y[None, :].copy()]
     kept, stride = 1, 1
-    ev_t, ev_y, ev_d = [], [], []
+    ev_t: list = []
+    ev_y: list = []
+    ev_d: list = []
     steps = nfev = 0
     status = "finished"
     while True:

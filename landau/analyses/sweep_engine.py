@@ -1,0 +1,516 @@
+"""The sweep mechanism: a parameter grid cut into fixed chunks, run on any executor, stored as it goes.
+
+A sweep evaluates one *task* (:mod:`landau.analyses.sweep_tasks`) at every point of a grid, the
+Cartesian product of named 1-D axes.  The grid is cut into chunks whose composition depends only
+on the grid and the task (never on the executor or the number of workers), and every point is
+computed by deterministic code from its own parameters (and, for a continuation, from the chunk's
+own warm-up points), so the numbers are the same, bit for bit, whichever executor runs them.
+
+* Executors: any :class:`concurrent.futures.Executor` (``submit`` returning a future); local
+  processes by default, the calling process for one worker, ``distributed.Client(...)
+  .get_executor()`` for a dask cluster.  At most ``2 × workers`` chunks (:data:`IN_FLIGHT` on an
+  executor of unknown size) are in flight, so a grid of a million points does not queue a
+  million tasks.
+* Status per point: a task returns ``ok`` or the reason a point has no result (``no-hopf``,
+  ``degenerate``, ``outside-validity``, ``failed``) with a one-line message; an exception inside
+  a chunk marks its points ``failed`` with the exception's first line instead of ending the run.
+* Storage: the results are written to netCDF (``ds.to_netcdf`` to a temporary file next to the
+  target, then :func:`os.replace`) every few seconds and at the end, also when the run is
+  interrupted (Ctrl-C); a re-run with the same file reuses every finished point and computes the
+  rest: the ``pending`` ones (not computed yet) and the ``failed`` ones (a worker lost, a run that
+  failed), tried again.
+
+xarray and a netCDF backend (h5netcdf, netCDF4 or scipy) are needed only here, imported on first
+use (``pip install landau-friction[sweep]``).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from concurrent.futures import FIRST_COMPLETED, Executor, ProcessPoolExecutor, wait
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from landau.errors import InputError
+
+#: chunks kept in flight on an executor of unknown size (a dask cluster): twice its workers otherwise
+IN_FLIGHT = 1024
+#: the status of a point not computed yet
+PENDING = "pending"
+#: the statuses a task may give a point
+STATUSES = ("ok", "no-hopf", "degenerate", "outside-validity", "failed")
+
+
+# ---------------------------------------------------------------------------------------------
+# grid
+# ---------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Axis:
+    """One swept parameter: its name, values (in sweep order) and SI unit."""
+
+    name: str
+    values: tuple[float, ...]
+    units: str = ""
+
+    def __post_init__(self):
+        if not self.name.isidentifier():
+            raise InputError(f"--grid: {self.name!r} is not a parameter name")
+        if not self.values:
+            raise InputError(f"--grid {self.name}: no values")
+        if not all(math.isfinite(v) for v in self.values):
+            raise InputError(f"--grid {self.name}: every value must be finite")
+        if len(set(self.values)) != len(self.values):
+            raise InputError(f"--grid {self.name}: a value is given twice")
+
+
+#: the largest number of values of one axis and of the whole grid
+MAX_AXIS, MAX_POINTS = 10_000_000, 100_000_000
+
+
+def parse_axis(text: str) -> Axis:
+    """An axis from ``NAME=LO:HI:N[:log]`` (N values from LO to HI, evenly or log-spaced) or
+    ``NAME=v1,v2,...``.
+
+    Parameters
+    ----------
+    text : str
+        The ``--grid`` argument.
+
+    Returns
+    -------
+    Axis
+
+    Raises
+    ------
+    InputError
+        Not of either form, N < 1, a value that is not a finite number, log-spacing of a range
+        that is not positive.
+    """
+    if "=" not in text:
+        raise InputError(f"--grid {text!r}: expected NAME=LO:HI:N[:log] or NAME=v1,v2,...")
+    name, spec = (s.strip() for s in text.split("=", 1))
+
+    def num(tok: str) -> float:
+        try:
+            x = float(tok)
+        except ValueError:
+            raise InputError(f"--grid {name}: {tok!r} is not a number") from None
+        if not math.isfinite(x):
+            raise InputError(f"--grid {name}: {tok!r} is not finite")
+        return x
+
+    if ":" in spec:
+        parts = spec.split(":")
+        if len(parts) not in (3, 4) or (len(parts) == 4 and parts[3].strip() not in ("log", "lin")):
+            raise InputError(f"--grid {name}={spec}: expected LO:HI:N or LO:HI:N:log")
+        lo, hi = num(parts[0]), num(parts[1])
+        try:
+            n = int(parts[2])
+        except ValueError:
+            raise InputError(f"--grid {name}: the number of values {parts[2]!r} is not an integer") from None
+        if not 1 <= n <= MAX_AXIS:
+            raise InputError(f"--grid {name}: the number of values must be between 1 and {MAX_AXIS}, got {n}")
+        if n > 1 and lo == hi:
+            raise InputError(f"--grid {name}: LO = HI with {n} values")
+        if len(parts) == 4 and parts[3].strip() == "log":
+            if not (lo > 0 and hi > 0):
+                raise InputError(f"--grid {name}: a log-spaced range needs LO > 0 and HI > 0")
+            vals = np.logspace(math.log10(lo), math.log10(hi), n)
+        else:
+            vals = np.linspace(lo, hi, n)
+        return Axis(name, tuple(float(v) for v in vals))
+    toks = [t for t in (t.strip() for t in spec.split(",")) if t]
+    if not toks:
+        raise InputError(f"--grid {name}: no values")
+    return Axis(name, tuple(num(t) for t in toks))
+
+
+@dataclass(frozen=True)
+class Grid:
+    """The Cartesian product of axes; points are numbered in C order (the last axis fastest)."""
+
+    axes: tuple[Axis, ...]
+
+    def __post_init__(self):
+        if not self.axes:
+            raise InputError("a sweep needs at least one --grid axis")
+        names = [a.name for a in self.axes]
+        dup = sorted({n for n in names if names.count(n) > 1})
+        if dup:
+            raise InputError(f"--grid {dup[0]} is given twice")
+        if self.size > MAX_POINTS:
+            raise InputError(f"the grid has {self.size} points; at most {MAX_POINTS} are accepted")
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        return tuple(a.name for a in self.axes)
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return tuple(len(a.values) for a in self.axes)
+
+    @property
+    def size(self) -> int:
+        return int(np.prod(self.shape, dtype=np.int64))
+
+    def columns(self, flat: np.ndarray) -> dict[str, np.ndarray]:
+        """The parameter values at flat indices ``flat``, one array per axis."""
+        idx = np.unravel_index(np.asarray(flat, dtype=np.int64), self.shape)
+        return {a.name: np.asarray(a.values, dtype=float)[i] for a, i in zip(self.axes, idx, strict=True)}
+
+
+def make_grid(grid: Any, units: dict[str, str] | None = None) -> Grid:
+    """A :class:`Grid` from a Grid, a mapping ``name -> values`` (or ``name -> "LO:HI:N[:log]"``) or a
+    sequence of ``"NAME=..."`` strings; ``units`` names each parameter's unit."""
+    units = units or {}
+    if isinstance(grid, Grid):
+        axes = list(grid.axes)
+    elif isinstance(grid, dict):
+        axes = []
+        for name, vals in grid.items():
+            if isinstance(vals, str):
+                axes.append(parse_axis(f"{name}={vals}"))
+            else:
+                arr = np.atleast_1d(np.asarray(vals, dtype=float))
+                if arr.ndim != 1:
+                    raise InputError(f"grid {name}: values must be a 1-D list")
+                axes.append(Axis(str(name), tuple(float(v) for v in arr)))
+    elif isinstance(grid, (list, tuple)) and all(isinstance(g, str) for g in grid):
+        axes = [parse_axis(g) for g in grid]
+    else:
+        raise InputError("grid: expected a mapping NAME -> values or a list of 'NAME=LO:HI:N[:log]' strings")
+    return Grid(tuple(Axis(a.name, a.values, units.get(a.name, a.units)) for a in axes))
+
+
+# ---------------------------------------------------------------------------------------------
+# chunks
+# ---------------------------------------------------------------------------------------------
+@dataclass
+class Chunk:
+    """Points computed together: their flat indices and parameters, and for a continuation the
+    warm-up parameter values run (not recorded) before the first point."""
+
+    number: int
+    index: np.ndarray
+    points: dict[str, np.ndarray]
+    warm: list[dict[str, float]] = field(default_factory=list)
+    done: dict[int, dict[str, Any]] = field(default_factory=dict)  # position -> stored record (resume)
+
+
+def chunks(grid: Grid, size: int, along: str | None = None, overlap: int = 0,
+           descending: bool = False) -> list[Chunk]:
+    """The grid cut into chunks of at most ``size`` points.
+
+    Without ``along`` the chunks are runs of consecutive flat indices.  With ``along`` (a
+    continuation, e.g. in the forcing frequency) each line of the grid along that axis is run in
+    increasing (or, ``descending``, decreasing) order and cut into pieces of ``size`` points, each
+    preceded by the ``overlap`` points before it as warm-up.  The cut depends only on the grid.
+    """
+    if size < 1:
+        raise InputError(f"chunk size must be >= 1, got {size}")
+    out: list[Chunk] = []
+    if along is None:
+        for s in range(0, grid.size, size):
+            idx = np.arange(s, min(grid.size, s + size), dtype=np.int64)
+            out.append(Chunk(len(out), idx, grid.columns(idx)))
+        return out
+    if along not in grid.names:
+        raise InputError(f"the continuation parameter {along} is not swept (give --grid {along}=...)")
+    ax = grid.names.index(along)
+    flat = np.arange(grid.size, dtype=np.int64).reshape(grid.shape)
+    lines = np.moveaxis(flat, ax, -1).reshape(-1, grid.shape[ax])
+    order = np.argsort(np.asarray(grid.axes[ax].values))
+    if descending:
+        order = order[::-1]
+    for line in lines:
+        seq = line[order]
+        for s in range(0, len(seq), size):
+            idx = seq[s:s + size]
+            warm_idx = seq[max(0, s - overlap):s]
+            cols = grid.columns(warm_idx)
+            warm = [{k: float(v[j]) for k, v in cols.items()} for j in range(len(warm_idx))]
+            out.append(Chunk(len(out), idx, grid.columns(idx), warm))
+    return out
+
+
+@dataclass
+class ChunkResult:
+    """What a chunk returns: per point its status, message and the task's variables (columns)."""
+
+    index: np.ndarray
+    status: list[str]
+    message: list[str]
+    values: dict[str, np.ndarray]            # name -> array (n,) or (n, m) for a per-point list
+    strings: dict[str, list[str]] = field(default_factory=dict)
+
+
+def _only(res: ChunkResult, mask: np.ndarray) -> ChunkResult:
+    """The points of ``res`` whose flat index is set in ``mask``."""
+    keep = np.flatnonzero(mask[np.asarray(res.index, dtype=np.int64)])
+    if len(keep) == len(res.index):
+        return res
+    return ChunkResult(np.asarray(res.index)[keep], [res.status[j] for j in keep], [res.message[j] for j in keep],
+                       {k: np.asarray(v)[keep] for k, v in res.values.items()},
+                       {k: [v[j] for j in keep] for k, v in res.strings.items()})
+
+
+def _first_line(exc: BaseException) -> str:
+    text = str(exc).strip()
+    return f"{type(exc).__name__}: {(text.splitlines()[0] if text else '')[:300]}"
+
+
+def run_chunk(task, chunk: Chunk) -> ChunkResult:
+    """Run ``task`` on one chunk (in a worker); an exception marks the chunk's points ``failed``."""
+    try:
+        res = task.run(chunk)
+    except (KeyboardInterrupt, SystemExit):
+        raise
+    except Exception as exc:  # noqa: BLE001 - one failing chunk must not end the sweep
+        n = len(chunk.index)
+        return ChunkResult(chunk.index, ["failed"] * n, [_first_line(exc)] * n, {})
+    return res
+
+
+# ---------------------------------------------------------------------------------------------
+# the in-memory table and its netCDF file
+# ---------------------------------------------------------------------------------------------
+def _engine() -> str:
+    import importlib.util
+
+    for needs, engine in ((("netCDF4",), "netcdf4"), (("h5netcdf", "h5py"), "h5netcdf"), (("scipy",), "scipy")):
+        if all(importlib.util.find_spec(name) is not None for name in needs):
+            return engine
+    raise InputError("writing a sweep needs a netCDF backend: pip install 'landau-friction[sweep]'")
+
+
+def xarray():
+    """The xarray module, or an InputError saying how to install it."""
+    try:
+        import xarray as xr
+    except ImportError:
+        raise InputError("sweeps return an xarray Dataset: pip install 'landau-friction[sweep]'") from None
+    return xr
+
+
+class Table:
+    """Every point's status, message and variables, stored flat (grid.size rows)."""
+
+    def __init__(self, grid: Grid, units: dict[str, str]):
+        self.grid = grid
+        self.units = dict(units)
+        self.status = np.full(grid.size, PENDING, dtype=object)
+        self.message = np.full(grid.size, "", dtype=object)
+        self.values: dict[str, np.ndarray] = {}
+        self.strings: dict[str, np.ndarray] = {}
+
+    def _column(self, name: str, width: int | None) -> np.ndarray:
+        col = self.values.get(name)
+        shape = (self.grid.size,) if width is None else (self.grid.size, width)
+        if col is None:
+            col = self.values[name] = np.full(shape, np.nan)
+        elif width is not None and col.shape[1] < width:  # a longer list: widen, padded with NaN
+            wide = np.full(shape, np.nan)
+            wide[:, :col.shape[1]] = col
+            col = self.values[name] = wide
+        return col
+
+    def put(self, res: ChunkResult) -> None:
+        idx = np.asarray(res.index, dtype=np.int64)
+        for name, arr in res.values.items():
+            arr = np.asarray(arr, dtype=float)
+            col = self._column(name, None if arr.ndim == 1 else arr.shape[1])
+            if arr.ndim == 1:
+                col[idx] = arr
+            else:
+                col[idx] = np.nan
+                col[idx, :arr.shape[1]] = arr
+        for name, vals in res.strings.items():
+            col = self.strings.setdefault(name, np.full(self.grid.size, "", dtype=object))
+            col[idx] = list(vals)
+        self.status[idx] = list(res.status)
+        self.message[idx] = list(res.message)
+
+    def record(self, i: int) -> dict[str, Any]:
+        """Point ``i`` as stored (used to resume a continuation)."""
+        out: dict[str, Any] = {"status": self.status[i]}
+        for name, col in self.values.items():
+            out[name] = col[i]
+        for name, col in self.strings.items():
+            out[name] = col[i]
+        return out
+
+    def dataset(self, attrs: dict[str, Any]):
+        xr = xarray()
+        g = self.grid
+        dims = list(g.names)
+        coords = {a.name: (a.name, np.asarray(a.values), {"units": a.units} if a.units else {}) for a in g.axes}
+        data: dict[str, Any] = {}
+        for name, col in self.values.items():
+            if col.ndim == 1:
+                data[name] = (dims, col.reshape(g.shape))
+            else:
+                data[name] = ([*dims, f"{name}_index"], col.reshape(*g.shape, col.shape[1]))
+        for name, col in self.strings.items():
+            data[name] = (dims, col.reshape(g.shape).astype(str))
+        data["status"] = (dims, self.status.reshape(g.shape).astype(str))
+        data["message"] = (dims, self.message.reshape(g.shape).astype(str))
+        ds = xr.Dataset(data, coords=coords, attrs=attrs)
+        for name in self.values:
+            if self.units.get(name):
+                ds[name].attrs["units"] = self.units[name]
+        ds["status"].attrs["meaning"] = ("ok, or why the point has no result: " + ", ".join(STATUSES[1:])
+                                         + f"; {PENDING}: not computed yet")
+        return ds
+
+    def load(self, ds) -> None:
+        """Take the finished points of a stored dataset (same grid)."""
+        self.status = np.asarray(ds["status"].values, dtype=object).reshape(-1)
+        self.message = np.asarray(ds["message"].values, dtype=object).reshape(-1)
+        for name, var in ds.data_vars.items():
+            if name in ("status", "message"):
+                continue
+            arr = np.asarray(var.values)
+            if arr.dtype.kind in "OUS":
+                self.strings[name] = arr.astype(object).reshape(-1)
+            elif arr.ndim == len(self.grid.shape):
+                self.values[name] = arr.astype(float).reshape(-1)
+            else:
+                self.values[name] = arr.astype(float).reshape(self.grid.size, -1)
+
+
+def write_atomic(ds, path: Path) -> None:
+    """Write ``ds`` to netCDF at ``path`` atomically (a temporary file next to it, then os.replace)."""
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        ds.to_netcdf(tmp, engine=_engine())
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def read_stored(path: Path, grid: Grid, attrs: dict[str, Any]):
+    """The dataset stored at ``path`` if it is the same sweep (task, model, law, fixed parameters, grid);
+    InputError if it holds another."""
+    xr = xarray()
+    try:
+        with xr.open_dataset(path, engine=_engine()) as ds:
+            ds = ds.load()
+    except (OSError, ValueError) as exc:
+        raise InputError(f"{path} exists but is not a readable sweep file ({_first_line(exc)}); "
+                         "use another --out") from None
+    for key in ("task", "model", "law", "law_declaration", "fixed_parameters", "task_options"):
+        if str(ds.attrs.get(key, "")) != str(attrs.get(key, "")):
+            raise InputError(f"{path} holds a different sweep ({key} differs); use another --out")
+    for a in grid.axes:
+        if a.name not in ds.coords or not np.array_equal(np.asarray(ds[a.name].values), np.asarray(a.values)):
+            raise InputError(f"{path} holds a different sweep (the grid of {a.name} differs); use another --out")
+    if tuple(ds["status"].dims) != grid.names:
+        raise InputError(f"{path} holds a different sweep (its axes are {', '.join(ds['status'].dims)}); "
+                         "use another --out")
+    return ds
+
+
+# ---------------------------------------------------------------------------------------------
+# the run
+# ---------------------------------------------------------------------------------------------
+@dataclass
+class RunCounts:
+    computed: int = 0
+    reused: int = 0
+    failed: int = 0
+
+
+def execute(task, grid: Grid, *, executor: Executor | None = None, workers: int | None = None,
+            out: str | os.PathLike | None = None, attrs: dict[str, Any], progress: bool = True,
+            write_every: float = 5.0):
+    """Run ``task`` over ``grid`` and return ``(dataset, counts)``.
+
+    See :func:`landau.analyses.sweep.sweep` for the parameters.
+    """
+    from landau.support.progress import progress as bar_for
+
+    table = Table(grid, task.units())
+    path = None
+    counts = RunCounts()
+    if out is not None:
+        path = Path(out)
+        if path.suffix.lower() not in (".nc", ".nc4", ".netcdf"):
+            raise InputError(f"--out {str(path)!r}: a sweep is written as netCDF (.nc)")
+        if path.exists() and not path.is_file():
+            raise InputError(f"--out {str(path)!r} is not a regular file")
+        if path.exists():
+            table.load(read_stored(path, grid, attrs))
+    todo_mask = (table.status == PENDING) | (table.status == "failed")  # a failed point is tried again
+    counts.reused = int(grid.size - np.count_nonzero(todo_mask))
+    work = []
+    for ch in task.chunks(grid):
+        pending = todo_mask[ch.index]
+        if not pending.any():
+            continue
+        if not pending.all() and task.continuation:
+            ch.done = {j: table.record(int(i)) for j, i in enumerate(ch.index) if not todo_mask[i]}
+        # a partly finished chunk is computed whole (the same batch as in an uninterrupted run, so the
+        # same numbers to the last bit) and only its missing points are stored
+        work.append(ch)
+    n_todo = int(np.count_nonzero(todo_mask))
+    own = None
+    if executor is None:
+        workers = int(workers or os.cpu_count() or 1)
+        if workers < 1:
+            raise InputError(f"--workers must be >= 1, got {workers}")
+        if workers > 1 and len(work) > 1:
+            task.prepare()  # compile (or load) in this process: forked workers inherit it
+            own = executor = ProcessPoolExecutor(max_workers=workers)
+    else:  # a foreign executor (a cluster's size is not known here): many chunks in flight
+        workers = int(workers or getattr(executor, "_max_workers", None) or IN_FLIGHT // 2)
+    last = time.monotonic()
+    bar = bar_for(total=n_todo, desc=f"sweep {task.name}", unit="pt") if progress else None
+
+    def take(res: ChunkResult):
+        nonlocal last
+        res = _only(res, todo_mask)
+        table.put(res)
+        counts.computed += len(res.index)
+        counts.failed += sum(1 for s in res.status if s == "failed")
+        if bar is not None:
+            bar.update(len(res.index))
+        if path is not None and time.monotonic() - last > write_every:
+            write_atomic(table.dataset(attrs), path)
+            last = time.monotonic()
+
+    try:
+        if executor is None:
+            for ch in work:
+                take(run_chunk(task, ch))
+        else:
+            queue = list(reversed(work))
+            inflight: set = set()
+            try:
+                while queue or inflight:
+                    while queue and len(inflight) < 2 * workers:
+                        inflight.add(executor.submit(run_chunk, task, queue.pop()))
+                    done, inflight = wait(inflight, return_when=FIRST_COMPLETED)
+                    for f in done:
+                        take(f.result())
+            except BaseException:
+                for f in inflight:  # keep whatever finished, drop the rest
+                    if f.done() and not f.cancelled() and f.exception() is None:
+                        take(f.result())
+                    else:
+                        f.cancel()
+                raise
+    finally:
+        if bar is not None:
+            bar.close()
+        if own is not None:
+            own.shutdown(wait=True, cancel_futures=True)
+        if path is not None:
+            write_atomic(table.dataset({**attrs, "computed": counts.computed, "reused": counts.reused}), path)
+    ds = table.dataset({**attrs, "computed": counts.computed, "reused": counts.reused})
+    return ds, counts

@@ -1,0 +1,221 @@
+"""Run an analysis over a parameter grid on local processes or a dask cluster, written to netCDF.
+
+``landau sweep TASK MODEL [LAW] --grid NAME=LO:HI:N[:log] | --grid NAME=v1,v2,... [--grid ...]
+[--param NAME=VALUE ...] [--workers N | --dask ADDRESS | --dask local:N] --out FILE.nc [--json]``
+
+Tasks: ``hopf`` (any model of ``landau hopf``; the spring–block's a whole chunk at a time),
+``check`` (spring-block: the direct-simulation verdict of ``landau.check`` and its numbers), ``simulate``
+(forced-oscillator: the attractor by continuation in omega), ``regime`` (spring-block: steady
+sliding, small cycle, large stick-slip or bistable, by simulation started on both sides), ``scene``
+(MODEL is a scene of ``landau scene list``: its value as a function of its parameters).
+
+The result is an xarray Dataset in FILE.nc (dimensions: the swept parameters; variables: the
+task's quantities as in ``--json``, ``status`` and ``message`` per point).  It is written as the
+sweep goes; running the same command again reuses the finished points (``computed``/``reused``
+in the summary), also after Ctrl-C, and tries the failed ones again.  Exit code 0, or 1 when every
+point computed in the run failed (each point's ``status`` and ``message`` say why).
+
+Examples::
+
+    landau sweep hopf spring-block dieterich --grid V=1e-6:1e-3:60:log --grid a=0.01:0.04:30 --out kc.nc
+    landau sweep check spring-block dieterich --grid V=1e-5,1e-4 --eps2 1e-3 --out check.nc
+    landau sweep simulate forced-oscillator --grid omega=19.9:23.2:67 --direction down --out om.nc
+    landau sweep regime spring-block dieterich --grid V=1e-6:1e-3:40:log --grid k=1e4:1e6:40:log --out map.nc
+    landau sweep scene skurativskyi2019/static-equilibrium --grid kI=1e8:1e9:10:log --out x0.nc
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from landau.cli.common import add_law_arguments, parse_params
+from landau.errors import InputError
+
+#: --param names refused for the spring-block (the swept or computed ones are fine)
+_RESERVED = {"v": "v is the slip rate, the variable of the friction law, not a parameter"}
+
+
+def configure(p) -> None:
+    p.add_argument("task", help="hopf, check, simulate, regime or scene")
+    p.add_argument("model", help="spring-block, forced-oscillator, any model of landau hopf, or a scene's name")
+    add_law_arguments(p)
+    p.add_argument("--grid", action="append", default=[], metavar="NAME=LO:HI:N[:log] | NAME=v1,v2,...",
+                   help="a swept parameter (repeatable; the grid is their product)")
+    p.add_argument("--out", default=None, metavar="FILE.nc", help="the netCDF file (resumed if it holds this sweep)")
+    ex = p.add_mutually_exclusive_group()
+    ex.add_argument("--workers", type=int, default=None, help="local processes (default: the number of cores)")
+    ex.add_argument("--dask", default=None, metavar="ADDRESS|local:N",
+                    help="a running dask scheduler (tcp://host:8786) or local:N for a LocalCluster of N workers")
+    p.add_argument("--chunk-size", type=int, default=None, help="points per task sent to a worker")
+    p.add_argument("--eps2", type=float, default=None, help="check: distance from the Hopf point (default 1e-3)")
+    p.add_argument("--direction", choices=("up", "down"), default=None, help="simulate: continuation direction")
+    for name, kind, what in (("n-first", int, "periods of transient at a chunk's first point"),
+                             ("n-step", int, "periods of transient after each step"),
+                             ("n-keep", int, "recorded periods"), ("overlap", int, "warm-up points per chunk"),
+                             ("rtol", float, "integration tolerance")):
+        p.add_argument(f"--{name}", type=kind, default=None, help=f"simulate: {what}")
+    p.add_argument("--lyapunov", action="store_true", help="simulate: also the largest Lyapunov exponent")
+    p.add_argument("--friction", default=None, metavar="EXPR", help="hopf impact-oscillator: F(v) for v > 0")
+    p.add_argument("--kinetic", default=None, metavar="EXPR", help="hopf galvanetto-one-block: the kinetic law")
+    p.add_argument("--parameter", default=None, metavar="NAME", help="hopf impact-oscillator: bifurcation parameter")
+
+
+def _options(args) -> dict[str, Any]:
+    opts: dict[str, Any] = {}
+    for key in ("chunk_size", "eps2", "direction", "n_first", "n_step", "n_keep", "overlap", "rtol", "friction",
+                "kinetic", "parameter"):
+        val = getattr(args, key, None)
+        if val is not None:
+            if isinstance(val, float) and not math.isfinite(val):
+                raise InputError(f"--{key.replace('_', '-')}: must be finite")
+            opts[key] = val
+    if args.lyapunov:
+        opts["lyapunov"] = True
+    return opts
+
+
+def _law(args):
+    from landau.analyses.sweep_tasks import LawSpec
+
+    if args.model != "spring-block":
+        if args.law is not None or args.mu is not None or args.state:
+            raise InputError(f"landau sweep {args.task} {args.model}: this model takes no rate-and-state law")
+        return None
+    if args.mu is not None or args.state:
+        if args.mu is None or not args.state:
+            raise InputError("an inline law needs both --mu and at least one --state NAME=RATE")
+        states = []
+        for item in args.state:
+            if "=" not in item:
+                raise InputError(f"--state {item!r}: expected NAME=RATE")
+            name, rate = item.split("=", 1)
+            states.append((name.strip(), rate))
+        return LawSpec(args.law or "inline", args.mu, tuple(states))
+    if args.law is None:
+        from landau.laws import BUILTIN
+
+        raise InputError(f"landau sweep {args.task} spring-block: name a law ({', '.join(BUILTIN)}) or give --mu "
+                         "and --state")
+    return LawSpec(args.law)
+
+
+def _executor(args):
+    """(executor or None, closer) for --dask; (None, None) for local processes."""
+    if args.dask is None:
+        if args.workers is not None and args.workers < 1:
+            raise InputError(f"--workers must be >= 1, got {args.workers}")
+        return None, None
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError:
+        raise InputError("--dask needs dask.distributed: pip install 'landau-friction[dask]'") from None
+    if args.dask.startswith("local:"):
+        try:
+            n = int(args.dask.split(":", 1)[1])
+        except ValueError:
+            raise InputError(f"--dask {args.dask!r}: expected local:N with N an integer") from None
+        if not 1 <= n <= 1024:
+            raise InputError(f"--dask local:N needs 1 <= N <= 1024, got {n}")
+        cluster = LocalCluster(n_workers=n, threads_per_worker=1, dashboard_address=None)
+        client = Client(cluster)
+
+        def close():
+            client.close()
+            cluster.close()
+        return client.get_executor(), close
+    try:
+        client = Client(args.dask, timeout="20s")
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise InputError(f"--dask {args.dask!r}: cannot reach the scheduler ({type(exc).__name__})") from None
+    return client.get_executor(), client.close
+
+
+def run(args) -> dict:
+    from landau.analyses.sweep import sweep
+    from landau.support.progress import set_quiet
+
+    if not args.grid:
+        raise InputError("--grid NAME=LO:HI:N[:log] or NAME=v1,v2,... is required (repeatable)")
+    if args.out is None:
+        raise InputError("--out FILE.nc is required (the sweep is written and resumed there)")
+    set_quiet(getattr(args, "json", False))
+    law = _law(args)
+    reserved = _RESERVED if args.model == "spring-block" else {}
+    fixed = parse_params(args.param, reserved)
+    executor, close = _executor(args)
+    try:
+        ds, counts = sweep(args.task, args.grid, model=args.model, law=law, params=fixed, executor=executor,
+                           workers=args.workers, out=args.out, progress=True, options=_options(args),
+                           return_counts=True)
+    finally:
+        if close is not None:
+            close()
+    import numpy as np
+
+    statuses = {str(s): int(n) for s, n in zip(*np.unique(ds.status.values, return_counts=True), strict=True)}
+    return {"task": args.task, "model": args.model, "law": ds.attrs.get("law", ""), "out": str(args.out),
+            "dims": {k: int(v) for k, v in ds.sizes.items() if k in ds.status.dims},
+            "points": int(ds.status.size), **counts, "status": statuses,
+            "variables": [v for v in ds.data_vars if v not in ("status", "message")],
+            "fixed_parameters": fixed,
+            # every point computed in this run failed: the run as a whole did not work
+            "exit_code": 1 if counts["computed"] and counts["failed"] == counts["computed"] else 0}
+
+
+def render(doc: dict) -> str:
+    dims = " x ".join(f"{k} ({n})" for k, n in doc["dims"].items())
+    st = ", ".join(f"{k}: {n}" for k, n in doc["status"].items())
+    return (f"sweep {doc['task']} {doc['model']}{' ' + doc['law'] if doc['law'] else ''} over {dims}: "
+            f"{doc['points']} points ({doc['computed']} computed, {doc['reused']} reused) written to {doc['out']}\n"
+            f"  status: {st}\n  variables: {', '.join(doc['variables'])}")
+
+
+def plot_file(path, out, formats=("png", "pdf", "svg")) -> dict:
+    """``landau plot --sweep FILE.nc --out FIG``: a ``regime`` map with k_c(V) on top
+    (:func:`landau.verify.springblock.regime_map.plot_regime_map`) or a ``simulate`` bifurcation
+    diagram of the forced oscillator (:func:`landau.verify.skurativskyi.sweep.plot_diagram`); the
+    JSON document of the command."""
+    from pathlib import Path
+
+    import numpy as np
+
+    from landau.analyses.sweep_engine import _engine, xarray
+    from landau.support.io import atomic_savefig
+
+    if out is None:
+        raise InputError(f"--out FILE is required ({', '.join('.' + f for f in formats)})")
+    if Path(out).suffix.lstrip(".").lower() not in formats:
+        raise InputError(f"--out {out!r}: unknown figure type (use .{', .'.join(formats)})")
+    if not Path(path).is_file():
+        raise InputError(f"--sweep {path!r}: no such file")
+    xr = xarray()
+    try:
+        with xr.open_dataset(path, engine=_engine()) as ds:
+            ds = ds.load()
+    except (OSError, ValueError):
+        raise InputError(f"--sweep {path!r} is not a netCDF sweep file") from None
+    from matplotlib.figure import Figure
+
+    task = ds.attrs.get("task")
+    doc: dict[str, Any]
+    if task == "regime" and "regime" in ds:
+        from landau.verify.springblock.regime_map import plot_regime_map
+
+        fig = Figure(figsize=(6.4, 4.8))
+        plot_regime_map(ds, fig.subplots())
+        vals, counts = np.unique(ds.regime.values.astype(str), return_counts=True)
+        doc = {"kind": "regime-map", "regimes": {str(v): int(c) for v, c in zip(vals, counts, strict=True)}}
+    elif task == "simulate" and ds.attrs.get("model") == "forced-oscillator":
+        from landau.verify.skurativskyi.sweep import plot_diagram
+
+        fig = Figure(figsize=(7.2, 5.6))
+        plot_diagram(ds, fig)
+        doc = {"kind": "bifurcation-diagram"}
+    else:
+        raise InputError(f"--sweep {path!r} holds a {task or 'non-sweep'!r} sweep: landau plot draws a regime map "
+                         "(landau sweep regime) or a bifurcation diagram (landau sweep simulate forced-oscillator)")
+    fig.tight_layout()
+    doc.update({"law": ds.attrs.get("law", ""), "model": ds.attrs.get("model", ""), "points": int(ds.status.size),
+                "out": str(atomic_savefig(fig, out, dpi=120))})
+    return doc

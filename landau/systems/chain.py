@@ -1,0 +1,338 @@
+"""A chain of N spring–blocks with rate-and-state friction (Burridge–Knopoff with a state).
+
+Block i (mass M_i, normal load σ_i, default M_i·g) is pulled by a spring of stiffness k to the load
+point moving at V and coupled to its neighbours by springs ``k_coupling`` (free ends):
+
+    M_i ẍ_i = k(Vt − x_i) + k_c (x_{i+1} − 2x_i + x_{i−1}) − σ_i μ(ẋ_i, φ_i),   dφ_i/dt = rate(ẋ_i, φ_i),
+
+with the terms of a missing neighbour left out.  Every block slides steadily at V with the law's
+steady state; in X_i = x_i − x_{i,0}(t), u_i = ẋ_i − V that sliding is the origin of the
+mechanical part, as for the single block (:class:`~landau.systems.system.SpringBlock`).  The Hopf
+parameter is k; the Hopf point reported is the first crossing met as k decreases from a stiffness
+where sliding is stable, with the critical mode shape (the slips X_i of the critical eigenvector).
+Identical blocks have the single block's k_c in the in-phase mode (the coupling springs are then
+not stretched), and every other mode is more stable (Putelat et al. 2010 eq. (30) for the single
+block).  Built as a :class:`~landau.systems.system.DynamicalSystem`, it goes through the general
+engine (:func:`landau.derivation.general.hopf_normal_form`).
+
+References
+----------
+Burridge, R. & Knopoff, L. (1967). Model and theoretical seismicity. Bull. Seismol. Soc. Am. 57,
+341–371 (the chain of blocks).
+Putelat, T., Dawes, J. H. P., Willis, J. R. (2010). Regimes of frictional sliding of a spring–block
+system. J. Mech. Phys. Solids 58, 27–53, eq. (4) (one block) and eq. (30) (its k_c).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from functools import cached_property
+from typing import Mapping
+
+import mpmath
+import numpy as np
+import sympy as sp
+
+from landau.errors import InputError, NoHopfError
+from landau.laws.law import FrictionLaw
+from landau.laws.law import v as v_slip
+from landau.systems.system import G_DEFAULT, M_DEFAULT, DynamicalSystem, SpringBlock, V, k
+
+#: the coupling stiffness between neighbours [N/m]
+k_coupling = sp.Symbol("k_coupling", nonnegative=True)
+#: default coupling stiffness [N/m]: of the order of the single block's k_c at the defaults
+K_COUPLING_DEFAULT = 1.0e5
+#: most blocks accepted (the state has 2 + (law states) entries per block)
+MAX_BLOCKS = 12
+
+
+@dataclass(frozen=True, eq=False)
+class SpringBlockChain:
+    """N spring–blocks with the same rate-and-state law, each pulled by k, coupled by ``k_coupling``.
+
+    Parameters
+    ----------
+    law : FrictionLaw or str
+        The friction law of every block, or a built-in law's name.
+    blocks : int
+        The number of blocks N (1 to :data:`MAX_BLOCKS`).
+
+    Notes
+    -----
+    Parameters: the law's, ``V`` (driving velocity, m/s), ``k_coupling`` (N/m), ``M_i`` (kg,
+    default 1.2) and ``sigma_i`` (N, default M_i·g with g = 9.81 m/s², or M·g with the default M
+    when M_i = 0), i = 1…N; ``g`` changes the default loads.
+    """
+
+    law: FrictionLaw
+    blocks: int = 2
+
+    def __post_init__(self) -> None:
+        if isinstance(self.law, str):
+            from landau.laws import get_law
+
+            object.__setattr__(self, "law", get_law(self.law))
+        if not isinstance(self.law, FrictionLaw):
+            raise InputError(f"SpringBlockChain needs a FrictionLaw or a built-in law's name, "
+                             f"got {type(self.law).__name__}")
+        if isinstance(self.blocks, bool) or not isinstance(self.blocks, (int, np.integer)) \
+                or not 1 <= int(self.blocks) <= MAX_BLOCKS:
+            raise InputError(f"the number of blocks must be an integer from 1 to {MAX_BLOCKS}, got {self.blocks!r}")
+        object.__setattr__(self, "blocks", int(self.blocks))
+        names = {s.name for s in self.law.states} | {p.name for p in self.law.parameters}
+        clash = sorted(names & {"k_coupling", "g", *self._block_names()})
+        if clash:
+            raise InputError(f"law {self.law.name!r}: name {clash[0]!r} is a parameter of the chain; rename it")
+
+    def _block_names(self) -> list[str]:
+        return [f"{n}_{i}" for i in range(1, self.blocks + 1) for n in ("M", "sigma")]
+
+    @cached_property
+    def single(self) -> SpringBlock:
+        """The single block with the same law (its steady state and argument checks)."""
+        return SpringBlock(self.law)
+
+    @cached_property
+    def defaults(self) -> dict[str, float]:
+        d = {key: val for key, val in self.single.defaults.items() if key not in ("M", "sigma")}
+        d["V"] = 1e-4
+        d["k_coupling"] = K_COUPLING_DEFAULT
+        for i in range(1, self.blocks + 1):
+            d[f"M_{i}"] = M_DEFAULT
+            d[f"sigma_{i}"] = M_DEFAULT * G_DEFAULT
+        return d
+
+    def resolve(self, overrides: Mapping[str, float] | None = None) -> dict[str, float]:
+        """Every parameter value (law, V, k_coupling, M_i, sigma_i) with ``overrides`` applied and checked.
+
+        Parameters
+        ----------
+        overrides : mapping of str to float, optional
+            Values by name; ``g`` sets the default loads σ_i = M_i·g.
+
+        Returns
+        -------
+        dict of str to float
+
+        Raises
+        ------
+        InputError
+            An unknown name (``M`` and ``sigma`` name the blocks' ``M_i``, ``sigma_i``), a value
+            that is not a finite number, M_i < 0, σ_i ≤ 0, k_coupling < 0, V ≤ 0.
+        """
+        over = dict(overrides or {})
+        for key in ("M", "sigma"):
+            if key in over:
+                raise InputError(f"a chain has one {key} per block: give {key}_1 ... {key}_{self.blocks}")
+        g = over.pop("g", G_DEFAULT)
+        law_over = {key: val for key, val in over.items() if key in {p.name for p in self.law.parameters}}
+        p = {key: val for key, val in self.single.resolve({**law_over, "g": g}).items()
+             if key not in ("M", "sigma", "g")}
+        p.update(V=1e-4, k_coupling=K_COUPLING_DEFAULT)
+        known = set(p) | set(self._block_names())
+        for key, val in over.items():
+            if key not in known:
+                raise InputError(f"unknown parameter {key!r} for the chain of {self.blocks} blocks with law "
+                                 f"{self.law.name!r} (known: {', '.join(sorted(known))}, g)")
+            try:
+                p[key] = float(val)
+            except (TypeError, ValueError):
+                raise InputError(f"parameter {key!r} must be a number, got {val!r}") from None
+            if not np.isfinite(p[key]):
+                raise InputError(f"parameter {key!r} must be finite, got {val!r}")
+        g = float(g)
+        for i in range(1, self.blocks + 1):
+            m = p.setdefault(f"M_{i}", M_DEFAULT)
+            if m < 0:
+                raise InputError(f"parameter 'M_{i}' must be >= 0, got {m!r}")
+            s = p.setdefault(f"sigma_{i}", (m if m > 0 else M_DEFAULT) * g)
+            if not s > 0:
+                raise InputError(f"parameter 'sigma_{i}' must be > 0, got {s!r}")
+        if p["k_coupling"] < 0:
+            raise InputError(f"parameter 'k_coupling' must be >= 0, got {p['k_coupling']!r}")
+        if not p["V"] > 0:
+            raise InputError(f"parameter 'V' (driving velocity) must be > 0 m/s, got {p['V']!r}")
+        return p
+
+    @cached_property
+    def system(self) -> DynamicalSystem:
+        """The chain as E·ẏ = f(y; k): y = (X_1, u_1, φ_1…, X_2, …), E = diag(1, M_i, 1…)."""
+        law = self.law
+        ss = self.single.steady_state
+        eq_phi = ss if ss is not None else self.single.phi0
+        mu_0 = law.mu.subs({v_slip: V, **dict(zip(law.states, eq_phi, strict=True))})
+        Xs = [sp.Symbol(f"X_{i}", real=True) for i in range(1, self.blocks + 1)]
+        states, rhs, mass, eq = [], [], [], []
+        for i in range(self.blocks):
+            X, u = Xs[i], sp.Symbol(f"u_{i + 1}", real=True)
+            phis = [sp.Symbol(f"{s.name}_{i + 1}", positive=True) for s in law.states]
+            at = {v_slip: V + u, **dict(zip(law.states, phis, strict=True))}
+            Mi, si = sp.Symbol(f"M_{i + 1}", nonnegative=True), sp.Symbol(f"sigma_{i + 1}", positive=True)
+            spring = -k * X
+            if i > 0:
+                spring += k_coupling * (Xs[i - 1] - X)
+            if i < self.blocks - 1:
+                spring += k_coupling * (Xs[i + 1] - X)
+            states += [X, u, *phis]
+            rhs += [u, spring - si * (law.mu.xreplace(at) - mu_0), *(r.xreplace(at) for r in law.rates)]
+            mass += [sp.Integer(1), Mi, *([sp.Integer(1)] * len(phis))]
+            eq += [sp.Integer(0), sp.Integer(0), *eq_phi]
+        unknowns: tuple = ()
+        eqs: tuple = ()
+        guess: tuple = ()
+        if ss is None:
+            unknowns = self.single.phi0
+            eqs = tuple(r.subs({v_slip: V, **dict(zip(law.states, unknowns, strict=True))}) for r in law.rates)
+        return DynamicalSystem(
+            name=f"spring-block-chain[{law.name}, N={self.blocks}]", states=tuple(states), rhs=tuple(rhs),
+            mass=tuple(mass), parameter=k, equilibrium=tuple(eq), defaults=self.defaults, normalise=0,
+            unknowns=unknowns, unknown_equations=eqs, unknown_guess=guess,
+            description="N spring-blocks pulled by k, coupled by k_coupling, in X_i = x_i - x_i0(t), u_i = dx_i/dt - V")
+
+    def slip_indices(self) -> list[int]:
+        """Positions of X_1 … X_N in the state."""
+        per = 2 + len(self.law.states)
+        return [i * per for i in range(self.blocks)]
+
+    def equilibrium_values(self, params: Mapping[str, float]) -> list[float]:
+        """The steady sliding state (X_i = u_i = 0, φ_i = φ_ss(V)) as floats."""
+        lp = {p.name: np.asarray(params[p.name], dtype=float) for p in self.law.parameters}
+        Vv = np.asarray(params["V"], dtype=float)
+        phis = [float(x) for x in self.law.steady_state_values(Vv, lp)]
+        self.law.check_real(Vv, [np.asarray(x) for x in phis], lp)
+        return [x for _ in range(self.blocks) for x in (0.0, 0.0, *phis)]
+
+
+def _mode_shape(num, pc: float, wc: float, y0, slips: list[int]) -> np.ndarray:
+    """The slips X_i of the critical eigenvector (iωE − J)q = 0, largest |X_i| = 1 and real positive."""
+    J, E = num.J_float(y0, pc), num.E_float(pc)
+    _, _, vh = np.linalg.svd(1j * wc * E - J)
+    q = vh[-1].conj()
+    x = q[slips]
+    big = x[int(np.argmax(np.abs(x)))]
+    x = x / big
+    # the SVD of a float64 pencil gives the mode to ~1e-10: smaller parts are round-off
+    x = np.where(np.abs(x.real) < 1e-8, 0.0, x.real) + 1j * np.where(np.abs(x.imag) < 1e-8, 0.0, x.imag)
+    return x
+
+
+def _mode_shape_mp(num, pc, wc, y, slips: list[int], j: int) -> np.ndarray:
+    """The slips of the critical eigenvector at the working precision: (iωE − J)q = 0 with q_j = 1,
+    solved with the row of least residual dropped."""
+    n = num.n
+    J, E = num.J_mp(y, pc), num.E_mp(pc)
+    A = mpmath.matrix(n, n)
+    for r in range(n):
+        for c in range(n):
+            A[r, c] = 1j * wc * E[r, c] - J[r, c]
+    others = [c for c in range(n) if c != j]
+    best = None
+    for drop in range(n):
+        rows = [r for r in range(n) if r != drop]
+        M = mpmath.matrix([[A[r, c] for c in others] for r in rows])
+        rhs = mpmath.matrix([-A[r, j] for r in rows])
+        try:
+            x = mpmath.lu_solve(M, rhs)
+        except ZeroDivisionError:
+            continue
+        q = [mpmath.mpc(0)] * n
+        q[j] = mpmath.mpc(1)
+        for c, val in zip(others, x, strict=True):
+            q[c] = val
+        res = abs(sum(A[drop, c] * q[c] for c in range(n)))
+        if best is None or res < best[0]:
+            best = (res, q)
+    x = np.array([complex(best[1][i]) for i in slips])
+    return np.where(np.abs(x.real) < 1e-14, 0.0, x.real) + 1j * np.where(np.abs(x.imag) < 1e-14, 0.0, x.imag)
+
+
+def chain_hopf(chain: SpringBlockChain, params: Mapping[str, float] | None = None,
+               bracket: tuple[float, float] | None = None, dps: int = 50):
+    """The first Hopf point of a chain as k decreases, with its amplitude equation and mode shape.
+
+    Parameters
+    ----------
+    chain : SpringBlockChain
+    params : mapping, optional
+        Overrides of :attr:`SpringBlockChain.defaults` (resolved by :meth:`SpringBlockChain.resolve`).
+    bracket : (float, float), optional
+        Stiffnesses (N/m) to search, from the larger down (default: from a stiffness where sliding
+        is stable, found by doubling, down by factors of 4 to 1e-12 of it).
+    dps : int
+        Working precision of the located point and its coefficients.
+
+    Returns
+    -------
+    HopfResult
+        From the general engine (:func:`landau.derivation.general.normal_form_at`), normalised on
+        the slip of the block that moves most; ``extra`` holds ``blocks``, ``mode_shape`` (the slips
+        X_i of the critical mode as ``[re, im]`` pairs, largest 1), ``mode`` ("in-phase",
+        "anti-phase", "mixed" or "travelling") and Λ's round-off bound; where Λ vanishes, the
+        next order (:func:`landau.derivation.degenerate.with_verdict`).
+
+    Raises
+    ------
+    NoHopfError
+        No crossing in the bracket (e.g. velocity-strengthening friction).
+    """
+    from landau.derivation.degenerate import with_verdict
+    from landau.derivation.general import NumericSystem, normal_form_at, refine_hopf, scan_hopf
+    from landau.derivation.hopf import SPRING_BLOCK_UNITS
+
+    p = chain.resolve(params)
+    system = chain.system
+    num = NumericSystem(system, p, chain.equilibrium_values(p))
+    y_eq = np.array(chain.equilibrium_values(p))
+
+    def stable(kv: float) -> bool:
+        lam = num.eigenvalues(y_eq, kv)
+        return bool(np.all(lam.real < 0))
+
+    if bracket is not None:
+        hi, lo = max(map(float, bracket)), min(map(float, bracket))
+        if not (np.isfinite(lo) and np.isfinite(hi) and 0 < lo < hi):
+            raise InputError(f"bracket: need 0 < lo < hi (stiffnesses in N/m), got {bracket!r}")
+        windows = [(hi, lo)]
+    else:
+        scale = max(p[f"sigma_{i}"] for i in range(1, chain.blocks + 1)) / max(
+            abs(float(x)) for x in (p.get("L", 1.0), 1e-300))
+        hi = scale
+        for _ in range(200):
+            if stable(hi):
+                break
+            hi *= 2.0
+        else:
+            raise NoHopfError(f"{system.name}: steady sliding is unstable at every stiffness tried (up to {hi:g} N/m)")
+        windows = [(hi / 4.0 ** j, hi / 4.0 ** (j + 1)) for j in range(20)]
+    for a, b in windows:
+        hits = scan_hopf(num, a, b, samples=24, y_start=y_eq)
+        if hits:
+            break
+    else:
+        raise NoHopfError(f"{system.name}: no Hopf crossing of k below {windows[0][0]:g} N/m")
+    p0, y0, lam = max(hits, key=lambda h: h[0])
+    shape = _mode_shape(num, p0, abs(lam.imag), y0, chain.slip_indices())
+    # normalise the amplitude equation on the block that moves most
+    biggest = chain.slip_indices()[int(np.argmax(np.abs(shape)))]
+    system_n = replace(system, normalise=biggest)
+    num = NumericSystem(system_n, p, chain.equilibrium_values(p))
+    jets_cache: dict = {}
+
+    def at(digits: int):
+        with mpmath.workdps(digits):
+            pc, wc, y = refine_hopf(num, p0, abs(lam.imag), y0)
+            return normal_form_at(num, pc, wc, y, jets_cache=jets_cache, params=p), (pc, wc, y)
+
+    first, (pc, wc, y) = at(dps)
+    with mpmath.workdps(dps):
+        shape = _mode_shape_mp(num, pc, wc, y, chain.slip_indices(), biggest)
+    # Λ with its round-off bound; where it vanishes, Λ = 0 (degenerate) and the next order
+    res = with_verdict(system_n, p, first, dps, lambda d: at(d)[0])
+    if np.all(shape.imag == 0):
+        mode = "in-phase" if np.all(shape.real > 0) else ("anti-phase" if np.all(shape.real != 0) else "mixed")
+    else:
+        mode = "travelling"
+    units = {key: val for key, val in SPRING_BLOCK_UNITS.items() if key in ("V", "p_c", "omega_c")}
+    return replace(res, units=units, at=("V",),
+                   extra={"blocks": chain.blocks, "mode": mode,
+                          "mode_shape": [[float(z.real), float(z.imag)] for z in shape], **res.extra})

@@ -1,0 +1,310 @@
+"""Regime maps of the spring–block by direct simulation started on both sides (the ``regime`` sweep task).
+
+At each (V, k) the spring–block of Putelat, Dawes & Willis (2010), eq. (4), is integrated from two
+starts: *near* steady sliding (displaced by 10⁻³ ℓ along the critical mode) and *far* from it (a
+block that has almost stopped and healed: v = V/100, φᵢ = 100 φᵢ,ss, spring at its steady load).
+Each run is followed through its maxima of X (the crossings of v = V from above) until it
+(a run whose step size collapses at steady sliding itself, where the crossings of v = V
+dissolve in round-off, has decayed; any other failing run is repeated once at a tolerance 100
+times tighter)
+
+* decays (three maxima below 10⁻⁶ ℓ, or 21 maxima shrinking at a constant ratio per cycle, the
+  linear decay): **steady** sliding;
+* settles on a cycle (successive maxima within 10⁻⁴, the chunk within 10⁻³): a **small cycle** when
+  the slip rate stays above V/10 over it, a **stick–slip** cycle when it falls below (the block
+  nearly stops: the large relaxation oscillation of Sec. 3.2).
+
+The point's ``regime`` is the common verdict, or **bistable** when the two starts end on
+different attractors (steady sliding and a cycle, or two cycles: the subcritical side of the
+Hopf line, Putelat et al. 2010 Figs 5b and 12), or **undecided** when a run has not settled after
+:data:`MAX_EVENTS` cycles and the two could still end on one attractor (the approach slows down
+as |k − k_c| → 0, so a band along the Hopf line stays undecided at any finite length).  The
+amplitude equation predicts the boundaries: the Hopf line k = k_c(V) with Λ < 0 (supercritical:
+a small cycle for k < k_c) or Λ > 0 (subcritical: bistability for k slightly above k_c), drawn on the map by
+:func:`plot_regime_map`.  This is the comparison Putelat et al. made with AUTO (their Fig. 12),
+here by an independent route.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from landau.analyses.sweep_engine import Chunk, ChunkResult
+from landau.analyses.sweep_tasks import ModelTask
+from landau.errors import InputError, IntegratorError
+from landau.verify.springblock.model import SpringBlockModel
+from landau.verify.springblock.simulate import W_INDEX, integrate
+
+#: a cycle whose slip rate falls below this fraction of V is a stick–slip cycle
+STICK_FRACTION = 0.1
+#: relative size of the near start, and the factor of the far start
+NEAR, FAR = 1e-3, 100.0
+#: crossings per integration chunk, and at most
+CHUNK_EVENTS, MAX_EVENTS = 20, 400
+REGIMES = ("steady", "small-cycle", "stick-slip", "bistable", "undecided")
+UNITS = {"amplitude_near": "m", "amplitude_far": "m", "period_near": "s", "period_far": "s",
+         "v_min_near": "1", "v_min_far": "1"}
+
+
+def make_task(task: str, model: str, law, fixed: tuple, options: tuple) -> ModelTask:
+    """The ``regime`` task of the spring–block (called by :func:`landau.analyses.sweep_tasks.make_task`)."""
+    opts = dict(options)
+    unknown = sorted(set(opts) - {"chunk_size", "rtol"})
+    if unknown:
+        raise InputError(f"regime spring-block: option(s) {', '.join(unknown)} do not apply (known: chunk_size, rtol)")
+    return ModelTask(task, model, law, fixed, options, chunk_size=int(opts.get("chunk_size", 1)),
+                     check_ref="landau.verify.springblock.regime_map:check_grid", extra_units=tuple(UNITS.items()))
+
+
+def check_grid(task: ModelTask, grid) -> None:
+    fixed = dict(task.fixed)
+    for name in ("V", "k"):
+        if name not in grid.names and name not in fixed:
+            raise InputError(f"regime spring-block: give {name} as --grid {name}=... or --param {name}=...")
+    M = fixed.get("M", 1.0)
+    if "M" in grid.names:
+        M = min(grid.axes[grid.names.index("M")].values)
+    if M <= 0:
+        raise InputError("regime spring-block: direct simulation needs a block mass M > 0")
+
+
+class _Fate:
+    """Where one run went: regime, amplitude (last max of X − x₀, m), slowest slip / V, period (s),
+    whether it settled, and its trend when it did not (+1 growing, −1 shrinking)."""
+
+    def __init__(self, regime, amplitude=0.0, v_min=1.0, period=float("nan"), settled=True, trend=0):
+        self.regime, self.amplitude, self.v_min, self.period = regime, amplitude, v_min, period
+        self.settled, self.trend = settled, trend
+
+
+def _follow(model: SpringBlockModel, y0: np.ndarray, rtol: float) -> _Fate:
+    """The attractor reached from ``y0`` (see the module docstring)."""
+    lam, _ = model.critical_mode()
+    period = 2 * math.pi / abs(lam.imag) * model.time_unit if lam.imag else 1e3 * model.time_unit
+    y, t = np.asarray(y0, dtype=float), 0.0
+    xs: list[float] = []
+    ts: list[float] = []
+    settled, new = False, []
+    tiny = 1e-6 * model.ell
+    while len(xs) < MAX_EVENTS:
+        try:
+            run = integrate(model, y, (t, t + 50 * CHUNK_EVENTS * period), rtol=rtol, event_index=W_INDEX,
+                            event_direction=-1, stop_after=CHUNK_EVENTS)
+        except IntegratorError as exc:
+            if _at_rest(model, exc.state):  # the crossings of v = V dissolved in round-off: decayed
+                return _Fate("steady")
+            raise
+        down = run.event_y[run.event_dir < 0]
+        if len(down) == 0:  # no oscillation left in 50 periods per crossing wanted: relaxed
+            return _Fate("steady")
+        new = list(down[:, 0] * model.ell)
+        xs += new
+        ts += list(run.event_t[run.event_dir < 0])
+        if len(xs) >= 3 and all(abs(x) < tiny for x in xs[-3:]):
+            return _Fate("steady")
+        if len(xs) >= 21 and _geometric_decay(xs[-21:]):
+            return _Fate("steady")
+        a = abs(new[-1])
+        if len(new) > 2 and abs(new[-1] - new[-2]) < 1e-4 * a and abs(new[-1] - new[0]) < 1e-3 * a:
+            settled = True
+            break
+        y = run.y.copy()
+        t = float(run.t)
+    trend = 0 if settled else (1 if abs(new[-1]) > abs(new[0]) else -1)
+    T = float(ts[-1] - ts[-2]) if len(ts) > 1 else period
+    # one more cycle with its steps recorded: the slowest slip over it
+    y_last = run.event_y[run.event_dir < 0][-1].copy()
+    y_last[W_INDEX] = 0.0
+    rec = integrate(model, y_last, (0.0, 1.5 * T), rtol=rtol, event_index=W_INDEX, event_direction=-1,
+                    stop_after=1, record=200_000)
+    v_min = float(np.exp(rec.rec_y[:, W_INDEX].min()))
+    regime = "stick-slip" if v_min < STICK_FRACTION else "small-cycle"
+    return _Fate(regime, float(xs[-1]), v_min, T, settled, trend)
+
+
+def _at_rest(model: SpringBlockModel, state) -> bool:
+    """Whether a physical state (X, v, φ…) is steady sliding to within 1e-9 (relative; X against ℓ)."""
+    if state is None:
+        return False
+    X, v, *phis = state
+    return (abs(X) <= 1e-9 * model.ell and abs(v / model.V - 1) <= 1e-9
+            and all(abs(ph / p0 - 1) <= 1e-9 for ph, p0 in zip(phis, model.phi0, strict=True)))
+
+
+def _geometric_decay(x) -> bool:
+    """Whether 21 successive maxima shrink at a constant ratio per cycle (to 10 %): the linear decay onto
+    steady sliding.  An approach to a cycle from above slows down instead (its ratio tends to 1)."""
+    a = np.abs(np.asarray(x, dtype=float))
+    if np.any(a <= 0) or not np.all(np.diff(a) < 0):
+        return False
+    r1, r2 = math.log(a[10] / a[0]), math.log(a[20] / a[10])
+    return abs(r2 - r1) <= 0.1 * abs(r1)
+
+
+def _far_start(model: SpringBlockModel) -> np.ndarray:
+    n_states = len(model.law.states)
+    return np.array([0.0, -math.log(FAR), *([math.log(FAR)] * n_states)])
+
+
+def _combine(near: _Fate, far: _Fate) -> str:
+    """The point's regime from the two runs; ``undecided`` where a run has not settled and the two
+    could still end on one attractor or on two (a slow approach close to the Hopf line)."""
+    if near.regime == far.regime == "steady":
+        return "steady"
+    if "steady" in (near.regime, far.regime):
+        cycle = far if near.regime == "steady" else near
+        # steady sliding attracts the near start and a cycle holds the other: bistable
+        return "bistable" if near.regime == "steady" and (cycle.settled or cycle.trend > 0) else "undecided"
+    lo, hi = sorted((near, far), key=lambda f: abs(f.amplitude))
+    if abs(hi.amplitude - lo.amplitude) <= 1e-2 * abs(hi.amplitude):
+        return hi.regime if near.regime == far.regime else "undecided"
+    if lo.settled and hi.settled:
+        return "bistable"   # two distinct cycles
+    if lo.trend > 0 and hi.settled:
+        return hi.regime    # the smaller run grows towards the cycle the larger one settled on
+    if hi.trend < 0 and lo.settled:
+        return lo.regime
+    if lo.trend > 0 and hi.trend < 0 and lo.regime == hi.regime:
+        return lo.regime    # closing in on one cycle from both sides
+    return "undecided"
+
+
+def regime_at(law, V: float, k: float, params=None, rtol: float = 1e-8) -> dict:
+    """The regime of the spring–block at (V, k) from both starts (see the module docstring).
+
+    Returns
+    -------
+    dict
+        ``regime`` (steady, small-cycle, stick-slip, bistable, or undecided where a run has not
+        settled after :data:`MAX_EVENTS` cycles), ``regime_near``, ``regime_far`` and per start the
+        amplitude (max X − x₀, m), the slowest slip rate over the cycle as a fraction of V, the
+        period (s) and whether it settled.
+    """
+    model = SpringBlockModel.build(law, V, k, params)
+    out: dict = {}
+    fates = {}
+    for side, y0 in (("near", model.perturbed(NEAR * model.ell)), ("far", _far_start(model))):
+        try:
+            f = _follow(model, y0, rtol)
+        except IntegratorError:  # a run decaying into the tolerance's noise: once more, 100 times tighter
+            f = _follow(model, y0, rtol * 1e-2)
+        fates[side] = f
+        out.update({f"regime_{side}": f.regime, f"amplitude_{side}": f.amplitude, f"v_min_{side}": f.v_min,
+                    f"period_{side}": f.period, f"settled_{side}": float(f.settled)})
+    out["regime"] = _combine(fates["near"], fates["far"])
+    return out
+
+
+def regime_chunk(task: ModelTask, chunk: Chunk) -> ChunkResult:
+    """The ``regime`` of each point of a chunk (a point whose simulation fails is ``failed``)."""
+    from landau.analyses.sweep_engine import _first_line
+
+    law = task.spec.build()
+    rtol = float(dict(task.options).get("rtol", 1e-8))
+    status, message, rows = [], [], []
+    for j in range(len(chunk.index)):
+        pt = {**dict(task.fixed), **{k: float(v[j]) for k, v in chunk.points.items()}}
+        V, k = pt.pop("V"), pt.pop("k")
+        try:
+            row = regime_at(law, V, k, pt, rtol)
+            rows.append(row)
+            status.append("ok")
+            message.append("" if row["regime"] != "undecided" else
+                           f"a run has not settled after {MAX_EVENTS} cycles (a slow approach near the Hopf line)")
+        except (IntegratorError, InputError, ArithmeticError) as exc:
+            rows.append({})
+            status.append("failed")
+            message.append(_first_line(exc))
+    names = [f"{q}_{s}" for q in ("amplitude", "v_min", "period", "settled") for s in ("near", "far")]
+    vals = {n: np.array([r.get(n, np.nan) for r in rows], dtype=float) for n in names}
+    strs = {n: [r.get(n, "") for r in rows] for n in ("regime", "regime_near", "regime_far")}
+    return ChunkResult(chunk.index, status, message, vals, strs)
+
+
+def prepare(task: ModelTask) -> None:
+    """Compile the law's callbacks and the integrator in this process (before local workers fork)."""
+    from landau.verify.springblock.model import compile_law
+
+    compile_law(task.spec.build())
+
+
+# ---------------------------------------------------------------------------------------------
+# the map with the amplitude equation's boundaries
+# ---------------------------------------------------------------------------------------------
+COLOURS = {"steady": "#dde6f0", "small-cycle": "#8fc98f", "stick-slip": "#e8a33d", "bistable": "#b04a7a",
+           "undecided": "#9a9a9a", "": "#ffffff"}
+
+
+def plot_regime_map(ds, ax=None, n_line: int = 300):
+    """A ``regime`` sweep over (V, k) as a coloured map, with the Hopf line k_c(V) of the amplitude
+    equation on top (solid where Λ < 0, supercritical; dashed where Λ > 0, subcritical) and its
+    codimension-two points V* (Putelat et al. 2010, Fig. 12).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The result of ``landau.sweep("regime", {"V": ..., "k": ...}, law=...)``.
+    ax : matplotlib Axes, optional
+    n_line : int
+        Velocities on the drawn Hopf line.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    import json
+
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    from landau.analyses.sweep_tasks import LawSpec
+    from landau.derivation.multiscale import Derivation
+    from landau.systems.system import SpringBlock
+
+    if ax is None:
+        from matplotlib.figure import Figure
+
+        ax = Figure(figsize=(6.4, 4.6)).subplots()
+    if set(ds.regime.dims) != {"V", "k"}:
+        raise InputError("the regime map needs a sweep over exactly V and k")
+    reg = ds.regime.transpose("k", "V").values.astype(str)
+    codes = np.vectorize({r: i for i, r in enumerate(REGIMES)}.get)(np.where(np.isin(reg, REGIMES), reg, "steady"))
+    V, k = np.asarray(ds.V.values), np.asarray(ds.k.values)
+    cmap = ListedColormap([COLOURS[r] for r in REGIMES])
+    ax.pcolormesh(V, k, codes, cmap=cmap, vmin=-0.5, vmax=len(REGIMES) - 0.5, shading="nearest")
+    law = LawSpec(ds.attrs["law"]) if ds.attrs.get("law") in _builtin() else None
+    if law is not None:
+        params = json.loads(ds.attrs.get("fixed_parameters", "{}"))
+        block = SpringBlock(law.build())
+        Vs = np.logspace(np.log10(V.min()), np.log10(V.max()), n_line)
+        table = Derivation(block).evaluate(Vs, block.resolve({n: v for n, v in params.items() if n not in ("V", "k")}),
+                                           ["kc", "Lambda"])
+        kc, lam = np.asarray(table["kc"]), np.asarray(table["Lambda"])
+        ax.plot(Vs, np.where(lam < 0, kc, np.nan), "k-", lw=1.6, label="k_c(V), Λ < 0 (supercritical)")
+        ax.plot(Vs, np.where(lam > 0, kc, np.nan), "k--", lw=1.6, label="k_c(V), Λ > 0 (subcritical)")
+        sg = np.sign(lam)
+        flips = np.flatnonzero(np.isfinite(lam[:-1]) & np.isfinite(lam[1:]) & (sg[:-1] * sg[1:] < 0))
+        for i in flips:
+            ax.axvline(Vs[i], color="0.3", lw=0.8, ls=":")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    if V.min() < V.max():
+        ax.set_xlim(V.min(), V.max())
+    if k.min() < k.max():
+        ax.set_ylim(k.min(), k.max())
+    ax.set_xlabel("V (m/s)")
+    ax.set_ylabel("k (N/m)")
+    handles = [Patch(color=COLOURS[r], label=r) for r in REGIMES] + ax.get_legend_handles_labels()[0]
+    ax.legend(handles=handles, fontsize=7, loc="upper left", framealpha=0.9)
+    ax.set_title(f"{ds.attrs.get('law', '')}: regimes by direct simulation, Hopf line from the amplitude equation",
+                 fontsize=8)
+    return ax
+
+
+def _builtin():
+    from landau.laws import BUILTIN
+
+    return BUILTIN
+
