@@ -67,5 +67,6 @@ def hopf_point(block, V: float, params: Mapping[str, float]):
                           f"V = {V:g} m/s (none without alpha_ld to start from)")
     res = hopf_normal_form(block.system, values, (guess / BRACKET_FACTOR, guess * BRACKET_FACTOR))
     a = res.dlambda_dp
-    return spring_block_result(block.law.name, float(V), res.p_c, res.omega_c, -a.real, a.imag, res.Lambda,
-                               res.chi, params={k: float(v) for k, v in params.items()}, l1=res.l1, c1=res.c1)
+    out = spring_block_result(block.law.name, float(V), res.p_c, res.omega_c, -a.real, a.imag, res.Lambda,
+                              res.chi, params={k: float(v) for k, v in params.items()}, l1=res.l1, c1=res.c1)
+    return block.name_terms(out)

@@ -500,6 +500,26 @@ class SpringBlock:
             vals += [phi if np.ndim(Vs) or shape else phi.item() for phi in phis]
         return vals
 
+    def name_terms(self, result):
+        """``result`` located at V and at the value of each optional term (shown in its repr, first
+        in its JSON), with the terms' units.
+
+        Parameters
+        ----------
+        result : HopfResult
+            A spring–block result whose ``params`` hold the terms' values.
+
+        Returns
+        -------
+        HopfResult
+        """
+        if not self.terms:
+            return result
+        from dataclasses import replace
+
+        return replace(result, at=(*result.at, *self.terms),
+                       units={**result.units, **{t: _terms.TERMS[t].unit for t in self.terms}})
+
     @cached_property
     def _mu_numeric(self):
         """μ(v, φ…, law parameters…) as a numpy function (the steady-sliding checks of the terms)."""

@@ -141,3 +141,26 @@ def test_check_with_every_term():
 
     r = landau.check("dieterich", 1e-4, 1e-3, {"eta": 100.0, "gamma_ld": -1.0, "alpha_ld": 0.3})
     assert r.agrees and r.prediction.criticality == "supercritical"
+
+
+def test_latex_closed_form_with_gamma(tmp_path):
+    from landau.cli.app import main
+
+    import contextlib
+    import io
+
+    tex = tmp_path / "kc.tex"
+    with contextlib.redirect_stdout(io.StringIO()):
+        rc = main(["derive", "dieterich", "--V", "1e-4", "--param", "gamma_ld=0.5", "--quantities", "kc",
+                   "--latex", str(tex)])
+    assert rc == 0
+    assert r"\gamma_{\mathrm{ld}}" in tex.read_text()
+
+
+def test_derive_refuses_alpha_with_a_named_error():
+    from landau.derivation.multiscale import derive
+    from landau.errors import InputError
+    from landau.systems.system import SpringBlock
+
+    with pytest.raises(InputError, match="alpha_ld"):
+        derive(SpringBlock("dieterich", ("gamma_ld", "alpha_ld")))

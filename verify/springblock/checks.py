@@ -87,9 +87,8 @@ def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = Non
     if not np.isfinite(vals["kc"]) or vals["kc"] <= 0:
         d.hopf.require(V, resolved)   # raises with the velocity-weakening range, as `landau derive` prints it
         raise NoHopfError(f"law {law.name!r} has no Hopf point at V = {V!r} m/s")
-    terms = {t: float(resolved[t]) for t in block.terms}   # the optional terms named in the result
-    return spring_block_result(law.name, float(V), params={k: float(v) for k, v in resolved.items()},
-                               extra=terms, **vals)
+    res = spring_block_result(law.name, float(V), params={k: float(v) for k, v in resolved.items()}, **vals)
+    return block.name_terms(res)
 
 
 @dataclass(frozen=True)
