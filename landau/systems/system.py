@@ -22,9 +22,9 @@ import numpy as np
 import sympy as sp
 
 from landau.errors import InputError
-from landau.systems import springblock_terms as _terms
 from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
+from landau.systems import springblock_terms as _terms
 
 #: system-level symbols shared by every spring–block
 V = sp.Symbol("V", positive=True)          # driving velocity [m/s]

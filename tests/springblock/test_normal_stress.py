@@ -36,10 +36,10 @@ def test_no_steady_sliding_when_gamma_mu_reaches_one(a, b):
 
 
 def test_no_steady_sliding_exit_code_2():
-    from landau.cli.app import main
-
     import contextlib
     import io
+
+    from landau.cli.app import main
 
     err = io.StringIO()
     with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
@@ -144,10 +144,10 @@ def test_check_with_every_term():
 
 
 def test_latex_closed_form_with_gamma(tmp_path):
-    from landau.cli.app import main
-
     import contextlib
     import io
+
+    from landau.cli.app import main
 
     tex = tmp_path / "kc.tex"
     with contextlib.redirect_stdout(io.StringIO()):

@@ -105,10 +105,10 @@ def test_simulated_cycle_with_damping():
 
 
 def test_cli_json_and_latex(tmp_path):
-    from landau.cli.app import main
-
     import contextlib
     import io
+
+    from landau.cli.app import main
 
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):

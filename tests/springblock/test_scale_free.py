@@ -9,15 +9,14 @@ every number is O(1) except the mass m = MV²/(σL).
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
 import sympy as sp
 
 from landau.derivation.general import hopf_normal_form
-from landau.systems.system import DynamicalSystem, SpringBlock
-from landau.verify.springblock.checks import predict
 from landau.errors import NoHopfError
 from landau.laws import get_law
+from landau.systems.system import DynamicalSystem, SpringBlock
+from landau.verify.springblock.checks import predict
 
 BP1 = dict(a=0.010, b=0.015, L=8e-3, sigma=50e6, eta=4.624e6, V_s=1e-6, a_v=0.6)
 V = 1e-9
