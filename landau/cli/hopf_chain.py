@@ -6,7 +6,7 @@ Block i (``--param M_i=…``, ``--param sigma_i=…``, default M_i = 1.2 kg, σ_
 by a spring k to the load point and coupled to its neighbours by ``--param k_coupling=…`` (N/m,
 free ends); the law (built-in name, or ``--mu``/``--state``) and its parameters are shared.  The
 result is the general engine's amplitude equation at the first crossing met as k decreases, with
-the critical mode shape (the slips X_i, largest 1) — :func:`landau.systems.chain.chain_hopf`.
+the critical mode shape (the slips X_i, largest 1) — :func:`landau.analyses.chain.chain_hopf`.
 """
 
 from __future__ import annotations
@@ -26,8 +26,9 @@ def add_arguments(p) -> None:
                                 "law); parameter k at --V")
 def chain_hopf_cli(args):
     """The chain's Hopf point for the command-line arguments."""
+    from landau.analyses.chain import chain_hopf
     from landau.cli.hopf_system import parse_bracket
-    from landau.systems.chain import SpringBlockChain, chain_hopf
+    from landau.systems.chain import SpringBlockChain
 
     for attr, label in (("friction", "--friction"), ("rhs", "--rhs"), ("equilibrium", "--equilibrium"),
                         ("guess", "--guess"), ("mass", "--mass"), ("kinetic", "--kinetic")):

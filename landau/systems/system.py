@@ -246,6 +246,7 @@ class DynamicalSystem:
                 raise InputError(f"equilibrium: no expression for state {missing[0]!r}")
             eq = tuple(parse(equilibrium[s], f"equilibrium {s}", no_states) for s in states)
         else:
+            assert guess is not None   # one of equilibrium and guess is given (checked above)
             eq = tuple(sp.Float(_finite(guess.get(s, 0.0), f"guess {s}")) for s in states)
         E = tuple(parse(mass[s], f"mass {s}", no_states) if mass and s in mass else sp.Integer(1) for s in states)
         norm = 0

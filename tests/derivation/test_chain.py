@@ -7,8 +7,9 @@ import numpy as np
 import pytest
 import scipy.optimize
 
+from landau.analyses.chain import chain_hopf
 from landau.errors import InputError, NoHopfError
-from landau.systems.chain import SpringBlockChain, chain_hopf
+from landau.systems.chain import SpringBlockChain
 
 # Putelat et al. (2010) Table 1 (the dieterich law's defaults)
 A_, B_, L_ = 0.0349, 0.0489, 9e-7

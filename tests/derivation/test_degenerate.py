@@ -88,7 +88,8 @@ def test_next_order_of_a_dae_matches_the_explicit_reduction():
 
 def test_identical_quasi_static_chain_is_degenerate_in_phase():
     # two identical quasi-static aging-law blocks: the in-phase mode is the single block's centre
-    from landau.systems.chain import SpringBlockChain, chain_hopf
+    from landau.analyses.chain import chain_hopf
+    from landau.systems.chain import SpringBlockChain
 
     r = chain_hopf(SpringBlockChain("dieterich", 2), {"M_1": 0.0, "M_2": 0.0, "k_coupling": 2e4})
     assert r.p_c == pytest.approx(11.772 * (0.0489 - 0.0349) / 9e-7, rel=1e-12)

@@ -1,0 +1,161 @@
+"""The first Hopf point of a chain of spring–blocks as k decreases, with its critical mode shape.
+
+The chain itself (its equations, parameters and steady sliding) is
+:class:`landau.systems.chain.SpringBlockChain`; this module locates its first crossing as the
+spring stiffness k decreases, through the general engine, and names the critical mode (in-phase,
+anti-phase, mixed or travelling) from the slips X_i of the critical eigenvector.
+
+References
+----------
+Burridge, R. & Knopoff, L. (1967). Model and theoretical seismicity. Bull. Seismol. Soc. Am. 57,
+341–371 (the chain of blocks).
+Putelat, T., Dawes, J. H. P., Willis, J. R. (2010). Regimes of frictional sliding of a spring–block
+system. J. Mech. Phys. Solids 58, 27–53, eq. (30) (the single block's k_c).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Mapping
+
+import mpmath
+import numpy as np
+
+from landau.errors import InputError, NoHopfError
+from landau.systems.chain import SpringBlockChain
+
+
+def _mode_shape(num, pc: float, wc: float, y0, slips: list[int]) -> np.ndarray:
+    """The slips X_i of the critical eigenvector (iωE − J)q = 0, largest |X_i| = 1 and real positive."""
+    J, E = num.J_float(y0, pc), num.E_float(pc)
+    _, _, vh = np.linalg.svd(1j * wc * E - J)
+    q = vh[-1].conj()
+    x = q[slips]
+    big = x[int(np.argmax(np.abs(x)))]
+    x = x / big
+    # the SVD of a float64 pencil gives the mode to ~1e-10: smaller parts are round-off
+    x = np.where(np.abs(x.real) < 1e-8, 0.0, x.real) + 1j * np.where(np.abs(x.imag) < 1e-8, 0.0, x.imag)
+    return x
+
+
+def _mode_shape_mp(num, pc, wc, y, slips: list[int], j: int) -> np.ndarray:
+    """The slips of the critical eigenvector at the working precision: (iωE − J)q = 0 with q_j = 1,
+    solved with the row of least residual dropped."""
+    n = num.n
+    J, E = num.J_mp(y, pc), num.E_mp(pc)
+    A = mpmath.matrix(n, n)
+    for r in range(n):
+        for c in range(n):
+            A[r, c] = 1j * wc * E[r, c] - J[r, c]
+    others = [c for c in range(n) if c != j]
+    best = None
+    for drop in range(n):
+        rows = [r for r in range(n) if r != drop]
+        M = mpmath.matrix([[A[r, c] for c in others] for r in rows])
+        rhs = mpmath.matrix([-A[r, j] for r in rows])
+        try:
+            x = mpmath.lu_solve(M, rhs)
+        except ZeroDivisionError:
+            continue
+        q = [mpmath.mpc(0)] * n
+        q[j] = mpmath.mpc(1)
+        for c, val in zip(others, x, strict=True):
+            q[c] = val
+        res = abs(sum(A[drop, c] * q[c] for c in range(n)))
+        if best is None or res < best[0]:
+            best = (res, q)
+    assert best is not None, "no row of the pencil was dropped"
+    x = np.array([complex(best[1][i]) for i in slips])
+    return np.where(np.abs(x.real) < 1e-14, 0.0, x.real) + 1j * np.where(np.abs(x.imag) < 1e-14, 0.0, x.imag)
+
+
+def chain_hopf(chain: SpringBlockChain, params: Mapping[str, float] | None = None,
+               bracket: tuple[float, float] | None = None, dps: int = 50):
+    """The first Hopf point of a chain as k decreases, with its amplitude equation and mode shape.
+
+    Parameters
+    ----------
+    chain : SpringBlockChain
+    params : mapping, optional
+        Overrides of :attr:`SpringBlockChain.defaults` (resolved by :meth:`SpringBlockChain.resolve`).
+    bracket : (float, float), optional
+        Stiffnesses (N/m) to search, from the larger down (default: from a stiffness where sliding
+        is stable, found by doubling, down by factors of 4 to 1e-12 of it).
+    dps : int
+        Working precision of the located point and its coefficients.
+
+    Returns
+    -------
+    HopfResult
+        From the general engine (:func:`landau.derivation.general.normal_form_at`), normalised on
+        the slip of the block that moves most; ``extra`` holds ``blocks``, ``mode_shape`` (the slips
+        X_i of the critical mode as ``[re, im]`` pairs, largest 1), ``mode`` ("in-phase",
+        "anti-phase", "mixed" or "travelling") and Λ's round-off bound; where Λ vanishes, the
+        next order (:func:`landau.derivation.degenerate.with_verdict`).
+
+    Raises
+    ------
+    NoHopfError
+        No crossing in the bracket (e.g. velocity-strengthening friction).
+    """
+    from landau.derivation.degenerate import with_verdict
+    from landau.derivation.general import NumericSystem, normal_form_at, refine_hopf, scan_hopf
+    from landau.derivation.hopf import SPRING_BLOCK_UNITS
+
+    p = chain.resolve(params)
+    system = chain.system
+    num = NumericSystem(system, p, chain.equilibrium_values(p))
+    y_eq = np.array(chain.equilibrium_values(p))
+
+    def stable(kv: float) -> bool:
+        lam = num.eigenvalues(y_eq, kv)
+        return bool(np.all(lam.real < 0))
+
+    if bracket is not None:
+        hi, lo = max(map(float, bracket)), min(map(float, bracket))
+        if not (np.isfinite(lo) and np.isfinite(hi) and 0 < lo < hi):
+            raise InputError(f"bracket: need 0 < lo < hi (stiffnesses in N/m), got {bracket!r}")
+        windows = [(hi, lo)]
+    else:
+        scale = max(p[f"sigma_{i}"] for i in range(1, chain.blocks + 1)) / max(
+            abs(float(x)) for x in (p.get("L", 1.0), 1e-300))
+        hi = scale
+        for _ in range(200):
+            if stable(hi):
+                break
+            hi *= 2.0
+        else:
+            raise NoHopfError(f"{system.name}: steady sliding is unstable at every stiffness tried (up to {hi:g} N/m)")
+        windows = [(hi / 4.0 ** j, hi / 4.0 ** (j + 1)) for j in range(20)]
+    for a, b in windows:
+        hits = scan_hopf(num, a, b, samples=24, y_start=y_eq)
+        if hits:
+            break
+    else:
+        raise NoHopfError(f"{system.name}: no Hopf crossing of k below {windows[0][0]:g} N/m")
+    p0, y0, lam = max(hits, key=lambda h: h[0])
+    shape = _mode_shape(num, p0, abs(lam.imag), y0, chain.slip_indices())
+    # normalise the amplitude equation on the block that moves most
+    biggest = chain.slip_indices()[int(np.argmax(np.abs(shape)))]
+    system_n = replace(system, normalise=biggest)
+    num = NumericSystem(system_n, p, chain.equilibrium_values(p))
+    jets_cache: dict = {}
+
+    def at(digits: int):
+        with mpmath.workdps(digits):
+            pc, wc, y = refine_hopf(num, p0, abs(lam.imag), y0)
+            return normal_form_at(num, pc, wc, y, jets_cache=jets_cache, params=p), (pc, wc, y)
+
+    first, (pc, wc, y) = at(dps)
+    with mpmath.workdps(dps):
+        shape = _mode_shape_mp(num, pc, wc, y, chain.slip_indices(), biggest)
+    # Λ with its round-off bound; where it vanishes, Λ = 0 (degenerate) and the next order
+    res = with_verdict(system_n, p, first, dps, lambda d: at(d)[0])
+    if np.all(shape.imag == 0):
+        mode = "in-phase" if np.all(shape.real > 0) else ("anti-phase" if np.all(shape.real != 0) else "mixed")
+    else:
+        mode = "travelling"
+    units = {key: val for key, val in SPRING_BLOCK_UNITS.items() if key in ("V", "p_c", "omega_c")}
+    return replace(res, units=units, at=("V",),
+                   extra={"blocks": chain.blocks, "mode": mode,
+                          "mode_shape": [[float(z.real), float(z.imag)] for z in shape], **res.extra})
