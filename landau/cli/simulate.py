@@ -157,7 +157,7 @@ def _spring_block(args, t_end: float):
     notes = []
     if args.k is None:
         if "alpha_ld" in block.terms:
-            from landau.systems.springblock_routes import hopf_point
+            from landau.derivation.springblock_routes import hopf_point
 
             kc = hopf_point(block, V, params).p_c
         else:

@@ -149,7 +149,7 @@ class HopfLine:
     def __init__(self, block: SpringBlock, jets: Jets | None = None):
         if "alpha_ld" in block.terms:   # k enters the state rate too (dσ/dt = −γ_LD k u): general engine
             raise InputError("the Hopf line of a block with alpha_ld is located by the general engine: "
-                             "landau.systems.springblock_routes.hopf_point or `landau hopf spring-block`")
+                             "landau.derivation.springblock_routes.hopf_point or `landau hopf spring-block`")
         self.block = block
         self.system: DynamicalSystem = block.system
         self.jets = jets or Jets(self.system)

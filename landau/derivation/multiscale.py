@@ -509,7 +509,7 @@ def _as_block(block) -> SpringBlock:
         if "alpha_ld" in block.terms:   # the Hopf parameter k then enters two rows (dσ/dt = −γ_LD k u)
             raise InputError("derive: the state response alpha_ld makes the stiffness enter two rows of the "
                              "Jacobian, which the symbolic route does not take; use `landau hopf spring-block` "
-                             "or landau.systems.springblock_routes.hopf_point (the general engine)")
+                             "or landau.derivation.springblock_routes.hopf_point (the general engine)")
         return block
     from landau.laws import FrictionLaw
 

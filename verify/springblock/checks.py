@@ -73,7 +73,7 @@ def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = Non
     V = one_velocity(V, "V", "a loop over velocities")
     block = SpringBlock.for_params(law, params)   # with the optional terms given (eta, gamma_ld, alpha_ld)
     if "alpha_ld" in block.terms:
-        from landau.systems.springblock_routes import hopf_point
+        from landau.derivation.springblock_routes import hopf_point
 
         return hopf_point(block, float(V), block.resolve(params))
     key = (id(law), block.terms)
