@@ -67,6 +67,11 @@ DEFAULT_DPS = 50
 SCAN_SAMPLES = 40
 
 
+#: largest ratio of eigenvalue moduli that float64 eigenvalues resolve to about 1e-7 relative
+#: (beyond it :meth:`NumericSystem.eigenvalues` computes them again with mpmath)
+SPREAD_FLOAT64 = 1e9
+
+
 class NumericSystem:
     """A :class:`DynamicalSystem` with every parameter but the Hopf parameter p given a value.
 
@@ -172,13 +177,29 @@ class NumericSystem:
         raise SingularPointError(f"{self.sys.name}: no equilibrium found near the guess at {self.p.name} = {p:g}")
 
     def eigenvalues(self, y, p) -> np.ndarray:
-        """Finite eigenvalues of the pencil J(y, p) v = λ E(p) v."""
+        """Finite eigenvalues of the pencil J(y, p) v = λ E(p) v.
+
+        float64 resolves an eigenvalue only to about eps·max|λ| in absolute terms: where the
+        spectrum spans more than :data:`SPREAD_FLOAT64` (a fast eigenvalue −η/M beside a slow pair
+        at 1e-7 rad/s: a quasi-dynamic fault cell at the plate rate), the eigenvalues of the same
+        float64 matrix E⁻¹J are computed again with mpmath at 50 digits, which resolves the slow
+        pair (its sensitivity to the matrix entries' own rounding is small for such graded matrices).
+        """
         J, E = self.J_float(y, p), self.E_float(p)
-        if np.count_nonzero(E - np.diag(np.diag(E))) == 0 and np.all(np.diag(E) != 0):
-            lam = np.linalg.eigvals(J / np.diag(E)[:, None])
+        diagonal = np.count_nonzero(E - np.diag(np.diag(E))) == 0 and np.all(np.diag(E) != 0)
+        if diagonal:
+            A = J / np.diag(E)[:, None]
+            lam = np.linalg.eigvals(A)
         else:
             lam = scipy.linalg.eigvals(J, E)
-        return lam[np.isfinite(lam)]
+        lam = lam[np.isfinite(lam)]
+        mag = np.abs(lam)
+        if diagonal and len(mag) > 1 and np.all(np.isfinite(A)) and mag.max() > 0 \
+                and np.min(mag[mag > 0], initial=np.inf) < mag.max() / SPREAD_FLOAT64:
+            with mpmath.workdps(50):
+                ev = mpmath.eig(mpmath.matrix(A.tolist()), left=False, right=False)
+            lam = np.array([complex(e) for e in ev])
+        return lam
 
     # --- mpmath ---------------------------------------------------------------------------------
     def equilibrium_mp(self, p, guess) -> list:

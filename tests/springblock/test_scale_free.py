@@ -78,3 +78,23 @@ def test_block_without_damping_term_rejects_eta():
 
     with pytest.raises(InputError, match="eta"):
         SpringBlock("dieterich").resolve({"eta": 1.0})
+
+
+@pytest.mark.parametrize("M", [1e-8, 1.0])
+def test_general_engine_on_the_dimensional_bp1_cell(M):
+    """The general engine on the cell in SI units, where the fast eigenvalue −η/M (4.6e14 and
+    4.6e6 1/s) sits beside the slow pair at 8.8e-8 rad/s: float64 eigenvalues of J/M resolve the
+    pair only to about 1e-16·|J/M| ≈ 0.05 1/s, so the scan used to see no crossing
+    ("no Hopf crossing of k in [1.5625e+07, 6.25e+07]").  Against the dimensionless route."""
+    from landau.systems.system import SpringBlock
+
+    a, b, L, s, eta = BP1["a"], BP1["b"], BP1["L"], BP1["sigma"], BP1["eta"]
+    block = SpringBlock.for_params(get_law("dieterich"), {**BP1, "M": M})
+    prm = {**block.resolve({**BP1, "M": M}), "V": V}
+    kc = (s * (b - a) - eta * V) / L * (1 + M * V ** 2 / (L * (s * a + eta * V)))
+    res = hopf_normal_form(block.system, prm, (0.5 * kc, 2.0 * kc))
+    kap, w, lam = _dimensionless_hopf(M * V ** 2 / (s * L), eta * V / s, a, b)
+    assert res.p_c == pytest.approx(kap * s / L, rel=1e-9)
+    assert res.omega_c == pytest.approx(w * V / L, rel=1e-9)
+    assert res.Lambda == pytest.approx(lam * V / L ** 3, rel=1e-6)
+    assert res.criticality == "supercritical"
