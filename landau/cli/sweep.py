@@ -172,8 +172,9 @@ def render(doc: dict) -> str:
 
 
 def plot_file(path, out, formats=("png", "pdf", "svg")) -> dict:
-    """``landau plot --sweep FILE.nc --out FIG``: a ``regime`` map with k_c(V) on top
-    (:func:`landau.verify.springblock.regime_map.plot_regime_map`) or a ``simulate`` bifurcation
+    """``landau plot --sweep FILE.nc --out FIG``: a ``regime`` map with the amplitude equation's
+    boundaries on top (k_c(V), the fold of cycles, V*: :func:`landau.analyses.regime_overlay.regime_overlay`,
+    drawn by :func:`landau.verify.springblock.regime_map.plot_regime_map`) or a ``simulate`` bifurcation
     diagram of the forced oscillator (:func:`landau.verify.skurativskyi.sweep.plot_diagram`); the
     JSON document of the command."""
     from pathlib import Path
@@ -200,12 +201,18 @@ def plot_file(path, out, formats=("png", "pdf", "svg")) -> dict:
     task = ds.attrs.get("task")
     doc: dict[str, Any]
     if task == "regime" and "regime" in ds:
+        from landau.analyses.regime_overlay import regime_overlay
         from landau.verify.springblock.regime_map import plot_regime_map
 
         fig = Figure(figsize=(6.4, 4.8))
-        plot_regime_map(ds, fig.subplots())
+        overlay = regime_overlay(ds)
+        plot_regime_map(ds, fig.subplots(), overlay=overlay)
         vals, counts = np.unique(ds.regime.values.astype(str), return_counts=True)
         doc = {"kind": "regime-map", "regimes": {str(v): int(c) for v, c in zip(vals, counts, strict=True)}}
+        if overlay is not None:
+            # the codimension-two velocities drawn, as landau derive --codim2 gives them
+            doc["V_star"] = [float(v) for v in overlay["V_star"]]
+            doc["fold_points"] = int(np.isfinite(overlay["k_fold"]).sum())
     elif task == "simulate" and ds.attrs.get("model") == "forced-oscillator":
         from landau.verify.skurativskyi.sweep import plot_diagram
 

@@ -237,10 +237,12 @@ COLOURS = {"steady": "#dde6f0", "small-cycle": "#8fc98f", "stick-slip": "#e8a33d
            "undecided": "#9a9a9a", "": "#ffffff"}
 
 
-def plot_regime_map(ds, ax=None, n_line: int = 300):
-    """A ``regime`` sweep over (V, k) as a coloured map, with the Hopf line k_c(V) of the amplitude
-    equation on top (solid where Λ < 0, supercritical; dashed where Λ > 0, subcritical) and its
-    codimension-two points V* (Putelat et al. 2010, Fig. 12).
+def plot_regime_map(ds, ax=None, n_line: int = 300, overlay=None):
+    """A ``regime`` sweep over (V, k) as a coloured map, with the amplitude equation's boundaries on
+    top: the Hopf line k_c(V) (solid where Λ < 0, supercritical; dashed where Λ > 0, subcritical),
+    the fold of cycles k_fold(V) of the quintic amplitude equation and the codimension-two
+    velocities V* (Putelat et al. 2010, Fig. 12), from
+    :func:`landau.analyses.regime_overlay.regime_overlay`.
 
     Parameters
     ----------
@@ -249,19 +251,17 @@ def plot_regime_map(ds, ax=None, n_line: int = 300):
     ax : matplotlib Axes, optional
     n_line : int
         Velocities on the drawn Hopf line.
+    overlay : dict, optional
+        The boundaries already computed by ``regime_overlay(ds)`` (computed here otherwise).
 
     Returns
     -------
     matplotlib.axes.Axes
     """
-    import json
-
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
 
-    from landau.analyses.sweep_tasks import LawSpec
-    from landau.derivation.multiscale import Derivation
-    from landau.systems.system import SpringBlock
+    from landau.analyses.regime_overlay import regime_overlay
 
     if ax is None:
         from matplotlib.figure import Figure
@@ -274,20 +274,15 @@ def plot_regime_map(ds, ax=None, n_line: int = 300):
     V, k = np.asarray(ds.V.values), np.asarray(ds.k.values)
     cmap = ListedColormap([COLOURS[r] for r in REGIMES])
     ax.pcolormesh(V, k, codes, cmap=cmap, vmin=-0.5, vmax=len(REGIMES) - 0.5, shading="nearest")
-    law = LawSpec(ds.attrs["law"]) if ds.attrs.get("law") in _builtin() else None
-    if law is not None:
-        params = json.loads(ds.attrs.get("fixed_parameters", "{}"))
-        block = SpringBlock(law.build())
-        Vs = np.logspace(np.log10(V.min()), np.log10(V.max()), n_line)
-        table = Derivation(block).evaluate(Vs, block.resolve({n: v for n, v in params.items() if n not in ("V", "k")}),
-                                           ["kc", "Lambda"])
-        kc, lam = np.asarray(table["kc"]), np.asarray(table["Lambda"])
-        ax.plot(Vs, np.where(lam < 0, kc, np.nan), "k-", lw=1.6, label="k_c(V), Λ < 0 (supercritical)")
-        ax.plot(Vs, np.where(lam > 0, kc, np.nan), "k--", lw=1.6, label="k_c(V), Λ > 0 (subcritical)")
-        sg = np.sign(lam)
-        flips = np.flatnonzero(np.isfinite(lam[:-1]) & np.isfinite(lam[1:]) & (sg[:-1] * sg[1:] < 0))
-        for i in flips:
-            ax.axvline(Vs[i], color="0.3", lw=0.8, ls=":")
+    ov = overlay if overlay is not None else regime_overlay(ds, n_line=n_line)
+    if ov is not None:
+        kc, lam = ov["kc"], ov["Lambda"]
+        ax.plot(ov["V_line"], np.where(lam < 0, kc, np.nan), "k-", lw=1.6, label="k_c(V), Λ < 0 (supercritical)")
+        ax.plot(ov["V_line"], np.where(lam > 0, kc, np.nan), "k--", lw=1.6, label="k_c(V), Λ > 0 (subcritical)")
+        ax.plot(ov["V_fold"], ov["k_fold"], color="#1f5fbf", ls="-.", lw=1.4,
+                label="fold of cycles k_c − Λ²/(8Λ₅Γ̄)")
+        for i, Vs in enumerate(ov["V_star"]):
+            ax.axvline(Vs, color="0.3", lw=0.9, ls=":", label="V* (Λ = 0, codimension two)" if i == 0 else None)
     ax.set_xscale("log")
     ax.set_yscale("log")
     if V.min() < V.max():
@@ -298,13 +293,7 @@ def plot_regime_map(ds, ax=None, n_line: int = 300):
     ax.set_ylabel("k (N/m)")
     handles = [Patch(color=COLOURS[r], label=r) for r in REGIMES] + ax.get_legend_handles_labels()[0]
     ax.legend(handles=handles, fontsize=7, loc="upper left", framealpha=0.9)
-    ax.set_title(f"{ds.attrs.get('law', '')}: regimes by direct simulation, Hopf line from the amplitude equation",
+    ax.set_title(f"{ds.attrs.get('law', '')}: regimes by direct simulation, boundaries from the amplitude equation",
                  fontsize=8)
     return ax
-
-
-def _builtin():
-    from landau.laws import BUILTIN
-
-    return BUILTIN
 
