@@ -280,7 +280,7 @@ def plot_regime_map(ds, ax=None, n_line: int = 300, overlay=None):
         ax.plot(ov["V_line"], np.where(lam < 0, kc, np.nan), "k-", lw=1.6, label="k_c(V), Λ < 0 (supercritical)")
         ax.plot(ov["V_line"], np.where(lam > 0, kc, np.nan), "k--", lw=1.6, label="k_c(V), Λ > 0 (subcritical)")
         ax.plot(ov["V_fold"], ov["k_fold"], color="#1f5fbf", ls="-.", lw=1.4,
-                label="fold of cycles k_c − Λ²/(8Λ₅Γ̄)")
+                label=r"fold of cycles $k_c - \Lambda^2/(8\Lambda_5\bar\Gamma)$")
         for i, Vs in enumerate(ov["V_star"]):
             ax.axvline(Vs, color="0.3", lw=0.9, ls=":", label="V* (Λ = 0, codimension two)" if i == 0 else None)
     ax.set_xscale("log")
