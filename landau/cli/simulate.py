@@ -169,6 +169,8 @@ def _spring_block(args, t_end: float):
         notes.append(f"k = 0.9 k_c(V) = {k:.6g} N/m (k_c = {kc:.6g} N/m; steady sliding is unstable below k_c)")
     else:
         k = _positive(args.k, "--k")
+    if params["M"] == 0:
+        return _quasidynamic(args, law, V, k, params, t_end, notes)
     model = SpringBlockModel.build(law, V, k, params)
     names = ("X", "v") + tuple(s.name for s in law.states)
     if args.y0 is not None:
@@ -206,6 +208,34 @@ def _spring_block(args, t_end: float):
 
 #: the spring–block's "stick" phases shaded in its plots: slip rate below this fraction of V
 STICK_FRACTION = 0.01
+
+
+def _quasidynamic(args, law, V, k, params, t_end, notes):
+    """``spring-block --param M=0 --param eta=...``: the quasi-dynamic cell (force balance solved for v)."""
+    from landau.verify.hybrid.plotting import regimes_from_mask
+    from landau.verify.springblock.quasidynamic import QuasiDynamicCell, simulate_quasidynamic
+
+    cell = QuasiDynamicCell.build(law, V, k, params)
+    if args.y0 is not None:
+        names = ("X",) + tuple(s.name for s in law.states)
+        vals = _y0(args.y0, names)
+        try:
+            y0 = cell.from_physical(vals[0], vals[1:])
+        except InputError as exc:
+            raise InputError(f"--y0: {exc}") from None
+        start = "starts at --y0 (X and the states; v follows from the force balance)"
+    else:
+        y0 = None
+        start = "starts X = 0.01 L (the law's memory length) off steady sliding along the critical mode"
+    sim = simulate_quasidynamic(law, V, k, cell, t_end, y0, rtol=1e-9, max_steps=_max_steps(args),
+                                max_points=MAX_POINTS, sections=args.plot == "poincare")
+    v = sim.y[1]
+    sim = replace(sim, regimes=regimes_from_mask(sim.t, v < STICK_FRACTION * V, "stick (v < V/100)", "slip"))
+    units = {"X": "m", "v": "m/s", "mu": "1", **law_state_units(law)}
+    used = {"law": law.name, "V": V, "k": k, **params}
+    notes.append("quasi-dynamic (M = 0): the slip rate v solves k(Vt - x) = sigma mu(v, phi) + eta v at every "
+                 "instant; X = x - x0(t) is the displacement from steady sliding; " + start)
+    return sim, used, units, notes
 
 
 def _load_history(args, law, params, t_end_given):
