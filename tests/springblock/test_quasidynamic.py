@@ -118,7 +118,8 @@ def test_quasidynamic_agrees_with_tiny_mass_compiled_run():
     run = integrate(model, z0, (0.0, T), rtol=1e-11)
     ph = model.to_physical(run.y)
     scale = 0.05 * BP1["L"]
-    assert float(ph["X"]) == pytest.approx(qd.y[0, -1], abs=1e-8 * scale)  # rtol 1e-11 over ~500 steps; the O(MV²/(σL)) difference is 1e-20
+    # rtol 1e-11 over ~500 steps; the O(MV²/(σL)) difference is 1e-20
+    assert float(ph["X"]) == pytest.approx(qd.y[0, -1], abs=1e-8 * scale)
     assert float(ph["v"]) == pytest.approx(qd.y[1, -1], rel=1e-8)
     assert float(ph["phi"]) == pytest.approx(qd.y[3, -1], rel=1e-8)
 

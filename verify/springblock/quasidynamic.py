@@ -293,7 +293,7 @@ def simulate_quasidynamic(law: FrictionLaw, V: float, k: float, params: Mapping[
         if steps >= max_steps:
             status = Status.MAX_STEPS
             break
-        t_prev, y_prev, w_prev = ts[-1], ys[-1], ws[-1]
+        t_prev, w_prev = ts[-1], ws[-1]
         msg = solver.step()
         steps += 1
         if solver.status == "failed" or not np.all(np.isfinite(solver.y)):
@@ -304,7 +304,7 @@ def simulate_quasidynamic(law: FrictionLaw, V: float, k: float, params: Mapping[
             from scipy.optimize import brentq
 
             dense = solver.dense_output()
-            tc = brentq(lambda s: cell.slip_rate(dense(s), 0.0), t_prev, solver.t, xtol=1e-14 * max(1.0, solver.t))
+            tc = brentq(lambda s, d=dense: cell.slip_rate(d(s), 0.0), t_prev, solver.t, xtol=1e-14 * max(1.0, solver.t))
             yc = dense(tc)
             row = _physical(cell, np.array([tc]), yc[:, None], np.array([0.0]))[:, 0]
             log.append(Event(float(tc * tu), row, "crossing", "slip", "slip", "section", row, "up"))
