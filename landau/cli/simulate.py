@@ -536,7 +536,8 @@ def run(args) -> dict:
         period = 2 * math.pi / params["omega"] if args.model == "forced-oscillator" else None
         phase = (1, 2) if args.V_history is not None else PHASE_PLANE.get(args.model, (0, 1))
         if args.plot == "poincare" and args.model == "spring-block":
-            phase = (0, 2)   # v = V on the section: X against the first state
+            # v = V on the section: X against the first state (after mu in the quasi-dynamic series)
+            phase = (0, 3) if "mu" in sim._names() else (0, 2)
         try:
             size = (11, max(4.5, 1.7 * len(sim._names()) + 0.8)) if args.plot == "overview" else (6.0, 4.8)
             fig = sim.plot(args.plot, discard=discard or 0.0, units=units, phase=phase,
