@@ -149,8 +149,6 @@ def _spring_block(args, t_end: float):
     block = SpringBlock.for_params(law, overrides)   # with the optional terms given (eta, gamma_ld, alpha_ld)
     _only_known(overrides, list(block.defaults), "spring-block")
     params = block.resolve(overrides)
-    if args.V_history is not None and block.terms:
-        raise InputError(f"spring-block: --V-history does not take {', '.join(block.terms)} (give a constant --V)")
     if args.V_history is not None:
         return _load_history(args, law, params, t_end)
     V = _positive(args.V, "--V") if args.V is not None else 1e-4
@@ -252,8 +250,20 @@ def _load_history(args, law, params, t_end_given):
     hist = parse_history(args.V_history)
     notes = [f"load point: {hist} (m/s @ s); starts from steady sliding at V = {hist.velocities[0]:g} m/s"]
     if args.k is None:
-        block = SpringBlock(law)
-        kcs = [float(np.ravel(critical_stiffness(block, V, params))[0]) for V in set(hist.velocities) if V > 0]
+        block = SpringBlock.for_params(law, params)   # with the optional terms given (eta, gamma_ld, alpha_ld)
+
+        def kc_at(V):
+            if "alpha_ld" not in block.terms:
+                return float(np.ravel(critical_stiffness(block, V, params))[0])
+            from landau.derivation.springblock_routes import hopf_point
+            from landau.errors import NoHopfError
+
+            try:
+                return hopf_point(block, V, params).p_c
+            except NoHopfError:
+                return float("nan")
+
+        kcs = [kc_at(V) for V in set(hist.velocities) if V > 0]
         kcs = [kc for kc in kcs if math.isfinite(kc) and kc > 0]
         if kcs:
             k = 2.0 * max(kcs)
@@ -269,7 +279,11 @@ def _load_history(args, law, params, t_end_given):
     t_end = t_end_given if args.t_end is not None else None
     sim = simulate_history(law, hist, k, params, t_end)
     units = {"V": "m/s", "v": "m/s", "mu": "1", **law_state_units(law)}
+    units.update({nm: "N" for nm in ("F", "sigma") if nm in sim.state_names})
     used = {"law": law.name, "V_history": str(hist), "k": k, **params}
+    if "F" in sim.state_names:
+        notes.append("F = k (x_lp - x), the spring force" + (", and sigma the normal load that follows it"
+                                                            if "sigma" in sim.state_names else ""))
     notes.append("mu = mu(v, phi), the law's friction coefficient; V the load-point velocity")
     return sim, used, units, notes
 
