@@ -141,3 +141,25 @@ def test_m0_without_damping_is_a_named_error(capsys):
         QuasiDynamicCell.build(LAW, 1e-6, 1e7, {**BP1, "eta": 0.0})
     assert main(["simulate", "spring-block", "dieterich", "--V", "1e-6", "--param", "M=0"]) == 2
     assert "eta > 0" in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_landau_verify_checks_the_quasidynamic_cell(capsys):
+    """`landau verify` at M = 0: the cycle's amplitude against the prediction at ε² ≈ ε²_max/10, by the
+    return map of the quasi-dynamic cell (about 15 s)."""
+    import json
+
+    argv = ["verify", "dieterich", "--V", "1e-6", "--eps2", "4.6e-7", "--json"]
+    argv += [f"--param={n}={v}" for n, v in BP1.items()]
+    assert main(argv) == 0
+    pt = json.loads(capsys.readouterr().out)["points"][0]
+    assert pt["verdict"] == "agrees"
+    assert abs(pt["rel_error"]) < 1e-2 and pt["cycle_stable"]
+    # the measured Floquet multiplier against the predicted gap 2 Re(dλ/dk) (k_c − k) T
+    gap = 1 - pt["detail"]["floquet_multipliers"][0]
+    assert gap == pytest.approx(pt["detail"]["points"][-1]["multiplier_gap"], rel=0.05)
+
+
+def test_landau_verify_refuses_m0_without_damping(capsys):
+    assert main(["verify", "dieterich", "--V", "1e-4", "--param", "M=0"]) == 2
+    assert "eta > 0" in capsys.readouterr().err

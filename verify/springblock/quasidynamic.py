@@ -391,6 +391,68 @@ def return_map(cell: QuasiDynamicCell, xi: float, *, rtol: float = 1e-11, period
     return float(sol.y_events[0][0][0]), float(sol.t_events[0][0] * cell.time_unit), x_min
 
 
+def find_cycle(cell: QuasiDynamicCell, amplitude_guess: float, *, rtol: float = 1e-11):
+    """The periodic orbit of a one-state law's quasi-dynamic cell near X = ``amplitude_guess`` [m].
+
+    The fixed point of the return map to v = V (X maximal) by Brent's method on P(ξ) − ξ over a
+    bracket grown from [0.7, 1.4]·guess (stable and unstable cycles alike); its Floquet multiplier
+    is the central difference of P.
+
+    Parameters
+    ----------
+    cell : QuasiDynamicCell
+    amplitude_guess : float
+        The predicted largest slip X of the cycle [m] (e.g. C·sqrt|k − k_c|).
+    rtol : float
+        Tolerance of the Radau IIA.
+
+    Returns
+    -------
+    PeriodicOrbit
+        As the compiled route's (:class:`landau.verify.springblock.orbits.PeriodicOrbit`), with one
+        multiplier.
+
+    Raises
+    ------
+    ShootingError
+        No sign change of P(ξ) − ξ, or the orbit does not return.
+    """
+    from scipy.optimize import brentq
+
+    from landau.verify.springblock.orbits import PeriodicOrbit, ShootingError
+
+    def g(z):
+        try:
+            return return_map(cell, z, rtol=rtol)[0] - z
+        except (IntegratorError, InputError) as exc:
+            raise ShootingError(f"quasi-dynamic return map at X = {z * cell.ell:.6g} m: {exc}") from exc
+
+    x0 = amplitude_guess / cell.ell
+    lo, hi = 0.7 * x0, 1.4 * x0
+    glo, ghi = g(lo), g(hi)
+    for _ in range(6):
+        if glo * ghi < 0:
+            break
+        if abs(glo) < abs(ghi):
+            lo, hi, ghi = 0.6 * lo, lo, glo
+            glo = g(lo)
+        else:
+            lo, hi, glo = hi, 1.6 * hi, ghi
+            ghi = g(hi)
+    if not glo * ghi < 0:
+        raise ShootingError(f"no cycle of the quasi-dynamic cell between X = {lo * cell.ell:.3g} and "
+                            f"{hi * cell.ell:.3g} m (the return map has no fixed point there)")
+    z = brentq(g, lo, hi, xtol=1e-13 * x0, rtol=1e-14)
+    x_ret, T, z_min = return_map(cell, z, rtol=rtol)
+    h = 1e-4 * z
+    mult = (return_map(cell, z + h, rtol=rtol)[0] - return_map(cell, z - h, rtol=rtol)[0]) / (2 * h)
+    psi = _psi_on_section(cell, z)
+    run = simulate_quasidynamic(cell.law, cell.V, cell.k, cell, T, np.array([z, psi]), rtol=rtol)
+    v = run.y[1]
+    return PeriodicOrbit(cell.V, cell.k, T, z * cell.ell, z_min * cell.ell, float(v.max()), float(v.min()),
+                         (complex(mult),), 0, float(abs(x_ret - z)), np.array([z]))
+
+
 def _psi_on_section(cell: QuasiDynamicCell, xi: float) -> float:
     """ψ with w(ξ, ψ) = 0 (v = V) for a one-state law: the root of the force residual at w = 0."""
     from scipy.optimize import brentq
@@ -406,4 +468,4 @@ def _psi_on_section(cell: QuasiDynamicCell, xi: float) -> float:
     raise InputError(f"no state on the section v = V at X = {xi * cell.ell:g} m")
 
 
-__all__ = ["QuasiDynamicCell", "return_map", "simulate_quasidynamic"]
+__all__ = ["QuasiDynamicCell", "find_cycle", "return_map", "simulate_quasidynamic"]
