@@ -8,7 +8,8 @@ Models (defaults: the published parameters):
 * ``spring-block`` — the block on a driven spring with a rate-and-state law, eq. (4) of
   Putelat, Dawes & Willis (2010); ``--V`` driving velocity [m/s] (default 1e-4), ``--k``
   stiffness [N/m] (default 0.9 k_c(V), where steady sliding is unstable); starts from steady
-  sliding displaced along the critical mode;
+  sliding displaced along the critical mode; ``--param M=0 --param eta=...`` is the
+  quasi-dynamic cell (the force balance solved for the slip rate; CSV X, v, mu and the states);
 * ``galvanetto-one-block``, ``galvanetto-two-blocks`` — the dimensionless stick–slip models of
   Galvanetto (2004), started stuck at the origin; kinetic friction eq. (7) or the user's law
   ``--kinetic EXPR`` (branch r < 0 in the relative velocity r = Ẋ − V and the parameters
@@ -26,7 +27,8 @@ Models (defaults: the published parameters):
 
 ``spring-block LAW --V-history "V0@t0,V1@t1,..."`` drives the load point at a piecewise-constant
 velocity instead (velocity steps, slide-hold-slide; starts from steady sliding at V0); its CSV
-holds t, the load-point velocity V, the slip rate v, the friction coefficient mu and the states.
+holds t, the load-point velocity V, the slip rate v, the friction coefficient mu and the states
+(with ``eta`` or ``gamma_ld`` also the spring force F and, with ``gamma_ld``, the normal load sigma).
 
 The output format follows each ``--out`` suffix: ``.csv`` (header ``t [s], name [unit]...``),
 ``.npz`` or ``.png`` (time series with the regimes shaded and the phase portrait, or the
@@ -103,7 +105,7 @@ def configure(p) -> None:
     p.add_argument("--V-history", dest="V_history", default=None, metavar="V0@t0,V1@t1,...",
                    help="spring-block: drive the load point at velocity V_i [m/s] from time t_i [s] on (0: a hold), "
                         "starting from steady sliding at V0: velocity steps, slide-hold-slide; the CSV has "
-                        "t, V, v, mu and the states")
+                        "t, V, v, mu and the states (with eta or gamma_ld also F and sigma)")
     p.add_argument("--plot", choices=("overview", "poincare"), default="overview",
                    help="what a .png shows: time series and phase portrait (default) or the Poincaré section "
                         "(the logged sections; the forced oscillator: stroboscopic at the forcing period)")
