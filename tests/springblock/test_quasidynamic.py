@@ -100,8 +100,10 @@ def test_cycle_below_kc_against_the_amplitude_equation():
     assert errs[0] / errs[1] == pytest.approx(4.0, rel=0.15)
 
 
-def test_quasidynamic_agrees_with_tiny_mass_compiled_run():
-    """M = 1e-2 kg/m² (M V²/(σL) = 2.5e-20, fast eigenvalue −η/M): one period from the same state."""
+@pytest.mark.parametrize("extra", [{}, {"gamma_ld": 0.2, "alpha_ld": 0.3}])
+def test_quasidynamic_agrees_with_tiny_mass_compiled_run(extra):
+    """M = 1e-2 kg/m² (M V²/(σL) = 2.5e-20, fast eigenvalue −η/M): one period from the same state, also
+    with a normal load that follows the spring (γ_LD) and the Linker–Dieterich state response (α_LD)."""
     from landau.verify.springblock.model import SpringBlockModel
     from landau.verify.springblock.simulate import integrate
 
@@ -109,10 +111,12 @@ def test_quasidynamic_agrees_with_tiny_mass_compiled_run():
     pr = predict(LAW, V, BP1)
     k = 0.99 * pr.kc
     T = 2 * math.pi / pr.omega_c
-    cell = QuasiDynamicCell.build(LAW, V, k, BP1)
+    prm = {**BP1, **extra}
+    cell = QuasiDynamicCell.build(LAW, V, k, prm)
     y0 = cell.perturbed(0.05 * BP1["L"])
     qd = simulate_quasidynamic(LAW, V, k, cell, T, y0, rtol=1e-11)
-    model = SpringBlockModel.build(LAW, V, k, {**BP1, "M": 1e-2})
+    assert abs(qd.y[0]).max() > 0.04 * BP1["L"]
+    model = SpringBlockModel.build(LAW, V, k, {**prm, "M": 1e-2})
     v0 = V * math.exp(cell.slip_rate(y0))
     z0 = model.from_physical(y0[0] * cell.ell, v0, [cell.phi0[0] * math.exp(y0[1])])
     run = integrate(model, z0, (0.0, T), rtol=1e-11)
