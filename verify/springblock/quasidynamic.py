@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Mapping
+from typing import Any, Callable, Mapping
 
 import numpy as np
 import sympy as sp
@@ -65,7 +65,7 @@ class QuasiDynamicCell:
     mu0: float
     sigma_ss: float
     terms: tuple[str, ...]
-    _fn: object = field(repr=False, compare=False)
+    _fn: Callable[..., Any] = field(repr=False, compare=False)
 
     @classmethod
     def build(cls, law: FrictionLaw, V: float, k: float, params: Mapping[str, float] | None = None,
@@ -224,7 +224,8 @@ def _field(law, terms, p, V, k, ell, phi0, mu0, sigma_ss):
     return sp.lambdify([w, *ys], (R, Rw, f, Ry, fw, fy), "math")
 
 
-def simulate_quasidynamic(law: FrictionLaw, V: float, k: float, params: Mapping[str, float] | None = None,
+def simulate_quasidynamic(law: FrictionLaw, V: float, k: float,
+                          params: Mapping[str, float] | QuasiDynamicCell | None = None,
                           t_end: float = 20.0, y0=None, *, rtol: float = 1e-9, max_steps: int = 1_000_000,
                           max_points: int = 200_000, sections: bool = False) -> Simulation:
     """Integrate the quasi-dynamic spring–block (module docstring) from ``y0`` over [0, ``t_end``] s.
@@ -235,8 +236,9 @@ def simulate_quasidynamic(law: FrictionLaw, V: float, k: float, params: Mapping[
         The rate-and-state law μ(v, φ), dφᵢ/dt.
     V, k : float
         Driving velocity [m/s] and stiffness [N/m].
-    params : mapping, optional
-        Law and block parameters with M = 0 and eta > 0 (and gamma_ld, alpha_ld if wanted).
+    params : mapping or QuasiDynamicCell, optional
+        Law and block parameters with M = 0 and eta > 0 (and gamma_ld, alpha_ld if wanted), or a
+        cell already built (its V and k then hold).
     t_end : float
         End of the run [s].
     y0 : array_like, optional
@@ -368,20 +370,12 @@ def return_map(cell: QuasiDynamicCell, xi: float, *, rtol: float = 1e-11, period
         out, last[0] = cell.rhs(yy, last[0])
         return out
 
-    def ev(_t, yy):
-        return cell.slip_rate(yy, last[0])
-
-    ev.direction, ev.terminal = -1, True
-
     def jac(_t, yy):
         return cell.jacobian(yy, cell.slip_rate(yy, last[0]))
 
     # leave the section first (a quarter period without events), then stop at the next downward crossing
     first = solve_ivp(f, (0.0, 0.25 * T), [xi, psi], method="Radau", rtol=rtol, atol=rtol, jac=jac)
-    def up(_t, yy):
-        return cell.slip_rate(yy, last[0])
-
-    up.direction = 1
+    ev, up = _Crossing(cell, last, -1, True), _Crossing(cell, last, 1, False)
     sol = solve_ivp(f, (0.25 * T, periods * T), first.y[:, -1], method="Radau", rtol=rtol, atol=rtol, jac=jac,
                     events=[ev, up])
     if not (first.success and sol.success) or not sol.t_events[0].size:
@@ -451,6 +445,16 @@ def find_cycle(cell: QuasiDynamicCell, amplitude_guess: float, *, rtol: float = 
     v = run.y[1]
     return PeriodicOrbit(cell.V, cell.k, T, z * cell.ell, z_min * cell.ell, float(v.max()), float(v.min()),
                          (complex(mult),), 0, float(abs(x_ret - z)), np.array([z]))
+
+
+class _Crossing:
+    """The event w = ln(v/V) = 0 of scipy's ``solve_ivp`` (``direction``, ``terminal``)."""
+
+    def __init__(self, cell: QuasiDynamicCell, last: list, direction: int, terminal: bool):
+        self.cell, self.last, self.direction, self.terminal = cell, last, direction, terminal
+
+    def __call__(self, _t, yy) -> float:
+        return self.cell.slip_rate(yy, self.last[0])
 
 
 def _psi_on_section(cell: QuasiDynamicCell, xi: float) -> float:
