@@ -60,9 +60,10 @@ def run(args) -> dict:
     if args.V is not None:
         law, overrides = resolve_law(args)
         params = SpringBlock.for_params(law, overrides).resolve(overrides)
-        if not params["M"] > 0:
-            raise InputError(f"--param M={params['M']:g}: the simulation needs a block mass M > 0 "
-                             "(M = 0 is the quasi-static limit, which `landau derive` handles)")
+        if not (params["M"] > 0 or (params["M"] == 0 and params.get("eta", 0.0) > 0)):
+            raise InputError(f"--param M={params['M']:g}: the simulation needs a block mass M > 0, or M = 0 with "
+                             "radiation damping eta > 0 (the quasi-dynamic cell); M = 0 with eta = 0 is the "
+                             "quasi-static limit, which `landau derive` handles")
         eps2s = parse_floats(args.eps2, "--eps2")
         for e in eps2s:
             if not (0 < e < 0.5):

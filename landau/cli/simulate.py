@@ -8,7 +8,8 @@ Models (defaults: the published parameters):
 * ``spring-block`` — the block on a driven spring with a rate-and-state law, eq. (4) of
   Putelat, Dawes & Willis (2010); ``--V`` driving velocity [m/s] (default 1e-4), ``--k``
   stiffness [N/m] (default 0.9 k_c(V), where steady sliding is unstable); starts from steady
-  sliding displaced along the critical mode;
+  sliding displaced along the critical mode; ``--param M=0 --param eta=...`` is the
+  quasi-dynamic cell (the force balance solved for the slip rate; CSV X, v, mu and the states);
 * ``galvanetto-one-block``, ``galvanetto-two-blocks`` — the dimensionless stick–slip models of
   Galvanetto (2004), started stuck at the origin; kinetic friction eq. (7) or the user's law
   ``--kinetic EXPR`` (branch r < 0 in the relative velocity r = Ẋ − V and the parameters
@@ -26,7 +27,8 @@ Models (defaults: the published parameters):
 
 ``spring-block LAW --V-history "V0@t0,V1@t1,..."`` drives the load point at a piecewise-constant
 velocity instead (velocity steps, slide-hold-slide; starts from steady sliding at V0); its CSV
-holds t, the load-point velocity V, the slip rate v, the friction coefficient mu and the states.
+holds t, the load-point velocity V, the slip rate v, the friction coefficient mu and the states
+(with ``eta`` or ``gamma_ld`` also the spring force F and, with ``gamma_ld``, the normal load sigma).
 
 The output format follows each ``--out`` suffix: ``.csv`` (header ``t [s], name [unit]...``),
 ``.npz`` or ``.png`` (time series with the regimes shaded and the phase portrait, or the
@@ -103,7 +105,7 @@ def configure(p) -> None:
     p.add_argument("--V-history", dest="V_history", default=None, metavar="V0@t0,V1@t1,...",
                    help="spring-block: drive the load point at velocity V_i [m/s] from time t_i [s] on (0: a hold), "
                         "starting from steady sliding at V0: velocity steps, slide-hold-slide; the CSV has "
-                        "t, V, v, mu and the states")
+                        "t, V, v, mu and the states (with eta or gamma_ld also F and sigma)")
     p.add_argument("--plot", choices=("overview", "poincare"), default="overview",
                    help="what a .png shows: time series and phase portrait (default) or the Poincaré section "
                         "(the logged sections; the forced oscillator: stroboscopic at the forcing period)")
@@ -149,8 +151,6 @@ def _spring_block(args, t_end: float):
     block = SpringBlock.for_params(law, overrides)   # with the optional terms given (eta, gamma_ld, alpha_ld)
     _only_known(overrides, list(block.defaults), "spring-block")
     params = block.resolve(overrides)
-    if args.V_history is not None and block.terms:
-        raise InputError(f"spring-block: --V-history does not take {', '.join(block.terms)} (give a constant --V)")
     if args.V_history is not None:
         return _load_history(args, law, params, t_end)
     V = _positive(args.V, "--V") if args.V is not None else 1e-4
@@ -169,6 +169,8 @@ def _spring_block(args, t_end: float):
         notes.append(f"k = 0.9 k_c(V) = {k:.6g} N/m (k_c = {kc:.6g} N/m; steady sliding is unstable below k_c)")
     else:
         k = _positive(args.k, "--k")
+    if params["M"] == 0:
+        return _quasidynamic(args, law, V, k, params, t_end, notes)
     model = SpringBlockModel.build(law, V, k, params)
     names = ("X", "v") + tuple(s.name for s in law.states)
     if args.y0 is not None:
@@ -208,6 +210,34 @@ def _spring_block(args, t_end: float):
 STICK_FRACTION = 0.01
 
 
+def _quasidynamic(args, law, V, k, params, t_end, notes):
+    """``spring-block --param M=0 --param eta=...``: the quasi-dynamic cell (force balance solved for v)."""
+    from landau.verify.hybrid.plotting import regimes_from_mask
+    from landau.verify.springblock.quasidynamic import QuasiDynamicCell, simulate_quasidynamic
+
+    cell = QuasiDynamicCell.build(law, V, k, params)
+    if args.y0 is not None:
+        names = ("X",) + tuple(s.name for s in law.states)
+        vals = _y0(args.y0, names)
+        try:
+            y0 = cell.from_physical(vals[0], vals[1:])
+        except InputError as exc:
+            raise InputError(f"--y0: {exc}") from None
+        start = "starts at --y0 (X and the states; v follows from the force balance)"
+    else:
+        y0 = None
+        start = "starts X = 0.01 L (the law's memory length) off steady sliding along the critical mode"
+    sim = simulate_quasidynamic(law, V, k, cell, t_end, y0, rtol=1e-9, max_steps=_max_steps(args),
+                                max_points=MAX_POINTS, sections=args.plot == "poincare")
+    v = sim.y[1]
+    sim = replace(sim, regimes=regimes_from_mask(sim.t, v < STICK_FRACTION * V, "stick (v < V/100)", "slip"))
+    units = {"X": "m", "v": "m/s", "mu": "1", **law_state_units(law)}
+    used = {"law": law.name, "V": V, "k": k, **params}
+    notes.append("quasi-dynamic (M = 0): the slip rate v solves k(Vt - x) = sigma mu(v, phi) + eta v at every "
+                 "instant; X = x - x0(t) is the displacement from steady sliding; " + start)
+    return sim, used, units, notes
+
+
 def _load_history(args, law, params, t_end_given):
     """``spring-block LAW --V-history ...``: the load point driven by a velocity history."""
     from landau.derivation.linear import critical_stiffness
@@ -222,8 +252,20 @@ def _load_history(args, law, params, t_end_given):
     hist = parse_history(args.V_history)
     notes = [f"load point: {hist} (m/s @ s); starts from steady sliding at V = {hist.velocities[0]:g} m/s"]
     if args.k is None:
-        block = SpringBlock(law)
-        kcs = [float(np.ravel(critical_stiffness(block, V, params))[0]) for V in set(hist.velocities) if V > 0]
+        block = SpringBlock.for_params(law, params)   # with the optional terms given (eta, gamma_ld, alpha_ld)
+
+        def kc_at(V):
+            if "alpha_ld" not in block.terms:
+                return float(np.ravel(critical_stiffness(block, V, params))[0])
+            from landau.derivation.springblock_routes import hopf_point
+            from landau.errors import NoHopfError
+
+            try:
+                return hopf_point(block, V, params).p_c
+            except NoHopfError:
+                return float("nan")
+
+        kcs = [kc_at(V) for V in set(hist.velocities) if V > 0]
         kcs = [kc for kc in kcs if math.isfinite(kc) and kc > 0]
         if kcs:
             k = 2.0 * max(kcs)
@@ -239,7 +281,11 @@ def _load_history(args, law, params, t_end_given):
     t_end = t_end_given if args.t_end is not None else None
     sim = simulate_history(law, hist, k, params, t_end)
     units = {"V": "m/s", "v": "m/s", "mu": "1", **law_state_units(law)}
+    units.update({nm: "N" for nm in ("F", "sigma") if nm in sim.state_names})
     used = {"law": law.name, "V_history": str(hist), "k": k, **params}
+    if "F" in sim.state_names:
+        notes.append("F = k (x_lp - x), the spring force" + (", and sigma the normal load that follows it"
+                                                            if "sigma" in sim.state_names else ""))
     notes.append("mu = mu(v, phi), the law's friction coefficient; V the load-point velocity")
     return sim, used, units, notes
 
@@ -506,7 +552,8 @@ def run(args) -> dict:
         period = 2 * math.pi / params["omega"] if args.model == "forced-oscillator" else None
         phase = (1, 2) if args.V_history is not None else PHASE_PLANE.get(args.model, (0, 1))
         if args.plot == "poincare" and args.model == "spring-block":
-            phase = (0, 2)   # v = V on the section: X against the first state
+            # v = V on the section: X against the first state (after mu in the quasi-dynamic series)
+            phase = (0, 3) if "mu" in sim._names() else (0, 2)
         try:
             size = (11, max(4.5, 1.7 * len(sim._names()) + 0.8)) if args.plot == "overview" else (6.0, 4.8)
             fig = sim.plot(args.plot, discard=discard or 0.0, units=units, phase=phase,

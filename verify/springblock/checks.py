@@ -148,8 +148,26 @@ def _check_point(law: FrictionLaw, V: float, eps2: float, params, prediction, ex
                          f"use {other}, or landau.check, which picks the procedure itself")
     assert pr.kc is not None  # a spring-block result carries k_c
     k = pr.kc * (1 - eps2 if expected == Criticality.SUPERCRITICAL else 1 + eps2)
+    if _quasidynamic(law, params):
+        from landau.verify.springblock.quasidynamic import QuasiDynamicCell
+
+        return pr, k, QuasiDynamicCell.build(law, V, k, params), pr.amplitude(k)
     model = SpringBlockModel.build(law, V, k, params)
     return pr, k, model, pr.amplitude(k)
+
+
+def _quasidynamic(law: FrictionLaw, params) -> bool:
+    """True at M = 0 (the quasi-dynamic cell, η > 0: :mod:`landau.verify.springblock.quasidynamic`)."""
+    return SpringBlock.for_params(law, params).resolve(params)["M"] == 0
+
+
+def _cycle(model, A: float) -> PeriodicOrbit:
+    """The cycle near amplitude A: shooting on the compiled model, or the quasi-dynamic return map at M = 0."""
+    if isinstance(model, SpringBlockModel):
+        return find_cycle(model, A)
+    from landau.verify.springblock.quasidynamic import find_cycle as find_cycle_qd
+
+    return find_cycle_qd(model, A)
 
 
 def supercritical_check(law: FrictionLaw, V: float, eps2: float, params: Mapping[str, float] | None = None,
@@ -187,7 +205,7 @@ def supercritical_check(law: FrictionLaw, V: float, eps2: float, params: Mapping
     spring–block system", J. Mech. Phys. Solids 58(1), 27–53, eqs (4), (23).
     """
     pr, k, model, A = _check_point(law, V, eps2, params, prediction, Criticality.SUPERCRITICAL)
-    orbit = find_cycle(model, A)
+    orbit = _cycle(model, A)
     amp = 0.5 * (orbit.x_max - orbit.x_min)
     rel = _rel(amp, A)
     return PointCheck(V, eps2, k, pr.kc, pr.criticality, A, amp, rel, orbit.amplitude, pr.frequency(k),
@@ -286,10 +304,15 @@ def subcritical_check(law: FrictionLaw, V: float, eps2: float, params: Mapping[s
     spring–block system", J. Mech. Phys. Solids 58(1), 27–53, eqs (4), (23).
     """
     pr, k, model, A = _check_point(law, V, eps2, params, prediction, Criticality.SUBCRITICAL)
+    quasidynamic = not isinstance(model, SpringBlockModel)
+    if quasidynamic and test_bistability:
+        raise InputError("the quasi-dynamic cell (M = 0) is checked without the bistability test: "
+                         "pass bistability=False (--no-bistability) to shoot its unstable cycle")
     detail: dict = {}
     unstable = None
     try:
-        unstable = shoot(model, section_point(model, A), rtol=1e-10, tol=1e-10)
+        unstable = _cycle(model, A) if quasidynamic else shoot(model, section_point(model, A), rtol=1e-10,
+                                                               tol=1e-10)
         detail["unstable_cycle"] = {"max_slip": unstable.x_max, "min_slip": unstable.x_min,
                                     "floquet_multipliers": [abs(m) for m in unstable.multipliers],
                                     "period_s": unstable.period}

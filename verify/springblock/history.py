@@ -5,19 +5,25 @@ drive the spring's far end — the load point — at a piecewise-constant veloci
 *velocity step* V₁ → V₂, or a *slide-hold-slide* V → 0 → V.  With the load point at
 x_lp(t) = ∫V dt, the block of Putelat et al. (2010), eq. (4), obeys
 
-    M ẍ = k (x_lp(t) − x) − σ μ(ẋ, φ),    dφᵢ/dt = rateᵢ(ẋ, φ),
+    M ẍ = k (x_lp(t) − x) − σ μ(ẋ, φ) − η ẋ,    dφᵢ/dt = rateᵢ(ẋ, φ),
 
-which this module integrates in the variables u = x_lp − x (the spring's stretch, m),
-w = ln v and ψᵢ = ln φᵢ (v and φ stay positive and are resolved over the tens of decades a
-hold spans):
+with the optional terms of :mod:`landau.systems.springblock_terms`: radiation damping η
+(``eta``; Rice 1993) and a normal load that follows the spring, σ = σ₀ + γ_LD k (x_lp − x)
+(``gamma_ld``), whose changes also move the first state, dφ₁/dt gains −α_LD σ̇/(σ ∂μ/∂φ₁)
+(``alpha_ld``; Linker & Dieterich 1992).  This module integrates it in the variables
+u = x_lp − x (the spring's stretch, m), w = ln v and ψᵢ = ln φᵢ (v and φ stay positive and are
+resolved over the tens of decades a hold spans):
 
-    u' = V(t) − v,    w' = (k u − σ μ) / (M v),    ψᵢ' = rateᵢ / φᵢ,
+    u' = V(t) − v,    w' = (k u − σ(u) μ − η v) / (M v),    ψᵢ' = rateᵢ / φᵢ,
 
 one constant-velocity piece at a time with scipy's Radau IIA (exact Jacobian from the symbolic
-law), starting from steady sliding at the first velocity (v = V₀, φ = φ_ss(V₀), k u = σ μ_ss(V₀)).
-:func:`parse_history` reads the command line's ``"V0@t0,V1@t1,..."``; :func:`simulate_history`
-returns a :class:`~landau.verify.hybrid.result.Simulation` whose series are the load-point
-velocity ``V``, the slip rate ``v``, the friction coefficient ``mu`` = μ(v, φ) and the states.
+law), starting from steady sliding at the first velocity (v = V₀, φ = φ_ss(V₀),
+k u = (σ₀ μ_ss + ηV₀)/(1 − γ_LD μ_ss)).  :func:`parse_history` reads the command line's
+``"V0@t0,V1@t1,..."``; :func:`simulate_history` returns a
+:class:`~landau.verify.hybrid.result.Simulation` whose series are the load-point velocity ``V``,
+the slip rate ``v``, the friction coefficient ``mu`` = μ(v, φ) and the states, and with ``eta``
+or ``gamma_ld`` also the spring force ``F`` = k u [N] and (``gamma_ld``) the normal load
+``sigma`` [N].
 """
 
 from __future__ import annotations
@@ -99,8 +105,9 @@ def _steady_state(law: FrictionLaw, V: float, p: Mapping[str, float]) -> tuple[l
     return phi, mu
 
 
-def _field(law: FrictionLaw, p: Mapping[str, float], k: float):
-    """f(t, y; V) and its Jacobian in (u, w, ψ…), and μ(w, ψ…), compiled by lambdify from the law."""
+def _field(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str, ...] = ()):
+    """f(t, y; V) and its Jacobian in (u, w, ψ…), and μ(w, ψ…), compiled by lambdify from the law
+    (with the optional ``terms``: η, γ_LD, α_LD, module docstring)."""
     ns = len(law.states)
     u, w = sp.symbols("u_ w_", real=True)
     psi = sp.symbols(f"psi_0:{ns}", real=True)
@@ -112,13 +119,20 @@ def _field(law: FrictionLaw, p: Mapping[str, float], k: float):
         return sp.expand_log(e.subs(vals).xreplace(sub), force=True)
 
     mu = tidy(law.mu)
-    M, sigma = float(p["M"]), float(p["sigma"])
-    f = [Vlp - sp.exp(w), (k * u - sigma * mu) * sp.exp(-w) / M]
-    f += [sp.expand(tidy(r) * sp.exp(-q)) for r, q in zip(law.rates, psi, strict=True)]
+    M, sigma0 = float(p["M"]), float(p["sigma"])
+    eta = float(p.get("eta", 0.0)) if "eta" in terms else 0.0
+    gam = float(p.get("gamma_ld", 0.0)) if "gamma_ld" in terms else 0.0
+    sigma = sigma0 + gam * k * u                     # the normal load follows the spring force
+    f = [Vlp - sp.exp(w), (k * u - sigma * mu - eta * sp.exp(w)) * sp.exp(-w) / M]
+    rates = [tidy(r) for r in law.rates]
+    if "alpha_ld" in terms and gam != 0:
+        sig_dot = gam * k * (Vlp - sp.exp(w))
+        rates[0] = rates[0] - float(p["alpha_ld"]) * sig_dot / (sigma * tidy(sp.diff(law.mu, law.states[0])))
+    f += [sp.expand(r * sp.exp(-q)) for r, q in zip(rates, psi, strict=True)]
     ys = [u, w, *psi]
     J = sp.Matrix(f).jacobian(sp.Matrix(ys))
     fn = sp.lambdify([ys, Vlp], f, "numpy")
-    jn = sp.lambdify([ys], J, "numpy")
+    jn = sp.lambdify([ys, Vlp], J, "numpy")
     mun = sp.lambdify([ys], mu, "numpy")
     return fn, jn, mun
 
@@ -137,7 +151,9 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     k : float
         Spring (machine) stiffness [N/m]; steady sliding is stable above k_c at each velocity.
     params : mapping, optional
-        Law and block parameters (:meth:`landau.systems.system.SpringBlock.resolve`: M, g, sigma).
+        Law and block parameters (:meth:`landau.systems.system.SpringBlock.resolve`: M, g, sigma,
+        and the optional terms eta, gamma_ld, alpha_ld of
+        :meth:`~landau.systems.system.SpringBlock.for_params`).
     t_end : float, optional
         End of the run [s] (default: the last piece's start plus as long as the longest earlier piece).
     rtol : float, optional
@@ -149,12 +165,16 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     -------
     Simulation
         ``state_names`` = (V, v, mu, states…): the load-point velocity [m/s], the slip rate
-        [m/s], μ(v, φ) and the states, sampled at the integrator's steps; status ``finished``.
+        [m/s], μ(v, φ) and the states, then the spring force F [N] with ``eta`` or ``gamma_ld`` and
+        the normal load sigma [N] with ``gamma_ld``; sampled at the integrator's steps; status
+        ``finished``.
 
     Raises
     ------
     InputError
         A bad history, stiffness or end time; M ≤ 0.
+    NoSteadySlidingError
+        1 − γ_LD μ_ss(Vᵢ) ≤ 0 at a velocity of the history (no steady sliding there).
     IntegratorError
         The integrator failed (with the time and state).
 
@@ -171,7 +191,9 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     h = parse_history(history) if isinstance(history, str) else history
     if not (math.isfinite(k) and k > 0):
         raise InputError(f"stiffness k must be a finite number > 0, got {k!r}")
-    p = SpringBlock(law).resolve(params)
+    block = SpringBlock.for_params(law, params)      # with the optional terms given (eta, gamma_ld, alpha_ld)
+    p = block.resolve(params)
+    terms = block.terms
     if not p["M"] > 0:
         raise InputError("a load-point history is simulated with a block mass M > 0")
     T = list(h.times)
@@ -181,9 +203,16 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     if not (math.isfinite(t_end) and t_end > T[-1]):
         raise InputError(f"the end time must be after the last piece's start t = {T[-1]:g} s, got {t_end!r}")
     phi0, mu0 = _steady_state(law, h.velocities[0], p)
-    fn, jn, mun = _field(law, p, k)
-    sigma = float(p["sigma"])
-    y = np.array([sigma * mu0 / k, math.log(h.velocities[0]), *(math.log(x) for x in phi0)])
+    if "gamma_ld" in terms:   # steady sliding at every sliding velocity of the history needs 1 - gamma mu_ss > 0
+        from landau.systems.springblock_terms import check_steady_sliding
+
+        for V in sorted({V for V in h.velocities if V > 0}):
+            check_steady_sliding(law, _steady_state(law, V, p)[1], p, V)
+    fn, jn, mun = _field(law, p, k, terms)
+    eta = float(p.get("eta", 0.0)) if "eta" in terms else 0.0
+    gam = float(p.get("gamma_ld", 0.0)) if "gamma_ld" in terms else 0.0
+    F0 = (float(p["sigma"]) * mu0 + eta * h.velocities[0]) / (1.0 - gam * mu0)   # spring force k u at steady sliding
+    y = np.array([F0 / k, math.log(h.velocities[0]), *(math.log(x) for x in phi0)])
     scale = np.array([p.get("L", 1e-6)] + [1.0] * (len(y) - 1))
     ts, ys, vs = [np.array([T[0]])], [y[:, None]], [np.array([h.velocities[0]])]
     ends = T[1:] + [t_end]
@@ -193,7 +222,7 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
             break
         b = min(b, t_end)
         sol = solve_ivp(lambda t, yy, V=V: fn(yy, V), (a, b), y, method="Radau", rtol=rtol, atol=rtol * scale,
-                        jac=lambda t, yy: np.asarray(jn(yy), float))
+                        jac=lambda t, yy, V=V: np.asarray(jn(yy, V), float))
         if not sol.success or not np.all(np.isfinite(sol.y[:, -1])):
             raise IntegratorError(f"load-point history, piece V = {V:g} m/s from t = {a:g} s: {sol.message}",
                                   t=float(sol.t[-1]), state=sol.y[:, -1])
@@ -212,6 +241,12 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     mu = np.broadcast_to(np.asarray(mun(Y), float), t.shape)
     out = np.vstack([Vl, np.exp(Y[1]), mu, np.exp(Y[2:])])
     names = ("V", "v", "mu") + tuple(s.name for s in law.states)
+    if "eta" in terms or "gamma_ld" in terms:   # the spring force, and the normal load that follows it
+        out = np.vstack([out, k * Y[0]])
+        names += ("F",)
+        if "gamma_ld" in terms:
+            out = np.vstack([out, float(p["sigma"]) + gam * k * Y[0]])
+            names += ("sigma",)
     regimes = tuple((a, min(b, t_end), "hold" if V == 0 else "slide")
                     for V, a, b in zip(h.velocities, T, ends, strict=True) if a < t_end)
     final = out[:, -1].copy()
