@@ -165,7 +165,9 @@ class HopfResult:
         The state component of the critical mode that is normalised to 1.
     l1 : float, optional
         First Lyapunov coefficient in Kuznetsov's normalisation, Re c₁/ω.  It depends on the
-        declared state coordinates; C, Λ and the criticality do not.
+        declared state coordinates (and their units); C, Λ and the criticality do not.  For the
+        spring–block, c₁ = (Λ + iχ)/(2‖q‖²) with q = (1, iω_c, φ₁…) in (X, u = Ẋ, φ…)
+        (:func:`spring_block_c1`).
     c1 : complex, optional
         Kuznetsov's c₁(0) (⟨q, q⟩ = 1, ⟨p, q⟩ = 1); MatCont and BifurcationKit print its real part.
     Lambda5 : float, optional
@@ -469,6 +471,59 @@ class HopfResult:
         where = self._where()
         return html_record(f"Hopf point of {self.system}{' at ' + where if where else ''}: {self.criticality}",
                            fields, units=self.units, note=f"Convention: {self.convention}")
+
+
+def spring_block_c1(system: Any, params: Mapping[str, float], k_c: float, omega_c: float, Lambda: float,
+                    chi: float, equilibrium: tuple[float, ...] = ()) -> dict[str, Any]:
+    """Kuznetsov's first Lyapunov coefficient of a spring–block Hopf point from its Λ and χ.
+
+    With the critical eigenvector q = (1, iω_c, φ₁…φₙ) of E·ẏ = f(y; k) in the state coordinates
+    y = (X, u = Ẋ, φ…), normalised with slip component 1 (Putelat et al. 2010), and
+    ‖q‖² = Σ|qᵢ|², Kuznetsov's normalisation ⟨q, q⟩ = 1 gives
+
+        c₁ = (Λ + iχ)/(2‖q‖²),     l₁ = Re c₁/ω_c.
+
+    The state components solve (iω_c E − ∂f/∂y) q = 0 (for one state φ:
+    (iω_c − ∂G/∂φ) φ₁ = iω_c ∂G/∂v).  l₁ and c₁ depend on the state coordinates and their units
+    (‖q‖² mixes m, m/s and the state's unit); Λ, χ's sign, C and the criticality do not.
+
+    Parameters
+    ----------
+    system : DynamicalSystem
+        The spring–block system (:attr:`landau.systems.system.SpringBlock.system`).
+    params : mapping
+        Values of every parameter but k (the driving velocity ``V`` included).
+    k_c, omega_c, Lambda, chi : float
+        The Hopf point and its cubic coefficients in the slip-normalised convention.
+    equilibrium : tuple of float, optional
+        The steady state (X, u, φ…) at k_c; solved by Newton's method when empty.
+
+    Returns
+    -------
+    dict
+        ``{"l1": float, "c1": complex}``, or ``{}`` where the eigenvector cannot be computed.
+
+    References
+    ----------
+    Kuznetsov, Yu. A. (2004). Elements of Applied Bifurcation Theory, 3rd ed., Springer, §3.5.
+    """
+    import numpy as np
+
+    from landau.derivation.general import NumericSystem
+    from landau.errors import LandauError
+
+    try:
+        num = NumericSystem(system, dict(params))
+        y = np.asarray(equilibrium, dtype=float) if len(equilibrium) else num.equilibrium_float(float(k_c))
+        A = num.J_float(y, float(k_c)) - 1j * float(omega_c) * num.E_float(float(k_c))
+        q = np.ones(len(y), dtype=complex)
+        q[1:] = np.linalg.solve(A[1:, 1:], -A[1:, 0])
+        c1 = complex(Lambda, chi) / (2.0 * float(np.sum(np.abs(q) ** 2)))
+    except (LandauError, np.linalg.LinAlgError, ValueError, TypeError, ArithmeticError):
+        return {}
+    if not (math.isfinite(c1.real) and math.isfinite(c1.imag)):
+        return {}
+    return {"l1": c1.real / float(omega_c), "c1": c1}
 
 
 def spring_block_result(law: str, V: float, kc: float, omega_c: float, Gamma_bar: float, Omega_bar: float,

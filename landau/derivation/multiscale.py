@@ -40,7 +40,7 @@ from landau.derivation.coefficients import (  # noqa: F401
     criticality,
 )
 from landau.derivation.fredholm import cubic_coefficient, linear_coefficient, null_vectors, quintic_coefficient
-from landau.derivation.hopf import spring_block_result
+from landau.derivation.hopf import spring_block_c1, spring_block_result
 from landau.derivation.jets import Jets
 from landau.derivation.linear import HopfLine, w
 from landau.derivation.precision import BLOCK as _BLOCK  # noqa: F401
@@ -424,7 +424,9 @@ class Derivation:
         there is no Hopf point).
 
         Each point is in the spring–block convention (Putelat et al. 2010, eq. 20): p = k,
-        dλ/dk = −Γ̄ + iΩ̄, with ``V``, ``kc``, ``Gamma_bar``, ``Omega_bar`` as typed fields.
+        dλ/dk = −Γ̄ + iΩ̄, with ``V``, ``kc``, ``Gamma_bar``, ``Omega_bar`` as typed fields, and
+        Kuznetsov's ``l1``, ``c1`` in the state coordinates (X, u = Ẋ, φ…)
+        (:func:`~landau.derivation.hopf.spring_block_c1`; they depend on those coordinates, Λ and C do not).
 
         Parameters
         ----------
@@ -469,9 +471,13 @@ class Derivation:
             values.pop("C", None)                 # a property of the result (the same formula)
             quintic = {"Lambda5": values.pop("Lambda5")} if "Lambda5" in values else {}
             kc = float(res["kc"][i])
-            out.append(spring_block_result(self.block.law.name, float(Vi), kc, float(res["omega_c"][i]),
+            om = float(res["omega_c"][i])
+            eq = equilibrium(float(Vi), kc)
+            kuznetsov = spring_block_c1(self.system, {**resolved, "V": float(Vi)}, kc, om, fields["Lambda"],
+                                        fields["chi"], eq)
+            out.append(spring_block_result(self.block.law.name, float(Vi), kc, om,
                                            params={**resolved, "V": float(Vi)},
-                                           equilibrium=equilibrium(float(Vi), kc), **fields, **quintic))
+                                           equilibrium=eq, **fields, **quintic, **kuznetsov))
         from landau.report.display import ResultList
 
         return ResultList(out, title=f"Hopf points of law {self.block.law.name}", units=UNITS)

@@ -24,7 +24,7 @@ from typing import Mapping
 
 import numpy as np
 
-from landau.derivation.hopf import Criticality, HopfResult, spring_block_result
+from landau.derivation.hopf import Criticality, HopfResult, spring_block_c1, spring_block_result
 from landau.derivation.multiscale import Derivation, derive
 from landau.errors import InputError, NoHopfError
 from landau.laws.law import FrictionLaw
@@ -61,7 +61,9 @@ def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = Non
     -------
     HopfResult
         k_c (``p_c``), ω_c, Λ, χ and C at V (SI units), with the predicted amplitude and frequency at
-        any stiffness k; its fields ``V``, ``kc``, ``Gamma_bar`` and ``Omega_bar`` are set.
+        any stiffness k; its fields ``V``, ``kc``, ``Gamma_bar`` and ``Omega_bar`` are set, and
+        Kuznetsov's ``l1`` and ``c1`` in the state coordinates (X, u = Ẋ, φ…): unlike Λ, C and the
+        criticality, they depend on those coordinates and their units.
 
     Raises
     ------
@@ -87,7 +89,10 @@ def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = Non
     if not np.isfinite(vals["kc"]) or vals["kc"] <= 0:
         d.hopf.require(V, resolved)   # raises with the velocity-weakening range, as `landau derive` prints it
         raise NoHopfError(f"law {law.name!r} has no Hopf point at V = {V!r} m/s")
-    res = spring_block_result(law.name, float(V), params={k: float(v) for k, v in resolved.items()}, **vals)
+    kuznetsov = spring_block_c1(block.system, {**resolved, "V": float(V)}, vals["kc"], vals["omega_c"],
+                                vals["Lambda"], vals["chi"])
+    res = spring_block_result(law.name, float(V), params={k: float(v) for k, v in resolved.items()}, **vals,
+                              **kuznetsov)
     return block.name_terms(res)
 
 
