@@ -46,7 +46,7 @@ def configure(p) -> None:
 
 
 def run(args) -> dict:
-    doc: dict = {"amplitude_definition": AMPLITUDE_DEFINITION, "units": {"V": "m/s", "kc": "N/m",
+    doc: dict = {"amplitude_definition": AMPLITUDE_DEFINITION, "units": {"V": "m/s", "kc": "N/m", "k_c": "N/m",
                  "amplitude": "m", "frequency": "rad/s"},
                  "contract": {"exponent_band": list(contract.EXPONENT_BAND),
                               "extrapolation_bound": contract.EXTRAPOLATION_BOUND,
@@ -76,7 +76,7 @@ def run(args) -> dict:
                 bar.set_postfix_str(f"V={V:g}, eps2={e:g}")
                 r = check(law, V, e, params, tolerance=args.tol, bistability=not args.no_bistability)
                 rec = r.as_dict()
-                rec.update(V=V, k=r.p, kc=r.prediction.p_c)
+                rec.update(V=V, k=r.p, kc=r.prediction.p_c, k_c=r.prediction.p_c)   # kc: deprecated alias
                 points.append(rec)
                 if not r.agrees:
                     exit_code = 1
@@ -113,12 +113,12 @@ def render(doc: dict) -> str:
     if "points" in doc:
         lines.append(f"law {doc['law']}  [{doc['source']}]")
         lines.append(doc["amplitude_definition"])
-        lines.append(f"{'V [m/s]':>10} {'eps2':>8} {'kc [N/m]':>12} {'criticality':>13} {'A_pred [m]':>11} "
+        lines.append(f"{'V [m/s]':>10} {'eps2':>8} {'k_c [N/m]':>12} {'criticality':>13} {'A_pred [m]':>11} "
                      f"{'A_sim [m]':>11} {'rel.err':>9} {'exponent':>8} {'extrap.':>9} {'freq.err':>9} "
                      f"{'bistable':>8} {'agrees':>6}")
         for p in doc["points"]:
             fe = p.get("frequency_rel_error")
-            lines.append(f"{p['V']:10.4g} {p['eps2']:8.2g} {p['kc']:12.6g} {p['criticality_predicted']:>13} "
+            lines.append(f"{p['V']:10.4g} {p['eps2']:8.2g} {p['k_c']:12.6g} {p['criticality_predicted']:>13} "
                          f"{_f(p['amplitude_predicted'], '11.4g')} {_f(p['amplitude_simulated'], '11.4g')} "
                          f"{_f(p['rel_error'], '+9.2e')} {_f(p.get('exponent'), '8.3f')} "
                          f"{_f(p.get('extrapolated_error'), '+9.2e')} {_f(fe, '+9.1e')} {str(p['bistable']):>8} "

@@ -4,11 +4,11 @@ Example::
 
     import landau
     ds = landau.sweep("hopf", {"V": np.logspace(-6, -3, 40), "a": [0.01, 0.02, 0.03]},
-                      model="spring-block", law="dieterich", out="kc.nc")
-    ds.kc.sel(a=0.02).plot()
+                      model="spring-block", law="dieterich", out="k_c.nc")
+    ds.k_c.sel(a=0.02).plot()
 
 The Dataset's dimensions are the swept parameters (coordinates with their SI units), its
-variables the task's quantities named as in the matching ``--json`` output (``p_c``/``kc``,
+variables the task's quantities named as in the matching ``--json`` output (``p_c``/``k_c``, with ``kc`` its deprecated alias,
 ``omega_c``, ``Lambda``, ``criticality``, … for ``hopf``; ``verdict`` and its numbers for
 ``check``) plus ``status`` and ``message`` per point; its attributes the model, the law's
 declaration, the convention, the landau version, the fixed parameters and the counts

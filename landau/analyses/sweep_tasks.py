@@ -272,7 +272,7 @@ class SpringBlockHopf(Task):
         message = [f"no Hopf point at V = {V[j]:.6g} m/s (steady sliding does not lose stability)" if not ok[j]
                    else ("Lambda = 0: codimension-two point, the cubic amplitude equation predicts no amplitude"
                          if status[j] == "degenerate" else "") for j in range(n)]
-        out = {"p_c": vals["kc"], "kc": vals["kc"], "omega_c": vals["omega_c"],
+        out = {"p_c": vals["kc"], "k_c": vals["kc"], "kc": vals["kc"], "omega_c": vals["omega_c"],
                "dRe_lambda_dp": -vals["Gamma_bar"], "dIm_lambda_dp": vals["Omega_bar"],
                "Gamma_bar": vals["Gamma_bar"], "Omega_bar": vals["Omega_bar"], "Lambda": lam,
                "chi": vals["chi"], "C": vals["C"]}

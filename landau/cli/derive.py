@@ -1,6 +1,6 @@
 """Amplitude equation of the stick–slip Hopf bifurcation: Γ̄, Ω̄, Λ, χ, C (Putelat et al. 2010, eqs 15–23).
 
-Example: landau derive ruina --V 1e-5,1e-4 --quantities kc,omega_c,Lambda,C --latex ruina.tex
+Example: landau derive ruina --V 1e-5,1e-4 --quantities k_c,omega_c,Lambda,C --latex ruina.tex
          landau derive dieterich --V 1e-4 --codim2 1e-7:1e-2
 """
 
@@ -9,9 +9,13 @@ from __future__ import annotations
 from functools import partial
 
 from landau.cli.common import add_law_arguments, block_and_params, fmt, parse_range, parse_velocities
+from landau.derivation.coefficients import internal_name, with_canonical_names
 from landau.derivation.multiscale import CONVENTION, QUANTITIES, UNITS, Derivation, criticality
 from landau.errors import InputError
 from landau.support.io import atomic_write_text, check_output
+
+#: the quantity names as a user writes them (k_c canonical; kc, its deprecated alias, also accepted)
+_PUBLIC = tuple("k_c" if q == "kc" else q for q in QUANTITIES)
 
 #: time budget of the symbolic work behind --latex (s)
 LATEX_SECONDS = 600.0
@@ -21,7 +25,8 @@ def configure(p) -> None:
     add_law_arguments(p)
     p.add_argument("--V", default=None, help="driving velocities in m/s, comma-separated")
     p.add_argument("--quantities", default=",".join(QUANTITIES),
-                   help=f"comma-separated subset of {','.join(QUANTITIES)} (default: all)")
+                   help=f"comma-separated subset of {','.join(_PUBLIC)} (default: all; kc is the "
+                        "deprecated alias of k_c)")
     p.add_argument("--latex", default=None, metavar="FILE",
                    help="write the coefficients as a .tex file that compiles with pdflatex (closed forms in V and "
                         "the parameters where they exist, else in the law's derivatives at steady sliding)")
@@ -35,17 +40,19 @@ def run(args) -> dict:
     block, params = block_and_params(args)
     names = [q.strip() for q in args.quantities.split(",") if q.strip()]
     if not names:
-        raise InputError(f"--quantities: no quantity given (choose from {', '.join(QUANTITIES)})")
-    unknown = [q for q in names if q not in QUANTITIES]
+        raise InputError(f"--quantities: no quantity given (choose from {', '.join(_PUBLIC)})")
+    unknown = [q for q in names if internal_name(q) not in QUANTITIES]
     if unknown:
-        raise InputError(f"unknown quantity {unknown[0]!r} (known: {', '.join(QUANTITIES)})")
+        raise InputError(f"unknown quantity {unknown[0]!r} (known: {', '.join(_PUBLIC)})")
+    names = list(dict.fromkeys(internal_name(n) for n in names))   # k_c (canonical) or kc (deprecated)
     if args.V is None and args.codim2 is None and args.latex is None:
         raise InputError("give --V (velocities), --codim2 LO:HI or --latex FILE")
     if args.latex is not None:
         check_output(args.latex)
     d = Derivation(block)
     doc: dict = {"law": block.law.name, "source": block.law.source, "convention": CONVENTION,
-                 "units": {k: UNITS[k] for k in ("V", *names)}, "params": params}
+                 "units": with_canonical_names({k: UNITS[k] for k in ("V", *names)}),
+                 "params": params}
     if args.V is not None:
         Vs = parse_velocities(args.V)
         res = d.evaluate(Vs, params, ["kc", "omega_c", *names])
@@ -55,7 +62,7 @@ def run(args) -> dict:
                 pt = d.hopf.point(Vi, params)
                 pts.append({"V": Vi, "status": "no-hopf", "reason": pt.reason, "velocity_weakening": pt.weakening})
                 continue
-            row = {"V": Vi, "status": "ok", **{n: float(res[n][i]) for n in names}}
+            row = with_canonical_names({"V": Vi, "status": "ok", **{n: float(res[n][i]) for n in names}})
             if "Lambda" in res:
                 row["criticality"] = "degenerate" if res["degenerate"][i] else criticality(float(res["Lambda"][i]))
             pts.append(row)
@@ -71,7 +78,7 @@ def run(args) -> dict:
             b = bautin_point(d, c.V, params, sign_below=c.sign_below, sign_above=c.sign_above)
             extra = {k: v for k, v in b.as_dict().items()
                      if k not in ("V", "kc", "omega_c", "sign_below", "sign_above")}
-            doc["codim2"].append({**c.as_dict(), **extra})
+            doc["codim2"].append(with_canonical_names({**c.as_dict(), **extra}))
         doc["units"].update({"Lambda5": UNITS["Lambda5"], "l2": "Re c2 of dz/dt = i omega z + c1 z|z|^2 + c2 z|z|^4, "
                                                                 "<q,q> = 1 (MatCont/BifurcationKit)"})
     if args.fragment and args.latex is None:
@@ -84,7 +91,7 @@ def run(args) -> dict:
         set_quiet(getattr(args, "json", False))
         text = run_bounded(partial(derivation_latex, fragment=args.fragment), (d, names), seconds=LATEX_SECONDS,
                            what=f"the closed forms of {', '.join(names)} for --latex",
-                           hint="ask for fewer quantities (e.g. --quantities kc,omega_c,Gamma_bar) or evaluate "
+                           hint="ask for fewer quantities (e.g. --quantities k_c,omega_c,Gamma_bar) or evaluate "
                                 "numerically with --V instead")
         doc["latex"] = str(atomic_write_text(args.latex, text))
     return doc
@@ -100,7 +107,8 @@ def render(doc: dict) -> str:
     if "points" in doc:
         # the table's columns: the quantities of the rows (units also names --codim2's Lambda5 and l2)
         ok = [p for p in doc["points"] if p["status"] == "ok"]
-        names = [n for n in doc["units"] if n != "V" and (any(n in p for p in ok) if ok else
+        # one column for the critical stiffness (the text table keeps its header kc for this release)
+        names = [n for n in doc["units"] if n not in ("V", "k_c") and (any(n in p for p in ok) if ok else
                                                           not ("codim2" in doc and n in ("Lambda5", "l2")))]
         out.append(f"{'V [m/s]':>12} " + " ".join(f"{n:>12}" for n in names) + "  criticality")
         for p in doc["points"]:
@@ -108,14 +116,14 @@ def render(doc: dict) -> str:
                 out.append(f"{fmt(p['V'])}  {p['reason']}; {p.get('velocity_weakening', '')}")
                 continue
             out.append(f"{fmt(p['V'])} " + " ".join(fmt(p[n]) for n in names) + f"  {p.get('criticality', '')}")
-        out.append("units: " + ", ".join(f"{k} [{v}]" for k, v in doc["units"].items()))
+        out.append("units: " + ", ".join(f"{k} [{v}]" for k, v in doc["units"].items() if k != "k_c"))
     if doc.get("codim2"):
         out.append("codimension-two (generalised-Hopf) points, Lambda = 0 on the Hopf line; "
                    "l2 = Re c2 with <q,q> = 1 (MatCont/BifurcationKit):")
         out.append(f"{'V* [m/s]':>16} {'k_c [N/m]':>12} {'omega_c':>12} {'Lambda5':>12} {'l2':>12}  criticality")
         out.append(f"{'':>16} {'':>12} {'[rad/s]':>12} {'[1/(m^4 s)]':>12} {'':>12}  below / above V*")
         for c in doc["codim2"]:
-            out.append(f"{c['V']:16.10g} {fmt(c['kc'])} {fmt(c['omega_c'])} {fmt(c.get('Lambda5'))} {fmt(c.get('l2'))}"
+            out.append(f"{c['V']:16.10g} {fmt(c['k_c'])} {fmt(c['omega_c'])} {fmt(c.get('Lambda5'))} {fmt(c.get('l2'))}"
                        f"  {_side(c['sign_below'])} / {_side(c['sign_above'])}")
         for c in doc["codim2"]:
             fc = c.get("fold_of_cycles")

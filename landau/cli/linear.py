@@ -24,7 +24,7 @@ def run(args) -> dict:
     hl = HopfLine(block)
     pts = hl.points(Vs, params)
     doc = {"law": block.law.name, "source": block.law.source,
-           "units": {"V": "m/s", "kc": "N/m", "omega_c": "rad/s", "phi_ss": "s (state units)",
+           "units": {"V": "m/s", "kc": "N/m", "k_c": "N/m", "omega_c": "rad/s", "phi_ss": "s (state units)",
                      "mu_ss": "1", "dmu_ss_dV": "s/m"},
            "params": params, "points": [pt.as_dict() for pt in pts]}
     if args.latex is not None:
@@ -44,7 +44,7 @@ def render(doc: dict) -> str:
     for p in doc["points"]:
         phi = ", ".join(f"{x:.4g}" for x in p["phi_ss"])
         if p["status"] == "ok":
-            out.append(f"{fmt(p['V'])} {fmt(p['kc'])} {fmt(p['omega_c'])} {fmt(p['mu_ss'])} "
+            out.append(f"{fmt(p['V'])} {fmt(p['k_c'])} {fmt(p['omega_c'])} {fmt(p['mu_ss'])} "
                        f"{fmt(p['dmu_ss_dV'])}  {phi}")
         else:
             out.append(f"{fmt(p['V'])}  {p['reason']}  (mu_ss = {p['mu_ss']:.6g}, slope {p['dmu_ss_dV']:.4g}); "

@@ -49,6 +49,38 @@ QUINTIC: dict[str, tuple[str, str, str]] = {
 #: every quantity a :class:`Derivation` can build
 ALL_QUANTITIES = {**QUANTITIES, **QUINTIC}
 
+#: deprecated quantity names, kept for one release -> their canonical names (``kc`` -> ``k_c``)
+DEPRECATED_NAMES: dict[str, str] = {"kc": "k_c"}
+
+
+def internal_name(name: str) -> str:
+    """The name a :class:`Derivation` computes ``name`` under: the critical stiffness ``k_c`` (canonical)
+    is built as ``kc`` (its deprecated alias); every other name is itself."""
+    return "kc" if name == "k_c" else name
+
+
+def with_canonical_names(doc: Mapping[str, Any]) -> dict[str, Any]:
+    """``doc`` with the canonical key (``k_c``) placed after each deprecated one (``kc``) it carries.
+
+    Parameters
+    ----------
+    doc : mapping
+        A JSON record or a units dict.
+
+    Returns
+    -------
+    dict
+        The same entries, with ``k_c`` beside ``kc`` (same value) where only ``kc`` was present.
+    """
+    out: dict[str, Any] = {}
+    for key, value in doc.items():
+        out[key] = value
+        new = DEPRECATED_NAMES.get(key)
+        if new is not None and new not in doc:
+            out[new] = value
+    return out
+
+
 _GB, _LA = sp.symbols("Gamma_bar Lambda", real=True)
 #: quantities composed from others (name -> the base quantities they need)
 DERIVED = {"C": ("Gamma_bar", "Lambda")}
@@ -216,6 +248,13 @@ class CoefficientTable(dict):
         self.law = law
         self.params = dict(params or {})
 
+    def __missing__(self, key: str) -> Any:
+        # the critical stiffness under either name: ``k_c`` (canonical) or ``kc`` (deprecated alias)
+        other = {"k_c": "kc", "kc": "k_c"}.get(key)
+        if other is not None and dict.__contains__(self, other):
+            return dict.__getitem__(self, other)
+        raise KeyError(key)
+
     @property
     def units(self) -> dict[str, str]:
         """Quantity -> SI unit for the quantities in the table."""
@@ -233,9 +272,10 @@ class CoefficientTable(dict):
         else:
             flat = {k: np.broadcast_to(np.asarray(v), shape).flat[:limit] for k, v in self.items()}
         degenerate = flat.pop("degenerate", np.zeros(flat[next(iter(flat))].shape, dtype=bool))
-        if "Lambda" in flat and "kc" in flat:
+        kc = "kc" if "kc" in flat else "k_c"
+        if "Lambda" in flat and kc in flat:
             lam = flat["Lambda"]
-            flat["criticality"] = np.where(~np.isfinite(flat["kc"]), "no Hopf point",
+            flat["criticality"] = np.where(~np.isfinite(flat[kc]), "no Hopf point",
                                            np.where(degenerate | ~np.isfinite(lam) | (lam == 0), "degenerate",
                                                     np.where(lam < 0, "supercritical", "subcritical")))
         return flat

@@ -187,7 +187,9 @@ class HopfResult:
         Names of fields (or ``params`` entries) that locate the point on a family, shown first in
         the repr and in tables (``("V",)`` for a spring–block point at driving velocity V).
     V, kc : float, optional
-        Spring–block: the driving velocity V (m/s) and the critical stiffness k_c (= ``p_c``, N/m)
+        Spring–block: the driving velocity V (m/s) and the critical stiffness k_c (= ``p_c``, N/m;
+        read it as the property ``k_c``, the canonical name: ``kc`` is a deprecated alias kept for
+        one release, and JSON carries both keys)
         (Putelat et al. 2010, eq. 7).
     Gamma_bar, Omega_bar : float, optional
         Spring–block: Γ̄ and Ω̄ of dλ/dk = −Γ̄ + iΩ̄ (Putelat et al. 2010, eqs 18, 21).
@@ -281,7 +283,7 @@ class HopfResult:
         Returns
         -------
         dict
-            ``V``, ``kc``, ``Gamma_bar``, ``Omega_bar``, ``q_norm``, ``dps``, ``c2_re``, ``c2_im``,
+            ``V``, ``kc`` with ``k_c``, ``Gamma_bar``, ``Omega_bar``, ``q_norm``, ``dps``, ``c2_re``, ``c2_im``,
             ``l2_over_omega`` and ``Im_c``, those that are not None.
         """
         out: dict[str, Any] = {}
@@ -291,9 +293,17 @@ class HopfResult:
                 continue
             if name == "c2":
                 out.update(c2_re=v.real, c2_im=v.imag, l2_over_omega=self.l2_over_omega)
+            elif name == "kc":
+                out.update(kc=v, k_c=v)         # k_c canonical; kc its deprecated alias (one release)
             else:
                 out[name] = v
         return out
+
+    @property
+    def k_c(self) -> float | None:
+        """Spring–block: the critical stiffness k_c (N/m, = ``p_c``); the canonical name of the
+        deprecated ``kc`` (None for other models: see ``p_c``)."""
+        return self.kc
 
     @property
     def l2_over_omega(self) -> float | None:
@@ -467,7 +477,7 @@ class HopfResult:
     def _repr_html_(self) -> str:
         from landau.report.display import html_record
 
-        fields = {k: v for k, v in self.as_dict().items() if k not in ("system", "convention")}
+        fields = {k: v for k, v in self.as_dict().items() if k not in ("system", "convention", "kc")}
         where = self._where()
         return html_record(f"Hopf point of {self.system}{' at ' + where if where else ''}: {self.criticality}",
                            fields, units=self.units, note=f"Convention: {self.convention}")

@@ -66,7 +66,9 @@ class HopfPoint:
     status : str
         ``"ok"`` (a Hopf point) or ``"no-hopf"``.
     kc : float
-        Critical stiffness k_c, N/m (NaN without a Hopf point).
+        Critical stiffness k_c, N/m (NaN without a Hopf point); read it as the property ``k_c``
+        (the canonical name; ``kc`` is a deprecated alias kept for one release, and ``as_dict``
+        carries both keys).
     omega_c : float
         Angular frequency at onset ω_c, rad/s (NaN without a Hopf point).
     phi_ss : tuple of float
@@ -105,12 +107,17 @@ class HopfPoint:
         """
         d: dict[str, Any] = {"V": self.V, "status": self.status}
         if self.status == "ok":
-            d.update(kc=self.kc, omega_c=self.omega_c)
+            d.update(kc=self.kc, k_c=self.kc, omega_c=self.omega_c)
         else:
             d["reason"] = self.reason
             d["velocity_weakening"] = self.weakening
         d.update(phi_ss=list(self.phi_ss), mu_ss=self.mu_ss, dmu_ss_dV=self.dmu_ss)
         return d
+
+    @property
+    def k_c(self) -> float:
+        """The critical stiffness k_c, N/m (canonical name of the deprecated ``kc``)."""
+        return self.kc
 
     def __repr__(self) -> str:
         if self.status != "ok":
@@ -121,7 +128,8 @@ class HopfPoint:
         from landau.report.display import html_record
 
         title = f"Linear stability at V = {self.V:.4g} m/s: " + ("Hopf point" if self.status == "ok" else self.reason)
-        return html_record(title, self.as_dict(), units={"V": "m/s", "kc": "N/m", "omega_c": "rad/s"})
+        fields = {k: v for k, v in self.as_dict().items() if k != "kc"}
+        return html_record(title, fields, units={"V": "m/s", "k_c": "N/m", "omega_c": "rad/s"})
 
     def _repr_latex_(self) -> str:
         if self.status != "ok":

@@ -38,6 +38,7 @@ from landau.derivation.coefficients import (  # noqa: F401
     CoefficientTable,
     _with_bases,
     criticality,
+    internal_name,
 )
 from landau.derivation.fredholm import cubic_coefficient, linear_coefficient, null_vectors, quintic_coefficient
 from landau.derivation.hopf import spring_block_c1, spring_block_result
@@ -138,7 +139,7 @@ class Derivation:
         """
         if name == "Lambda5":
             return 2 * self.quintic.c.re
-        if name == "kc":
+        if name in ("kc", "k_c"):
             return self.k
         if name == "omega_c":
             return w
@@ -167,6 +168,7 @@ class Derivation:
         -------
         Coefficient
         """
+        name = internal_name(name)
         for base in DERIVED.get(name, ()):
             self.coefficient(base)
         if name not in ALL_QUANTITIES:
@@ -367,14 +369,17 @@ class Derivation:
         params : mapping of str to float, optional
             Parameter overrides (values may be arrays broadcasting against ``Vs``).
         names : sequence of str, optional
-            The quantities (default k_c, ω_c, Γ̄, Λ).
+            The quantities (default k_c, ω_c, Γ̄, Λ).  The critical stiffness is ``"k_c"``
+            (canonical) or ``"kc"`` (deprecated alias, kept for one release); the table carries it
+            under the name asked for (``"kc"`` when neither is named) and answers ``table["k_c"]``
+            and ``table["kc"]`` alike.
         method : {"auto", "general", "rational"}
             The evaluation route (see above).
         sign_only : bool, optional
             Whether only the signs are needed (see above).
         **overrides : float or array_like
             Parameter values as keywords, merged with ``params``:
-            ``d.evaluate([1e-4, 1e-3], M=1.2, names=["kc", "Lambda"])``.
+            ``d.evaluate([1e-4, 1e-3], M=1.2, names=["k_c", "Lambda"])``.
 
         Returns
         -------
@@ -385,6 +390,8 @@ class Derivation:
             raise InputError(f"unknown evaluation method {method!r} (auto, general, rational)")
         if isinstance(names, str):  # evaluate(Vs, None, "Lambda"): one quantity, not its letters
             names = [names]
+        asked = list(names)
+        names = [internal_name(n) for n in asked]   # k_c (canonical) is built as kc (its deprecated alias)
         params = _merged(params, overrides)
         p = self.block.resolve({k: v for k, v in (params or {}).items() if np.ndim(v) == 0})
         arr = {k: np.asarray(v, dtype=float) for k, v in (params or {}).items() if np.ndim(v) > 0}
@@ -410,7 +417,11 @@ class Derivation:
             raise InputError("array-valued parameters need a closed-form Hopf line (one state variable)")
         else:
             raw = precision.numeric_hopf_route(self, Vs, vals, shape, bases, p, sign_only)
-        return precision.finish(self, Vs, vals, raw, names, bases, sign_only, {**p, **arr})
+        table = precision.finish(self, Vs, vals, raw, names, bases, sign_only, {**p, **arr})
+        if "k_c" in asked and "kc" not in asked:   # under the name asked for
+            return CoefficientTable({("k_c" if k == "kc" else k): v for k, v in table.items()},
+                                    law=table.law, params=table.params)
+        return table
 
     def _evaluate_mp_checked(self, V0: float, point: Mapping[str, float], names,
                              sign_estimate: Mapping[str, float] | None = None) -> tuple[dict, bool]:
@@ -539,8 +550,8 @@ def derive(block: SpringBlock, quantities: Sequence[str] | None = None) -> Deriv
     block : SpringBlock
         The spring–block with its friction law.
     quantities : sequence of str, optional
-        Any of ``"kc"``, ``"omega_c"``, ``"Gamma_bar"``, ``"Omega_bar"``, ``"Lambda"``,
-        ``"chi"``, ``"C"`` (default: all).
+        Any of ``"k_c"`` (or its deprecated alias ``"kc"``), ``"omega_c"``, ``"Gamma_bar"``,
+        ``"Omega_bar"``, ``"Lambda"``, ``"chi"``, ``"C"`` (default: all).
 
     Returns
     -------
