@@ -8,7 +8,7 @@ Example::
     ds.k_c.sel(a=0.02).plot()
 
 The Dataset's dimensions are the swept parameters (coordinates with their SI units), its
-variables the task's quantities named as in the matching ``--json`` output (``p_c``/``k_c``, with ``kc`` its deprecated alias,
+variables the task's quantities named as in the matching ``--json`` output (``p_c``/``k_c``, ``kc`` deprecated,
 ``omega_c``, ``Lambda``, ``criticality``, … for ``hopf``; ``verdict`` and its numbers for
 ``check``) plus ``status`` and ``message`` per point; its attributes the model, the law's
 declaration, the convention, the landau version, the fixed parameters and the counts

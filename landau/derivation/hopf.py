@@ -483,6 +483,30 @@ class HopfResult:
                            fields, units=self.units, note=f"Convention: {self.convention}")
 
 
+#: system -> compiled (J(y, k, params…), E(k, params…), y₀(k, params…)); one entry per system built
+_LINEARISATIONS: dict[int, tuple[Any, tuple]] = {}
+
+
+def _linearisation(system: Any) -> tuple:
+    """The Jacobian ∂f/∂y, the mass matrix E and the equilibrium of ``system`` as float functions
+    (built once per system: sympy's derivative of f, compiled by lambdify)."""
+    hit = _LINEARISATIONS.get(id(system))
+    if hit is not None and hit[0] is system:
+        return hit[1]
+    import sympy as sp
+
+    from landau.support.cx import as_expr
+    from landau.support.lambdify import lambdify_positional
+
+    states, k, pars = list(system.states), system.parameter, [*system.parameters, *system.unknowns]
+    J = sp.Matrix([as_expr(f) for f in system.rhs]).jacobian(states)
+    fns = (lambdify_positional([*states, k, *pars], J.tolist(), "numpy"),
+           lambdify_positional([k, *pars], system.mass_matrix.tolist(), "numpy"),
+           lambdify_positional([k, *pars], [as_expr(e) for e in system.equilibrium], "numpy"))
+    _LINEARISATIONS[id(system)] = (system, fns)
+    return fns
+
+
 def spring_block_c1(system: Any, params: Mapping[str, float], k_c: float, omega_c: float, Lambda: float,
                     chi: float, equilibrium: tuple[float, ...] = ()) -> dict[str, Any]:
     """Kuznetsov's first Lyapunov coefficient of a spring–block Hopf point from its Λ and χ.
@@ -502,7 +526,8 @@ def spring_block_c1(system: Any, params: Mapping[str, float], k_c: float, omega_
     system : DynamicalSystem
         The spring–block system (:attr:`landau.systems.system.SpringBlock.system`).
     params : mapping
-        Values of every parameter but k (the driving velocity ``V`` included).
+        Values of every parameter but k (the driving velocity ``V`` included), and of the
+        steady states φᵢ,₀ by their symbols' names where they have no closed form.
     k_c, omega_c, Lambda, chi : float
         The Hopf point and its cubic coefficients in the slip-normalised convention.
     equilibrium : tuple of float, optional
@@ -523,13 +548,22 @@ def spring_block_c1(system: Any, params: Mapping[str, float], k_c: float, omega_
     from landau.errors import LandauError
 
     try:
-        num = NumericSystem(system, dict(params))
-        y = np.asarray(equilibrium, dtype=float) if len(equilibrium) else num.equilibrium_float(float(k_c))
-        A = num.J_float(y, float(k_c)) - 1j * float(omega_c) * num.E_float(float(k_c))
+        if system.unknowns and not all(u.name in params for u in system.unknowns):
+            # a numerically solved steady state not given: the general engine's Newton solve
+            num = NumericSystem(system, dict(params))
+            y = np.asarray(equilibrium, dtype=float) if len(equilibrium) else num.equilibrium_float(float(k_c))
+            A = num.J_float(y, float(k_c)) - 1j * float(omega_c) * num.E_float(float(k_c))
+        else:
+            fJ, fE, fy = _linearisation(system)
+            pv = [float(params[s.name]) for s in (*system.parameters, *system.unknowns)]
+            y = np.asarray(fy(float(k_c), *pv), dtype=float).ravel()
+            J = np.asarray(fJ(*y, float(k_c), *pv), dtype=float).reshape(len(y), len(y))
+            E = np.asarray(fE(float(k_c), *pv), dtype=float).reshape(len(y), len(y))
+            A = J - 1j * float(omega_c) * E
         q = np.ones(len(y), dtype=complex)
         q[1:] = np.linalg.solve(A[1:, 1:], -A[1:, 0])
         c1 = complex(Lambda, chi) / (2.0 * float(np.sum(np.abs(q) ** 2)))
-    except (LandauError, np.linalg.LinAlgError, ValueError, TypeError, ArithmeticError):
+    except (LandauError, np.linalg.LinAlgError, KeyError, ValueError, TypeError, ArithmeticError):
         return {}
     if not (math.isfinite(c1.real) and math.isfinite(c1.imag)):
         return {}

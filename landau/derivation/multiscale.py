@@ -484,14 +484,22 @@ class Derivation:
             kc = float(res["kc"][i])
             om = float(res["omega_c"][i])
             eq = equilibrium(float(Vi), kc)
-            kuznetsov = spring_block_c1(self.system, {**resolved, "V": float(Vi)}, kc, om, fields["Lambda"],
-                                        fields["chi"], eq)
+            at = {**resolved, "V": float(Vi), **self._unknowns(float(Vi), resolved)}
+            kuznetsov = spring_block_c1(self.system, at, kc, om, fields["Lambda"], fields["chi"], eq)
             out.append(spring_block_result(self.block.law.name, float(Vi), kc, om,
                                            params={**resolved, "V": float(Vi)},
                                            equilibrium=eq, **fields, **quintic, **kuznetsov))
         from landau.report.display import ResultList
 
         return ResultList(out, title=f"Hopf points of law {self.block.law.name}", units=UNITS)
+
+    def _unknowns(self, V: float, resolved: Mapping[str, float]) -> dict[str, float]:
+        """The steady states φᵢ,₀ at V by their symbols' names where they have no closed form (else {})."""
+        unknowns = self.system.unknowns
+        if not unknowns:
+            return {}
+        vals = self.block.argvals(np.array([V]), resolved)
+        return {u.name: float(np.ravel(vals[self.args.index(u)])[0]) for u in unknowns}
 
     def _equilibrium_function(self, resolved: Mapping[str, float]):
         """(V, k) -> the steady sliding state (X, u, φ…) as floats; () where it has no closed form."""

@@ -59,3 +59,32 @@ def test_points_carry_the_same_l1_c1(name: str) -> None:
         assert p.l1 == pytest.approx(r.l1, rel=1e-9)
         assert p.c1.real == pytest.approx(r.c1.real, rel=1e-9)
         assert p.c1.imag == pytest.approx(r.c1.imag, rel=1e-9)
+
+
+def test_numerically_solved_steady_state_closed_form_norm() -> None:
+    """A law whose steady state has no closed form, dφ/dt = G = 1 − vφ/L − c·atan(V_sφ/L): ‖q‖² from the
+    one-state formula φ₁ = iω_c G_v/(iω_c − G_φ) at the Newton-solved φ₀, ‖q‖² = 1 + ω_c² + |φ₁|²."""
+    import math
+
+    from scipy.optimize import brentq
+
+    import landau
+    from landau.laws import FrictionLaw
+
+    p = {"a_v": 0.369, "a": 0.0349, "b": 0.0489, "L": 9e-7, "V_s": 1e-6, "c": 0.1}
+    law = FrictionLaw.from_strings("atan-state", "a_v + a*log(v/V_s) + b*log(V_s*phi/L)",
+                                   {"phi": "1 - v*phi/L - c*atan(V_s*phi/L)"}, p)
+    V = 1e-4
+    r = predict(law, V)
+    L, Vs, c = p["L"], p["V_s"], p["c"]
+    phi0 = brentq(lambda f: 1 - V * f / L - c * math.atan(Vs * f / L), 1e-12, L / V, xtol=1e-30, rtol=1e-15)
+    G_v, G_phi = -phi0 / L, -V / L - c * (Vs / L) / (1 + (Vs * phi0 / L) ** 2)
+    iw = 1j * r.omega_c
+    phi1 = iw * G_v / (iw - G_phi)
+    norm2 = 1 + r.omega_c ** 2 + abs(phi1) ** 2
+    c1 = complex(r.Lambda, r.chi) / (2 * norm2)
+    assert r.c1.real == pytest.approx(c1.real, rel=1e-9)
+    assert r.c1.imag == pytest.approx(c1.imag, rel=1e-9)
+    assert r.l1 == pytest.approx(c1.real / r.omega_c, rel=1e-9)
+    pt = landau.derive(SpringBlock(law)).points([V])[0]
+    assert pt.l1 == pytest.approx(r.l1, rel=1e-9)

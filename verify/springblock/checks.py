@@ -89,11 +89,21 @@ def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = Non
     if not np.isfinite(vals["kc"]) or vals["kc"] <= 0:
         d.hopf.require(V, resolved)   # raises with the velocity-weakening range, as `landau derive` prints it
         raise NoHopfError(f"law {law.name!r} has no Hopf point at V = {V!r} m/s")
-    kuznetsov = spring_block_c1(block.system, {**resolved, "V": float(V)}, vals["kc"], vals["omega_c"],
-                                vals["Lambda"], vals["chi"])
+    unknowns = _steady_unknowns(block, float(V), resolved)
+    kuznetsov = spring_block_c1(block.system, {**resolved, "V": float(V), **unknowns}, vals["kc"],
+                                vals["omega_c"], vals["Lambda"], vals["chi"])
     res = spring_block_result(law.name, float(V), params={k: float(v) for k, v in resolved.items()}, **vals,
                               **kuznetsov)
     return block.name_terms(res)
+
+
+def _steady_unknowns(block: SpringBlock, V: float, resolved: Mapping[str, float]) -> dict[str, float]:
+    """The steady states φᵢ,₀ at V by their symbols' names where they have no closed form (else {})."""
+    unknowns = block.system.unknowns
+    if not unknowns:
+        return {}
+    vals = block.argvals(np.array([V]), resolved)
+    return {u.name: float(np.ravel(vals[block.args.index(u)])[0]) for u in unknowns}
 
 
 @dataclass(frozen=True)
