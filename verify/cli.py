@@ -33,7 +33,7 @@ AMPLITUDE_DEFINITION = ("amplitude_simulated = half peak-to-peak slip (max X - m
 def configure(p) -> None:
     add_law_arguments(p)
     p.add_argument("--V", default=None, help="driving velocities in m/s, comma-separated")
-    p.add_argument("--eps2", default="1e-3", help="distances eps^2 = |k - kc|/kc, comma-separated (default 1e-3)")
+    p.add_argument("--eps2", default="1e-3", help="distances eps^2 = |k - k_c|/k_c, comma-separated (default 1e-3)")
     p.add_argument("--tol", type=float, default=None,
                    help="an extra bound on |relative amplitude error| at each eps2 (default: none — a point agrees "
                         f"when its error falls like eps2, fitted exponent in {contract.EXPONENT_BAND[0]:g} to "

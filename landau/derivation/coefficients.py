@@ -22,9 +22,9 @@ if TYPE_CHECKING:
     from landau.derivation.multiscale import Derivation
 
 CONVENTION = ("d|A|/dT = (Gamma |A| + Lambda |A|^3)/2, dtheta/dT = (Omega + chi |A|^2)/2 (Putelat et al. 2010 eq. 20); "
-              "Gamma = -2 Gamma_bar (k - kc)/eps^2, Omega = 2 Omega_bar (k - kc)/eps^2; critical mode normalised "
+              "Gamma = -2 Gamma_bar (k - k_c)/eps^2, Omega = 2 Omega_bar (k - k_c)/eps^2; critical mode normalised "
               "with slip component 1; Lambda < 0: supercritical, Lambda > 0: subcritical; "
-              "C = (half peak-to-peak swing of x - x0) / sqrt(|kc - k|) = 2 sqrt(2 Gamma_bar/|Lambda|) (eq. 23; "
+              "C = (half peak-to-peak swing of x - x0) / sqrt(|k_c - k|) = 2 sqrt(2 Gamma_bar/|Lambda|) (eq. 23; "
               "max|x - x0| differs from it at O(eps))")
 
 #: SI units of the spring–block quantities (and of a spring–block :class:`~landau.derivation.hopf.HopfResult`'s fields)

@@ -105,7 +105,7 @@ GENERAL = Convention(
 SPRING_BLOCK = Convention(
     name="putelat2010",
     equation="d|A|/dT = (Gamma |A| + Lambda |A|^3)/2, dtheta/dT = (Omega + chi |A|^2)/2, "
-             "Gamma = -2 Gamma_bar (k - kc)/eps^2, Omega = 2 Omega_bar (k - kc)/eps^2",
+             "Gamma = -2 Gamma_bar (k - k_c)/eps^2, Omega = 2 Omega_bar (k - k_c)/eps^2",
     latex=r"\frac{d|A|}{dT} = \tfrac12\left(\Gamma|A| + \Lambda|A|^3\right),\ "
           r"\frac{d\theta}{dT} = \tfrac12\left(\Omega + \chi|A|^2\right)",
     normalisation="critical mode with slip component X equal to 1 (u0 = (1, z))",
