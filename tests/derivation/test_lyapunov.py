@@ -150,4 +150,9 @@ def test_both_routes_return_the_same_result_field_by_field(V0):
         assert math.isclose(getattr(eng, name), getattr(kuz, name), rel_tol=1e-10), name
     assert eng.equilibrium == pytest.approx(kuz.equilibrium, rel=1e-14)      # (X, u, φ) = (0, 0, L/V)
     assert eng.equilibrium[2] == pytest.approx(d.block.resolve()["L"] / V0, rel=1e-14)
-    assert eng.l1 is None and kuz.l1 == pytest.approx(kuz.c1.real / kuz.omega_c, rel=1e-14)
+    assert kuz.l1 == pytest.approx(kuz.c1.real / kuz.omega_c, rel=1e-14)
+    # l₁ and c₁ on the engine's route: c₁ = (Λ + iχ)/(2‖q‖²) with the critical eigenvector q of
+    # slip component 1 — the same numbers as Kuznetsov's c₁ here, by an independent route
+    assert eng.l1 == pytest.approx(kuz.l1, rel=1e-10)
+    assert eng.c1.real == pytest.approx(kuz.c1.real, rel=1e-10)
+    assert eng.c1.imag == pytest.approx(kuz.c1.imag, rel=1e-10)
