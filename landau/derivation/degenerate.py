@@ -92,7 +92,7 @@ def algebraic_rows(system: DynamicalSystem, params: Mapping[str, float], p: floa
     subs[system.parameter] = sp.Float(float(p))
     out = []
     for i, e in enumerate(system.mass):
-        val = sp.sympify(e).xreplace(subs)
+        val = sp.sympify(e, strict=True).xreplace(subs)
         if val.is_number and float(val) == 0.0:
             out.append(i)
     return out
@@ -137,7 +137,7 @@ def ode_on_constraint(system: DynamicalSystem, params: Mapping[str, float], p: f
     if not diff:
         raise InputError(f"{system.name}: every row is algebraic; there is no dynamics")
     ys = system.states
-    f = [sp.sympify(e) for e in system.rhs]
+    f = [sp.sympify(e, strict=True) for e in system.rhs]   # expressions, never strings
     fA = sp.Matrix([f[i] for i in alg])
     FA = fA.jacobian([ys[i] for i in alg])
     FD = fA.jacobian([ys[i] for i in diff])

@@ -35,7 +35,7 @@ import sympy as sp
 from landau.errors import InputError
 from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
-from landau.systems.system import G_DEFAULT, M_DEFAULT, DynamicalSystem, SpringBlock, V, k
+from landau.systems.system import G_DEFAULT, M_DEFAULT, DynamicalSystem, SpringBlock, V, finite_parameter, k
 
 #: the coupling stiffness between neighbours [N/m]
 k_coupling = sp.Symbol("k_coupling", nonnegative=True)
@@ -133,12 +133,7 @@ class SpringBlockChain:
             if key not in known:
                 raise InputError(f"unknown parameter {key!r} for the chain of {self.blocks} blocks with law "
                                  f"{self.law.name!r} (known: {', '.join(sorted(known))}, g)")
-            try:
-                p[key] = float(val)
-            except (TypeError, ValueError):
-                raise InputError(f"parameter {key!r} must be a number, got {val!r}") from None
-            if not np.isfinite(p[key]):
-                raise InputError(f"parameter {key!r} must be finite, got {val!r}")
+            p[key] = finite_parameter(key, val)
         g = float(g)
         for i in range(1, self.blocks + 1):
             m = p.setdefault(f"M_{i}", M_DEFAULT)

@@ -52,6 +52,17 @@ def _as_sympy(x, what: str) -> sp.Expr:
     return sp.Float(float(x))
 
 
+def finite_parameter(name: str, value) -> float:
+    """A parameter value as a finite float, else an :class:`InputError` naming the parameter."""
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"parameter {name!r} must be a number, got {value!r}") from None
+    if not np.isfinite(x):
+        raise InputError(f"parameter {name!r} must be finite, got {value!r}")
+    return x
+
+
 @dataclass(frozen=True, eq=False)
 class DynamicalSystem:
     """E·ẏ = f(y; p, q) with Hopf parameter p and other parameters q (all sympy).
@@ -400,12 +411,7 @@ class SpringBlock:
             if key not in declared:
                 raise InputError(f"unknown parameter {key!r} for law {self.law.name!r} "
                                  f"(known: {', '.join(sorted(p))})")
-            try:
-                p[key] = float(val)
-            except (TypeError, ValueError):
-                raise InputError(f"parameter {key!r} must be a number, got {val!r}") from None
-            if not np.isfinite(p[key]):
-                raise InputError(f"parameter {key!r} must be finite, got {val!r}")
+            p[key] = finite_parameter(key, val)
         missing = [prm.name for prm in self.law.parameters if prm.name not in p]
         if missing:
             raise InputError(f"law {self.law.name!r}: parameter(s) {', '.join(missing)} have no default; "
