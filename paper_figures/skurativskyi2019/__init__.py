@@ -33,12 +33,12 @@ def _save(fig, out_dir: Path, name: str) -> list[Path]:
 
 
 def _diagram(ax_x, ax_t, res, color, label, ms=2.0):
-    w_x = np.concatenate([np.full(len(a.x_section), a.omega) for a in res.attractors])
-    x = np.concatenate([a.x_section for a in res.attractors]) * 1e3
+    w_x = np.concatenate([np.full(len(a.x_section), a.omega) for a in res.values])
+    x = np.concatenate([a.x_section for a in res.values]) * 1e3
     ax_x.plot(w_x, x, "o", color=color, ms=ms, mew=0, label=label)
     if ax_t is not None:
-        w_t = np.concatenate([np.full(len(a.intervals), a.omega) for a in res.attractors])
-        T = np.concatenate([a.intervals for a in res.attractors])
+        w_t = np.concatenate([np.full(len(a.intervals), a.omega) for a in res.values])
+        T = np.concatenate([a.intervals for a in res.values])
         ax_t.plot(w_t, T, "o", color=color, ms=ms, mew=0)
 
 
@@ -94,7 +94,7 @@ def fig5(out_dir: Path) -> list[Path]:
     fig, ax = plt.subplots(figsize=(9, 4))
     for d, c in (("up", "r"), ("down", "g")):
         res = run_sweep(om, d, spec=spec, progress=False)
-        ax.plot(res.omegas, [a.lyapunov for a in res.attractors], "-", color=c, lw=1, label=f"{d} sweep")
+        ax.plot(res.params, [a.lyapunov for a in res.values], "-", color=c, lw=1, label=f"{d} sweep")
     ax.axhline(0, color="k", lw=0.5)
     ax.set_xlabel("ω [rad/s]")
     ax.set_ylabel("λ₁ [1/s]")

@@ -178,8 +178,8 @@ def test_sweep_dask_matches_local_and_streams(tmp_path):
     with LocalCluster(n_workers=1, processes=False, dashboard_address=None) as cluster, Client(cluster) as client:
         remote = run_sweep(om, "down", out=tmp_path / "dask", spec=spec, scheduler=client, chunk_size=2,
                            progress=False)
-    assert list(local.omegas) == [21.8, 21.75, 21.7]
-    for a, b in zip(local.attractors, remote.attractors, strict=True):
+    assert list(local.params) == [21.8, 21.75, 21.7]
+    for a, b in zip(local.values, remote.values, strict=True):
         # same chunks, same warm starts, same deterministic integrator: identical results
         assert np.array_equal(a.x_section, b.x_section)
     with pytest.raises(InputError):  # the folder holds a different sweep

@@ -53,7 +53,7 @@ def sweeps(tmp_path_factory):
 
 
 def _at(res, w):
-    return next(a for a in res.attractors if abs(a.omega - w) < 1e-9)
+    return next(a for a in res.values if abs(a.omega - w) < 1e-9)
 
 
 def _n_section(a, tol=1e-8):
@@ -136,5 +136,5 @@ def test_sweep_resumes_after_interruption(tmp_path):
     ds["status"][2:] = "pending"
     ds.to_netcdf(f)
     again = run_sweep(om, "up", out=tmp_path / "a", spec=spec, workers=1, progress=False)
-    for a, b in zip(full.attractors, again.attractors, strict=True):
+    for a, b in zip(full.values, again.values, strict=True):
         assert np.allclose(a.x_section, b.x_section, rtol=0, atol=1e-12)

@@ -34,7 +34,7 @@ def main(out_dir: str = "benchmarks_out", rtols=(1e-7, 1e-8, 1e-9)) -> str:
     for rt in rtols:
         t0 = time.perf_counter()
         up = run_sweep(om, "up", spec=SweepSpec(rtol=rt, n_keep=20), progress=False)
-        at = {round(a.omega, 6): a for a in up.attractors}
+        at = {round(a.omega, 6): a for a in up.values}
         fd = first_detachment(14.0, 14.1, 1e-3, rtol=rt) if rt >= 1e-8 else None
         pd = locate_period_doubling(20.1, 20.3, at[20.1].y_end, tol=1e-4, rtol=rt)
         g = [locate_grazing(lo, hi, at[lo].y_end, tol=1e-4, rtol=rt).value for lo, hi in BRACKETS]

@@ -47,7 +47,6 @@ from landau.verify.galvanetto.one_block import hopf_c1, hopf_c1_normal_form, non
 from landau.verify.galvanetto.periodic import (  # noqa: F401
                                                    SCAN_RTOL,
                                                    XTOL,
-                                                   Located,
                                                    NoBifurcationError,
                                                    PeriodicPoint,
                                                    attractor,
@@ -69,6 +68,7 @@ from landau.verify.galvanetto.two_block import (  # noqa: F401
                                                    period_doubling,
                                                    two_block_sliding,
 )
+from landau.verify.hybrid.analysis import Located  # noqa: F401
 
 __all__ = ["Located", "NoBifurcationError", "PeriodicPoint", "attractor", "border_collision", "boundary_crisis",
            "discontinuous_fold", "fig12_params", "fixed_point_beside_kink", "grazing_sliding", "hopf_c1",

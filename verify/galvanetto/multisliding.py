@@ -16,7 +16,6 @@ from landau.verify.galvanetto.maps import MapUndefined, d_range, default_stepper
 from landau.verify.galvanetto.model import K_of, two_blocks
 from landau.verify.galvanetto.periodic import (
     SCAN_RTOL,
-    Located,
     NoBifurcationError,
     _continuation_scan,
     _locate,
@@ -26,6 +25,7 @@ from landau.verify.galvanetto.periodic import (
     map_slope,
     periodic_point,
 )
+from landau.verify.hybrid.analysis import Located
 
 #: derived start of :func:`multi_sliding`: γ is scanned on a geometric grid (neighbours 2 % apart) from
 #: the γ at which the law's weakening velocity is ten times the belt velocity V to the γ at which it

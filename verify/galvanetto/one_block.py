@@ -12,7 +12,8 @@ from landau.errors import InputError
 from landau.laws.kinetic import KineticFriction, resolve_kinetic_law
 from landau.verify.galvanetto.maps import MapUndefined, default_stepper, one_block_cycle
 from landau.verify.galvanetto.model import _make_rhs, one_block
-from landau.verify.galvanetto.periodic import Located, _locate, _margins, _velocity_scale, scan_bracket
+from landau.verify.galvanetto.periodic import _locate, _margins, _velocity_scale, scan_bracket
+from landau.verify.hybrid.analysis import Located
 
 # ----------------------------------------------------------------- one block (Sec. 4.1, 4.2)
 

@@ -11,7 +11,7 @@ sign change of H (grid scans, growing brackets, continuation of a periodic orbit
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
@@ -27,23 +27,6 @@ XTOL = 1e-12
 class NoBifurcationError(InputError):
     """The test function of a locator does not change sign in the search range derived from the
     model: the bifurcation does not exist there for these parameters (the message gives the range)."""
-
-
-@dataclass(frozen=True)
-class Located:
-    """A located bifurcation: the parameter value and how it was obtained."""
-
-    name: str
-    parameter: str
-    value: float
-    residual: float
-    evaluations: int
-    seconds: float
-    details: dict = field(default_factory=dict)
-
-    def __repr__(self) -> str:
-        return (f"Located({self.name}: {self.parameter} = {self.value:.12g}, |H| = {self.residual:.2g}, "
-                f"{self.evaluations} evaluations, {self.seconds:.2f} s)")
 
 
 @dataclass(frozen=True)
@@ -296,3 +279,17 @@ def _continuation_scan(H, warm: _Warm, x0: float, limit: float, what: str, max_j
                              f"from {x0:.8g} over [{lo:.8g}, {hi:.8g}] (searched within [{x0 - limit:.8g}, "
                              f"{x0 + limit:.8g}]; the orbit was lost at an end inside that range); the "
                              "bifurcation does not exist on that orbit")
+
+
+def __getattr__(name: str):
+    # the locators' result type lives in the simulation engine's toolkit, shared with the other models
+    if name == "Located":
+        import warnings
+
+        from landau.verify.hybrid.analysis import Located
+
+        warnings.warn("landau.verify.galvanetto.periodic.Located is deprecated: import Located from "
+                      "landau.verify.galvanetto.bifurcations or landau.verify.hybrid.analysis",
+                      DeprecationWarning, stacklevel=2)
+        return Located
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -18,7 +18,6 @@ from landau.verify.galvanetto.maps import MapUndefined, d_range, default_stepper
 from landau.verify.galvanetto.model import StickSlipParams, _make_rhs, two_blocks
 from landau.verify.galvanetto.periodic import (
     SCAN_RTOL,
-    Located,
     NoBifurcationError,
     PeriodicPoint,
     _grow_bracket,
@@ -32,6 +31,7 @@ from landau.verify.galvanetto.periodic import (
     periodic_point,
     scan_bracket,
 )
+from landau.verify.hybrid.analysis import Located
 
 # ----------------------------------------------------------------- two blocks (Sec. 4.1)
 

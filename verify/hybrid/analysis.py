@@ -5,6 +5,8 @@
   Floquet multipliers are the eigenvalues of that Jacobian;
 * :func:`bisect_change` — locate by bisection where a yes/no property of a run changes
   along a parameter (e.g. decay vs growth to a large cycle);
+* :class:`Located` — a located bifurcation or transition of a model (a root of a test function,
+  or the final bracket of a bisection), the result type of every model's locators;
 
 * :func:`poincare` — states at the crossings of a section guard (a guard without
   transition in the model) after a transient;
@@ -12,12 +14,16 @@
 * :func:`sweep` — evaluate a function along a parameter list, passing each result to the
   next call as warm start (continuation of attractors), collecting failures instead of
   stopping;
+* :class:`SweepResult` — the outputs of a computation along a parameter list in sweep order,
+  the result type of every model's sweeps;
 * :func:`map_bifurcation_diagram` — attractor points of a one-dimensional map along a
   parameter (transient discarded), warm-started from the previous parameter value.
 """
 
 from __future__ import annotations
 
+import math
+import warnings
 from dataclasses import dataclass, field
 from typing import Any, Callable, Sequence
 
@@ -126,6 +132,61 @@ def bisect_change(has_property: Callable[[float], bool], lo: float, hi: float, n
 
 
 @dataclass(frozen=True)
+class Located:
+    """A located bifurcation or transition: the value of one parameter where a test function H
+    changes sign, and how it was found.
+
+    Two searches produce it.  A root of a continuous H (Brent's method, e.g. the locators of
+    Galvanetto 2004, Sec. 4): ``value`` is the root and ``residual`` = |H(value)|.  Bisection on a
+    yes/no property of a run (e.g. the impact count of Skurativskyi et al. 2019, Sec. 4): ``lo`` and
+    ``hi`` are the final bracket and ``value`` its midpoint; ``lo`` is the end where the property
+    has its value at the search's start, which may be the larger one.
+
+    Attributes
+    ----------
+    name : str
+        What was located (e.g. ``"period-doubling"``, ``"first detachment"``).
+    parameter : str
+        The parameter's name (e.g. ``"V"``, ``"beta"``, ``"omega"``).
+    value : float
+        The located parameter value.
+    residual : float
+        |H(value)|; NaN for a bisection on a yes/no property (no value of H to give).
+    evaluations : int
+        Evaluations of H (or runs of the model for a property).
+    seconds : float
+        Wall time of the search; NaN where it was not measured.
+    details : dict
+        Locator-specific data (the periodic point, its period, the search's initial bracket, ...).
+    lo, hi : float
+        The final bracket of a bisection; NaN for a root of a continuous H.
+    """
+
+    name: str
+    parameter: str
+    value: float
+    residual: float
+    evaluations: int
+    seconds: float = math.nan
+    details: dict = field(default_factory=dict)
+    lo: float = math.nan
+    hi: float = math.nan
+
+    @property
+    def what(self) -> str:
+        """Deprecated name of :attr:`name` (the bisection results of the forced oscillator)."""
+        warnings.warn("Located.what is deprecated: use Located.name", DeprecationWarning, stacklevel=2)
+        return self.name
+
+    def __repr__(self) -> str:
+        where = (f"{self.parameter} ∈ [{self.lo:.6f}, {self.hi:.6f}]" if not math.isnan(self.lo)
+                 else f"{self.parameter} = {self.value:.12g}")
+        res = "" if math.isnan(self.residual) else f", |H| = {self.residual:.2g}"
+        sec = "" if math.isnan(self.seconds) else f", {self.seconds:.2f} s"
+        return f"Located({self.name}: {where}{res}, {self.evaluations} evaluations{sec})"
+
+
+@dataclass(frozen=True)
 class Section:
     """Crossings of one section: times and states (shape (n, m))."""
 
@@ -157,14 +218,48 @@ def event_map_orbit(fmap: Callable[[float], float], x0: float, n: int) -> np.nda
 
 @dataclass(frozen=True)
 class SweepResult:
-    """Parameter values, the outputs (None where the evaluation failed) and failures."""
+    """The outputs of one computation along a parameter list, in sweep order (a continuation: each
+    point warm-started from the one before).
+
+    Attributes
+    ----------
+    params : numpy.ndarray
+        The parameter values in sweep order.
+    values : sequence
+        The output at each of them (None where the evaluation failed), e.g. the attractor points of a
+        map (:func:`map_bifurcation_diagram`) or the forced oscillator's attractors at each ω.
+    failures : dict
+        Parameter value → message, for the points that failed.
+    direction : str or None
+        ``"up"`` or ``"down"`` for a continuation in increasing or decreasing parameter; None where the
+        order is the caller's.
+    out : str or None
+        The file the sweep was written to, if any.
+    """
 
     params: np.ndarray
-    values: list
+    values: Sequence[Any]
     failures: dict = field(default_factory=dict)
+    direction: str | None = None
+    out: str | None = None
+
+    @property
+    def attractors(self) -> Sequence[Any]:
+        """Deprecated name of :attr:`values` (the forced oscillator's ω-sweep)."""
+        warnings.warn("SweepResult.attractors is deprecated: use SweepResult.values", DeprecationWarning,
+                      stacklevel=2)
+        return self.values
+
+    @property
+    def omegas(self) -> np.ndarray:
+        """Deprecated name of :attr:`params` (the forced oscillator's ω-sweep)."""
+        warnings.warn("SweepResult.omegas is deprecated: use SweepResult.params", DeprecationWarning, stacklevel=2)
+        return self.params
 
     def __repr__(self) -> str:
-        return f"SweepResult({len(self.params)} points, {len(self.failures)} failures)"
+        how = "" if self.direction is None else f"{self.direction}, "
+        out = "" if self.out is None else f", out={self.out!r}"
+        return f"SweepResult({how}{len(self.params)} points, {len(self.failures)} failures{out})"
 
 
 def sweep(fn: Callable[[float, Any], Any], params: Sequence[float], warm: Any = None,

@@ -16,12 +16,14 @@ Conventions (as in the paper):
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import minimize_scalar
 
 from landau.errors import InputError
+from landau.verify.hybrid.analysis import Located
 from landau.verify.skurativskyi.model import PAPER, Params
 from landau.verify.skurativskyi.simulate import ATOL, RTOL, run
 
@@ -84,26 +86,15 @@ def detaches(omega: float, params: Params = PAPER, n_transient: int = 60, n_keep
     return len(r.detachments) > 0
 
 
-@dataclass(frozen=True)
-class Located:
-    """A located transition: bracket [lo, hi] (the property changes inside), value = midpoint."""
-
-    lo: float
-    hi: float
-    evaluations: int
-    what: str = ""
-
-    @property
-    def value(self) -> float:
-        return 0.5 * (self.lo + self.hi)
-
-    def __repr__(self) -> str:
-        return f"Located({self.what}: ω ∈ [{self.lo:.6f}, {self.hi:.6f}], {self.evaluations} runs)"
-
-
 def bisect(pred, lo: float, hi: float, tol: float, what: str = "") -> Located:
-    """Bisection on a boolean predicate with pred(lo) != pred(hi); ``lo`` > ``hi`` is allowed
-    (the bracket keeps ``lo`` on the side where the predicate has its ``lo`` value)."""
+    """Bisection in ω on a boolean predicate with pred(lo) != pred(hi); ``lo`` > ``hi`` is allowed
+    (the bracket keeps ``lo`` on the side where the predicate has its ``lo`` value).
+
+    Returns
+    -------
+    Located
+        ``name`` = ``what``, parameter ``"omega"``, the final bracket ``lo``/``hi`` and its midpoint
+        as ``value``; ``evaluations`` counts the runs (residual NaN: a yes/no property)."""
     plo, phi = pred(lo), pred(hi)
     n = 2
     if plo == phi:
@@ -116,7 +107,7 @@ def bisect(pred, lo: float, hi: float, tol: float, what: str = "") -> Located:
             lo = mid
         else:
             hi = mid
-    return Located(lo, hi, n, what)
+    return Located(what, "omega", 0.5 * (lo + hi), math.nan, n, lo=lo, hi=hi)
 
 
 def first_detachment(lo: float = 14.0, hi: float = 14.1, tol: float = 1e-3, params: Params = PAPER,

@@ -34,6 +34,7 @@ import numpy as np
 from landau.analyses.sweep_engine import Chunk, ChunkResult, make_grid
 from landau.analyses.sweep_tasks import ModelTask
 from landau.errors import InputError
+from landau.verify.hybrid.analysis import SweepResult
 from landau.verify.skurativskyi.analysis import Attractor, attractor
 from landau.verify.skurativskyi.model import MECHANICAL, PAPER
 
@@ -215,22 +216,6 @@ def warm_up(params=PAPER) -> None:
     rk.mixed_loop()
 
 
-@dataclass(frozen=True)
-class SweepResult:
-    """Attractors in sweep order, the direction and the netCDF file they were written to."""
-
-    direction: str
-    attractors: tuple
-    out: str | None
-
-    @property
-    def omegas(self) -> np.ndarray:
-        return np.array([a.omega for a in self.attractors])
-
-    def __repr__(self) -> str:
-        return f"SweepResult({self.direction}, {len(self.attractors)} points, out={self.out!r})"
-
-
 def run_sweep(omegas, direction: str = "up", out: str | os.PathLike | None = None, spec: SweepSpec = SweepSpec(),
               workers: int | None = None, scheduler=None, chunk_size: int | None = None,
               progress: bool = True) -> SweepResult:
@@ -259,6 +244,8 @@ def run_sweep(omegas, direction: str = "up", out: str | os.PathLike | None = Non
     Returns
     -------
     SweepResult
+        ``params`` the ω values and ``values`` the :class:`Attractor` at each, in sweep order (decreasing
+        ω for ``"down"``); ``direction``; ``out`` the netCDF file (None without ``out``).
     """
     from landau.analyses.sweep_engine import execute
 
@@ -298,7 +285,8 @@ def run_sweep(omegas, direction: str = "up", out: str | os.PathLike | None = Non
     atts = attractors_of(ds)
     if direction == "down":
         atts = atts[::-1]
-    return SweepResult(direction, tuple(atts), str(path) if path else None)
+    return SweepResult(np.array([a.omega for a in atts]), tuple(atts), direction=direction,
+                       out=str(path) if path else None)
 
 
 __all__ = ["CHUNK_SIZE", "MECHANICAL", "SweepResult", "SweepSpec", "attractors_of", "make_task", "plot_diagram",
