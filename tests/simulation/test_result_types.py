@@ -18,7 +18,8 @@ from landau.verify.hybrid.analysis import Located, SweepResult, sweep
 
 def test_every_model_names_the_same_types():
     from landau.verify.galvanetto import bifurcations
-    from landau.verify.skurativskyi import analysis, sweep as fo_sweep
+    from landau.verify.skurativskyi import analysis
+    from landau.verify.skurativskyi import sweep as fo_sweep
 
     assert bifurcations.Located is Located and analysis.Located is Located
     assert fo_sweep.SweepResult is SweepResult
