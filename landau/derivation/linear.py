@@ -22,6 +22,7 @@ from sympy.polys.matrices import DomainMatrix
 
 from landau.codegen.formula import CompiledFormula, compile_expr
 from landau.derivation.jets import Jets
+from landau.derivation.parameter_jets import ParameterJets
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.systems.system import DynamicalSystem, SpringBlock, V
 
@@ -155,12 +156,9 @@ class HopfLine:
     """
 
     def __init__(self, block: SpringBlock, jets: Jets | None = None):
-        if "alpha_ld" in block.terms:   # k enters the state rate too (dσ/dt = −γ_LD k u): general engine
-            raise InputError("the Hopf line of a block with alpha_ld is located by the general engine: "
-                             "landau.derivation.springblock_routes.hopf_point or `landau hopf spring-block`")
         self.block = block
         self.system: DynamicalSystem = block.system
-        self.jets = jets or Jets(self.system)
+        self.jets = jets or ParameterJets(self.system)
         self.args: tuple[sp.Symbol, ...] = block.args
 
     # --- symbolic ---------------------------------------------------------------------
