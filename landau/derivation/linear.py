@@ -6,7 +6,9 @@ P(iω) + p Q(iω) = 0 with p real, i.e. Im(P Q̄)(iω) = 0 and p = −Re(P Q̄)/
 Im(P Q̄)/ω is a polynomial in ω²: of degree one for a single state variable, which
 gives Putelat et al.'s closed forms (7)–(8); for n states its roots are found
 numerically and the critical stiffness is the largest positive root (steady sliding is
-stable above it).
+stable above it).  p may enter several entries of the Jacobian (the Linker–Dieterich state
+response puts the stiffness in the state row too); the determinant stays affine in p there, and
+:class:`~landau.derivation.parameter_jets.ParameterJets` keeps it polynomial in the atoms.
 """
 
 from __future__ import annotations
