@@ -42,8 +42,8 @@ from landau.derivation.coefficients import (  # noqa: F401
 )
 from landau.derivation.fredholm import cubic_coefficient, linear_coefficient, null_vectors, quintic_coefficient
 from landau.derivation.hopf import spring_block_c1, spring_block_result
-from landau.derivation.parameter_jets import ParameterJets
 from landau.derivation.linear import HopfLine, w
+from landau.derivation.parameter_jets import ParameterJets
 from landau.derivation.precision import BLOCK as _BLOCK  # noqa: F401
 from landau.errors import InputError, NoHopfError
 from landau.support.cx import Cx, as_expr
