@@ -491,9 +491,9 @@ class Derivation:
             eq = equilibrium(float(Vi), kc)
             at = {**resolved, "V": float(Vi), **self._unknowns(float(Vi), resolved)}
             kuznetsov = spring_block_c1(self.system, at, kc, om, fields["Lambda"], fields["chi"], eq)
-            out.append(spring_block_result(self.block.law.name, float(Vi), kc, om,
-                                           params={**resolved, "V": float(Vi)},
-                                           equilibrium=eq, **fields, **quintic, **kuznetsov))
+            out.append(self.block.name_terms(spring_block_result(
+                self.block.law.name, float(Vi), kc, om, params={**resolved, "V": float(Vi)},
+                equilibrium=eq, **fields, **quintic, **kuznetsov)))
         from landau.report.display import ResultList
 
         return ResultList(out, title=f"Hopf points of law {self.block.law.name}", units=UNITS)

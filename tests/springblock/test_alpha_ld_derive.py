@@ -151,3 +151,14 @@ def test_codim2_equals_a_root_of_the_general_engines_Lambda():
     q = quintic_normal_form(block.system, {**p, "V": c["V"]}, c["k_c"], c["omega_c"])
     assert c["Lambda5"] == pytest.approx(q.Lambda5, rel=1e-6)
     assert np.isfinite(c["l2"]) and np.sign(c["l2"]) == np.sign(c["Lambda5"])
+
+
+def test_points_carry_the_terms_and_kuznetsovs_l1():
+    """``Derivation.points``: the terms' values located in the result, l₁ equal to the general engine's."""
+    extra = {"gamma_ld": -1.0, "alpha_ld": 0.3}
+    block = SpringBlock.for_params(LAW, extra)
+    (pt,) = derive(block).points([V], extra)
+    g = hopf_point(block, V, block.resolve(extra))
+    assert pt.as_dict()["alpha_ld"] == 0.3 and pt.as_dict()["gamma_ld"] == -1.0
+    assert pt.l1 == pytest.approx(g.l1, rel=1e-8)
+    assert pt.Lambda == pytest.approx(g.Lambda, rel=1e-8)
