@@ -6,7 +6,9 @@ P(iω) + p Q(iω) = 0 with p real, i.e. Im(P Q̄)(iω) = 0 and p = −Re(P Q̄)/
 Im(P Q̄)/ω is a polynomial in ω²: of degree one for a single state variable, which
 gives Putelat et al.'s closed forms (7)–(8); for n states its roots are found
 numerically and the critical stiffness is the largest positive root (steady sliding is
-stable above it).
+stable above it).  p may enter several entries of the Jacobian (the Linker–Dieterich state
+response puts the stiffness in the state row too); the determinant stays affine in p there, and
+:class:`~landau.derivation.parameter_jets.ParameterJets` keeps it polynomial in the atoms.
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ from sympy.polys.matrices import DomainMatrix
 
 from landau.codegen.formula import CompiledFormula, compile_expr
 from landau.derivation.jets import Jets
+from landau.derivation.parameter_jets import ParameterJets
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.systems.system import DynamicalSystem, SpringBlock, V
 
@@ -155,12 +158,9 @@ class HopfLine:
     """
 
     def __init__(self, block: SpringBlock, jets: Jets | None = None):
-        if "alpha_ld" in block.terms:   # k enters the state rate too (dσ/dt = −γ_LD k u): general engine
-            raise InputError("the Hopf line of a block with alpha_ld is located by the general engine: "
-                             "landau.derivation.springblock_routes.hopf_point or `landau hopf spring-block`")
         self.block = block
         self.system: DynamicalSystem = block.system
-        self.jets = jets or Jets(self.system)
+        self.jets = jets or ParameterJets(self.system)
         self.args: tuple[sp.Symbol, ...] = block.args
 
     # --- symbolic ---------------------------------------------------------------------

@@ -42,8 +42,8 @@ from landau.derivation.coefficients import (  # noqa: F401
 )
 from landau.derivation.fredholm import cubic_coefficient, linear_coefficient, null_vectors, quintic_coefficient
 from landau.derivation.hopf import spring_block_c1, spring_block_result
-from landau.derivation.jets import Jets
 from landau.derivation.linear import HopfLine, w
+from landau.derivation.parameter_jets import ParameterJets
 from landau.derivation.precision import BLOCK as _BLOCK  # noqa: F401
 from landau.errors import InputError, NoHopfError
 from landau.support.cx import Cx, as_expr
@@ -70,7 +70,7 @@ class Derivation:
         block = _as_block(block)
         self.block = block
         self.system = block.system
-        self.jets = Jets(self.system)
+        self.jets = ParameterJets(self.system)
         self.hopf = HopfLine(block, self.jets)
         self.k = self.system.parameter
         self.args = block.args
@@ -85,11 +85,16 @@ class Derivation:
         J = self.jets.jacobian()
         E = list(self.system.mass)
         p = self.k
-        rows = [i for i in range(len(E)) if any(p in as_expr(J[i][j]).free_symbols for j in range(len(E)))]
-        cols = [j for j in range(len(E)) if any(p in as_expr(J[i][j]).free_symbols for i in range(len(E)))]
-        if len(rows) != 1 or len(cols) != 1:
-            raise InputError("symbolic route needs the Hopf parameter in exactly one Jacobian entry")
-        return J, E, rows[0], cols[0]
+        n = len(E)
+        entries = [(i, j) for i in range(n) for j in range(n) if p in as_expr(J[i][j]).free_symbols]
+        if len(entries) > 1:
+            # α_LD puts k in the state row too (dσ/dt = −γ_LD k u): drop the row of the entry in the
+            # normalised (slip) column; the minor left, rows ≠ u and columns ≠ X, is det(iω − G_φ) ≠ 0
+            entries = [(i, j) for i, j in entries if j == self.system.normalise]
+        if len(entries) != 1:
+            raise InputError("symbolic route needs the Hopf parameter in one Jacobian entry, or in one entry "
+                             "of the normalised column")
+        return J, E, entries[0][0], entries[0][1]
 
     @cached_property
     def vectors(self):
@@ -486,9 +491,9 @@ class Derivation:
             eq = equilibrium(float(Vi), kc)
             at = {**resolved, "V": float(Vi), **self._unknowns(float(Vi), resolved)}
             kuznetsov = spring_block_c1(self.system, at, kc, om, fields["Lambda"], fields["chi"], eq)
-            out.append(spring_block_result(self.block.law.name, float(Vi), kc, om,
-                                           params={**resolved, "V": float(Vi)},
-                                           equilibrium=eq, **fields, **quintic, **kuznetsov))
+            out.append(self.block.name_terms(spring_block_result(
+                self.block.law.name, float(Vi), kc, om, params={**resolved, "V": float(Vi)},
+                equilibrium=eq, **fields, **quintic, **kuznetsov)))
         from landau.report.display import ResultList
 
         return ResultList(out, title=f"Hopf points of law {self.block.law.name}", units=UNITS)
@@ -531,10 +536,6 @@ def _merged(params: Mapping[str, Any] | None, overrides: Mapping[str, Any]) -> d
 def _as_block(block) -> SpringBlock:
     """A :class:`SpringBlock` from a block, a :class:`FrictionLaw` or a built-in law's name."""
     if isinstance(block, SpringBlock):
-        if "alpha_ld" in block.terms:   # the Hopf parameter k then enters two rows (dσ/dt = −γ_LD k u)
-            raise InputError("derive: the state response alpha_ld makes the stiffness enter two rows of the "
-                             "Jacobian, which the symbolic route does not take; use `landau hopf spring-block` "
-                             "or landau.derivation.springblock_routes.hopf_point (the general engine)")
         return block
     from landau.laws import FrictionLaw
 

@@ -1,13 +1,14 @@
-"""The Hopf point of a spring–block with optional terms, by the route that suits its equations.
+"""The Hopf point of a spring–block with the Linker–Dieterich state response, by the general engine.
 
-The symbolic multiple-scales route (:mod:`landau.derivation.multiscale`) needs the Hopf parameter
-k in one entry of the Jacobian.  Radiation damping (``eta``) and a normal load that follows the
-spring (``gamma_ld``) keep it there; the Linker–Dieterich state response (``alpha_ld``) does not
-(dσ/dt = −γ_LD k u enters the state rate), so a block with ``alpha_ld`` goes through the general
-Fredholm engine (:func:`landau.derivation.general.hopf_normal_form`) on the same
-:class:`~landau.systems.system.DynamicalSystem`, bracketed around the k_c of the same block
-without ``alpha_ld`` (closed form).  Both give the spring–block convention: the critical mode
-normalised with slip component X = 1, dλ/dk = −Γ̄ + iΩ̄.
+With ``alpha_ld`` the stiffness k enters the state rate as well as the force (dσ/dt = −γ_LD k u).
+The symbolic multiple-scales route (:mod:`landau.derivation.multiscale`, ``landau derive``) takes it
+(:class:`~landau.derivation.parameter_jets.ParameterJets`); ``landau hopf spring-block``,
+``predict`` and ``landau verify`` locate the point here instead, with the general Fredholm engine
+(:func:`landau.derivation.general.hopf_normal_form`: numeric jets, its own root finder) on the same
+:class:`~landau.systems.system.DynamicalSystem`, bracketed around the k_c of the same block without
+``alpha_ld`` (closed form) — a route independent of the symbolic one, against which the tests check
+it.  Both give the spring–block convention: the critical mode normalised with slip component X = 1,
+dλ/dk = −Γ̄ + iΩ̄.
 
 References
 ----------

@@ -31,7 +31,19 @@ Equations (X = x − x_ss(t), u = ẋ − V; μ the law's friction coefficient, 
   general law the term is written so that the state part of μ changes by −α_LD dσ/σ, the
   Linker–Dieterich response: dφ₁/dt gains −α_LD σ̇/(σ ∂μ/∂φ₁) on the *first* state φ₁
   (∂μ/∂θ = b/θ for the Dieterich law recovers eq. 6).  It acts only where σ varies
-  (γ_LD ≠ 0): σ̇ = −γ_LD k u.
+  (γ_LD ≠ 0): σ̇ = −γ_LD k u, so the stiffness k enters the state row as well as the force row;
+  the characteristic polynomial stays affine in k.  For the aging law (Dieterich law of Putelat et
+  al. 2010, eqs 26 + 28: μ = a_v + a ln(v/V*) + b ln(V*θ/L), dθ/dt = 1 − vθ/L) with all three
+  terms and inertia M, write σ_ss as above, μ_ss = a_v + (a − b) ln(V/V*) and A = σ_ss a + ηV;
+  then det(λE − J) = Mλ³ + (MV/L + A/V)λ² + (A/L + k[1 − γ_LD(μ_ss − α_LD)] − σ_ss b/L)λ +
+  k(1 − γ_LD μ_ss)V/L, whose roots λ = ±iω give::
+
+      k_c = [σ_ss(b − a) − ηV]/L · (A + MV²/L) / [(1 − γ_LD(μ_ss − α_LD)) A + α_LD γ_LD MV²/L],
+      ω_c² = k_c (1 − γ_LD μ_ss) V² / (L A + M V²).
+
+  α_LD = 0 gives k_c⁰(σ → σ_ss)/(1 − γ_LD μ_ss) (the ``gamma_ld`` closed form); γ_LD = 0 the
+  ``eta`` one; M = η = 0 gives σ_ss(b − a)/(L[1 − γ_LD(μ_ss − α_LD)]).  ``landau derive`` takes the
+  term (:class:`~landau.derivation.parameter_jets.ParameterJets` keeps k visible in both rows).
 
 References
 ----------

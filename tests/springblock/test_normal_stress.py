@@ -155,12 +155,3 @@ def test_latex_closed_form_with_gamma(tmp_path):
                    "--latex", str(tex)])
     assert rc == 0
     assert r"\gamma_{\mathrm{ld}}" in tex.read_text()
-
-
-def test_derive_refuses_alpha_with_a_named_error():
-    from landau.derivation.multiscale import derive
-    from landau.errors import InputError
-    from landau.systems.system import SpringBlock
-
-    with pytest.raises(InputError, match="alpha_ld"):
-        derive(SpringBlock("dieterich", ("gamma_ld", "alpha_ld")))
