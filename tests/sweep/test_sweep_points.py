@@ -69,3 +69,16 @@ def test_an_object_that_cannot_be_pickled_travels_by_reference():
     orphan.release()
     with pytest.raises(Exception, match="cannot be rebuilt"):
         orphan.get()
+
+
+def test_workers_of_the_figures_and_of_transition_are_checked(tmp_path, capsys):
+    from landau.cli import main
+    from landau.paper_figures import using_workers, workers
+
+    assert workers() == (os.cpu_count() or 1)
+    with using_workers(3):
+        assert workers() == 3
+    assert workers() == (os.cpu_count() or 1)
+    assert main(["figures", "putelat2010", "--only", "fig5", "--workers", "0", "--out", str(tmp_path)]) == 2
+    assert "--workers must be >= 1" in capsys.readouterr().err
+    assert not any(tmp_path.iterdir())
