@@ -24,7 +24,7 @@ import math
 import uuid
 from concurrent.futures import Executor
 from dataclasses import dataclass
-from typing import Any, Callable, Mapping
+from typing import Any, Callable, ClassVar, Mapping
 
 import numpy as np
 
@@ -91,7 +91,7 @@ class PointTask(Task):
     """
 
     fn: Callable[..., Mapping[str, Any]] | None = None
-    lead: bool = True
+    lead: ClassVar[bool] = True
 
     def units(self) -> dict[str, str]:
         return {}
