@@ -526,7 +526,8 @@ def run_table(task, grid: Grid, *, executor: Executor | None = None, workers: in
         for ch in lead:  # before the pool starts: forked workers inherit what it built
             take(run_chunk(task, ch))
         if lead or (executor is None and workers > 1 and len(work) > 1):
-            own = executor = ProcessPoolExecutor(max_workers=workers)
+            # never more processes than chunks (a large --workers on a short sweep starts no idle process)
+            own = executor = ProcessPoolExecutor(max_workers=max(1, min(workers, len(work))))
         if executor is None:
             for ch in work:
                 take(run_chunk(task, ch))
