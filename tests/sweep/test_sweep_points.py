@@ -11,7 +11,7 @@ from functools import partial
 import numpy as np
 import pytest
 
-from landau.analyses.sweep_points import Shared, _SHARED, map_points
+from landau.analyses.sweep_points import _SHARED, Shared, map_points
 from landau.errors import NoHopfError
 
 
