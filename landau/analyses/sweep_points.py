@@ -97,10 +97,12 @@ class PointTask(Task):
         return {}
 
     def attrs(self) -> dict[str, Any]:
-        fn = self.fn.func if hasattr(self.fn, "func") else self.fn
+        fn = getattr(self.fn, "func", self.fn)
         return {"task": "points", "function": f"{getattr(fn, '__module__', '')}.{getattr(fn, '__qualname__', fn)}"}
 
     def run(self, chunk: Chunk) -> ChunkResult:
+        if self.fn is None:
+            raise InputError("a per-point sweep needs a function")
         n = len(chunk.index)
         rows = []
         for j in range(n):
