@@ -39,6 +39,7 @@ SECTIONS = {
     "coldstart": "Commands: first run (cold) and again (warm)",
     "help": "Commands: `landau --help` and `landau --version`",
     "figures": "Paper figures",
+    "sweep": "Sweeps: 1 → 2 workers, hopf throughput, executor overhead",
 }
 #: the section of each goal number, for result files written before goals named their section
 GOAL_SECTION = {"2": "springblock", "3": "forced", "4": "galvanetto", "5": "lambda", "6": "derive",

@@ -8,6 +8,7 @@ import time
 from pathlib import Path
 
 from landau.errors import InputError
+from landau.paper_figures import using_workers
 
 #: paper name -> package holding its FIGURES table
 PAPERS: dict[str, str] = {
@@ -23,6 +24,9 @@ def configure(p: argparse.ArgumentParser) -> None:
     p.add_argument("--only", default=None, help="comma-separated figure names (e.g. fig8,fig10)")
     p.add_argument("--out", default="figures", help="output folder (default: ./figures)")
     p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
+    p.add_argument("--workers", type=int, default=None,
+                   help="local processes for the figures' parameter loops (default: the number of cores; "
+                        "the numbers do not depend on it)")
 
 
 def load(paper: str):
@@ -49,6 +53,9 @@ def run(args) -> dict:
         raise InputError("--out: the output folder is empty (give a folder, e.g. --out figures; '.' for the "
                          "current one)")
     out = Path(args.out)
+    n_workers = getattr(args, "workers", None)
+    if n_workers is not None and n_workers < 1:
+        raise InputError(f"--workers must be >= 1, got {n_workers}")
     rows = []
     bar = None
     if not (args.no_progress or args.json):
@@ -59,7 +66,8 @@ def run(args) -> dict:
         if bar is not None:
             bar.set_postfix_str(name)
         t0 = time.perf_counter()
-        paths = figures[name](out)
+        with using_workers(n_workers):
+            paths = figures[name](out)
         rows.append({"figure": name, "files": [str(p) for p in paths], "seconds": time.perf_counter() - t0})
     return {"paper": args.paper, "out": str(out), "figures": rows,
             "seconds": sum(r["seconds"] for r in rows)}

@@ -247,6 +247,7 @@ class ChunkResult:
     message: list[str]
     values: dict[str, np.ndarray]            # name -> array (n,) or (n, m) for a per-point list
     strings: dict[str, list[str]] = field(default_factory=dict)
+    error: BaseException | None = None       # the exception that failed the chunk (``strict`` runs)
 
 
 def _only(res: ChunkResult, mask: np.ndarray) -> ChunkResult:
@@ -256,7 +257,7 @@ def _only(res: ChunkResult, mask: np.ndarray) -> ChunkResult:
         return res
     return ChunkResult(np.asarray(res.index)[keep], [res.status[j] for j in keep], [res.message[j] for j in keep],
                        {k: np.asarray(v)[keep] for k, v in res.values.items()},
-                       {k: [v[j] for j in keep] for k, v in res.strings.items()})
+                       {k: [v[j] for j in keep] for k, v in res.strings.items()}, res.error)
 
 
 def _first_line(exc: BaseException) -> str:
@@ -272,7 +273,7 @@ def run_chunk(task, chunk: Chunk) -> ChunkResult:
         raise
     except Exception as exc:  # noqa: BLE001 - one failing chunk must not end the sweep
         n = len(chunk.index)
-        return ChunkResult(chunk.index, ["failed"] * n, [_first_line(exc)] * n, {})
+        return ChunkResult(chunk.index, ["failed"] * n, [_first_line(exc)] * n, {}, error=exc)
     return res
 
 
@@ -433,8 +434,41 @@ def execute(task, grid: Grid, *, executor: Executor | None = None, workers: int 
 
     See :func:`landau.analyses.sweep.sweep` for the parameters.
     """
+    table, counts = run_table(task, grid, executor=executor, workers=workers, out=out, attrs=attrs,
+                              progress=progress, write_every=write_every)
+    return table.dataset({**attrs, "computed": counts.computed, "reused": counts.reused}), counts
+
+
+def run_table(task, grid: Grid, *, executor: Executor | None = None, workers: int | None = None,
+              out: str | os.PathLike | None = None, attrs: dict[str, Any] | None = None, progress: bool = True,
+              write_every: float = 5.0, strict: bool = False) -> tuple[Table, RunCounts]:
+    """Run ``task`` over ``grid`` and return ``(table, counts)``: the engine under :func:`execute`,
+    without the Dataset (xarray is needed only with ``out``).
+
+    Parameters
+    ----------
+    task, grid, executor, workers, out, progress, write_every
+        As :func:`landau.analyses.sweep.sweep`.
+    attrs : dict, optional
+        The dataset's attributes (with ``out``).
+    strict : bool
+        The first chunk that fails ends the run with its exception (for callers that want the
+        exception, not a ``failed`` status); the chunks in flight are cancelled.
+
+    Returns
+    -------
+    (Table, RunCounts)
+
+    Notes
+    -----
+    On local processes (no ``executor``, ``workers`` > 1), whatever the workers need is compiled or
+    loaded in this process before they start (forked, they inherit it): ``task.prepare()``, and for
+    a task with ``lead = True`` (a per-point callable that builds what it needs lazily) its first
+    chunk is run here first.  The numbers do not depend on where a chunk ran.
+    """
     from landau.support.progress import progress as bar_for
 
+    attrs = dict(attrs or {})
     table = Table(grid, task.units())
     path = None
     counts = RunCounts()
@@ -460,13 +494,15 @@ def execute(task, grid: Grid, *, executor: Executor | None = None, workers: int 
         work.append(ch)
     n_todo = int(np.count_nonzero(todo_mask))
     own = None
+    lead: list[Chunk] = []
     if executor is None:
         workers = int(workers or os.cpu_count() or 1)
         if workers < 1:
             raise InputError(f"--workers must be >= 1, got {workers}")
         if workers > 1 and len(work) > 1:
             task.prepare()  # compile (or load) in this process: forked workers inherit it
-            own = executor = ProcessPoolExecutor(max_workers=workers)
+            if getattr(task, "lead", False):
+                lead, work = work[:1], work[1:]
     else:  # a foreign executor (a cluster's size is not known here): many chunks in flight
         workers = int(workers or getattr(executor, "_max_workers", None) or IN_FLIGHT // 2)
     last = time.monotonic()
@@ -474,6 +510,8 @@ def execute(task, grid: Grid, *, executor: Executor | None = None, workers: int 
 
     def take(res: ChunkResult):
         nonlocal last
+        if strict and res.error is not None:
+            raise res.error
         res = _only(res, todo_mask)
         table.put(res)
         counts.computed += len(res.index)
@@ -485,6 +523,11 @@ def execute(task, grid: Grid, *, executor: Executor | None = None, workers: int 
             last = time.monotonic()
 
     try:
+        for ch in lead:  # before the pool starts: forked workers inherit what it built
+            take(run_chunk(task, ch))
+        if lead or (executor is None and workers > 1 and len(work) > 1):
+            # never more processes than chunks (a large --workers on a short sweep starts no idle process)
+            own = executor = ProcessPoolExecutor(max_workers=max(1, min(workers, len(work))))
         if executor is None:
             for ch in work:
                 take(run_chunk(task, ch))
@@ -500,7 +543,7 @@ def execute(task, grid: Grid, *, executor: Executor | None = None, workers: int 
                         take(f.result())
             except BaseException:
                 for f in inflight:  # keep whatever finished, drop the rest
-                    if f.done() and not f.cancelled() and f.exception() is None:
+                    if not strict and f.done() and not f.cancelled() and f.exception() is None:
                         take(f.result())
                     else:
                         f.cancel()
@@ -512,5 +555,4 @@ def execute(task, grid: Grid, *, executor: Executor | None = None, workers: int 
             own.shutdown(wait=True, cancel_futures=True)
         if path is not None:
             write_atomic(table.dataset({**attrs, "computed": counts.computed, "reused": counts.reused}), path)
-    ds = table.dataset({**attrs, "computed": counts.computed, "reused": counts.reused})
-    return ds, counts
+    return table, counts

@@ -28,7 +28,7 @@ import argparse
 import importlib
 import json
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -140,6 +140,10 @@ class Task:
     options: tuple[tuple[str, Any], ...] = ()
     chunk_size: int = 1
     continuation: bool = False
+    #: on local processes, run the first chunk in the calling process before the workers start, so
+    #: that what the task builds lazily (a derivation, compiled simulations) is built once and
+    #: inherited by the forked workers (tasks without a :meth:`prepare` of their own)
+    lead: ClassVar[bool] = False
 
     @property
     def spec(self) -> LawSpec:
@@ -285,6 +289,8 @@ class PointwiseHopf(Task):
     function is called with the arguments the command line would give it (swept values as
     ``--param NAME=VALUE``, ``V`` as ``--V``)."""
 
+    lead: ClassVar[bool] = True
+
     def _function(self):
         hopf = importlib.import_module("landau.cli.hopf")
         hopf._load_models()
@@ -348,6 +354,8 @@ CHECK_FLOATS = ("p", "eps2", "p_c", "amplitude_predicted", "amplitude_simulated"
 class SpringBlockCheck(Task):
     """The direct-simulation verdict of :func:`landau.check` at each (V, eps2, parameters) point."""
 
+    lead: ClassVar[bool] = True
+
     def check_grid(self, grid: Grid) -> None:
         if "k" in grid.names or "k" in dict(self.fixed):
             raise InputError("check spring-block: the stiffness is set by eps2 = |k - k_c|/k_c (sweep eps2, not k)")
@@ -393,6 +401,8 @@ class SpringBlockCheck(Task):
 class SceneTask(Task):
     """A published value as a function of parameters: the scene ``model`` (``landau scene list``) run
     at each point with the swept values as its parameters (:func:`landau.scenes.run_scene`)."""
+
+    lead: ClassVar[bool] = True
 
     def _scene(self):
         from landau.scenes import get_scene

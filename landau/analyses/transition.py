@@ -326,19 +326,63 @@ def _sweep(d: Derivation, name: str, lo: float, hi: float, params, n: int) -> tu
     return dict(params or {}), _grid(lo, hi, n)
 
 
+def _shared(d: Derivation):
+    """``d`` as a :class:`~landau.analyses.sweep_points.Shared` reference: local workers inherit it,
+    other executors rebuild it from the law's declaration."""
+    from functools import partial
+
+    from landau.analyses.sweep_points import Shared
+    from landau.analyses.sweep_tasks import LawSpec
+
+    try:
+        recipe = partial(_rebuild, LawSpec.of(d.block.law), tuple(d.block.terms))
+    except Exception:  # noqa: BLE001 - a law without a declaration: local processes only
+        recipe = None
+    return Shared(d, recipe)
+
+
+def _rebuild(spec, terms: tuple[str, ...]) -> Derivation:
+    from landau.systems.system import SpringBlock
+
+    return Derivation(SpringBlock(spec.build(), terms))
+
+
+def _edge_point(_ref, _base: dict, _name: str, _vrange: tuple[float, float], **point: float) -> dict[str, float]:
+    """One value of the grid of :func:`critical_parameter`: the edge slopes of Λ (:func:`_edge_values`)."""
+    d = _ref.get()
+    prm = d.block.resolve({**_base, _name: point[_name]})
+    ev = _edge_values(d, prm, *_vrange)
+    out: dict[str, float] = {}
+    for end in ("upper", "lower"):
+        e = ev.get(end)
+        out[f"{end}_found"] = 0.0 if e is None else 1.0
+        out[f"{end}_V"] = math.nan if e is None else e[0].V
+        out[f"{end}_slope"] = math.nan if e is None else e[1]
+    return out
+
+
 def critical_parameter(derivation: Derivation, name: str, lo: float, hi: float,
                        params: Mapping[str, float] | None = None, *, n: int = 24,
-                       V_range: tuple[float, float] = (1e-12, 1e2)) -> list[CriticalValue]:
+                       V_range: tuple[float, float] = (1e-12, 1e2), workers: int | None = 1,
+                       executor=None) -> list[CriticalValue]:
     """Every p* in [lo, hi] where a codimension-two point meets an extremum of μ_ss (c* of Sec. 4.2).
 
     Generic: the roots in p of the edge slope of Λ at each extremum end (see
-    :func:`edge_sign_function`), bracketed on an ``n``-point grid and refined with brentq."""
+    :func:`edge_sign_function`), bracketed on an ``n``-point grid (independent points, run on the
+    sweep engine: ``workers`` local processes or ``executor``, same numbers for any) and refined
+    with brentq (a sequential root search, in this process)."""
+    from landau.analyses.sweep_points import map_points
+
     d = derivation
     base, ps = _sweep(d, name, lo, hi, params, n)
+    with _shared(d) as ref:
+        pts = map_points(_edge_point, {name: ps}, workers=workers, executor=executor,
+                         fixed={"_ref": ref, "_base": base, "_name": name, "_vrange": tuple(V_range)})
     table = []
-    for pv in ps:
-        prm = d.block.resolve({**base, name: float(pv)})
-        table.append(_edge_values(d, prm, *V_range))
+    for pt in pts:
+        table.append({end: (Extremum(float(pt[f"{end}_V"]), "minimum" if end == "upper" else "maximum",
+                                     float("nan")), float(pt[f"{end}_slope"]))
+                      for end in ("upper", "lower") if pt[f"{end}_found"] == 1.0})
     out: list[CriticalValue] = []
     for end in ("upper", "lower"):
         for i in range(len(ps) - 1):
@@ -360,26 +404,55 @@ def critical_parameter(derivation: Derivation, name: str, lo: float, hi: float,
     return sorted(out, key=lambda c: c.value)
 
 
-def transition_curve(derivation: Derivation, name: str, lo: float, hi: float,
-                     params: Mapping[str, float] | None = None, *, n: int = 40,
-                     V_range: tuple[float, float] = (1e-12, 1e2)) -> TransitionCurve:
-    """V*(p) (every codimension-two point) and k_c(V*) on an ``n``-point grid of p in [lo, hi],
-    plus the critical values p* where a branch ends on an extremum of μ_ss (there V* = V_m(p*),
-    k_c = 0; that end point closes the curve)."""
-    d = derivation
-    base, ps = _sweep(d, name, lo, hi, params, n)
-    crit = critical_parameter(d, name, lo, hi, base, n=max(n // 2, 8), V_range=V_range)
-    rows: list[TransitionRow] = []
-    for pv in sorted({*map(float, ps), *(c.value for c in crit)}):
-        prm = d.block.resolve({**base, name: pv})
-        ranges = _weakening(d, prm, *V_range)
-        ends = [c for c in crit if c.value == pv]
-        for c in ends:
-            rows.append(TransitionRow(pv, c.V_ext, 0.0, float("nan"), c.V_ext))
-        if not ranges or ends:
-            continue
+def _curve_point(_ref, _base: dict, _name: str, _vrange: tuple[float, float], **point: float) -> dict[str, Any]:
+    """One value of :func:`transition_curve`: its codimension-two points and the extremum closing each range."""
+    d = _ref.get()
+    prm = d.block.resolve({**_base, _name: point[_name]})
+    ranges = _weakening(d, prm, *_vrange)
+    rows = []
+    if ranges:
         for pt in codim2_points(d, ranges[0].lo, ranges[-1].hi, prm, per_decade=120):
             rng = next((r for r in ranges if pt.V in r), None)
             V_ext = rng.hi if (rng is not None and rng.hi_extremum) else float("nan")
-            rows.append(TransitionRow(pv, pt.V, pt.kc, pt.omega_c, V_ext))
+            rows.append((pt.V, pt.kc, pt.omega_c, V_ext))
+    cols = list(zip(*rows, strict=True)) if rows else [(), (), (), ()]
+    return {"rows": float(len(rows)), "V_star": cols[0], "kc": cols[1], "omega_c": cols[2], "V_ext": cols[3]}
+
+
+def transition_curve(derivation: Derivation, name: str, lo: float, hi: float,
+                     params: Mapping[str, float] | None = None, *, n: int = 40,
+                     V_range: tuple[float, float] = (1e-12, 1e2), workers: int | None = 1,
+                     executor=None) -> TransitionCurve:
+    """V*(p) (every codimension-two point) and k_c(V*) on an ``n``-point grid of p in [lo, hi],
+    plus the critical values p* where a branch ends on an extremum of μ_ss (there V* = V_m(p*),
+    k_c = 0; that end point closes the curve).
+
+    The values of p are independent points, run on the sweep engine (``workers`` local processes
+    — 1: this process; None: one per CPU — or any ``executor``); the numbers do not depend on it."""
+    from landau.analyses.sweep_points import map_points
+
+    d = derivation
+    base, ps = _sweep(d, name, lo, hi, params, n)
+    crit = critical_parameter(d, name, lo, hi, base, n=max(n // 2, 8), V_range=V_range, workers=workers,
+                              executor=executor)
+    values = sorted({*map(float, ps), *(c.value for c in crit)})
+    ends = {c.value for c in crit}
+    inner = [pv for pv in values if pv not in ends]
+    found: dict[float, dict[str, Any]] = {}
+    if inner:
+        with _shared(d) as ref:
+            pts = map_points(_curve_point, {name: inner}, workers=workers, executor=executor,
+                             fixed={"_ref": ref, "_base": base, "_name": name, "_vrange": tuple(V_range)})
+        found = dict(zip(inner, pts, strict=True))
+    rows: list[TransitionRow] = []
+    for pv in values:
+        for c in crit:
+            if c.value == pv:
+                rows.append(TransitionRow(pv, c.V_ext, 0.0, float("nan"), c.V_ext))
+        if pv in ends:
+            continue
+        pt = found[pv]
+        for j in range(int(pt["rows"])):
+            rows.append(TransitionRow(pv, float(pt["V_star"][j]), float(pt["kc"][j]), float(pt["omega_c"][j]),
+                                      float(pt["V_ext"][j])))
     return TransitionCurve(name, tuple(rows), tuple(crit), tuple(map(float, ps)))

@@ -4,8 +4,11 @@
 Continues every codimension-two point (Λ = 0 on the Hopf line) in a law parameter and
 finds p*, where a branch V*(p) meets the extremum V_m(p) of μ_ss and disappears.
 
+The parameter values are independent points, scanned on the sweep engine with ``--workers``
+local processes (default: one per core; the numbers do not depend on it).
+
 Example: landau transition modified-dieterich --vary c=1e-5:2e-3
-         landau transition spinodal --vary c=2e-4:2e-3 --json
+         landau transition spinodal --vary c=2e-4:2e-3 --json --workers 2
 """
 
 from __future__ import annotations
@@ -25,6 +28,9 @@ def configure(p) -> None:
     p.add_argument("--points", type=int, default=30, help="number of parameter values on the curve (default 30)")
     p.add_argument("--V-range", default="1e-12:1e2", metavar="LO:HI",
                    help="velocity interval searched for codimension-two points and extrema of mu_ss (m/s)")
+    p.add_argument("--workers", type=int, default=None,
+                   help="local processes for the scan over the parameter values (default: the number of cores; "
+                        "the numbers do not depend on it)")
 
 
 def _parse_vary(text: str | None) -> tuple[str, float, float]:
@@ -51,10 +57,13 @@ def run(args) -> dict:
         raise InputError(f"--vary {name}: {name} must be > 0, got LO = {lo!r}")
     if args.points < 3:
         raise InputError("--points must be >= 3")
+    workers = getattr(args, "workers", None)
+    if workers is not None and workers < 1:
+        raise InputError(f"--workers must be >= 1, got {workers}")
     vlo, vhi = parse_range(args.V_range, "--V-range")
     params = {k: v for k, v in params.items() if k != name}
     d = Derivation(block)
-    curve = transition_curve(d, name, lo, hi, params, n=args.points, V_range=(vlo, vhi))
+    curve = transition_curve(d, name, lo, hi, params, n=args.points, V_range=(vlo, vhi), workers=workers)
     doc = {"law": block.law.name, "source": block.law.source, "vary": name, "range": [lo, hi],
            "units": {"V_star": "m/s", "kc": "N/m", "omega_c": "rad/s", "V_ext": "m/s"},
            "convention": "V_star: Lambda = 0 on the Hopf line (k_c > 0); critical_value: the parameter value "

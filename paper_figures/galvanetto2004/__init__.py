@@ -18,6 +18,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from landau.analyses.sweep_points import map_points  # noqa: E402
+from landau.paper_figures import workers  # noqa: E402
 from landau.support.io import atomic_savefig  # noqa: E402
 from landau.verify.galvanetto import bifurcations as B  # noqa: E402
 from landau.verify.galvanetto.analysis import FIG_STEPPER, beta_diagram, gsp_orbit_trajectory, map_curve, trajectory  # noqa: E402
@@ -140,20 +142,33 @@ def _xmax_model(p):
     return HybridModel({k: replace(m, guards=m.guards + (g,)) for k, m in base.modes.items()}, name="xmax")
 
 
+_XMAX_MODELS: dict[float, tuple] = {}
+
+
+def _xmax_next(c: float, j: float) -> dict[str, float]:
+    """Fig. 11, one point: the next maximum of X after the ``j``-th start X_max,n of the panel ``c``."""
+    V = 0.5
+    if c not in _XMAX_MODELS:   # one model per panel and process
+        p = one_block(V, 3.0, 0.0, c)
+        _XMAX_MODELS[c] = (p, _xmax_model(p))
+    p, m = _XMAX_MODELS[c]
+    x_eq = p.law.neg(-V)
+    x = np.linspace(x_eq + 0.01, 2.2, 60)[int(j)]
+    sol = simulate(m, "n", [x, 0.0], (0.0, 100.0), FIG_STEPPER, EngineOptions(record=False),
+                   stop=lambda ev: ev.guard == "xmax" and ev.t > 1e-9)
+    return {"x": float(x), "next": float(sol.y[0]) if sol.status == "stop" else np.nan}
+
+
 def fig11(out_dir: Path) -> list[Path]:
     V = 0.5
     c2 = B.nonsmooth_fold_c2(V).value
+    cs = (0.40, 0.60, c2, 0.70)
+    # 4 panels x 60 independent starts, on the sweep engine
+    pts = map_points(_xmax_next, {"c": cs, "j": np.arange(60)}, workers=workers(), chunk_size=10)
     fig, axs = plt.subplots(1, 4, figsize=(15, 3.8))
-    for ax, c in zip(axs, (0.40, 0.60, c2, 0.70), strict=True):
-        p = one_block(V, 3.0, 0.0, c)
-        m = _xmax_model(p)
-        x_eq = p.law.neg(-V)
-        xs = np.linspace(x_eq + 0.01, 2.2, 60)
-        nxt = []
-        for x in xs:
-            sol = simulate(m, "n", [x, 0.0], (0.0, 100.0), FIG_STEPPER, EngineOptions(record=False),
-                           stop=lambda ev: ev.guard == "xmax" and ev.t > 1e-9)
-            nxt.append(sol.y[0] if sol.status == "stop" else np.nan)
+    for k, (ax, c) in enumerate(zip(axs, cs, strict=True)):
+        xs = np.array([pt["x"] for pt in pts[60 * k:60 * (k + 1)]])
+        nxt = [pt["next"] for pt in pts[60 * k:60 * (k + 1)]]
         ax.plot(xs, nxt, "k.-", ms=2, lw=0.8)
         ax.plot(xs, xs, "r:", lw=0.8)
         ax.set_title(f"c={c:.4f}")
@@ -163,40 +178,59 @@ def fig11(out_dir: Path) -> list[Path]:
     return _save(fig, out_dir, "fig11")
 
 
-def fig12(out_dir: Path) -> list[Path]:
+def _fig12_attractor(b: float) -> dict[str, object]:
+    """Fig. 12, one β: the map attractor born at the fold, iterated from just left of the kink."""
     from landau.verify.galvanetto.maps import f_n
+
+    p = B.fig12_params(b)
+    dk = B.kink(p, -0.096, FIG_STEPPER)
+    d = dk - 1e-5
+    pts = []
+    for k in range(60):
+        d = f_n(p, d, 1, FIG_STEPPER)
+        if not -0.105 < d < -0.085:
+            break
+        if k >= 30:
+            pts.append(d)
+    return {"n": float(len(pts)), "d": pts}
+
+
+def _fig12_period1(b: float) -> dict[str, float]:
+    """Fig. 12, one β: the period-1 points left (stable until PD) and right (unstable) of the kink."""
+    p = B.fig12_params(b)
+    dk = B.kink(p, -0.096, FIG_STEPPER)
+    out = {}
+    for key, side in (("left", (dk - 0.004, dk - 1e-10)), ("right", (dk + 1e-10, dk + 0.004))):
+        try:
+            out[key] = B.periodic_point(p, 0, 1, FIG_STEPPER, bracket=side).d
+            out[key + "_found"] = 1.0
+        except Exception:
+            out[key], out[key + "_found"] = np.nan, 0.0
+    return out
+
+
+def fig12(out_dir: Path) -> list[Path]:
     fold, pd, bc = B.discontinuous_fold().value, B.period_doubling().value, B.border_collision().value
     crisis = B.boundary_crisis().value
     fig, ax = plt.subplots(figsize=(9, 5.5))
     # attractor born at the fold: iterate from just left of the kink at every β (the
-    # far attractor near d ≈ −0.05 coexists and is not drawn, as in the paper)
+    # far attractor near d ≈ −0.05 coexists and is not drawn, as in the paper); every β on its
+    # own, on the sweep engine
     betas = np.linspace(fold + 1e-6, 1.7290, 50)
-    for b in betas:
-        p = B.fig12_params(b)
-        dk = B.kink(p, -0.096, FIG_STEPPER)
-        d = dk - 1e-5
-        pts = []
-        for k in range(60):
-            d = f_n(p, d, 1, FIG_STEPPER)
-            if not -0.105 < d < -0.085:
-                break
-            if k >= 30:
-                pts.append(d)
+    for b, pt in zip(betas, map_points(_fig12_attractor, {"b": betas}, workers=workers()), strict=True):
+        pts = list(pt["d"][:int(pt["n"])])
         ax.plot(np.full(len(pts), b), pts, "k.", ms=1.5)
     # period-1 points left (stable until PD) and right (unstable) of the kink
     sb: list[float] = []
     sd: list[float] = []
     ub: list[float] = []
     ud: list[float] = []
-    for b in np.linspace(fold + 1e-6, 1.7290, 14):
-        p = B.fig12_params(b)
-        dk = B.kink(p, -0.096, FIG_STEPPER)
-        for side, (bb, dd) in (((dk - 0.004, dk - 1e-10), (sb, sd)), ((dk + 1e-10, dk + 0.004), (ub, ud))):
-            try:
-                dd.append(B.periodic_point(p, 0, 1, FIG_STEPPER, bracket=side).d)
+    b14 = np.linspace(fold + 1e-6, 1.7290, 14)
+    for b, pt in zip(b14, map_points(_fig12_period1, {"b": b14}, workers=workers()), strict=True):
+        for key, bb, dd in (("left", sb, sd), ("right", ub, ud)):
+            if pt[key + "_found"] == 1.0:
+                dd.append(float(pt[key]))
                 bb.append(b)
-            except Exception:
-                pass
     sba, sda = np.array(sb), np.array(sd)
     ax.plot(sba[sba <= pd], sda[sba <= pd], "k-", lw=2, label="stable period-1")
     ax.plot(sba[sba >= pd], sda[sba >= pd], "g-", lw=0.8, label="unstable period-1 (after PD)")

@@ -18,6 +18,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from landau.analyses.sweep_points import map_points  # noqa: E402
+from landau.paper_figures import workers  # noqa: E402
 from landau.support.io import atomic_savefig  # noqa: E402
 from landau.verify.hybrid import simulate  # noqa: E402
 from landau.verify.lancioni import analysis as A  # noqa: E402
@@ -33,11 +35,16 @@ def _save(fig, out_dir: Path, name: str) -> list[Path]:
     return [path]
 
 
+def _slip_point(params, hopf, mu: float) -> dict[str, float]:
+    """One μ of a slip branch: φ̇_max of the slip cycle (shooting; each μ on its own)."""
+    return {"phidot_max": A.slip_cycle(mu, params, hopf=hopf).phidot_max}
+
+
 def _slip_branch(params, mu_end, n=12):
     h = slip_hopf(params)
     mus = h.p_c + (mu_end - h.p_c) * np.linspace(0.02, 1.0, n) ** 2
-    cyc = [A.slip_cycle(m, params, hopf=h) for m in mus]
-    return h, mus, np.array([c.phidot_max for c in cyc])
+    cyc = map_points(_slip_point, {"mu": mus}, fixed={"params": params, "hopf": h}, workers=workers())
+    return h, mus, np.array([c["phidot_max"] for c in cyc])
 
 
 def _orbit(mu, eN, params, y0, mode, t_end, t_keep):

@@ -10,6 +10,7 @@ import numpy as np
 
 from landau.analyses.transition import codim2_points, transition_curve
 from landau.errors import NoHopfError
+from landau.paper_figures import workers
 from landau.paper_figures.putelat2010._common import V_S, derivation, panel_title, save, symlog_y, vlabel, vw_grid
 
 C = 3e-4
@@ -26,7 +27,7 @@ def panel_a() -> dict:
 
 def panel_b() -> dict:
     d = derivation("modified-dieterich")
-    curve = transition_curve(d, "c", 1e-5, 2e-3, n=22)
+    curve = transition_curve(d, "c", 1e-5, 2e-3, n=22, workers=workers())
     # the branch that ends on V_m: the largest V* at each c
     top: dict[float, float] = {}
     for r in curve.rows:

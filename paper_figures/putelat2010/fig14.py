@@ -11,7 +11,9 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 
-from landau.analyses.regimes import naive_crossover, regime_diagram, transition_line
+from landau.analyses.regimes import naive_crossover, regime_diagram
+from landau.analyses.transition import transition_curve
+from landau.paper_figures import workers
 from landau.paper_figures.putelat2010._common import L, derivation, panel_title, save, vlabel, vw_grid
 
 CS = (1e-3, 7e-4, 5e-4, 3e-4)
@@ -22,7 +24,7 @@ def panel_a() -> dict:
     sp = derivation("spinodal")
     diagrams = {c: regime_diagram(sp, vw_grid(sp, {"c": c}, 200, lo=1e-8), {"c": c}) for c in CS}
     md = derivation("modified-dieterich")
-    line = transition_line(md, "c", 1e-4, 2e-3, n=16)
+    line = transition_curve(md, "c", 1e-4, 2e-3, n=16, workers=workers())  # regimes.transition_line
     rows = sorted((r for r in line.rows if np.isfinite(r.V_ext) or r.kc == 0.0), key=lambda r: r.value)
     top: dict[float, tuple[float, float]] = {}
     for r in rows:

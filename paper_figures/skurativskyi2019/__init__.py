@@ -1,7 +1,8 @@
 """Figures of Skurativskyi et al. (2019), Nonlinear Dyn. 98:1795, regenerated from the toolkit.
 
 ``landau figures skurativskyi2019 [--only fig3]``.  Bifurcation diagrams come from the
-continuation sweeps of :mod:`landau.verify.skurativskyi.sweep` (local processes), phase portraits
+continuation sweeps of :mod:`landau.verify.skurativskyi.sweep` (the sweep engine, on
+``landau figures --workers`` local processes; the numbers do not depend on it), phase portraits
 and profiles from :func:`landau.verify.skurativskyi.simulate.run`.  Default resolutions are
 modest (ω steps 0.05 rad/s, 30–150 recorded periods, rtol 1e-7) so that every figure runs
 in under a minute on two cores; the paper uses steps of 0.005 rad/s.
@@ -18,6 +19,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from landau.analyses.sweep_points import map_points  # noqa: E402
+from landau.paper_figures import workers  # noqa: E402
 from landau.support.io import atomic_savefig  # noqa: E402
 from landau.verify.skurativskyi.model import PAPER  # noqa: E402
 from landau.verify.skurativskyi.simulate import run  # noqa: E402
@@ -47,7 +50,7 @@ def fig2cd(out_dir: Path) -> list[Path]:
     # small chunks: below ω ≈ 15.5 the cart sticks on the obstacle for most of the period and
     # the explicit step is bounded by the Hertz-damping slope (those points cost ~10× more)
     res = run_sweep(om, "up", spec=SweepSpec(n_first=60, n_step=30, n_keep=30, rtol=RTOL_FIG), chunk_size=10,
-                    progress=False)
+                    progress=False, workers=workers())
     fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.2))
     _diagram(a, b, res, "k", "increasing ω")
     a.axhline(PAPER.xI * 1e3, color="r", lw=0.6)
@@ -65,8 +68,8 @@ def fig2cd(out_dir: Path) -> list[Path]:
 def _updown(lo, hi, step, title, name, out_dir):
     om = np.round(np.arange(lo, hi + 1e-9, step), 6)
     spec = SweepSpec(n_first=100, n_step=40, n_keep=40, rtol=RTOL_FIG)
-    up = run_sweep(om, "up", spec=spec, progress=False)
-    dn = run_sweep(om, "down", spec=spec, progress=False)
+    up = run_sweep(om, "up", spec=spec, progress=False, workers=workers())
+    dn = run_sweep(om, "down", spec=spec, progress=False, workers=workers())
     fig, (a, b) = plt.subplots(2, 1, figsize=(9, 7.5), sharex=True)
     _diagram(a, b, up, "r", "increasing ω", ms=3.0)
     _diagram(a, b, dn, "g", "decreasing ω", ms=1.6)
@@ -93,7 +96,7 @@ def fig5(out_dir: Path) -> list[Path]:
     spec = SweepSpec(n_first=100, n_step=50, n_keep=150, rtol=RTOL_FIG, lyapunov=True)
     fig, ax = plt.subplots(figsize=(9, 4))
     for d, c in (("up", "r"), ("down", "g")):
-        res = run_sweep(om, d, spec=spec, progress=False)
+        res = run_sweep(om, d, spec=spec, progress=False, workers=workers())
         ax.plot(res.params, [a.lyapunov for a in res.values], "-", color=c, lw=1, label=f"{d} sweep")
     ax.axhline(0, color="k", lw=0.5)
     ax.set_xlabel("ω [rad/s]")
@@ -103,41 +106,56 @@ def fig5(out_dir: Path) -> list[Path]:
     return _save(fig, out_dir, "fig5")
 
 
-def _portrait(ax, omega, n_transient=60, n_show=1, rtol=RTOL_FIG, profile=False):
+def _portrait_data(i: float, cases: tuple, n_transient: int = 60, rtol: float = RTOL_FIG) -> dict:
+    """One portrait (case ``i`` of ``cases`` = ((ω, periods shown), ...)): a dense trajectory over the
+    periods shown after a transient, its section points and impacts (each case on its own)."""
+    omega, n_show = cases[int(i)]
     p = PAPER.with_(omega=omega)
     y0 = run(p, n_transient, rtol=rtol, strobe=False).y
     # dense trajectory for the plot: short sub-runs of 1/200 period
     P = p.period
     ts, xs, vs = [0.0], [y0[0]], [y0[1]]
     y = y0
-    for i in range(200 * n_show):
-        r = run(p, 1 / 200, y, t0=i * P / 200, rtol=rtol, strobe=False)
+    for k in range(200 * n_show):
+        r = run(p, 1 / 200, y, t0=k * P / 200, rtol=rtol, strobe=False)
         y = r.y
         ts.append(r.t)
         xs.append(y[0])
         vs.append(y[1])
     r = run(p, n_show, y0, rtol=rtol)
-    xs, vs, ts = np.array(xs) * 1e3, np.array(vs) * 1e3, np.array(ts)
-    if profile:
-        ax.plot(ts, xs, "k-", lw=0.8)
-        ax.axhline(p.xI * 1e3, color="r", lw=0.8)
-        ax.set_xlabel("t [s]")
-        ax.set_ylabel("x [mm]")
-    else:
-        ax.plot(xs, vs, "k-", lw=0.7)
-        ax.axvline(p.xI * 1e3, color="r", lw=0.8)
-        ax.plot(r.strobe_y[:, 0] * 1e3, r.strobe_y[:, 1] * 1e3, "o", color="r", ms=4)
-        ax.plot(np.full(len(r.impacts), p.xI * 1e3), r.impact_v * 1e3, "o", color="b", ms=3)
-        ax.set_xlabel("x [mm]")
-        ax.set_ylabel("dx/dt [mm/s]")
-    ax.set_title(f"ω = {omega:g} rad/s ({len(r.impacts) / n_show:g} impacts/period)", fontsize=9)
+    return {"t": ts, "x": xs, "v": vs, "strobe_x": r.strobe_y[:, 0], "strobe_v": r.strobe_y[:, 1],
+            "n_strobe": float(len(r.strobe_y)), "impact_v": r.impact_v, "n_impacts": float(len(r.impacts))}
+
+
+def _portraits(axs, cases: tuple, profile: bool = False) -> None:
+    """The portraits of ``cases`` = ((ω, periods shown), ...) on ``axs``, computed on the sweep engine."""
+    data = map_points(_portrait_data, {"i": np.arange(len(cases))}, fixed={"cases": tuple(cases)},
+                      workers=workers())
+    for ax, (omega, n_show), d in zip(axs, cases, data, strict=True):
+        p = PAPER.with_(omega=omega)
+        xs, vs, ts = np.asarray(d["x"]) * 1e3, np.asarray(d["v"]) * 1e3, np.asarray(d["t"])
+        n = 200 * n_show + 1
+        xs, vs, ts = xs[:n], vs[:n], ts[:n]
+        if profile:
+            ax.plot(ts, xs, "k-", lw=0.8)
+            ax.axhline(p.xI * 1e3, color="r", lw=0.8)
+            ax.set_xlabel("t [s]")
+            ax.set_ylabel("x [mm]")
+        else:
+            m, k = int(d["n_strobe"]), int(d["n_impacts"])
+            ax.plot(xs, vs, "k-", lw=0.7)
+            ax.axvline(p.xI * 1e3, color="r", lw=0.8)
+            ax.plot(np.asarray(d["strobe_x"][:m]) * 1e3, np.asarray(d["strobe_v"][:m]) * 1e3, "o", color="r", ms=4)
+            ax.plot(np.full(k, p.xI * 1e3), np.asarray(d["impact_v"][:k]) * 1e3, "o", color="b", ms=3)
+            ax.set_xlabel("x [mm]")
+            ax.set_ylabel("dx/dt [mm/s]")
+        ax.set_title(f"ω = {omega:g} rad/s ({int(d['n_impacts']) / n_show:g} impacts/period)", fontsize=9)
 
 
 def fig8(out_dir: Path) -> list[Path]:
     fig, axs = plt.subplots(2, 4, figsize=(15, 7))
-    for ax, w, ns in zip(axs.flat, (14.0, 14.1, 15.0, 16.0, 17.0, 17.5, 18.0, 19.0), (1, 1, 1, 1, 1, 1, 4, 2),
-                         strict=True):
-        _portrait(ax, w, n_show=ns)
+    _portraits(list(axs.flat), tuple(zip((14.0, 14.1, 15.0, 16.0, 17.0, 17.5, 18.0, 19.0), (1, 1, 1, 1, 1, 1, 4, 2),
+                                         strict=True)))
     fig.suptitle("Fig. 8: impact adding (red line x = x_I, red dots t = 2πi/ω, blue dots impacts)")
     fig.tight_layout()
     return _save(fig, out_dir, "fig8")
@@ -145,8 +163,7 @@ def fig8(out_dir: Path) -> list[Path]:
 
 def fig10(out_dir: Path) -> list[Path]:
     fig, axs = plt.subplots(1, 3, figsize=(14, 3.8))
-    for ax, w, ns in zip(axs, (15.0, 16.7, 18.0), (1, 1, 4), strict=True):
-        _portrait(ax, w, n_show=ns, profile=True)
+    _portraits(list(axs), tuple(zip((15.0, 16.7, 18.0), (1, 1, 4), strict=True)), profile=True)
     fig.suptitle("Fig. 10: profiles x(t) with micro-impacts near the stop (red line x = x_I)")
     fig.tight_layout()
     return _save(fig, out_dir, "fig10")

@@ -127,6 +127,16 @@ def test_critical_residual_strength_c_star():
     assert rel(cs.value, c_cubic) < 1e-7
 
 
+def test_transition_curve_is_the_same_on_two_worker_processes():
+    # the values of c are independent points on the sweep engine: 2 local processes give the
+    # numbers of this process, bit for bit (and c* of Sec. 4.2)
+    one = transition_curve(D("modified-dieterich"), "c", 1e-4, 2e-3, n=6, workers=1)
+    two = transition_curve(D("modified-dieterich"), "c", 1e-4, 2e-3, n=6, workers=2)
+    assert repr(two.as_dict()) == repr(one.as_dict())
+    assert rel(two.critical_value, 9.02e-4) < PRINTED
+    assert len(two.rows) > 6
+
+
 def test_V_star_curve_fig13b():
     d = D("modified-dieterich")
     curve = transition_curve(d, "c", 1e-6, 2e-3, n=16)
@@ -247,7 +257,8 @@ def test_cli_transition_json():
 @pytest.mark.parametrize("argv", [["transition", "modified-dieterich"],
                                   ["transition", "modified-dieterich", "--vary", "q=1:2"],
                                   ["transition", "modified-dieterich", "--vary", "c=2e-3:1e-4"],
-                                  ["transition", "modified-dieterich", "--vary", "c=-1:1"]])
+                                  ["transition", "modified-dieterich", "--vary", "c=-1:1"],
+                                  ["transition", "modified-dieterich", "--vary", "c=1e-4:2e-3", "--workers", "0"]])
 def test_cli_transition_bad_input(argv, capsys):
     from landau.cli import main
 

@@ -120,3 +120,6 @@ def test_scene_sweep_equals_the_scene_and_its_published_value_at_the_defaults():
     # a stiffer obstacle holds the cart closer to it: X0 moves towards x_I = -2.086e-3 m
     assert float(ds.value.sel(kI=2 * kI)) < float(at.value) < float(ds.value.sel(kI=0.5 * kI))
     assert list(ds.agrees.values[[0, 2]]) == ["", ""]  # other parameters: compared, not judged
+    # on 2 local processes (the first chunk in this process, the others in the forked workers): the same
+    two = landau.sweep("scene", {"kI": [0.5 * kI, kI, 2 * kI]}, model=name, workers=2, progress=False)
+    assert two.value.values.tolist() == ds.value.values.tolist()
