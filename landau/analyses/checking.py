@@ -551,15 +551,9 @@ def _numeric_field(system, params: Mapping[str, float]):
 def _shoot(rhs, jac, y0: np.ndarray, T0: float, anchor_f: np.ndarray, rtol: float):
     """Periodic orbit by Newton on (y(T; z) − z, (z − y0)·f(y0)) with the unknowns (z, T).
 
-    Convergence is judged by the orbit's closure |y(T; z) − z|, not by the solver's progress flag alone.
-    MINPACK's hybrd (``scipy.optimize.root(method="hybr")``) stops with "not making good progress" when
-    its seed is already within the integration's noise of the cycle — as the amplitude equation's seed
-    is where the next-order correction nearly vanishes (Rayleigh's ẍ + kx = pẋ − ẋ³ at k = 9, ε² = 1e-3):
-    no step can then reduce the residual by the factor its progress test asks for, although the
-    residual is at round-off.  Such an orbit, closed to within the integrator's own absolute tolerance
-    rtol·max|z| with a period above half the seed's, is accepted; a flagged success keeps the looser
-    bound 1e-7·max(1, max|z|).
-    """
+    Judged by the closure |y(T; z) − z|: hybrd stops "not making good progress" when its seed is already
+    within the integration's noise of the cycle (Rayleigh, k = 9, ε² = 1e-3: closure 1e-17), so a stalled
+    solve closed to the integrator's tolerance rtol·max|z| (period > T0/2) counts as converged."""
     import scipy.integrate
     import scipy.optimize
 
@@ -579,10 +573,8 @@ def _shoot(rhs, jac, y0: np.ndarray, T0: float, anchor_f: np.ndarray, rtol: floa
     res = scipy.optimize.root(residual, np.append(y0, T0), method="hybr", options={"xtol": 1e-11})
     z, T = res.x[:n], float(res.x[n])
     closure, size = float(np.max(np.abs(res.fun[:n]))), float(np.max(np.abs(z)))
-    if res.success:
-        converged = closure <= 1e-7 * max(1.0, size)
-    else:               # stalled at the integration's noise floor: closed to the integrator's tolerance
-        converged = closure <= rtol * max(1e-12, size) and math.isfinite(T) and T > 0.5 * T0
+    converged = closure <= 1e-7 * max(1.0, size) if res.success else \
+        closure <= rtol * max(1e-12, size) and math.isfinite(T) and T > 0.5 * T0   # stalled on the cycle
     if not converged:
         raise IntegratorError(f"shooting did not converge: {' '.join(res.message.split())} (closure {closure:.3g})")
     sol = flow(z, T)
