@@ -167,9 +167,10 @@ def test_two_state_oscillator_agrees_at_three_eps2():
 
 
 def test_a_shooting_failure_from_the_linear_mode_is_continued_from_a_closer_cycle(monkeypatch):
-    """The reported failure ("shooting did not converge" at ε² = 1e-3 from the critical-mode seed, while
-    1e-2 and 1e-4 agree) is emulated by refusing every shot started at ε² = 1e-3 with the predicted period;
-    the check then finds the cycle at ε²/4 and continues to 1e-3 from it, and agrees."""
+    """A shooting failure from the critical-mode seed at ε² = 1e-3 while 1e-2 and 1e-4 agree (the reported
+    case, Rayleigh at k = 9, is in test_check_shooting.py) is emulated by refusing every shot started at
+    ε² = 1e-3 with the predicted period; the check then finds the cycle at ε²/4 and continues to 1e-3
+    from it, and agrees."""
     s, par, br = _brusselator()
     real = checking._shoot
     refused = []
