@@ -22,6 +22,10 @@ compiled field, SDIRK4 and event-driven loop (:mod:`landau.verify.skurativskyi.f
 :mod:`~landau.verify.skurativskyi.sdirk`, :mod:`~landau.verify.skurativskyi.rk`) take them as
 first-class functions and are compiled once for all laws; a new law compiles only these.
 
+Under ``NUMBA_DISABLE_JIT=1`` (to step through the loop in a debugger) nothing is compiled: the
+generated Python functions themselves are the callbacks, the field and loop run as plain
+Python with the same floating-point operations, and :func:`warn_plain_python` says so once.
+
 Half-integer powers, frequent in regularised laws, are printed as square roots
 (s^{−3/2} → 1/(s·sqrt(s))) and small integer powers as products (v² → v*v): a power routine
 costs several times a multiplication or a square root in the inner loop.
@@ -408,7 +412,8 @@ def compile_friction(law: VelocityFriction, first: int) -> CompiledFriction:
     Returns
     -------
     CompiledFriction
-        One per law expression and ``first`` in a process.
+        One per law expression and ``first`` in a process; under ``NUMBA_DISABLE_JIT=1`` its
+        functions and ``pointers`` are the generated Python functions (module docstring).
     """
     from landau.verify.hybrid.callbacks import jit_enabled
     from landau.verify.jitcache import load_generated

@@ -6,7 +6,9 @@ stick phases, built for a given field.
 (:func:`mixed_loop`, through :func:`landau.verify.compiling.compile_once`); the friction law
 reaches it as a tuple ``fr`` of first-class functions (numba's ``types.FunctionType``: the C
 callbacks of :attr:`landau.verify.skurativskyi.friction.CompiledFriction.pointers`), so a new
-law compiles only its own small callbacks.  ``integrate_mixed`` (the default path
+law compiles only its own small callbacks (under ``NUMBA_DISABLE_JIT=1`` everything here runs
+as plain Python, with the law's generated Python functions as ``fr``: slow, for a debugger, and
+step for step the compiled run).  ``integrate_mixed`` (the default path
 of :func:`landau.verify.skurativskyi.simulate.run`) takes every step that starts with |ẋ|
 below a threshold (stick: the cart rests on the obstacle or on the track, |ẋ| ~ 1e-9…1e-6
 m/s) with the L-stable SDIRK4 (stage equations solved as scalar monotone equations, robust on
