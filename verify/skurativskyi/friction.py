@@ -395,7 +395,7 @@ def warn_plain_python() -> None:
     from landau.verify.hybrid.callbacks import warn_once
 
     warn_once("skurativskyi-nojit", "landau: NUMBA_DISABLE_JIT is set: the forced oscillator's field and "
-                                    "integrator run as plain Python (some hundred times slower)")
+                                    "integrator run as plain Python (tens of times slower)")
 
 
 def compile_friction(law: VelocityFriction, first: int) -> CompiledFriction:
