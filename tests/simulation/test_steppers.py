@@ -17,7 +17,6 @@ cost budgets compare with scipy's implementation of the same method run on the s
 from __future__ import annotations
 
 import dataclasses
-import os
 
 import numpy as np
 import pytest
@@ -138,8 +137,6 @@ def test_generated_source_whitelist_refuses_other_code():
 
 
 # --- the common result type ----------------------------------------------------------------
-@pytest.mark.skipif(os.environ.get("NUMBA_DISABLE_JIT") == "1",
-                    reason="the forced oscillator has no plain-Python route (it refuses by name)")
 def test_forced_oscillator_run_has_a_dense_time_series():
     # Skurativskyi et al. (2019) eq. (1) with the obstacle far away and no dry friction: the
     # linear forced oscillator m x'' + c x' + k x = m0e ω² sin ωt, solved in closed form
@@ -172,8 +169,6 @@ def test_forced_oscillator_run_has_a_dense_time_series():
     assert len(sim.events) == 0  # the obstacle at 1 m is never reached
 
 
-@pytest.mark.skipif(os.environ.get("NUMBA_DISABLE_JIT") == "1",
-                    reason="the forced oscillator has no plain-Python route (it refuses by name)")
 def test_impacts_are_events_of_the_forced_oscillator_result():
     from landau.verify.skurativskyi.model import PAPER
     from landau.verify.skurativskyi.simulate import run

@@ -42,8 +42,12 @@ FRICTION, FRICTION_DERIVATIVE, SUBTRACT_FRICTION, BUILT_IN, DATA_POINTER = 0, 1,
 def data(p):
     """The data pointer of the packed vector ``p`` for the law's callbacks: ``p.ctypes`` for an
     array (numba converts it at the call), ``p`` itself when it is already a pointer (in the
-    compiled loop, which reads ``p`` through its pointer: see ``rk.integrate_mixed``)."""
-    raise NotImplementedError("compiled code only")
+    compiled loop, which reads ``p`` through its pointer: see ``rk.integrate_mixed``).
+
+    Called from Python (the field runs as plain Python under ``NUMBA_DISABLE_JIT=1``, and the
+    law's callbacks are then its generated Python functions, which index an array) it returns
+    ``p`` itself; compiled code uses the overload below."""
+    return p
 
 
 @overload(data, inline="always")
@@ -51,6 +55,19 @@ def _data(p):
     if isinstance(p, types.Array):
         return lambda p: p.ctypes
     return lambda p: p
+
+
+def hold(p_arr, fr):
+    """The packed vector as the compiled loop reads it: its data pointer, through the identity
+    callback ``fr[DATA_POINTER]`` (no array, so no reference counts in the inner loop; the
+    caller owns ``p_arr`` for the whole call).  Called from Python (``NUMBA_DISABLE_JIT=1``) it
+    returns the array itself; compiled code uses the overload below."""
+    return p_arr
+
+
+@overload(hold, inline="always")
+def _hold(p_arr, fr):
+    return lambda p_arr, fr: fr[DATA_POINTER](p_arr.ctypes)
 
 
 # The paper's law F_R = c ẋ + T ẋ/sqrt(ẋ² + ε²) (parameters c, T, ε from p[ILAW] on) is also

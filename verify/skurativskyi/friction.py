@@ -22,6 +22,10 @@ compiled field, SDIRK4 and event-driven loop (:mod:`landau.verify.skurativskyi.f
 :mod:`~landau.verify.skurativskyi.sdirk`, :mod:`~landau.verify.skurativskyi.rk`) take them as
 first-class functions and are compiled once for all laws; a new law compiles only these.
 
+Under ``NUMBA_DISABLE_JIT=1`` (to step through the loop in a debugger) nothing is compiled: the
+generated Python functions themselves are the callbacks, the field and loop run as plain
+Python with the same floating-point operations, and :func:`warn_plain_python` says so once.
+
 Half-integer powers, frequent in regularised laws, are printed as square roots
 (s^{−3/2} → 1/(s·sqrt(s))) and small integer powers as products (v² → v*v): a power routine
 costs several times a multiplication or a square root in the inner loop.
@@ -43,7 +47,7 @@ from sympy.printing.precedence import PRECEDENCE
 from sympy.printing.pycode import PythonCodePrinter
 
 from landau.codegen.kernels import ALLOWED_BUILTINS, check_source
-from landau.errors import CompilerRequiredError, DomainError, InputError
+from landau.errors import DomainError, InputError
 from landau.laws.velocity import V_SLIP, VelocityFriction
 
 
@@ -386,6 +390,14 @@ def quiet_first_class():
         yield
 
 
+def warn_plain_python() -> None:
+    """Warn once per process that the forced oscillator runs as plain Python (``NUMBA_DISABLE_JIT=1``)."""
+    from landau.verify.hybrid.callbacks import warn_once
+
+    warn_once("skurativskyi-nojit", "landau: NUMBA_DISABLE_JIT is set: the forced oscillator's field and "
+                                    "integrator run as plain Python (tens of times slower)")
+
+
 def compile_friction(law: VelocityFriction, first: int) -> CompiledFriction:
     """Generate and compile F(v) and (F, dF/dv) of ``law`` reading its parameters from ``p[first:]``.
 
@@ -400,16 +412,16 @@ def compile_friction(law: VelocityFriction, first: int) -> CompiledFriction:
     Returns
     -------
     CompiledFriction
-        One per law expression and ``first`` in a process.
+        One per law expression and ``first`` in a process; under ``NUMBA_DISABLE_JIT=1`` its
+        functions and ``pointers`` are the generated Python functions (module docstring).
     """
     from landau.verify.hybrid.callbacks import jit_enabled
     from landau.verify.jitcache import load_generated
 
-    if not jit_enabled():
-        raise CompilerRequiredError(
-            "the forced oscillator's loop calls its friction law through compiled C callbacks and has no "
-            "plain-Python route: unset NUMBA_DISABLE_JIT to simulate it")
-    key = (law_key(law), int(first))
+    jit = jit_enabled()
+    if not jit:
+        warn_plain_python()
+    key = (law_key(law), int(first), jit)
     if key in _CACHE:
         return _CACHE[key]
     params = law.parameters
@@ -424,6 +436,15 @@ def compile_friction(law: VelocityFriction, first: int) -> CompiledFriction:
     src = "\n\n".join(f"{body}    return {ret}\n" for body, ret in parts) + (
         _ONE_EXPRESSION if _smooth_single_expression(law) else _DISPATCH.format(i0=first + len(params)))
     ns = load_generated(src, {"math": math}, ALLOWED_BUILTINS)
+    if not jit:
+        # NUMBA_DISABLE_JIT=1: the generated Python functions themselves are the callbacks (the
+        # field hands them the packed vector, see field.data; the loop holds the array itself)
+        pointers = Callbacks((ns["friction"], ns["friction_derivative"], ns["subtract_friction"],
+                              bool(is_built_in(law) and first == _paper_first()), _identity))
+        out = CompiledFriction(law.name, tuple(p.name for p in params), int(first), src, ns["friction"],
+                               ns["friction_slope"], ns["friction_derivative"], ns["subtract_friction"], pointers)
+        _CACHE[key] = out
+        return out
     # the dispatchers replace the Python functions in the cached module, so that the functions
     # calling them compile against them (and inline them) and `from <module> import friction`
     # finds them; nothing here compiles until first use, except the three C callbacks

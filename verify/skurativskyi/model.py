@@ -306,6 +306,8 @@ def _bound_rhs(f0, f1, f2, built_in, ptr):
     def rhs(t, y, p, out):
         F.rhs(t, y, p, out, (f0, f1, f2, built_in, ptr))
 
+    if not hasattr(rhs, "compile"):      # NUMBA_DISABLE_JIT=1: the Python function
+        return rhs
     with quiet_first_class():
         arr = types.float64[::1]
         rhs.compile((types.float64, arr, arr, arr))

@@ -6,7 +6,9 @@ stick phases, built for a given field.
 (:func:`mixed_loop`, through :func:`landau.verify.compiling.compile_once`); the friction law
 reaches it as a tuple ``fr`` of first-class functions (numba's ``types.FunctionType``: the C
 callbacks of :attr:`landau.verify.skurativskyi.friction.CompiledFriction.pointers`), so a new
-law compiles only its own small callbacks.  ``integrate_mixed`` (the default path
+law compiles only its own small callbacks (under ``NUMBA_DISABLE_JIT=1`` everything here runs
+as plain Python, with the law's generated Python functions as ``fr``: slow, for a debugger, and
+step for step the compiled run).  ``integrate_mixed`` (the default path
 of :func:`landau.verify.skurativskyi.simulate.run`) takes every step that starts with |ẋ|
 below a threshold (stick: the cart rests on the obstacle or on the track, |ẋ| ~ 1e-9…1e-6
 m/s) with the L-stable SDIRK4 (stage equations solved as scalar monotone equations, robust on
@@ -77,7 +79,7 @@ import numpy as np
 from numba import njit
 
 from landau.verify.hybrid.crossing import cubic_crossing
-from landau.verify.skurativskyi.field import DATA_POINTER, rhs
+from landau.verify.skurativskyi.field import hold, rhs
 from landau.verify.skurativskyi.sdirk import sdirk_step
 
 OK, MAX_STEPS, STEP_TOO_SMALL, MAX_EVENTS = 0, 1, 2, 3
@@ -197,7 +199,7 @@ def integrate_mixed(p_arr, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strob
     # the packed parameters are read through their data pointer (no reference counts in the
     # calls of the field: measured 20-40 % of a step); ``p_arr`` is owned by the caller for the
     # whole call
-    p = fr[DATA_POINTER](p_arr.ctypes)
+    p = hold(p_arr, fr)
     # the state and the stage vectors: arrays local to this call, used only by inlined code
     y = np.empty(n)
     y[:] = y0
@@ -402,10 +404,15 @@ def loop_signature():
 
 def mixed_loop():
     """:func:`integrate_mixed`, compiled for :func:`loop_signature` on first use (once per
-    machine: numba's disk cache keeps it for every later process and every friction law)."""
+    machine: numba's disk cache keeps it for every later process and every friction law).
+    Under ``NUMBA_DISABLE_JIT=1`` it is the Python function, and a warning says so once."""
     from landau.verify.compiling import compile_once
-    from landau.verify.skurativskyi.friction import quiet_first_class
+    from landau.verify.hybrid.callbacks import jit_enabled
+    from landau.verify.skurativskyi.friction import quiet_first_class, warn_plain_python
 
+    if not jit_enabled():
+        warn_plain_python()
+        return integrate_mixed
     with quiet_first_class():
         return compile_once(integrate_mixed, loop_signature(), "the forced-oscillator integrator")
 
