@@ -54,8 +54,3 @@ class IntegratorError(LandauError):
         super().__init__(detail)
         self.t = t
         self.state = state
-
-
-class CompilerRequiredError(LandauError):
-    """A compiled route has no plain-Python fallback and numba's compiler is switched off
-    (``NUMBA_DISABLE_JIT=1``); the message names the route and the remedy."""
