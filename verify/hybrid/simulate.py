@@ -277,14 +277,23 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             # are recorded for plots.  A compiled stepper with run_quiet screens affine guards on
             # its own dense output inside its compiled loop instead.
             affine = _affine_guards(m) if screen is not None and hasattr(solver, "run_quiet") else None
+            # guards compiled as one vector function: screened inside the compiled loop as well
+            gk = _guard_kernel(m, solver, t, y, g0, atol) if affine is None and screen is not None else None
             roots = _affine_guards(m) if hasattr(solver, "affine_root") else None
-            active = screen if affine is None and screen is not None and _keeps_current_f(solver) else None
+            active = (screen if affine is None and gk is None and screen is not None and _keeps_current_f(solver)
+                      else None)
             if active is not None:
                 active.start(solver.y, solver.f, len(guards), m.rhs)
             while hit is None:
                 if affine is not None and screen is not None:   # (affine is only built with a screen)
                     msg, all_quiet, k = solver.run_quiet(*affine, nodes[:-1], g_last, dec_before, state, atol,
                                                          screen.dip_factor, max(1, options.max_steps - nsteps))
+                    nsteps += k
+                elif gk is not None and screen is not None:
+                    from landau.verify.hybrid.guarded import guarded_steps
+
+                    msg, all_quiet, k = guarded_steps(solver, gk, nodes[:-1], g_last, dec_before, state, atol,
+                                                      screen.dip_factor, max(1, options.max_steps - nsteps))
                     nsteps += k
                 else:
                     msg, all_quiet = solver.step(), False
@@ -470,6 +479,33 @@ def _affine_guards(mode) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
         _AFFINE.clear()
     _AFFINE[id(mode)] = (mode, out)
     return out
+
+
+def _guard_kernel(mode, solver, t: float, y: np.ndarray, g0: np.ndarray, atol: float):
+    """The mode's compiled guard vector (``Mode.guard_kernel``) when the solver is the compiled
+    DOP853 with numba's compiler on and the kernel agrees with the Python guards at the phase
+    start (``g0``, raised to at least ``-atol`` as the engine does there), else None (the Python
+    route)."""
+    if mode.guard_kernel is None or not mode.guards:
+        return None
+    from landau.verify.hybrid.callbacks import jit_enabled, warn_once
+    from landau.verify.hybrid.dop853 import DOP853Solver
+
+    if not isinstance(solver, DOP853Solver) or not jit_enabled():
+        return None
+    gk = mode.guard_kernel()
+    if gk is None:
+        return None
+    out = np.empty(len(mode.guards))
+    gk.fun(float(t), np.ascontiguousarray(y, dtype=float), gk.p, out)
+    out = np.maximum(out, -atol)
+    scale = 1e-7 * (1.0 + np.abs(g0))
+    if not np.all(np.abs(out - g0) <= scale):
+        warn_once(f"guard-kernel:{gk.name}", f"landau: the compiled guards {gk.name!r} differ from the mode's "
+                  f"guards at t = {t:.12g} ({out.tolist()} against {g0.tolist()}): the guards are evaluated "
+                  "in Python")
+        return None
+    return gk
 
 
 def _keeps_current_f(solver) -> bool:
