@@ -27,7 +27,7 @@ from landau.verify.compiling import compile_once
 from landau.verify.hybrid.dop853 import FUN_T, advance, dense, dense_at, kernel_function
 from landau.verify.hybrid.locate import _quiet_guards
 
-__all__ = ["run_guarded", "guarded_steps"]
+__all__ = ["run_guarded", "guarded_steps", "run_to_upcrossing", "upcrossing_step"]
 
 
 @njit(cache=True)
@@ -144,3 +144,79 @@ def guarded_steps(solver, guard_kernel, s, g_last, dec_before, state, guard_atol
     if solver.t >= solver.t_bound:
         solver.status = "finished"
     return None, (None if code == 3 else code == 2), k
+
+
+@njit(cache=True)
+def run_to_upcrossing(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, index, level, t_after, g,
+                      K, y_old):
+    """Steps of DOP853 from (t, y), f = f(t, y), until the first step at whose ends the section
+    g = y[index] − level (masked to −1 up to ``t_after``) goes from g ≤ 0 to g ≥ 0; ``g`` is its
+    value at the start.  y, f are advanced in place, K holds the last step's stages and y_old its
+    start.  Returns (code, t_old, t, h_used, h_abs_next, nfev, nsteps); code 1: the crossing
+    step, 2: ``t_bound`` reached without one, 3: ``max_steps`` steps, 0: step size too small."""
+    n = y.shape[0]
+    ynew, fnew = np.empty(n), np.empty(n)
+    nfev, nsteps, t_old, h_used = 0, 0, t, 0.0
+    while nsteps < max_steps:
+        ok, tn, hu, h_abs, nf = advance(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, K, ynew, fnew)
+        nfev += nf
+        if not ok:
+            return 0, t_old, t, h_used, h_abs, nfev, nsteps
+        nsteps += 1
+        h_used = hu
+        for a in range(n):
+            y_old[a] = y[a]
+            y[a] = ynew[a]
+            f[a] = fnew[a]
+        t_old = t
+        t = tn
+        g_new = y[index] - level if t > t_after else -1.0
+        if g <= 0.0 <= g_new:
+            return 1, t_old, t, h_used, h_abs, nfev, nsteps
+        if t >= t_bound:
+            return 2, t_old, t, h_used, h_abs, nfev, nsteps
+        g = g_new
+    return 3, t_old, t, h_used, h_abs, nfev, nsteps
+
+
+_CROSS: list = []
+
+
+def upcrossing_step(solver, index: int, level: float, t_after: float, max_steps: int = 1_000_000):
+    """Advance a :class:`~landau.verify.hybrid.dop853.DOP853Solver` to the first step across which
+    y[index] − level goes from ≤ 0 to ≥ 0 at the step ends, the section masked (−1) up to
+    ``t_after`` — the event rule of ``scipy.integrate.solve_ivp`` for a terminal event of direction
+    +1 — in one compiled call (:func:`run_to_upcrossing`); the same steps as calling
+    ``solver.step()`` and testing the section in Python.
+
+    Returns
+    -------
+    bool
+        True: the last step (``t_old`` → ``t``, ``dense_output()``) crosses; False: ``t_bound``
+        or ``max_steps`` came first (``solver.status`` says which), or the step size became too
+        small (``solver.status == "failed"``).
+    """
+    if solver.status != "running":
+        raise RuntimeError("attempt to step on a finished or failed solver")
+    if not _CROSS:
+        f64, arr, i64 = types.float64, types.float64[::1], types.int64
+        sig = (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, i64, f64, f64, f64,
+               types.float64[:, ::1], arr)
+        compile_once(run_to_upcrossing, sig, "the compiled DOP853 loop to a section")
+        _CROSS.append(run_to_upcrossing)
+    g0 = float(solver.y[index] - level) if solver.t > t_after else -1.0
+    code, t_old, t, hu, hn, nf, k = _CROSS[0](
+        solver._fun, solver.kernel.p, solver.t, solver.y, solver.f, solver.h_abs, solver.max_step, solver.t_bound,
+        solver.rtol, solver.atol, int(max_steps), int(index), float(level), float(t_after), g0, solver._K,
+        solver._y_old)
+    solver.nfev += nf
+    solver.nsteps += k
+    solver.t, solver.h_abs = t, hn
+    if k:
+        solver.t_old, solver._h_used, solver._dense = t_old, hu, None
+    if code == 0:
+        solver.status = "failed"
+        return False
+    if solver.t >= solver.t_bound:
+        solver.status = "finished"
+    return code == 1
