@@ -6,7 +6,8 @@
   stick forces divide by det G);
 * a run whose guards are screened inside the compiled loop against the same run with the guards
   evaluated in Python (``Mode.guard_kernel`` removed): the loop only decides which steps the
-  Python scan sees, so the events and the final state are the same;
+  Python scan sees, so the events and the final state are the same, and a recorded run keeps
+  the same samples;
 * the routes without compiled guards: a section without a symbolic form, the stick tolerance,
   another belt;
 * the scan test of a disarmed section (verify/hybrid/locate.py ``_quiet_guards``).
@@ -70,6 +71,23 @@ def test_compiled_guards_give_the_events_of_the_python_guards(mu, eN, belt):
     assert np.max(np.abs([e.t - f.t for e, f in zip(a.events, b.events, strict=True)])) <= opts.xtol
     assert a.nsteps == b.nsteps
     assert a.y == pytest.approx(b.y, rel=1e-9, abs=1e-12)
+
+
+@pytest.mark.parametrize("max_samples, samples", [(200_000, 8), (300, 4)], ids=["all-samples", "thinned"])
+def test_the_compiled_loop_records_what_the_python_scan_records(max_samples, samples):
+    # recorded runs (figures, ``landau simulate impact-oscillator``): the quiet steps' samples come
+    # from the compiled loop, thinned past ``max_samples`` as the per-step record is
+    cm = build(0.40, 0.2)
+    y0 = np.array([0.38, 0.929, 0.0, 0.0])
+    mode = cm.initial_mode(0.0, y0)
+    opts = default_options(1e-6, record=True, max_samples=max_samples, samples=samples)
+    a = simulate(cm.model, mode, y0, (0.0, 4.0), STEPPER, opts)
+    b = simulate(_python_guards(cm.model), mode, y0, (0.0, 4.0), STEPPER, opts)
+    (ta, ya, ma), (tb, yb, mb) = a.trajectory(), b.trajectory()
+    assert len(ta) > 100 and (len(ta) <= 2 * max_samples)
+    assert np.array_equal(ta, tb) and np.array_equal(ya, yb) and ma == mb
+    assert [s.mode for s in a.segments] == [s.mode for s in b.segments]
+    assert [(e.t, e.guard) for e in a.events] == [(e.t, e.guard) for e in b.events]
 
 
 def test_models_without_compiled_guards():

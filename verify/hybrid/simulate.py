@@ -242,6 +242,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
     nsteps = nfev = 0
     n_zero = 0
     rec = _Recorder(options.max_samples)
+    rbufs: dict[int, Any] = {}   # the compiled loop's record buffers, one per state dimension
     atol = options.guard_atol
 
     def finish(status, zeno=None):
@@ -278,7 +279,8 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             # its own dense output inside its compiled loop instead.
             affine = _affine_guards(m) if screen is not None and hasattr(solver, "run_quiet") else None
             # guards compiled as one vector function: screened inside the compiled loop as well
-            gk = _guard_kernel(m, solver, t, y, g0, atol) if affine is None and screen is not None else None
+            gk = _guard_kernel(m, solver, t, y, g0, atol) if affine is None and options.samples > 0 else None
+            rbuf = _step_record(rbufs, len(y)) if gk is not None and options.record else None
             roots = _affine_guards(m) if hasattr(solver, "affine_root") else None
             active = (screen if affine is None and gk is None and screen is not None and _keeps_current_f(solver)
                       else None)
@@ -289,12 +291,21 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                     msg, all_quiet, k = solver.run_quiet(*affine, nodes[:-1], g_last, dec_before, state, atol,
                                                          screen.dip_factor, max(1, options.max_steps - nsteps))
                     nsteps += k
-                elif gk is not None and screen is not None:
+                elif gk is not None:
                     from landau.verify.hybrid.guarded import guarded_steps
 
-                    msg, all_quiet, k = guarded_steps(solver, gk, nodes[:-1], g_last, dec_before, state, atol,
-                                                      screen.dip_factor, max(1, options.max_steps - nsteps))
+                    if rbuf is not None:
+                        rbuf.load(rec)
+                    msg, code, k = guarded_steps(solver, gk, nodes[:-1], g_last, dec_before, state, atol,
+                                                 screen.dip_factor if screen is not None else 2.0,
+                                                 max(1, options.max_steps - nsteps), rbuf)
                     nsteps += k
+                    if rbuf is not None:   # the quiet steps' samples, as the per-step record keeps them
+                        rbuf.flush(rec, seg_t, seg_y)
+                        rec.bound(segs, seg_t, seg_y)
+                    if code == 4 and nsteps < options.max_steps:
+                        continue
+                    all_quiet = None if code in (3, 4) else code == 2
                 else:
                     msg, all_quiet = solver.step(), False
                     nsteps += 1
@@ -313,6 +324,11 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                 if all_quiet:
                     nfev += solver.nfev
                     t, y = solver.t, solver.y.copy()
+                    if options.record:
+                        if seg_t[-1][-1] < t:
+                            seg_t.append(np.array([t]))
+                            seg_y.append(y[:, None])
+                        segs.append(Segment(mname, np.concatenate(seg_t), np.concatenate(seg_y, axis=1)))
                     return finish("t_end")
                 t_old, t_new = solver.t_old, solver.t
                 probe = (active.advance(t_old, t_new, np.asarray(solver.y, dtype=float),
@@ -506,6 +522,16 @@ def _guard_kernel(mode, solver, t: float, y: np.ndarray, g0: np.ndarray, atol: f
                   "in Python")
         return None
     return gk
+
+
+def _step_record(bufs: dict, n: int):
+    """The record buffer of the compiled loop for states of dimension ``n`` (one per run)."""
+    buf = bufs.get(n)
+    if buf is None:
+        from landau.verify.hybrid.guarded import StepRecord
+
+        buf = bufs[n] = StepRecord(n)
+    return buf
 
 
 def _keeps_current_f(solver) -> bool:
