@@ -27,7 +27,7 @@ from landau.verify.compiling import compile_once
 from landau.verify.hybrid.dop853 import FUN_T, advance, dense, dense_at, kernel_function
 from landau.verify.hybrid.locate import _quiet_guards
 
-__all__ = ["run_guarded", "guarded_steps", "run_to_upcrossing", "upcrossing_step"]
+__all__ = ["run_guarded", "guarded_steps", "StepRecord", "run_to_upcrossing", "upcrossing_step"]
 
 
 @njit(cache=True)

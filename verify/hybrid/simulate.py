@@ -243,6 +243,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
     n_zero = 0
     rec = _Recorder(options.max_samples)
     rbufs: dict[int, Any] = {}   # the compiled loop's record buffers, one per state dimension
+    checked: dict[str, bool] = {}  # modes whose compiled guards agreed with the Python guards
     atol = options.guard_atol
 
     def finish(status, zeno=None):
@@ -279,7 +280,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             # its own dense output inside its compiled loop instead.
             affine = _affine_guards(m) if screen is not None and hasattr(solver, "run_quiet") else None
             # guards compiled as one vector function: screened inside the compiled loop as well
-            gk = _guard_kernel(m, solver, t, y, g0, atol) if affine is None and options.samples > 0 else None
+            gk = _guard_kernel(m, solver, t, y, g0, atol, checked) if affine is None and options.samples > 0 else None
             rbuf = _step_record(rbufs, len(y)) if gk is not None and options.record else None
             roots = _affine_guards(m) if hasattr(solver, "affine_root") else None
             active = (screen if affine is None and gk is None and screen is not None and _keeps_current_f(solver)
@@ -497,11 +498,11 @@ def _affine_guards(mode) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
     return out
 
 
-def _guard_kernel(mode, solver, t: float, y: np.ndarray, g0: np.ndarray, atol: float):
+def _guard_kernel(mode, solver, t: float, y: np.ndarray, g0: np.ndarray, atol: float, checked: dict):
     """The mode's compiled guard vector (``Mode.guard_kernel``) when the solver is the compiled
-    DOP853 with numba's compiler on and the kernel agrees with the Python guards at the phase
-    start (``g0``, raised to at least ``-atol`` as the engine does there), else None (the Python
-    route)."""
+    DOP853 with numba's compiler on and the kernel agrees with the Python guards at the mode's
+    first phase start of the run (``g0``, raised to at least ``-atol`` as the engine does there;
+    the verdict is kept in ``checked``), else None (the Python route)."""
     if mode.guard_kernel is None or not mode.guards:
         return None
     from landau.verify.hybrid.callbacks import jit_enabled, warn_once
@@ -509,9 +510,12 @@ def _guard_kernel(mode, solver, t: float, y: np.ndarray, g0: np.ndarray, atol: f
 
     if not isinstance(solver, DOP853Solver) or not jit_enabled():
         return None
-    gk = mode.guard_kernel()
-    if gk is None:
+    ok = checked.get(mode.name)
+    if ok is False:
         return None
+    gk = mode.guard_kernel()
+    if gk is None or ok:
+        return gk
     out = np.empty(len(mode.guards))
     gk.fun(float(t), np.ascontiguousarray(y, dtype=float), gk.p, out)
     out = np.maximum(out, -atol)
@@ -520,7 +524,9 @@ def _guard_kernel(mode, solver, t: float, y: np.ndarray, g0: np.ndarray, atol: f
         warn_once(f"guard-kernel:{gk.name}", f"landau: the compiled guards {gk.name!r} differ from the mode's "
                   f"guards at t = {t:.12g} ({out.tolist()} against {g0.tolist()}): the guards are evaluated "
                   "in Python")
+        checked[mode.name] = False
         return None
+    checked[mode.name] = True
     return gk
 
 
