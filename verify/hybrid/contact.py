@@ -187,13 +187,12 @@ class ContactMechanics:
         default: the engine integrates the Python field)."""
         return None
 
-    def guard_kernel(self, mode: str, sections: Sequence["Section"], stick_tol: float = 0.0):
+    def guard_kernel(self, mode: str, sections: Sequence["Section"]):
         """A function of no arguments building the guards of ``mode`` (in the order of
         :class:`ContactModel`: flight ``impact``; slip ``lift-off``, ``stop``, ``painleve``; stick
-        ``lift-off``, ``slip+ onset``, ``slip- onset``; then ``sections``; with ``stick_tol`` > 0
-        the slip ``stop`` of the stick tolerance) as one compiled vector function
-        (:attr:`landau.verify.hybrid.model.Mode.guard_kernel`), or None (the default: the engine
-        evaluates the Python guards).  ``stick_tol`` is passed only when it is > 0."""
+        ``lift-off``, ``slip+ onset``, ``slip- onset``; then ``sections``) as one compiled vector
+        function (:attr:`landau.verify.hybrid.model.Mode.guard_kernel`), or None (the default: the
+        engine evaluates the Python guards)."""
         return None
 
 
@@ -540,11 +539,9 @@ class ContactModel(Generic[_Mech]):
                 def section_fun(t, y, sec=sec, mode=mode):
                     return sec.fun(t, y, self.accel(mode, t, y))
                 gs.append(Guard(sec.name, section_fun))
-            # compiled guards, when the mechanics has them
-            gker = None
-            if hasattr(mech, "guard_kernel"):
-                gker = (mech.guard_kernel(mode, tuple(self.sections)) if self.stick_tol == 0
-                        else mech.guard_kernel(mode, tuple(self.sections), stick_tol=self.stick_tol))
+            # compiled guards: the exact model only (the tolerant stop guard is Python's)
+            gker = (mech.guard_kernel(mode, tuple(self.sections))
+                    if self.stick_tol == 0 and hasattr(mech, "guard_kernel") else None)
             modes[mode] = Mode(mode, self.rhs(mode), tuple(gs),
                                on_zeno=self.end_chattering if mode == "flight" else None,
                                kernel=mech.mode_kernel(mode) if hasattr(mech, "mode_kernel") else None,

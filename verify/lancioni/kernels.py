@@ -140,16 +140,13 @@ def _mode_kernel(mode: str, belt: str, branch, law_symbols: tuple):
                            time=M["t"] if belt == "sine" else None, jacobian=False, name=f"lancioni-{mode}-{belt}")
 
 
-def guard_kernel_factory(mech, mode: str, sections=(), stick_tol: float = 0.0):
+def guard_kernel_factory(mech, mode: str, sections=()):
     """A function of no arguments building (once, on first call) the guards of ``mode`` as one
     compiled vector function (:attr:`landau.verify.hybrid.model.Mode.guard_kernel`), in the order
     of :class:`~landau.verify.hybrid.contact.ContactModel`: flight g_N = y − l cos φ (``impact``);
     slip s λ_N (``lift-off``), s·g_T (``stop``), D_s = G_NN − sμ(g_T)G_NT (``painleve``); stick
     λ_N, μ₊λ_N + λ_T and μ₋λ_N − λ_T (``slip± onset``); then each section's ``symbolic`` form at
-    the mode's q̈.  With a stick tolerance η > 0 the slip ``stop`` is that of
-    :meth:`~landau.verify.hybrid.contact.ContactModel._tolerant_stop`,
-    min(max(s·g_T − η, −m), s·g_T) with m = min(μ₊λ_N + λ_T, μ₋λ_N − λ_T, λ_N) of the stick forces.
-    None when the belt has no kernel or a section has no symbolic form.
+    the mode's q̈.  None when the belt has no kernel or a section has no symbolic form.
 
     Parameters
     ----------
@@ -159,8 +156,6 @@ def guard_kernel_factory(mech, mode: str, sections=(), stick_tol: float = 0.0):
         The regime.
     sections : tuple of Section
         The model's sections (:class:`~landau.verify.hybrid.contact.Section`).
-    stick_tol : float
-        The numerical stick tolerance η (0: the exact model).
 
     Returns
     -------
@@ -174,42 +169,35 @@ def guard_kernel_factory(mech, mode: str, sections=(), stick_tol: float = 0.0):
     s = {"slip+": 1, "slip-": -1}.get(mode, 0)
     branch = law.branch(s) if s else None
     symbols = tuple(p.symbol for p in law.parameters) if s else ()
-    values = np.array([*mech._c, *kind[1], *(mech._law_values if s else ()), *mech._static, float(stick_tol)],
-                      dtype=float)
+    values = np.array([*mech._c, *kind[1], *(mech._law_values if s else ()), *mech._static], dtype=float)
     sections = tuple(sections)
-    tolerant = bool(s) and stick_tol > 0
 
     @functools.lru_cache(maxsize=None)
     def build():
-        k = _guard_kernel(mode, kind[0], branch, symbols, sections, tolerant)
+        k = _guard_kernel(mode, kind[0], branch, symbols, sections)
         return None if k is None else replace(k, p=values)
 
     return build
 
 
 @functools.lru_cache(maxsize=64)
-def _guard_kernel(mode: str, belt: str, branch, law_symbols: tuple, sections: tuple, tolerant: bool = False):
+def _guard_kernel(mode: str, belt: str, branch, law_symbols: tuple, sections: tuple):
     """The generated guard vector of ``mode`` (parameters as :func:`_mode_kernel`'s, then the
-    static friction levels μ₊, μ₋ and the stick tolerance η, used by the slip ``stop`` when
-    ``tolerant``), or None when a section's symbolic form is not a sympy expression."""
+    static friction levels μ₊, μ₋), or None when a section's symbolic form is not a sympy
+    expression."""
     import sympy as sp
 
     from landau.codegen.kernels import generate_vector_function
 
     M = _mechanics(mode, belt, branch)
-    mup, mum, eta = sp.symbols("_mup _mum _eta", real=True)
+    mup, mum = sp.symbols("_mup _mum", real=True)
     if mode == "flight":
         gs = [M["gap"]]
     elif mode == "stick":
         gs = [M["lamN"], mup * M["lamN"] + M["lamT"], mum * M["lamN"] - M["lamT"]]
     else:
         s = 1 if mode == "slip+" else -1
-        stop = s * M["gT"]
-        if tolerant:
-            st = _mechanics("stick", belt, None)
-            margin = sp.Min(mup * st["lamN"] + st["lamT"], mum * st["lamN"] - st["lamT"], st["lamN"])
-            stop = sp.Min(sp.Max(stop - eta, -margin), stop)
-        gs = [M["lamN"], stop, M["GNN"] - s * M["mu"] * M["GNT"]]
+        gs = [M["lamN"], s * M["gT"], M["GNN"] - s * M["mu"] * M["GNT"]]
     for sec in sections:
         try:
             e = sp.sympify(sec.symbolic(M["t"], list(M["state"]), list(M["acc"])), strict=True)
@@ -218,7 +206,7 @@ def _guard_kernel(mode: str, belt: str, branch, law_symbols: tuple, sections: tu
         if not isinstance(e, sp.Expr) or e.free_symbols - {M["t"], *M["state"], *M["base"], *law_symbols}:
             return None
         gs.append(e)
-    params = [*M["base"], *law_symbols, mup, mum, eta]
+    params = [*M["base"], *law_symbols, mup, mum]
     return generate_vector_function(M["state"], gs, params, [1.0] * len(params), time=M["t"],
                                     name=f"lancioni-{mode}-{belt}-guards")
 

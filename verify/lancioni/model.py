@@ -177,13 +177,13 @@ class Lancioni(ContactMechanics):
 
         return mode_kernel_factory(self, mode)
 
-    def guard_kernel(self, mode: str, sections=(), stick_tol: float = 0.0):
+    def guard_kernel(self, mode: str, sections=()):
         """The compiled guards of ``mode`` (:func:`landau.verify.lancioni.kernels.guard_kernel_factory`),
         built on first use; None for a belt other than :class:`ConstantBelt` and :class:`SineBelt`
         or a section without a symbolic form."""
         from landau.verify.lancioni.kernels import guard_kernel_factory
 
-        return guard_kernel_factory(self, mode, sections, stick_tol)
+        return guard_kernel_factory(self, mode, sections)
 
     def gap(self, q):
         return q[1] - self._c[2] * np.cos(q[0])
