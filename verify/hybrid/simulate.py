@@ -69,9 +69,11 @@ class EngineOptions:
         (every other sample dropped, each segment's ends kept) and from then on only every
         2ᵏ-th step end is recorded, so a long run keeps at most ~``max_samples`` points spread
         over the whole run.
-    screen: when not recording, first sample the guards on each step's cubic Hermite
-        interpolant with an error bound and build the dense output only for steps where that
-        could trigger the scan (:class:`~landau.verify.hybrid.locate.HermiteScreen`): the same
+    screen: with a mode whose guards come compiled (``Mode.guard_kernel``) and the compiled
+        DOP853, screen each step on its dense output inside the compiled loop (recording or
+        not, ``samples`` > 0); otherwise, when not recording, first sample the guards on each
+        step's cubic Hermite interpolant with an error bound and build the dense output only
+        for steps where that could trigger the scan (:class:`~landau.verify.hybrid.locate.HermiteScreen`): the same
         events, without the dense output's extra stages on quiet steps; with a stepper that
         has ``run_quiet`` and a mode whose guards declare ``affine``, the same scan test on the
         stepper's dense output inside its compiled loop).  False: scan every step on the
@@ -280,7 +282,8 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             # its own dense output inside its compiled loop instead.
             affine = _affine_guards(m) if screen is not None and hasattr(solver, "run_quiet") else None
             # guards compiled as one vector function: screened inside the compiled loop as well
-            gk = _guard_kernel(m, solver, t, y, g0, atol, checked) if affine is None and options.samples > 0 else None
+            gk = (_guard_kernel(m, solver, t, y, g0, atol, checked)
+                  if affine is None and options.screen and options.samples > 0 else None)
             rbuf = _step_record(rbufs, len(y)) if gk is not None and options.record else None
             roots = _affine_guards(m) if hasattr(solver, "affine_root") else None
             active = (screen if affine is None and gk is None and screen is not None and _keeps_current_f(solver)
