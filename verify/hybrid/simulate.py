@@ -73,8 +73,9 @@ class EngineOptions:
         DOP853, screen each step on its dense output inside the compiled loop (recording or
         not, ``samples`` > 0); otherwise, when not recording, first sample the guards on each
         step's cubic Hermite interpolant with an error bound and build the dense output only
-        for steps where that could trigger the scan (:class:`~landau.verify.hybrid.locate.HermiteScreen`): the same
-        events, without the dense output's extra stages on quiet steps; with a stepper that
+        for steps where that could trigger the scan
+        (:class:`~landau.verify.hybrid.locate.HermiteScreen`): the same events, without the
+        dense output's extra stages on quiet steps; with a stepper that
         has ``run_quiet`` and a mode whose guards declare ``affine``, the same scan test on the
         stepper's dense output inside its compiled loop).  False: scan every step on the
         dense output.
