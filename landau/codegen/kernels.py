@@ -82,7 +82,7 @@ def check_source(src: str) -> None:
 
 
 def kernel_source(states: Sequence[sp.Symbol], field: Sequence[sp.Expr], params: Sequence[sp.Symbol],
-                  time: sp.Symbol | None = None, jacobian: bool = True) -> str:
+                  time: sp.Symbol | None = None, jacobian: bool = True, square: bool = True) -> str:
     """Python source of ``fun(t, y, p, out)`` (and ``jac(t, y, p, out)``) for ``field``.
 
     Parameters
@@ -97,6 +97,9 @@ def kernel_source(states: Sequence[sp.Symbol], field: Sequence[sp.Expr], params:
         The time symbol of a non-autonomous field.
     jacobian : bool
         Also emit ``jac`` (∂f/∂y by sympy).
+    square : bool
+        True: one component per state (a vector field).  False: any number of components (a
+        vector function of the state, such as a mode's guards; no ``jac`` then).
 
     Returns
     -------
@@ -106,8 +109,13 @@ def kernel_source(states: Sequence[sp.Symbol], field: Sequence[sp.Expr], params:
         process asking for the same field skips the differentiation and the elimination.
     """
     n = len(states)
-    if len(field) != n:
+    if square and len(field) != n:
         raise InputError(f"field has {len(field)} components for {n} states")
+    if not square:
+        if jacobian:
+            raise InputError("a Jacobian is emitted for a vector field only (square=True)")
+        if not len(field):
+            raise InputError("a vector function needs at least one component")
     names = [s.name for s in states] + [s.name for s in params] + ([time.name] if time is not None else [])
     if len(set(names)) != len(names):
         raise InputError(f"state, parameter and time symbols must be distinct (got {names})")
@@ -170,7 +178,7 @@ def _emit(exprs, svars, nparams: int, jacobian: bool) -> str:
     head += [f"    q{i} = p[{i}]" for i in range(nparams)]
     body = [f"    {s} = {pr.doprint(e)}" for s, e in reps]
     lines = ["def fun(t, y, p, out):", *head, *body]
-    lines += [f"    out[{i}] = {pr.doprint(red[i])}" for i in range(n)]
+    lines += [f"    out[{i}] = {pr.doprint(red[i])}" for i in range(len(exprs))]
     src = "\n".join(lines) + "\n"
     if jacobian:
         lj = ["def jac(t, y, p, out):", "    out[:, :] = 0.0", *head, *body]
@@ -230,6 +238,53 @@ def generate_kernel(states: Sequence[sp.Symbol], field: Sequence[sp.Expr], param
         pv = [0.0]  # numba needs a non-empty float64[::1]
     compiled = compile_source(src, name)
     return Kernel(compiled.fun, np.asarray(pv, float), compiled.jac, name=name, n=len(states), source=src)
+
+
+def generate_vector_function(states: Sequence[sp.Symbol], components: Sequence[sp.Expr],
+                             params: Sequence[sp.Symbol] = (), values: Sequence[float] | None = None,
+                             time: sp.Symbol | None = None, name: str = "vector function") -> Kernel:
+    """Compile a vector function g(t, y; p) of the state with any number of components.
+
+    The same route as :func:`generate_kernel` (printing with common-subexpression
+    elimination, the whitelist, numba's disk cache) for a function that is not a vector
+    field: ``fun(t, y, p, out)`` with ``out[j] = g_j(t, y; p)``, j < ``len(components)``, e.g.
+    the guards of a hybrid mode (:attr:`landau.verify.hybrid.model.Mode.guard_kernel`).
+
+    Parameters
+    ----------
+    states, params, time
+        As in :func:`kernel_source`.
+    components : sequence of sympy expressions
+        g_j(t, y; p).
+    values : sequence of float, optional
+        Parameter values in the order of ``params`` (required when ``params`` is not empty).
+    name : str
+        A label for error messages and the kernel's repr.
+
+    Returns
+    -------
+    Kernel
+        ``fun`` compiled on first use; ``n`` is the dimension of the state (not of ``out``).
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> x, v, a = sp.symbols("x v a")
+    >>> g = generate_vector_function([x, v], [x - a, -v, x * v], [a], [0.5])
+    >>> out = np.empty(3)
+    >>> g.fun(0.0, np.array([1.0, 2.0]), g.p, out)
+    >>> out
+    array([ 0.5, -2. ,  2. ])
+    """
+    src = kernel_source(states, components, params, time, jacobian=False, square=False)
+    if params:
+        if values is None or len(values) != len(params):
+            raise InputError(f"{name!r}: {0 if values is None else len(values)} values for {len(params)} parameters")
+        pv = [float(v) for v in values]
+    else:
+        pv = [0.0]  # numba needs a non-empty float64[::1]
+    compiled = compile_source(src, name)
+    return Kernel(compiled.fun, np.asarray(pv, float), None, name=name, n=len(states), source=src)
 
 
 @dataclass(frozen=True)

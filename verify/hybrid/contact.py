@@ -187,6 +187,14 @@ class ContactMechanics:
         default: the engine integrates the Python field)."""
         return None
 
+    def guard_kernel(self, mode: str, sections: Sequence["Section"]):
+        """A function of no arguments building the guards of ``mode`` (in the order of
+        :class:`ContactModel`: flight ``impact``; slip ``lift-off``, ``stop``, ``painleve``; stick
+        ``lift-off``, ``slip+ onset``, ``slip- onset``; then ``sections``) as one compiled vector
+        function (:attr:`landau.verify.hybrid.model.Mode.guard_kernel`), or None (the default: the
+        engine evaluates the Python guards)."""
+        return None
+
 
 # --------------------------------------------------------------------------- contact algebra
 def _mu_pair(mu) -> tuple[float, float]:
@@ -329,10 +337,17 @@ MODES = ("flight", "slip+", "slip-", "stick")
 
 @dataclass(frozen=True)
 class Section:
-    """A section guard added to every mode: ``fun(t, y, acc)`` with acc = q̈ of the mode (vectorised)."""
+    """A section guard added to every mode: ``fun(t, y, acc)`` with acc = q̈ of the mode (vectorised).
+
+    ``symbolic`` (optional): the same function of sympy symbols and expressions (t, the state
+    components, the components of q̈), returning a sympy expression; a mechanics whose guards
+    are compiled (:meth:`ContactMechanics.guard_kernel`) compiles it with them.  Without it the
+    modes' guards stay in Python.
+    """
 
     name: str
     fun: Callable
+    symbolic: Callable | None = None
 
 
 _Mech = TypeVar("_Mech", bound="ContactMechanics")
@@ -524,9 +539,13 @@ class ContactModel(Generic[_Mech]):
                 def section_fun(t, y, sec=sec, mode=mode):
                     return sec.fun(t, y, self.accel(mode, t, y))
                 gs.append(Guard(sec.name, section_fun))
+            # compiled guards: the exact model only (the tolerant stop guard is Python's)
+            gker = (mech.guard_kernel(mode, tuple(self.sections))
+                    if self.stick_tol == 0 and hasattr(mech, "guard_kernel") else None)
             modes[mode] = Mode(mode, self.rhs(mode), tuple(gs),
                                on_zeno=self.end_chattering if mode == "flight" else None,
-                               kernel=mech.mode_kernel(mode) if hasattr(mech, "mode_kernel") else None)
+                               kernel=mech.mode_kernel(mode) if hasattr(mech, "mode_kernel") else None,
+                               guard_kernel=gker)
         return HybridModel(modes, name=getattr(mech, "name", "single-contact"))
 
     def _tolerant_stop(self, mode: str, s: int) -> Guard:

@@ -183,9 +183,11 @@ class HermiteScreen:
         interpolated interior samples, the exact step end, then the interior samples moved by
         + and - the error bound.  ``g_start``: the guards at the step start; ``dec_before``:
         whether each was decreasing at the end of the previous step; ``state``: 1 armed, 0
-        pending (armed by the scan at its first sample above ``atol``), -1 disarmed (never
-        quiet).  When quiet, all three are advanced in place to the step end (the decrease
-        taken pessimistically: True if a guard may be decreasing there; pending guards armed).
+        pending (armed by the scan at its first sample above ``atol``), -1 disarmed (a section
+        that has just fired or starts on its surface: armed by the scan at its first sample
+        above ``atol``, quiet while no sample can be above it).  When quiet, all three are
+        advanced in place to the step end (the decrease taken pessimistically: True if a guard
+        may be decreasing there; pending guards armed; disarmed ones stay disarmed).
         """
         vals, ts, Ys = self.vals, self.ts, self.Ys
         for j, g in enumerate(guards):
@@ -245,20 +247,41 @@ def _quiet_guards(vals, m, g_start, dec_before, state, atol, dip_factor):
     worst case of :func:`first_crossing`'s tests over the samples' uncertainty intervals,
     each sample as low and its neighbours as high as their intervals allow.  A pending guard
     is quiet only if every sample is above ``atol`` (the scan would arm it at the first one
-    and find nothing after it)."""
+    and find nothing after it); a disarmed guard only if no sample can be above ``atol`` (the
+    scan would not arm it: it only takes its value at the step end)."""
     k_guards = vals.shape[0]
     for j in range(k_guards):
         if state[j] < 0:
-            return False
+            if not _stays_disarmed(vals[j], m, atol):
+                return False
+            continue
         thr = atol if state[j] == 0 else 0.0
         if _guard_code(vals[j], m, g_start[j], dec_before[j] and state[j] > 0, dip_factor, thr) == 0:
             return False
     for j in range(k_guards):
+        if state[j] < 0:
+            g_start[j] = vals[j, m]
+            continue
         thr = atol if state[j] == 0 else 0.0
         dec = _guard_code(vals[j], m, g_start[j], dec_before[j] and state[j] > 0, dip_factor, thr) == 2
         g_start[j] = vals[j, m]
         dec_before[j] = dec
         state[j] = 1
+    return True
+
+
+@njit(cache=True)
+def _stays_disarmed(values, m, atol):
+    """Whether every sample of a disarmed guard, widened by its uncertainty, and its value at the
+    step end are <= ``atol`` (the scan of :func:`landau.verify.hybrid.simulate.simulate` then
+    leaves it disarmed)."""
+    if not values[m] <= atol:
+        return False
+    for k in range(m):
+        g = values[k]
+        spread = max(abs(values[m + 1 + k] - g), abs(values[2 * m + 1 + k] - g))
+        if not g + spread <= atol:
+            return False
     return True
 
 

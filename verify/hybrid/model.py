@@ -90,6 +90,14 @@ class Mode:
     ``kernel`` (optional) is a function of no arguments returning the same field compiled (a
     :class:`~landau.verify.hybrid.kernel.Kernel`, built on first use): the engine integrates
     it instead of ``rhs`` when the stepper is a compiled one.
+
+    ``guard_kernel`` (optional) is a function of no arguments returning every guard of the mode
+    compiled as one vector function (a :class:`~landau.verify.hybrid.kernel.Kernel` whose
+    ``fun(t, y, p, out)`` writes ``out[j] = guards[j].fun(t, y)``, in the order of ``guards``,
+    e.g. made by :func:`landau.codegen.kernels.generate_vector_function`): with a compiled
+    stepper the engine then tests the guards inside the stepper's compiled loop
+    (:mod:`landau.verify.hybrid.guarded`) and returns to Python only at a step where one may
+    cross.  The Python ``Guard.fun`` stay the reference: they locate the event on that step.
     """
 
     name: str
@@ -98,6 +106,7 @@ class Mode:
     jac: Callable[[float, Array], Array] | None = None
     on_zeno: TransitionFun | None = None
     kernel: Callable[[], object] | None = None
+    guard_kernel: Callable[[], object] | None = None
 
     def __repr__(self) -> str:
         return f"Mode({self.name!r}, guards={[g.name for g in self.guards]})"

@@ -69,10 +69,13 @@ class EngineOptions:
         (every other sample dropped, each segment's ends kept) and from then on only every
         2ᵏ-th step end is recorded, so a long run keeps at most ~``max_samples`` points spread
         over the whole run.
-    screen: when not recording, first sample the guards on each step's cubic Hermite
-        interpolant with an error bound and build the dense output only for steps where that
-        could trigger the scan (:class:`~landau.verify.hybrid.locate.HermiteScreen`): the same
-        events, without the dense output's extra stages on quiet steps; with a stepper that
+    screen: with a mode whose guards come compiled (``Mode.guard_kernel``) and the compiled
+        DOP853, screen each step on its dense output inside the compiled loop (recording or
+        not, ``samples`` > 0); otherwise, when not recording, first sample the guards on each
+        step's cubic Hermite interpolant with an error bound and build the dense output only
+        for steps where that could trigger the scan
+        (:class:`~landau.verify.hybrid.locate.HermiteScreen`): the same events, without the
+        dense output's extra stages on quiet steps; with a stepper that
         has ``run_quiet`` and a mode whose guards declare ``affine``, the same scan test on the
         stepper's dense output inside its compiled loop).  False: scan every step on the
         dense output.
@@ -242,6 +245,8 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
     nsteps = nfev = 0
     n_zero = 0
     rec = _Recorder(options.max_samples)
+    rbufs: dict[int, Any] = {}   # the compiled loop's record buffers, one per state dimension
+    checked: dict[str, bool] = {}  # modes whose compiled guards agreed with the Python guards
     atol = options.guard_atol
 
     def finish(status, zeno=None):
@@ -277,8 +282,13 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             # are recorded for plots.  A compiled stepper with run_quiet screens affine guards on
             # its own dense output inside its compiled loop instead.
             affine = _affine_guards(m) if screen is not None and hasattr(solver, "run_quiet") else None
+            # guards compiled as one vector function: screened inside the compiled loop as well
+            gk = (_guard_kernel(m, solver, t, y, g0, atol, checked)
+                  if affine is None and options.screen and options.samples > 0 else None)
+            rbuf = _step_record(rbufs, len(y)) if gk is not None and options.record else None
             roots = _affine_guards(m) if hasattr(solver, "affine_root") else None
-            active = screen if affine is None and screen is not None and _keeps_current_f(solver) else None
+            active = (screen if affine is None and gk is None and screen is not None and _keeps_current_f(solver)
+                      else None)
             if active is not None:
                 active.start(solver.y, solver.f, len(guards), m.rhs)
             while hit is None:
@@ -286,6 +296,21 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                     msg, all_quiet, k = solver.run_quiet(*affine, nodes[:-1], g_last, dec_before, state, atol,
                                                          screen.dip_factor, max(1, options.max_steps - nsteps))
                     nsteps += k
+                elif gk is not None:
+                    from landau.verify.hybrid.guarded import guarded_steps
+
+                    if rbuf is not None:
+                        rbuf.load(rec)
+                    msg, code, k = guarded_steps(solver, gk, nodes[:-1], g_last, dec_before, state, atol,
+                                                 screen.dip_factor if screen is not None else 2.0,
+                                                 max(1, options.max_steps - nsteps), rbuf)
+                    nsteps += k
+                    if rbuf is not None:   # the quiet steps' samples, as the per-step record keeps them
+                        rbuf.flush(rec, seg_t, seg_y)
+                        rec.bound(segs, seg_t, seg_y)
+                    if code == 4 and nsteps < options.max_steps:
+                        continue
+                    all_quiet = None if code in (3, 4) else code == 2
                 else:
                     msg, all_quiet = solver.step(), False
                     nsteps += 1
@@ -304,6 +329,11 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                 if all_quiet:
                     nfev += solver.nfev
                     t, y = solver.t, solver.y.copy()
+                    if options.record:
+                        if seg_t[-1][-1] < t:
+                            seg_t.append(np.array([t]))
+                            seg_y.append(y[:, None])
+                        segs.append(Segment(mname, np.concatenate(seg_t), np.concatenate(seg_y, axis=1)))
                     return finish("t_end")
                 t_old, t_new = solver.t_old, solver.t
                 probe = (active.advance(t_old, t_new, np.asarray(solver.y, dtype=float),
@@ -470,6 +500,48 @@ def _affine_guards(mode) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
         _AFFINE.clear()
     _AFFINE[id(mode)] = (mode, out)
     return out
+
+
+def _guard_kernel(mode, solver, t: float, y: np.ndarray, g0: np.ndarray, atol: float, checked: dict):
+    """The mode's compiled guard vector (``Mode.guard_kernel``) when the solver is the compiled
+    DOP853 with numba's compiler on and the kernel agrees with the Python guards at the mode's
+    first phase start of the run (``g0``, raised to at least ``-atol`` as the engine does there;
+    the verdict is kept in ``checked``), else None (the Python route)."""
+    if mode.guard_kernel is None or not mode.guards:
+        return None
+    from landau.verify.hybrid.callbacks import jit_enabled, warn_once
+    from landau.verify.hybrid.dop853 import DOP853Solver
+
+    if not isinstance(solver, DOP853Solver) or not jit_enabled():
+        return None
+    ok = checked.get(mode.name)
+    if ok is False:
+        return None
+    gk = mode.guard_kernel()
+    if gk is None or ok:
+        return gk
+    out = np.empty(len(mode.guards))
+    gk.fun(float(t), np.ascontiguousarray(y, dtype=float), gk.p, out)
+    out = np.maximum(out, -atol)
+    scale = 1e-7 * (1.0 + np.abs(g0))
+    if not np.all(np.abs(out - g0) <= scale):
+        warn_once(f"guard-kernel:{gk.name}", f"landau: the compiled guards {gk.name!r} differ from the mode's "
+                  f"guards at t = {t:.12g} ({out.tolist()} against {g0.tolist()}): the guards are evaluated "
+                  "in Python")
+        checked[mode.name] = False
+        return None
+    checked[mode.name] = True
+    return gk
+
+
+def _step_record(bufs: dict, n: int):
+    """The record buffer of the compiled loop for states of dimension ``n`` (one per run)."""
+    buf = bufs.get(n)
+    if buf is None:
+        from landau.verify.hybrid.guarded import StepRecord
+
+        buf = bufs[n] = StepRecord(n)
+    return buf
 
 
 def _keeps_current_f(solver) -> bool:

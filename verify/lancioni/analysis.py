@@ -98,7 +98,9 @@ def _return_point(p, mu, s, w0, phi_e, T_guess, rtol=1e-12, law=()):
     3/4 of ``T_guess``), integrated by the compiled DOP853 over the slip mode's kernel
     (:func:`landau.verify.lancioni.kernels.slip_kernel`) with ``solve_ivp``'s event rule: a
     sign change g ≤ 0 ≤ g_new at the step ends, the root by Brent's method on the step's dense
-    output to 4 ulp — the steps of scipy's DOP853, to rounding."""
+    output to 4 ulp — the steps of scipy's DOP853, to rounding.  The steps up to the crossing run
+    in one compiled call (:func:`landau.verify.hybrid.guarded.upcrossing_step`)."""
+    from landau.verify.hybrid.guarded import upcrossing_step
     from landau.verify.lancioni.kernels import slip_kernel
 
     _, args = _slip_args(p, mu, s, *law)
@@ -108,17 +110,13 @@ def _return_point(p, mu, s, w0, phi_e, T_guess, rtol=1e-12, law=()):
 
     def back(t, y):
         return y[0] - phi_e if t > t_mask else -1.0
-    g = back(0.0, solver.y)
-    while solver.status == "running":
-        msg = solver.step()
-        if solver.status == "failed":
-            raise IntegratorError(f"slip ODE at μ={mu}: {msg}", t=solver.t, state=solver.y)
-        g_new = back(solver.t, solver.y)
-        if g <= 0 <= g_new:
-            dense = solver.dense_output()
-            te = brentq(lambda t, d=dense: back(t, d(t)), solver.t_old, solver.t, xtol=eps4, rtol=eps4)
-            return te, dense(te)
-        g = g_new
+    if solver.status == "running" and upcrossing_step(solver, 0, phi_e, t_mask):
+        dense = solver.dense_output()
+        te = brentq(lambda t, d=dense: back(t, d(t)), solver.t_old, solver.t, xtol=eps4, rtol=eps4)
+        return te, dense(te)
+    if solver.status == "failed":
+        raise IntegratorError(f"slip ODE at μ={mu}: compiled DOP853: step size too small", t=solver.t,
+                              state=solver.y)
     raise IntegratorError(f"slip ODE: no return to the section φ = φ_e at μ={mu}")
 
 

@@ -177,6 +177,14 @@ class Lancioni(ContactMechanics):
 
         return mode_kernel_factory(self, mode)
 
+    def guard_kernel(self, mode: str, sections=()):
+        """The compiled guards of ``mode`` (:func:`landau.verify.lancioni.kernels.guard_kernel_factory`),
+        built on first use; None for a belt other than :class:`ConstantBelt` and :class:`SineBelt`
+        or a section without a symbolic form."""
+        from landau.verify.lancioni.kernels import guard_kernel_factory
+
+        return guard_kernel_factory(self, mode, sections)
+
     def gap(self, q):
         return q[1] - self._c[2] * np.cos(q[0])
 
@@ -230,8 +238,16 @@ def _terms(phi, y, w, yd, vdot, c):
 
 
 #: section guards: φ̇ maxima (φ̈ → 0 from above) and upward crossings of φ = 0
-PHIDOT_MAX = Section("phidot-max", lambda t, y, acc: acc[0])
-PHI_ZERO_UP = Section("phi=0 up", lambda t, y, acc: -y[0])
+def _phidot_max(t, y, acc):
+    return acc[0]
+
+
+def _phi_zero_up(t, y, acc):
+    return -y[0]
+
+
+PHIDOT_MAX = Section("phidot-max", _phidot_max, symbolic=_phidot_max)
+PHI_ZERO_UP = Section("phi=0 up", _phi_zero_up, symbolic=_phi_zero_up)
 
 
 def build(mu: float | None = None, eN: float = 0.0, params: Mapping[str, float] | None = None, belt=None,

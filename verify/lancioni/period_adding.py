@@ -80,10 +80,28 @@ def _gT(p, y):
     return p["l"] * np.cos(y[0]) * y[2] - (-1.0)  # γ_T = lφ̇ cos φ − v, belt v = −1
 
 
+@dataclass(frozen=True)
+class _MinusGammaTDot:
+    """−γ̇_T = −(l cos φ φ̈ − l sin φ φ̇²) at (t, y, q̈): numpy arrays, or sympy expressions with
+    ``symbolic`` (compared by value, so the models of one bar share their compiled guards)."""
+
+    l: float
+    symbolic: bool = False
+
+    def __call__(self, t, y, acc):
+        if self.symbolic:
+            import sympy as sp
+
+            cos, sin = sp.cos, sp.sin
+        else:
+            cos, sin = np.cos, np.sin
+        return -(self.l * cos(y[0]) * acc[0] - self.l * sin(y[0]) * y[2] ** 2)
+
+
 def _gT_min_section(p) -> Section:
     """Section at the minima of γ_T (γ̇_T = l cos φ φ̈ − l sin φ φ̇² crossing 0 upwards)."""
-    l = p["l"]
-    return Section("gT-min", lambda t, y, acc: -(l * np.cos(y[0]) * acc[0] - l * np.sin(y[0]) * y[2] ** 2))
+    l = float(p["l"])
+    return Section("gT-min", _MinusGammaTDot(l), symbolic=_MinusGammaTDot(l, True))
 
 
 def _model(mu: float, p, stick_tol: float = 0.0, stick_tol_reset: str = "project"):

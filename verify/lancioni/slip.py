@@ -517,11 +517,29 @@ def slip_hopf(params: Mapping[str, float] | None = None, bracket: tuple[float, f
     Section 3.5.
     """
     par = hopf_parameter(friction, parameter)
+    try:   # one analysis per question in a process (a figure asks for the same point several times)
+        key = (tuple(sorted(resolve(params).items())), None if bracket is None else tuple(map(float, bracket)),
+               int(s), friction, par, v)
+        hit = _HOPF.get(key)
+    except TypeError:   # an unhashable friction object: not remembered
+        key, hit = None, None
+    if hit is not None:
+        return hit
     if bracket is None:
         bracket = hopf_bracket(params, s, friction=friction, parameter=par, v=v)
     if friction is None:
-        return hopf_normal_form(slip_system(s), resolve(params), bracket=bracket)
-    return hopf_normal_form(slip_system(s, friction, par), slip_values(params, s, friction, v), bracket=bracket)
+        out = hopf_normal_form(slip_system(s), resolve(params), bracket=bracket)
+    else:
+        out = hopf_normal_form(slip_system(s, friction, par), slip_values(params, s, friction, v), bracket=bracket)
+    if key is not None:
+        if len(_HOPF) >= 32:
+            _HOPF.pop(next(iter(_HOPF)))
+        _HOPF[key] = out
+    return out
+
+
+#: the slip Hopf points located in this process (:func:`slip_hopf`), by their question
+_HOPF: dict = {}
 
 
 @dataclass(frozen=True)
