@@ -25,7 +25,8 @@ from landau.cli import main
 from landau.errors import InputError
 from landau.laws import get_law
 from landau.verify.springblock.checks import predict
-from landau.verify.springblock.quasidynamic import QuasiDynamicCell, return_map, simulate_quasidynamic
+from landau.verify.springblock.quasidynamic import QuasiDynamicCell, simulate_quasidynamic
+from landau.verify.springblock.quasidynamic_orbits import return_map
 
 BP1 = dict(a=0.010, b=0.015, L=8e-3, sigma=50e6, eta=4.624e6, V_s=1e-6, a_v=0.6, M=0.0)
 LAW = get_law("dieterich")

@@ -180,7 +180,7 @@ def _cycle(model, A: float) -> PeriodicOrbit:
     """The cycle near amplitude A: shooting on the compiled model, or the quasi-dynamic return map at M = 0."""
     if isinstance(model, SpringBlockModel):
         return find_cycle(model, A)
-    from landau.verify.springblock.quasidynamic import find_cycle as find_cycle_qd
+    from landau.verify.springblock.quasidynamic_orbits import find_cycle as find_cycle_qd
 
     return find_cycle_qd(model, A)
 
