@@ -168,3 +168,31 @@ def test_landau_verify_checks_the_quasidynamic_cell(capsys):
 def test_landau_verify_refuses_m0_without_damping(capsys):
     assert main(["verify", "dieterich", "--V", "1e-4", "--param", "M=0"]) == 2
     assert "eta > 0" in capsys.readouterr().err
+
+
+#: a two-state law at M = 0 with radiation damping (no length L: the cell's unit is 1 µm); supercritical
+TWO_STATE = dict(M=0.0, eta=10.0, sigma=11.772)
+
+
+@pytest.mark.slow
+def test_check_finds_the_cycle_of_a_two_state_law_at_m0():
+    """landau.check at M = 0 for `two-state-dieterich` (two states: a section point has two coordinates,
+    Newton shooting on the return map to v = V): the half peak-to-peak slip against C·sqrt(k_c − k) at
+    ε² = 1e-3 and ε²/4, its error falling like ε² (the check's contract), and the two Floquet
+    multipliers: the amplitude mode's gap 1 − |m| against the predicted 2 Re(dλ/dk)(k_c − k)·T, the
+    other strongly contracting (about 20 s)."""
+    from landau import check
+    from landau.analyses import contract
+
+    res = check("two-state-dieterich", 1e-4, 1e-3, TWO_STATE)
+    assert res.verdict == "agrees", res.reason
+    assert res.cycle_stable
+    errs = list(res.scaling.rel_errors)
+    assert abs(errs[0]) < 0.03 and errs[0] / errs[1] == pytest.approx(4.0, rel=0.1)
+    assert abs(res.extrapolated_error) < 2e-3
+    mults = sorted(res.detail["floquet_multipliers"], reverse=True)
+    assert len(mults) == 2 and mults[1] < 1e-2
+    # the measured gap carries the O(ε²) remainder of the amplitude equation (a few % at ε² = 1e-3)
+    for pt in res.detail["points"]:
+        assert pt["multiplier_gap"] == pytest.approx(contract.multiplier_gap(res.prediction, pt["eps2"],
+                                                                             res.prediction.p_c), rel=0.06)

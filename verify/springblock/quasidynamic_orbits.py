@@ -293,14 +293,18 @@ def _crossings(cell: QuasiDynamicCell, y, t: float, count: int, t_end: float, rt
 
 
 def fate(cell: QuasiDynamicCell, z0, low: float, high: float, *, settle_above: float | None = None,
-         chunk: int = 50, max_periods: int = 4000, rtol: float = 1e-8) -> tuple[str, np.ndarray]:
+         chunk: int = 50, max_periods: int = 4000, trend: int | None = 3, rtol: float = 1e-8) -> tuple[str, np.ndarray]:
     """Where the orbit from the point ``z0`` of Σ goes: ('decays' | 'grows' | 'undecided', last point of Σ).
 
     'decays' when a maximum of X falls below ``low`` [m]; 'grows' when one exceeds ``high`` or the
     maxima settle (the last five within 1e-5 of each other) on a cycle larger than ``settle_above``
     (default 1.05 × the start) — the stick–slip attractor may be only a few times larger than the
-    unstable cycle.  Integrated ``chunk`` crossings of Σ at a time, up to ``max_periods`` linear
-    periods in all.
+    unstable cycle.  With ``trend``, also as soon as the maxima after the first crossing fall (decays) or
+    rise (grows) ``trend`` times in a row, each by more than 1e-7 of X: for a one-state law the flow is
+    planar and its return map to Σ a monotone map of one variable, so the maxima move monotonically
+    from the unstable cycle to steady sliding or to the next cycle; with several states the other
+    multipliers are small (the extra states relax within a period) and the same holds after a few
+    crossings.  Integrated ``chunk`` crossings of Σ at a time, up to ``max_periods`` linear periods.
     """
     y = on_section(cell, z0)
     x_ref = settle_above if settle_above is not None else 1.05 * y[0] * cell.ell
@@ -315,6 +319,13 @@ def fate(cell: QuasiDynamicCell, z0, low: float, high: float, *, settle_above: f
                 return "decays", _off_section(row)
             if x > high:
                 return "grows", _off_section(row)
+            if trend and len(xs) > trend + 1:
+                d = np.diff(xs[-trend - 1:])
+                if np.all(np.abs(d) > 1e-7 * abs(x)):
+                    if np.all(d < 0):
+                        return "decays", _off_section(row)
+                    if np.all(d > 0):
+                        return "grows", _off_section(row)
         if len(xs) >= 5 and xs[-1] > x_ref and max(xs[-5:]) - min(xs[-5:]) < 1e-5 * xs[-1]:
             return "grows", _off_section(rows[-1])
         if not len(rows):
