@@ -196,3 +196,46 @@ def test_check_finds_the_cycle_of_a_two_state_law_at_m0():
     for pt in res.detail["points"]:
         assert pt["multiplier_gap"] == pytest.approx(contract.multiplier_gap(res.prediction, pt["eps2"],
                                                                              res.prediction.p_c), rel=0.06)
+
+
+#: a subcritical quasi-dynamic point: the nanoscale law of Putelat et al. (2010), eq. (48), at V = 1e-7 m/s with
+#: weak damping (Λ > 0; the aging and slip laws are supercritical at every η > 0 when M = 0)
+SUB = dict(M=0.0, eta=0.01, sigma=11.772)
+SUB_V = 1e-7
+
+
+def test_bistability_probe_at_m0_decays_below_and_grows_beyond_the_unstable_cycle():
+    """At k = k_c(1 + 1e-3): from the linear mode at half the predicted amplitude the orbit decays to steady
+    sliding, from twice it grows (the return map to v = V moves the maxima of X monotonically away from
+    the unstable cycle)."""
+    from landau.verify.springblock.quasidynamic_orbits import fate, section_point
+
+    law = get_law("nanoscale")
+    pr = predict(law, SUB_V, SUB)
+    assert pr.criticality == "subcritical"
+    k = pr.kc * (1 + 1e-3)
+    A = pr.amplitude(k)
+    cell = QuasiDynamicCell.build(law, SUB_V, k, SUB)
+    below, z_below = fate(cell, section_point(cell, 0.5 * A), 0.2 * A, 6 * A)
+    beyond, z_beyond = fate(cell, section_point(cell, 2.0 * A), 0.2 * A, 6 * A)
+    assert (below, beyond) == ("decays", "grows")
+    assert z_below[0] * cell.ell < 0.5 * A < 2.0 * A < z_beyond[0] * cell.ell
+
+
+@pytest.mark.slow
+def test_landau_verify_shows_bistability_at_a_subcritical_m0_point(capsys):
+    """`landau verify` at a subcritical M = 0 point with the bistability test (no --no-bistability): the
+    unstable cycle by the return map, the threshold between decay and growth bracketed by bisection around
+    it, and the large stick-slip cycle beyond it stable (about 70 s)."""
+    import json
+
+    argv = ["verify", "nanoscale", "--V", str(SUB_V), "--json"] + [f"--param={n}={v}" for n, v in SUB.items()]
+    assert main(argv) == 0
+    pt = json.loads(capsys.readouterr().out)["points"][0]
+    assert pt["verdict"] == "agrees" and pt["bistable"] is True
+    d = pt["detail"]
+    assert abs(pt["rel_error"]) < 1e-3
+    lo, hi = d["bracket_initial_max_slip"]
+    assert lo < d["unstable_cycle"]["max_slip"] < hi and hi / lo < 1.05
+    big = d["large_cycle"]
+    assert big["max_slip"] > 10 * hi and max(big["floquet_multipliers"]) < 1e-3
