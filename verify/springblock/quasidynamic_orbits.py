@@ -106,13 +106,19 @@ class _Field:
     def jac(self, _t, yy):
         return self.cell.jacobian(yy, self.cell.slip_rate(yy, self.last))
 
-    def crossing(self, direction: int, terminal: bool | int):
+    def crossing(self, direction: int, terminal: bool | int) -> "_Crossing":
         """The event w = 0 in ``direction`` (−1: X maximal, +1: X minimal)."""
-        def ev(_t, yy):
-            return self.cell.slip_rate(yy, self.last)
+        return _Crossing(self, direction, terminal)
 
-        ev.direction, ev.terminal = direction, terminal
-        return ev
+
+class _Crossing:
+    """The event w = ln(v/V) = 0 of scipy's ``solve_ivp`` (with ``direction`` and ``terminal``)."""
+
+    def __init__(self, fld: _Field, direction: int, terminal: bool | int):
+        self.fld, self.direction, self.terminal = fld, direction, terminal
+
+    def __call__(self, _t, yy) -> float:
+        return self.fld.cell.slip_rate(yy, self.fld.last)
 
 
 def return_map(cell: QuasiDynamicCell, z, *, rtol: float = 1e-11, periods: float = 50.0):
@@ -201,7 +207,7 @@ def shoot(cell: QuasiDynamicCell, z_guess, *, rtol: float = 1e-11, tol: float = 
     return _describe(cell, fp.z, mults, fp.iterations, fp.residual, rtol)
 
 
-def _describe(cell: QuasiDynamicCell, z: np.ndarray, mults, iterations: int, residual: float,
+def _describe(cell: QuasiDynamicCell, z: np.ndarray, mults, iterations: int, residual: float | None,
               rtol: float) -> PeriodicOrbit:
     """The cycle through the point z of Σ: period, extremes of X and v over one period."""
     try:
