@@ -17,8 +17,12 @@ resolved over the tens of decades a hold spans):
     u' = V(t) − v,    w' = (k u − σ(u) μ − η v) / (M v),    ψᵢ' = rateᵢ / φᵢ,
 
 one constant-velocity piece at a time with scipy's Radau IIA (exact Jacobian from the symbolic
-law), starting from steady sliding at the first velocity (v = V₀, φ = φ_ss(V₀),
-k u = (σ₀ μ_ss + ηV₀)/(1 − γ_LD μ_ss)).  :func:`parse_history` reads the command line's
+law).  At M = 0 with η > 0 (the quasi-dynamic limit, Rice 1993) the momentum equation is the force
+balance k u = σ(u) μ(v, φ) + η v, solved for w at every evaluation
+(:func:`~landau.verify.springblock.forcebalance.solve_log_rate`, as the constant-velocity cell of
+:mod:`landau.verify.springblock.quasidynamic`), and (u, ψ…) are integrated with the Jacobian
+f_y − f_w R_y/R_w of the implicit slip rate.  Every run starts from steady sliding at the first
+velocity (v = V₀, φ = φ_ss(V₀), k u = (σ₀ μ_ss + ηV₀)/(1 − γ_LD μ_ss)).  :func:`parse_history` reads the command line's
 ``"V0@t0,V1@t1,..."``; :func:`simulate_history` returns a
 :class:`~landau.verify.hybrid.result.Simulation` whose series are the load-point velocity ``V``,
 the slip rate ``v``, the friction coefficient ``mu`` = μ(v, φ) and the states, and with ``eta``
@@ -253,7 +257,7 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     Raises
     ------
     InputError
-        A bad history, stiffness or end time; M ≤ 0.
+        A bad history, stiffness or end time; M < 0, or M = 0 without radiation damping η > 0.
     NoSteadySlidingError
         1 − γ_LD μ_ss(Vᵢ) ≤ 0 at a velocity of the history (no steady sliding there).
     IntegratorError
