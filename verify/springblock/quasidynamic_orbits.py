@@ -340,7 +340,7 @@ def fate(cell: QuasiDynamicCell, z0, low: float, high: float, *, settle_above: f
     return "undecided", _off_section(y)
 
 
-def settle(cell: QuasiDynamicCell, z, *, chunk: int = 20, max_chunks: int = 30, rtol: float = 1e-4) -> np.ndarray:
+def settle(cell: QuasiDynamicCell, z, *, chunk: int = 4, max_chunks: int = 100, rtol: float = 1e-4) -> np.ndarray:
     """Follow the orbit from the point ``z`` of Σ until its maximum of X changes by < ``rtol`` (relative)
     over ``chunk`` crossings; the last point of Σ (a start for shooting the attractor)."""
     y = on_section(cell, z)
