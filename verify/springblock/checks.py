@@ -375,12 +375,16 @@ class _Probe:
             return qo.fate(self.model, qo.section_point(self.model, amplitude), low, high, settle_above=settle_above)
         return _fate(self.model, section_point(self.model, amplitude), low, high, settle_above=settle_above)
 
-    def large_cycle(self, row) -> tuple[PeriodicOrbit | None, str, float]:
-        """(the attractor by shooting or None, the error, the last max slip [m]) after settling from ``row``."""
+    def large_cycle(self, row, above: float) -> tuple[PeriodicOrbit | None, str, float]:
+        """(the attractor by shooting or None, the error, the last max slip [m]) after settling from ``row``
+        (at M = 0 on a cycle larger than ``above`` [m])."""
         if self.qd:
             from landau.verify.springblock import quasidynamic_orbits as qo
 
-            z = qo.settle(self.model, row)
+            try:
+                z = qo.settle(self.model, row, above)
+            except ShootingError as exc:
+                return None, str(exc), float(row[0] * self.model.ell)
             last = float(z[0] * self.model.ell)
             try:
                 return qo.shoot(self.model, z, rtol=1e-10, tol=1e-9), "", last
@@ -436,7 +440,7 @@ def _bistability(model, A: float, bisections: int, detail: dict, a_ref: float | 
     if fate != "grows":
         detail["large_cycle"] = {"error": f"trajectory from 1.5x the threshold {fate}"}
         return None, (float(lo), float(hi))
-    big, error, last = probe.large_cycle(row)
+    big, error, last = probe.large_cycle(row, sa)
     if big is not None:
         detail["large_cycle"] = {"max_slip": big.amplitude, "v_min": big.v_min, "v_max": big.v_max,
                                  "period_s": big.period, "floquet_multipliers": [abs(m) for m in big.multipliers]}

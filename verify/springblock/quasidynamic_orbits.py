@@ -340,20 +340,24 @@ def fate(cell: QuasiDynamicCell, z0, low: float, high: float, *, settle_above: f
     return "undecided", _off_section(y)
 
 
-def settle(cell: QuasiDynamicCell, z, *, chunk: int = 4, max_chunks: int = 100, rtol: float = 1e-4) -> np.ndarray:
-    """Follow the orbit from the point ``z`` of Σ until its maximum of X changes by < ``rtol`` (relative)
-    over ``chunk`` crossings; the last point of Σ (a start for shooting the attractor)."""
-    y = on_section(cell, z)
-    for _ in range(max_chunks):
-        rows, _ = _crossings(cell, y, 0.0, chunk, 1e9 * linear_period(cell), 1e-8)
-        if not len(rows):
-            raise IntegratorError("quasi-dynamic cell (M = 0): the orbit left the section", t=float("nan"),
-                                  state=list(y))
-        done = abs(rows[-1][0] - y[0]) <= rtol * abs(rows[-1][0])
-        y = rows[-1]
-        if done:
-            break
-    return _off_section(y)
+def settle(cell: QuasiDynamicCell, z, above: float, *, chunk: int = 5, max_periods: int = 4000) -> np.ndarray:
+    """Follow the orbit from the point ``z`` of Σ until its maxima of X settle (the last five within 1e-5)
+    on a cycle larger than ``above`` [m]; the last point of Σ (a start for shooting that attractor).
+
+    Without the trend rule of :func:`fate`: near the unstable cycle the maxima move slowly, and only
+    their settling far from it shows the attractor.
+
+    Raises
+    ------
+    ShootingError
+        The orbit did not settle above ``above`` within ``max_periods`` linear periods.
+    """
+    outcome, z = fate(cell, z, -math.inf, math.inf, settle_above=above, chunk=chunk, max_periods=max_periods,
+                      trend=None)
+    if outcome != "grows":
+        raise ShootingError(f"the orbit did not settle on a cycle larger than X = {above:.3g} m within "
+                            f"{max_periods} periods")
+    return z
 
 
 __all__ = ["find_cycle", "fate", "on_section", "return_map", "section_point", "settle", "shoot"]
