@@ -25,7 +25,8 @@ from landau.cli import main
 from landau.errors import InputError
 from landau.laws import get_law
 from landau.verify.springblock.checks import predict
-from landau.verify.springblock.quasidynamic import QuasiDynamicCell, return_map, simulate_quasidynamic
+from landau.verify.springblock.quasidynamic import QuasiDynamicCell, simulate_quasidynamic
+from landau.verify.springblock.quasidynamic_orbits import return_map
 
 BP1 = dict(a=0.010, b=0.015, L=8e-3, sigma=50e6, eta=4.624e6, V_s=1e-6, a_v=0.6, M=0.0)
 LAW = get_law("dieterich")
@@ -167,3 +168,74 @@ def test_landau_verify_checks_the_quasidynamic_cell(capsys):
 def test_landau_verify_refuses_m0_without_damping(capsys):
     assert main(["verify", "dieterich", "--V", "1e-4", "--param", "M=0"]) == 2
     assert "eta > 0" in capsys.readouterr().err
+
+
+#: a two-state law at M = 0 with radiation damping (no length L: the cell's unit is 1 µm); supercritical
+TWO_STATE = dict(M=0.0, eta=10.0, sigma=11.772)
+
+
+@pytest.mark.slow
+def test_check_finds_the_cycle_of_a_two_state_law_at_m0():
+    """landau.check at M = 0 for `two-state-dieterich` (two states: a section point has two coordinates,
+    Newton shooting on the return map to v = V): the half peak-to-peak slip against C·sqrt(k_c − k) at
+    ε² = 1e-3 and ε²/4, its error falling like ε² (the check's contract), and the two Floquet
+    multipliers: the amplitude mode's gap 1 − |m| against the predicted 2 Re(dλ/dk)(k_c − k)·T, the
+    other strongly contracting (about 20 s)."""
+    from landau import check
+    from landau.analyses import contract
+
+    res = check("two-state-dieterich", 1e-4, 1e-3, TWO_STATE)
+    assert res.verdict == "agrees", res.reason
+    assert res.cycle_stable
+    errs = list(res.scaling.rel_errors)
+    assert abs(errs[0]) < 0.03 and errs[0] / errs[1] == pytest.approx(4.0, rel=0.1)
+    assert abs(res.extrapolated_error) < 2e-3
+    mults = sorted(res.detail["floquet_multipliers"], reverse=True)
+    assert len(mults) == 2 and mults[1] < 1e-2
+    # the measured gap carries the O(ε²) remainder of the amplitude equation (a few % at ε² = 1e-3)
+    for pt in res.detail["points"]:
+        assert pt["multiplier_gap"] == pytest.approx(contract.multiplier_gap(res.prediction, pt["eps2"],
+                                                                             res.prediction.p_c), rel=0.06)
+
+
+#: a subcritical quasi-dynamic point: the nanoscale law of Putelat et al. (2010), eq. (48), at V = 1e-7 m/s with
+#: weak damping (Λ > 0; the aging and slip laws are supercritical at every η > 0 when M = 0)
+SUB = dict(M=0.0, eta=0.01, sigma=11.772)
+SUB_V = 1e-7
+
+
+def test_bistability_probe_at_m0_decays_below_and_grows_beyond_the_unstable_cycle():
+    """At k = k_c(1 + 1e-3): from the linear mode at half the predicted amplitude the orbit decays to steady
+    sliding, from twice it grows (the return map to v = V moves the maxima of X monotonically away from
+    the unstable cycle)."""
+    from landau.verify.springblock.quasidynamic_orbits import fate, section_point
+
+    law = get_law("nanoscale")
+    pr = predict(law, SUB_V, SUB)
+    assert pr.criticality == "subcritical"
+    k = pr.kc * (1 + 1e-3)
+    A = pr.amplitude(k)
+    cell = QuasiDynamicCell.build(law, SUB_V, k, SUB)
+    below, z_below = fate(cell, section_point(cell, 0.5 * A), 0.2 * A, 6 * A)
+    beyond, z_beyond = fate(cell, section_point(cell, 2.0 * A), 0.2 * A, 6 * A)
+    assert (below, beyond) == ("decays", "grows")
+    assert z_below[0] * cell.ell < 0.5 * A < 2.0 * A < z_beyond[0] * cell.ell
+
+
+@pytest.mark.slow
+def test_landau_verify_shows_bistability_at_a_subcritical_m0_point(capsys):
+    """`landau verify` at a subcritical M = 0 point with the bistability test (no --no-bistability): the
+    unstable cycle by the return map, the threshold between decay and growth bracketed by bisection around
+    it, and the large stick-slip cycle beyond it stable (about 70 s)."""
+    import json
+
+    argv = ["verify", "nanoscale", "--V", str(SUB_V), "--json"] + [f"--param={n}={v}" for n, v in SUB.items()]
+    assert main(argv) == 0
+    pt = json.loads(capsys.readouterr().out)["points"][0]
+    assert pt["verdict"] == "agrees" and pt["bistable"] is True
+    d = pt["detail"]
+    assert abs(pt["rel_error"]) < 1e-3
+    lo, hi = d["bracket_initial_max_slip"]
+    assert lo < d["unstable_cycle"]["max_slip"] < hi and hi / lo < 1.05
+    big = d["large_cycle"]
+    assert big["max_slip"] > 10 * hi and max(big["floquet_multipliers"]) < 1e-3

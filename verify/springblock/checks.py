@@ -180,7 +180,7 @@ def _cycle(model, A: float) -> PeriodicOrbit:
     """The cycle near amplitude A: shooting on the compiled model, or the quasi-dynamic return map at M = 0."""
     if isinstance(model, SpringBlockModel):
         return find_cycle(model, A)
-    from landau.verify.springblock.quasidynamic import find_cycle as find_cycle_qd
+    from landau.verify.springblock.quasidynamic_orbits import find_cycle as find_cycle_qd
 
     return find_cycle_qd(model, A)
 
@@ -320,9 +320,6 @@ def subcritical_check(law: FrictionLaw, V: float, eps2: float, params: Mapping[s
     """
     pr, k, model, A = _check_point(law, V, eps2, params, prediction, Criticality.SUBCRITICAL)
     quasidynamic = not isinstance(model, SpringBlockModel)
-    if quasidynamic and test_bistability:
-        raise InputError("the quasi-dynamic cell (M = 0) is checked without the bistability test: "
-                         "pass bistability=False (--no-bistability) to shoot its unstable cycle")
     detail: dict = {}
     unstable = None
     try:
@@ -362,27 +359,67 @@ def subcritical_check(law: FrictionLaw, V: float, eps2: float, params: Mapping[s
                       _rel(unstable.frequency, pr.frequency(k)) if unstable else None, bistable, agrees, detail)
 
 
-def _bistability(model: SpringBlockModel, A: float, bisections: int, detail: dict, a_ref: float | None = None):
+class _Probe:
+    """The bistability probe's integrations: the compiled block with mass, or the quasi-dynamic cell (M = 0,
+    :mod:`landau.verify.springblock.quasidynamic_orbits`) — the same procedure on either."""
+
+    def __init__(self, model):
+        self.model = model
+        self.qd = not isinstance(model, SpringBlockModel)
+
+    def fate(self, amplitude: float, low: float, high: float, settle_above: float):
+        """(fate, last point) of the orbit from the linear mode at max X = ``amplitude`` [m] (see _fate)."""
+        if self.qd:
+            from landau.verify.springblock import quasidynamic_orbits as qo
+
+            return qo.fate(self.model, qo.section_point(self.model, amplitude), low, high, settle_above=settle_above)
+        return _fate(self.model, section_point(self.model, amplitude), low, high, settle_above=settle_above)
+
+    def large_cycle(self, row, above: float) -> tuple[PeriodicOrbit | None, str, float]:
+        """(the attractor by shooting or None, the error, the last max slip [m]) after settling from ``row``
+        (at M = 0 on a cycle larger than ``above`` [m])."""
+        if self.qd:
+            from landau.verify.springblock import quasidynamic_orbits as qo
+
+            try:
+                z = qo.settle(self.model, row, above)
+            except ShootingError as exc:
+                return None, str(exc), float(row[0] * self.model.ell)
+            last = float(z[0] * self.model.ell)
+            try:
+                return qo.shoot(self.model, z, rtol=1e-10, tol=1e-9), "", last
+            except ShootingError as exc:
+                return None, str(exc), last
+        y = settle(self.model, row)
+        last = float(y[0] * self.model.ell)
+        try:
+            return shoot(self.model, np.delete(y, W_INDEX), rtol=1e-10, tol=1e-9), "", last
+        except ShootingError as exc:
+            return None, str(exc), last
+
+
+def _bistability(model, A: float, bisections: int, detail: dict, a_ref: float | None = None):
     """(bistable, bracket of the initial max slip separating decay from growth) — see subcritical_check.
 
     ``detail["large_cycle"]`` describes the attractor beyond the unstable cycle: the large
     relaxation cycle a trajectory started past the threshold settles on (the block slows to
     ``v_min`` > 0 but, in this smooth model, never sticks).
     """
+    probe = _Probe(model)
     lo, hi = 0.5 * A, 2.0 * A
     # a trajectory that settles on a cycle 20 % above the unstable one has reached the other attractor
     sa = 1.2 * (a_ref if a_ref is not None else A)
-    f_lo, _ = _fate(model, section_point(model, lo), 0.4 * lo, 3.0 * hi, settle_above=sa)
-    f_hi, _ = _fate(model, section_point(model, hi), 0.2 * hi, 3.0 * hi, settle_above=sa)
+    f_lo, _ = probe.fate(lo, 0.4 * lo, 3.0 * hi, sa)
+    f_hi, _ = probe.fate(hi, 0.2 * hi, 3.0 * hi, sa)
     detail.update(fate_half_prediction=f_lo, fate_twice_prediction=f_hi)
     # widen the search when the threshold lies outside [A/2, 2A] (outside the weakly nonlinear range)
     for _ in range(3):
         if f_hi == "decays":
             lo, f_lo, hi = hi, f_hi, 2 * hi
-            f_hi, _ = _fate(model, section_point(model, hi), 0.2 * hi, 3.0 * hi, settle_above=sa)
+            f_hi, _ = probe.fate(hi, 0.2 * hi, 3.0 * hi, sa)
         elif f_lo == "grows":
             hi, f_hi, lo = lo, f_lo, lo / 2
-            f_lo, _ = _fate(model, section_point(model, lo), 0.4 * lo, 3.0 * hi, settle_above=sa)
+            f_lo, _ = probe.fate(lo, 0.4 * lo, 3.0 * hi, sa)
         else:
             break
     if not (f_lo == "decays" and f_hi == "grows"):
@@ -391,7 +428,7 @@ def _bistability(model: SpringBlockModel, A: float, bisections: int, detail: dic
     low, high = 0.4 * lo, 3.0 * hi
     for _ in range(bisections):
         mid = np.sqrt(lo * hi)
-        f, _ = _fate(model, section_point(model, mid), low, high, settle_above=sa)
+        f, _ = probe.fate(mid, low, high, sa)
         if f == "decays":
             lo = mid
         elif f == "grows":
@@ -399,19 +436,18 @@ def _bistability(model: SpringBlockModel, A: float, bisections: int, detail: dic
         else:
             break
     # the large attractor: follow a trajectory started beyond the threshold until it settles, then shoot
-    fate, row = _fate(model, section_point(model, 1.5 * hi), low, high, settle_above=sa)
+    fate, row = probe.fate(1.5 * hi, low, high, sa)
     if fate != "grows":
         detail["large_cycle"] = {"error": f"trajectory from 1.5x the threshold {fate}"}
         return None, (float(lo), float(hi))
-    y = settle(model, row)
-    try:
-        big = shoot(model, np.delete(y, W_INDEX), rtol=1e-10, tol=1e-9)
+    big, error, last = probe.large_cycle(row, sa)
+    if big is not None:
         detail["large_cycle"] = {"max_slip": big.amplitude, "v_min": big.v_min, "v_max": big.v_max,
-                                      "period_s": big.period, "floquet_multipliers": [abs(m) for m in big.multipliers]}
+                                 "period_s": big.period, "floquet_multipliers": [abs(m) for m in big.multipliers]}
         bistable = bool(big.stable and big.amplitude > sa)
-    except ShootingError as exc:
-        detail["large_cycle"] = {"error": str(exc), "last_max_slip": float(y[0] * model.ell)}
-        bistable = bool(y[0] * model.ell > sa)
+    else:
+        detail["large_cycle"] = {"error": error, "last_max_slip": last}
+        bistable = bool(last > sa)
     return bistable, (float(lo), float(hi))
 
 

@@ -17,8 +17,12 @@ resolved over the tens of decades a hold spans):
     u' = V(t) − v,    w' = (k u − σ(u) μ − η v) / (M v),    ψᵢ' = rateᵢ / φᵢ,
 
 one constant-velocity piece at a time with scipy's Radau IIA (exact Jacobian from the symbolic
-law), starting from steady sliding at the first velocity (v = V₀, φ = φ_ss(V₀),
-k u = (σ₀ μ_ss + ηV₀)/(1 − γ_LD μ_ss)).  :func:`parse_history` reads the command line's
+law).  At M = 0 with η > 0 (the quasi-dynamic limit, Rice 1993) the momentum equation is the force
+balance k u = σ(u) μ(v, φ) + η v, solved for w at every evaluation
+(:func:`~landau.verify.springblock.forcebalance.solve_log_rate`, as the constant-velocity cell of
+:mod:`landau.verify.springblock.quasidynamic`), and (u, ψ…) are integrated with the Jacobian
+f_y − f_w R_y/R_w of the implicit slip rate.  Every run starts from steady sliding at the first
+velocity (v = V₀, φ = φ_ss(V₀), k u = (σ₀ μ_ss + ηV₀)/(1 − γ_LD μ_ss)).  :func:`parse_history` reads the command line's
 ``"V0@t0,V1@t1,..."``; :func:`simulate_history` returns a
 :class:`~landau.verify.hybrid.result.Simulation` whose series are the load-point velocity ``V``,
 the slip rate ``v``, the friction coefficient ``mu`` = μ(v, φ) and the states, and with ``eta``
@@ -120,6 +124,8 @@ def _field(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str,
 
     mu = tidy(law.mu)
     M, sigma0 = float(p["M"]), float(p["sigma"])
+    if M == 0:       # quasi-dynamic: the field is _field_m0's
+        return None, None, sp.lambdify([[u, w, *psi]], mu, "numpy")
     eta = float(p.get("eta", 0.0)) if "eta" in terms else 0.0
     gam = float(p.get("gamma_ld", 0.0)) if "gamma_ld" in terms else 0.0
     sigma = sigma0 + gam * k * u                     # the normal load follows the spring force
@@ -135,6 +141,85 @@ def _field(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str,
     jn = sp.lambdify([ys, Vlp], J, "numpy")
     mun = sp.lambdify([ys], mu, "numpy")
     return fn, jn, mun
+
+
+def _field_m0(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str, ...]):
+    """The quasi-dynamic history (M = 0): the force residual R(w, u, ψ…) ÷ σ₀ with R_w and R_y, and the
+    field (u', ψ'…) with its derivatives in w and y = (u, ψ…), compiled by lambdify (w = ln v)."""
+    ns = len(law.states)
+    u, w = sp.symbols("u_ w_", real=True)
+    psi = sp.symbols(f"psi_0:{ns}", real=True)
+    Vlp = sp.Symbol("V_lp_", real=True)
+    vals = {prm.symbol: p[prm.name] for prm in law.parameters}
+    sub = {v_slip: sp.exp(w), **{s: sp.exp(q) for s, q in zip(law.states, psi, strict=True)}}
+
+    def tidy(e):
+        return sp.expand_log(e.subs(vals).xreplace(sub), force=True)
+
+    sigma0 = float(p["sigma"])
+    eta = float(p["eta"])
+    gam = float(p.get("gamma_ld", 0.0)) if "gamma_ld" in terms else 0.0
+    sigma = sigma0 + gam * k * u
+    R = (k * u - sigma * tidy(law.mu) - eta * sp.exp(w)) / sigma0
+    rates = [tidy(r) for r in law.rates]
+    if "alpha_ld" in terms and gam != 0:
+        sig_dot = gam * k * (Vlp - sp.exp(w))
+        rates[0] = rates[0] - float(p["alpha_ld"]) * sig_dot / (sigma * tidy(sp.diff(law.mu, law.states[0])))
+    f = [Vlp - sp.exp(w)] + [sp.expand(r * sp.exp(-q)) for r, q in zip(rates, psi, strict=True)]
+    ys = [u, *psi]
+    res = sp.lambdify([w, *ys], (R, sp.diff(R, w), [sp.diff(R, q) for q in ys]), "math")
+    fld = sp.lambdify([w, *ys, Vlp], (f, [sp.diff(e, w) for e in f], [[sp.diff(e, q) for q in ys] for e in f]),
+                      "math")
+    return res, fld
+
+
+def _pieces_m0(law, p, k, terms, h: LoadHistory, y, T, ends, t_end, rtol, scale):
+    """Integrate the history at M = 0 piece by piece: the slip rate from the force balance at every
+    evaluation (:func:`~landau.verify.springblock.forcebalance.solve_log_rate`), (u, ψ…) by Radau IIA
+    with the implicit-function Jacobian f_y − f_w R_y/R_w.  Returns the pieces' (t, Y, V) in (u, w, ψ…)."""
+    from scipy.integrate import solve_ivp
+
+    from landau.verify.springblock.forcebalance import solve_log_rate
+
+    res, fld = _field_m0(law, p, k, terms)
+    centre = float(y[1])
+    last = [centre]
+
+    def rate(yy):
+        last[0] = solve_log_rate(res, yy, last[0], centre)
+        return last[0]
+
+    def f(_t, yy, V):
+        return np.asarray(fld(rate(yy), *yy, V)[0], float)
+
+    def jac(_t, yy, V):
+        w = rate(yy)
+        _, Rw, Ry = res(w, *yy)
+        _, fw, fy = fld(w, *yy, V)
+        return np.asarray(fy, float) - np.outer(np.asarray(fw, float), np.asarray(Ry, float)) / Rw
+
+    z = np.r_[y[0], y[2:]]
+    zscale = np.r_[scale[0], scale[2:]]
+    out, nsteps, nfev = [], 0, 0
+    for V, a, b in zip(h.velocities, T, ends, strict=True):
+        if a >= t_end:
+            break
+        b = min(b, t_end)
+        try:
+            sol = solve_ivp(f, (a, b), z, method="Radau", rtol=rtol, atol=rtol * zscale, jac=jac, args=(V,))
+        except IntegratorError as exc:
+            raise IntegratorError(f"load-point history (M = 0), piece V = {V:g} m/s from t = {a:g} s: {exc}",
+                                  t=a, state=list(z)) from exc
+        if not sol.success or not np.all(np.isfinite(sol.y[:, -1])):
+            raise IntegratorError(f"load-point history (M = 0), piece V = {V:g} m/s from t = {a:g} s: "
+                                  f"{sol.message}", t=float(sol.t[-1]), state=sol.y[:, -1])
+        W = np.array([solve_log_rate(res, q, centre, centre) for q in sol.y[:, 1:].T])
+        Y = np.vstack([sol.y[0, 1:], W, sol.y[1:, 1:]])
+        out.append((sol.t[1:], Y, np.full(len(sol.t) - 1, V)))
+        nsteps += len(sol.t) - 1
+        nfev += int(sol.nfev)
+        z = sol.y[:, -1]
+    return out, nsteps, nfev
 
 
 def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
@@ -172,7 +257,7 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     Raises
     ------
     InputError
-        A bad history, stiffness or end time; M ≤ 0.
+        A bad history, stiffness or end time; M < 0, or M = 0 without radiation damping η > 0.
     NoSteadySlidingError
         1 − γ_LD μ_ss(Vᵢ) ≤ 0 at a velocity of the history (no steady sliding there).
     IntegratorError
@@ -194,8 +279,11 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     block = SpringBlock.for_params(law, params)      # with the optional terms given (eta, gamma_ld, alpha_ld)
     p = block.resolve(params)
     terms = block.terms
-    if not p["M"] > 0:
-        raise InputError("a load-point history is simulated with a block mass M > 0")
+    quasidynamic = p["M"] == 0
+    if not (p["M"] > 0 or (quasidynamic and p.get("eta", 0.0) > 0)):
+        raise InputError("a load-point history is simulated with a block mass M > 0, or at M = 0 with radiation "
+                         f"damping eta > 0 (the quasi-dynamic limit); got M = {p['M']!r}, "
+                         f"eta = {p.get('eta', 0.0)!r}")
     T = list(h.times)
     if t_end is None:
         longest = max([b - a for a, b in zip(T, T[1:], strict=False)] or [100 * p.get("L", 1e-6) / h.velocities[0]])
@@ -217,8 +305,14 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     ts, ys, vs = [np.array([T[0]])], [y[:, None]], [np.array([h.velocities[0]])]
     ends = T[1:] + [t_end]
     nsteps = nfev = 0
+    if quasidynamic:
+        pieces, nsteps, nfev = _pieces_m0(law, p, k, terms, h, y, T, ends, t_end, rtol, scale)
+        for tt, Y, Vl in pieces:
+            ts.append(tt)
+            ys.append(Y)
+            vs.append(Vl)
     for V, a, b in zip(h.velocities, T, ends, strict=True):
-        if a >= t_end:
+        if quasidynamic or a >= t_end:
             break
         b = min(b, t_end)
         sol = solve_ivp(lambda t, yy, V=V: fn(yy, V), (a, b), y, method="Radau", rtol=rtol, atol=rtol * scale,

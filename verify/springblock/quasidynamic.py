@@ -19,8 +19,8 @@ dw/dy = −R_y/R_w of the force residual R joins the partial derivatives).  This
 QDYN and of the SEAS benchmark BP1 (Erickson et al. 2020).
 
 :func:`simulate_quasidynamic` returns a :class:`~landau.verify.hybrid.result.Simulation` with
-the series X [m], v [m/s], μ and the states; :func:`return_map` is the first return to the
-section w = 0 (v = V, X maximal), for a one-state law's periodic orbit by a scalar root search.
+the series X [m], v [m/s], μ and the states; the cell's periodic orbits (the first return to the
+section v = V) and the bistability probe are in :mod:`landau.verify.springblock.quasidynamic_orbits`.
 
 References
 ----------
@@ -43,9 +43,7 @@ from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
 from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.result import Simulation, Status
-
-#: bound on |w| = |ln(v/V)| of the slip-rate root (v between V e^-600 and V e^600)
-W_BOUND = 600.0
+from landau.verify.springblock.forcebalance import W_BOUND, solve_log_rate
 
 
 @dataclass(frozen=True)
@@ -116,36 +114,9 @@ class QuasiDynamicCell:
         return self.ell / self.V
 
     def slip_rate(self, y, w0: float = 0.0) -> float:
-        """w = ln(v/V) solving the force balance at the scaled state y = (ξ, ψ…) (safeguarded Newton)."""
-        fn = self._fn
-        y = [float(q) for q in y]
-        lo, hi = -W_BOUND, W_BOUND
-        w = min(max(float(w0), lo), hi)
-        for _ in range(200):
-            R, Rw = fn(w, *y)[:2]
-            if not (math.isfinite(R) and math.isfinite(Rw)):
-                hi = w            # overflow lies above the root (R decreases in w)
-                w = 0.5 * (lo + hi)
-                continue
-            if R > 0:
-                lo = w
-            else:
-                hi = w
-            if Rw >= 0:
-                raise IntegratorError("quasi-dynamic force balance: the friction force decreases with the slip "
-                                      "rate faster than eta*v grows (no unique slip rate)", t=float("nan"),
-                                      state=list(y))
-            step = -R / Rw
-            if abs(step) <= 1e-8:      # quadratic convergence: this step leaves an error ~ step² (round-off)
-                return w + step
-            wn = w + max(-4.0, min(4.0, step))
-            if not (lo < wn < hi):
-                wn = 0.5 * (lo + hi)
-            w = wn
-        if hi - lo < 1e-9:
-            return w
-        raise IntegratorError("quasi-dynamic force balance: no slip rate found (the state left the range "
-                              f"V e^-{W_BOUND:g} < v < V e^{W_BOUND:g})", t=float("nan"), state=list(y))
+        """w = ln(v/V) solving the force balance at the scaled state y = (ξ, ψ…) (safeguarded Newton,
+        :func:`~landau.verify.springblock.forcebalance.solve_log_rate`)."""
+        return solve_log_rate(self._fn, y, w0)
 
     def rhs(self, y, w0: float = 0.0) -> tuple[np.ndarray, float]:
         """(dy/dτ, w) at the scaled state ``y``."""
@@ -338,138 +309,4 @@ def _physical(cell: QuasiDynamicCell, t, Y, W) -> np.ndarray:
     return np.vstack([X, v, mu, *phis])
 
 
-def return_map(cell: QuasiDynamicCell, xi: float, *, rtol: float = 1e-11, periods: float = 50.0):
-    """First return to the section w = 0 with w decreasing (v = V, X maximal) of a one-state law.
-
-    Parameters
-    ----------
-    cell : QuasiDynamicCell
-        A cell whose law has one state (the section is then a curve, parametrised by ξ).
-    xi : float
-        ξ = X/ℓ on the section (the state ψ follows from w = 0).
-    rtol : float
-        Tolerance of the Radau IIA.
-    periods : float
-        Bound on the return time, in linear periods.
-
-    Returns
-    -------
-    (float, float, float)
-        ξ at the return, the return time [s] and the smallest ξ on the way (at v = V, v rising).
-    """
-    from scipy.integrate import solve_ivp
-
-    if len(cell.law.states) != 1:
-        raise InputError("return_map: a law with one state (the section is a curve in xi)")
-    lam, _ = cell.critical_mode()
-    T = 2 * math.pi / abs(lam.imag) if lam.imag else 1e3
-    psi = _psi_on_section(cell, xi)
-    last = [0.0]
-
-    def f(_t, yy):
-        out, last[0] = cell.rhs(yy, last[0])
-        return out
-
-    def jac(_t, yy):
-        return cell.jacobian(yy, cell.slip_rate(yy, last[0]))
-
-    # leave the section first (a quarter period without events), then stop at the next downward crossing
-    first = solve_ivp(f, (0.0, 0.25 * T), [xi, psi], method="Radau", rtol=rtol, atol=rtol, jac=jac)
-    ev, up = _Crossing(cell, last, -1, True), _Crossing(cell, last, 1, False)
-    sol = solve_ivp(f, (0.25 * T, periods * T), first.y[:, -1], method="Radau", rtol=rtol, atol=rtol, jac=jac,
-                    events=[ev, up])
-    if not (first.success and sol.success) or not sol.t_events[0].size:
-        raise IntegratorError(f"no return to the section v = V within {periods:g} periods",
-                              t=float(sol.t[-1] * cell.time_unit), state=list(sol.y[:, -1]))
-    x_min = min([float(q[0]) for q in sol.y_events[1]] or [float(xi)])
-    return float(sol.y_events[0][0][0]), float(sol.t_events[0][0] * cell.time_unit), x_min
-
-
-def find_cycle(cell: QuasiDynamicCell, amplitude_guess: float, *, rtol: float = 1e-11):
-    """The periodic orbit of a one-state law's quasi-dynamic cell near X = ``amplitude_guess`` [m].
-
-    The fixed point of the return map to v = V (X maximal) by Brent's method on P(ξ) − ξ over a
-    bracket grown from [0.7, 1.4]·guess (stable and unstable cycles alike); its Floquet multiplier
-    is the central difference of P.
-
-    Parameters
-    ----------
-    cell : QuasiDynamicCell
-    amplitude_guess : float
-        The predicted largest slip X of the cycle [m] (e.g. C·sqrt|k − k_c|).
-    rtol : float
-        Tolerance of the Radau IIA.
-
-    Returns
-    -------
-    PeriodicOrbit
-        As the compiled route's (:class:`landau.verify.springblock.orbits.PeriodicOrbit`), with one
-        multiplier.
-
-    Raises
-    ------
-    ShootingError
-        No sign change of P(ξ) − ξ, or the orbit does not return.
-    """
-    from scipy.optimize import brentq
-
-    from landau.verify.springblock.orbits import PeriodicOrbit, ShootingError
-
-    def g(z):
-        try:
-            return return_map(cell, z, rtol=rtol)[0] - z
-        except (IntegratorError, InputError) as exc:
-            raise ShootingError(f"quasi-dynamic return map at X = {z * cell.ell:.6g} m: {exc}") from exc
-
-    x0 = amplitude_guess / cell.ell
-    lo, hi = 0.7 * x0, 1.4 * x0
-    glo, ghi = g(lo), g(hi)
-    for _ in range(6):
-        if glo * ghi < 0:
-            break
-        if abs(glo) < abs(ghi):
-            lo, hi, ghi = 0.6 * lo, lo, glo
-            glo = g(lo)
-        else:
-            lo, hi, glo = hi, 1.6 * hi, ghi
-            ghi = g(hi)
-    if not glo * ghi < 0:
-        raise ShootingError(f"no cycle of the quasi-dynamic cell between X = {lo * cell.ell:.3g} and "
-                            f"{hi * cell.ell:.3g} m (the return map has no fixed point there)")
-    z = brentq(g, lo, hi, xtol=1e-13 * x0, rtol=1e-14)
-    x_ret, T, z_min = return_map(cell, z, rtol=rtol)
-    h = 1e-4 * z
-    mult = (return_map(cell, z + h, rtol=rtol)[0] - return_map(cell, z - h, rtol=rtol)[0]) / (2 * h)
-    psi = _psi_on_section(cell, z)
-    run = simulate_quasidynamic(cell.law, cell.V, cell.k, cell, T, np.array([z, psi]), rtol=rtol)
-    v = run.y[1]
-    return PeriodicOrbit(cell.V, cell.k, T, z * cell.ell, z_min * cell.ell, float(v.max()), float(v.min()),
-                         (complex(mult),), 0, float(abs(x_ret - z)), np.array([z]))
-
-
-class _Crossing:
-    """The event w = ln(v/V) = 0 of scipy's ``solve_ivp`` (``direction``, ``terminal``)."""
-
-    def __init__(self, cell: QuasiDynamicCell, last: list, direction: int, terminal: bool):
-        self.cell, self.last, self.direction, self.terminal = cell, last, direction, terminal
-
-    def __call__(self, _t, yy) -> float:
-        return self.cell.slip_rate(yy, self.last[0])
-
-
-def _psi_on_section(cell: QuasiDynamicCell, xi: float) -> float:
-    """ψ with w(ξ, ψ) = 0 (v = V) for a one-state law: the root of the force residual at w = 0."""
-    from scipy.optimize import brentq
-
-    def R(psi):
-        return cell._fn(0.0, float(xi), float(psi))[0]
-
-    lo, hi = -1.0, 1.0
-    for _ in range(60):
-        if R(lo) * R(hi) < 0:
-            return float(brentq(R, lo, hi, xtol=1e-15, rtol=1e-15))
-        lo, hi = 2 * lo, 2 * hi
-    raise InputError(f"no state on the section v = V at X = {xi * cell.ell:g} m")
-
-
-__all__ = ["QuasiDynamicCell", "find_cycle", "return_map", "simulate_quasidynamic"]
+__all__ = ["W_BOUND", "QuasiDynamicCell", "simulate_quasidynamic"]
