@@ -127,6 +127,11 @@ def split_coefficients(A):
 #: A⁻¹ = T·diag(γ, [[α, −β], [β, α]])·T⁻¹, computed from :data:`A_RADAU` (:func:`split_coefficients`)
 T_SPLIT, TI_SPLIT, GAMMA_SPLIT, ALPHA_SPLIT, BETA_SPLIT = split_coefficients(A_RADAU)
 
+#: T and T⁻¹ as tuples of rows: the loop reads them as constants (an element of a constant array
+#: costs numba an indexing operation to type and lower at the first build)
+_T_ROWS = tuple(tuple(float(v) for v in row) for row in T_SPLIT)
+_TI_ROWS = tuple(tuple(float(v) for v in row) for row in TI_SPLIT)
+
 #: the decorator of the loop's private helpers: they are compiled as part of the loop and only
 #: called from compiled code, so they get no Python entry point, no C wrapper and no disk-cache
 #: entry of their own (the loop's entry holds their machine code), which shortens the first build
@@ -341,8 +346,8 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
     s = 3
     n = y0.shape[0]
     N = s * n
-    T = T_SPLIT
-    TI = TI_SPLIT
+    T = _T_ROWS
+    TI = _TI_ROWS
     gam = GAMMA_SPLIT
     alp = ALPHA_SPLIT
     bet = BETA_SPLIT
@@ -443,9 +448,9 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                     Z[a, i] = 0.0
         if not use_full:
             for i in range(n):
-                W[0, i] = TI[0, 0] * Z[0, i] + TI[0, 1] * Z[1, i] + TI[0, 2] * Z[2, i]
-                W[1, i] = TI[1, 0] * Z[0, i] + TI[1, 1] * Z[1, i] + TI[1, 2] * Z[2, i]
-                W[2, i] = TI[2, 0] * Z[0, i] + TI[2, 1] * Z[1, i] + TI[2, 2] * Z[2, i]
+                W[0, i] = TI[0][0] * Z[0, i] + TI[0][1] * Z[1, i] + TI[0][2] * Z[2, i]
+                W[1, i] = TI[1][0] * Z[0, i] + TI[1][1] * Z[1, i] + TI[1][2] * Z[2, i]
+                W[2, i] = TI[2][0] * Z[0, i] + TI[2][1] * Z[1, i] + TI[2][2] * Z[2, i]
         converged = False
         dW_old = -1.0
         rate = -1.0
@@ -479,9 +484,9 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                 else:
                     # right-hand sides T⁻¹F − (Λ/h)·T⁻¹Z of the decoupled systems
                     for i in range(n):
-                        g0 = TI[0, 0] * F[0, i] + TI[0, 1] * F[1, i] + TI[0, 2] * F[2, i]
-                        g1 = TI[1, 0] * F[0, i] + TI[1, 1] * F[1, i] + TI[1, 2] * F[2, i]
-                        g2 = TI[2, 0] * F[0, i] + TI[2, 1] * F[1, i] + TI[2, 2] * F[2, i]
+                        g0 = TI[0][0] * F[0, i] + TI[0][1] * F[1, i] + TI[0][2] * F[2, i]
+                        g1 = TI[1][0] * F[0, i] + TI[1][1] * F[1, i] + TI[1][2] * F[2, i]
+                        g2 = TI[2][0] * F[0, i] + TI[2][1] * F[1, i] + TI[2][2] * F[2, i]
                         w0, w1, w2 = W[0, i], W[1, i], W[2, i]
                         b0[i] = g0 - gh * w0
                         bc[i] = g1 - (ah * w1 - bh * w2)
@@ -496,7 +501,7 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                         W[2, i] += b2[i]
                     for a in range(s):
                         for i in range(n):
-                            R[a * n + i] = T[a, 0] * b0[i] + T[a, 1] * b1[i] + T[a, 2] * b2[i]
+                            R[a * n + i] = T[a][0] * b0[i] + T[a][1] * b1[i] + T[a][2] * b2[i]
                 dW = 0.0
                 for a in range(s):
                     for i in range(n):
