@@ -423,9 +423,10 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
         # (α + iβ)/h·I − J acting on u + iv, as the real 2n × 2n matrix [[αI/h − J, −βI/h], [βI/h, αI/h − J]]
         for i in range(n):
             for j in range(n):
-                Mr[i, j] = -J[i, j]
-                Mc[i, j] = -J[i, j]
-                Mc[n + i, n + j] = -J[i, j]
+                mij = -J[i, j]
+                Mr[i, j] = mij
+                Mc[i, j] = mij
+                Mc[n + i, n + j] = mij
                 Mc[i, n + j] = 0.0
                 Mc[n + i, j] = 0.0
             Mr[i, i] += gh
@@ -625,9 +626,9 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
         h = min(h * fac, max_step)
         err_old = max(err_norm, 1e-10)
         rejected = False
-    ne = min(cnt[6], EVBUF.shape[0])
-    return (status, t, y, cnt, EVBUF[:ne, 0].copy(), EVBUF[:ne, 1:].copy(), rec_t[:cnt[7]].copy(),
-            rec_y[:cnt[7]].copy(), h, Qprev)
+    # the crossings are in EVBUF[:cnt[6]] and the recorded steps in rec_t, rec_y[:cnt[7]]: radau_core
+    # cuts them to size (in Python, which spares the first build the slicing and copying)
+    return status, t, y, cnt, rec_t, rec_y, h, Qprev
 
 
 def pointers(fun, jac):
@@ -711,6 +712,11 @@ def radau_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, 
         EVBUF = np.empty((1, n + 1))
     if EVDIR is None:
         EVDIR = np.empty(EVBUF.shape[0])
-    return _loop()(fun, jac, float(t0), y0, float(t_end), _f64(p, 1, "p"), float(rtol), _f64(atol, 1, "atol"),
-                   float(h0), float(max_step), int(max_steps), int(ev_idx), float(ev_val), int(ev_dir),
-                   int(ev_stop), int(rec_cap), _f64(EVBUF, 2, "EVBUF"), _f64(EVDIR, 1, "EVDIR"))
+    EVBUF = _f64(EVBUF, 2, "EVBUF")
+    status, t, y, cnt, rec_t, rec_y, h, Q = _loop()(
+        fun, jac, float(t0), y0, float(t_end), _f64(p, 1, "p"), float(rtol), _f64(atol, 1, "atol"), float(h0),
+        float(max_step), int(max_steps), int(ev_idx), float(ev_val), int(ev_dir), int(ev_stop), int(rec_cap), EVBUF,
+        _f64(EVDIR, 1, "EVDIR"))
+    ne, nrec = min(int(cnt[6]), EVBUF.shape[0]), int(cnt[7])
+    return (status, t, y, cnt, EVBUF[:ne, 0].copy(), EVBUF[:ne, 1:].copy(), rec_t[:nrec].copy(), rec_y[:nrec].copy(),
+            h, Q)
