@@ -7,17 +7,23 @@ take several seconds; :func:`compile_once` prints one line on standard error whi
 a user is never left in front of a silent terminal.  A build loaded from the disk cache is
 quick and prints nothing (the line appears only after :data:`NOTICE_AFTER` seconds).
 
-Which folders to keep between CI runs so that the build happens once: the landau cache root
-(``$LANDAU_CACHE_DIR``, else the per-user cache folder, see :mod:`landau.support.cachedir`) and numba's
-cache (``$NUMBA_CACHE_DIR`` when set, else the ``__pycache__`` folders of the installed package).
+Which folders to keep between CI runs so that the build happens once: numba's cache
+(``$NUMBA_CACHE_DIR`` when set, else the ``__pycache__`` folders of the installed package) and,
+when ``$NUMBA_CACHE_DIR`` is set, the landau cache root too (``$LANDAU_CACHE_DIR``, else the
+per-user cache folder, see :mod:`landau.support.cachedir`): it holds the key that signs numba's
+files there (see *Trust* below).
 
 No stale machine code after an edit.  numba's disk cache checks only the source file of the
 function it caches: a loop whose helpers, constants or callees live in other modules would load
 old machine code after one of those is edited.  :func:`compile_once` therefore keys the cache on
 content: it hashes the source of every module the loop can reach through its module's globals
-(the modules whose names start with one of :data:`WATCHED`), keeps that hash beside the landau
-cache (``<cache root>/jit/stamps``), and when it differs from the one recorded at the last build,
-removes numba's entries of the loop's file before building again.
+(the modules whose names start with one of :data:`WATCHED`) and keeps that hash *beside numba's
+index of the loop* (``<module>.<function>.landau-stamp`` in the same folder), so that the stamp
+and the machine code it describes are kept or lost together: a CI that keeps numba's
+``__pycache__`` folders (a cached virtual environment) loads the loop without building it, with or
+without the landau cache.  When the stamp
+differs from the sources (or is missing) numba's entries of the loop's file are removed before
+building again, and the new stamp is written after the build.
 
 Trust.  numba reads its own cache files (it unpickles the index ``.nbi`` and loads the machine
 code of ``.nbc``); landau does not reach into that.  The ``__pycache__`` beside the package's
@@ -34,6 +40,7 @@ This module imports numba only when a function is compiled.
 
 from __future__ import annotations
 
+import glob
 import hashlib
 import os
 import sys
@@ -106,63 +113,59 @@ def source_stamp(py_func: Any, watched: tuple[str, ...] = WATCHED) -> str:
     return h.hexdigest()
 
 
-def _stamp_file(py_func: Any) -> Path:
-    from landau.support.cachedir import code_dir
+def _index_name(py_func: Any) -> tuple[Path, str]:
+    """The source file of ``py_func`` and the name numba gives its cache index, up to the line
+    number: ``<file stem>.<qualified name>-`` (``<`` and ``>`` removed, as numba does)."""
+    path = Path(py_func.__code__.co_filename)
+    return path, f"{path.stem}.{py_func.__qualname__.replace('<', '').replace('>', '')}-"
 
-    return code_dir() / "stamps" / f"{py_func.__module__}.{py_func.__qualname__}.sha256"
+
+def _index_folders(py_func: Any) -> list[Path]:
+    """The folders of numba's cache that hold an index of ``py_func``."""
+    from landau.verify.jitcache import numba_cache_folders
+
+    path, prefix = _index_name(py_func)
+    pattern = glob.escape(prefix) + "*.nbi"
+    return [d for d in numba_cache_folders(path) if any(d.glob(pattern))]
 
 
-def _writable(folder: Path) -> bool:
-    """Whether ``folder`` (or, where it does not exist yet, its nearest existing parent) is writable."""
-    while not folder.exists() and folder != folder.parent:
-        folder = folder.parent
-    return os.access(folder, os.W_OK)
+def _stamp_file(folder: Path, py_func: Any) -> Path:
+    """Where the source stamp of ``py_func``'s entries in numba's cache ``folder`` is kept."""
+    return folder / f"{_index_name(py_func)[1][:-1]}.landau-stamp"
 
 
 def _invalidate_if_changed(dispatcher: Any, watched: tuple[str, ...]) -> str | None:
     """Drop numba's entries of ``dispatcher``'s file when the sources it can reach changed since
-    the last recorded build; returns the current stamp (None where it cannot be kept)."""
+    the build that wrote them (their stamp differs, or there is none); returns the current stamp."""
     py_func = getattr(dispatcher, "py_func", None)
     if py_func is None:
         return None
-    from landau.support.cachedir import usable_code_dir
-
-    if usable_code_dir() is None:       # the cache is bypassed (already said so): nothing is kept
-        return None
     stamp = source_stamp(py_func, watched)
-    path = _stamp_file(py_func)
-    try:
-        recorded = path.read_text().strip()
-    except OSError:
-        recorded = None
-    if recorded != stamp and not _writable(path.parent):
-        # a stamp that cannot be recorded would make every process rebuild: keep numba's entries
-        import warnings
+    for folder in _index_folders(py_func):
+        try:
+            recorded = _stamp_file(folder, py_func).read_text().strip()
+        except OSError:
+            recorded = None
+        if recorded != stamp:
+            from landau.verify.jitcache import _drop_numba_entries
 
-        warnings.warn(f"landau: the build stamps cannot be written to {path.parent}; an edit of a module "
-                      "that a compiled loop calls may not be seen until numba's cache is cleared "
-                      "(make the landau cache folder writable, or set LANDAU_CACHE_DIR)", RuntimeWarning,
-                      stacklevel=3)
-        return None
-    if recorded != stamp:
-        from landau.verify.jitcache import _drop_numba_entries
-
-        _drop_numba_entries(Path(py_func.__code__.co_filename))
+            _drop_numba_entries(Path(py_func.__code__.co_filename))
+            break
     return stamp
 
 
 def _record(dispatcher: Any, stamp: str | None) -> None:
+    """Write ``stamp`` beside every index of ``dispatcher`` in numba's cache (after a build)."""
     if stamp is None:
         return
     from landau.errors import OutputError
     from landau.support.io import atomic_write_text
 
-    path = _stamp_file(dispatcher.py_func)
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
-        atomic_write_text(path, stamp + "\n")
-    except (OSError, OutputError):   # a read-only or full cache: the next process checks again
-        pass
+    for folder in _index_folders(dispatcher.py_func):
+        try:
+            atomic_write_text(_stamp_file(folder, dispatcher.py_func), stamp + "\n")
+        except (OSError, OutputError):   # a read-only or full cache: the next process builds again
+            pass
 
 
 def compile_once(dispatcher: Any, signature: Any, what: str, watched: tuple[str, ...] = WATCHED) -> Any:

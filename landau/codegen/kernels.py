@@ -174,19 +174,29 @@ def _emit(exprs, svars, nparams: int, jacobian: bool) -> str:
     jm = sp.Matrix(exprs).jacobian(sp.Matrix(svars)) if jacobian else sp.zeros(0, 0)
     reps, red = sp.cse(exprs + list(jm), symbols=sp.numbered_symbols("c"), optimizations="basic")
     pr = _Printer({"fully_qualified_modules": True})
-    head = [f"    s{i} = y[{i}]" for i in range(n)]
-    head += [f"    q{i} = p[{i}]" for i in range(nparams)]
-    body = [f"    {s} = {pr.doprint(e)}" for s, e in reps]
-    lines = ["def fun(t, y, p, out):", *head, *body]
-    lines += [f"    out[{i}] = {pr.doprint(red[i])}" for i in range(len(exprs))]
+    m = len(exprs)
+
+    def prologue(outputs):
+        # only the states, parameters and subexpressions these outputs use: an unused line costs
+        # numba its typing and lowering at every first build
+        need = set().union(*(e.free_symbols for e in outputs))
+        kept = []
+        for sym, e in reversed(reps):
+            if sym in need:
+                kept.append((sym, e))
+                need |= e.free_symbols
+        names = {s.name for s in need}
+        head = [f"    s{i} = y[{i}]" for i in range(n) if f"s{i}" in names]
+        head += [f"    q{i} = p[{i}]" for i in range(nparams) if f"q{i}" in names]
+        return head + [f"    {s} = {pr.doprint(e)}" for s, e in reversed(kept)]
+
+    lines = ["def fun(t, y, p, out):", *prologue(red[:m])]
+    lines += [f"    out[{i}] = {pr.doprint(red[i])}" for i in range(m)]
     src = "\n".join(lines) + "\n"
     if jacobian:
-        lj = ["def jac(t, y, p, out):", "    out[:, :] = 0.0", *head, *body]
-        for i in range(n):
-            for j in range(n):
-                e = red[n + i * n + j]
-                if e != 0:
-                    lj.append(f"    out[{i}, {j}] = {pr.doprint(e)}")
+        entries = [(i, j, red[m + i * n + j]) for i in range(m) for j in range(n) if red[m + i * n + j] != 0]
+        lj = ["def jac(t, y, p, out):", "    out[:, :] = 0.0", *prologue([e for _, _, e in entries])]
+        lj += [f"    out[{i}, {j}] = {pr.doprint(e)}" for i, j, e in entries]
         src += "\n" + "\n".join(lj) + "\n"
     check_source(src)
     return src

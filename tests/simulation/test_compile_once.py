@@ -69,6 +69,32 @@ def test_edit_of_a_called_module_is_never_served_stale(tmp_path):
     assert _run(tmp_path, env, guarded) == 3.0
 
 
+def _numba_files(root):
+    """numba's files under ``root``, with the identity of each (a rebuilt file is a new file)."""
+    return {f.name: (f.stat().st_ino, f.stat().st_mtime_ns) for f in root.rglob("*.nb[ic]")}
+
+
+def test_the_build_stamp_travels_with_numbas_cache_not_the_landau_cache(tmp_path):
+    # a CI that keeps numba's __pycache__ (a cached virtual environment) but starts with an
+    # empty landau cache: the loop is loaded, not built again (its stamp lies beside numba's index)
+    env = {**os.environ, "LANDAU_CACHE_DIR": str(tmp_path / "cache1")}
+    for name in ("NUMBA_DISABLE_JIT", "NUMBA_CACHE_DIR"):
+        env.pop(name, None)
+    _write(tmp_path, 1)
+    assert _run(tmp_path, env, True) == 2.0
+    pycache = tmp_path / "pkgtmp" / "__pycache__"
+    built = _numba_files(pycache)
+    assert any(n.startswith("main.f-") for n in built), built
+    env["LANDAU_CACHE_DIR"] = str(tmp_path / "cache2")        # a fresh landau cache
+    assert _run(tmp_path, env, True) == 2.0
+    assert _numba_files(pycache) == built                       # the same files: nothing rebuilt
+    assert (pycache / "main.f.landau-stamp").is_file()
+    # and the stamp still guards the edit of a callee
+    _write(tmp_path, 2)
+    assert _run(tmp_path, env, True) == 3.0
+    assert _numba_files(pycache) != built
+
+
 def test_nothing_compiles_at_import_of_the_simulation_layer():
     # importing every integrator module builds nothing: no dispatcher has a compiled signature
     code = textwrap.dedent("""

@@ -75,6 +75,8 @@ _NODES = np.array([0.1550510257216822, 0.6449489742783178, 1.0])
 EPS = 2.220446049250313e-16
 #: Newton sweeps of the simplified iteration before a step is declared failed
 NEWTON_MAXITER = 7
+#: the largest growth of the step size after an accepted step
+FACMAX = 10.0
 #: the status codes :func:`radau_core` returns
 STATUS = {0: "finished", 1: "terminal event", -1: "step size too small", -2: "maximum number of steps",
           -3: "non-finite state"}
@@ -125,10 +127,20 @@ def split_coefficients(A):
 #: A⁻¹ = T·diag(γ, [[α, −β], [β, α]])·T⁻¹, computed from :data:`A_RADAU` (:func:`split_coefficients`)
 T_SPLIT, TI_SPLIT, GAMMA_SPLIT, ALPHA_SPLIT, BETA_SPLIT = split_coefficients(A_RADAU)
 
+#: T and T⁻¹ as tuples of rows: the loop reads them as constants (an element of a constant array
+#: costs numba an indexing operation to type and lower at the first build)
+_T_ROWS = tuple(tuple(float(v) for v in row) for row in T_SPLIT)
+_TI_ROWS = tuple(tuple(float(v) for v in row) for row in TI_SPLIT)
+
+#: the decorator of the loop's private helpers: they are compiled as part of the loop and only
+#: called from compiled code, so they get no Python entry point and no disk-cache entry of their
+#: own (the loop's entry holds their machine code), which shortens the first build
+_inner = nb.njit(no_cpython_wrapper=True)
+
 
 # ---------------------------------------------------------------------------------------------
 # dense linear algebra, norms, dense output
-@nb.njit(cache=True)
+@_inner
 def _lu(a, piv):
     """In-place LU decomposition of the square ``a`` with partial pivoting (row swaps in ``piv``);
     False when a pivot is exactly zero."""
@@ -158,7 +170,7 @@ def _lu(a, piv):
     return True
 
 
-@nb.njit(cache=True)
+@_inner
 def _solve(lu, piv, b):
     """Solve with the factors of :func:`_lu`, in place in ``b``."""
     n = lu.shape[0]
@@ -180,7 +192,7 @@ def _solve(lu, piv, b):
         b[i] = s / lu[i, i]
 
 
-@nb.njit(cache=True)
+@_inner
 def _rms(x, scale):
     """The error norm: the root mean square of x / scale."""
     s = 0.0
@@ -190,7 +202,7 @@ def _rms(x, scale):
     return math.sqrt(s / x.shape[0])
 
 
-@nb.njit(cache=True)
+@_inner
 def _poly(y0, Q, x, i):
     """Component i of the dense output y0 + Σ_j Q_j x^{j+1} (Horner)."""
     acc = Q[Q.shape[0] - 1, i]
@@ -259,16 +271,7 @@ def cubic_crossing(g0, c1, c2, c3, lo, outside_sign, inclusive):
     return -1.0
 
 
-@nb.njit(cache=True)
-def _may_cross(g0, c1, c2, c3):
-    """Whether g(x) = g0 + c1 x + c2 x² + c3 x³ may change sign on [0, 1] (else :func:`_crossings`
-    would find nothing): False for g0 = 0 (a crossing starting on the surface is not one), and
-    when |g0| exceeds the cubic's largest change |c1| + |c2| + |c3| by a margin (10⁻¹²) far
-    above the rounding of its evaluation — most steps, decided with scalars only."""
-    return g0 != 0.0 and (abs(c1) + abs(c2) + abs(c3)) * (1.0 + 1e-12) >= abs(g0)
-
-
-@nb.njit(cache=True)
+@_inner
 def _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF, EVDIR):
     """Record every sign change of y[ev_idx] − ev_val on the step's cubic dense output.
 
@@ -309,50 +312,8 @@ def _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF,
 
 
 # ---------------------------------------------------------------------------------------------
-# step-size control
-@nb.njit(cache=True)
-def _guard(steps, max_steps, t, t_end, h):
-    """(status, h) before a step: the budget of ``max_steps`` attempts (−2), h cut to the end of
-    the interval, step-size underflow (−1); status 0 to go on."""
-    if steps >= max_steps:
-        return -2, h
-    if h > t_end - t:
-        h = t_end - t
-    if h < 10 * EPS * max(abs(t), 1e-300) or h <= 0.0:
-        return -1, h
-    return 0, h
-
-
-@nb.njit(cache=True)
-def _retry_size(h, err_norm, safety, expo):
-    """The step size to retry with when the error test fails — h/4 for a non-finite error,
-    h·max(0.2, safety·err^(−expo)) above the tolerance — or −1 when the step is accepted."""
-    if not math.isfinite(err_norm):
-        return h * 0.25
-    if err_norm > 1.0:
-        return h * max(0.2, safety * err_norm ** -expo)
-    return -1.0
-
-
-@nb.njit(cache=True)
-def _next_size(h, h_old, err_norm, err_old, rejected, safety, expo, facmax, max_step):
-    """The predictive (Gustafsson 1994) controller after an accepted step of size h.
-
-    ``expo`` = 1/4 for the order-3 estimate; the step grows by at most ``facmax``, and not at
-    all right after a rejection.  Returns (next h, h_old, err_old) for the next call.
-    """
-    if err_old > 0 and err_norm > 0:
-        mult = h / h_old * (err_old / err_norm) ** expo
-    else:
-        mult = 1.0
-    fac = min(1.0, mult) * (err_norm ** -expo if err_norm > 0 else facmax)
-    fac = min(facmax, safety * fac)
-    if rejected:
-        fac = min(1.0, fac)
-    return min(h * fac, max_step), h, max(err_norm, 1e-10)
-
-
-@nb.njit(cache=True)
+# the full Newton iteration of a retried step
+@_inner
 def _stage_jacobians(jac, t, h, y, Z, p, JB, ytmp, Mf, pivF, cnt):
     """The full-Newton matrix I − h(A ⊗ I)·diag(J(Y_b)) with the stage Jacobians at the current
     iterate, factorised in place; False when it is singular."""
@@ -385,8 +346,8 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
     s = 3
     n = y0.shape[0]
     N = s * n
-    T = T_SPLIT
-    TI = TI_SPLIT
+    T = _T_ROWS
+    TI = _TI_ROWS
     gam = GAMMA_SPLIT
     alp = ALPHA_SPLIT
     bet = BETA_SPLIT
@@ -444,8 +405,15 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
     rejected = False
     nev_dir = 0 * ev_stop      # (an int64 variable: a literal 0 would compile _crossings twice)
     while t < t_end:
-        status, h = _guard(cnt[0] + cnt[1], max_steps, t, t_end, h)
-        if status != 0:
+        # before a step: the budget of step attempts (-2), h cut to the end of the interval,
+        # step-size underflow (-1)
+        if cnt[0] + cnt[1] >= max_steps:
+            status = -2
+            break
+        if h > t_end - t:
+            h = t_end - t
+        if h < 10 * EPS * max(abs(t), 1e-300) or h <= 0.0:
+            status = -1
             break
         jac(t, y, p, J)
         cnt[3] += 1
@@ -455,9 +423,10 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
         # (α + iβ)/h·I − J acting on u + iv, as the real 2n × 2n matrix [[αI/h − J, −βI/h], [βI/h, αI/h − J]]
         for i in range(n):
             for j in range(n):
-                Mr[i, j] = -J[i, j]
-                Mc[i, j] = -J[i, j]
-                Mc[n + i, n + j] = -J[i, j]
+                mij = -J[i, j]
+                Mr[i, j] = mij
+                Mc[i, j] = mij
+                Mc[n + i, n + j] = mij
                 Mc[i, n + j] = 0.0
                 Mc[n + i, j] = 0.0
             Mr[i, i] += gh
@@ -480,9 +449,9 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                     Z[a, i] = 0.0
         if not use_full:
             for i in range(n):
-                W[0, i] = TI[0, 0] * Z[0, i] + TI[0, 1] * Z[1, i] + TI[0, 2] * Z[2, i]
-                W[1, i] = TI[1, 0] * Z[0, i] + TI[1, 1] * Z[1, i] + TI[1, 2] * Z[2, i]
-                W[2, i] = TI[2, 0] * Z[0, i] + TI[2, 1] * Z[1, i] + TI[2, 2] * Z[2, i]
+                W[0, i] = TI[0][0] * Z[0, i] + TI[0][1] * Z[1, i] + TI[0][2] * Z[2, i]
+                W[1, i] = TI[1][0] * Z[0, i] + TI[1][1] * Z[1, i] + TI[1][2] * Z[2, i]
+                W[2, i] = TI[2][0] * Z[0, i] + TI[2][1] * Z[1, i] + TI[2][2] * Z[2, i]
         converged = False
         dW_old = -1.0
         rate = -1.0
@@ -516,9 +485,9 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                 else:
                     # right-hand sides T⁻¹F − (Λ/h)·T⁻¹Z of the decoupled systems
                     for i in range(n):
-                        g0 = TI[0, 0] * F[0, i] + TI[0, 1] * F[1, i] + TI[0, 2] * F[2, i]
-                        g1 = TI[1, 0] * F[0, i] + TI[1, 1] * F[1, i] + TI[1, 2] * F[2, i]
-                        g2 = TI[2, 0] * F[0, i] + TI[2, 1] * F[1, i] + TI[2, 2] * F[2, i]
+                        g0 = TI[0][0] * F[0, i] + TI[0][1] * F[1, i] + TI[0][2] * F[2, i]
+                        g1 = TI[1][0] * F[0, i] + TI[1][1] * F[1, i] + TI[1][2] * F[2, i]
+                        g2 = TI[2][0] * F[0, i] + TI[2][1] * F[1, i] + TI[2][2] * F[2, i]
                         w0, w1, w2 = W[0, i], W[1, i], W[2, i]
                         b0[i] = g0 - gh * w0
                         bc[i] = g1 - (ah * w1 - bh * w2)
@@ -533,7 +502,7 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                         W[2, i] += b2[i]
                     for a in range(s):
                         for i in range(n):
-                            R[a * n + i] = T[a, 0] * b0[i] + T[a, 1] * b1[i] + T[a, 2] * b2[i]
+                            R[a * n + i] = T[a][0] * b0[i] + T[a][1] * b1[i] + T[a][2] * b2[i]
                 dW = 0.0
                 for a in range(s):
                     for i in range(n):
@@ -588,7 +557,14 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
             _solve(Mr, pivR, err)
             err_norm = _rms(err, scale)
         safety = 0.9 * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter)
-        h_retry = _retry_size(h, err_norm, safety, expo)
+        # the error test: retry with h/4 after a non-finite error, h·max(0.2, safety·err^(−expo))
+        # above the tolerance
+        if not math.isfinite(err_norm):
+            h_retry = h * 0.25
+        elif err_norm > 1.0:
+            h_retry = h * max(0.2, safety * err_norm ** -expo)
+        else:
+            h_retry = -1.0
         if h_retry > 0.0:
             cnt[1] += 1
             h = h_retry
@@ -605,8 +581,14 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                 Q[j, i] = acc
         t_new = t + h
         stop = False
-        if ev_idx >= 0 and _may_cross(y[ev_idx] - ev_val, Q[0, ev_idx], Q[1, ev_idx], Q[2, ev_idx]):
-            stop, nev_dir = _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF, EVDIR)
+        if ev_idx >= 0:
+            # g(x) = g0 + c1 x + c2 x² + c3 x³ may change sign on [0, 1] only when g0 ≠ 0 (a crossing
+            # starting on the surface is not one) and |g0| does not exceed the cubic's largest change
+            # |c1| + |c2| + |c3| by a margin (10⁻¹²) far above the rounding of its evaluation: most
+            # steps are decided here, with scalars only
+            ge = y[ev_idx] - ev_val
+            if ge != 0.0 and (abs(Q[0, ev_idx]) + abs(Q[1, ev_idx]) + abs(Q[2, ev_idx])) * (1.0 + 1e-12) >= abs(ge):
+                stop, nev_dir = _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF, EVDIR)
         for i in range(n):
             yprev[i] = y[i]
         for j in range(s):
@@ -630,11 +612,23 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
         if stop:
             status = 1
             break
-        h, h_old, err_old = _next_size(h, h_old, err_norm, err_old, rejected, safety, expo, 10.0, max_step)
+        # the predictive controller (Gustafsson 1994): expo = 1/4 for the order-3 estimate, growth by
+        # at most FACMAX, and none right after a rejection
+        if err_old > 0 and err_norm > 0:
+            mult = h / h_old * (err_old / err_norm) ** expo
+        else:
+            mult = 1.0
+        fac = min(1.0, mult) * (err_norm ** -expo if err_norm > 0 else FACMAX)
+        fac = min(FACMAX, safety * fac)
+        if rejected:
+            fac = min(1.0, fac)
+        h_old = h
+        h = min(h * fac, max_step)
+        err_old = max(err_norm, 1e-10)
         rejected = False
-    ne = min(cnt[6], EVBUF.shape[0])
-    return (status, t, y, cnt, EVBUF[:ne, 0].copy(), EVBUF[:ne, 1:].copy(), rec_t[:cnt[7]].copy(),
-            rec_y[:cnt[7]].copy(), h, Qprev)
+    # the crossings are in EVBUF[:cnt[6]] and the recorded steps in rec_t, rec_y[:cnt[7]]: radau_core
+    # cuts them to size (in Python, which spares the first build the slicing and copying)
+    return status, t, y, cnt, rec_t, rec_y, h, Qprev
 
 
 def pointers(fun, jac):
@@ -718,6 +712,11 @@ def radau_core(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, 
         EVBUF = np.empty((1, n + 1))
     if EVDIR is None:
         EVDIR = np.empty(EVBUF.shape[0])
-    return _loop()(fun, jac, float(t0), y0, float(t_end), _f64(p, 1, "p"), float(rtol), _f64(atol, 1, "atol"),
-                   float(h0), float(max_step), int(max_steps), int(ev_idx), float(ev_val), int(ev_dir),
-                   int(ev_stop), int(rec_cap), _f64(EVBUF, 2, "EVBUF"), _f64(EVDIR, 1, "EVDIR"))
+    EVBUF = _f64(EVBUF, 2, "EVBUF")
+    status, t, y, cnt, rec_t, rec_y, h, Q = _loop()(
+        fun, jac, float(t0), y0, float(t_end), _f64(p, 1, "p"), float(rtol), _f64(atol, 1, "atol"), float(h0),
+        float(max_step), int(max_steps), int(ev_idx), float(ev_val), int(ev_dir), int(ev_stop), int(rec_cap), EVBUF,
+        _f64(EVDIR, 1, "EVDIR"))
+    ne, nrec = min(int(cnt[6]), EVBUF.shape[0]), int(cnt[7])
+    return (status, t, y, cnt, EVBUF[:ne, 0].copy(), EVBUF[:ne, 1:].copy(), rec_t[:nrec].copy(), rec_y[:nrec].copy(),
+            h, Q)
