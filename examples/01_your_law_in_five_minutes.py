@@ -44,11 +44,11 @@ law
 # to a pandas DataFrame and plots itself).
 
 # %%
-d = derive(SpringBlock(law), ["kc", "omega_c", "Lambda", "C"])
+d = derive(SpringBlock(law), ["k_c", "omega_c", "Lambda", "C"])
 d
 
 # %%
-table = d.evaluate([1e-5, 1e-4, 1e-3], None, ["kc", "omega_c", "Lambda", "C"])
+table = d.evaluate([1e-5, 1e-4, 1e-3], None, ["k_c", "omega_c", "Lambda", "C"])
 table
 
 # %% [markdown]
@@ -66,7 +66,7 @@ d.points([1e-4, 1e-3])
 
 # %%
 print(law.latex())
-print(d.coefficient("kc").latex())
+print(d.coefficient("k_c").latex())
 
 # %% [markdown]
 # ## 4. Check against a direct simulation

@@ -35,7 +35,7 @@ codim2
 # %%
 # one sign change of the Dieterich Λ in 1e-7..1e-2 m/s, at k_c ≈ 2.08e5 N/m (Fig. 5b; the
 # paper prints three digits, so agreement to 0.5 %); the Ruina Λ stays negative
-assert len(codim2) == 1 and abs(codim2[0].kc / 2.08e5 - 1) < 5e-3, codim2
+assert len(codim2) == 1 and abs(codim2[0].k_c / 2.08e5 - 1) < 5e-3, codim2
 assert np.all(data["Lambda_R"][np.isfinite(data["Lambda_R"])] < 0)
 
 # %% [markdown]

@@ -157,7 +157,7 @@ class GeneralisedHopfPoint:
     gives p₁,fold − p₁,c ≈ :attr:`fold_p1_coefficient` (p₂ − p₂*)² and amplitude
     ≈ :attr:`fold_amplitude_coefficient` |p₂ − p₂*|^{1/2} on the side :attr:`fold_side`
     (:meth:`predicted_fold`).  The spring–block's coordinates read by name: :attr:`V`,
-    :attr:`kc` (= :attr:`k`), :attr:`omega_c` (= ``omega``).
+    :attr:`k_c` (= :attr:`k`; ``kc`` is its deprecated alias), :attr:`omega_c` (= ``omega``).
     """
 
     system: str
@@ -199,11 +199,12 @@ class GeneralisedHopfPoint:
         return self._named("V")
 
     @property
-    def kc(self) -> float:
+    def k_c(self) -> float:
         """Spring–block: the critical stiffness k_c(V*) (N/m), p₁."""
         return self._named("k")
 
-    k = kc
+    k = k_c
+    kc = k_c    # deprecated alias of k_c, kept for one release
 
     @property
     def omega_c(self) -> float:
@@ -263,7 +264,7 @@ class GeneralisedHopfPoint:
         if tuple(self.parameters) != SPRING_BLOCK_PARAMETERS:
             return {"system": self.system, "parameters": list(self.parameters), "p1": self.p1, "p2": self.p2,
                     "omega": self.omega, "equilibrium": list(self.equilibrium), "l2": self.l2, "l1": self.l1}
-        out: dict[str, Any] = {"V": self.p2, "kc": self.p1, "omega_c": self.omega}
+        out: dict[str, Any] = {"V": self.p2, "k_c": self.p1, "kc": self.p1, "omega_c": self.omega}
         if self.Lambda5 is not None:
             out.update(Lambda5=self.Lambda5, l2=self.l2, Gamma_bar=self.Gamma_bar, dLambda_dV=self.dLambda_dp2)
         out.update(sign_below=self.sign_below, sign_above=self.sign_above)
@@ -271,13 +272,13 @@ class GeneralisedHopfPoint:
             out["fold_of_cycles"] = {
                 "side": _SIDE[self.fold_side], "k_minus_kc_per_dV2": self.fold_p1_coefficient,
                 "amplitude_per_sqrt_dV": self.fold_amplitude_coefficient,
-                "formula": "k_fold - kc(V) = -Lambda(V)^2/(8 Lambda5 Gamma_bar), "
+                "formula": "k_fold - k_c(V) = -Lambda(V)^2/(8 Lambda5 Gamma_bar), "
                            "amplitude = sqrt(-2 Lambda(V)/Lambda5)"}
         return out
 
     def __repr__(self) -> str:
         if tuple(self.parameters) == SPRING_BLOCK_PARAMETERS:
-            head = f"V* = {self.p2:.8g} m/s, kc = {self.p1:.6g} N/m, omega_c = {self.omega:.6g} rad/s"
+            head = f"V* = {self.p2:.8g} m/s, k_c = {self.p1:.6g} N/m, omega_c = {self.omega:.6g} rad/s"
         else:
             head = (f"{self.system}: {self.parameters[0]} = {self.p1:.10g}, {self.parameters[1]} = {self.p2:.10g}, "
                     f"ω = {self.omega:.8g}")

@@ -35,6 +35,11 @@ class RegimeDiagram:
     params: Mapping[str, float]
 
     @property
+    def k_c(self) -> np.ndarray:
+        """The critical stiffness k_c(V) (N/m), NaN where there is no Hopf point (the field ``kc``)."""
+        return self.kc
+
+    @property
     def supercritical(self) -> np.ndarray:
         """k_c where Λ < 0, NaN elsewhere (plot-ready)."""
         return np.where(self.Lambda < 0, self.kc, np.nan)
@@ -52,7 +57,7 @@ class RegimeDiagram:
                   "Hopf points": n, "subcritical": int(np.sum(self.Lambda > 0)),
                   "supercritical": int(np.sum(self.Lambda < 0))}
         for i, c in enumerate(self.codim2):
-            fields[f"codimension-two point {i + 1}"] = f"V = {c.V:.8g} m/s, k_c = {c.kc:.6g} N/m"
+            fields[f"codimension-two point {i + 1}"] = f"V = {c.V:.8g} m/s, k_c = {c.k_c:.6g} N/m"
         return html_record("Regime diagram (V, k)", fields, note="Λ < 0: supercritical, Λ > 0: subcritical")
 
     def plot(self, ax=None):

@@ -109,6 +109,11 @@ class TransitionRow:
     omega_c: float
     V_ext: float  # the extremum V_m(p) that closes the range containing V*
 
+    @property
+    def k_c(self) -> float:
+        """The critical stiffness k_c(V*) (N/m) (the field ``kc``)."""
+        return self.kc
+
 
 @dataclass(frozen=True)
 class TransitionCurve:
@@ -127,7 +132,7 @@ class TransitionCurve:
     def as_dict(self) -> dict[str, Any]:
         return {"critical_value": self.critical_value,
                 "critical_values": [c.as_dict() for c in self.critical],
-                "curve": [{self.name: r.value, "V_star": r.V_star, "kc": r.kc, "omega_c": r.omega_c,
+                "curve": [{self.name: r.value, "V_star": r.V_star, "k_c": r.kc, "kc": r.kc, "omega_c": r.omega_c,
                            "V_ext": r.V_ext} for r in self.rows]}
 
     def __repr__(self) -> str:

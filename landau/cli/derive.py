@@ -107,8 +107,8 @@ def render(doc: dict) -> str:
     if "points" in doc:
         # the table's columns: the quantities of the rows (units also names --codim2's Lambda5 and l2)
         ok = [p for p in doc["points"] if p["status"] == "ok"]
-        # one column for the critical stiffness (the text table keeps its header kc for this release)
-        names = [n for n in doc["units"] if n not in ("V", "k_c") and (any(n in p for p in ok) if ok else
+        # one column for the critical stiffness, under its name k_c (kc is its deprecated JSON alias)
+        names = [n for n in doc["units"] if n not in ("V", "kc") and (any(n in p for p in ok) if ok else
                                                           not ("codim2" in doc and n in ("Lambda5", "l2")))]
         out.append(f"{'V [m/s]':>12} " + " ".join(f"{n:>12}" for n in names) + "  criticality")
         for p in doc["points"]:
@@ -116,7 +116,7 @@ def render(doc: dict) -> str:
                 out.append(f"{fmt(p['V'])}  {p['reason']}; {p.get('velocity_weakening', '')}")
                 continue
             out.append(f"{fmt(p['V'])} " + " ".join(fmt(p[n]) for n in names) + f"  {p.get('criticality', '')}")
-        out.append("units: " + ", ".join(f"{k} [{v}]" for k, v in doc["units"].items() if k != "k_c"))
+        out.append("units: " + ", ".join(f"{k} [{v}]" for k, v in doc["units"].items() if k != "kc"))
     if doc.get("codim2"):
         out.append("codimension-two (generalised-Hopf) points, Lambda = 0 on the Hopf line; "
                    "l2 = Re c2 with <q,q> = 1 (MatCont/BifurcationKit):")

@@ -206,8 +206,8 @@ def plot_regime_diagram(diagram, ax=None):
         ax.loglog(V, np.where(ib > 0, ib, np.nan), color="0.4", lw=1.0, ls=":",
                   label=r"inertial boundary $M\omega_c^2$")
     for i, c in enumerate(diagram.codim2):
-        ax.plot([c.V], [c.kc], "o", color="k", ms=5, label="codimension-two point" if i == 0 else None)
-        ax.annotate(f"V = {c.V:.4g}", (c.V, c.kc), textcoords="offset points", xytext=(6, 6), fontsize="small")
+        ax.plot([c.V], [c.k_c], "o", color="k", ms=5, label="codimension-two point" if i == 0 else None)
+        ax.annotate(f"V = {c.V:.4g}", (c.V, c.k_c), textcoords="offset points", xytext=(6, 6), fontsize="small")
     kc = np.asarray(diagram.kc, dtype=float)
     kc = kc[np.isfinite(kc) & (kc > 0)]
     if kc.size:

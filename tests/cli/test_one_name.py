@@ -54,7 +54,7 @@ def test_derive_text_shows_the_stiffness_once(capsys):
     assert main(["derive", "dieterich", "--V", "1e-5", "--quantities", "k_c"]) == 0
     out = capsys.readouterr().out
     header = next(line for line in out.splitlines() if line.lstrip().startswith("V [m/s]"))
-    assert header.split()[2:] == ["kc", "criticality"]   # one column, whichever name was asked for
+    assert header.split()[2:] == ["k_c", "criticality"]   # one column under k_c, whichever name was asked for
     row = out.splitlines()[out.splitlines().index(header) + 1].split()
     assert float(row[1]) == pytest.approx(_kc_closed(1e-5), rel=1e-5)
 

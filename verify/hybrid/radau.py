@@ -133,9 +133,9 @@ _T_ROWS = tuple(tuple(float(v) for v in row) for row in T_SPLIT)
 _TI_ROWS = tuple(tuple(float(v) for v in row) for row in TI_SPLIT)
 
 #: the decorator of the loop's private helpers: they are compiled as part of the loop and only
-#: called from compiled code, so they get no Python entry point and no disk-cache entry of their
-#: own (the loop's entry holds their machine code), which shortens the first build
-_inner = nb.njit(no_cpython_wrapper=True)
+#: called from compiled code, so they get no disk-cache entry of their own (the loop's entry holds
+#: their machine code)
+_inner = nb.njit
 
 
 # ---------------------------------------------------------------------------------------------

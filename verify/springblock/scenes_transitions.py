@@ -53,7 +53,7 @@ def _codim2(law: str, index: int, what: str = "V"):
             raise InputError(f"{law}: Λ changes sign {len(pts)} time(s) on the Hopf line for "
                              f"{1e-5 * _v_hat(q):.3g} < V < {1e2 * _v_hat(q):.3g} m/s; no point number {index + 1}")
         pt = pts[index]
-        return {"value": getattr(pt, what), "V": pt.V, "kc": pt.kc, "omega_c": pt.omega_c,
+        return {"value": getattr(pt, what), "V": pt.V, "k_c": pt.k_c, "kc": pt.k_c, "omega_c": pt.omega_c,
                 "sign_below": pt.sign_below, "sign_above": pt.sign_above, "n_points": len(pts)}
     return compute
 
