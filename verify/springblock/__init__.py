@@ -5,7 +5,8 @@ the amplitude-equation engine against it.
   symbolic law and compiled with numba; dimensional or dimensionless (m, κ) construction.
 * :mod:`.radau` — compiled Radau IIA (order 5) integrator with dense output and section crossings.
 * :mod:`.simulate` — :func:`integrate`, returning a :class:`RadauRecord` (raises ``IntegratorError``
-  with time and state on failure) and ``record_run`` (bounded steps and memory, a ``Simulation`` with a named status at its limit).
+  with time and state on failure) and ``record_run`` (bounded steps and memory, a ``Simulation`` with a
+  named status at its limit).
 * :mod:`.history` — the load point driven by a velocity history (velocity steps, slide-hold-slide).
 * :mod:`.units` — the units of a law's states by dimensional analysis.
 * :mod:`.orbits` — shooting on the Poincaré section, monodromy, Floquet multipliers, Hopf points.
