@@ -79,3 +79,52 @@ def test_renamed_names_and_fields_warn_and_still_work():
     with pytest.warns(DeprecationWarning, match="SweepResult.params"):
         assert list(res.omegas) == [21.8, 21.75]
     assert repr(res) == "SweepResult(down, 2 points, 0 failures, out='sweep.nc')"
+
+
+def test_the_raw_records_have_their_own_names_and_convert_to_simulation():
+    """``integrate`` returns a :class:`RadauRecord`, ``run`` a :class:`ForcedRun`; each converts to
+    the common :class:`Simulation` with the same end time, end state, counters and crossings."""
+    from landau.laws import get_law
+    from landau.verify.hybrid.result import Simulation, Status
+    from landau.verify.skurativskyi.model import PAPER
+    from landau.verify.skurativskyi.simulate import ForcedRun, run
+    from landau.verify.springblock import RadauRecord, SpringBlockModel, integrate
+    from landau.verify.springblock.simulate import W_INDEX
+
+    model = SpringBlockModel.build(get_law("dieterich"), 1e-4, 1.7e5)
+    rec = integrate(model, model.perturbed(0.01 * model.ell), (0.0, 2.0), event_index=W_INDEX, record=10 ** 5)
+    assert type(rec) is RadauRecord and repr(rec).startswith("RadauRecord(t=2 s, finished")
+    assert len(rec.event_t) > 0        # the slip oscillation crosses w = 0 in 2 s
+    sim = rec.simulation()
+    assert isinstance(sim, Simulation) and sim.status is Status.FINISHED and sim.t_final == rec.t == 2.0
+    np.testing.assert_array_equal(sim.y_final, rec.y)
+    np.testing.assert_array_equal(sim.t, rec.rec_t)
+    assert (sim.nsteps, sim.nfev) == (rec.steps, rec.nfev)
+    np.testing.assert_array_equal([e.t for e in sim.events], rec.event_t)
+
+    fr = run(PAPER, 3, record=10 ** 5)
+    assert type(fr) is ForcedRun and repr(fr).startswith("ForcedRun(ω=")
+    assert len(fr.impacts) > 0 and len(fr.detachments) > 0
+    fsim = fr.simulation()
+    assert isinstance(fsim, Simulation) and fsim.status is Status.FINISHED and fsim.t_final == fr.t
+    assert fr.t == pytest.approx(3 * PAPER.period, rel=1e-12)
+    np.testing.assert_array_equal(fsim.y_final, fr.y)
+    np.testing.assert_array_equal(fsim.t, fr.rec_t)
+    assert (fsim.nsteps, fsim.nfev) == (fr.nsteps, fr.nfev)
+    np.testing.assert_array_equal(sorted(e.t for e in fsim.events if e.guard == "impact"), fr.impacts)
+    assert len(fsim.events) == len(fr.impacts) + len(fr.detachments)
+
+
+def test_the_former_run_names_warn_and_are_the_new_classes():
+    import landau.verify.springblock as springblock
+    from landau.verify.skurativskyi import simulate as forced
+    from landau.verify.springblock import simulate as radau
+
+    for module, new in ((springblock, radau.RadauRecord), (radau, radau.RadauRecord),
+                        (forced, forced.ForcedRun)):
+        with pytest.warns(DeprecationWarning, match=f"{module.__name__}.Run is deprecated: use {new.__name__}"):
+            assert module.Run is new
+        with pytest.raises(AttributeError):
+            module.NoSuchName  # noqa: B018
+    with pytest.warns(DeprecationWarning, match="use ForcedRun"):
+        from landau.verify.skurativskyi.simulate import Run  # noqa: F401

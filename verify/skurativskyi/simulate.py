@@ -4,7 +4,7 @@
   phases (|ẋ| < :data:`V_STIFF`, |ẍ| < :data:`A_STICK`) by the L-stable SDIRK4 of
   :mod:`landau.verify.skurativskyi.sdirk`, stroboscopic samples t = 2πi/ω and (optionally) one tangent vector for the
   top Lyapunov
-  exponent.  Returns a :class:`Run` (impact times, inter-impact intervals, section points).
+  exponent.  Returns a :class:`ForcedRun` (impact times, inter-impact intervals, section points).
 * :func:`hybrid_model` — the same model as a :class:`landau.verify.hybrid.HybridModel` with the
   modes ``"free"`` (x < x_I) and ``"contact"`` (x ≥ x_I) and guards ±(x − x_I); run it with
   ``landau.verify.hybrid.simulate(..., CompiledDOP853())`` (:mod:`landau.verify.hybrid.dop853`) or any
@@ -80,8 +80,44 @@ MAX_STROBES = 2_000_000
 
 
 @dataclass(frozen=True)
-class Run:
-    """One simulation: final state, impacts (t, ẋ), detachments, stroboscopic points."""
+class ForcedRun:
+    """The raw record of one run of the forced impacting oscillator (eq. 1 of Skurativskyi et al.
+    2019) by the compiled loop: final state, impacts (t, ẋ), detachments, stroboscopic points,
+    Lyapunov sums and counters; ``.simulation()`` gives the common
+    :class:`~landau.verify.hybrid.result.Simulation`.
+
+    Returned by :func:`run` and read by the analyses (attractors, grazing, bifurcation diagrams).
+    Times are in seconds, states (x, ẋ) in the model's units.
+
+    Attributes
+    ----------
+    params : Params
+        The parameters of the run.
+    t : float
+        Final time, s.
+    y : numpy.ndarray
+        Final state (x, ẋ), with the tangent vector appended when the Lyapunov exponent is computed.
+    impacts, impact_v : numpy.ndarray
+        Times of the crossings x ↑ x_I and ẋ there.
+    detachments : numpy.ndarray
+        Times of the crossings x ↓ x_I.
+    strobe_t, strobe_y : numpy.ndarray
+        Stroboscopic samples t = t0 + 2πi/ω and the states there, shape (n, 2) or (n, 4).
+    lyap_sum : float
+        Sum of the logarithms of the tangent vector's renormalisations.
+    lyap_count : int
+        Number of renormalisations (forcing periods).
+    nsteps, nfev, nrejected, nstiff : int
+        Accepted steps, field evaluations, rejected steps, steps by the stiff SDIRK4.
+    max_mismatch : float
+        Largest |x − x_I| of a re-taken switching step before projection.
+    method : str
+        The integrator (``"mixed"`` or ``"dopri5"``).
+    rec_t, rec_y, rec_f : numpy.ndarray
+        The recorded step ends, states and field values (``run(..., record=N)``).
+    status : Status
+        ``FINISHED``, or the limit that cut a ``run(..., at_limit="return")`` short.
+    """
 
     params: Params
     t: float
@@ -149,7 +185,7 @@ class Run:
                           self.rec_f.T, ("x", "xdot", "dx", "dxdot")[:self.rec_y.shape[1]], tuple(regimes))
 
     def __repr__(self) -> str:
-        return (f"Run(ω={self.params.omega:g}, t={self.t:.6g}, {len(self.impacts)} impacts, "
+        return (f"ForcedRun(ω={self.params.omega:g}, t={self.t:.6g}, {len(self.impacts)} impacts, "
                 f"{len(self.strobe_t)} strobe points, {self.nsteps} steps, {self.nfev} fev)")
 
 
@@ -162,7 +198,7 @@ def rest_state(params: Params) -> np.ndarray:
 def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float = RTOL, atol=None,
         lyapunov: bool = False, strobe: bool = True, max_events: int = 200_000,
         max_steps: int = 50_000_000, tangent0=(1.0, 0.0), method: str = "mixed", record: int = 0,
-        at_limit: str = "raise") -> Run:
+        at_limit: str = "raise") -> ForcedRun:
     """Integrate eq. (1) over ``n_periods`` forcing periods from (t0, y0) (default: rest at X₀).
 
     Strobe times are t0 + i·2π/ω.  ``lyapunov=True`` adds the variational equation and
@@ -170,7 +206,7 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
     steps that start in stick (|ẋ| < :data:`V_STIFF`, |ẍ| < :data:`A_STICK`) with the
     L-stable SDIRK4 (:mod:`landau.verify.skurativskyi.sdirk`) and all others with DOPRI5;
     ``"dopri5"`` is the explicit path alone.  ``record``: keep up to that many accepted step ends
-    (t, y, f) as the run's time series (:meth:`Run.simulation`).  Raises IntegratorError on failure.
+    (t, y, f) as the run's time series (:meth:`ForcedRun.simulation`).  Raises IntegratorError on failure.
 
     Parameters
     ----------
@@ -202,7 +238,7 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
 
     Returns
     -------
-    Run
+    ForcedRun
         Final state, impacts, detachments, stroboscopic points and (with ``record``) the time series.
 
     References
@@ -253,7 +289,7 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
         raise IntegratorError(f"compiled {method} integrator stopped: {R.STATUS[status]} (ω={params.omega}): "
                               f"{st.advice}", t=t, state=yend)
     up = ev_k > 0
-    return Run(params, t, yend, ev_t[up], ev_v[up], ev_t[~up], st_t, st_y, ly, nly, nsteps, nfev, nrej, mism,
+    return ForcedRun(params, t, yend, ev_t[up], ev_v[up], ev_t[~up], st_t, st_y, ly, nly, nsteps, nfev, nrej, mism,
                nstiff, method, rec_t, rec_y, rec_f, st)
 
 
@@ -383,7 +419,7 @@ def record_run(params: Params, t_end: float, y0=None, *, rtol: float = RTOL, max
     tt, yy, ff = np.concatenate(rec_t), np.concatenate(rec_y), np.concatenate(rec_f)
     ek_all, et_all, ev_all = np.concatenate(ev_k), np.concatenate(ev_t), np.concatenate(ev_v)
     up = ek_all > 0
-    r = Run(params, t, y, et_all[up], ev_all[up], et_all[~up], np.empty(0), np.empty((0, 2)), 0.0, 0, steps, nfev,
+    r = ForcedRun(params, t, y, et_all[up], ev_all[up], et_all[~up], np.empty(0), np.empty((0, 2)), 0.0, 0, steps, nfev,
             0, 0.0, 0, method, tt, yy, ff, status)
     sim = r.simulation()
     if status is not Status.FINISHED:
@@ -391,3 +427,15 @@ def record_run(params: Params, t_end: float, y0=None, *, rtol: float = RTOL, max
                                    f"({int(max_steps) if status is Status.MAX_STEPS else int(max_events)}) at "
                                    f"t = {t:.6g} s before the end t = {t_end:.6g} s: {status.advice}")
     return sim
+
+
+def __getattr__(name: str):
+    # the former name of the raw record, kept for one release
+    if name == "Run":
+        import warnings
+
+        warnings.warn("landau.verify.skurativskyi.simulate.Run is deprecated: use ForcedRun (the raw record "
+                      "of one forced-oscillator run; .simulation() gives the common Simulation)",
+                      DeprecationWarning, stacklevel=2)
+        return ForcedRun
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

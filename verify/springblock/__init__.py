@@ -4,8 +4,9 @@ the amplitude-equation engine against it.
 * :mod:`.model` — eq. (4) in log variables, right-hand side and exact Jacobian generated from the
   symbolic law and compiled with numba; dimensional or dimensionless (m, κ) construction.
 * :mod:`.radau` — compiled Radau IIA (order 5) integrator with dense output and section crossings.
-* :mod:`.simulate` — :func:`integrate` (raises ``IntegratorError`` with time and state on failure) and
-  ``record_run`` (bounded steps and memory, a ``Simulation`` with a named status at its limit).
+* :mod:`.simulate` — :func:`integrate`, returning a :class:`RadauRecord` (raises ``IntegratorError``
+  with time and state on failure) and ``record_run`` (bounded steps and memory, a ``Simulation`` with a
+  named status at its limit).
 * :mod:`.history` — the load point driven by a velocity history (velocity steps, slide-hold-slide).
 * :mod:`.units` — the units of a law's states by dimensional analysis.
 * :mod:`.orbits` — shooting on the Poincaré section, monodromy, Floquet multipliers, Hopf points.
@@ -16,6 +17,18 @@ the amplitude-equation engine against it.
 """
 
 from landau.verify.springblock.model import SpringBlockModel
-from landau.verify.springblock.simulate import Run, integrate
+from landau.verify.springblock.simulate import RadauRecord, integrate
 
-__all__ = ["SpringBlockModel", "Run", "integrate"]
+__all__ = ["SpringBlockModel", "RadauRecord", "integrate"]
+
+
+def __getattr__(name: str):
+    # the former name of the raw record, kept for one release
+    if name == "Run":
+        import warnings
+
+        warnings.warn("landau.verify.springblock.Run is deprecated: use RadauRecord (the raw record of one "
+                      "Radau IIA integration; .simulation() gives the common Simulation)",
+                      DeprecationWarning, stacklevel=2)
+        return RadauRecord
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

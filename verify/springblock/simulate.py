@@ -7,7 +7,7 @@ and stopping after a given number of them; every failure raises
 
 The integrator is the order-5 Radau IIA of :mod:`landau.verify.hybrid.radau` (Newton system
 in the eigenbasis of A⁻¹, Hairer & Wanner 1996, IV.8), compiled once per machine; the law's
-right-hand side and Jacobian reach it as compiled C callbacks.  :meth:`Run.simulation` gives a
+right-hand side and Jacobian reach it as compiled C callbacks.  :meth:`RadauRecord.simulation` gives a
 run as the common result type :class:`~landau.verify.hybrid.result.Simulation`.
 """
 
@@ -32,8 +32,33 @@ METHODS = ("radau5",)
 
 
 @dataclass(frozen=True)
-class Run:
-    """Result of one integration (times in seconds, states scaled as in the model)."""
+class RadauRecord:
+    """The raw record of one compiled Radau IIA integration of the spring–block (eq. 4/5 of
+    Putelat et al. 2010): final time and state, step and evaluation counters, the located
+    crossings and the recorded steps; ``.simulation()`` gives the common
+    :class:`~landau.verify.hybrid.result.Simulation`.
+
+    Returned by :func:`integrate` and read by the shooting and analysis code.  Times are in
+    seconds, states scaled as in the model (convert with ``model.to_physical``).
+
+    Attributes
+    ----------
+    t : float
+        Final time, s.
+    y : numpy.ndarray
+        Final scaled state.
+    status : str
+        How the run ended (``"finished"``, ``"terminal event"``, ...; the texts of
+        :data:`landau.verify.hybrid.radau.STATUS`).
+    steps, rejected, nfev, njev, nlu : int
+        Accepted and rejected steps, right-hand side and Jacobian evaluations, LU factorisations.
+    cpu_seconds : float
+        CPU time of the compiled loop (process time), s.
+    event_t, event_y, event_dir : numpy.ndarray
+        Times, states and directions (+1 up, −1 down) of the located crossings.
+    rec_t, rec_y : numpy.ndarray
+        The recorded steps (``integrate(..., record=N)``).
+    """
 
     t: float
     y: np.ndarray = field(repr=False)
@@ -63,7 +88,7 @@ class Run:
                           self.nfev)
 
     def __repr__(self) -> str:
-        return (f"Run(t={self.t:.6g} s, {self.status}, steps={self.steps}, rejected={self.rejected}, "
+        return (f"RadauRecord(t={self.t:.6g} s, {self.status}, steps={self.steps}, rejected={self.rejected}, "
                 f"nfev={self.nfev}, events={len(self.event_t)}, cpu={self.cpu_seconds:.3g} s)")
 
 
@@ -72,7 +97,7 @@ def integrate(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol:
               event_index: int = -1, event_value: float = 0.0, event_direction: int = 0,
               stop_after: int = 0, max_events: int = 100_000, record: int = 0,
               first_step: float | None = None, max_step: float = np.inf, variational: bool = False,
-              method: str = "radau5") -> Run:
+              method: str = "radau5") -> RadauRecord:
     """Integrate eq. (4) from ``y0`` (scaled state) over ``t_span`` seconds with the default integrator.
 
     ``atol`` defaults to ``rtol`` (all variables are O(1) by construction).  ``record`` is the
@@ -108,7 +133,7 @@ def integrate(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol:
 
     Returns
     -------
-    Run
+    RadauRecord
         Final time and state, the located events and the recorded steps (convert states
         with ``model.to_physical``), step counts and CPU time.
 
@@ -157,7 +182,7 @@ def integrate(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol:
         raise IntegratorError(f"spring-block[{model.law.name}] integration failed: {STATUS[int(st)]} after "
                               f"{int(cnt[0])} steps (state = X [m], v [m/s], phi...): "
                               f"{status_from_text(STATUS[int(st)]).advice}", t=float(t * tu), state=state)
-    return Run(float(t * tu), y.copy(), STATUS[int(st)], int(cnt[0]), int(cnt[1]), int(cnt[2]), int(cnt[3]),
+    return RadauRecord(float(t * tu), y.copy(), STATUS[int(st)], int(cnt[0]), int(cnt[1]), int(cnt[2]), int(cnt[3]),
                int(cnt[4]), cpu, et * tu, ey, evdir[:len(et)].astype(int).copy(), rt * tu, ry)
 
 
@@ -285,3 +310,15 @@ def record_run(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol
         msg = (f"stopped at the step limit ({int(max_steps)} steps) at t = {t * tu:.6g} s before the end "
                f"t = {t1:.6g} s: {sts.advice}")
     return Simulation("spring-block", tt, yy.T, log, sts, msg, t * tu, y, steps, nfev)
+
+
+def __getattr__(name: str):
+    # the former name of the raw record, kept for one release
+    if name == "Run":
+        import warnings
+
+        warnings.warn("landau.verify.springblock.simulate.Run is deprecated: use RadauRecord (the raw record "
+                      "of one Radau IIA integration; .simulation() gives the common Simulation)",
+                      DeprecationWarning, stacklevel=2)
+        return RadauRecord
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
