@@ -30,11 +30,12 @@ def test_expansion_fold_equals_the_quintic_fold_with_linear_Lambda():
 
 def test_spring_block_json_keys_and_names():
     g = _sb_point()
-    assert (g.V, g.kc, g.k, g.omega_c, g.Gamma_bar) == (2e-4, 1e4, 1e4, 30.0, 3.0)
-    assert list(g.as_dict()) == ["V", "kc", "omega_c", "Lambda5", "l2", "Gamma_bar", "dLambda_dV", "sign_below",
+    assert (g.V, g.k_c, g.kc, g.k, g.omega_c, g.Gamma_bar) == (2e-4, 1e4, 1e4, 1e4, 30.0, 3.0)
+    assert g.as_dict()["k_c"] == g.as_dict()["kc"] == 1e4      # k_c canonical, kc its deprecated alias
+    assert list(g.as_dict()) == ["V", "k_c", "kc", "omega_c", "Lambda5", "l2", "Gamma_bar", "dLambda_dV", "sign_below",
                                  "sign_above", "fold_of_cycles"]
     bare = GeneralisedHopfPoint("dieterich", ("k", "V"), 1e4, 2e-4, 30.0, sign_below=1, sign_above=-1)
-    assert bare.as_dict() == {"V": 2e-4, "kc": 1e4, "omega_c": 30.0, "sign_below": 1, "sign_above": -1}
+    assert bare.as_dict() == {"V": 2e-4, "k_c": 1e4, "kc": 1e4, "omega_c": 30.0, "sign_below": 1, "sign_above": -1}
 
 
 def test_general_json_keys_and_missing_names():
