@@ -18,6 +18,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from landau.errors import InputError, IntegratorError, LandauError
+from landau.support.deprecation import former_names
 from landau.verify.galvanetto.maps import MapUndefined, f_n, two_block_map
 from landau.verify.galvanetto.model import K_of, StickSlipParams
 
@@ -281,15 +282,12 @@ def _continuation_scan(H, warm: _Warm, x0: float, limit: float, what: str, max_j
                              "bifurcation does not exist on that orbit")
 
 
-def __getattr__(name: str):
-    # the locators' result type lives in the simulation engine's toolkit, shared with the other models
-    if name == "Located":
-        import warnings
+def _located():
+    from landau.verify.hybrid.analysis import Located
 
-        from landau.verify.hybrid.analysis import Located
+    return Located
 
-        warnings.warn("landau.verify.galvanetto.periodic.Located is deprecated: import Located from "
-                      "landau.verify.galvanetto.bifurcations or landau.verify.hybrid.analysis",
-                      DeprecationWarning, stacklevel=2)
-        return Located
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+# the locators' result type lives in the simulation engine's toolkit, shared with the other models
+__getattr__ = former_names(__name__, {"Located": (_located, "import Located from landau.verify.galvanetto.bifurcations "
+                                                            "or landau.verify.hybrid.analysis")})

@@ -20,6 +20,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from landau.errors import InputError, IntegratorError
+from landau.support.deprecation import former_names
 from landau.verify.hybrid import Event, EventLog, Guard, HybridModel, Jump, Mode
 from landau.verify.hybrid.result import Simulation, Status
 from landau.verify.skurativskyi import rk as R
@@ -429,13 +430,8 @@ def record_run(params: Params, t_end: float, y0=None, *, rtol: float = RTOL, max
     return sim
 
 
-def __getattr__(name: str):
-    # the former name of the raw record, kept for one release
-    if name == "Run":
-        import warnings
-
-        warnings.warn("landau.verify.skurativskyi.simulate.Run is deprecated: use ForcedRun (the raw record "
-                      "of one forced-oscillator run; .simulation() gives the common Simulation)",
-                      DeprecationWarning, stacklevel=2)
-        return ForcedRun
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+# the former name of the raw record, kept for one release
+_RENAMED = {"Run": (lambda: ForcedRun,
+                "use ForcedRun (the raw record of one forced-oscillator run; .simulation() gives the common "
+                "Simulation)")}
+__getattr__ = former_names(__name__, _RENAMED)

@@ -16,19 +16,15 @@ the amplitude-equation engine against it.
   Figs 6/11/12.
 """
 
+from landau.support.deprecation import former_names
 from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.simulate import RadauRecord, integrate
 
 __all__ = ["SpringBlockModel", "RadauRecord", "integrate"]
 
 
-def __getattr__(name: str):
-    # the former name of the raw record, kept for one release
-    if name == "Run":
-        import warnings
-
-        warnings.warn("landau.verify.springblock.Run is deprecated: use RadauRecord (the raw record of one "
-                      "Radau IIA integration; .simulation() gives the common Simulation)",
-                      DeprecationWarning, stacklevel=2)
-        return RadauRecord
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+# the former name of the raw record, kept for one release
+_RENAMED = {"Run": (lambda: RadauRecord,
+                "use RadauRecord (the raw record of one Radau IIA integration; .simulation() gives the common "
+                "Simulation)")}
+__getattr__ = former_names(__name__, _RENAMED)

@@ -109,9 +109,10 @@ def _steady_state(law: FrictionLaw, V: float, p: Mapping[str, float]) -> tuple[l
     return phi, mu
 
 
-def _field(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str, ...] = ()):
-    """f(t, y; V) and its Jacobian in (u, w, ψ…), and μ(w, ψ…), compiled by lambdify from the law
-    (with the optional ``terms``: η, γ_LD, α_LD, module docstring)."""
+def _history_law(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str, ...]):
+    """The law in the history's variables, shared by the fields at M > 0 and M = 0: the symbols
+    u, w = ln v, ψ = ln φ…, V_lp, the normal load σ = σ₀ + γ_LD k u (Linker & Dieterich 1992), μ and
+    the state rates (the first with the α_LD response to dσ/dt), every law parameter substituted."""
     ns = len(law.states)
     u, w = sp.symbols("u_ w_", real=True)
     psi = sp.symbols(f"psi_0:{ns}", real=True)
@@ -122,18 +123,24 @@ def _field(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str,
     def tidy(e):
         return sp.expand_log(e.subs(vals).xreplace(sub), force=True)
 
-    mu = tidy(law.mu)
-    M, sigma0 = float(p["M"]), float(p["sigma"])
-    if M == 0:       # quasi-dynamic: the field is _field_m0's
-        return None, None, sp.lambdify([[u, w, *psi]], mu, "numpy")
-    eta = float(p.get("eta", 0.0)) if "eta" in terms else 0.0
     gam = float(p.get("gamma_ld", 0.0)) if "gamma_ld" in terms else 0.0
-    sigma = sigma0 + gam * k * u                     # the normal load follows the spring force
-    f = [Vlp - sp.exp(w), (k * u - sigma * mu - eta * sp.exp(w)) * sp.exp(-w) / M]
+    sigma = float(p["sigma"]) + gam * k * u          # the normal load follows the spring force
     rates = [tidy(r) for r in law.rates]
     if "alpha_ld" in terms and gam != 0:
         sig_dot = gam * k * (Vlp - sp.exp(w))
         rates[0] = rates[0] - float(p["alpha_ld"]) * sig_dot / (sigma * tidy(sp.diff(law.mu, law.states[0])))
+    return u, w, psi, Vlp, sigma, tidy(law.mu), rates
+
+
+def _field(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str, ...] = ()):
+    """f(t, y; V) and its Jacobian in (u, w, ψ…), and μ(w, ψ…), compiled by lambdify from the law
+    (with the optional ``terms``: η, γ_LD, α_LD, module docstring)."""
+    u, w, psi, Vlp, sigma, mu, rates = _history_law(law, p, k, terms)
+    M = float(p["M"])
+    if M == 0:       # quasi-dynamic: the field is _field_m0's
+        return None, None, sp.lambdify([[u, w, *psi]], mu, "numpy")
+    eta = float(p.get("eta", 0.0)) if "eta" in terms else 0.0
+    f = [Vlp - sp.exp(w), (k * u - sigma * mu - eta * sp.exp(w)) * sp.exp(-w) / M]
     f += [sp.expand(r * sp.exp(-q)) for r, q in zip(rates, psi, strict=True)]
     ys = [u, w, *psi]
     J = sp.Matrix(f).jacobian(sp.Matrix(ys))
@@ -146,25 +153,10 @@ def _field(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str,
 def _field_m0(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str, ...]):
     """The quasi-dynamic history (M = 0): the force residual R(w, u, ψ…) ÷ σ₀ with R_w and R_y, and the
     field (u', ψ'…) with its derivatives in w and y = (u, ψ…), compiled by lambdify (w = ln v)."""
-    ns = len(law.states)
-    u, w = sp.symbols("u_ w_", real=True)
-    psi = sp.symbols(f"psi_0:{ns}", real=True)
-    Vlp = sp.Symbol("V_lp_", real=True)
-    vals = {prm.symbol: p[prm.name] for prm in law.parameters}
-    sub = {v_slip: sp.exp(w), **{s: sp.exp(q) for s, q in zip(law.states, psi, strict=True)}}
-
-    def tidy(e):
-        return sp.expand_log(e.subs(vals).xreplace(sub), force=True)
-
+    u, w, psi, Vlp, sigma, mu, rates = _history_law(law, p, k, terms)
     sigma0 = float(p["sigma"])
     eta = float(p["eta"])
-    gam = float(p.get("gamma_ld", 0.0)) if "gamma_ld" in terms else 0.0
-    sigma = sigma0 + gam * k * u
-    R = (k * u - sigma * tidy(law.mu) - eta * sp.exp(w)) / sigma0
-    rates = [tidy(r) for r in law.rates]
-    if "alpha_ld" in terms and gam != 0:
-        sig_dot = gam * k * (Vlp - sp.exp(w))
-        rates[0] = rates[0] - float(p["alpha_ld"]) * sig_dot / (sigma * tidy(sp.diff(law.mu, law.states[0])))
+    R = (k * u - sigma * mu - eta * sp.exp(w)) / sigma0
     f = [Vlp - sp.exp(w)] + [sp.expand(r * sp.exp(-q)) for r, q in zip(rates, psi, strict=True)]
     ys = [u, *psi]
     res = sp.lambdify([w, *ys], (R, sp.diff(R, w), [sp.diff(R, q) for q in ys]), "math")

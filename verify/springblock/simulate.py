@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from landau.errors import InputError, IntegratorError
+from landau.support.deprecation import former_names
 from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.radau import STATUS, radau_core
 from landau.verify.hybrid.result import Simulation, Status, status_from_text
@@ -312,13 +313,8 @@ def record_run(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol
     return Simulation("spring-block", tt, yy.T, log, sts, msg, t * tu, y, steps, nfev)
 
 
-def __getattr__(name: str):
-    # the former name of the raw record, kept for one release
-    if name == "Run":
-        import warnings
-
-        warnings.warn("landau.verify.springblock.simulate.Run is deprecated: use RadauRecord (the raw record "
-                      "of one Radau IIA integration; .simulation() gives the common Simulation)",
-                      DeprecationWarning, stacklevel=2)
-        return RadauRecord
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+# the former name of the raw record, kept for one release
+_RENAMED = {"Run": (lambda: RadauRecord,
+                "use RadauRecord (the raw record of one Radau IIA integration; .simulation() gives the common "
+                "Simulation)")}
+__getattr__ = former_names(__name__, _RENAMED)
