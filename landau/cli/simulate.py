@@ -197,9 +197,12 @@ def _spring_block(args, t_end: float):
         if e.note == "up":
             events.append(replace(e, y=physical(e.y), y_after=physical(e.y)))
     v = np.asarray(phys["v"])
+    up = sim.event_dir > 0   # the record's crossing arrays follow its events (physical, rising)
     sim = replace(sim, y=np.vstack([np.asarray(phys[n]) for n in names]), f=None, events=events,
                   y_final=physical(sim.y_final), state_names=names,
-                  regimes=regimes_from_mask(sim.t, v < STICK_FRACTION * V, "stick (v < V/100)", "slip"))
+                  regimes=regimes_from_mask(sim.t, v < STICK_FRACTION * V, "stick (v < V/100)", "slip"),
+                  event_t=sim.event_t[up], event_y=np.array([e.y for e in events]).reshape(-1, len(names)),
+                  event_dir=sim.event_dir[up])
     units = {"X": "m", "v": "m/s", **law_state_units(law)}
     used = {"law": law.name, "V": V, "k": k, **params}
     notes.append("X = x - x0(t) is the displacement from steady sliding; " + start)

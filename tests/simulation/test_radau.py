@@ -141,6 +141,7 @@ def test_fig3_period_agrees_with_shooting():
     """The period of the Fig. 3 cycle (Putelat et al. 2010) from the downward returns to w = 0 at
     rtol 1e-10 agrees with the period found by shooting at rtol 1e-11 to 1e-8 of the period
     (measured 4e-15: the returns are located on the collocation cubic of the same method)."""
+    from landau.verify.hybrid.result import Status
     from landau.verify.springblock.simulate import W_INDEX, integrate
     from landau.verify.springblock.workprecision import fig3_cycle, fig3_model
 
@@ -150,11 +151,10 @@ def test_fig3_period_agrees_with_shooting():
     run = integrate(model, y0, (0.0, 3 * orbit.period), rtol=1e-10, event_index=W_INDEX, event_direction=-1,
                     stop_after=2)
     td = run.event_t[run.event_dir < 0]
-    assert run.status == "terminal event" and len(td) == 2
+    assert run.status is Status.STOPPED and len(td) == 2
     assert abs(td[0] - orbit.period) < 1e-8 * orbit.period
     assert abs(td[1] - 2 * orbit.period) < 2e-8 * orbit.period
-    sim = run.simulation()
-    assert sim.status.success and len(sim.events) == len(run.event_t)
+    assert run.success and len(run.events) == len(run.event_t)
 
 
 _SHORT_RUN = """
@@ -165,7 +165,7 @@ from landau.verify.springblock.simulate import W_INDEX, integrate
 from landau.verify.springblock.workprecision import fig3_model
 model = fig3_model()
 run = integrate(model, model.perturbed(1e-6), (0.0, {t_end}), rtol=1e-8, event_index=W_INDEX)
-print(json.dumps({{"y": run.y.tolist(), "steps": run.steps, "t": run.t}}))
+print(json.dumps({{"y": run.y_final.tolist(), "steps": run.nsteps, "t": run.t_final}}))
 """
 
 

@@ -82,25 +82,12 @@ def test_renamed_names_and_fields_warn_and_still_work():
 
 
 def test_the_raw_records_have_their_own_names_and_convert_to_simulation():
-    """``integrate`` returns a :class:`RadauRecord`, ``run`` a :class:`ForcedRun`; each converts to
-    the common :class:`Simulation` with the same end time, end state, counters and crossings."""
-    from landau.laws import get_law
+    """``run`` returns a :class:`ForcedRun` that converts to the common :class:`Simulation` with the
+    same end time, end state, counters and crossings (the spring–block's :class:`RadauRecord`:
+    tests/simulation/test_result_radau.py)."""
     from landau.verify.hybrid.result import Simulation, Status
     from landau.verify.skurativskyi.model import PAPER
     from landau.verify.skurativskyi.simulate import ForcedRun, run
-    from landau.verify.springblock import RadauRecord, SpringBlockModel, integrate
-    from landau.verify.springblock.simulate import W_INDEX
-
-    model = SpringBlockModel.build(get_law("dieterich"), 1e-4, 1.7e5)
-    rec = integrate(model, model.perturbed(0.01 * model.ell), (0.0, 2.0), event_index=W_INDEX, record=10 ** 5)
-    assert type(rec) is RadauRecord and repr(rec).startswith("RadauRecord(t=2 s, finished")
-    assert len(rec.event_t) > 0        # the slip oscillation crosses w = 0 in 2 s
-    sim = rec.simulation()
-    assert isinstance(sim, Simulation) and sim.status is Status.FINISHED and sim.t_final == rec.t == 2.0
-    np.testing.assert_array_equal(sim.y_final, rec.y)
-    np.testing.assert_array_equal(sim.t, rec.rec_t)
-    assert (sim.nsteps, sim.nfev) == (rec.steps, rec.nfev)
-    np.testing.assert_array_equal([e.t for e in sim.events], rec.event_t)
 
     fr = run(PAPER, 3, record=10 ** 5)
     assert type(fr) is ForcedRun and repr(fr).startswith("ForcedRun(ω=")

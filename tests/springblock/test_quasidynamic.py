@@ -121,7 +121,7 @@ def test_quasidynamic_agrees_with_tiny_mass_compiled_run(extra):
     v0 = V * math.exp(cell.slip_rate(y0))
     z0 = model.from_physical(y0[0] * cell.ell, v0, [cell.phi0[0] * math.exp(y0[1])])
     run = integrate(model, z0, (0.0, T), rtol=1e-11)
-    ph = model.to_physical(run.y)
+    ph = model.to_physical(run.y_final)
     scale = 0.05 * BP1["L"]
     # rtol 1e-11 over ~500 steps; the O(MV²/(σL)) difference is 1e-20
     assert float(ph["X"]) == pytest.approx(qd.y[0, -1], abs=1e-8 * scale)

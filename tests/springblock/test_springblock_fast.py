@@ -17,6 +17,7 @@ import sympy as sp
 from landau.errors import InputError, IntegratorError, NoHopfError
 from landau.laws import get_law
 from landau.laws.law import v as v_slip
+from landau.verify.hybrid.result import Status
 from landau.verify.springblock.checks import fitted_exponent, predict, supercritical_check
 from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.orbits import hopf_stiffness, return_map, section_point
@@ -143,12 +144,12 @@ def test_extreme_regime_runs_complete():
     soft = SpringBlockModel.from_dimensionless(law, M_PAPER, 1e-6, 100.0)
     run = integrate(soft, np.array([0.0, np.log(2.0), 0.0]), (0.0, 1e6 * soft.time_unit),
                     rtol=1e-8, record=100_000)
-    v = soft.to_physical(run.rec_y)["v"]
-    assert run.status == "finished" and 0 < run.steps < 50_000
+    v = soft.to_physical(run.y.T)["v"]
+    assert run.status is Status.FINISHED and 0 < run.nsteps < 50_000
     assert v.min() < 1e-15 and v.max() > 1e3 * soft.V      # long stick, then an inertial slip
     stiff = SpringBlockModel.from_dimensionless(law, M_PAPER, 1e-1, 100.0)
     run = integrate(stiff, np.array([0.0, np.log(2.0), 0.0]), (0.0, 1.0), rtol=1e-8)
-    assert run.status == "finished" and abs(run.y[W_INDEX]) < 1e-3  # steady sliding is stable for κ > κ_c
+    assert run.status is Status.FINISHED and abs(run.y_final[W_INDEX]) < 1e-3  # steady sliding is stable for κ > κ_c
 
 
 def test_integrator_failure_is_named_with_time_and_state():
@@ -172,7 +173,7 @@ def test_default_integrator_agrees_with_scipy_radau_on_fig3_cycle():
     orbit = fig3_cycle(model)
     assert orbit.stable and orbit.v_min < 1e-8 < 1e-2 < orbit.v_max     # stick–slip over > 6 decades
     y0 = np.insert(orbit.z, W_INDEX, 0.0)
-    ours = integrate(model, y0, (0.0, orbit.period), rtol=1e-11).y
+    ours = integrate(model, y0, (0.0, orbit.period), rtol=1e-11).y_final
     theirs = scipy_run(model, y0, orbit.period, "Radau", 1e-11, True)[0]
     assert error(ours, theirs) < 1e-8
 
@@ -251,7 +252,7 @@ def test_fig12_bistability_does_not_close_up_at_low_kappa():
     big[0], big[W_INDEX] = -300.0, np.log(1e-3)     # spring relaxed by 300 L, block nearly stuck
     for y0, sustained in ((small, False), (big, True)):
         r = integrate(m, y0, (0.0, 60.0), rtol=1e-9, record=400_000)
-        late = r.rec_t > 0.7 * r.rec_t[-1]
-        swing = np.ptp(r.rec_y[late, W_INDEX])
+        late = r.t > 0.7 * r.t[-1]
+        swing = np.ptp(r.y[W_INDEX, late])
         # decayed: round-off level; sustained: the stick–slip swing of ln(v/V) is ~9.9
         assert (swing > 5.0) if sustained else (swing < 1e-8), (sustained, swing)

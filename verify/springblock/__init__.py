@@ -4,9 +4,9 @@ the amplitude-equation engine against it.
 * :mod:`.model` — eq. (4) in log variables, right-hand side and exact Jacobian generated from the
   symbolic law and compiled with numba; dimensional or dimensionless (m, κ) construction.
 * :mod:`.radau` — compiled Radau IIA (order 5) integrator with dense output and section crossings.
-* :mod:`.simulate` — :func:`integrate`, returning a :class:`RadauRecord` (raises ``IntegratorError``
-  with time and state on failure) and ``record_run`` (bounded steps and memory, a ``Simulation`` with a
-  named status at its limit).
+* :mod:`.simulate` — :func:`integrate`, returning a :class:`RadauRecord` (the common ``Simulation``
+  with the integrator's counters and located crossings; raises ``IntegratorError`` with time and
+  state on failure) and ``record_run`` (bounded steps and memory, a named status at its limit).
 * :mod:`.history` — the load point driven by a velocity history (velocity steps, slide-hold-slide).
 * :mod:`.units` — the units of a law's states by dimensional analysis.
 * :mod:`.orbits` — shooting on the Poincaré section, monodromy, Floquet multipliers, Hopf points.
@@ -23,8 +23,7 @@ from landau.verify.springblock.simulate import RadauRecord, integrate
 __all__ = ["SpringBlockModel", "RadauRecord", "integrate"]
 
 
-# the former name of the raw record, kept for one release
+# the former name of the record, kept for one release
 _RENAMED = {"Run": (lambda: RadauRecord,
-                "use RadauRecord (the raw record of one Radau IIA integration; .simulation() gives the common "
-                "Simulation)")}
+                "use RadauRecord (the record of one Radau IIA integration, a Simulation)")}
 __getattr__ = former_names(__name__, _RENAMED)

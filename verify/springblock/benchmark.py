@@ -38,14 +38,14 @@ def main(argv=None) -> int:
     orbit = fig3_cycle(model)
     y0 = np.insert(orbit.z, W_INDEX, 0.0)
     T = orbit.period
-    ref = integrate(model, y0, (0.0, T), rtol=1e-13).y
+    ref = integrate(model, y0, (0.0, T), rtol=1e-13).y_final
     print(f"Fig. 3 cycle: T = {T:.6g} s, v in [{orbit.v_min:.3g}, {orbit.v_max:.3g}] m/s; m = {model.m:.4g}, "
           f"kappa = {model.kappa:.3g}")
     ours, theirs = [], []
     for rtol in (1e-7, 1e-8, 1e-9, 1e-10, 1e-11):
         run, cpu = _timed(lambda rtol=rtol: integrate(model, y0, (0.0, T), rtol=rtol), min_time=0.2)
-        ours.append((error(run.y, ref), cpu))
-        print(f"  default    rtol {rtol:6.0e}: error {ours[-1][0]:.3e}, cpu {cpu * 1e3:9.3f} ms, steps {run.steps}")
+        ours.append((error(run.y_final, ref), cpu))
+        print(f"  default    rtol {rtol:6.0e}: error {ours[-1][0]:.3e}, cpu {cpu * 1e3:9.3f} ms, steps {run.nsteps}")
     for rtol in (1e-7, 1e-8, 1e-9, 1e-10):
         (y, steps, _), cpu = _timed(lambda rtol=rtol: scipy_run(model, y0, T, "Radau", rtol, False), min_time=0.0)
         theirs.append((error(y, ref), cpu))

@@ -21,6 +21,7 @@ import numpy as np
 from landau.errors import IntegratorError
 from landau.verify.hybrid.analysis import ShootingError as _ShootingError
 from landau.verify.hybrid.analysis import shoot_fixed_point
+from landau.verify.hybrid.result import Status
 from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.simulate import W_INDEX, integrate
 
@@ -83,7 +84,7 @@ def return_map(model: SpringBlockModel, z, *, rtol: float = 1e-10, t_max: float 
         y0 = np.concatenate([y0, np.eye(n).ravel()])
     run = integrate(model, y0, (0.0, tmax), rtol=rtol, atol=rtol * np.r_[np.ones(n), np.ones(n * n)][:len(y0)],
                     event_index=W_INDEX, event_direction=-1, stop_after=1, variational=monodromy)
-    if run.status != "terminal event":
+    if run.status is not Status.STOPPED:
         raise ShootingError(f"no return to the section within {tmax:.3g} s (orbit left or decayed to steady sliding)")
     # the crossing itself (located on the dense output), not the end of the step that contains it
     yT_full = run.event_y[-1]
@@ -115,7 +116,7 @@ def describe(model: SpringBlockModel, z, DP, period: float, run, iterations: int
     xs = r.event_y[:, 0] * model.ell
     x_max = max(y0[0] * model.ell, float(xs.max()))
     x_min = float(xs.min()) if len(xs) else x_max
-    w = r.rec_y[:, W_INDEX]
+    w = r.y[W_INDEX]
     mults = tuple(complex(m) for m in np.linalg.eigvals(DP)) if DP is not None else ()
     return PeriodicOrbit(model.V, model.k, float(period), x_max, x_min, float(model.V * np.exp(w.max())),
                          float(model.V * np.exp(w.min())), mults, iterations, residual, np.asarray(z, dtype=float))
@@ -146,7 +147,7 @@ def first_return(model: SpringBlockModel, y0, rtol: float = 1e-10) -> np.ndarray
     """The first downward crossing of Σ of the orbit through ``y0`` (a point of Σ)."""
     run = integrate(model, np.asarray(y0, dtype=float), (0.0, 200.0 * _period_guess(model)), rtol=rtol,
                     event_index=W_INDEX, event_direction=-1, stop_after=1)
-    if run.status != "terminal event":
+    if run.status is not Status.STOPPED:
         raise ShootingError("the orbit through the initial guess never crosses the section downwards")
     return _off_section(run.event_y[-1])
 

@@ -110,8 +110,8 @@ def _follow(model: SpringBlockModel, y0: np.ndarray, rtol: float) -> _Fate:
         if len(new) > 2 and abs(new[-1] - new[-2]) < 1e-4 * a and abs(new[-1] - new[0]) < 1e-3 * a:
             settled = True
             break
-        y = run.y.copy()
-        t = float(run.t)
+        y = run.y_final.copy()
+        t = run.t_final
     trend = 0 if settled else (1 if abs(new[-1]) > abs(new[0]) else -1)
     T = float(ts[-1] - ts[-2]) if len(ts) > 1 else period
     # one more cycle with its steps recorded: the slowest slip over it
@@ -119,7 +119,7 @@ def _follow(model: SpringBlockModel, y0: np.ndarray, rtol: float) -> _Fate:
     y_last[W_INDEX] = 0.0
     rec = integrate(model, y_last, (0.0, 1.5 * T), rtol=rtol, event_index=W_INDEX, event_direction=-1,
                     stop_after=1, record=200_000)
-    v_min = float(np.exp(rec.rec_y[:, W_INDEX].min()))
+    v_min = float(np.exp(rec.y[W_INDEX].min()))
     regime = "stick-slip" if v_min < STICK_FRACTION else "small-cycle"
     return _Fate(regime, float(xs[-1]), v_min, T, settled, trend)
 

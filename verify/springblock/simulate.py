@@ -7,14 +7,16 @@ and stopping after a given number of them; every failure raises
 
 The integrator is the order-5 Radau IIA of :mod:`landau.verify.hybrid.radau` (Newton system
 in the eigenbasis of A⁻¹, Hairer & Wanner 1996, IV.8), compiled once per machine; the law's
-right-hand side and Jacobian reach it as compiled C callbacks.  :meth:`RadauRecord.simulation` gives a
-run as the common result type :class:`~landau.verify.hybrid.result.Simulation`.
+right-hand side and Jacobian reach it as compiled C callbacks.  A run is a :class:`RadauRecord`, the
+common result type :class:`~landau.verify.hybrid.result.Simulation` with the integrator's counters
+and the located crossings as arrays; :func:`record_run` streams a long run with bounded memory.
 """
 
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+import warnings
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -32,65 +34,81 @@ W_INDEX = 1
 METHODS = ("radau5",)
 
 
-@dataclass(frozen=True)
-class RadauRecord:
-    """The raw record of one compiled Radau IIA integration of the spring–block (eq. 4/5 of
-    Putelat et al. 2010): final time and state, step and evaluation counters, the located
-    crossings and the recorded steps; ``.simulation()`` gives the common
-    :class:`~landau.verify.hybrid.result.Simulation`.
+@dataclass(frozen=True, kw_only=True)
+class RadauRecord(Simulation):
+    """One compiled Radau IIA integration of the spring–block (eq. 4/5 of Putelat et al. 2010):
+    a :class:`~landau.verify.hybrid.result.Simulation` with the integrator's counters and the
+    located crossings as arrays.
 
-    Returned by :func:`integrate` and read by the shooting and analysis code.  Times are in
-    seconds, states scaled as in the model (convert with ``model.to_physical``).
+    Returned by :func:`integrate` and :func:`record_run` and read by the shooting and analysis
+    code.  Times are in seconds, states scaled as in the model (convert with
+    ``model.to_physical``).  The base fields: ``t``, ``y`` (shape (n, m)) the recorded steps
+    (``integrate(..., record=N)``; empty by default), ``t_final``, ``y_final`` the end of the run,
+    ``status`` :attr:`~landau.verify.hybrid.result.Status.FINISHED` at the end of ``t_span`` or
+    :attr:`~landau.verify.hybrid.result.Status.STOPPED` after ``stop_after`` crossings, ``nsteps``
+    the accepted steps, ``events`` the located crossings as ``"section"`` events (guard
+    ``"crossing"``, ``note`` ``"up"`` or ``"down"``).
 
     Attributes
     ----------
-    t : float
-        Final time, s.
-    y : numpy.ndarray
-        Final scaled state.
-    status : str
-        How the run ended (``"finished"``, ``"terminal event"``, ...; the texts of
-        :data:`landau.verify.hybrid.radau.STATUS`).
-    steps, rejected, nfev, njev, nlu : int
-        Accepted and rejected steps, right-hand side and Jacobian evaluations, LU factorisations.
+    rejected, njev, nlu : int
+        Rejected steps, Jacobian evaluations, LU factorisations.
     cpu_seconds : float
         CPU time of the compiled loop (process time), s.
     event_t, event_y, event_dir : numpy.ndarray
-        Times, states and directions (+1 up, −1 down) of the located crossings.
-    rec_t, rec_y : numpy.ndarray
-        The recorded steps (``integrate(..., record=N)``).
+        Times (s), scaled states (one row per crossing) and directions (+1 up, −1 down) of the
+        located crossings: the arrays behind ``events``.
     """
 
-    t: float
-    y: np.ndarray = field(repr=False)
-    status: str
-    steps: int
     rejected: int
-    nfev: int
     njev: int
     nlu: int
     cpu_seconds: float
     event_t: np.ndarray = field(repr=False)
     event_y: np.ndarray = field(repr=False)
     event_dir: np.ndarray = field(repr=False)
-    rec_t: np.ndarray = field(repr=False)
-    rec_y: np.ndarray = field(repr=False)
 
-    def simulation(self, model: str = "spring-block") -> Simulation:
-        """The run as the common result type: the recorded steps (``integrate(..., record=N)``,
-        times in seconds, scaled states, linear between steps) and the located crossings as
-        ``"section"`` events (guard ``"crossing"``, ``note`` = direction)."""
-        log = EventLog()
-        for t, y, d in zip(self.event_t, self.event_y, self.event_dir, strict=True):
-            log.append(Event(float(t), np.asarray(y), "crossing", "slip", "slip", "section",
-                             np.asarray(y), "up" if d > 0 else "down"))
-        st = status_from_text(self.status)
-        return Simulation(model, self.rec_t, self.rec_y.T, log, st, st.advice, self.t, self.y, self.steps,
-                          self.nfev)
+    def simulation(self, model: str | None = None) -> "RadauRecord":
+        """Deprecated: the record is already a :class:`~landau.verify.hybrid.result.Simulation`.
+
+        Parameters
+        ----------
+        model : str, optional
+            A model name replacing ``"spring-block"`` (a copy of the record is returned then).
+
+        Returns
+        -------
+        RadauRecord
+            The record itself.
+        """
+        warnings.warn("RadauRecord.simulation() is deprecated: the record is already a Simulation "
+                      "(use it directly)", DeprecationWarning, stacklevel=2)
+        return self if model is None or model == self.model else replace(self, model=model)
 
     def __repr__(self) -> str:
-        return (f"RadauRecord(t={self.t:.6g} s, {self.status}, steps={self.steps}, rejected={self.rejected}, "
-                f"nfev={self.nfev}, events={len(self.event_t)}, cpu={self.cpu_seconds:.3g} s)")
+        return (f"RadauRecord({self.model}, {self.status.value}, t_final={self.t_final:.6g} s, "
+                f"{len(self.t)} points, steps={self.nsteps}, rejected={self.rejected}, nfev={self.nfev}, "
+                f"events={len(self.event_t)}, cpu={self.cpu_seconds:.3g} s)")
+
+
+def _crossing_log(event_t: np.ndarray, event_y: np.ndarray, event_dir: np.ndarray) -> EventLog:
+    """The located crossings as ``"section"`` events (guard ``"crossing"``), from the engine's arrays."""
+    log = EventLog()
+    for t, y, d in zip(event_t.tolist(), event_y, event_dir.tolist(), strict=True):
+        log.append(Event(t, y, "crossing", "slip", "slip", "section", y, "up" if d > 0 else "down"))
+    return log
+
+
+def _record(status: Status, message: str, t_final: float, y_final: np.ndarray, counts, cpu: float,
+            event_t: np.ndarray, event_y: np.ndarray, event_dir: np.ndarray, rec_t: np.ndarray,
+            rec_y: np.ndarray) -> RadauRecord:
+    """The one place a :class:`RadauRecord` is built: ``counts`` = (accepted, rejected, nfev, njev,
+    nlu), ``rec_y`` of shape (m, n) as the compiled loop records it."""
+    return RadauRecord(model="spring-block", t=rec_t, y=rec_y.T,
+                       events=_crossing_log(event_t, event_y, event_dir), status=status, message=message,
+                       t_final=t_final, y_final=y_final, nsteps=int(counts[0]), nfev=int(counts[2]),
+                       rejected=int(counts[1]), njev=int(counts[3]), nlu=int(counts[4]), cpu_seconds=cpu,
+                       event_t=event_t, event_y=event_y, event_dir=event_dir)
 
 
 def integrate(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol: float = 1e-9,
@@ -128,15 +146,18 @@ def integrate(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol:
     stop_after : int, optional
         End the run after that many located crossings (0: run to the end of ``t_span``).
     record : int, optional
-        Number of accepted steps kept in ``rec_t``, ``rec_y`` (from the start; 0: none).
+        Number of accepted steps kept in ``t``, ``y`` (from the start; 0: none).
     method : {"radau5"}, optional
         The integrator (the only one: the order-5 Radau IIA, module docstring).
 
     Returns
     -------
     RadauRecord
-        Final time and state, the located events and the recorded steps (convert states
-        with ``model.to_physical``), step counts and CPU time.
+        A :class:`~landau.verify.hybrid.result.Simulation`: the final time and state
+        (``t_final``, ``y_final``), the status (``FINISHED`` or ``STOPPED`` after ``stop_after``
+        crossings), the recorded steps ``t``, ``y`` (shape (n, m); convert states with
+        ``model.to_physical(y.T)``), the located crossings (``events`` and the arrays
+        ``event_t``, ``event_y``, ``event_dir``), step counts and CPU time.
 
     Raises
     ------
@@ -183,8 +204,9 @@ def integrate(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol:
         raise IntegratorError(f"spring-block[{model.law.name}] integration failed: {STATUS[int(st)]} after "
                               f"{int(cnt[0])} steps (state = X [m], v [m/s], phi...): "
                               f"{status_from_text(STATUS[int(st)]).advice}", t=float(t * tu), state=state)
-    return RadauRecord(float(t * tu), y.copy(), STATUS[int(st)], int(cnt[0]), int(cnt[1]), int(cnt[2]), int(cnt[3]),
-               int(cnt[4]), cpu, et * tu, ey, evdir[:len(et)].astype(int).copy(), rt * tu, ry)
+    status = Status.STOPPED if st == 1 else Status.FINISHED
+    return _record(status, status.advice, float(t * tu), y.copy(), cnt, cpu, et * tu, ey,
+                   evdir[:len(et)].astype(int).copy(), rt * tu, ry)
 
 
 #: step attempts per compiled call of :func:`record_run` (its accepted steps are recorded)
@@ -203,8 +225,8 @@ def _thin_every_other(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndar
 
 def record_run(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol: float = 1e-9,
                max_steps: int = 5_000_000, max_points: int = MAX_POINTS, event_index: int = -1,
-               event_value: float = 0.0, max_events: int = 100_000, chunk_steps: int = CHUNK_STEPS) -> Simulation:
-    """Integrate eq. (4) over ``t_span`` with bounded steps and memory, as a :class:`Simulation`.
+               event_value: float = 0.0, max_events: int = 100_000, chunk_steps: int = CHUNK_STEPS) -> RadauRecord:
+    """Integrate eq. (4) over ``t_span`` with bounded steps and memory.
 
     The run is taken in compiled calls of at most ``chunk_steps`` step attempts each, every call
     continuing from the previous one's state and step size; the recorded series is streamed
@@ -239,8 +261,9 @@ def record_run(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol
 
     Returns
     -------
-    Simulation
-        Status ``finished`` or ``max-steps``; ``t`` in seconds, ``y`` scaled.
+    RadauRecord
+        Status ``finished`` or ``max-steps``; ``t`` in seconds, ``y`` scaled; ``nsteps`` and
+        ``rejected`` the accepted and rejected steps, the other counters summed over the calls.
     """
     if not (int(max_steps) >= 1 and int(max_points) >= 16 and int(chunk_steps) >= 1):
         raise InputError("max_steps and chunk_steps must be >= 1 and max_points >= 16")
@@ -260,29 +283,35 @@ def record_run(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol
     ev_t: list = []
     ev_y: list = []
     ev_d: list = []
-    steps = nfev = 0
-    status = "finished"
+    steps = 0                          # step attempts, accepted and rejected
+    counts = np.zeros(5, dtype=np.int64)   # accepted, rejected, nfev, njev, nlu
+    n_ev = 0
+    cpu = 0.0
+    status = Status.FINISHED
     while True:
         budget = min(int(chunk_steps), int(max_steps) - steps)
-        room = max(int(max_events) - len(ev_t), 0)
+        room = max(int(max_events) - n_ev, 0)
         evbuf = np.empty((max(room, 1) if event_index >= 0 else 1, nn + 1))
         evdir = np.empty(evbuf.shape[0])
         # a budget of step attempts (accepted and rejected), as integrate's max_steps
+        tic = time.process_time()
         st, tn, yn, cnt, et, ey, rt, ry, hn, _ = radau_core(
             c.rhs, c.jac, t, y, t1 / tu, model.p, float(rtol), at, float(h), np.inf, budget,
             int(event_index) if room else -1, float(event_value), 0, 0, budget, None, None, evbuf, evdir)
+        cpu += time.process_time() - tic
         steps += int(cnt[0]) + int(cnt[1])
-        nfev += int(cnt[2])
+        counts += cnt[:5]
         if st == -1 or st == -3:
             phys = model.to_physical(yn[:model.n])
             state = [float(phys["X"]), float(phys["v"])] + [float(phys[s.name]) for s in model.law.states]
             raise IntegratorError(f"spring-block[{model.law.name}] integration failed: {STATUS[int(st)]} after "
                                   f"{steps} steps (state = X [m], v [m/s], phi...): "
                                   f"{status_from_text(STATUS[int(st)]).advice}", t=float(tn * tu), state=state)
-        ev_t += list(et * tu)
-        ev_y += list(ey)
-        ev_d += list(evdir[:len(et)])
-        rt = rt * tu
+        ev_t.append(et * tu)
+        ev_y.append(ey)
+        ev_d.append(evdir[:len(et)].astype(int))
+        n_ev += len(et)
+        rt, ry = rt[1:] * tu, ry[1:]   # a call records its start: the previous call's end (or t0)
         if stride > 1:   # decimated recording: every stride-th step end of this call
             rt, ry = rt[stride - 1::stride], ry[stride - 1::stride]
         rec_t.append(rt)
@@ -296,25 +325,20 @@ def record_run(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol
         if st == 0 or st == 1:
             break
         if steps >= max_steps:
-            status = "max_steps"
+            status = Status.MAX_STEPS
             break
     tt, yy = np.concatenate(rec_t), np.concatenate(rec_y)
     if tt[-1] < t * tu:   # a decimated record keeps the final state
         tt, yy = np.append(tt, t * tu), np.vstack([yy, y[None, :]])
-    log = EventLog()
-    for te, ye, d in zip(ev_t, ev_y, ev_d, strict=True):
-        log.append(Event(float(te), np.asarray(ye), "crossing", "slip", "slip", "section", np.asarray(ye),
-                         "up" if d > 0 else "down"))
-    sts = status_from_text(status)
-    msg = sts.advice
-    if sts is Status.MAX_STEPS:
+    msg = status.advice
+    if status is Status.MAX_STEPS:
         msg = (f"stopped at the step limit ({int(max_steps)} steps) at t = {t * tu:.6g} s before the end "
-               f"t = {t1:.6g} s: {sts.advice}")
-    return Simulation("spring-block", tt, yy.T, log, sts, msg, t * tu, y, steps, nfev)
+               f"t = {t1:.6g} s: {status.advice}")
+    return _record(status, msg, t * tu, y, counts, cpu, np.concatenate(ev_t), np.concatenate(ev_y),
+                   np.concatenate(ev_d), tt, yy)
 
 
-# the former name of the raw record, kept for one release
+# the former name of the record, kept for one release
 _RENAMED = {"Run": (lambda: RadauRecord,
-                "use RadauRecord (the raw record of one Radau IIA integration; .simulation() gives the common "
-                "Simulation)")}
+                "use RadauRecord (the record of one Radau IIA integration, a Simulation)")}
 __getattr__ = former_names(__name__, _RENAMED)

@@ -129,16 +129,17 @@ def run_work_precision(tolerances=TOLERANCES, methods=SCIPY_METHODS, reference_r
     orbit = fig3_cycle(model)
     y0 = np.insert(orbit.z, W_INDEX, 0.0)
     T = orbit.period
-    ref = integrate(model, y0, (0.0, T), rtol=reference_rtol).y
+    ref = integrate(model, y0, (0.0, T), rtol=reference_rtol).y_final
     check = {
-        "default rtol 1e-11 vs ref": error(integrate(model, y0, (0.0, T), rtol=1e-11).y, ref),
-        "default rtol 1e-12 vs ref": error(integrate(model, y0, (0.0, T), rtol=1e-12).y, ref),
+        "default rtol 1e-11 vs ref": error(integrate(model, y0, (0.0, T), rtol=1e-11).y_final, ref),
+        "default rtol 1e-12 vs ref": error(integrate(model, y0, (0.0, T), rtol=1e-12).y_final, ref),
         "scipy Radau+J rtol 1e-13 vs ref": error(scipy_run(model, y0, T, "Radau", 1e-13, True)[0], ref),
     }
     pts = []
     for rtol in tolerances:
         run, cpu = _timed(lambda rtol=rtol: integrate(model, y0, (0.0, T), rtol=rtol))
-        pts.append(WorkPoint("landau Radau IIA (numba, analytic J)", rtol, error(run.y, ref), cpu, run.steps, run.nfev))
+        pts.append(WorkPoint("landau Radau IIA (numba, analytic J)", rtol, error(run.y_final, ref), cpu, run.nsteps,
+                             run.nfev))
         if progress:
             progress(pts[-1])
     for method in methods:
