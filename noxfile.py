@@ -67,8 +67,10 @@ def tests(session: nox.Session) -> None:
 def numba_min(session: nox.Session) -> None:
     low = numba_lower_bound()
     session.install("-e", ".[test]")
-    # pip picks the numpy and llvmlite that this numba accepts (numba pins both)
-    session.install(f"numba=={low}")
+    # pip picks the numpy and llvmlite that this numba accepts (numba pins both); pandas (a test
+    # dependency, imported when the suite is collected) from 2.3 on needs numpy >= 2, which the
+    # oldest numba does not accept, so the newest pandas that runs on numpy 1.x is taken with it
+    session.install(f"numba=={low}", "pandas<2.3")
     session.run("python", "-c", "import numba, numpy, llvmlite; print('numba', numba.__version__, 'numpy', "
                 "numpy.__version__, 'llvmlite', llvmlite.__version__)")
     session.run("pytest", "tests", "-x", "-q", "-k", INTEGRATOR_TESTS, *session.posargs,
