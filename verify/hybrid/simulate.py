@@ -30,6 +30,7 @@ as a zero-length phase of the next mode if it is still violated there.
 
 from __future__ import annotations
 
+import functools
 import warnings
 from dataclasses import dataclass, field, replace
 from typing import Any, Callable
@@ -160,17 +161,36 @@ class HybridSolution(Simulation):
 def _regimes(events: EventLog, final_mode: str, t0: float, t_end: float) -> tuple[tuple[float, float, str], ...]:
     """The run's regimes from ``t0`` to ``t_end``, ``(t_start, t_end, name)``, read off the mode
     changes in the event log (:func:`regime_of` names each mode)."""
-    sw = [e for e in events if e.from_mode != e.to_mode]
-    mode = sw[0].from_mode if sw else final_mode
-    out, start = [], float(t0)
-    for e in sw:
+    out, start, mode = [], float(t0), None
+    for e in events:
+        if e.from_mode == e.to_mode:
+            continue
+        if mode is None:
+            mode = e.from_mode
         if e.t > start:
-            out.append((start, float(e.t), regime_of(mode)))
-            start = float(e.t)
+            start_next = float(e.t)
+            out.append((start, start_next, regime_of(mode)))
+            start = start_next
         mode = e.to_mode
+    if mode is None:
+        mode = final_mode
     if t_end > start or not out:
         out.append((start, float(t_end), regime_of(mode)))
     return tuple(out)
+
+
+_EMPTY: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+
+
+def _empty_series(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The (read-only, shared) empty ``t`` and ``y`` of a run that recorded nothing (event maps
+    call the engine thousands of times)."""
+    hit = _EMPTY.get(n)
+    if hit is None:
+        t, y = np.empty(0), np.empty((n, 0))
+        t.flags.writeable = y.flags.writeable = False
+        hit = _EMPTY[n] = (t, y)
+    return hit
 
 
 def _solution(model: HybridModel, t0: float, t: float, y: np.ndarray, mname: str, status: str,
@@ -181,7 +201,7 @@ def _solution(model: HybridModel, t0: float, t: float, y: np.ndarray, mname: str
         ts = np.concatenate([s.t for s in segs])
         ys = np.concatenate([s.y for s in segs], axis=1)
     else:
-        ts, ys = np.empty(0), np.empty((len(y), 0))
+        ts, ys = _empty_series(len(y))
     st = status_from_text(status)
     msg = st.advice + (f" ({zeno!r})" if zeno else "")
     return HybridSolution(model.name, ts, ys, log, st, msg, t, y, nsteps, nfev,
@@ -189,6 +209,7 @@ def _solution(model: HybridModel, t0: float, t: float, y: np.ndarray, mname: str
                           zeno=zeno)
 
 
+@functools.lru_cache(maxsize=1024)
 def regime_of(mode: str) -> str:
     """The regime a mode name stands for: ``"flight"`` (a mode named with flight), ``"stick"``
     (``"stick"``, or a stick–slip code of ``s``/``n``/``p`` letters, one per block, all ``s``),
