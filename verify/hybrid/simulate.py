@@ -145,16 +145,35 @@ class HybridSolution(Simulation):
                 f"{self.nsteps} steps, {self.nfev} fev{z})")
 
     def simulation(self, model: str | None = None) -> Simulation:
-        """Deprecated: the record is already a :class:`Simulation` (returns it; with ``model``,
-        a copy under that name)."""
+        """Deprecated: the record is already a :class:`Simulation`.
+
+        Parameters
+        ----------
+        model : str, optional
+            A name for the run (default: keep ``self.model``).
+
+        Returns
+        -------
+        HybridSolution
+            ``self``, or a copy named ``model``.
+        """
         warnings.warn("HybridSolution.simulation() is deprecated: the record is already a Simulation "
                       "(use it directly; dataclasses.replace(sol, model=...) renames it)",
                       DeprecationWarning, stacklevel=2)
         return self if model is None or model == self.model else replace(self, model=model)
 
     def trajectory(self) -> tuple[np.ndarray, np.ndarray, list[str]]:
-        """The recorded samples ``(t, y, mode per point)``: ``t``, ``y`` as the fields, with the
-        mode of each point."""
+        """The recorded samples with the mode of each point.
+
+        Returns
+        -------
+        t : numpy.ndarray, shape (m,)
+            The field ``t``.
+        y : numpy.ndarray, shape (n, m)
+            The field ``y``.
+        modes : list of str
+            The mode of each recorded point.
+        """
         return self.t, self.y, [s.mode for s in self.segments for _ in s.t]
 
 
