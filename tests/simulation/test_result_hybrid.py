@@ -117,9 +117,9 @@ def test_regimes_follow_the_mode_changes_and_nothing_is_recorded_in_maps():
 
 def test_the_former_names_are_gone_and_simulation_warns():
     sol = simulate(_clock(), "stick", [0.0], (0.0, 3.0), STEP)
-    for name in ("mode",):   # the final mode is ``final_mode``; the final time/state ``t_final``/``y_final``
-        assert not hasattr(sol, name)
-    assert isinstance(sol.t, np.ndarray) and isinstance(sol.status, Status)
+    # the final mode is ``final_mode``, the final time and state ``t_final``/``y_final``, the regimes a field
+    assert not hasattr(sol, "mode") and isinstance(sol.regimes, tuple)
+    assert isinstance(sol.t, np.ndarray) and isinstance(sol.t_final, float) and isinstance(sol.status, Status)
     with pytest.warns(DeprecationWarning, match="already a Simulation"):
         assert sol.simulation() is sol
     with pytest.warns(DeprecationWarning, match="already a Simulation"):
