@@ -377,7 +377,7 @@ def _galvanetto(args, t_end: float, n: int):
     sol = simulate(model_for(p), mode, y0, (0.0, t_end), FIG_STEPPER,
                    EngineOptions(record=True, samples=8, max_steps=_max_steps(args), max_events=MAX_EVENTS,
                                  max_samples=MAX_POINTS))
-    sim = replace(sol.simulation(name), state_names=names)
+    sim = replace(sol, model=name, state_names=names)
     used = {k: getattr(p, k) for k in known}
     used.update(extra)
     notes = ["dimensionless time and displacements; " + start]
@@ -448,7 +448,7 @@ def _impact_oscillator(args, t_end: float):
     sol = simulate(cm.model, cm.initial_mode(0.0, y0), y0, (0.0, t_end), CompiledDOP853(1e-10, 1e-12),
                    default_options(record=True, max_steps=_max_steps(args), max_events=MAX_EVENTS,
                                    max_samples=MAX_POINTS))
-    sim = replace(sol.simulation(name), state_names=names)
+    sim = replace(sol, model=name, state_names=names)
     units = dict(STATE_UNITS[name])
     used = {**law.defaults(), "eN": eN, "v_belt": v, **p}
     if args.friction is not None:

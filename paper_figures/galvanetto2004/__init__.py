@@ -25,7 +25,7 @@ from landau.verify.galvanetto import bifurcations as B  # noqa: E402
 from landau.verify.galvanetto.analysis import FIG_STEPPER, beta_diagram, gsp_orbit_trajectory, map_curve, trajectory  # noqa: E402
 from landau.verify.galvanetto.maps import iterate, model_for, one_block_cycle  # noqa: E402
 from landau.verify.galvanetto.model import one_block, two_blocks  # noqa: E402
-from landau.verify.hybrid import EngineOptions, Guard, HybridModel, simulate  # noqa: E402
+from landau.verify.hybrid import EngineOptions, Guard, HybridModel, Status, simulate  # noqa: E402
 
 
 def _save(fig, out_dir: Path, name: str) -> list[Path]:
@@ -37,9 +37,9 @@ def _save(fig, out_dir: Path, name: str) -> list[Path]:
 def _one_block_cycle_xy(p):
     """Stick–slip cycle of one block: slip from the stick end, then the stick segment."""
     sol = one_block_cycle(p, FIG_STEPPER, options=EngineOptions(record=True, samples=8))
-    t, y, _ = sol.trajectory()
+    y = sol.y
     x_end = 1.0 - p.c * p.V
-    if sol.status == "stop":
+    if sol.status is Status.STOPPED:
         y = np.column_stack([y, [[x_end], [p.V]]])
     return y
 
@@ -156,7 +156,7 @@ def _xmax_next(c: float, j: float) -> dict[str, float]:
     x = np.linspace(x_eq + 0.01, 2.2, 60)[int(j)]
     sol = simulate(m, "n", [x, 0.0], (0.0, 100.0), FIG_STEPPER, EngineOptions(record=False),
                    stop=lambda ev: ev.guard == "xmax" and ev.t > 1e-9)
-    return {"x": float(x), "next": float(sol.y[0]) if sol.status == "stop" else np.nan}
+    return {"x": float(x), "next": float(sol.y_final[0]) if sol.status is Status.STOPPED else np.nan}
 
 
 def fig11(out_dir: Path) -> list[Path]:

@@ -138,7 +138,7 @@ def fig5(out_dir: Path) -> list[Path]:
     for mu, col in ((0.357, "b"), (0.40, "r"), (0.44, "m"), (0.47, "k")):
         t, yy, _, sol = _orbit(mu, 0.0, SET2, y, mode, 15.0, 1.0)
         ax.plot(yy[0], yy[2], col + "-", lw=0.8, label=f"μ={mu}")
-        y, mode = sol.y, sol.mode
+        y, mode = sol.y_final, sol.final_mode
     ax.set_xlabel("φ")
     ax.set_ylabel("φ̇")
     ax.legend(fontsize=8)

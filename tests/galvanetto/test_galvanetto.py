@@ -15,6 +15,7 @@ from landau.laws.kinetic import KineticFriction
 from landau.verify.galvanetto import bifurcations as B
 from landau.verify.galvanetto.maps import d_range, default_stepper, one_block_cycle, two_block_map
 from landau.verify.galvanetto.model import K_of, one_block, two_blocks
+from landau.verify.hybrid import Status
 
 # ------------------------------------------------------------------ friction law (eq. 7)
 
@@ -191,7 +192,7 @@ def test_c2_nonsmooth_fold_and_simulation_on_both_sides():
     # equilibrium and never sticks again.
     for c, sticks in [(c2 - 0.005, True), (c2 + 0.005, False)]:
         sol = one_block_cycle(one_block(0.5, 3.0, 0.0, c), max_events=4)
-        assert (sol.status == "stop") == sticks
+        assert (sol.status is Status.STOPPED) == sticks
 
 
 def test_c2_converged():
@@ -327,9 +328,9 @@ def test_user_kinetic_law_decays_to_slip_equilibrium_above_c1():
     model = HybridModel.from_modes(Mode("slip", rhs, (Guard("stick", lambda t, y: V - y[1], terminal=True),
                                                      Guard("xmax", lambda t, y: y[1]))))
     sol = simulate(model, "slip", [X0 + 0.01, 0.0], (0.0, 200.0), default_stepper(), EngineOptions(record=False))
-    assert sol.status == "t_end"   # never reached the stick line
+    assert sol.status is Status.FINISHED   # never reached the stick line
     ev = [(e.t, abs(e.y[0] - X0)) for e in sol.events if e.guard == "xmax"]
     assert len(ev) > 20
     t, a = np.array(ev).T
     assert np.polyfit(t, np.log(a), 1)[0] == pytest.approx(growth, rel=0.01)
-    assert abs(sol.y[0] - X0) < 0.01 * math.exp(200 * growth) * 1.2
+    assert abs(sol.y_final[0] - X0) < 0.01 * math.exp(200 * growth) * 1.2

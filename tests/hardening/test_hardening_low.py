@@ -11,7 +11,7 @@ import pytest
 
 from landau.cli import main
 from landau.errors import InputError, IntegratorError
-from landau.verify.hybrid import Guard, HybridModel, Mode, simulate
+from landau.verify.hybrid import Guard, HybridModel, Mode, Status, simulate
 
 # ---------------------------------------------------------------- hybrid engine input
 
@@ -73,9 +73,9 @@ def test_hybrid_valid_run_still_matches_closed_form():
     # x = cos t: the section x = 0 (going down) is first reached at t = π/2; the engine's
     # root tolerance is 1e-14 and the DOP853 tolerances 1e-10/1e-12, so 1e-8 is safe
     sol = simulate(_oscillator(), "free", [1.0, 0.0], (0.0, 2.0))
-    assert sol.status == "t_end"
+    assert sol.status is Status.FINISHED
     assert abs(sol.events[0].t - math.pi / 2) < 1e-8
-    assert abs(sol.y[0] - math.cos(2.0)) < 1e-8
+    assert abs(sol.y_final[0] - math.cos(2.0)) < 1e-8
 
 
 # ---------------------------------------------------------------- impact oscillator parameters

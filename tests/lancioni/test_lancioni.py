@@ -138,7 +138,7 @@ def test_just_past_hopf_slip_cycle_and_past_lift_off_jump(hopf1):
     cm = build(0.4098)
     sol = simulate(cm.model, "slip+", slip_state(cm.mech, c.phi_max), (0.0, 4.0), st, default_options(record=False))
     mx = np.array([e.y[2] for e in sol.events.filter(guard="phidot-max")])
-    assert sol.mode == "slip+" and not [e for e in sol.events if e.kind != "section"]
+    assert sol.final_mode == "slip+" and not [e for e in sol.events if e.kind != "section"]
     assert np.max(np.abs(mx - c.phidot_max)) < 1e-7
     c2 = A.slip_cycle(0.40984, hopf=hopf1)
     assert c2.lamN_min < 0  # the smooth continuation is no longer admissible

@@ -41,7 +41,7 @@ def test_bouncing_ball_chattering_accumulation_time(e):
     tail = 1e-6 * e / (1 - e)
     assert T - 2 * tail <= z[0].t <= T
     assert float(z[0].note.split("t=")[-1]) == pytest.approx(T, abs=1e-9)  # extrapolated accumulation
-    assert sol.mode == "stick" and sol.y[1] == 0.0 and abs(sol.y[3]) < 1e-12
+    assert sol.final_mode == "stick" and sol.y_final[1] == 0.0 and abs(sol.y_final[3]) < 1e-12
     imp = sol.events.times(guard="impact")
     k = np.arange(len(imp))
     assert np.max(np.abs(imp - (math.sqrt(2 * h / G) + 2 * v1 / G * e * (1 - e ** k) / (1 - e)))) < 1e-10
@@ -59,8 +59,8 @@ def test_inclined_plane_stick_slip_threshold_tan_theta(mu):
         assert mode == expect
         sol = simulate(cm.model, mode, y0, (0.0, 1.0), STEP, default_options())
         a = G * (math.sin(th) - mu * math.cos(th))
-        assert sol.mode == expect and len([e for e in sol.events if e.kind != "section"]) == 0
-        assert sol.y[0] == pytest.approx(0.0 if expect == "stick" else 0.5 * a, abs=1e-12)
+        assert sol.final_mode == expect and len([e for e in sol.events if e.kind != "section"]) == 0
+        assert sol.y_final[0] == pytest.approx(0.0 if expect == "stick" else 0.5 * a, abs=1e-12)
 
 
 def test_sliding_block_stops_and_sticks_below_threshold():

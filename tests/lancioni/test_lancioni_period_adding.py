@@ -137,9 +137,9 @@ def test_stick_tolerance_on_a_decelerating_block(reset):
     sol = simulate(cm.model, "slip+", np.array([0.0, 0.0, v0, 0.0]), (0.0, 1.0), DOP853Stepper(1e-12, 1e-14),
                    default_options(record=False))
     stops = [e for e in sol.events if e.guard == "stop"]
-    assert len(stops) == 1 and stops[0].to_mode == "stick" and sol.mode == "stick"
+    assert len(stops) == 1 and stops[0].to_mode == "stick" and sol.final_mode == "stick"
     assert stops[0].t == pytest.approx((v0 - eta) / -a, abs=1e-10)
-    assert sol.y[2] == pytest.approx(0.0 if reset == "project" else eta, abs=1e-12)
+    assert sol.y_final[2] == pytest.approx(0.0 if reset == "project" else eta, abs=1e-12)
     exact = ContactModel(PointMassOnPlane(g=g, theta=th, mu=mu))
     sol0 = simulate(exact.model, "slip+", np.array([0.0, 0.0, v0, 0.0]), (0.0, 1.0), DOP853Stepper(1e-12, 1e-14),
                     default_options(record=False))

@@ -99,8 +99,8 @@ def test_compiled_quiet_run_one_block_event_time():
     ref = run(ScipyStepper("DOP853", 1e-13, 1e-15))
     assert _events(fast) == _events(scan) == _events(ref)
     # the compiled quiet run takes the steps the per-step scan takes: the same event time exactly
-    assert fast.t == scan.t and fast.nsteps == scan.nsteps
-    assert abs(fast.t - ref.t) < 1e-11
+    assert fast.t_final == scan.t_final and fast.nsteps == scan.nsteps
+    assert abs(fast.t_final - ref.t_final) < 1e-11
     assert fast.nsteps > 10              # many steps, taken in the compiled loop
 
 

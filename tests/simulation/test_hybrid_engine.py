@@ -14,6 +14,7 @@ from scipy.integrate import solve_ivp
 
 from landau.errors import IntegratorError
 from landau.verify.hybrid import DOP853Stepper, EngineOptions, Guard, HybridModel, Jump, Mode, ScipyStepper, simulate
+from landau.verify.hybrid.result import Status
 
 G = 9.81
 
@@ -36,7 +37,7 @@ def test_bouncing_ball_zeno_time_closed_form(e):
     v1 = math.sqrt(2 * G * h)
     T = math.sqrt(2 * h / G) + 2 * e * v1 / (G * (1 - e))
     sol = simulate(ball(e), "fly", [h, 0.0], (0.0, 10.0), DOP853Stepper(1e-12, 1e-14))
-    assert sol.status == "zeno"  # the engine stops and reports instead of hanging
+    assert sol.status is Status.ZENO  # the engine stops and reports instead of hanging
     assert sol.zeno.t_accumulation == pytest.approx(T, rel=1e-9)
     assert sol.zeno.ratio == pytest.approx(e, rel=1e-6)
     # each impact time against the closed form t_k = t1 + 2 v1/g * sum_{j=1..k-1} e^j
@@ -50,7 +51,7 @@ def test_bouncing_ball_zeno_time_closed_form(e):
 
 def test_bouncing_ball_chattering_ended_and_logged():
     sol = simulate(ball(0.5, rest=True), "fly", [1.0, 0.0], (0.0, 3.0), DOP853Stepper(1e-12, 1e-14))
-    assert sol.status == "t_end" and sol.mode == "rest"
+    assert sol.status is Status.FINISHED and sol.final_mode == "rest"
     z = sol.events.filter(kind="zeno")
     assert len(z) == 1 and "chattering ended" in z[0].note
 
@@ -75,7 +76,7 @@ def test_double_crossing_inside_one_step_is_caught(record):
     sol = simulate(_dip_model(), "a", [0.0], (0.0, 20.0), st, EngineOptions(record=record))
     assert len(sol.events) == 1
     assert sol.events[0].t == pytest.approx(4.9, abs=1e-12)
-    assert sol.mode == "b"
+    assert sol.final_mode == "b"
     # the baseline takes the same big step and misses both roots (why the engine owns the loop)
     base = solve_ivp(lambda t, y: [1.0], (0.0, 20.0), [0.0], method="RK45", rtol=1e-6, atol=1e-9,
                      events=lambda t, y: (y[0] - 5.0) ** 2 - 0.01)
@@ -130,7 +131,7 @@ def test_hermite_screen_saves_the_dense_output_stages():
                                     (Guard("far", lambda t, y: 2.0 + y[0], lambda t, y: ("o", y)),)))
     sol = simulate(m, "o", [1.0, 0.0], (0.0, 50.0), DOP853Stepper(1e-10, 1e-12), EngineOptions(record=False))
     base = solve_ivp(lambda t, y: [y[1], -y[0]], (0.0, 50.0), [1.0, 0.0], method="DOP853", rtol=1e-10, atol=1e-12)
-    assert sol.status == "t_end" and len(sol.events) == 0
+    assert sol.status is Status.FINISHED and len(sol.events) == 0
     assert sol.nfev == base.nfev + 1
     unscreened = simulate(m, "o", [1.0, 0.0], (0.0, 50.0), DOP853Stepper(1e-10, 1e-12),
                           EngineOptions(record=False, screen=False))
@@ -150,11 +151,11 @@ def test_two_guards_at_the_same_instant():
         Mode("C", rhs(1, 0), (gx("D"),)),
         Mode("D", rhs(0, 0)))
     sol = simulate(m, "A", [1.0, 2.0], (0.0, 3.0), DOP853Stepper(1e-12, 1e-14))
-    assert sol.mode == "D"
+    assert sol.final_mode == "D"
     assert [e.guard for e in sol.events] == ["x=0", "y=0"]
     assert all(abs(e.t - 1.0) < 1e-12 for e in sol.events)
     assert "simultaneous" in sol.events[0].note and sol.events[1].kind == "zero-length"
-    assert np.allclose(sol.y, 0.0, atol=1e-12)
+    assert np.allclose(sol.y_final, 0.0, atol=1e-12)
 
 
 def test_section_events_poincare_period():
@@ -178,7 +179,7 @@ def test_zero_length_phase_fires_at_once():
     assert [e.kind for e in sol.events] == ["switch", "switch"]  # regular phases: A -> B at 1, B -> C at 1.5
     assert sol.events.times() == pytest.approx([1.0, 1.5], abs=1e-12)
     sol = simulate(m, "B", [0.75], (0.0, 2.0), DOP853Stepper())
-    assert sol.events[0].kind == "zero-length" and sol.events[0].t == 0.0 and sol.mode == "C"
+    assert sol.events[0].kind == "zero-length" and sol.events[0].t == 0.0 and sol.final_mode == "C"
 
 
 def test_integrator_failure_raises_with_time_and_state():
@@ -245,7 +246,7 @@ def test_stiff_contact_mode_with_radau_and_jacobian():
     assert t_in == pytest.approx(1.0, abs=1e-10)
     assert t_out - t_in == pytest.approx(math.pi / math.sqrt(k), rel=1e-6)
     assert sol.events[1].y[1] == pytest.approx(-v0, rel=1e-6)
-    assert sol.y[0] == pytest.approx(-(3.0 - t_out) * v0, abs=1e-6)
+    assert sol.y_final[0] == pytest.approx(-(3.0 - t_out) * v0, abs=1e-6)
 
 
 def test_hermite_screen_on_a_multi_phase_run_matches_the_dense_scan():
@@ -263,7 +264,7 @@ def test_hermite_screen_on_a_multi_phase_run_matches_the_dense_scan():
                      EngineOptions(record=False, screen=screen), stop=lambda ev: ev.to_mode == "ss")
             for screen in (False, True)]
     full, screened = runs
-    assert len(full.events) == 8 and full.mode == "ss"
+    assert len(full.events) == 8 and full.final_mode == "ss"
     assert [(e.guard, e.to_mode, e.t) for e in screened.events] == [(e.guard, e.to_mode, e.t) for e in full.events]
     assert screened.nfev < full.nfev - 2 * full.nsteps  # 3 dense-output stages saved on most steps
 
@@ -276,7 +277,6 @@ def test_a_long_run_ends_at_its_step_budget_with_bounded_samples(compiled):
     import sympy as sp
 
     from landau.codegen.kernels import generate_kernel
-    from landau.verify.hybrid import Status
     from landau.verify.hybrid.dop853 import CompiledDOP853
 
     x, v = sp.symbols("x v")
@@ -287,15 +287,14 @@ def test_a_long_run_ends_at_its_step_budget_with_bounded_samples(compiled):
     for record in (True, False):
         opts = EngineOptions(record=record, max_steps=3000, max_samples=500)
         sol = simulate(model, "osc", [1.0, 0.0], (0.0, 1e12), stepper, opts)
-        assert sol.status == "max_steps" and sol.nsteps == 3000
-        sim = sol.simulation("osc")
-        assert sim.status is Status.MAX_STEPS and not sim.success and "max_steps" in sim.message
-        assert 0 < sol.t < 1e12
-        np.testing.assert_allclose(sol.y, [math.cos(sol.t), -math.sin(sol.t)], atol=1e-6)
+        assert sol.status is Status.MAX_STEPS and sol.nsteps == 3000
+        assert not sol.success and "max_steps" in sol.message
+        assert 0 < sol.t_final < 1e12
+        np.testing.assert_allclose(sol.y_final, [math.cos(sol.t_final), -math.sin(sol.t_final)], atol=1e-6)
         if record:
-            t, y, _ = sol.trajectory()
+            t, y = sol.t, sol.y
             assert 250 <= len(t) <= 600            # ≤ max_samples (+ one step's samples)
-            assert t[0] == 0.0 and t[-1] == sol.t  # spread over the whole run
+            assert t[0] == 0.0 and t[-1] == sol.t_final  # spread over the whole run
             assert np.all(np.diff(t) > 0)
             np.testing.assert_allclose(y[0], np.cos(t), atol=1e-6)
 
@@ -310,6 +309,6 @@ def test_a_long_stick_slip_run_keeps_its_samples_bounded_across_many_phases():
     p = one_block(0.25)
     opts = EngineOptions(record=True, samples=8, max_steps=20_000, max_samples=1000)
     sol = simulate(model_for(p), "s", np.array([0.0, p.V]), (0.0, 1e12), FIG_STEPPER, opts)
-    assert sol.status == "max_steps" and len(sol.events) > 1000
-    t, _, _ = sol.trajectory()
-    assert len(t) <= 1100 and t[0] == 0.0 and t[-1] == sol.t and np.all(np.diff(t) >= 0)
+    assert sol.status is Status.MAX_STEPS and len(sol.events) > 1000
+    t = sol.t
+    assert len(t) <= 1100 and t[0] == 0.0 and t[-1] == sol.t_final and np.all(np.diff(t) >= 0)

@@ -183,7 +183,7 @@ def test_impacts_are_events_of_the_forced_oscillator_result():
     assert len(sim.t) == 500 < r.nsteps  # capped at the requested number of points
 
 
-def test_hybrid_solution_converts_to_the_common_result():
+def test_hybrid_solution_is_the_common_result():
     from landau.verify.hybrid import DOP853Stepper, Guard, HybridModel, Jump, Mode, simulate
     from landau.verify.hybrid.result import Status
 
@@ -192,8 +192,8 @@ def test_hybrid_solution_converts_to_the_common_result():
                (Guard("floor", lambda t, y: y[0], lambda t, y: Jump("fly", np.array([y[0], -e * y[1]]))),))
     sol = simulate(HybridModel.from_modes(fly, name="ball"), "fly", [1.0, 0.0], (0.0, 1.0),
                    DOP853Stepper(1e-12, 1e-14))
-    sim = sol.simulation("ball")
-    assert sim.status is Status.FINISHED and sim.success
+    sim = sol
+    assert sim.model == "ball" and sim.status is Status.FINISHED and sim.success
     # first impact of a ball dropped from 1 m: t = sqrt(2/g) (closed form)
     assert sim.events[0].t == pytest.approx(np.sqrt(2 / g), rel=1e-12)
     # free fall is quadratic: the recorded samples lie on the parabola before the impact
@@ -243,7 +243,7 @@ def test_shooting_finds_the_fixed_point_and_multipliers_of_a_return_map():
     assert lo <= np.sqrt(2.0) <= hi and hi - lo <= 2.0 ** -40
 
 
-def test_contact_run_converts_to_the_common_result():
+def test_contact_run_is_the_common_result():
     # a block thrown along a slope (tan θ < μ) with the shared contact mechanics: decelerates at
     # g(μ cos θ − sin θ), stops at t* = u0/(g(μ cos θ − sin θ)) and sticks (closed form)
     import math
@@ -256,7 +256,7 @@ def test_contact_run_converts_to_the_common_result():
     cm = ContactModel(PointMassOnPlane(g=g, theta=th, mu=mu))
     sol = simulate(cm.model, "slip+", [0.0, 0.0, u0, 0.0], (0.0, 1.0), DOP853Stepper(1e-12, 1e-14),
                    default_options())
-    sim = sol.simulation("block on a slope")
+    sim = sol
     assert sim.status is Status.FINISHED
     dec = g * (mu * math.cos(th) - math.sin(th))
     t_stop = u0 / dec

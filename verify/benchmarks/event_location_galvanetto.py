@@ -44,7 +44,7 @@ UNSCREENED = EngineOptions(record=False, screen=False)
 def engine(method: str, rtol: float, opts: EngineOptions = OPTS):
     sol = simulate(model_for(P), "n", Y0, (0.0, 50.0), ScipyStepper(method, rtol, rtol * 1e-2), opts,
                    stop=lambda ev: ev.to_mode == "s")
-    return sol.t, sol.y[0], sol.nfev
+    return sol.t_final, sol.y_final[0], sol.nfev
 
 
 def compiled_engine(rtol: float, opts: EngineOptions = OPTS):
@@ -52,7 +52,7 @@ def compiled_engine(rtol: float, opts: EngineOptions = OPTS):
     output): quiet steps run in one compiled call per phase (the guards are affine)."""
     sol = simulate(model_for(P), "n", Y0, (0.0, 50.0), CompiledDOP853(rtol, rtol * 1e-2), opts,
                    stop=lambda ev: ev.to_mode == "s")
-    return sol.t, sol.y[0], sol.nfev
+    return sol.t_final, sol.y_final[0], sol.nfev
 
 
 def baseline(method: str, rtol: float):
@@ -76,7 +76,7 @@ def two_block_engine(method: str, rtol: float, opts: EngineOptions = OPTS):
     mode, y0 = gsp_start(P2, D0)
     sol = simulate(model_for(P2), mode, y0, (0.0, 300.0), ScipyStepper(method, rtol, rtol * 1e-2), opts,
                    stop=lambda ev: ev.to_mode == "ss")
-    return sol.t, sol.y[1] - sol.y[0], sol.nfev
+    return sol.t_final, sol.y_final[1] - sol.y_final[0], sol.nfev
 
 
 def two_block_compiled_engine(rtol: float, opts: EngineOptions = OPTS):
@@ -84,7 +84,7 @@ def two_block_compiled_engine(rtol: float, opts: EngineOptions = OPTS):
     mode, y0 = gsp_start(P2, D0)
     sol = simulate(model_for(P2), mode, y0, (0.0, 300.0), CompiledDOP853(rtol, rtol * 1e-2), opts,
                    stop=lambda ev: ev.to_mode == "ss")
-    return sol.t, sol.y[1] - sol.y[0], sol.nfev
+    return sol.t_final, sol.y_final[1] - sol.y_final[0], sol.nfev
 
 
 def solve_ivp_loop(model, mode: str, y0, t_end: float, method: str, rtol: float, stop_mode: str,

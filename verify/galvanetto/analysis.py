@@ -41,7 +41,7 @@ def trajectory(p: StickSlipParams, mode: str, y0, t_end: float, stepper=FIG_STEP
     """Recorded hybrid trajectory (t, y) for phase portraits, samples after ``t_keep``."""
     sol = simulate(model_for(p), mode, np.asarray(y0, float), (0.0, t_end), stepper,
                    EngineOptions(record=True, samples=8))
-    t, y, _ = sol.trajectory()
+    t, y = sol.t, sol.y
     keep = t >= t_keep
     return t[keep], y[:, keep], sol
 
@@ -54,10 +54,9 @@ def gsp_orbit_trajectory(p: StickSlipParams, d: float, n_steps: int, stepper=FIG
         mode, y0 = gsp_start(p, d)
         sol = simulate(model_for(p), mode, y0, (0.0, 500.0), stepper, EngineOptions(record=True, samples=8),
                        stop=lambda ev: ev.to_mode == "ss")
-        t, y, _ = sol.trajectory()
-        ys.append(y)
-        d = float(sol.y[1] - sol.y[0])
+        ys.append(sol.y)
+        d = float(sol.y_final[1] - sol.y_final[0])
         # the g.s.p. segment: both at V from the landing to the next start
         mode2, y1 = gsp_start(p, d)
-        ys.append(np.column_stack([sol.y, y1]))
+        ys.append(np.column_stack([sol.y_final, y1]))
     return np.concatenate(ys, axis=1)

@@ -20,7 +20,7 @@ import numpy as np
 
 from landau.errors import LandauError
 from landau.verify.galvanetto.model import StickSlipParams, build_model
-from landau.verify.hybrid import EngineOptions, EventLog, simulate
+from landau.verify.hybrid import EngineOptions, EventLog, Status, simulate
 from landau.verify.hybrid.dop853 import CompiledDOP853
 
 #: map runs record no samples.  A stuck block whose spring force lands just outside its sticking
@@ -90,10 +90,10 @@ def two_block_map(p: StickSlipParams, d: float, stepper=None, sections: bool = F
     t_max = t_max if t_max is not None else 200.0 + 20.0 / p.V
     sol = simulate(model_for(p, sections, transparent), mode, y0, (0.0, t_max), stepper or default_stepper(), options,
                    stop=stop or (lambda ev: ev.to_mode == "ss"))
-    if sol.status != "stop":
-        raise MapUndefined(f"no global stick phase within t={t_max:g} from d={d!r} ({sol.status})")
-    y = sol.y
-    return MapStep(d, float(y[1] - y[0]), sol.events, sol.t)
+    if sol.status is not Status.STOPPED:
+        raise MapUndefined(f"no global stick phase within t={t_max:g} from d={d!r} ({sol.status.value})")
+    y = sol.y_final
+    return MapStep(d, float(y[1] - y[0]), sol.events, sol.t_final)
 
 
 def f(p: StickSlipParams, d: float, stepper=None, transparent: frozenset = frozenset()) -> float:

@@ -13,6 +13,7 @@ from landau.laws.kinetic import KineticFriction, resolve_kinetic_law
 from landau.verify.galvanetto.maps import MapUndefined, default_stepper, one_block_cycle
 from landau.verify.galvanetto.model import _make_rhs, one_block
 from landau.verify.galvanetto.periodic import _locate, _margins, _velocity_scale, scan_bracket
+from landau.verify.hybrid import Status
 from landau.verify.hybrid.analysis import Located
 
 # ----------------------------------------------------------------- one block (Sec. 4.1, 4.2)
@@ -55,7 +56,7 @@ def one_block_sliding(kind: str, gamma: float | None = None, delta: float | None
     def H(V):
         p = one_block(V, c=c, law=law)
         sol = one_block_cycle(p, stepper, stop=lambda ev: ev.guard == "r1=0" and ev.from_mode == side)
-        if sol.status != "stop":
+        if sol.status is not Status.STOPPED:
             return 1.0  # never reaches r = 0 from that side: still before the bifurcation
         return _margins(p, sol.events, side)[-1]
 
@@ -144,9 +145,9 @@ def nonsmooth_fold_c2(V: float = 0.5, gamma: float | None = None, delta: float |
         model = HybridModel.from_modes(Mode("slip-back", back, (Guard("vmax", lambda t, y: -slip(t, y)[1]),)))
         sol = simulate(model, "slip-back", [1.0 - c * V, V], (0.0, 100.0), st, EngineOptions(record=False),
                        stop=lambda ev: ev.guard == "vmax")
-        if sol.status != "stop":
+        if sol.status is not Status.STOPPED:
             raise MapUndefined("no velocity maximum in backward time")
-        return float(sol.y[1] - V)
+        return float(sol.y_final[1] - V)
 
     if bracket is None:
         bracket = scan_bracket(H, c1 * (1.0 + 10.0 ** (np.arange(-16, 9) / 4)), "non-smooth fold c2")

@@ -3,9 +3,9 @@
 Compose a problem (:class:`HybridModel` of :class:`Mode` and :class:`Guard`), a mode
 integrator (a stepper factory, :class:`ScipyStepper` or any object with scipy's
 ``OdeSolver`` members) and engine options, then call :func:`simulate`.  The result
-(:class:`HybridSolution`) carries the event log (:class:`EventLog`) and, if events
-accumulate, a :class:`ZenoDiagnosis`; :meth:`HybridSolution.simulation` gives the common result
-type of every model (:class:`Simulation`: dense time series, events, a :class:`Status`).
+(:class:`HybridSolution`) is the common result type of every model (:class:`Simulation`: recorded
+time series, the event log :class:`EventLog`, a :class:`Status`) with the final mode, the recorded
+segments and, if events accumulate, a :class:`ZenoDiagnosis`.
 The compiled stepper over a :class:`Kernel` is in :mod:`landau.verify.hybrid.dop853`.  Analysis
 tools (event maps, Poincaré sections) are in :mod:`landau.verify.hybrid.analysis`.
 """

@@ -30,7 +30,9 @@ as a zero-length phase of the next mode if it is still violated there.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import functools
+import warnings
+from dataclasses import dataclass, field, replace
 from typing import Any, Callable
 
 import numpy as np
@@ -110,64 +112,123 @@ class Segment:
         return f"Segment({self.mode!r}, t=[{self.t[0]:.6g}, {self.t[-1]:.6g}], {len(self.t)} points)"
 
 
-@dataclass(frozen=True)
-class HybridSolution:
-    """Outcome of :func:`simulate`.
+@dataclass(frozen=True, kw_only=True)
+class HybridSolution(Simulation):
+    """Outcome of :func:`simulate`: a :class:`~landau.verify.hybrid.result.Simulation` with the
+    hybrid engine's extras.
 
-    status: ``"t_end"`` (reached the final time), ``"stop"`` (the ``stop`` predicate or a
-    terminal guard), ``"zeno"`` / ``"event-rate"`` (accumulation; see ``zeno``),
-    ``"max_events"``.
+    The common fields: ``t``, ``y`` the concatenated recorded segments (empty when the run
+    records nothing, ``EngineOptions(record=False)``); ``t_final``, ``y_final`` where the run
+    ended; ``status`` — :attr:`~Status.FINISHED` (reached the final time),
+    :attr:`~Status.STOPPED` (the ``stop`` predicate or a terminal guard), :attr:`~Status.ZENO` /
+    :attr:`~Status.EVENT_RATE` (accumulation; see ``zeno``), :attr:`~Status.MAX_EVENTS`,
+    :attr:`~Status.MAX_STEPS`; ``regimes`` read off the mode changes (:func:`regime_of`).
+
+    Attributes
+    ----------
+    final_mode : str
+        The mode the run ended in.
+    segments : tuple of Segment
+        The recorded pieces of trajectory, one per phase (empty when not recording).
+    zeno : ZenoDiagnosis or None
+        The accumulation diagnosis when the status is ``ZENO`` or ``EVENT_RATE``.
     """
 
-    t: float
-    y: np.ndarray
-    mode: str
-    status: str
-    events: EventLog
-    segments: tuple[Segment, ...] = ()
+    final_mode: str
+    segments: tuple[Segment, ...] = field(default=(), repr=False)
     zeno: ZenoDiagnosis | None = None
-    nsteps: int = 0
-    nfev: int = 0
 
     def __repr__(self) -> str:
         z = f", zeno={self.zeno!r}" if self.zeno else ""
-        return (f"HybridSolution(status={self.status!r}, t={self.t:.12g}, mode={self.mode!r}, "
-                f"{len(self.events)} events, {self.nsteps} steps, {self.nfev} fev{z})")
+        return (f"HybridSolution({self.model}, {self.status.value}, t_final={self.t_final:.12g}, "
+                f"final_mode={self.final_mode!r}, {len(self.t)} points, {len(self.events)} events, "
+                f"{self.nsteps} steps, {self.nfev} fev{z})")
 
-    def simulation(self, model: str = "hybrid") -> Simulation:
-        """The run as the common result type (time series = the recorded segments, linear
-        between samples; the status mapped onto :class:`~landau.verify.hybrid.result.Status`)."""
-        t, y, _ = self.trajectory()
-        st = status_from_text(self.status)
-        msg = st.advice + (f" ({self.zeno!r})" if self.zeno else "")
-        return Simulation(model, t, y, self.events, st, msg, self.t, self.y, self.nsteps, self.nfev,
-                          regimes=self.regimes(t[0] if len(t) else self.t))
+    def simulation(self, model: str | None = None) -> Simulation:
+        """Deprecated: the record is already a :class:`Simulation`.
 
-    def regimes(self, t0: float) -> tuple[tuple[float, float, str], ...]:
-        """The run's regimes from ``t0`` to its end, ``(t_start, t_end, name)``, read off the
-        mode changes in the event log (:func:`regime_of` names each mode)."""
-        sw = [e for e in self.events if e.from_mode != e.to_mode]
-        mode = sw[0].from_mode if sw else self.mode
-        out, start = [], float(t0)
-        for e in sw:
-            if e.t > start:
-                out.append((start, float(e.t), regime_of(mode)))
-                start = float(e.t)
-            mode = e.to_mode
-        if self.t > start or not out:
-            out.append((start, float(self.t), regime_of(mode)))
-        return tuple(out)
+        Parameters
+        ----------
+        model : str, optional
+            A name for the run (default: keep ``self.model``).
+
+        Returns
+        -------
+        HybridSolution
+            ``self``, or a copy named ``model``.
+        """
+        warnings.warn("HybridSolution.simulation() is deprecated: the record is already a Simulation "
+                      "(use it directly; dataclasses.replace(sol, model=...) renames it)",
+                      DeprecationWarning, stacklevel=2)
+        return self if model is None or model == self.model else replace(self, model=model)
 
     def trajectory(self) -> tuple[np.ndarray, np.ndarray, list[str]]:
-        """Concatenated samples (t, y, mode per point) of the recorded segments."""
-        if not self.segments:
-            return np.empty(0), np.empty((len(self.y), 0)), []
-        t = np.concatenate([s.t for s in self.segments])
-        y = np.concatenate([s.y for s in self.segments], axis=1)
-        modes = [s.mode for s in self.segments for _ in s.t]
-        return t, y, modes
+        """The recorded samples with the mode of each point.
+
+        Returns
+        -------
+        t : numpy.ndarray, shape (m,)
+            The field ``t``.
+        y : numpy.ndarray, shape (n, m)
+            The field ``y``.
+        modes : list of str
+            The mode of each recorded point.
+        """
+        return self.t, self.y, [s.mode for s in self.segments for _ in s.t]
 
 
+def _regimes(events: EventLog, final_mode: str, t0: float, t_end: float) -> tuple[tuple[float, float, str], ...]:
+    """The run's regimes from ``t0`` to ``t_end``, ``(t_start, t_end, name)``, read off the mode
+    changes in the event log (:func:`regime_of` names each mode)."""
+    out, start, mode = [], float(t0), None
+    for e in events:
+        if e.from_mode == e.to_mode:
+            continue
+        if mode is None:
+            mode = e.from_mode
+        if e.t > start:
+            start_next = float(e.t)
+            out.append((start, start_next, regime_of(mode)))
+            start = start_next
+        mode = e.to_mode
+    if mode is None:
+        mode = final_mode
+    if t_end > start or not out:
+        out.append((start, float(t_end), regime_of(mode)))
+    return tuple(out)
+
+
+_EMPTY: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+
+
+def _empty_series(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The (read-only, shared) empty ``t`` and ``y`` of a run that recorded nothing (event maps
+    call the engine thousands of times)."""
+    hit = _EMPTY.get(n)
+    if hit is None:
+        t, y = np.empty(0), np.empty((n, 0))
+        t.flags.writeable = y.flags.writeable = False
+        hit = _EMPTY[n] = (t, y)
+    return hit
+
+
+def _solution(model: HybridModel, t0: float, t: float, y: np.ndarray, mname: str, status: str,
+              log: EventLog, segs: list[Segment], zeno: ZenoDiagnosis | None, nsteps: int,
+              nfev: int) -> HybridSolution:
+    """The :class:`HybridSolution` of a run that ended at ``(t, y)`` in mode ``mname``."""
+    if segs:
+        ts = np.concatenate([s.t for s in segs])
+        ys = np.concatenate([s.y for s in segs], axis=1)
+    else:
+        ts, ys = _empty_series(len(y))
+    st = status_from_text(status)
+    msg = st.advice + (f" ({zeno!r})" if zeno else "")
+    return HybridSolution(model.name, ts, ys, log, st, msg, t, y, nsteps, nfev,
+                          regimes=_regimes(log, mname, t0, t), final_mode=mname, segments=tuple(segs),
+                          zeno=zeno)
+
+
+@functools.lru_cache(maxsize=1024)
 def regime_of(mode: str) -> str:
     """The regime a mode name stands for: ``"flight"`` (a mode named with flight), ``"stick"``
     (``"stick"``, or a stick–slip code of ``s``/``n``/``p`` letters, one per block, all ``s``),
@@ -226,7 +287,8 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
     Returns
     -------
     HybridSolution
-        The trajectory and the event log; ``.simulation()`` gives a :class:`Simulation`.
+        A :class:`~landau.verify.hybrid.result.Simulation`: the recorded trajectory, the event
+        log, the status, the final state and mode.
     """
     t0, t_end = map(float, t_span)
     if not (np.isfinite(t0) and np.isfinite(t_end) and t_end > t0):
@@ -251,7 +313,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
 
     def finish(status, zeno=None):
         extra = screen.nfev if screen is not None else 0  # the screen's y'' at phase starts
-        return HybridSolution(t, y, mname, status, log, tuple(segs), zeno, nsteps, nfev + extra)
+        return _solution(model, t0, t, y, mname, status, log, segs, zeno, nsteps, nfev + extra)
 
     while True:
         m = model.mode(mname)

@@ -303,7 +303,7 @@ def growth_rate(mu: float, params: Mapping[str, float] | None = None, t_end: flo
     y0 = slip_state(cm.mech, S.equilibrium_phi(cm.mech.params, None, 1, cm.mech.friction, None, vv) + kick)
     sol = simulate(cm.model, cm.initial_mode(0.0, y0), y0, (0.0, t_end), stepper, default_options(record=False))
     ev = [e for e in sol.events.filter(guard="phidot-max") if e.t > 2.0 and e.y[2] > 0]
-    modes = tuple(sorted({e.from_mode for e in sol.events} | {sol.mode}))
+    modes = tuple(sorted({e.from_mode for e in sol.events} | {sol.final_mode}))
     t = np.array([e.t for e in ev])
     a = np.array([e.y[2] for e in ev])
     sigma = float(np.polyfit(t, np.log(a), 1)[0])
@@ -384,7 +384,7 @@ def flight_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[fl
     cm = build(lo, 0.0, p)
     y0 = slip_state(cm.mech, S.equilibrium_phi(p, lo, 1) + 0.05)
     cm, sol = _attractor(lo, y0, None, p, t_end)
-    start = (sol.y, sol.mode)
+    start = (sol.y_final, sol.final_mode)
 
     def run(m):
         return _attractor(m, start[0], start[1], p, t_end)[1]
@@ -458,7 +458,7 @@ def painleve_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[
     if bracket is None:
         lo, step = mu0, 0.05 * mu0
         for _ in range(6):
-            hit, nxt = hits(lo + step, (sol.y, sol.mode))
+            hit, nxt = hits(lo + step, (sol.y_final, sol.final_mode))
             if hit:
                 break
             lo, step, sol = lo + step, 2 * step, nxt
@@ -467,8 +467,8 @@ def painleve_onset_mu(params: Mapping[str, float] | None = None, bracket: tuple[
         hi = lo + step
     else:
         lo, hi = map(float, bracket)
-        _, sol = _attractor(lo, sol.y, sol.mode, p, t_end)
-    start = (sol.y, sol.mode)
+        _, sol = _attractor(lo, sol.y_final, sol.final_mode, p, t_end)
+    start = (sol.y_final, sol.final_mode)
     hits_from_start = lambda m: hits(m, start)[0]  # noqa: E731
     if bracket is not None and (hits_from_start(lo) or not hits_from_start(hi)):
         raise NoHopfError(f"Painlevé onset not bracketed by [{lo}, {hi}]")

@@ -50,8 +50,8 @@ def diagram_point(mu: float, y0, mode: str | None, eN: float = 0.0, params: Mapp
                    default_options(chatter_tol, record=False))
     late = [e for e in sol.events if e.t >= t_transient]
     mx = np.array([e.y[2] for e in late if e.guard == "phidot-max" and e.y[2] > 0])
-    modes = tuple(sorted({e.from_mode for e in late if e.kind != "section"} | {sol.mode}))
-    return DiagramPoint(mu, mx, modes, sol.y, sol.mode)
+    modes = tuple(sorted({e.from_mode for e in late if e.kind != "section"} | {sol.final_mode}))
+    return DiagramPoint(mu, mx, modes, sol.y_final, sol.final_mode)
 
 
 def diagram(mus: Sequence[float], y0, mode: str | None = None, eN: float = 0.0,

@@ -33,7 +33,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from landau.errors import IntegratorError
-from landau.verify.hybrid import simulate
+from landau.verify.hybrid import Status, simulate
 from landau.verify.hybrid.dop853 import CompiledDOP853
 from landau.verify.lancioni import slip as S
 from landau.verify.lancioni.analysis import _flow
@@ -93,8 +93,9 @@ def flight_cycle(mu: float, eN: float = 0.0, v: float = -1.0, params: Mapping[st
     y0 = _start(mu, p, v, friction, parameter)
     T = t_transient + t_keep
     sol = simulate(cm.model, cm.initial_mode(0.0, y0), y0, (0.0, T), STEPPER, default_options(1e-6, record=True))
-    if sol.status != "t_end":
-        raise IntegratorError(f"set-2 attractor run stopped early ({sol.status}) at mu={mu}", t=sol.t, state=sol.y)
+    if sol.status is not Status.FINISHED:
+        raise IntegratorError(f"set-2 attractor run stopped early ({sol.status.value}) at mu={mu}", t=sol.t_final,
+                              state=sol.y_final)
     ev = [e for e in sol.events if e.t >= t_transient]
     maxima = [e for e in ev if e.guard == "phidot-max" and e.y[2] > 0]
     lifts = [e for e in ev if e.guard == "lift-off"]
@@ -107,7 +108,7 @@ def flight_cycle(mu: float, eN: float = 0.0, v: float = -1.0, params: Mapping[st
         prev_max = max((m.t for m in maxima if m.t < e.t), default=-np.inf)
         prev_switch = max((s.t for s in sol.events if s.kind != "section" and s.t < e.t), default=-np.inf)
         after &= prev_max > prev_switch
-    t, y, _ = sol.trajectory()
+    t, y = sol.t, sol.y
     k = t >= t_transient
     n_per = max(len(maxima), 1)
     return FlightCycle(mu, eN, v, len(lifts) / n_per, max((s.t[-1] - s.t[0] for s in fl), default=0.0),
@@ -217,7 +218,8 @@ def first_lift_off(mu: float | None = None, phi: float | None = None, phidot: fl
                    stop=lambda e: e.guard in ends)
     ev = [e for e in sol.events if e.guard in ends]
     if not ev:
-        raise IntegratorError(f"the slip phase did not end before t={t_end:g} s ({sol.status})", t=sol.t, state=sol.y)
+        raise IntegratorError(f"the slip phase did not end before t={t_end:g} s ({sol.status.value})",
+                              t=sol.t_final, state=sol.y_final)
     e = ev[0]
     return FirstEvent(float(e.t), e.guard, np.array(e.y, float), e.to_mode)
 

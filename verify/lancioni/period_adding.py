@@ -199,7 +199,7 @@ def exit_orbit(mu: float, params: Mapping[str, float] | None = None, t_end: floa
         elif e.from_mode == "stick" and e.to_mode != "stick" and t_in is not None:
             cur_st += e.t - t_in
             t_in = None
-    return ExitOrbit(float(mu), float(stick_tol), "".join(pat), np.array(st), np.array(gm), sol.mode, last_imp,
+    return ExitOrbit(float(mu), float(stick_tol), "".join(pat), np.array(st), np.array(gm), sol.final_mode, last_imp,
                      float(t_end))
 
 
@@ -303,11 +303,11 @@ def stick_free_saddle(mu: float, params: Mapping[str, float] | None = None, tol:
     cm = _model(mu, p)
     P = stick_exit(cm)
     base = simulate(cm.model, "slip+", P.state, (0.0, 0.1), STEPPER, default_options(record=False))
-    if base.mode != "flight":
+    if base.final_mode != "flight":
         raise ValueError("expected flight 0.1 s after the stick exit")
 
     def run(s):
-        y = base.y.copy()
+        y = base.y_final.copy()
         y[2] += s
         sol = simulate(cm.model, "flight", y, (0.0, 12.0), STEPPER, default_options(record=False))
         ev = list(sol.events)
