@@ -399,6 +399,8 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                             a, b = c
                             if roots is not None:   # the guard's affine form, in compiled code
                                 r = solver.affine_root(roots[0][j], roots[1][j], roots[2][j], a, b, options.xtol)
+                            elif gk is not None and hasattr(solver, "kernel_root"):   # compiled guard vector
+                                r = solver.kernel_root(gk, j, len(guards), a, b, options.xtol)
                             else:
                                 r = root_new_side(guard_on_dense(guards[j].fun, dense), a, b, options.xtol)
                             located.append((r, j, "switch"))
