@@ -363,6 +363,28 @@ def run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, a
 
 
 @njit(cache=True)
+def run_quiet(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b, U, s, g_last, dec_before,
+              state, gatol, dip_factor, K, F, y_old):
+    """:func:`run_screened` with the affine guards g = W·y + U·f(t, y) + b (no record); the same
+    return value."""
+    vals = np.empty((W.shape[0], 3 * s.shape[0] + 1))
+    return run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, True, W, b, U, fun, p, s,
+                        g_last, dec_before, state, gatol, dip_factor, K, F, y_old, vals, np.empty(0),
+                        np.empty((0, 0)), np.zeros(5, dtype=np.int64))
+
+
+@njit(cache=True)
+def run_guarded(fun, p, gfun, gp, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, s, g_last, dec_before,
+                state, gatol, dip_factor, K, F, y_old, vals, rec_t, rec_y, rec):
+    """:func:`run_screened` with the compiled guard vector ``gfun(t, y, gp, out)``; the same return
+    value, ``vals`` and record."""
+    n = y.shape[0]
+    return run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, False, np.empty((0, n)),
+                        np.empty(0), np.empty((0, n)), gfun, gp, s, g_last, dec_before, state, gatol, dip_factor,
+                        K, F, y_old, vals, rec_t, rec_y, rec)
+
+
+@njit(cache=True)
 def _record(rec_t, rec_y, rec, ts, Y, t, y):
     """A quiet step into the record buffer of :func:`run_screened` (its samples and end at
     stride 1, else the end of every stride-th step)."""
@@ -438,7 +460,19 @@ def event_root(fun, p, affine, w, bj, u, gfun, gp, j, k, F, y_old, t_old, h, a, 
     return hi
 
 
-_EMPTY = np.empty(0)
+@njit(cache=True)
+def affine_root(fun, p, F, y_old, t_old, h, w, bj, u, a, b, xtol):
+    """:func:`event_root` of the affine guard g = w·y + u·f(t, y) + bj."""
+    return event_root(fun, p, True, w, bj, u, fun, p, 0, 0, F, y_old, t_old, h, a, b, xtol)
+
+
+@njit(cache=True)
+def kernel_root(gfun, gp, j, k, F, y_old, t_old, h, a, b, xtol):
+    """:func:`event_root` of component j of the compiled guard vector ``gfun`` (k components)."""
+    e = np.empty(0)
+    return event_root(gfun, gp, False, e, 0.0, e, gfun, gp, j, k, F, y_old, t_old, h, a, b, xtol)
+
+
 _NO_RECORD = (np.empty(0), np.empty((0, 0)), np.zeros(5, dtype=np.int64))
 
 
@@ -475,12 +509,16 @@ def _compile() -> dict:
             ("advance", advance, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, mat, arr, arr),
              "the compiled DOP853 step"),
             ("dense", dense, (FUN_T, arr, f64, arr, arr, arr, mat, f64, mat), "the DOP853 dense output"),
-            ("event_root", event_root, (FUN_T, arr, types.boolean, arr, f64, arr, FUN_T, arr, i64, i64, mat, arr,
-                                        f64, f64, f64, f64, f64), "the DOP853 event root"),
+            ("affine_root", affine_root, (FUN_T, arr, mat, arr, f64, f64, arr, f64, arr, f64, f64, f64),
+             "the DOP853 event root"),
+            ("kernel_root", kernel_root, (FUN_T, arr, i64, i64, mat, arr, f64, f64, f64, f64, f64),
+             "the DOP853 event root of compiled guards"),
             ("initial_step", initial_step, (FUN_T, arr, f64, arr, arr, f64, f64, f64, arr), "the DOP853 first step"),
-            ("run_screened", run_screened, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, types.boolean,
-                                            mat, arr, mat, FUN_T, arr, arr, arr, barr, types.int64[::1], f64, f64,
-                                            mat, mat, arr, mat, arr, mat, types.int64[::1]),
+            ("run_guarded", run_guarded, (FUN_T, arr, FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, arr,
+                                          arr, barr, types.int64[::1], f64, f64, mat, mat, arr, mat, arr, mat,
+                                          types.int64[::1]), "the compiled DOP853 loop with compiled guards"),
+            ("run_quiet", run_quiet, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, mat, arr, mat, arr,
+                                      arr, barr, types.int64[::1], f64, f64, mat, mat, arr),
              "the compiled DOP853 event loop")):
         compile_once(fn, sig, what)
         _LOOPS[name] = fn
@@ -489,8 +527,8 @@ def _compile() -> dict:
 
 class DOP853Solver:
     """scipy ``OdeSolver`` members over the compiled DOP853 (the engine's stepper contract,
-    :mod:`landau.verify.hybrid.steppers`), plus the compiled screened runs (:meth:`screen`,
-    :meth:`run_quiet`) and event roots (:meth:`affine_root`, :meth:`kernel_root`)."""
+    :mod:`landau.verify.hybrid.steppers`), plus the compiled screened runs (:meth:`run_quiet`,
+    :meth:`run_guarded`) and event roots (:meth:`affine_root`, :meth:`kernel_root`)."""
 
     method = "DOP853"
     #: ``f`` is the field at ``(t, y)`` after every step (the engine's Hermite screen may use it)
@@ -551,21 +589,9 @@ class DOP853Solver:
             self._dense = _Dense(self.t_old, self._h_used, F, self._y_old.copy())
         return self._dense
 
-    def screen(self, affine, W, b, U, gfun, gp, s, g_last, dec_before, state, guard_atol, dip_factor, max_steps,
-               vals, record=None):
-        """Steps until one whose guards need the engine's dense-output scan (:func:`run_screened`:
-        ``affine`` guards W·y + U·f(t, y) + b, else the compiled guard vector ``gfun``/``gp``, a
-        :data:`FUN_T` function), at most ``max_steps``; ``vals`` receives the last step's guard
-        values and ``record`` = (t, y, info) buffers the quiet steps (:func:`run_screened`).
-        Returns (error message or None, code of :func:`run_screened`, steps taken); with code 1
-        the last step (``t_old`` → ``t``, ``dense_output()``) is the one to scan."""
-        if self.status != "running":
-            raise RuntimeError("attempt to step on a finished or failed solver")
-        rt, ry, ri = record if record is not None else _NO_RECORD
-        code, t_old, t, hu, hn, nf, k = _compile()["run_screened"](
-            self._fun, self.kernel.p, self.t, self.y, self.f, self.h_abs, self.max_step, self.t_bound,
-            self.rtol, self.atol, int(max_steps), affine, W, b, U, gfun, gp, s, g_last, dec_before, state,
-            float(guard_atol), float(dip_factor), self._K, self._F, self._y_old, vals, rt, ry, ri)
+    def _took(self, code, t_old, t, hu, hn, nf, k):
+        """Advance the solver past the ``k`` steps of a compiled run (:func:`run_screened`'s return
+        value); returns (error message or None, code, k)."""
         self.nfev += nf
         self.nsteps += k
         self.t, self.h_abs = t, hn
@@ -581,32 +607,49 @@ class DOP853Solver:
 
     def run_quiet(self, W, b, U, s, g_last, dec_before, state, guard_atol, dip_factor, max_steps=1_000_000):
         """Steps until one whose affine guards g = W·y + U·f(t, y) + b need the engine's
-        dense-output scan (:meth:`screen`), at most ``max_steps``.  Returns (error message or None,
-        whether ``t_bound`` was reached with every step quiet — None when ``max_steps`` quiet steps
-        were taken —, steps taken); otherwise the last step (``t_old`` → ``t``, ``dense_output()``)
-        is the one to scan."""
-        vals = np.empty((W.shape[0], 3 * s.shape[0] + 1))
-        msg, code, k = self.screen(True, W, b, U, self._fun, self.kernel.p, s, g_last, dec_before, state,
-                                   guard_atol, dip_factor, max_steps, vals)
+        dense-output scan (:func:`run_quiet`, :func:`run_screened`), at most ``max_steps``.
+        Returns (error message or None, whether ``t_bound`` was reached with every step quiet —
+        None when ``max_steps`` quiet steps were taken —, steps taken); otherwise the last step
+        (``t_old`` → ``t``, ``dense_output()``) is the one to scan."""
+        if self.status != "running":
+            raise RuntimeError("attempt to step on a finished or failed solver")
+        msg, code, k = self._took(*_compile()["run_quiet"](
+            self._fun, self.kernel.p, self.t, self.y, self.f, self.h_abs, self.max_step, self.t_bound,
+            self.rtol, self.atol, int(max_steps), W, b, U, s, g_last, dec_before, state, guard_atol, dip_factor,
+            self._K, self._F, self._y_old))
         if msg is not None:
             return msg, False, k
         return None, (None if code == 3 else code == 2), k
+
+    def run_guarded(self, guard_kernel, s, g_last, dec_before, state, guard_atol, dip_factor, max_steps, values,
+                    record=None):
+        """Steps until one whose guards, the compiled vector function ``guard_kernel`` (a
+        :class:`~landau.verify.hybrid.kernel.Kernel`), need the engine's dense-output scan
+        (:func:`run_guarded`, :func:`run_screened`), at most ``max_steps``; ``values`` receives
+        the last step's guard values and ``record`` = (t, y, info) buffers the quiet steps.
+        Returns (error message or None, code of :func:`run_screened`, steps taken)."""
+        if self.status != "running":
+            raise RuntimeError("attempt to step on a finished or failed solver")
+        rt, ry, ri = record if record is not None else _NO_RECORD
+        return self._took(*_compile()["run_guarded"](
+            self._fun, self.kernel.p, kernel_function(guard_kernel.fun), guard_kernel.p, self.t, self.y, self.f,
+            self.h_abs, self.max_step, self.t_bound, self.rtol, self.atol, int(max_steps), s, g_last, dec_before,
+            state, float(guard_atol), float(dip_factor), self._K, self._F, self._y_old, values, rt, ry, ri))
 
     def affine_root(self, w, b, u, lo, hi, xtol) -> float:
         """Root of the guard w·y + u·f(t, y) + b in [lo, hi] on the last step's dense output
         (:func:`event_root`; the guard is > 0 at lo and <= 0 at hi)."""
         d = self.dense_output()
-        return _compile()["event_root"](self._fun, self.kernel.p, True, w, float(b), u, self._fun, self.kernel.p,
-                                        0, 0, d.F, d.y0, d.t0, d.h, float(lo), float(hi), float(xtol))
+        return _compile()["affine_root"](self._fun, self.kernel.p, d.F, d.y0, d.t0, d.h, w, float(b), u,
+                                         float(lo), float(hi), float(xtol))
 
     def kernel_root(self, guard_kernel, j, n_guards, lo, hi, xtol) -> float:
         """Root of guard j of the compiled guard vector ``guard_kernel`` (a
         :class:`~landau.verify.hybrid.kernel.Kernel` of ``n_guards`` components) in [lo, hi] on
         the last step's dense output (:func:`event_root`; > 0 at lo, <= 0 at hi)."""
         d = self.dense_output()
-        return _compile()["event_root"](self._fun, self.kernel.p, False, _EMPTY, 0.0, _EMPTY,
-                                        kernel_function(guard_kernel.fun), guard_kernel.p, int(j), int(n_guards),
-                                        d.F, d.y0, d.t0, d.h, float(lo), float(hi), float(xtol))
+        return _compile()["kernel_root"](kernel_function(guard_kernel.fun), guard_kernel.p, int(j), int(n_guards),
+                                         d.F, d.y0, d.t0, d.h, float(lo), float(hi), float(xtol))
 
     def __repr__(self) -> str:
         return (f"DOP853Solver(t={self.t:.6g}, {self.status}, steps={self.nsteps}, nfev={self.nfev}, "

@@ -26,7 +26,7 @@ import numpy as np
 from numba import njit, types
 
 from landau.verify.compiling import compile_once
-from landau.verify.hybrid.dop853 import FUN_T, advance, kernel_function
+from landau.verify.hybrid.dop853 import FUN_T, advance
 
 __all__ = ["guarded_steps", "StepRecord", "run_to_upcrossing", "upcrossing_step"]
 
@@ -58,7 +58,7 @@ class StepRecord:
 
 def guarded_steps(solver, guard_kernel, s, g_last, dec_before, state, guard_atol, dip_factor,
                   max_steps=1_000_000, record: StepRecord | None = None, values: np.ndarray | None = None):
-    """The compiled screened run (:meth:`~landau.verify.hybrid.dop853.DOP853Solver.screen`) of a
+    """The compiled screened run (:meth:`~landau.verify.hybrid.dop853.DOP853Solver.run_guarded`) of a
     :class:`~landau.verify.hybrid.dop853.DOP853Solver` whose mode's guards are one compiled vector
     function (its state, step size and buffers advanced as by its ``run_quiet``).
 
@@ -93,10 +93,9 @@ def guarded_steps(solver, guard_kernel, s, g_last, dec_before, state, guard_atol
     """
     if values is None:
         values = np.empty((len(g_last), 3 * len(s) + 1))
-    n = len(solver.y)
     rec = (record.t, record.y, record.info) if record is not None else None
-    return solver.screen(False, np.empty((0, n)), np.empty(0), np.empty((0, n)), kernel_function(guard_kernel.fun),
-                         guard_kernel.p, s, g_last, dec_before, state, guard_atol, dip_factor, max_steps, values, rec)
+    return solver.run_guarded(guard_kernel, s, g_last, dec_before, state, guard_atol, dip_factor, max_steps, values,
+                              rec)
 
 
 @njit(cache=True)
