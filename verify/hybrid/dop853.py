@@ -271,18 +271,20 @@ def _affine_values(fun, p, W, b, U, uses_f, t, yk, fk, gk):
 
 
 @njit(cache=True)
-def run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, affine, W, b, U, gfun, gp, s,
+def run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b, U, gfun, gp, s,
                  g_last, dec_before, state, gatol, dip_factor, K, F, y_old, vals, rec_t, rec_y, rec):
     """Steps from (t, y), f = f(t, y), while the mode's guards pass the engine's scan test
     (:func:`landau.verify.hybrid.locate._quiet_guards`) on the step's dense output at the
     fractions s and at the step end, up to ``max_steps`` steps or ``t_bound``: one loop for both
     kinds of compiled guards.
 
-    The guards are, with ``affine``, g = W·y + U·f(t, y) + b (``Guard.affine``; the field at a
-    sample is evaluated only when U ≠ 0, at the step end it is the step's f_new), otherwise the
-    compiled vector function ``gfun(t, y, gp, out)`` (``Mode.guard_kernel``; W, b, U unused) at
-    the engine's sample times t_old + (t − t_old) s_q — the dense output at the fraction of
-    that time, as the engine's scan evaluates it.
+    The guards are, when W has rows, the affine forms g = W·y + U·f(t, y) + b (``Guard.affine``;
+    the field at a sample is evaluated only when U ≠ 0, at the step end it is the step's f_new),
+    otherwise (W, b, U empty) the compiled vector function ``gfun(t, y, gp, out)``
+    (``Mode.guard_kernel``) at the engine's sample times t_old + (t − t_old) s_q — the dense
+    output at the fraction of that time, as the engine's scan evaluates it.  (The kind is read
+    from W's shape, not passed as a constant, so that both entries, :func:`run_quiet` and
+    :func:`run_guarded`, share one compiled loop.)
 
     y and f are advanced in place to the end of the last step taken; F and y_old hold its dense
     output; ``vals`` (guards × 3m + 1) its guard values (``vals[:, :m]`` the samples,
@@ -303,6 +305,7 @@ def run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, a
     cap = rec_t.shape[0]
     Y = np.empty((n, m))
     ts = np.empty(m)
+    affine = W.shape[0] > 0
     uses_f = False
     if affine:
         for j in range(k):
@@ -326,7 +329,7 @@ def run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, a
             dense_at(F, y_old, s[q] if affine else (tq - t) / hu, yk)
             if affine:
                 nfev += _affine_values(fun, p, W, b, U, uses_f, tq, yk, fk, gk)
-            else:
+            elif k > 0:
                 gfun(tq, yk, gp, gk)
             for j in range(k):
                 vals[j, q] = gk[j]
@@ -342,7 +345,7 @@ def run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, a
                 for a in range(n):
                     g += W[j, a] * ynew[a] + U[j, a] * fnew[a]
                 vals[j, m] = g
-        else:
+        elif k > 0:
             gfun(tn, ynew, gp, gk)
             for j in range(k):
                 vals[j, m] = gk[j]
@@ -368,7 +371,7 @@ def run_quiet(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b
     """:func:`run_screened` with the affine guards g = W·y + U·f(t, y) + b (no record); the same
     return value."""
     vals = np.empty((W.shape[0], 3 * s.shape[0] + 1))
-    return run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, True, W, b, U, fun, p, s,
+    return run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b, U, fun, p, s,
                         g_last, dec_before, state, gatol, dip_factor, K, F, y_old, vals, np.empty(0),
                         np.empty((0, 0)), np.zeros(5, dtype=np.int64))
 
@@ -379,7 +382,7 @@ def run_guarded(fun, p, gfun, gp, t, y, f, h_abs, hmax, t_bound, rtol, atol, max
     """:func:`run_screened` with the compiled guard vector ``gfun(t, y, gp, out)``; the same return
     value, ``vals`` and record."""
     n = y.shape[0]
-    return run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, False, np.empty((0, n)),
+    return run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, np.empty((0, n)),
                         np.empty(0), np.empty((0, n)), gfun, gp, s, g_last, dec_before, state, gatol, dip_factor,
                         K, F, y_old, vals, rec_t, rec_y, rec)
 
@@ -496,33 +499,39 @@ class _Dense:
 _LOOPS: dict = {}
 
 
-def _compile() -> dict:
-    """The compiled loops by name, each built (or loaded from numba's disk cache) for the argument
-    types used here on first use (:func:`~landau.verify.compiling.compile_once`); the dispatchers
-    themselves, called as usual (the kernel's :class:`~landau.verify.hybrid.callbacks.FunctionPointer`
-    is typed once, not at every call)."""
-    if _LOOPS:
-        return _LOOPS
-    f64, arr, i64 = types.float64, types.float64[::1], types.int64
+def _signatures() -> dict:
+    """name → (dispatcher, argument types, what it is) of the compiled entries used here."""
+    f64, arr, i64, i64arr = types.float64, types.float64[::1], types.int64, types.int64[::1]
     mat, barr = types.float64[:, ::1], types.boolean[::1]
-    for name, fn, sig, what in (
-            ("advance", advance, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, mat, arr, arr),
-             "the compiled DOP853 step"),
-            ("dense", dense, (FUN_T, arr, f64, arr, arr, arr, mat, f64, mat), "the DOP853 dense output"),
-            ("affine_root", affine_root, (FUN_T, arr, mat, arr, f64, f64, arr, f64, arr, f64, f64, f64),
-             "the DOP853 event root"),
-            ("kernel_root", kernel_root, (FUN_T, arr, i64, i64, mat, arr, f64, f64, f64, f64, f64),
-             "the DOP853 event root of compiled guards"),
-            ("initial_step", initial_step, (FUN_T, arr, f64, arr, arr, f64, f64, f64, arr), "the DOP853 first step"),
-            ("run_guarded", run_guarded, (FUN_T, arr, FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, arr,
-                                          arr, barr, types.int64[::1], f64, f64, mat, mat, arr, mat, arr, mat,
-                                          types.int64[::1]), "the compiled DOP853 loop with compiled guards"),
-            ("run_quiet", run_quiet, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, mat, arr, mat, arr,
-                                      arr, barr, types.int64[::1], f64, f64, mat, mat, arr),
-             "the compiled DOP853 event loop")):
+    return {
+        "advance": (advance, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, mat, arr, arr),
+                    "the compiled DOP853 step"),
+        "dense": (dense, (FUN_T, arr, f64, arr, arr, arr, mat, f64, mat), "the DOP853 dense output"),
+        "initial_step": (initial_step, (FUN_T, arr, f64, arr, arr, f64, f64, f64, arr), "the DOP853 first step"),
+        "affine_root": (affine_root, (FUN_T, arr, mat, arr, f64, f64, arr, f64, arr, f64, f64, f64),
+                        "the DOP853 event root"),
+        "kernel_root": (kernel_root, (FUN_T, arr, i64, i64, mat, arr, f64, f64, f64, f64, f64),
+                        "the DOP853 event root of compiled guards"),
+        "run_quiet": (run_quiet, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, mat, arr, mat, arr, arr,
+                                  barr, i64arr, f64, f64, mat, mat, arr), "the compiled DOP853 event loop"),
+        "run_guarded": (run_guarded, (FUN_T, arr, FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, arr, arr,
+                                      barr, i64arr, f64, f64, mat, mat, arr, mat, arr, mat, i64arr),
+                        "the compiled DOP853 loop with compiled guards"),
+    }
+
+
+def _compiled(name: str):
+    """The compiled entry ``name``, built (or loaded from numba's disk cache) for the argument types
+    used here on its first use (:func:`~landau.verify.compiling.compile_once`: a run of affine
+    guards does not build the entries of compiled guard vectors, nor the other way round); the
+    dispatcher itself, called as usual (the kernel's
+    :class:`~landau.verify.hybrid.callbacks.FunctionPointer` is typed once, not at every call)."""
+    fn = _LOOPS.get(name)
+    if fn is None:
+        fn, sig, what = _signatures()[name]
         compile_once(fn, sig, what)
         _LOOPS[name] = fn
-    return _LOOPS
+    return fn
 
 
 class DOP853Solver:
@@ -549,7 +558,7 @@ class DOP853Solver:
         if first_step:
             self.h_abs = min(float(first_step), abs(self.t_bound - self.t))
         else:
-            self.h_abs = _compile()["initial_step"](self._fun, kernel.p, self.t, self.y, self.f, self.t_bound,
+            self.h_abs = _compiled("initial_step")(self._fun, kernel.p, self.t, self.y, self.f, self.t_bound,
                                                     self.max_step, self.rtol, self.atol)
             self.nfev += 1
         n = len(self.y)
@@ -565,7 +574,7 @@ class DOP853Solver:
             raise RuntimeError("attempt to step on a finished or failed solver")
         n = len(self.y)
         ynew, fnew = np.empty(n), np.empty(n)
-        ok, tn, hu, hn, nf = _compile()["advance"](self._fun, self.kernel.p, self.t, self.y, self.f, self.h_abs,
+        ok, tn, hu, hn, nf = _compiled("advance")(self._fun, self.kernel.p, self.t, self.y, self.f, self.h_abs,
                                                    self.max_step, self.t_bound, self.rtol, self.atol, self._K, ynew,
                                                    fnew)
         self.nfev += nf
@@ -584,7 +593,7 @@ class DOP853Solver:
         """Interpolant on [t_old, t] (the 7th-order continuous extension; 3 evaluations, once)."""
         if self._dense is None:
             F = np.empty_like(self._F)
-            self.nfev += _compile()["dense"](self._fun, self.kernel.p, self.t_old, self._y_old, self.y, self.f,
+            self.nfev += _compiled("dense")(self._fun, self.kernel.p, self.t_old, self._y_old, self.y, self.f,
                                              self._K, self._h_used, F)
             self._dense = _Dense(self.t_old, self._h_used, F, self._y_old.copy())
         return self._dense
@@ -613,7 +622,7 @@ class DOP853Solver:
         (``t_old`` → ``t``, ``dense_output()``) is the one to scan."""
         if self.status != "running":
             raise RuntimeError("attempt to step on a finished or failed solver")
-        msg, code, k = self._took(*_compile()["run_quiet"](
+        msg, code, k = self._took(*_compiled("run_quiet")(
             self._fun, self.kernel.p, self.t, self.y, self.f, self.h_abs, self.max_step, self.t_bound,
             self.rtol, self.atol, int(max_steps), W, b, U, s, g_last, dec_before, state, guard_atol, dip_factor,
             self._K, self._F, self._y_old))
@@ -631,7 +640,7 @@ class DOP853Solver:
         if self.status != "running":
             raise RuntimeError("attempt to step on a finished or failed solver")
         rt, ry, ri = record if record is not None else _NO_RECORD
-        return self._took(*_compile()["run_guarded"](
+        return self._took(*_compiled("run_guarded")(
             self._fun, self.kernel.p, kernel_function(guard_kernel.fun), guard_kernel.p, self.t, self.y, self.f,
             self.h_abs, self.max_step, self.t_bound, self.rtol, self.atol, int(max_steps), s, g_last, dec_before,
             state, float(guard_atol), float(dip_factor), self._K, self._F, self._y_old, values, rt, ry, ri))
@@ -640,7 +649,7 @@ class DOP853Solver:
         """Root of the guard w·y + u·f(t, y) + b in [lo, hi] on the last step's dense output
         (:func:`event_root`; the guard is > 0 at lo and <= 0 at hi)."""
         d = self.dense_output()
-        return _compile()["affine_root"](self._fun, self.kernel.p, d.F, d.y0, d.t0, d.h, w, float(b), u,
+        return _compiled("affine_root")(self._fun, self.kernel.p, d.F, d.y0, d.t0, d.h, w, float(b), u,
                                          float(lo), float(hi), float(xtol))
 
     def kernel_root(self, guard_kernel, j, n_guards, lo, hi, xtol) -> float:
@@ -648,7 +657,7 @@ class DOP853Solver:
         :class:`~landau.verify.hybrid.kernel.Kernel` of ``n_guards`` components) in [lo, hi] on
         the last step's dense output (:func:`event_root`; > 0 at lo, <= 0 at hi)."""
         d = self.dense_output()
-        return _compile()["kernel_root"](kernel_function(guard_kernel.fun), guard_kernel.p, int(j), int(n_guards),
+        return _compiled("kernel_root")(kernel_function(guard_kernel.fun), guard_kernel.p, int(j), int(n_guards),
                                          d.F, d.y0, d.t0, d.h, float(lo), float(hi), float(xtol))
 
     def __repr__(self) -> str:
