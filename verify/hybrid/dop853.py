@@ -29,15 +29,18 @@ sixth of the steps (each step is one guard screen and, in Python, one call), and
 The right-hand side reaches the compiled loop as a documented numba first-class function:
 :func:`kernel_function` wraps the kernel's ``fun(t, y, p, out)`` as a ``cfunc`` and hands it
 over through :class:`numba.core.types.WrapperAddressProtocol` typed
-``types.FunctionType(FUN_SIG)``, so :func:`run_quiet`, :func:`advance` and :func:`dense` compile
+``types.FunctionType(FUN_SIG)``, so :func:`run_screened`, :func:`advance` and :func:`dense` compile
 once per machine for every kernel (``njit(cache=True)``, built on first use through
 :func:`landau.verify.compiling.compile_once`).
 
-:func:`run_quiet` takes steps while the mode's guards — affine in the state and the vector
-field, g = w·y + u·f(t, y) + b (``Guard.affine``) — pass the engine's scan test
+:func:`run_screened` takes steps while the mode's guards pass the engine's scan test
 (:func:`landau.verify.hybrid.locate._quiet_guards`) on the dense output, and returns to Python
-only with the step where a guard may cross (or at ``t_bound``): the engine then locates the
-root on that step's dense output to its ``xtol``.
+only with the step where a guard may cross (or at ``t_bound``).  One loop serves both kinds of
+compiled guards: guards affine in the state and the vector field, g = w·y + u·f(t, y) + b
+(``Guard.affine``, the Galvanetto models), and guards given as one compiled vector function
+``gfun(t, y, p, out)`` (``Mode.guard_kernel``: the gap, contact forces and stick-cone margins of
+the Lancioni model, :mod:`landau.verify.hybrid.guarded`).  The engine then locates the root on
+that step's dense output to its ``xtol`` in compiled code as well (:func:`event_root`).
 """
 
 from __future__ import annotations
@@ -252,25 +255,62 @@ def dense_many(F, y_old, xs):
 
 
 @njit(cache=True)
-def run_quiet(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b, U, s, g_last, dec_before,
-              state, gatol, dip_factor, K, F, y_old):
-    """Steps from (t, y), f = f(t, y), while every guard g = W·y + U·f(t, y) + b passes the engine's
-    scan test (:func:`landau.verify.hybrid.locate._quiet_guards`) on the step's dense output at
-    the fractions s and at the step end, up to ``max_steps`` steps or ``t_bound``.
+def _affine_values(fun, p, W, b, U, uses_f, t, yk, fk, gk):
+    """The affine guards g = W·y + U·f(t, y) + b at (t, yk) into gk; returns the evaluations of
+    the field (1 when a guard uses it, else 0)."""
+    if uses_f:
+        fun(t, yk, p, fk)
+    for j in range(W.shape[0]):
+        g = b[j]
+        for a in range(yk.shape[0]):
+            g += W[j, a] * yk[a]
+            if uses_f:
+                g += U[j, a] * fk[a]
+        gk[j] = g
+    return 1 if uses_f else 0
+
+
+@njit(cache=True)
+def run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b, U, gfun, gp, s,
+                 g_last, dec_before, state, gatol, dip_factor, K, F, y_old, vals, rec_t, rec_y, rec):
+    """Steps from (t, y), f = f(t, y), while the mode's guards pass the engine's scan test
+    (:func:`landau.verify.hybrid.locate._quiet_guards`) on the step's dense output at the
+    fractions s and at the step end, up to ``max_steps`` steps or ``t_bound``: one loop for both
+    kinds of compiled guards.
+
+    The guards are, when W has rows, the affine forms g = W·y + U·f(t, y) + b (``Guard.affine``;
+    the field at a sample is evaluated only when U ≠ 0, at the step end it is the step's f_new),
+    otherwise (W, b, U empty) the compiled vector function ``gfun(t, y, gp, out)``
+    (``Mode.guard_kernel``) at the engine's sample times t_old + (t − t_old) s_q — the dense
+    output at the fraction of that time, as the engine's scan evaluates it.  (The kind is read
+    from W's shape, not passed as a constant, so that both entries, :func:`run_quiet` and
+    :func:`run_guarded`, share one compiled loop.)
 
     y and f are advanced in place to the end of the last step taken; F and y_old hold its dense
-    output; ``g_last``, ``dec_before`` and ``state`` are advanced past every quiet step.
+    output; ``vals`` (guards × 3m + 1) its guard values (``vals[:, :m]`` the samples,
+    ``vals[:, m]`` the step end); ``g_last``, ``dec_before`` and ``state`` are advanced past
+    every quiet step.  With ``rec_t.shape[0] > 0`` each quiet step's samples and end (stride 1),
+    or the end of every stride-th step, go to ``rec_t``/``rec_y`` as the engine's recorder keeps
+    them; ``rec`` = [samples written, samples recorded in all, bound on them, stride, steps seen
+    at stride > 1] is advanced.
+
     Returns (code, t_old, t, h_used, h_abs_next, nfev, nsteps): code 1 = the last step is not
     quiet (the engine scans it), 2 = ``t_bound`` reached with every step quiet, 3 =
-    ``max_steps`` quiet steps, 0 = step size too small (y, f at the last accepted step)."""
-    n, m, k = y.shape[0], s.shape[0], W.shape[0]
+    ``max_steps`` quiet steps, 4 = the record buffer cannot take another step or the record has
+    passed its bound (the engine thins it), 0 = step size too small (y, f at the last accepted
+    step)."""
+    n, m, k = y.shape[0], s.shape[0], vals.shape[0]
     ynew, fnew = np.empty(n), np.empty(n)
-    vals = np.empty((k, 3 * m + 1))
-    yk, fk = np.empty(n), np.empty(n)
+    yk, fk, gk = np.empty(n), np.empty(n), np.empty(k)
+    cap = rec_t.shape[0]
+    Y = np.empty((n, m))
+    ts = np.empty(m)
+    affine = W.shape[0] > 0
     uses_f = False
-    for j in range(k):
-        for a in range(n):
-            uses_f = uses_f or U[j, a] != 0.0
+    if affine:
+        for j in range(k):
+            for a in range(n):
+                uses_f = uses_f or U[j, a] != 0.0
     nfev, nsteps, t_old, h_used = 0, 0, t, 0.0
     while nsteps < max_steps:
         ok, tn, hu, h_abs, nf = advance(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, K, ynew, fnew)
@@ -285,24 +325,30 @@ def run_quiet(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b
             finite = finite and np.isfinite(ynew[a])
             y_old[a] = y[a]
         for q in range(m):
-            dense_at(F, y_old, s[q], yk)
-            if uses_f:
-                fun(t + s[q] * hu, yk, p, fk)
-                nfev += 1
+            tq = t + s[q] * hu
+            dense_at(F, y_old, s[q] if affine else (tq - t) / hu, yk)
+            if affine:
+                nfev += _affine_values(fun, p, W, b, U, uses_f, tq, yk, fk, gk)
+            elif k > 0:
+                gfun(tq, yk, gp, gk)
+            for j in range(k):
+                vals[j, q] = gk[j]
+                vals[j, m + 1 + q] = gk[j]
+                vals[j, 2 * m + 1 + q] = gk[j]
+            if cap > 0:
+                ts[q] = tq
+                for a in range(n):
+                    Y[a, q] = yk[a]
+        if affine:
             for j in range(k):
                 g = b[j]
                 for a in range(n):
-                    g += W[j, a] * yk[a]
-                    if uses_f:
-                        g += U[j, a] * fk[a]
-                vals[j, q] = g
-                vals[j, m + 1 + q] = g
-                vals[j, 2 * m + 1 + q] = g
-        for j in range(k):
-            g = b[j]
-            for a in range(n):
-                g += W[j, a] * ynew[a] + U[j, a] * fnew[a]
-            vals[j, m] = g
+                    g += W[j, a] * ynew[a] + U[j, a] * fnew[a]
+                vals[j, m] = g
+        elif k > 0:
+            gfun(tn, ynew, gp, gk)
+            for j in range(k):
+                vals[j, m] = gk[j]
         t_old = t
         t = tn
         for a in range(n):
@@ -310,14 +356,72 @@ def run_quiet(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b
             f[a] = fnew[a]
         if not finite or not _quiet_guards(vals, m, g_last, dec_before, state, gatol, dip_factor):
             return 1, t_old, t, h_used, h_abs, nfev, nsteps
+        if cap > 0:
+            _record(rec_t, rec_y, rec, ts, Y, t, y)
         if t >= t_bound:
             return 2, t_old, t, h_used, h_abs, nfev, nsteps
+        if cap > 0 and (rec[1] > rec[2] or rec[0] + m + 1 > cap):
+            return 4, t_old, t, h_used, h_abs, nfev, nsteps
     return 3, t_old, t, h_used, h_abs, nfev, nsteps
 
 
 @njit(cache=True)
-def _g_affine(fun, p, F, y_old, t_old, h, w, bj, u, uses_f, t, yk, fk):
+def run_quiet(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b, U, s, g_last, dec_before,
+              state, gatol, dip_factor, K, F, y_old):
+    """:func:`run_screened` with the affine guards g = W·y + U·f(t, y) + b (no record); the same
+    return value."""
+    vals = np.empty((W.shape[0], 3 * s.shape[0] + 1))
+    return run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b, U, fun, p, s,
+                        g_last, dec_before, state, gatol, dip_factor, K, F, y_old, vals, np.empty(0),
+                        np.empty((0, 0)), np.zeros(5, dtype=np.int64))
+
+
+@njit(cache=True)
+def run_guarded(fun, p, gfun, gp, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, s, g_last, dec_before,
+                state, gatol, dip_factor, K, F, y_old, vals, rec_t, rec_y, rec):
+    """:func:`run_screened` with the compiled guard vector ``gfun(t, y, gp, out)``; the same return
+    value, ``vals`` and record."""
+    n = y.shape[0]
+    return run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, np.empty((0, n)),
+                        np.empty(0), np.empty((0, n)), gfun, gp, s, g_last, dec_before, state, gatol, dip_factor,
+                        K, F, y_old, vals, rec_t, rec_y, rec)
+
+
+@njit(cache=True)
+def _record(rec_t, rec_y, rec, ts, Y, t, y):
+    """A quiet step into the record buffer of :func:`run_screened` (its samples and end at
+    stride 1, else the end of every stride-th step)."""
+    n, m = Y.shape[0], ts.shape[0]
+    w = rec[0]
+    if rec[3] == 1:
+        for q in range(m):
+            rec_t[w + q] = ts[q]
+            for a in range(n):
+                rec_y[a, w + q] = Y[a, q]
+        w += m
+        rec_t[w] = t
+        for a in range(n):
+            rec_y[a, w] = y[a]
+        rec[0] = w + 1
+        rec[1] += m + 1
+    else:
+        rec[4] += 1
+        if rec[4] % rec[3] == 0:
+            rec_t[w] = t
+            for a in range(n):
+                rec_y[a, w] = y[a]
+            rec[0] = w + 1
+            rec[1] += 1
+
+
+@njit(cache=True)
+def _guard_at(fun, p, affine, w, bj, u, uses_f, gfun, gp, j, F, y_old, t_old, h, t, yk, fk, gk):
+    """Guard j at time t on the step's dense output: the affine form (w, bj, u) or ``gfun``'s
+    component j."""
     dense_at(F, y_old, (t - t_old) / h, yk)
+    if not affine:
+        gfun(t, yk, gp, gk)
+        return gk[j]
     if uses_f:
         fun(t, yk, p, fk)
     g = bj
@@ -329,30 +433,50 @@ def _g_affine(fun, p, F, y_old, t_old, h, w, bj, u, uses_f, t, yk, fk):
 
 
 @njit(cache=True)
-def affine_root(fun, p, F, y_old, t_old, h, w, bj, u, a, b, xtol):
-    """Root in [a, b] of the guard g = w·y + u·f(t, y) + bj on the step's dense output (rows F of
-    :func:`dense`), g(a) > 0 >= g(b): bisection to ``xtol`` (or to adjacent floating-point
-    numbers), returned on the new side (g <= 0), as
-    :func:`landau.verify.hybrid.locate.root_new_side` does with Brent's method."""
+def event_root(fun, p, affine, w, bj, u, gfun, gp, j, k, F, y_old, t_old, h, a, b, xtol):
+    """Root in [a, b] of guard j on the step's dense output (rows F of :func:`dense`), g(a) > 0 >=
+    g(b): with ``affine`` the guard g = w·y + u·f(t, y) + bj, otherwise component j of the
+    compiled guard vector ``gfun(t, y, gp, out)`` of k guards.  Bisection to ``xtol`` (or to adjacent
+    floating-point numbers), returned on the new side (g <= 0), as
+    :func:`landau.verify.hybrid.locate.root_new_side` does with Brent's method: the root lies in
+    [returned − xtol, returned].  Should the signs at the ends disagree (the bracket was found
+    with other formulas for the same guard), the end on the new side is returned."""
     n = y_old.shape[0]
-    yk, fk = np.empty(n), np.empty(n)
+    yk, fk, gk = np.empty(n), np.empty(n), np.empty(k)
     uses_f = False
-    for k in range(n):
-        uses_f = uses_f or u[k] != 0.0
-    if _g_affine(fun, p, F, y_old, t_old, h, w, bj, u, uses_f, b, yk, fk) > 0.0:
+    if affine:
+        for c in range(n):
+            uses_f = uses_f or u[c] != 0.0
+    if _guard_at(fun, p, affine, w, bj, u, uses_f, gfun, gp, j, F, y_old, t_old, h, b, yk, fk, gk) > 0.0:
         return b
-    if _g_affine(fun, p, F, y_old, t_old, h, w, bj, u, uses_f, a, yk, fk) <= 0.0:
+    if _guard_at(fun, p, affine, w, bj, u, uses_f, gfun, gp, j, F, y_old, t_old, h, a, yk, fk, gk) <= 0.0:
         return a
     lo, hi = a, b
     while hi - lo > xtol:
         mid = 0.5 * (lo + hi)
         if mid <= lo or mid >= hi:
             break
-        if _g_affine(fun, p, F, y_old, t_old, h, w, bj, u, uses_f, mid, yk, fk) > 0.0:
+        if _guard_at(fun, p, affine, w, bj, u, uses_f, gfun, gp, j, F, y_old, t_old, h, mid, yk, fk, gk) > 0.0:
             lo = mid
         else:
             hi = mid
     return hi
+
+
+@njit(cache=True)
+def affine_root(fun, p, F, y_old, t_old, h, w, bj, u, a, b, xtol):
+    """:func:`event_root` of the affine guard g = w·y + u·f(t, y) + bj."""
+    return event_root(fun, p, True, w, bj, u, fun, p, 0, 0, F, y_old, t_old, h, a, b, xtol)
+
+
+@njit(cache=True)
+def kernel_root(gfun, gp, j, k, F, y_old, t_old, h, a, b, xtol):
+    """:func:`event_root` of component j of the compiled guard vector ``gfun`` (k components)."""
+    e = np.empty(0)
+    return event_root(gfun, gp, False, e, 0.0, e, gfun, gp, j, k, F, y_old, t_old, h, a, b, xtol)
+
+
+_NO_RECORD = (np.empty(0), np.empty((0, 0)), np.zeros(5, dtype=np.int64))
 
 
 class _Dense:
@@ -375,33 +499,45 @@ class _Dense:
 _LOOPS: dict = {}
 
 
-def _compile() -> dict:
-    """The compiled loops by name, each built (or loaded from numba's disk cache) for the argument
-    types used here on first use (:func:`~landau.verify.compiling.compile_once`); the dispatchers
-    themselves, called as usual (the kernel's :class:`~landau.verify.hybrid.callbacks.FunctionPointer`
-    is typed once, not at every call)."""
-    if _LOOPS:
-        return _LOOPS
-    f64, arr, i64 = types.float64, types.float64[::1], types.int64
+def _signatures() -> dict:
+    """name → (dispatcher, argument types, what it is) of the compiled entries used here."""
+    f64, arr, i64, i64arr = types.float64, types.float64[::1], types.int64, types.int64[::1]
     mat, barr = types.float64[:, ::1], types.boolean[::1]
-    for name, fn, sig, what in (
-            ("advance", advance, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, mat, arr, arr),
-             "the compiled DOP853 step"),
-            ("dense", dense, (FUN_T, arr, f64, arr, arr, arr, mat, f64, mat), "the DOP853 dense output"),
-            ("affine_root", affine_root, (FUN_T, arr, mat, arr, f64, f64, arr, f64, arr, f64, f64, f64),
-             "the DOP853 event root"),
-            ("initial_step", initial_step, (FUN_T, arr, f64, arr, arr, f64, f64, f64, arr), "the DOP853 first step"),
-            ("run_quiet", run_quiet, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, mat, arr, mat, arr,
-                                      arr, barr, types.int64[::1], f64, f64, mat, mat, arr),
-             "the compiled DOP853 event loop")):
+    return {
+        "advance": (advance, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, mat, arr, arr),
+                    "the compiled DOP853 step"),
+        "dense": (dense, (FUN_T, arr, f64, arr, arr, arr, mat, f64, mat), "the DOP853 dense output"),
+        "initial_step": (initial_step, (FUN_T, arr, f64, arr, arr, f64, f64, f64, arr), "the DOP853 first step"),
+        "affine_root": (affine_root, (FUN_T, arr, mat, arr, f64, f64, arr, f64, arr, f64, f64, f64),
+                        "the DOP853 event root"),
+        "kernel_root": (kernel_root, (FUN_T, arr, i64, i64, mat, arr, f64, f64, f64, f64, f64),
+                        "the DOP853 event root of compiled guards"),
+        "run_quiet": (run_quiet, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, mat, arr, mat, arr, arr,
+                                  barr, i64arr, f64, f64, mat, mat, arr), "the compiled DOP853 event loop"),
+        "run_guarded": (run_guarded, (FUN_T, arr, FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, arr, arr,
+                                      barr, i64arr, f64, f64, mat, mat, arr, mat, arr, mat, i64arr),
+                        "the compiled DOP853 loop with compiled guards"),
+    }
+
+
+def _compiled(name: str):
+    """The compiled entry ``name``, built (or loaded from numba's disk cache) for the argument types
+    used here on its first use (:func:`~landau.verify.compiling.compile_once`: a run of affine
+    guards does not build the entries of compiled guard vectors, nor the other way round); the
+    dispatcher itself, called as usual (the kernel's
+    :class:`~landau.verify.hybrid.callbacks.FunctionPointer` is typed once, not at every call)."""
+    fn = _LOOPS.get(name)
+    if fn is None:
+        fn, sig, what = _signatures()[name]
         compile_once(fn, sig, what)
         _LOOPS[name] = fn
-    return _LOOPS
+    return fn
 
 
 class DOP853Solver:
     """scipy ``OdeSolver`` members over the compiled DOP853 (the engine's stepper contract,
-    :mod:`landau.verify.hybrid.steppers`), plus :meth:`run_quiet`."""
+    :mod:`landau.verify.hybrid.steppers`), plus the compiled screened runs (:meth:`run_quiet`,
+    :meth:`run_guarded`) and event roots (:meth:`affine_root`, :meth:`kernel_root`)."""
 
     method = "DOP853"
     #: ``f`` is the field at ``(t, y)`` after every step (the engine's Hermite screen may use it)
@@ -422,7 +558,7 @@ class DOP853Solver:
         if first_step:
             self.h_abs = min(float(first_step), abs(self.t_bound - self.t))
         else:
-            self.h_abs = _compile()["initial_step"](self._fun, kernel.p, self.t, self.y, self.f, self.t_bound,
+            self.h_abs = _compiled("initial_step")(self._fun, kernel.p, self.t, self.y, self.f, self.t_bound,
                                                     self.max_step, self.rtol, self.atol)
             self.nfev += 1
         n = len(self.y)
@@ -438,7 +574,7 @@ class DOP853Solver:
             raise RuntimeError("attempt to step on a finished or failed solver")
         n = len(self.y)
         ynew, fnew = np.empty(n), np.empty(n)
-        ok, tn, hu, hn, nf = _compile()["advance"](self._fun, self.kernel.p, self.t, self.y, self.f, self.h_abs,
+        ok, tn, hu, hn, nf = _compiled("advance")(self._fun, self.kernel.p, self.t, self.y, self.f, self.h_abs,
                                                    self.max_step, self.t_bound, self.rtol, self.atol, self._K, ynew,
                                                    fnew)
         self.nfev += nf
@@ -457,23 +593,14 @@ class DOP853Solver:
         """Interpolant on [t_old, t] (the 7th-order continuous extension; 3 evaluations, once)."""
         if self._dense is None:
             F = np.empty_like(self._F)
-            self.nfev += _compile()["dense"](self._fun, self.kernel.p, self.t_old, self._y_old, self.y, self.f,
+            self.nfev += _compiled("dense")(self._fun, self.kernel.p, self.t_old, self._y_old, self.y, self.f,
                                              self._K, self._h_used, F)
             self._dense = _Dense(self.t_old, self._h_used, F, self._y_old.copy())
         return self._dense
 
-    def run_quiet(self, W, b, U, s, g_last, dec_before, state, guard_atol, dip_factor, max_steps=1_000_000):
-        """Steps until one whose guards g = W·y + U·f(t, y) + b need the engine's dense-output scan
-        (:func:`run_quiet`), at most ``max_steps``.  Returns (error message or None, whether
-        ``t_bound`` was reached with every step quiet — None when ``max_steps`` quiet steps were
-        taken —, steps taken); otherwise the last step (``t_old`` → ``t``, ``dense_output()``) is
-        the one to scan."""
-        if self.status != "running":
-            raise RuntimeError("attempt to step on a finished or failed solver")
-        code, t_old, t, hu, hn, nf, k = _compile()["run_quiet"](
-            self._fun, self.kernel.p, self.t, self.y, self.f, self.h_abs, self.max_step, self.t_bound,
-            self.rtol, self.atol, int(max_steps), W, b, U, s, g_last, dec_before, state, guard_atol, dip_factor,
-            self._K, self._F, self._y_old)
+    def _took(self, code, t_old, t, hu, hn, nf, k):
+        """Advance the solver past the ``k`` steps of a compiled run (:func:`run_screened`'s return
+        value); returns (error message or None, code, k)."""
         self.nfev += nf
         self.nsteps += k
         self.t, self.h_abs = t, hn
@@ -482,17 +609,56 @@ class DOP853Solver:
             self._dense = _Dense(t_old, hu, self._F.copy(), self._y_old.copy())
         if code == 0:
             self.status = "failed"
-            return f"compiled DOP853: step size too small at t = {self.t:.12g}", False, k
+            return f"compiled DOP853: step size too small at t = {self.t:.12g}", 0, k
         if self.t >= self.t_bound:
             self.status = "finished"
+        return None, int(code), k
+
+    def run_quiet(self, W, b, U, s, g_last, dec_before, state, guard_atol, dip_factor, max_steps=1_000_000):
+        """Steps until one whose affine guards g = W·y + U·f(t, y) + b need the engine's
+        dense-output scan (:func:`run_quiet`, :func:`run_screened`), at most ``max_steps``.
+        Returns (error message or None, whether ``t_bound`` was reached with every step quiet —
+        None when ``max_steps`` quiet steps were taken —, steps taken); otherwise the last step
+        (``t_old`` → ``t``, ``dense_output()``) is the one to scan."""
+        if self.status != "running":
+            raise RuntimeError("attempt to step on a finished or failed solver")
+        msg, code, k = self._took(*_compiled("run_quiet")(
+            self._fun, self.kernel.p, self.t, self.y, self.f, self.h_abs, self.max_step, self.t_bound,
+            self.rtol, self.atol, int(max_steps), W, b, U, s, g_last, dec_before, state, guard_atol, dip_factor,
+            self._K, self._F, self._y_old))
+        if msg is not None:
+            return msg, False, k
         return None, (None if code == 3 else code == 2), k
+
+    def run_guarded(self, guard_kernel, s, g_last, dec_before, state, guard_atol, dip_factor, max_steps, values,
+                    record=None):
+        """Steps until one whose guards, the compiled vector function ``guard_kernel`` (a
+        :class:`~landau.verify.hybrid.kernel.Kernel`), need the engine's dense-output scan
+        (:func:`run_guarded`, :func:`run_screened`), at most ``max_steps``; ``values`` receives
+        the last step's guard values and ``record`` = (t, y, info) buffers the quiet steps.
+        Returns (error message or None, code of :func:`run_screened`, steps taken)."""
+        if self.status != "running":
+            raise RuntimeError("attempt to step on a finished or failed solver")
+        rt, ry, ri = record if record is not None else _NO_RECORD
+        return self._took(*_compiled("run_guarded")(
+            self._fun, self.kernel.p, kernel_function(guard_kernel.fun), guard_kernel.p, self.t, self.y, self.f,
+            self.h_abs, self.max_step, self.t_bound, self.rtol, self.atol, int(max_steps), s, g_last, dec_before,
+            state, float(guard_atol), float(dip_factor), self._K, self._F, self._y_old, values, rt, ry, ri))
 
     def affine_root(self, w, b, u, lo, hi, xtol) -> float:
         """Root of the guard w·y + u·f(t, y) + b in [lo, hi] on the last step's dense output
-        (:func:`affine_root`; the guard is > 0 at lo and <= 0 at hi)."""
+        (:func:`event_root`; the guard is > 0 at lo and <= 0 at hi)."""
         d = self.dense_output()
-        return _compile()["affine_root"](self._fun, self.kernel.p, d.F, d.y0, d.t0, d.h, w, float(b), u,
+        return _compiled("affine_root")(self._fun, self.kernel.p, d.F, d.y0, d.t0, d.h, w, float(b), u,
                                          float(lo), float(hi), float(xtol))
+
+    def kernel_root(self, guard_kernel, j, n_guards, lo, hi, xtol) -> float:
+        """Root of guard j of the compiled guard vector ``guard_kernel`` (a
+        :class:`~landau.verify.hybrid.kernel.Kernel` of ``n_guards`` components) in [lo, hi] on
+        the last step's dense output (:func:`event_root`; > 0 at lo, <= 0 at hi)."""
+        d = self.dense_output()
+        return _compiled("kernel_root")(kernel_function(guard_kernel.fun), guard_kernel.p, int(j), int(n_guards),
+                                         d.F, d.y0, d.t0, d.h, float(lo), float(hi), float(xtol))
 
     def __repr__(self) -> str:
         return (f"DOP853Solver(t={self.t:.6g}, {self.status}, steps={self.nsteps}, nfev={self.nfev}, "

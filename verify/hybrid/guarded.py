@@ -1,21 +1,23 @@
-"""Compiled guards inside the compiled DOP853 loop: a mode's events screened without Python.
+"""Compiled guards inside the compiled DOP853 loop: a mode's events screened and located without Python.
 
 A mode whose guards come as one compiled vector function (:attr:`landau.verify.hybrid.model.Mode.guard_kernel`,
-``gfun(t, y, p, out)`` with ``out[j]`` = guard j) is integrated by :func:`run_guarded`: the
-DOP853 steps of :mod:`landau.verify.hybrid.dop853` (:func:`~landau.verify.hybrid.dop853.advance`)
-follow one another inside one compiled call, each tested by the engine's scan test
-(:func:`landau.verify.hybrid.locate._quiet_guards`) on the guard values at the step's dense-output
-samples and at its end, and the call returns to Python only with the step where a guard may
-cross (or at ``t_bound``).  The engine then locates the event on that step's dense output with the
-Python guards (:mod:`landau.verify.hybrid.locate`), exactly as for a step screened in Python, so
-the events are those of the Python route: the same steps (the step-size control does not see the
-guards), the same test, guard values equal to rounding.
+``gfun(t, y, p, out)`` with ``out[j]`` = guard j) is integrated by :func:`guarded_steps`: the
+DOP853 steps follow one another inside one compiled call
+(:func:`landau.verify.hybrid.dop853.run_screened`, the loop of the affine guards too), each
+tested by the engine's scan test (:func:`landau.verify.hybrid.locate._quiet_guards`) on the
+guard values at the step's dense-output samples and at its end, and the call returns to Python
+only with the step where a guard may cross (or at ``t_bound``).  The engine brackets the crossing
+on that step's samples (:func:`landau.verify.hybrid.locate.first_crossing`) and refines the root
+of the compiled guard on the step's dense output (:func:`landau.verify.hybrid.dop853.event_root`,
+bisection to the engine's ``xtol``): the steps are those of the Python route (the step-size
+control does not see the guards), the guard values those of the Python guards to rounding, so the
+event times agree with the Python route's to ``xtol`` plus the rounding of the guard divided by
+its slope.
 
-This is the loop of :func:`landau.verify.hybrid.dop853.run_quiet` with a guard function in place
-of affine guards: guards that are not affine in the state (a gap y − l cos φ, a contact force
-λ_N(φ, φ̇, ẏ)) stay in compiled code.  The guard function reaches the loop as a first-class
-function of the kernels' type (:func:`landau.verify.hybrid.dop853.kernel_function`), so the loop
-compiles once per machine for every model.
+Guards that are not affine in the state (a gap y − l cos φ, a contact force λ_N(φ, φ̇, ẏ)) thus
+stay in compiled code.  The guard function reaches the loop as a first-class function of the
+kernels' type (:func:`landau.verify.hybrid.dop853.kernel_function`), so the loop compiles once
+per machine for every model.
 """
 
 from __future__ import annotations
@@ -24,118 +26,16 @@ import numpy as np
 from numba import njit, types
 
 from landau.verify.compiling import compile_once
-from landau.verify.hybrid.dop853 import FUN_T, advance, dense, dense_at, kernel_function
-from landau.verify.hybrid.locate import _quiet_guards
+from landau.verify.hybrid.dop853 import FUN_T, advance
 
-__all__ = ["run_guarded", "guarded_steps", "StepRecord", "run_to_upcrossing", "upcrossing_step"]
-
-
-@njit(cache=True)
-def run_guarded(fun, p, gfun, gp, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, s, g_last, dec_before,
-                state, gatol, dip_factor, K, F, y_old, rec_t, rec_y, rec):
-    """Steps of DOP853 from (t, y), f = f(t, y), while the guards ``gfun(t, y, gp, out)`` pass the
-    engine's scan test on the step's dense output at the fractions ``s`` and at the step end.
-
-    As :func:`landau.verify.hybrid.dop853.run_quiet` (the same arguments, with ``gfun``/``gp`` in
-    place of the affine guards W, b, U, and the same return value (code, t_old, t, h_used,
-    h_abs_next, nfev, nsteps); code 1: the last step is not quiet, 2: ``t_bound`` reached with
-    every step quiet, 3: ``max_steps`` quiet steps, 0: step size too small), plus the engine's
-    record of quiet steps: with ``rec_t.shape[0] > 0`` each quiet step's samples and end
-    (stride 1), or the end of every stride-th step, go to ``rec_t``/``rec_y`` as the engine's
-    recorder keeps them; ``rec`` = [samples written, samples recorded in all, bound on them,
-    stride, steps seen at stride > 1] is advanced, and the call returns with code 4 when the
-    buffer cannot take another step or the record has passed its bound (the engine then thins
-    it).
-    """
-    n, m, k = y.shape[0], s.shape[0], g_last.shape[0]
-    ynew, fnew = np.empty(n), np.empty(n)
-    vals = np.empty((k, 3 * m + 1))
-    yk, gk = np.empty(n), np.empty(k)
-    Y = np.empty((n, m))
-    ts = np.empty(m)
-    cap = rec_t.shape[0]
-    nfev, nsteps, t_old, h_used = 0, 0, t, 0.0
-    while nsteps < max_steps:
-        ok, tn, hu, h_abs, nf = advance(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, K, ynew, fnew)
-        nfev += nf
-        if not ok:
-            return 0, t_old, t, h_used, h_abs, nfev, nsteps
-        nsteps += 1
-        h_used = hu
-        nfev += dense(fun, p, t, y, ynew, fnew, K, hu, F)
-        finite = True
-        for a in range(n):
-            finite = finite and np.isfinite(ynew[a])
-            y_old[a] = y[a]
-        for q in range(m):
-            # the engine's sample times t_old + (t - t_old) s_q and their fractions on the step
-            tq = t + (tn - t) * s[q]
-            dense_at(F, y_old, (tq - t) / hu, yk)
-            ts[q] = tq
-            for a in range(n):
-                Y[a, q] = yk[a]
-            gfun(tq, yk, gp, gk)
-            for j in range(k):
-                vals[j, q] = gk[j]
-                vals[j, m + 1 + q] = gk[j]
-                vals[j, 2 * m + 1 + q] = gk[j]
-        gfun(tn, ynew, gp, gk)
-        for j in range(k):
-            vals[j, m] = gk[j]
-        t_old = t
-        t = tn
-        for a in range(n):
-            y[a] = ynew[a]
-            f[a] = fnew[a]
-        if not finite or not _quiet_guards(vals, m, g_last, dec_before, state, gatol, dip_factor):
-            return 1, t_old, t, h_used, h_abs, nfev, nsteps
-        if cap > 0:
-            w = rec[0]
-            if rec[3] == 1:
-                for q in range(m):
-                    rec_t[w + q] = ts[q]
-                    for a in range(n):
-                        rec_y[a, w + q] = Y[a, q]
-                w += m
-                rec_t[w] = t
-                for a in range(n):
-                    rec_y[a, w] = y[a]
-                rec[0] = w + 1
-                rec[1] += m + 1
-            else:
-                rec[4] += 1
-                if rec[4] % rec[3] == 0:
-                    rec_t[w] = t
-                    for a in range(n):
-                        rec_y[a, w] = y[a]
-                    rec[0] = w + 1
-                    rec[1] += 1
-        if t >= t_bound:
-            return 2, t_old, t, h_used, h_abs, nfev, nsteps
-        if cap > 0 and (rec[1] > rec[2] or rec[0] + m + 1 > cap):
-            return 4, t_old, t, h_used, h_abs, nfev, nsteps
-    return 3, t_old, t, h_used, h_abs, nfev, nsteps
-
-
-_LOOP: list = []
-
-
-def _loop():
-    """:func:`run_guarded`, built (or loaded from numba's disk cache) on first use."""
-    if not _LOOP:
-        f64, arr, i64 = types.float64, types.float64[::1], types.int64
-        mat, barr = types.float64[:, ::1], types.boolean[::1]
-        sig = (FUN_T, arr, FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, arr, arr, barr,
-               types.int64[::1], f64, f64, mat, mat, arr, arr, mat, types.int64[::1])
-        compile_once(run_guarded, sig, "the compiled DOP853 loop with compiled guards")
-        _LOOP.append(run_guarded)
-    return _LOOP[0]
+__all__ = ["guarded_steps", "StepRecord", "run_to_upcrossing", "upcrossing_step"]
 
 
 class StepRecord:
-    """The buffer in which :func:`run_guarded` records quiet steps for the engine's recorder (the
-    ``_Recorder`` of :mod:`landau.verify.hybrid.simulate`: its count, bound, stride and step
-    counter go in, the samples come out in one piece per call)."""
+    """The buffer in which the compiled loop (:func:`landau.verify.hybrid.dop853.run_screened`)
+    records quiet steps for the engine's recorder (the ``_Recorder`` of
+    :mod:`landau.verify.hybrid.simulate`: its count, bound, stride and step counter go in, the
+    samples come out in one piece per call)."""
 
     __slots__ = ("t", "y", "info")
 
@@ -156,13 +56,11 @@ class StepRecord:
         self.info[0] = 0
 
 
-_NO_RECORD = (np.empty(0), np.empty((0, 0)), np.zeros(5, dtype=np.int64))
-
-
 def guarded_steps(solver, guard_kernel, s, g_last, dec_before, state, guard_atol, dip_factor,
-                  max_steps=1_000_000, record: StepRecord | None = None):
-    """:func:`run_guarded` on a :class:`~landau.verify.hybrid.dop853.DOP853Solver` (its state,
-    step size and buffers advanced as by its ``run_quiet``).
+                  max_steps=1_000_000, record: StepRecord | None = None, values: np.ndarray | None = None):
+    """The compiled screened run (:meth:`~landau.verify.hybrid.dop853.DOP853Solver.run_guarded`) of a
+    :class:`~landau.verify.hybrid.dop853.DOP853Solver` whose mode's guards are one compiled vector
+    function (its state, step size and buffers advanced as by its ``run_quiet``).
 
     Parameters
     ----------
@@ -181,6 +79,9 @@ def guarded_steps(solver, guard_kernel, s, g_last, dec_before, state, guard_atol
         Step budget of this call.
     record : StepRecord, optional
         Where the quiet steps are recorded (loaded from the engine's recorder beforehand).
+    values : ndarray, optional
+        (guards, 3 len(s) + 1) buffer that receives the last step's guard values (the samples,
+        then the step end).
 
     Returns
     -------
@@ -190,28 +91,11 @@ def guarded_steps(solver, guard_kernel, s, g_last, dec_before, state, guard_atol
         3: ``max_steps`` quiet steps; 4: the record buffer is full or past its bound; 0: the
         step size became too small.
     """
-    from landau.verify.hybrid.dop853 import _Dense
-
-    if solver.status != "running":
-        raise RuntimeError("attempt to step on a finished or failed solver")
-    gfun = kernel_function(guard_kernel.fun)
-    rt, ry, ri = (record.t, record.y, record.info) if record is not None else _NO_RECORD
-    code, t_old, t, hu, hn, nf, k = _loop()(
-        solver._fun, solver.kernel.p, gfun, guard_kernel.p, solver.t, solver.y, solver.f, solver.h_abs,
-        solver.max_step, solver.t_bound, solver.rtol, solver.atol, int(max_steps), s, g_last, dec_before, state,
-        float(guard_atol), float(dip_factor), solver._K, solver._F, solver._y_old, rt, ry, ri)
-    solver.nfev += nf
-    solver.nsteps += k
-    solver.t, solver.h_abs = t, hn
-    if k:
-        solver.t_old, solver._h_used = t_old, hu
-        solver._dense = _Dense(t_old, hu, solver._F.copy(), solver._y_old.copy())
-    if code == 0:
-        solver.status = "failed"
-        return f"compiled DOP853: step size too small at t = {solver.t:.12g}", 0, k
-    if solver.t >= solver.t_bound:
-        solver.status = "finished"
-    return None, int(code), k
+    if values is None:
+        values = np.empty((len(g_last), 3 * len(s) + 1))
+    rec = (record.t, record.y, record.info) if record is not None else None
+    return solver.run_guarded(guard_kernel, s, g_last, dec_before, state, guard_atol, dip_factor, max_steps, values,
+                              rec)
 
 
 @njit(cache=True)

@@ -348,6 +348,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
             gk = (_guard_kernel(m, solver, t, y, g0, atol, checked)
                   if affine is None and options.screen and options.samples > 0 else None)
             rbuf = _step_record(rbufs, len(y)) if gk is not None and options.record else None
+            gvals = np.empty((len(guards), 3 * len(nodes) - 2)) if gk is not None else None  # a step's values
             roots = _affine_guards(m) if hasattr(solver, "affine_root") else None
             active = (screen if affine is None and gk is None and screen is not None and _keeps_current_f(solver)
                       else None)
@@ -365,7 +366,7 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                         rbuf.load(rec)
                     msg, code, k = guarded_steps(solver, gk, nodes[:-1], g_last, dec_before, state, atol,
                                                  screen.dip_factor if screen is not None else 2.0,
-                                                 max(1, options.max_steps - nsteps), rbuf)
+                                                 max(1, options.max_steps - nsteps), rbuf, gvals)
                     nsteps += k
                     if rbuf is not None:   # the quiet steps' samples, as the per-step record keeps them
                         rbuf.flush(rec, seg_t, seg_y)
@@ -411,11 +412,15 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                     continue
                 dense = _LazyDense(solver)  # built only if a sample or a root needs it
                 ts_int = t_old + (t_new - t_old) * nodes[:-1]
-                Y = np.column_stack([dense(ts_int), solver.y]) if len(ts_int) else solver.y[:, None]
+                # the samples' states (for the Python guards and the record; the compiled loop gave
+                # the compiled guards' values at the same samples)
+                Y = (None if gvals is not None and not options.record else
+                     np.column_stack([dense(ts_int), solver.y]) if len(ts_int) else solver.y[:, None])
                 ts = np.concatenate([[t_old], ts_int, [t_new]])
                 cands: list[tuple[Any, int, str]] = []   # (bracket or time, guard, kind)
                 for j, g in enumerate(guards):
-                    G = np.concatenate([[g_last[j]], np.atleast_1d(g.fun(ts[1:], Y))])
+                    G = np.concatenate([[g_last[j]], gvals[j, :len(ts) - 1] if gvals is not None
+                                        else np.atleast_1d(g.fun(ts[1:], Y))])
                     st = state[j]
                     g_last[j] = G[-1]
                     start = 0
@@ -461,6 +466,8 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                             a, b = c
                             if roots is not None:   # the guard's affine form, in compiled code
                                 r = solver.affine_root(roots[0][j], roots[1][j], roots[2][j], a, b, options.xtol)
+                            elif gk is not None and hasattr(solver, "kernel_root"):   # compiled guard vector
+                                r = solver.kernel_root(gk, j, len(guards), a, b, options.xtol)
                             else:
                                 r = root_new_side(guard_on_dense(guards[j].fun, dense), a, b, options.xtol)
                             located.append((r, j, "switch"))
