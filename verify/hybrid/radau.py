@@ -392,7 +392,7 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
         for i in range(n):
             Qprev[a, i] = 0.0
     ytmp, ynew, scale, err, ZE, yprev = vec[0], vec[1], vec[2], vec[3], vec[4], vec[5]
-    b0, b1, b2 = vec[6], vec[7], vec[8]
+    b0 = vec[6]
     t = t0
     have_prev = False
     tprev = 0.0
@@ -440,15 +440,15 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
             ok = _lu(Mc, pivC) and ok
             cnt[4] += 1
         # Newton start: the previous step's collocation polynomial, extrapolated
-        for a in range(s):
-            for i in range(n):
+        # (and W = T⁻¹Z for the split iteration), one loop over the components
+        for i in range(n):
+            for a in range(s):
                 if have_prev:
                     x = (t + _NODES[a] * h - tprev) / hprev
                     Z[a, i] = _poly(yprev, Qprev, x, i) - y[i]
                 else:
                     Z[a, i] = 0.0
-        if not use_full:
-            for i in range(n):
+            if not use_full:
                 W[0, i] = TI[0][0] * Z[0, i] + TI[0][1] * Z[1, i] + TI[0][2] * Z[2, i]
                 W[1, i] = TI[1][0] * Z[0, i] + TI[1][1] * Z[1, i] + TI[1][2] * Z[2, i]
                 W[2, i] = TI[2][0] * Z[0, i] + TI[2][1] * Z[1, i] + TI[2][2] * Z[2, i]
@@ -494,15 +494,18 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                         bc[n + i] = g2 - (bh * w1 + ah * w2)
                     _solve(Mr, pivR, b0)
                     _solve(Mc, pivC, bc)
+                    # ΔW = (b0, Re, Im of the complex solution) and ΔZ = T·ΔW, one loop (constant
+                    # indices into T: a variable index into a tuple compiles to a switch)
                     for i in range(n):
-                        b1[i] = bc[i]
-                        b2[i] = bc[n + i]
-                        W[0, i] += b0[i]
-                        W[1, i] += b1[i]
-                        W[2, i] += b2[i]
-                    for a in range(s):
-                        for i in range(n):
-                            R[a * n + i] = T[a][0] * b0[i] + T[a][1] * b1[i] + T[a][2] * b2[i]
+                        d0 = b0[i]
+                        d1 = bc[i]
+                        d2 = bc[n + i]
+                        W[0, i] += d0
+                        W[1, i] += d1
+                        W[2, i] += d2
+                        R[i] = T[0][0] * d0 + T[0][1] * d1 + T[0][2] * d2
+                        R[n + i] = T[1][0] * d0 + T[1][1] * d1 + T[1][2] * d2
+                        R[2 * n + i] = T[2][0] * d0 + T[2][1] * d1 + T[2][2] * d2
                 dW = 0.0
                 for a in range(s):
                     for i in range(n):
@@ -535,10 +538,9 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
             use_full = True
             rejected = True
             continue
-        for i in range(n):
-            ynew[i] = y[i] + Z[s - 1, i]
         # embedded error estimate: (γ/h I − J)⁻¹ (f0 + Σ e_a Z_a / h), with the real factors above
         for i in range(n):
+            ynew[i] = y[i] + Z[s - 1, i]
             acc = f0[i]
             for a in range(s):
                 acc += E_ERR[a] * Z[a, i] / h
@@ -573,8 +575,8 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
         # accepted: the collocation polynomial Q = V⁻¹Z is the dense output
         cnt[0] += 1
         use_full = False
-        for j in range(s):
-            for i in range(n):
+        for i in range(n):
+            for j in range(s):
                 acc = 0.0
                 for a in range(s):
                     acc += VINV[j, a] * Z[a, i]
@@ -591,15 +593,14 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                 stop, nev_dir = _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF, EVDIR)
         for i in range(n):
             yprev[i] = y[i]
-        for j in range(s):
-            for i in range(n):
-                Qprev[j, i] = Q[j, i]
+            Qprev[0, i] = Q[0, i]
+            Qprev[1, i] = Q[1, i]
+            Qprev[2, i] = Q[2, i]
+            y[i] = ynew[i]
         tprev = t
         hprev = h
         have_prev = True
         t = t_new
-        for i in range(n):
-            y[i] = ynew[i]
         fun(t, y, p, f0)
         cnt[2] += 1
         if rec_cap > 0:
