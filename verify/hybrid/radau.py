@@ -193,16 +193,6 @@ def _solve(lu, piv, b):
 
 
 @_inner
-def _rms(x, scale):
-    """The error norm: the root mean square of x / scale."""
-    s = 0.0
-    for i in range(x.shape[0]):
-        r = x[i] / scale[i]
-        s += r * r
-    return math.sqrt(s / x.shape[0])
-
-
-@_inner
 def _poly(y0, Q, x, i):
     """Component i of the dense output y0 + Σ_j Q_j x^{j+1} (Horner)."""
     acc = Q[Q.shape[0] - 1, i]
@@ -547,17 +537,24 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
             err[i] = acc
             ZE[i] = acc - f0[i]
             scale[i] = atol[i] + max(abs(y[i]), abs(ynew[i])) * rtol
-        _solve(Mr, pivR, err)
-        err_norm = _rms(err, scale)
-        if rejected and err_norm > 1.0:
+        # after a rejection an estimate above the tolerance is refined once with f(y + err)
+        # (radau5): the solve and the norm are written once, for both passes
+        err_norm = 0.0
+        for sweep in range(2):
+            _solve(Mr, pivR, err)
+            acc = 0.0
+            for i in range(n):
+                r = err[i] / scale[i]
+                acc += r * r
+            err_norm = math.sqrt(acc / n)      # the root mean square of err / scale
+            if sweep == 1 or not (rejected and err_norm > 1.0):
+                break
             for i in range(n):
                 ytmp[i] = y[i] + err[i]
             fun(t, ytmp, p, err)
             cnt[2] += 1
             for i in range(n):
                 err[i] += ZE[i]
-            _solve(Mr, pivR, err)
-            err_norm = _rms(err, scale)
         safety = 0.9 * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter)
         # the error test: retry with h/4 after a non-finite error, h·max(0.2, safety·err^(−expo))
         # above the tolerance
