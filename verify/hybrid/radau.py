@@ -261,6 +261,12 @@ def cubic_crossing(g0, c1, c2, c3, lo, outside_sign, inclusive):
     return -1.0
 
 
+#: the loop's own build of :func:`cubic_crossing` (the same Python function): compiled inside the
+#: loop's build without a disk-cache entry of its own, which the public function keeps for its
+#: other callers
+_cubic_crossing = _inner(getattr(cubic_crossing, "py_func", cubic_crossing))
+
+
 @_inner
 def _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF, EVDIR):
     """Record every sign change of y[ev_idx] − ev_val on the step's cubic dense output.
@@ -279,7 +285,7 @@ def _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF,
         if ga == 0.0:
             break
         sgn = -1.0 if ga > 0.0 else 1.0
-        xr = cubic_crossing(g0, c1, c2, c3, xa, sgn, True)
+        xr = _cubic_crossing(g0, c1, c2, c3, xa, sgn, True)
         if xr < 0.0:
             break
         d = 1 if sgn > 0.0 else -1

@@ -41,6 +41,7 @@ from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
 from landau.support.lambdify import lambdify_positional
 from landau.systems.system import SpringBlock
+from landau.verify.compiling import paused_gc
 
 
 @dataclass(frozen=True)
@@ -291,12 +292,14 @@ class SpringBlockModel:
 
     def f(self, y) -> np.ndarray:
         out = np.empty(self.n)
-        self.compiled.rhs(0.0, np.ascontiguousarray(y, dtype=float), self.p, out)
+        with paused_gc():       # the first call builds the compiled field
+            self.compiled.rhs(0.0, np.ascontiguousarray(y, dtype=float), self.p, out)
         return out
 
     def J(self, y) -> np.ndarray:
         out = np.empty((self.n, self.n))
-        self.compiled.jac(0.0, np.ascontiguousarray(y, dtype=float), self.p, out)
+        with paused_gc():       # the first call builds the compiled Jacobian
+            self.compiled.jac(0.0, np.ascontiguousarray(y, dtype=float), self.p, out)
         return out
 
     # --- physical coordinates ---------------------------------------------------------
