@@ -26,7 +26,7 @@ from numba.extending import typeof_impl
 from landau.errors import InputError
 from landau.verify.compiling import paused_gc
 
-__all__ = ["FunctionPointer", "jit_enabled", "make_pointers", "warn_once"]
+__all__ = ["FunctionPointer", "call_pointer", "jit_enabled", "make_pointers", "pointer", "warn_once"]
 
 _WARNED: set[str] = set()
 
@@ -108,6 +108,40 @@ def _cfunc(fn, signature, tag):
 _POINTERS: dict[tuple[int, str], tuple[object, FunctionPointer]] = {}
 
 
+def pointer(f, sig, tag: str = "right-hand side"):
+    """One function as a first-class function of a compiled loop (:func:`make_pointers` for a
+    single function): a :class:`FunctionPointer`, or the Python function under
+    ``NUMBA_DISABLE_JIT=1``."""
+    jit = jit_enabled()
+    if isinstance(f, FunctionPointer):
+        return f if jit else f._python
+    if not jit:
+        return getattr(f, "py_func", f)
+    key = (id(f), tag)
+    hit = _POINTERS.get(key)
+    if hit is None or hit[0] is not f:      # the entry keeps f alive: its id is not reused
+        cf, py = _cfunc(f, sig, tag)
+        hit = _POINTERS[key] = (f, FunctionPointer(cf, sig, py))
+    return hit[1]
+
+
+@nb.njit(cache=True)
+def _call(f, t, y, p, out):
+    f(t, y, p, out)
+
+
+def call_pointer(f, t, y, p, out) -> None:
+    """Evaluate ``f(t, y, p, out)`` for a function made by :func:`pointer`, running its compiled
+    code (the machine code a compiled loop calls, so the values are the loop's to the last bit):
+    a small trampoline, built once per signature, calls it by address.  Under
+    ``NUMBA_DISABLE_JIT=1`` the Python function is called."""
+    if isinstance(f, FunctionPointer) and jit_enabled():
+        with paused_gc():       # the first call of each signature builds the trampoline
+            _call(f, float(t), y, p, out)
+    else:
+        f(t, y, p, out)
+
+
 def make_pointers(fun, jac, fun_sig, jac_sig):
     """(fun, jac) as first-class functions of a compiled loop, made once per function.
 
@@ -125,19 +159,4 @@ def make_pointers(fun, jac, fun_sig, jac_sig):
         Two :class:`FunctionPointer` objects, or, under ``NUMBA_DISABLE_JIT=1``, the two Python
         functions.
     """
-    jit = jit_enabled()
-    out = []
-    for f, sig, tag in ((fun, fun_sig, "right-hand side"), (jac, jac_sig, "Jacobian")):
-        if isinstance(f, FunctionPointer):
-            out.append(f if jit else f._python)
-            continue
-        if not jit:
-            out.append(getattr(f, "py_func", f))
-            continue
-        key = (id(f), tag)
-        hit = _POINTERS.get(key)
-        if hit is None or hit[0] is not f:      # the entry keeps f alive: its id is not reused
-            cf, py = _cfunc(f, sig, tag)
-            hit = _POINTERS[key] = (f, FunctionPointer(cf, sig, py))
-        out.append(hit[1])
-    return out[0], out[1]
+    return pointer(fun, fun_sig, "right-hand side"), pointer(jac, jac_sig, "Jacobian")
