@@ -11,7 +11,9 @@ Calling a compiled function with such arguments from Python costs numba the typi
 unboxing of each pointer on every call (measured about 35 µs for the pair on a loaded 2-core
 machine, against about 15 µs for integer addresses turned back into functions inside
 compiled code, which needs numba internals): cheap next to an integration, not next to a
-single step.
+single step.  :func:`call_pointer` runs such a function from Python (a one-line compiled
+trampoline), so a model evaluates its field with the very machine code the integrator calls
+instead of building the same function a second time.
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ import types as _pytypes
 import warnings
 
 import numba as nb
+import numpy as np
 from numba import types
 from numba.extending import typeof_impl
 
@@ -136,6 +139,8 @@ def call_pointer(f, t, y, p, out) -> None:
     a small trampoline, built once per signature, calls it by address.  Under
     ``NUMBA_DISABLE_JIT=1`` the Python function is called."""
     if isinstance(f, FunctionPointer) and jit_enabled():
+        y = np.ascontiguousarray(y, dtype=np.float64)       # the pointer's argument types
+        p = np.ascontiguousarray(p, dtype=np.float64)
         with paused_gc():       # the first call of each signature builds the trampoline
             _call(f, float(t), y, p, out)
     else:
