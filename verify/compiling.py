@@ -40,6 +40,8 @@ This module imports numba only when a function is compiled.
 
 from __future__ import annotations
 
+import contextlib
+import gc
 import glob
 import hashlib
 import os
@@ -47,9 +49,9 @@ import sys
 import threading
 import types
 from pathlib import Path
-from typing import Any
+from typing import Any, Iterator
 
-__all__ = ["NOTICE_AFTER", "WATCHED", "compile_once", "source_stamp"]
+__all__ = ["NOTICE_AFTER", "WATCHED", "compile_once", "paused_gc", "source_stamp"]
 
 #: modules whose source is part of a compiled loop's cache key (the simulation code)
 WATCHED: tuple[str, ...] = ("landau.verify.",)
@@ -205,7 +207,8 @@ def compile_once(dispatcher: Any, signature: Any, what: str, watched: tuple[str,
         timer.daemon = True
         timer.start()
     try:
-        dispatcher.compile(args)
+        with paused_gc():
+            dispatcher.compile(args)
     except OSError as exc:      # numba built the code (it is in memory) but could not write its files
         if args not in dispatcher.overloads:
             raise
@@ -223,6 +226,26 @@ def compile_once(dispatcher: Any, signature: Any, what: str, watched: tuple[str,
 
         sign_numba_entries(py_file)
     return dispatcher
+
+
+@contextlib.contextmanager
+def paused_gc() -> Iterator[None]:
+    """Pause Python's cyclic garbage collector for the duration of a numba build.
+
+    A build allocates hundreds of thousands of short-lived objects, which trigger collections of
+    the oldest generation; each of those traverses every object the process holds (the symbolic
+    derivation's sympy expressions, by the time a simulation starts), which made about a sixth of
+    the first build of the Radau IIA loop.  Reference counting still frees what a build drops; the
+    cycles it leaves are collected once the collector runs again.  Nested use is harmless (only
+    the outermost resumes collection, and only if it was running).
+    """
+    running = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if running:
+            gc.enable()
 
 
 def _shared_numba_folders() -> list[Path]:

@@ -11,7 +11,9 @@ Calling a compiled function with such arguments from Python costs numba the typi
 unboxing of each pointer on every call (measured about 35 µs for the pair on a loaded 2-core
 machine, against about 15 µs for integer addresses turned back into functions inside
 compiled code, which needs numba internals): cheap next to an integration, not next to a
-single step.
+single step.  :func:`call_pointer` runs such a function from Python (a one-line compiled
+trampoline), so a model evaluates its field with the very machine code the integrator calls
+instead of building the same function a second time.
 """
 
 from __future__ import annotations
@@ -20,12 +22,14 @@ import types as _pytypes
 import warnings
 
 import numba as nb
+import numpy as np
 from numba import types
 from numba.extending import typeof_impl
 
 from landau.errors import InputError
+from landau.verify.compiling import paused_gc
 
-__all__ = ["FunctionPointer", "jit_enabled", "make_pointers", "warn_once"]
+__all__ = ["FunctionPointer", "call_pointer", "jit_enabled", "make_pointers", "pointer", "warn_once"]
 
 _WARNED: set[str] = set()
 
@@ -94,16 +98,53 @@ def _cfunc(fn, signature, tag):
     twin = _pytypes.FunctionType(py.__code__, py.__globals__, py.__name__, py.__defaults__, py.__closure__)
     twin.__qualname__ = f"{py.__qualname__}__cfunc"
     twin.__module__ = py.__module__
-    try:
-        return nb.cfunc(signature, cache=True)(twin), py
-    except Exception as exc:       # no file to cache it in (code made by exec), or dynamic globals
-        warn_once(f"nocache:{py.__module__}.{py.__qualname__}",
-                  f"landau: the {tag} {py.__qualname__!r} is compiled without numba's disk cache ({exc}); "
-                  "it is compiled again in every process")
-        return nb.cfunc(signature)(twin), py
+    with paused_gc():          # (a build with the collector running costs a sixth more)
+        try:
+            return nb.cfunc(signature, cache=True)(twin), py
+        except Exception as exc:       # no file to cache it in (code made by exec), or dynamic globals
+            warn_once(f"nocache:{py.__module__}.{py.__qualname__}",
+                      f"landau: the {tag} {py.__qualname__!r} is compiled without numba's disk cache ({exc}); "
+                      "it is compiled again in every process")
+            return nb.cfunc(signature)(twin), py
 
 
 _POINTERS: dict[tuple[int, str], tuple[object, FunctionPointer]] = {}
+
+
+def pointer(f, sig, tag: str = "right-hand side"):
+    """One function as a first-class function of a compiled loop (:func:`make_pointers` for a
+    single function): a :class:`FunctionPointer`, or the Python function under
+    ``NUMBA_DISABLE_JIT=1``."""
+    jit = jit_enabled()
+    if isinstance(f, FunctionPointer):
+        return f if jit else f._python
+    if not jit:
+        return getattr(f, "py_func", f)
+    key = (id(f), tag)
+    hit = _POINTERS.get(key)
+    if hit is None or hit[0] is not f:      # the entry keeps f alive: its id is not reused
+        cf, py = _cfunc(f, sig, tag)
+        hit = _POINTERS[key] = (f, FunctionPointer(cf, sig, py))
+    return hit[1]
+
+
+@nb.njit(cache=True)
+def _call(f, t, y, p, out):
+    f(t, y, p, out)
+
+
+def call_pointer(f, t, y, p, out) -> None:
+    """Evaluate ``f(t, y, p, out)`` for a function made by :func:`pointer`, running its compiled
+    code (the machine code a compiled loop calls, so the values are the loop's to the last bit):
+    a small trampoline, built once per signature, calls it by address.  Under
+    ``NUMBA_DISABLE_JIT=1`` the Python function is called."""
+    if isinstance(f, FunctionPointer) and jit_enabled():
+        y = np.ascontiguousarray(y, dtype=np.float64)       # the pointer's argument types
+        p = np.ascontiguousarray(p, dtype=np.float64)
+        with paused_gc():       # the first call of each signature builds the trampoline
+            _call(f, float(t), y, p, out)
+    else:
+        f(t, y, p, out)
 
 
 def make_pointers(fun, jac, fun_sig, jac_sig):
@@ -123,19 +164,4 @@ def make_pointers(fun, jac, fun_sig, jac_sig):
         Two :class:`FunctionPointer` objects, or, under ``NUMBA_DISABLE_JIT=1``, the two Python
         functions.
     """
-    jit = jit_enabled()
-    out = []
-    for f, sig, tag in ((fun, fun_sig, "right-hand side"), (jac, jac_sig, "Jacobian")):
-        if isinstance(f, FunctionPointer):
-            out.append(f if jit else f._python)
-            continue
-        if not jit:
-            out.append(getattr(f, "py_func", f))
-            continue
-        key = (id(f), tag)
-        hit = _POINTERS.get(key)
-        if hit is None or hit[0] is not f:      # the entry keeps f alive: its id is not reused
-            cf, py = _cfunc(f, sig, tag)
-            hit = _POINTERS[key] = (f, FunctionPointer(cf, sig, py))
-        out.append(hit[1])
-    return out[0], out[1]
+    return pointer(fun, fun_sig, "right-hand side"), pointer(jac, jac_sig, "Jacobian")

@@ -193,16 +193,6 @@ def _solve(lu, piv, b):
 
 
 @_inner
-def _rms(x, scale):
-    """The error norm: the root mean square of x / scale."""
-    s = 0.0
-    for i in range(x.shape[0]):
-        r = x[i] / scale[i]
-        s += r * r
-    return math.sqrt(s / x.shape[0])
-
-
-@_inner
 def _poly(y0, Q, x, i):
     """Component i of the dense output y0 + Σ_j Q_j x^{j+1} (Horner)."""
     acc = Q[Q.shape[0] - 1, i]
@@ -271,6 +261,12 @@ def cubic_crossing(g0, c1, c2, c3, lo, outside_sign, inclusive):
     return -1.0
 
 
+#: the loop's own build of :func:`cubic_crossing` (the same Python function): compiled inside the
+#: loop's build without a disk-cache entry of its own, which the public function keeps for its
+#: other callers
+_cubic_crossing = _inner(getattr(cubic_crossing, "py_func", cubic_crossing))
+
+
 @_inner
 def _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF, EVDIR):
     """Record every sign change of y[ev_idx] − ev_val on the step's cubic dense output.
@@ -289,7 +285,7 @@ def _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF,
         if ga == 0.0:
             break
         sgn = -1.0 if ga > 0.0 else 1.0
-        xr = cubic_crossing(g0, c1, c2, c3, xa, sgn, True)
+        xr = _cubic_crossing(g0, c1, c2, c3, xa, sgn, True)
         if xr < 0.0:
             break
         d = 1 if sgn > 0.0 else -1
@@ -392,7 +388,7 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
         for i in range(n):
             Qprev[a, i] = 0.0
     ytmp, ynew, scale, err, ZE, yprev = vec[0], vec[1], vec[2], vec[3], vec[4], vec[5]
-    b0, b1, b2 = vec[6], vec[7], vec[8]
+    b0 = vec[6]
     t = t0
     have_prev = False
     tprev = 0.0
@@ -440,15 +436,15 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
             ok = _lu(Mc, pivC) and ok
             cnt[4] += 1
         # Newton start: the previous step's collocation polynomial, extrapolated
-        for a in range(s):
-            for i in range(n):
+        # (and W = T⁻¹Z for the split iteration), one loop over the components
+        for i in range(n):
+            for a in range(s):
                 if have_prev:
                     x = (t + _NODES[a] * h - tprev) / hprev
                     Z[a, i] = _poly(yprev, Qprev, x, i) - y[i]
                 else:
                     Z[a, i] = 0.0
-        if not use_full:
-            for i in range(n):
+            if not use_full:
                 W[0, i] = TI[0][0] * Z[0, i] + TI[0][1] * Z[1, i] + TI[0][2] * Z[2, i]
                 W[1, i] = TI[1][0] * Z[0, i] + TI[1][1] * Z[1, i] + TI[1][2] * Z[2, i]
                 W[2, i] = TI[2][0] * Z[0, i] + TI[2][1] * Z[1, i] + TI[2][2] * Z[2, i]
@@ -494,15 +490,18 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                         bc[n + i] = g2 - (bh * w1 + ah * w2)
                     _solve(Mr, pivR, b0)
                     _solve(Mc, pivC, bc)
+                    # ΔW = (b0, Re, Im of the complex solution) and ΔZ = T·ΔW, one loop (constant
+                    # indices into T: a variable index into a tuple compiles to a switch)
                     for i in range(n):
-                        b1[i] = bc[i]
-                        b2[i] = bc[n + i]
-                        W[0, i] += b0[i]
-                        W[1, i] += b1[i]
-                        W[2, i] += b2[i]
-                    for a in range(s):
-                        for i in range(n):
-                            R[a * n + i] = T[a][0] * b0[i] + T[a][1] * b1[i] + T[a][2] * b2[i]
+                        d0 = b0[i]
+                        d1 = bc[i]
+                        d2 = bc[n + i]
+                        W[0, i] += d0
+                        W[1, i] += d1
+                        W[2, i] += d2
+                        R[i] = T[0][0] * d0 + T[0][1] * d1 + T[0][2] * d2
+                        R[n + i] = T[1][0] * d0 + T[1][1] * d1 + T[1][2] * d2
+                        R[2 * n + i] = T[2][0] * d0 + T[2][1] * d1 + T[2][2] * d2
                 dW = 0.0
                 for a in range(s):
                     for i in range(n):
@@ -535,27 +534,33 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
             use_full = True
             rejected = True
             continue
-        for i in range(n):
-            ynew[i] = y[i] + Z[s - 1, i]
         # embedded error estimate: (γ/h I − J)⁻¹ (f0 + Σ e_a Z_a / h), with the real factors above
         for i in range(n):
+            ynew[i] = y[i] + Z[s - 1, i]
             acc = f0[i]
             for a in range(s):
                 acc += E_ERR[a] * Z[a, i] / h
             err[i] = acc
             ZE[i] = acc - f0[i]
             scale[i] = atol[i] + max(abs(y[i]), abs(ynew[i])) * rtol
-        _solve(Mr, pivR, err)
-        err_norm = _rms(err, scale)
-        if rejected and err_norm > 1.0:
+        # after a rejection an estimate above the tolerance is refined once with f(y + err)
+        # (radau5): the solve and the norm are written once, for both passes
+        err_norm = 0.0
+        for sweep in range(2):
+            _solve(Mr, pivR, err)
+            acc = 0.0
+            for i in range(n):
+                r = err[i] / scale[i]
+                acc += r * r
+            err_norm = math.sqrt(acc / n)      # the root mean square of err / scale
+            if sweep == 1 or not (rejected and err_norm > 1.0):
+                break
             for i in range(n):
                 ytmp[i] = y[i] + err[i]
             fun(t, ytmp, p, err)
             cnt[2] += 1
             for i in range(n):
                 err[i] += ZE[i]
-            _solve(Mr, pivR, err)
-            err_norm = _rms(err, scale)
         safety = 0.9 * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter)
         # the error test: retry with h/4 after a non-finite error, h·max(0.2, safety·err^(−expo))
         # above the tolerance
@@ -573,8 +578,8 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
         # accepted: the collocation polynomial Q = V⁻¹Z is the dense output
         cnt[0] += 1
         use_full = False
-        for j in range(s):
-            for i in range(n):
+        for i in range(n):
+            for j in range(s):
                 acc = 0.0
                 for a in range(s):
                     acc += VINV[j, a] * Z[a, i]
@@ -591,15 +596,14 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                 stop, nev_dir = _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF, EVDIR)
         for i in range(n):
             yprev[i] = y[i]
-        for j in range(s):
-            for i in range(n):
-                Qprev[j, i] = Q[j, i]
+            Qprev[0, i] = Q[0, i]
+            Qprev[1, i] = Q[1, i]
+            Qprev[2, i] = Q[2, i]
+            y[i] = ynew[i]
         tprev = t
         hprev = h
         have_prev = True
         t = t_new
-        for i in range(n):
-            y[i] = ynew[i]
         fun(t, y, p, f0)
         cnt[2] += 1
         if rec_cap > 0:

@@ -41,6 +41,8 @@ from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
 from landau.support.lambdify import lambdify_positional
 from landau.systems.system import SpringBlock
+from landau.verify.hybrid.callbacks import call_pointer, pointer
+from landau.verify.hybrid.radau import SIG, SIG_JAC
 
 
 @dataclass(frozen=True)
@@ -290,13 +292,18 @@ class SpringBlockModel:
         return self.k * self.params["L"] / self.params["sigma"]
 
     def f(self, y) -> np.ndarray:
+        """The scaled field of eq. (4) at the scaled state ``y``, by the compiled code the
+        integrator calls (the same C callback: one build per law serves both)."""
         out = np.empty(self.n)
-        self.compiled.rhs(0.0, np.ascontiguousarray(y, dtype=float), self.p, out)
+        call_pointer(pointer(self.compiled.rhs, SIG, "right-hand side"), 0.0,
+                     np.ascontiguousarray(y, dtype=float), self.p, out)
         return out
 
     def J(self, y) -> np.ndarray:
+        """The exact Jacobian of :meth:`f` at ``y`` (the integrator's compiled code, as :meth:`f`)."""
         out = np.empty((self.n, self.n))
-        self.compiled.jac(0.0, np.ascontiguousarray(y, dtype=float), self.p, out)
+        call_pointer(pointer(self.compiled.jac, SIG_JAC, "Jacobian"), 0.0,
+                     np.ascontiguousarray(y, dtype=float), self.p, out)
         return out
 
     # --- physical coordinates ---------------------------------------------------------
