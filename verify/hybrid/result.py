@@ -1,8 +1,10 @@
 """One result type for every simulation: a dense time series, the events and a status.
 
-Every model's run converts to a :class:`Simulation` (``.simulation()`` on the hybrid
-engine's :class:`~landau.verify.hybrid.HybridSolution`, the spring–block's and the forced
-oscillator's compiled runs):
+Every simulator returns a :class:`Simulation`: the hybrid engine's
+:class:`~landau.verify.hybrid.simulate.HybridSolution`, the spring–block's
+:class:`~landau.verify.springblock.simulate.RadauRecord` and the forced oscillator's
+:class:`~landau.verify.skurativskyi.simulate.ForcedRun` are subclasses that add only what their
+engine alone knows (counters, located crossings, impacts, the final mode):
 
 * ``t``, ``y``: the recorded time series (accepted step ends or dense-output samples; ``y``
   has shape (n, m)), and :meth:`Simulation.at` interpolating it (cubic Hermite where the
