@@ -86,8 +86,6 @@ def test_the_raw_records_have_their_own_names_and_convert_to_simulation():
     the common :class:`Simulation` with the same end time, end state, counters and crossings."""
     from landau.laws import get_law
     from landau.verify.hybrid.result import Simulation, Status
-    from landau.verify.skurativskyi.model import PAPER
-    from landau.verify.skurativskyi.simulate import ForcedRun, run
     from landau.verify.springblock import RadauRecord, SpringBlockModel, integrate
     from landau.verify.springblock.simulate import W_INDEX
 
@@ -101,18 +99,6 @@ def test_the_raw_records_have_their_own_names_and_convert_to_simulation():
     np.testing.assert_array_equal(sim.t, rec.rec_t)
     assert (sim.nsteps, sim.nfev) == (rec.steps, rec.nfev)
     np.testing.assert_array_equal([e.t for e in sim.events], rec.event_t)
-
-    fr = run(PAPER, 3, record=10 ** 5)
-    assert type(fr) is ForcedRun and repr(fr).startswith("ForcedRun(ω=")
-    assert len(fr.impacts) > 0 and len(fr.detachments) > 0
-    fsim = fr.simulation()
-    assert isinstance(fsim, Simulation) and fsim.status is Status.FINISHED and fsim.t_final == fr.t
-    assert fr.t == pytest.approx(3 * PAPER.period, rel=1e-12)
-    np.testing.assert_array_equal(fsim.y_final, fr.y)
-    np.testing.assert_array_equal(fsim.t, fr.rec_t)
-    assert (fsim.nsteps, fsim.nfev) == (fr.nsteps, fr.nfev)
-    np.testing.assert_array_equal(sorted(e.t for e in fsim.events if e.guard == "impact"), fr.impacts)
-    assert len(fsim.events) == len(fr.impacts) + len(fr.detachments)
 
 
 def test_the_former_run_names_warn_and_are_the_new_classes():
