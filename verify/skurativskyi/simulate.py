@@ -117,6 +117,8 @@ def _contact_regimes(start: float, t_final: float, impacts: np.ndarray, detachme
     """``(t0, t1, "free" | "contact")`` between the contact events from ``start`` to ``t_final``
     (in contact from an impact to the next detachment; ``in_contact``: the mode of a run without
     events, else the mode before the first event is the one it leaves)."""
+    if len(impacts) == 0 and len(detachments) == 0:   # most short runs: one regime
+        return ((start, float(t_final), "contact" if in_contact else "free"),) if t_final > start else ()
     times = np.concatenate([impacts, detachments])
     order = np.argsort(times, kind="stable")
     is_impact = (order < len(impacts)).tolist()
@@ -218,8 +220,11 @@ def _forced_run(params: Params, t_start: float, t_final: float, y_final: np.ndar
                 ev_v, rec_t, rec_y, rec_f, **extra) -> ForcedRun:
     """The :class:`ForcedRun` of the loop's arrays (events ``ev_k`` > 0 impacts, else
     detachments; recorded rows (m, n) stored as (n, m))."""
-    up = ev_k > 0
-    impacts, impact_v, detachments = ev_t[up], ev_v[up], ev_t[~up]
+    if len(ev_k):
+        up = ev_k > 0
+        impacts, impact_v, detachments = ev_t[up], ev_v[up], ev_t[~up]
+    else:
+        impacts, impact_v, detachments = ev_t, ev_v, ev_t[:0]
     msg = status.advice
     if status is not Status.FINISHED:
         msg = f"stopped at t = {t_final:.6g} s by its limit: {status.advice}"
