@@ -61,13 +61,15 @@ Stroboscopic samples t = t₀ + i·2π/ω are step ends (steps are clipped onto 
 
 Speed (not the arithmetic): the steps are inlined into the loop (``inline="always"``), the
 stage vectors are arrays local to the call, and the field reads the packed parameters through
-their data pointer (:mod:`landau.verify.skurativskyi.field`), so numba's atomic reference counts
-(paid for every array handed to a compiled call that is not inlined) stay out of the explicit
-steps.  The paper's friction law is compiled into the field; any other law costs one indirect
-call per evaluation.  Measured at ω = 16, 20 periods from rest (CPU time, 2 shared cores), loop
-alone, against the earlier loop specialised per law from a source template: 2.5 → 2.9 ms at
-rtol 1e-5, 3.1 → 3.5 ms at 1e-6, 4.9 → 5.3 ms at 1e-7, 12.6 → 13.1 ms at 1e-9; every step,
-event and final state unchanged to the bit.
+their data pointer (:mod:`landau.verify.skurativskyi.field`); the field itself is one compiled
+call of scalars per evaluation (no array crosses it), so numba's atomic reference counts
+(paid for every array handed to a compiled call that is not inlined) stay out of the steps.
+The paper's friction law is compiled into the field; any other law costs one indirect call per
+evaluation (two with the tangent vector).  Measured at ω = 16, 20 periods from rest (CPU time,
+best of 3 × 2 alternated rounds, 2 shared cores), against the earlier loop specialised per law
+from a source template: 3.2 → 3.6 ms at rtol 1e-6, 12.7 → 13.6 ms at 1e-9; with the tangent
+vector (Lyapunov exponent) 18.6 → 17.7 ms and 60.1 → 56.6 ms; every step, event and final
+state unchanged to the bit.
 """
 
 from __future__ import annotations
