@@ -19,15 +19,13 @@ order, so the results do not depend on how the law is reached.
 
 ``p`` is the packed vector (an array) or, in the compiled loop, its data pointer
 (``CPointer(float64)``: indexing reads the same numbers, and a pointer carries no reference
-count into the calls of the inner loop).  ``rhs`` is inlined into the steps (numba IR
-inlining; it is a few loads and stores) around one ordinary compiled call that takes and returns
-scalars only: :func:`accel` for (x, ẋ), :func:`field_values` for the 4-D system with the
-tangent vector, which computes the contact force's powers once for the field and its Jacobian.
-A call that takes arrays pays atomic reference-count updates for each, and the two separate
-calls of ``accel`` and ``accel_grad`` computed every power twice: measured at ω = 16 the 4-D
-runs 10–20 % faster than with an array-taking ``rhs``, the 2-D runs ~5 %, every step bit for
-bit the same.  Inlining ``accel`` into the steps as well measured another ~5 % on the 2-D
-runs but took the loop's first build from ~14 to ~21 CPU-s.
+count into the calls of the inner loop).  All are ordinary compiled calls.  With the tangent
+vector ``rhs`` makes one call of :func:`field_values`, which computes the contact force's powers
+once for the field and its Jacobian (two calls, ``accel`` and ``accel_grad``, computed each power
+twice): measured at ω = 16 the 4-D runs 10–15 % faster, every step bit for bit the same.
+Inlining ``rhs`` into the steps at numba's IR level (with its calls taking scalars only, so no
+array reference counts) measured another ~5–10 % on the 2-D runs but took the loop's first
+build (part of a truly cold first run) from ~12 to ~17 CPU-s.
 """
 
 from __future__ import annotations
@@ -159,9 +157,8 @@ def field_values(t, x, v, dx, dv, tangent, p, fr):
     of scalars: returns (ẋ, ẍ, δẋ, δẍ) (the last two 0 without ``tangent``).
 
     The same operations as :func:`accel` and :func:`accel_grad` (bit for bit), with the powers of
-    the contact force (x − x_I)^{n₁}, (x − x_I)^{n₂} and |ẋ|^{n₃} computed once for both: each is a
-    power routine, the costliest operations of the field.  Only scalars (and the data pointer)
-    cross the call, so no array reference counts are paid in the steps that call it."""
+    the contact force (x − x_I)^{n₁}, (x − x_I)^{n₂} and |ẋ|^{n₃} computed once for both (each is
+    a power routine, the costliest operations of the field) and one call instead of two."""
     om = p[IOM]
     d = x - p[IXI]
     fc = 0.0
@@ -196,12 +193,10 @@ def field_values(t, x, v, dx, dv, tangent, p, fr):
     return v, a, dv, gx / p[IM] * dx + gv / p[IM] * dv
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def rhs(t, y, p, out, fr):
     """The field the compiled integrators use: (x, ẋ) if len(y) == 2, with the variational
-    equation for one tangent vector (δx, δẋ) if len(y) == 4.  Inlined where it is called (a
-    few loads and stores around one call of :func:`field_values`, which takes scalars: a
-    compiled call that takes arrays pays atomic reference-count updates for each)."""
+    equation for one tangent vector (δx, δẋ) if len(y) == 4 (one call of :func:`field_values`)."""
     if y.shape[0] == 4:
         f0, f1, f2, f3 = field_values(t, y[0], y[1], y[2], y[3], True, p, fr)
         out[0] = f0
