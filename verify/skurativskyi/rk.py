@@ -68,8 +68,9 @@ other law costs one indirect call per evaluation (two with the tangent vector). 
 tangent vector the field and its Jacobian are one call that computes the contact force's powers
 once (:func:`landau.verify.skurativskyi.field.field_values`).  Measured at ω = 16, 20 periods
 from rest (CPU time, best of 3 in 2 alternated rounds, 2 shared cores), against the earlier loop
-specialised per law from a source template: 3.1 → 4.0 ms at rtol 1e-6, 12.6 → 14.8 ms at 1e-9; with
-the tangent vector (Lyapunov exponent) 18.4 → 18.4 ms and 59.8 → 58.0 ms; every step, event and final state unchanged to the bit.
+specialised per law from a source template: 3.1 → 4.0 ms at rtol 1e-6, 12.6 → 14.8 ms at
+1e-9; with the tangent vector (Lyapunov exponent) 18.4 → 18.4 ms and 59.8 → 58.0 ms; every
+step, event and final state unchanged to the bit.
 """
 
 from __future__ import annotations
