@@ -111,15 +111,15 @@ def _portrait_data(i: float, cases: tuple, n_transient: int = 60, rtol: float = 
     periods shown after a transient, its section points and impacts (each case on its own)."""
     omega, n_show = cases[int(i)]
     p = PAPER.with_(omega=omega)
-    y0 = run(p, n_transient, rtol=rtol, strobe=False).y
+    y0 = run(p, n_transient, rtol=rtol, strobe=False).y_final
     # dense trajectory for the plot: short sub-runs of 1/200 period
     P = p.period
     ts, xs, vs = [0.0], [y0[0]], [y0[1]]
     y = y0
     for k in range(200 * n_show):
         r = run(p, 1 / 200, y, t0=k * P / 200, rtol=rtol, strobe=False)
-        y = r.y
-        ts.append(r.t)
+        y = r.y_final
+        ts.append(r.t_final)
         xs.append(y[0])
         vs.append(y[1])
     r = run(p, n_show, y0, rtol=rtol)

@@ -242,7 +242,7 @@ def test_stroboscopic_section_matches_the_integrators_strobe():
     from landau.verify.skurativskyi.simulate import run
 
     r = run(PAPER, 6, record=100_000)
-    ts, ys = r.simulation().section_points(period=PAPER.period)
+    ts, ys = r.section_points(period=PAPER.period)
     n = min(len(ts), len(r.strobe_t))
     np.testing.assert_allclose(ts[:n], r.strobe_t[:n], rtol=1e-12)
     scale = np.abs(r.strobe_y[:n, :2]).max(axis=0)

@@ -94,16 +94,16 @@ def test_user_law_against_scipy_radau():
         fi = p.kI * d ** 1.5 if d > 0 else 0.0
         return [v, (p.m0e * 256.0 * math.sin(16.0 * t) - p.k * x - c * v - T * math.tanh(v / e) - fi) / p.m]
 
-    s = solve_ivp(f, (0.0, r.t), y0, method="Radau", rtol=1e-10, atol=[1e-15, 1e-13],
+    s = solve_ivp(f, (0.0, r.t_final), y0, method="Radau", rtol=1e-10, atol=[1e-15, 1e-13],
                   events=lambda t, y: y[0] - p.xI)
     assert s.status == 0
     up = np.array([ye[1] > 0 for ye in s.y_events[0]], bool)
     impacts = s.t_events[0][up]
     assert len(r.impacts) == len(impacts) >= 3
     np.testing.assert_allclose(r.impacts, impacts, rtol=0, atol=1e-8)
-    assert abs(r.y[0] - s.y[0, -1]) < 1e-10 and abs(r.y[1] - s.y[1, -1]) < 1e-8
+    assert abs(r.y_final[0] - s.y[0, -1]) < 1e-10 and abs(r.y_final[1] - s.y[1, -1]) < 1e-8
     paper = run(PAPER.with_(omega=16.0, b=0.0), 0.6 / p.period, y0, rtol=1e-11, atol=(1e-16, 1e-14))
-    assert abs(paper.y[1] - r.y[1]) > 1e-6
+    assert abs(paper.y_final[1] - r.y_final[1]) > 1e-6
 
 
 def test_linear_grazing_damps_with_the_viscous_coefficient():
@@ -155,7 +155,7 @@ def test_cli_forced_oscillator_with_user_friction(tmp_path, capsys):
     # the CSV's last row is the simulated final state, which the same law run from Python reproduces
     r = run(Params(friction=tanh_law()), 1.0 / PAPER.period)
     assert float(rows[-1][0]) == pytest.approx(1.0, rel=1e-12)
-    np.testing.assert_allclose([float(x) for x in rows[-1][1:]], r.y, rtol=1e-12)
+    np.testing.assert_allclose([float(x) for x in rows[-1][1:]], r.y_final, rtol=1e-12)
 
 
 @pytest.mark.parametrize("argv,words", [

@@ -26,7 +26,7 @@ user = VelocityFriction.from_strings("tanh-dry", "c*v + T*tanh(v/e)",
 out = {}
 for name, prm in (("paper", Params(omega=15.0)), ("user", Params(omega=15.0, friction=user))):
     r = run(prm, 3)
-    out[name] = {"t": r.t, "y": r.y.tolist(), "impacts": r.impacts.tolist(),
+    out[name] = {"t": r.t_final, "y": r.y_final.tolist(), "impacts": r.impacts.tolist(),
                  "detachments": r.detachments.tolist(), "steps": r.nsteps, "stiff": r.nstiff,
                  "strobe": r.strobe_y.tolist()}
 print(json.dumps(out))

@@ -72,8 +72,8 @@ def test_free_stick_follows_the_quasistatic_creep_of_the_regularised_law():
     v_qs = p.eps * F / math.sqrt(p.T**2 - F**2)
     mixed = run(p, 1.25, [0.0, 0.0], rtol=1e-8, method="mixed")
     explicit = run(p, 1.25, [0.0, 0.0], rtol=1e-8, method="dopri5")
-    assert mixed.y[1] == pytest.approx(v_qs, rel=1e-3)
-    assert explicit.y[1] == pytest.approx(v_qs, rel=1e-3)
+    assert mixed.y_final[1] == pytest.approx(v_qs, rel=1e-3)
+    assert explicit.y_final[1] == pytest.approx(v_qs, rel=1e-3)
     # every step is a stick step (|ẋ| < 1e-5 m/s, |ẍ| ≈ 0); the explicit path is stability-bound
     # (h ≲ 3.3 εm/T ≈ 6e-6 s): deterministic counts, measured 46 vs 51977;
     # measured relative deviations from v_qs: 9e-5 (mixed), 3e-6 (explicit)
@@ -101,10 +101,10 @@ def test_stick_dominated_run_agrees_with_explicit_path_and_tight_reference(omega
     # a 4× margin and are still 1e3× below the loose-tolerance errors (1e-4 at rtol 1e-5)
     for r in (mixed, explicit):
         assert len(r.impacts) == len(ref.impacts) == 2
-        assert np.abs((r.y - ref.y) / SCALE).max() < 1e-7
+        assert np.abs((r.y_final - ref.y_final) / SCALE).max() < 1e-7
         assert np.abs(r.impacts - ref.impacts).max() < 5e-8
         assert np.abs((r.strobe_y - ref.strobe_y) / SCALE).max() < 1e-7
-    assert np.abs((mixed.y - explicit.y) / SCALE).max() < 1e-7
+    assert np.abs((mixed.y_final - explicit.y_final) / SCALE).max() < 1e-7
     # the stick is taken by the stiff stepper, and the mixed path needs far fewer steps
     # (deterministic counts, measured 691 steps of which 246 stiff, vs 90635)
     assert mixed.nstiff > 0.2 * mixed.nsteps
@@ -140,5 +140,5 @@ def test_loose_tolerances_bogacki_shampine_converges(rtol):
     r = run(p, 5, rtol=rtol, atol=(rtol * 1e-4, rtol * 1e-2), strobe=False)
     assert r.nfev < 4.5 * (r.nsteps + r.nrejected)  # 3 per explicit step (6 with DOPRI5)
     assert len(r.impacts) == len(ref.impacts) == 12
-    assert np.max(np.abs((r.y - ref.y) / np.array([1e-3, 1e-2]))) < 30 * rtol
+    assert np.max(np.abs((r.y_final - ref.y_final) / np.array([1e-3, 1e-2]))) < 30 * rtol
     assert np.max(np.abs(r.impacts - ref.impacts)) < 20 * rtol

@@ -81,27 +81,6 @@ def test_renamed_names_and_fields_warn_and_still_work():
     assert repr(res) == "SweepResult(down, 2 points, 0 failures, out='sweep.nc')"
 
 
-def test_the_raw_records_have_their_own_names_and_convert_to_simulation():
-    """``run`` returns a :class:`ForcedRun` that converts to the common :class:`Simulation` with the
-    same end time, end state, counters and crossings (the spring–block's :class:`RadauRecord`:
-    tests/simulation/test_result_radau.py)."""
-    from landau.verify.hybrid.result import Simulation, Status
-    from landau.verify.skurativskyi.model import PAPER
-    from landau.verify.skurativskyi.simulate import ForcedRun, run
-
-    fr = run(PAPER, 3, record=10 ** 5)
-    assert type(fr) is ForcedRun and repr(fr).startswith("ForcedRun(ω=")
-    assert len(fr.impacts) > 0 and len(fr.detachments) > 0
-    fsim = fr.simulation()
-    assert isinstance(fsim, Simulation) and fsim.status is Status.FINISHED and fsim.t_final == fr.t
-    assert fr.t == pytest.approx(3 * PAPER.period, rel=1e-12)
-    np.testing.assert_array_equal(fsim.y_final, fr.y)
-    np.testing.assert_array_equal(fsim.t, fr.rec_t)
-    assert (fsim.nsteps, fsim.nfev) == (fr.nsteps, fr.nfev)
-    np.testing.assert_array_equal(sorted(e.t for e in fsim.events if e.guard == "impact"), fr.impacts)
-    assert len(fsim.events) == len(fr.impacts) + len(fr.detachments)
-
-
 def test_the_former_run_names_warn_and_are_the_new_classes():
     import landau.verify.springblock as springblock
     from landau.verify.skurativskyi import simulate as forced

@@ -263,10 +263,10 @@ def test_forced_oscillator_streamed_record():
     from landau.verify.skurativskyi.simulate import record_run, run
 
     one = record_run(PAPER, 3.0)
-    ref = run(PAPER, 3.0 / PAPER.period, record=10 ** 6).simulation()
+    ref = run(PAPER, 3.0 / PAPER.period, record=10 ** 6)
     np.testing.assert_array_equal(one.y, ref.y)
     pieces = record_run(PAPER, 30.0, max_points=500, chunk_steps=2000)
-    whole = run(PAPER, 30.0 / PAPER.period, record=10 ** 6).simulation()
+    whole = run(PAPER, 30.0 / PAPER.period, record=10 ** 6)
     assert pieces.success and len(pieces.t) <= 501 and pieces.t[0] == 0.0 and pieces.t[-1] == 30.0
     assert len(pieces.events) == len(whole.events)
     np.testing.assert_allclose(pieces.y_final, whole.y_final, rtol=0, atol=1e-9)

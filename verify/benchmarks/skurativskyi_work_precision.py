@@ -96,7 +96,7 @@ def toolkit_run(p: Params, n_periods: float, rtol: float, method: str = "mixed",
             if el >= min_cpu or el * repeat > 2.0:
                 break
         best = min(best, el / n)
-    return (r.y, r.impacts), best, r.t
+    return (r.y_final, r.impacts), best, r.t_final
 
 
 def errors(res, ref):

@@ -69,10 +69,10 @@ def attractor(omega: float, y0=None, n_transient: int = 100, n_keep: int = 50, p
     p = params.with_(omega=omega)
     y = None if y0 is None else np.asarray(y0, float)[:2]
     if n_transient:
-        y = run(p, n_transient, y, rtol=rtol, atol=atol, strobe=False).y[:2]
+        y = run(p, n_transient, y, rtol=rtol, atol=atol, strobe=False).y_final[:2]
     r = run(p, n_keep, y, rtol=rtol, atol=atol, lyapunov=lyapunov)
     xs = r.strobe_y[1:, 0]  # section points after the start point
-    return Attractor(float(omega), xs, r.intervals, r.impacts, len(r.impacts) / n_keep, r.y[:2].copy(),
+    return Attractor(float(omega), xs, r.intervals, r.impacts, len(r.impacts) / n_keep, r.y_final[:2].copy(),
                      r.lyapunov if lyapunov else float("nan"), n_keep)
 
 
@@ -81,7 +81,7 @@ def detaches(omega: float, params: Params = PAPER, n_transient: int = 60, n_keep
              rtol: float = RTOL) -> bool:
     """True when the attractor reached from rest leaves the obstacle (x < x_I) at ω."""
     p = params.with_(omega=omega)
-    y = run(p, n_transient, None, rtol=rtol, strobe=False).y[:2]
+    y = run(p, n_transient, None, rtol=rtol, strobe=False).y_final[:2]
     r = run(p, n_keep, y, rtol=rtol, strobe=False)
     return len(r.detachments) > 0
 

@@ -115,7 +115,7 @@ def _samples(p: Params, y0, n_periods: int, per_period: int, t0: float, rtol: fl
         # every chunk starts on the grid (no drift of the sampling phase)
         r = run(p, 1.0 / per_period, y, t0=ts[i - 1], rtol=rtol, strobe=False)
         n_imp += len(r.impacts)
-        y = r.y[:2].copy()
+        y = r.y_final[:2].copy()
         ys[i] = y
     return ts, ys, n_imp
 
@@ -127,7 +127,7 @@ def _refined_max(p: Params, t0: float, t1: float, y0, rtol: float, k: int):
     h = (t1 - t0) / k
     for i in range(k):
         r = run(p, h / p.period, y, t0=t0 + i * h, rtol=rtol, strobe=False)
-        yn = r.y[:2].copy()
+        yn = r.y_final[:2].copy()
         if y[1] > 0 >= yn[1] or i == k - 1:
             return _hermite_max(t0 + i * h, t0 + (i + 1) * h, y[0], yn[0], y[1], yn[1])
         y = yn

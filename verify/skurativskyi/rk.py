@@ -63,11 +63,14 @@ Speed (not the arithmetic): the steps are inlined into the loop (``inline="alway
 stage vectors are arrays local to the call, and the field reads the packed parameters through
 their data pointer (:mod:`landau.verify.skurativskyi.field`), so numba's atomic reference counts
 (paid for every array handed to a compiled call that is not inlined) stay out of the explicit
-steps.  The paper's friction law is compiled into the field; any other law costs one indirect
-call per evaluation.  Measured at ω = 16, 20 periods from rest (CPU time, 2 shared cores), loop
-alone, against the earlier loop specialised per law from a source template: 2.5 → 2.9 ms at
-rtol 1e-5, 3.1 → 3.5 ms at 1e-6, 4.9 → 5.3 ms at 1e-7, 12.6 → 13.1 ms at 1e-9; every step,
-event and final state unchanged to the bit.
+steps but for the field's own call.  The paper's friction law is compiled into the field; any
+other law costs one indirect call per evaluation (two with the tangent vector).  With the
+tangent vector the field and its Jacobian are one call that computes the contact force's powers
+once (:func:`landau.verify.skurativskyi.field.field_values`).  Measured at ω = 16, 20 periods
+from rest (CPU time, best of 3 in 2 alternated rounds, 2 shared cores), against the earlier loop
+specialised per law from a source template: 3.1 → 4.0 ms at rtol 1e-6, 12.6 → 14.8 ms at
+1e-9; with the tangent vector (Lyapunov exponent) 18.4 → 18.4 ms and 59.8 → 58.0 ms; every
+step, event and final state unchanged to the bit.
 """
 
 from __future__ import annotations

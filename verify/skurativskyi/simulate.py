@@ -3,8 +3,8 @@
 * :func:`run` — the default path: compiled DOPRI5 with exact contact switching, stick
   phases (|ẋ| < :data:`V_STIFF`, |ẍ| < :data:`A_STICK`) by the L-stable SDIRK4 of
   :mod:`landau.verify.skurativskyi.sdirk`, stroboscopic samples t = 2πi/ω and (optionally) one tangent vector for the
-  top Lyapunov
-  exponent.  Returns a :class:`ForcedRun` (impact times, inter-impact intervals, section points).
+  top Lyapunov exponent.  Returns a :class:`ForcedRun`, a
+  :class:`~landau.verify.hybrid.result.Simulation` (impact times, inter-impact intervals, section points).
 * :func:`hybrid_model` — the same model as a :class:`landau.verify.hybrid.HybridModel` with the
   modes ``"free"`` (x < x_I) and ``"contact"`` (x ≥ x_I) and guards ±(x − x_I); run it with
   ``landau.verify.hybrid.simulate(..., CompiledDOP853())`` (:mod:`landau.verify.hybrid.dop853`) or any
@@ -15,6 +15,7 @@ Impacts are the crossings of x = x_I with increasing x (the paper's definition, 
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -80,66 +81,107 @@ METHODS = {"mixed": (V_STIFF, A_STICK), "dopri5": (0.0, 0.0)}
 MAX_STROBES = 2_000_000
 
 
-@dataclass(frozen=True)
-class ForcedRun:
-    """The raw record of one run of the forced impacting oscillator (eq. 1 of Skurativskyi et al.
-    2019) by the compiled loop: final state, impacts (t, ẋ), detachments, stroboscopic points,
-    Lyapunov sums and counters; ``.simulation()`` gives the common
-    :class:`~landau.verify.hybrid.result.Simulation`.
+class ContactLog(EventLog):
+    """The impacts and detachments of a :class:`ForcedRun` as an :class:`EventLog`, its
+    :class:`Event` objects built on first use from the run's arrays (a sweep over ω runs the
+    simulator thousands of times and reads the arrays only: no Python work per event there).
+
+    Parameters
+    ----------
+    xI : float
+        The obstacle's position x_I (every event lies on x = x_I).
+    impacts, impact_v, detachments : numpy.ndarray
+        Times of the crossings x ↑ x_I, ẋ there, and times of the crossings x ↓ x_I.
+    """
+
+    def __init__(self, xI: float, impacts: np.ndarray, impact_v: np.ndarray, detachments: np.ndarray) -> None:
+        self._source = (float(xI), impacts, impact_v, detachments)
+        self._built: list[Event] | None = None
+
+    @property
+    def _events(self) -> list[Event]:
+        if self._built is None:
+            xI, impacts, impact_v, detachments = self._source
+            ev = sorted([(t, v, "impact") for t, v in zip(impacts, impact_v, strict=True)]
+                        + [(t, np.nan, "detach") for t in detachments])
+            out = []
+            for t, v, g in ev:
+                frm, to = ("free", "contact") if g == "impact" else ("contact", "free")
+                out.append(Event(float(t), np.array([xI, v]), g, frm, to))
+            self._built = out
+        return self._built
+
+
+def _contact_regimes(start: float, t_final: float, impacts: np.ndarray, detachments: np.ndarray,
+                     in_contact: bool) -> tuple:
+    """``(t0, t1, "free" | "contact")`` between the contact events from ``start`` to ``t_final``
+    (in contact from an impact to the next detachment; ``in_contact``: the mode of a run without
+    events, else the mode before the first event is the one it leaves)."""
+    if len(impacts) == 0 and len(detachments) == 0:   # most short runs: one regime
+        return ((start, float(t_final), "contact" if in_contact else "free"),) if t_final > start else ()
+    times = np.concatenate([impacts, detachments])
+    order = np.argsort(times, kind="stable")
+    is_impact = (order < len(impacts)).tolist()
+    regimes = []
+    inside = not is_impact[0] if is_impact else in_contact
+    for t, imp in zip(times[order].tolist(), is_impact, strict=True):
+        if t > start:
+            regimes.append((start, t, "contact" if inside else "free"))
+            start = t
+        inside = imp
+    if t_final > start:
+        regimes.append((start, float(t_final), "contact" if inside else "free"))
+    return tuple(regimes)
+
+
+@dataclass(frozen=True, kw_only=True)
+class ForcedRun(Simulation):
+    """One run of the forced impacting oscillator (eq. 1 of Skurativskyi et al. 2019) by the
+    compiled loop: a :class:`~landau.verify.hybrid.result.Simulation` (final state, recorded
+    series, impacts and detachments as events, status) with the loop's own results.
 
     Returned by :func:`run` and read by the analyses (attractors, grazing, bifurcation diagrams).
-    Times are in seconds, states (x, ẋ) in the model's units.
+    Times are in seconds, states (x, ẋ) in the model's units.  The base fields: ``t``, ``y``,
+    ``f`` the recorded step ends (times, states and field, shape (n, m); ``run(..., record=N)``,
+    empty otherwise), ``t_final``, ``y_final`` where the run ended (the tangent vector appended
+    when the Lyapunov exponent is computed), ``events`` the impacts (guard ``"impact"``, free →
+    contact) and detachments (``"detach"``) on x = x_I, ``regimes`` free/contact, ``nsteps``,
+    ``nfev``, ``status``.
 
     Attributes
     ----------
     params : Params
         The parameters of the run.
-    t : float
-        Final time, s.
-    y : numpy.ndarray
-        Final state (x, ẋ), with the tangent vector appended when the Lyapunov exponent is computed.
     impacts, impact_v : numpy.ndarray
         Times of the crossings x ↑ x_I and ẋ there.
     detachments : numpy.ndarray
         Times of the crossings x ↓ x_I.
     strobe_t, strobe_y : numpy.ndarray
-        Stroboscopic samples t = t0 + 2πi/ω and the states there, shape (n, 2) or (n, 4).
+        Stroboscopic samples t = t0 + 2πi/ω and the states there, shape (k, 2) or (k, 4).
     lyap_sum : float
         Sum of the logarithms of the tangent vector's renormalisations.
     lyap_count : int
         Number of renormalisations (forcing periods).
-    nsteps, nfev, nrejected, nstiff : int
-        Accepted steps, field evaluations, rejected steps, steps by the stiff SDIRK4.
+    nrejected, nstiff : int
+        Rejected steps, steps by the stiff SDIRK4.
     max_mismatch : float
         Largest |x − x_I| of a re-taken switching step before projection.
     method : str
         The integrator (``"mixed"`` or ``"dopri5"``).
-    rec_t, rec_y, rec_f : numpy.ndarray
-        The recorded step ends, states and field values (``run(..., record=N)``).
-    status : Status
-        ``FINISHED``, or the limit that cut a ``run(..., at_limit="return")`` short.
     """
 
     params: Params
-    t: float
-    y: np.ndarray
-    impacts: np.ndarray          # times of x ↑ x_I
-    impact_v: np.ndarray         # ẋ at impact
-    detachments: np.ndarray      # times of x ↓ x_I
-    strobe_t: np.ndarray
-    strobe_y: np.ndarray         # (n, 2) or (n, 4)
-    lyap_sum: float
-    lyap_count: int
-    nsteps: int
-    nfev: int
-    nrejected: int
-    max_mismatch: float          # |x − x_I| of a re-taken switching step before projection
+    impacts: np.ndarray = field(repr=False)          # times of x ↑ x_I
+    impact_v: np.ndarray = field(repr=False)         # ẋ at impact
+    detachments: np.ndarray = field(repr=False)      # times of x ↓ x_I
+    strobe_t: np.ndarray = field(repr=False)
+    strobe_y: np.ndarray = field(repr=False)         # (k, 2) or (k, 4)
+    lyap_sum: float = 0.0
+    lyap_count: int = 0
+    nrejected: int = 0
+    max_mismatch: float = 0.0    # |x − x_I| of a re-taken switching step before projection
     nstiff: int = 0              # steps taken by the stiff SDIRK4 (stick phases)
     method: str = "dopri5"
-    rec_t: np.ndarray = field(default_factory=lambda: np.empty(0), repr=False)   # recorded step ends
-    rec_y: np.ndarray = field(default_factory=lambda: np.empty((0, 2)), repr=False)
-    rec_f: np.ndarray = field(default_factory=lambda: np.empty((0, 2)), repr=False)
-    status: Status = Status.FINISHED   # MAX_STEPS / MAX_EVENTS: a run(..., at_limit="return") cut short
 
     @property
     def intervals(self) -> np.ndarray:
@@ -150,7 +192,7 @@ class ForcedRun:
         """Mean number of impacts per forcing period after ``t_from`` (default: first strobe)."""
         t0 = self.strobe_t[0] if t_from is None else t_from
         n = np.count_nonzero(self.impacts >= t0)
-        return n / ((self.t - t0) / self.params.period)
+        return n / ((self.t_final - t0) / self.params.period)
 
     @property
     def lyapunov(self) -> float:
@@ -159,35 +201,38 @@ class ForcedRun:
             return float("nan")
         return self.lyap_sum / (self.lyap_count * self.params.period)
 
-    def simulation(self) -> Simulation:
-        """The run as the common result type: the recorded time series (``run(..., record=N)``;
-        cubic Hermite between step ends), impacts and detachments as events."""
-        log = EventLog()
-        xI = self.params.xI
-        ev = sorted([(t, v, "impact") for t, v in zip(self.impacts, self.impact_v, strict=True)]
-                    + [(t, np.nan, "detach") for t in self.detachments])
-        for t, v, g in ev:
-            frm, to = ("free", "contact") if g == "impact" else ("contact", "free")
-            log.append(Event(float(t), np.array([xI, v]), g, frm, to))
-        regimes = []   # in contact with the obstacle between an impact and the next detachment
-        start, inside = float(self.rec_t[0]) if len(self.rec_t) else 0.0, False
-        for e in log:
-            if e.t > start:
-                regimes.append((start, float(e.t), "contact" if inside else "free"))
-                start = float(e.t)
-            inside = e.guard == "impact"
-        if self.t > start:
-            regimes.append((start, float(self.t), "contact" if inside else "free"))
-        msg = self.status.advice
-        if self.status is not Status.FINISHED:
-            msg = f"stopped at t = {self.t:.6g} s by its limit: {self.status.advice}"
-        return Simulation(f"skurativskyi2019(ω={self.params.omega:g})", self.rec_t, self.rec_y.T, log,
-                          self.status, msg, self.t, self.y, self.nsteps, self.nfev,
-                          self.rec_f.T, ("x", "xdot", "dx", "dxdot")[:self.rec_y.shape[1]], tuple(regimes))
+    def simulation(self) -> "ForcedRun":
+        """Deprecated: the record is already a :class:`~landau.verify.hybrid.result.Simulation`;
+        returns the record itself."""
+        warnings.warn("ForcedRun.simulation() is deprecated: the record is already a Simulation (use it "
+                      "directly)", DeprecationWarning, stacklevel=2)
+        return self
 
     def __repr__(self) -> str:
-        return (f"ForcedRun(ω={self.params.omega:g}, t={self.t:.6g}, {len(self.impacts)} impacts, "
+        return (f"ForcedRun(ω={self.params.omega:g}, t={self.t_final:.6g}, {len(self.impacts)} impacts, "
                 f"{len(self.strobe_t)} strobe points, {self.nsteps} steps, {self.nfev} fev)")
+
+
+_STATE_NAMES = ("x", "xdot", "dx", "dxdot")
+
+
+def _forced_run(params: Params, t_start: float, t_final: float, y_final: np.ndarray, status: Status, ev_t, ev_k,
+                ev_v, rec_t, rec_y, rec_f, **extra) -> ForcedRun:
+    """The :class:`ForcedRun` of the loop's arrays (events ``ev_k`` > 0 impacts, else
+    detachments; recorded rows (m, n) stored as (n, m))."""
+    if len(ev_k):
+        up = ev_k > 0
+        impacts, impact_v, detachments = ev_t[up], ev_v[up], ev_t[~up]
+    else:
+        impacts, impact_v, detachments = ev_t, ev_v, ev_t[:0]
+    msg = status.advice
+    if status is not Status.FINISHED:
+        msg = f"stopped at t = {t_final:.6g} s by its limit: {status.advice}"
+    return ForcedRun(model=f"skurativskyi2019(ω={params.omega:g})", t=rec_t, y=rec_y.T,
+                     events=ContactLog(params.xI, impacts, impact_v, detachments), status=status, message=msg,
+                     t_final=t_final, y_final=y_final, f=rec_f.T, state_names=_STATE_NAMES[:len(y_final)],
+                     regimes=_contact_regimes(t_start, t_final, impacts, detachments, bool(y_final[0] > params.xI)),
+                     params=params, impacts=impacts, impact_v=impact_v, detachments=detachments, **extra)
 
 
 def rest_state(params: Params) -> np.ndarray:
@@ -207,7 +252,8 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
     steps that start in stick (|ẋ| < :data:`V_STIFF`, |ẍ| < :data:`A_STICK`) with the
     L-stable SDIRK4 (:mod:`landau.verify.skurativskyi.sdirk`) and all others with DOPRI5;
     ``"dopri5"`` is the explicit path alone.  ``record``: keep up to that many accepted step ends
-    (t, y, f) as the run's time series (:meth:`ForcedRun.simulation`).  Raises IntegratorError on failure.
+    (t, y, f) as the run's time series (``t``, ``y``, ``f`` of the :class:`ForcedRun`).  Raises
+    IntegratorError on failure.
 
     Parameters
     ----------
@@ -289,9 +335,9 @@ def run(params: Params, n_periods: float, y0=None, t0: float = 0.0, rtol: float 
     if st is not Status.FINISHED and not (at_limit == "return" and st in (Status.MAX_STEPS, Status.MAX_EVENTS)):
         raise IntegratorError(f"compiled {method} integrator stopped: {R.STATUS[status]} (ω={params.omega}): "
                               f"{st.advice}", t=t, state=yend)
-    up = ev_k > 0
-    return ForcedRun(params, t, yend, ev_t[up], ev_v[up], ev_t[~up], st_t, st_y, ly, nly, nsteps, nfev, nrej, mism,
-               nstiff, method, rec_t, rec_y, rec_f, st)
+    return _forced_run(params, float(t0), t, yend, st, ev_t, ev_k, ev_v, rec_t, rec_y, rec_f, nsteps=nsteps,
+                       nfev=nfev, strobe_t=st_t, strobe_y=st_y, lyap_sum=ly, lyap_count=nly, nrejected=nrej,
+                       max_mismatch=mism, nstiff=nstiff, method=method)
 
 
 def hybrid_model(params: Params) -> HybridModel:
@@ -321,8 +367,8 @@ def _thin(n: int) -> np.ndarray:
 
 def record_run(params: Params, t_end: float, y0=None, *, rtol: float = RTOL, max_steps: int = 5_000_000,
                max_events: int = 200_000, max_points: int = 200_000, chunk_steps: int = 200_000,
-               method: str = "mixed") -> Simulation:
-    """Eq. (1) from t = 0 to ``t_end`` [s] with bounded steps, events and memory, as a :class:`Simulation`.
+               method: str = "mixed") -> ForcedRun:
+    """Eq. (1) from t = 0 to ``t_end`` [s] with bounded steps, events and memory, as a :class:`ForcedRun`.
 
     The run is taken in compiled calls of at most ``chunk_steps`` steps (each continuing from the
     previous one's state, the stroboscopic phase kept at t = 2πi/ω); the recorded step ends are
@@ -349,8 +395,9 @@ def record_run(params: Params, t_end: float, y0=None, *, rtol: float = RTOL, max
 
     Returns
     -------
-    Simulation
-        Times in s, states (x, ẋ) with the field at each point; impacts and detachments as events.
+    ForcedRun
+        A :class:`~landau.verify.hybrid.result.Simulation`: times in s, states (x, ẋ) with the field
+        at each point; impacts and detachments as events.
     """
     if method not in METHODS:
         raise InputError(f"method must be one of {sorted(METHODS)} (got {method!r})")
@@ -419,10 +466,8 @@ def record_run(params: Params, t_end: float, y0=None, *, rtol: float = RTOL, max
             break
     tt, yy, ff = np.concatenate(rec_t), np.concatenate(rec_y), np.concatenate(rec_f)
     ek_all, et_all, ev_all = np.concatenate(ev_k), np.concatenate(ev_t), np.concatenate(ev_v)
-    up = ek_all > 0
-    r = ForcedRun(params, t, y, et_all[up], ev_all[up], et_all[~up], np.empty(0), np.empty((0, 2)), 0.0, 0, steps, nfev,
-            0, 0.0, 0, method, tt, yy, ff, status)
-    sim = r.simulation()
+    sim = _forced_run(params, 0.0, t, y, status, et_all, ek_all, ev_all, tt, yy, ff, nsteps=steps, nfev=nfev,
+                      strobe_t=np.empty(0), strobe_y=np.empty((0, 2)), method=method)
     if status is not Status.FINISHED:
         sim = replace(sim, message=f"stopped at the {'step' if status is Status.MAX_STEPS else 'event'} limit "
                                    f"({int(max_steps) if status is Status.MAX_STEPS else int(max_events)}) at "
@@ -432,6 +477,5 @@ def record_run(params: Params, t_end: float, y0=None, *, rtol: float = RTOL, max
 
 # the former name of the raw record, kept for one release
 _RENAMED = {"Run": (lambda: ForcedRun,
-                "use ForcedRun (the raw record of one forced-oscillator run; .simulation() gives the common "
-                "Simulation)")}
+                "use ForcedRun (the record of one forced-oscillator run, a Simulation)")}
 __getattr__ = former_names(__name__, _RENAMED)
