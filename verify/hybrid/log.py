@@ -42,29 +42,33 @@ class EventLog(Sequence[Event]):
     def __init__(self) -> None:
         self._events: list[Event] = []
 
+    def _list(self) -> list[Event]:
+        """The events (a subclass may fill the list on first use)."""
+        return self._events
+
     def append(self, ev: Event) -> None:
-        self._events.append(ev)
+        self._list().append(ev)
 
     def __getitem__(self, i):
-        return self._events[i]
+        return self._list()[i]
 
     def __len__(self) -> int:
-        return len(self._events)
+        return len(self._list())
 
     def __iter__(self) -> Iterator[Event]:
-        return iter(self._events)
+        return iter(self._list())
 
     def filter(self, guard: str | None = None, kind: str | None = None,
                from_mode: str | None = None, to_mode: str | None = None) -> list[Event]:
-        return [e for e in self._events
+        return [e for e in self._list()
                 if (guard is None or e.guard == guard) and (kind is None or e.kind == kind)
                 and (from_mode is None or e.from_mode == from_mode)
                 and (to_mode is None or e.to_mode == to_mode)]
 
     def times(self, **kw) -> np.ndarray:
-        return np.array([e.t for e in (self.filter(**kw) if kw else self._events)])
+        return np.array([e.t for e in (self.filter(**kw) if kw else self._list())])
 
     def __repr__(self) -> str:
-        head = "\n  ".join(repr(e) for e in self._events[:8])
+        head = "\n  ".join(repr(e) for e in self._list()[:8])
         more = f"\n  ... ({len(self) - 8} more)" if len(self) > 8 else ""
         return f"EventLog({len(self)} events\n  {head}{more})"

@@ -419,8 +419,12 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
                 ts = np.concatenate([[t_old], ts_int, [t_new]])
                 cands: list[tuple[Any, int, str]] = []   # (bracket or time, guard, kind)
                 for j, g in enumerate(guards):
-                    G = np.concatenate([[g_last[j]], gvals[j, :len(ts) - 1] if gvals is not None
-                                        else np.atleast_1d(g.fun(ts[1:], Y))])
+                    if gvals is not None:
+                        G_step = gvals[j, :len(ts) - 1]
+                    else:   # Y is built whenever the compiled loop gave no guard values
+                        assert Y is not None
+                        G_step = np.atleast_1d(g.fun(ts[1:], Y))
+                    G = np.concatenate([[g_last[j]], G_step])
                     st = state[j]
                     g_last[j] = G[-1]
                     start = 0

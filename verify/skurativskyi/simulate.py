@@ -95,21 +95,20 @@ class ContactLog(EventLog):
     """
 
     def __init__(self, xI: float, impacts: np.ndarray, impact_v: np.ndarray, detachments: np.ndarray) -> None:
-        self._source = (float(xI), impacts, impact_v, detachments)
-        self._built: list[Event] | None = None
+        super().__init__()
+        self._source: tuple[float, np.ndarray, np.ndarray, np.ndarray] | None = \
+            (float(xI), impacts, impact_v, detachments)
 
-    @property
-    def _events(self) -> list[Event]:
-        if self._built is None:
+    def _list(self) -> list[Event]:
+        if self._source is not None:
             xI, impacts, impact_v, detachments = self._source
+            self._source = None
             ev = sorted([(t, v, "impact") for t, v in zip(impacts, impact_v, strict=True)]
                         + [(t, np.nan, "detach") for t in detachments])
-            out = []
             for t, v, g in ev:
                 frm, to = ("free", "contact") if g == "impact" else ("contact", "free")
-                out.append(Event(float(t), np.array([xI, v]), g, frm, to))
-            self._built = out
-        return self._built
+                self._events.append(Event(float(t), np.array([xI, v]), g, frm, to))
+        return self._events
 
 
 def _contact_regimes(start: float, t_final: float, impacts: np.ndarray, detachments: np.ndarray,
