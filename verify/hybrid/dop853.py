@@ -31,7 +31,11 @@ The right-hand side reaches the compiled loop as a documented numba first-class 
 over through :class:`numba.core.types.WrapperAddressProtocol` typed
 ``types.FunctionType(FUN_SIG)``, so :func:`run_screened`, :func:`advance` and :func:`dense` compile
 once per machine for every kernel (``njit(cache=True)``, built on first use through
-:func:`landau.verify.compiling.compile_once`).
+:func:`landau.verify.compiling.compile_once`).  The step's helpers (:func:`advance`, :func:`dense`,
+:func:`dense_at`) are part of the loops that call them (``inline="always"``: numba inlines them
+before typing), so a first build types and optimises one function per loop rather than a tree of
+functions whose machine code every caller optimises again; called from Python they compile on
+their own.
 
 :func:`run_screened` takes steps while the mode's guards pass the engine's scan test
 (:func:`landau.verify.hybrid.locate._quiet_guards`) on the dense output, and returns to Python
@@ -128,7 +132,7 @@ def initial_step(fun, p, t0, y0, f0, t_bound, max_step, rtol, atol):
     return min(100 * h0, h1, span, max_step)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _attempt(fun, p, t, y, f, h, K, ynew, fnew, yt, rtol, atol):
     """One DOP853 step of length h from (t, y), f = f(t, y): fills K (stages, row 12 = f_new),
     ynew, fnew; returns the scaled error norm (scipy's ``_estimate_error_norm``)."""
@@ -166,7 +170,7 @@ def _attempt(fun, p, t, y, f, h, K, ynew, fnew, yt, rtol, atol):
     return abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * n)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def advance(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, K, ynew, fnew):
     """One accepted step with scipy's DOP853 step-size control.
 
@@ -199,7 +203,7 @@ def advance(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, K, ynew, fnew):
         rejected = True
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def dense(fun, p, t_old, y_old, y, f_new, K, h, F):
     """The 7th-order continuous extension of the step (t_old, y_old) → (t_old + h, y): the three
     extra stages (K rows 13–15; rows 0–12 from the step) and the rows of F (7, n), as scipy's
@@ -227,7 +231,7 @@ def dense(fun, p, t_old, y_old, y, f_new, K, h, F):
     return 3
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def dense_at(F, y_old, x, out):
     """y(t_old + x h) from the rows F of :func:`dense` into out (scipy's evaluation order)."""
     n = y_old.shape[0]
