@@ -31,7 +31,11 @@ The right-hand side reaches the compiled loop as a documented numba first-class 
 over through :class:`numba.core.types.WrapperAddressProtocol` typed
 ``types.FunctionType(FUN_SIG)``, so :func:`run_screened`, :func:`advance` and :func:`dense` compile
 once per machine for every kernel (``njit(cache=True)``, built on first use through
-:func:`landau.verify.compiling.compile_once`).
+:func:`landau.verify.compiling.compile_once`).  The step's helpers (:func:`advance`, :func:`dense`,
+:func:`dense_at`) are part of the loops that call them (``inline="always"``: numba inlines them
+before typing), so a first build types and optimises one function per loop rather than a tree of
+functions whose machine code every caller optimises again; called from Python they compile on
+their own.
 
 :func:`run_screened` takes steps while the mode's guards pass the engine's scan test
 (:func:`landau.verify.hybrid.locate._quiet_guards`) on the dense output, and returns to Python
@@ -128,7 +132,7 @@ def initial_step(fun, p, t0, y0, f0, t_bound, max_step, rtol, atol):
     return min(100 * h0, h1, span, max_step)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _attempt(fun, p, t, y, f, h, K, ynew, fnew, yt, rtol, atol):
     """One DOP853 step of length h from (t, y), f = f(t, y): fills K (stages, row 12 = f_new),
     ynew, fnew; returns the scaled error norm (scipy's ``_estimate_error_norm``)."""
@@ -166,7 +170,7 @@ def _attempt(fun, p, t, y, f, h, K, ynew, fnew, yt, rtol, atol):
     return abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * n)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def advance(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, K, ynew, fnew):
     """One accepted step with scipy's DOP853 step-size control.
 
@@ -199,7 +203,7 @@ def advance(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, K, ynew, fnew):
         rejected = True
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def dense(fun, p, t_old, y_old, y, f_new, K, h, F):
     """The 7th-order continuous extension of the step (t_old, y_old) → (t_old + h, y): the three
     extra stages (K rows 13–15; rows 0–12 from the step) and the rows of F (7, n), as scipy's
@@ -227,7 +231,7 @@ def dense(fun, p, t_old, y_old, y, f_new, K, h, F):
     return 3
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def dense_at(F, y_old, x, out):
     """y(t_old + x h) from the rows F of :func:`dense` into out (scipy's evaluation order)."""
     n = y_old.shape[0]
@@ -255,22 +259,6 @@ def dense_many(F, y_old, xs):
 
 
 @njit(cache=True)
-def _affine_values(fun, p, W, b, U, uses_f, t, yk, fk, gk):
-    """The affine guards g = W·y + U·f(t, y) + b at (t, yk) into gk; returns the evaluations of
-    the field (1 when a guard uses it, else 0)."""
-    if uses_f:
-        fun(t, yk, p, fk)
-    for j in range(W.shape[0]):
-        g = b[j]
-        for a in range(yk.shape[0]):
-            g += W[j, a] * yk[a]
-            if uses_f:
-                g += U[j, a] * fk[a]
-        gk[j] = g
-    return 1 if uses_f else 0
-
-
-@njit(cache=True)
 def run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b, U, gfun, gp, s,
                  g_last, dec_before, state, gatol, dip_factor, K, F, y_old, vals, rec_t, rec_y, rec):
     """Steps from (t, y), f = f(t, y), while the mode's guards pass the engine's scan test
@@ -278,21 +266,24 @@ def run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W
     fractions s and at the step end, up to ``max_steps`` steps or ``t_bound``: one loop for both
     kinds of compiled guards.
 
-    The guards are, when W has rows, the affine forms g = W·y + U·f(t, y) + b (``Guard.affine``;
-    the field at a sample is evaluated only when U ≠ 0, at the step end it is the step's f_new),
-    otherwise (W, b, U empty) the compiled vector function ``gfun(t, y, gp, out)``
-    (``Mode.guard_kernel``) at the engine's sample times t_old + (t − t_old) s_q — the dense
-    output at the fraction of that time, as the engine's scan evaluates it.  (The kind is read
-    from W's shape, not passed as a constant, so that both entries, :func:`run_quiet` and
-    :func:`run_guarded`, share one compiled loop.)
+    The guards are either the affine forms g = W·y + U·f(t, y) + b (``Guard.affine``; ``gfun``
+    and ``gp`` None; the field at a sample is evaluated only when U ≠ 0, at the step end it is
+    the step's f_new) or the compiled vector function ``gfun(t, y, gp, out)``
+    (``Mode.guard_kernel``; W, b and U None) at the engine's sample times
+    t_old + (t − t_old) s_q — the dense output at the fraction of that time, as the engine's
+    scan evaluates it.  The kind is the argument left None, so each kind compiles only its own
+    branch (numba prunes a branch on an argument typed None): the two entries
+    (:meth:`DOP853Solver.run_quiet`, :meth:`DOP853Solver.run_guarded`) are two specialisations
+    of this one loop.  The step, its dense output and the record are written inline (one
+    compiled function, not a tree of them: a cold build costs per function).
 
     y and f are advanced in place to the end of the last step taken; F and y_old hold its dense
     output; ``vals`` (guards × 3m + 1) its guard values (``vals[:, :m]`` the samples,
     ``vals[:, m]`` the step end); ``g_last``, ``dec_before`` and ``state`` are advanced past
-    every quiet step.  With ``rec_t.shape[0] > 0`` each quiet step's samples and end (stride 1),
-    or the end of every stride-th step, go to ``rec_t``/``rec_y`` as the engine's recorder keeps
-    them; ``rec`` = [samples written, samples recorded in all, bound on them, stride, steps seen
-    at stride > 1] is advanced.
+    every quiet step.  With ``rec_t`` not None and ``rec_t.shape[0] > 0`` each quiet step's
+    samples and end (stride 1), or the end of every stride-th step, go to ``rec_t``/``rec_y`` as
+    the engine's recorder keeps them; ``rec`` = [samples written, samples recorded in all, bound
+    on them, stride, steps seen at stride > 1] is advanced.
 
     Returns (code, t_old, t, h_used, h_abs_next, nfev, nsteps): code 1 = the last step is not
     quiet (the engine scans it), 2 = ``t_bound`` reached with every step quiet, 3 =
@@ -302,12 +293,13 @@ def run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W
     n, m, k = y.shape[0], s.shape[0], vals.shape[0]
     ynew, fnew = np.empty(n), np.empty(n)
     yk, fk, gk = np.empty(n), np.empty(n), np.empty(k)
-    cap = rec_t.shape[0]
+    cap = 0
+    if rec_t is not None:
+        cap = rec_t.shape[0]
     Y = np.empty((n, m))
     ts = np.empty(m)
-    affine = W.shape[0] > 0
     uses_f = False
-    if affine:
+    if W is not None:
         for j in range(k):
             for a in range(n):
                 uses_f = uses_f or U[j, a] != 0.0
@@ -326,11 +318,22 @@ def run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W
             y_old[a] = y[a]
         for q in range(m):
             tq = t + s[q] * hu
-            dense_at(F, y_old, s[q] if affine else (tq - t) / hu, yk)
-            if affine:
-                nfev += _affine_values(fun, p, W, b, U, uses_f, tq, yk, fk, gk)
-            elif k > 0:
-                gfun(tq, yk, gp, gk)
+            if W is not None:
+                dense_at(F, y_old, s[q], yk)
+                if uses_f:
+                    fun(tq, yk, p, fk)
+                    nfev += 1
+                for j in range(k):
+                    g = b[j]
+                    for a in range(n):
+                        g += W[j, a] * yk[a]
+                        if uses_f:
+                            g += U[j, a] * fk[a]
+                    gk[j] = g
+            if gfun is not None:
+                dense_at(F, y_old, (tq - t) / hu, yk)
+                if k > 0:
+                    gfun(tq, yk, gp, gk)
             for j in range(k):
                 vals[j, q] = gk[j]
                 vals[j, m + 1 + q] = gk[j]
@@ -339,16 +342,17 @@ def run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W
                 ts[q] = tq
                 for a in range(n):
                     Y[a, q] = yk[a]
-        if affine:
+        if W is not None:
             for j in range(k):
                 g = b[j]
                 for a in range(n):
                     g += W[j, a] * ynew[a] + U[j, a] * fnew[a]
                 vals[j, m] = g
-        elif k > 0:
-            gfun(tn, ynew, gp, gk)
-            for j in range(k):
-                vals[j, m] = gk[j]
+        if gfun is not None:
+            if k > 0:
+                gfun(tn, ynew, gp, gk)
+                for j in range(k):
+                    vals[j, m] = gk[j]
         t_old = t
         t = tn
         for a in range(n):
@@ -356,124 +360,91 @@ def run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W
             f[a] = fnew[a]
         if not finite or not _quiet_guards(vals, m, g_last, dec_before, state, gatol, dip_factor):
             return 1, t_old, t, h_used, h_abs, nfev, nsteps
-        if cap > 0:
-            _record(rec_t, rec_y, rec, ts, Y, t, y)
+        if rec_t is not None:
+            if cap > 0:
+                # the quiet step into the record: its samples and end at stride 1, else the end of
+                # every stride-th step
+                w = rec[0]
+                if rec[3] == 1:
+                    for q in range(m):
+                        rec_t[w + q] = ts[q]
+                        for a in range(n):
+                            rec_y[a, w + q] = Y[a, q]
+                    w += m
+                    rec_t[w] = t
+                    for a in range(n):
+                        rec_y[a, w] = y[a]
+                    rec[0] = w + 1
+                    rec[1] += m + 1
+                else:
+                    rec[4] += 1
+                    if rec[4] % rec[3] == 0:
+                        rec_t[w] = t
+                        for a in range(n):
+                            rec_y[a, w] = y[a]
+                        rec[0] = w + 1
+                        rec[1] += 1
         if t >= t_bound:
             return 2, t_old, t, h_used, h_abs, nfev, nsteps
-        if cap > 0 and (rec[1] > rec[2] or rec[0] + m + 1 > cap):
-            return 4, t_old, t, h_used, h_abs, nfev, nsteps
+        if rec_t is not None:
+            if cap > 0 and (rec[1] > rec[2] or rec[0] + m + 1 > cap):
+                return 4, t_old, t, h_used, h_abs, nfev, nsteps
     return 3, t_old, t, h_used, h_abs, nfev, nsteps
 
 
 @njit(cache=True)
-def run_quiet(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b, U, s, g_last, dec_before,
-              state, gatol, dip_factor, K, F, y_old):
-    """:func:`run_screened` with the affine guards g = W·y + U·f(t, y) + b (no record); the same
-    return value."""
-    vals = np.empty((W.shape[0], 3 * s.shape[0] + 1))
-    return run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, W, b, U, fun, p, s,
-                        g_last, dec_before, state, gatol, dip_factor, K, F, y_old, vals, np.empty(0),
-                        np.empty((0, 0)), np.zeros(5, dtype=np.int64))
-
-
-@njit(cache=True)
-def run_guarded(fun, p, gfun, gp, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, s, g_last, dec_before,
-                state, gatol, dip_factor, K, F, y_old, vals, rec_t, rec_y, rec):
-    """:func:`run_screened` with the compiled guard vector ``gfun(t, y, gp, out)``; the same return
-    value, ``vals`` and record."""
-    n = y.shape[0]
-    return run_screened(fun, p, t, y, f, h_abs, hmax, t_bound, rtol, atol, max_steps, np.empty((0, n)),
-                        np.empty(0), np.empty((0, n)), gfun, gp, s, g_last, dec_before, state, gatol, dip_factor,
-                        K, F, y_old, vals, rec_t, rec_y, rec)
-
-
-@njit(cache=True)
-def _record(rec_t, rec_y, rec, ts, Y, t, y):
-    """A quiet step into the record buffer of :func:`run_screened` (its samples and end at
-    stride 1, else the end of every stride-th step)."""
-    n, m = Y.shape[0], ts.shape[0]
-    w = rec[0]
-    if rec[3] == 1:
-        for q in range(m):
-            rec_t[w + q] = ts[q]
-            for a in range(n):
-                rec_y[a, w + q] = Y[a, q]
-        w += m
-        rec_t[w] = t
-        for a in range(n):
-            rec_y[a, w] = y[a]
-        rec[0] = w + 1
-        rec[1] += m + 1
-    else:
-        rec[4] += 1
-        if rec[4] % rec[3] == 0:
-            rec_t[w] = t
-            for a in range(n):
-                rec_y[a, w] = y[a]
-            rec[0] = w + 1
-            rec[1] += 1
-
-
-@njit(cache=True)
-def _guard_at(fun, p, affine, w, bj, u, uses_f, gfun, gp, j, F, y_old, t_old, h, t, yk, fk, gk):
-    """Guard j at time t on the step's dense output: the affine form (w, bj, u) or ``gfun``'s
-    component j."""
-    dense_at(F, y_old, (t - t_old) / h, yk)
-    if not affine:
-        gfun(t, yk, gp, gk)
-        return gk[j]
-    if uses_f:
-        fun(t, yk, p, fk)
-    g = bj
-    for a in range(yk.shape[0]):
-        g += w[a] * yk[a]
-        if uses_f:
-            g += u[a] * fk[a]
-    return g
-
-
-@njit(cache=True)
-def event_root(fun, p, affine, w, bj, u, gfun, gp, j, k, F, y_old, t_old, h, a, b, xtol):
-    """Root in [a, b] of guard j on the step's dense output (rows F of :func:`dense`), g(a) > 0 >=
-    g(b): with ``affine`` the guard g = w·y + u·f(t, y) + bj, otherwise component j of the
-    compiled guard vector ``gfun(t, y, gp, out)`` of k guards.  Bisection to ``xtol`` (or to adjacent
-    floating-point numbers), returned on the new side (g <= 0), as
+def event_root(fun, p, w, bj, u, gfun, gp, j, k, F, y_old, t_old, h, a, b, xtol):
+    """Root in [a, b] of one guard on the step's dense output (rows F of :func:`dense`), g(a) > 0
+    >= g(b): the affine guard g = w·y + u·f(t, y) + bj (``gfun``, ``gp`` None), or component j
+    of the compiled guard vector ``gfun(t, y, gp, out)`` of k guards (w, bj, u None; each kind
+    compiles only its own branch, as in :func:`run_screened`).  Bisection to ``xtol`` (or to
+    adjacent floating-point numbers), returned on the new side (g <= 0), as
     :func:`landau.verify.hybrid.locate.root_new_side` does with Brent's method: the root lies in
     [returned − xtol, returned].  Should the signs at the ends disagree (the bracket was found
-    with other formulas for the same guard), the end on the new side is returned."""
+    with other formulas for the same guard), the end on the new side is returned.  The guard is
+    evaluated at one place in the loop (at b, then at a, then at the midpoints)."""
     n = y_old.shape[0]
     yk, fk, gk = np.empty(n), np.empty(n), np.empty(k)
     uses_f = False
-    if affine:
+    if w is not None:
         for c in range(n):
             uses_f = uses_f or u[c] != 0.0
-    if _guard_at(fun, p, affine, w, bj, u, uses_f, gfun, gp, j, F, y_old, t_old, h, b, yk, fk, gk) > 0.0:
-        return b
-    if _guard_at(fun, p, affine, w, bj, u, uses_f, gfun, gp, j, F, y_old, t_old, h, a, yk, fk, gk) <= 0.0:
-        return a
     lo, hi = a, b
-    while hi - lo > xtol:
-        mid = 0.5 * (lo + hi)
-        if mid <= lo or mid >= hi:
-            break
-        if _guard_at(fun, p, affine, w, bj, u, uses_f, gfun, gp, j, F, y_old, t_old, h, mid, yk, fk, gk) > 0.0:
-            lo = mid
+    tt = b
+    stage = 0
+    while True:
+        dense_at(F, y_old, (tt - t_old) / h, yk)
+        g = 0.0
+        if w is not None:
+            if uses_f:
+                fun(tt, yk, p, fk)
+            g = bj
+            for c in range(n):
+                g += w[c] * yk[c]
+                if uses_f:
+                    g += u[c] * fk[c]
+        if gfun is not None:
+            gfun(tt, yk, gp, gk)
+            g = gk[j]
+        if stage == 0:
+            if g > 0.0:
+                return b
+            stage = 1
+            tt = a
+            continue
+        if stage == 1:
+            if g <= 0.0:
+                return a
+            stage = 2
+        elif g > 0.0:
+            lo = tt
         else:
-            hi = mid
-    return hi
-
-
-@njit(cache=True)
-def affine_root(fun, p, F, y_old, t_old, h, w, bj, u, a, b, xtol):
-    """:func:`event_root` of the affine guard g = w·y + u·f(t, y) + bj."""
-    return event_root(fun, p, True, w, bj, u, fun, p, 0, 0, F, y_old, t_old, h, a, b, xtol)
-
-
-@njit(cache=True)
-def kernel_root(gfun, gp, j, k, F, y_old, t_old, h, a, b, xtol):
-    """:func:`event_root` of component j of the compiled guard vector ``gfun`` (k components)."""
-    e = np.empty(0)
-    return event_root(gfun, gp, False, e, 0.0, e, gfun, gp, j, k, F, y_old, t_old, h, a, b, xtol)
+            hi = tt
+        if not hi - lo > xtol:
+            return hi
+        tt = 0.5 * (lo + hi)
+        if tt <= lo or tt >= hi:
+            return hi
 
 
 _NO_RECORD = (np.empty(0), np.empty((0, 0)), np.zeros(5, dtype=np.int64))
@@ -502,20 +473,21 @@ _LOOPS: dict = {}
 def _signatures() -> dict:
     """name → (dispatcher, argument types, what it is) of the compiled entries used here."""
     f64, arr, i64, i64arr = types.float64, types.float64[::1], types.int64, types.int64[::1]
-    mat, barr = types.float64[:, ::1], types.boolean[::1]
+    mat, barr, none = types.float64[:, ::1], types.boolean[::1], types.none
     return {
         "advance": (advance, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, mat, arr, arr),
                     "the compiled DOP853 step"),
         "dense": (dense, (FUN_T, arr, f64, arr, arr, arr, mat, f64, mat), "the DOP853 dense output"),
         "initial_step": (initial_step, (FUN_T, arr, f64, arr, arr, f64, f64, f64, arr), "the DOP853 first step"),
-        "affine_root": (affine_root, (FUN_T, arr, mat, arr, f64, f64, arr, f64, arr, f64, f64, f64),
-                        "the DOP853 event root"),
-        "kernel_root": (kernel_root, (FUN_T, arr, i64, i64, mat, arr, f64, f64, f64, f64, f64),
-                        "the DOP853 event root of compiled guards"),
-        "run_quiet": (run_quiet, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, mat, arr, mat, arr, arr,
-                                  barr, i64arr, f64, f64, mat, mat, arr), "the compiled DOP853 event loop"),
-        "run_guarded": (run_guarded, (FUN_T, arr, FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, arr, arr,
-                                      barr, i64arr, f64, f64, mat, mat, arr, mat, arr, mat, i64arr),
+        "affine_root": (event_root, (FUN_T, arr, arr, f64, arr, none, none, i64, i64, mat, arr, f64, f64, f64, f64,
+                                     f64), "the DOP853 event root"),
+        "kernel_root": (event_root, (none, none, none, none, none, FUN_T, arr, i64, i64, mat, arr, f64, f64, f64, f64,
+                                     f64), "the DOP853 event root of compiled guards"),
+        "run_quiet": (run_screened, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, mat, arr, mat, none, none,
+                                     arr, arr, barr, i64arr, f64, f64, mat, mat, arr, mat, none, none, none),
+                      "the compiled DOP853 event loop"),
+        "run_guarded": (run_screened, (FUN_T, arr, f64, arr, arr, f64, f64, f64, f64, arr, i64, none, none, none, FUN_T,
+                                       arr, arr, arr, barr, i64arr, f64, f64, mat, mat, arr, mat, arr, mat, i64arr),
                         "the compiled DOP853 loop with compiled guards"),
     }
 
@@ -616,16 +588,17 @@ class DOP853Solver:
 
     def run_quiet(self, W, b, U, s, g_last, dec_before, state, guard_atol, dip_factor, max_steps=1_000_000):
         """Steps until one whose affine guards g = W·y + U·f(t, y) + b need the engine's
-        dense-output scan (:func:`run_quiet`, :func:`run_screened`), at most ``max_steps``.
+        dense-output scan (:func:`run_screened`), at most ``max_steps``.
         Returns (error message or None, whether ``t_bound`` was reached with every step quiet —
         None when ``max_steps`` quiet steps were taken —, steps taken); otherwise the last step
         (``t_old`` → ``t``, ``dense_output()``) is the one to scan."""
         if self.status != "running":
             raise RuntimeError("attempt to step on a finished or failed solver")
+        vals = np.empty((len(b), 3 * len(s) + 1))
         msg, code, k = self._took(*_compiled("run_quiet")(
             self._fun, self.kernel.p, self.t, self.y, self.f, self.h_abs, self.max_step, self.t_bound,
-            self.rtol, self.atol, int(max_steps), W, b, U, s, g_last, dec_before, state, guard_atol, dip_factor,
-            self._K, self._F, self._y_old))
+            self.rtol, self.atol, int(max_steps), W, b, U, None, None, s, g_last, dec_before, state,
+            float(guard_atol), float(dip_factor), self._K, self._F, self._y_old, vals, None, None, None))
         if msg is not None:
             return msg, False, k
         return None, (None if code == 3 else code == 2), k
@@ -634,31 +607,33 @@ class DOP853Solver:
                     record=None):
         """Steps until one whose guards, the compiled vector function ``guard_kernel`` (a
         :class:`~landau.verify.hybrid.kernel.Kernel`), need the engine's dense-output scan
-        (:func:`run_guarded`, :func:`run_screened`), at most ``max_steps``; ``values`` receives
+        (:func:`run_screened`), at most ``max_steps``; ``values`` receives
         the last step's guard values and ``record`` = (t, y, info) buffers the quiet steps.
         Returns (error message or None, code of :func:`run_screened`, steps taken)."""
         if self.status != "running":
             raise RuntimeError("attempt to step on a finished or failed solver")
         rt, ry, ri = record if record is not None else _NO_RECORD
         return self._took(*_compiled("run_guarded")(
-            self._fun, self.kernel.p, kernel_function(guard_kernel.fun), guard_kernel.p, self.t, self.y, self.f,
-            self.h_abs, self.max_step, self.t_bound, self.rtol, self.atol, int(max_steps), s, g_last, dec_before,
-            state, float(guard_atol), float(dip_factor), self._K, self._F, self._y_old, values, rt, ry, ri))
+            self._fun, self.kernel.p, self.t, self.y, self.f, self.h_abs, self.max_step, self.t_bound, self.rtol,
+            self.atol, int(max_steps), None, None, None, kernel_function(guard_kernel.fun), guard_kernel.p, s, g_last,
+            dec_before, state, float(guard_atol), float(dip_factor), self._K, self._F, self._y_old, values, rt, ry,
+            ri))
 
     def affine_root(self, w, b, u, lo, hi, xtol) -> float:
         """Root of the guard w·y + u·f(t, y) + b in [lo, hi] on the last step's dense output
         (:func:`event_root`; the guard is > 0 at lo and <= 0 at hi)."""
         d = self.dense_output()
-        return _compiled("affine_root")(self._fun, self.kernel.p, d.F, d.y0, d.t0, d.h, w, float(b), u,
-                                         float(lo), float(hi), float(xtol))
+        return _compiled("affine_root")(self._fun, self.kernel.p, w, float(b), u, None, None, 0, 0, d.F, d.y0, d.t0,
+                                         d.h, float(lo), float(hi), float(xtol))
 
     def kernel_root(self, guard_kernel, j, n_guards, lo, hi, xtol) -> float:
         """Root of guard j of the compiled guard vector ``guard_kernel`` (a
         :class:`~landau.verify.hybrid.kernel.Kernel` of ``n_guards`` components) in [lo, hi] on
         the last step's dense output (:func:`event_root`; > 0 at lo, <= 0 at hi)."""
         d = self.dense_output()
-        return _compiled("kernel_root")(kernel_function(guard_kernel.fun), guard_kernel.p, int(j), int(n_guards),
-                                         d.F, d.y0, d.t0, d.h, float(lo), float(hi), float(xtol))
+        return _compiled("kernel_root")(None, None, None, None, None, kernel_function(guard_kernel.fun),
+                                         guard_kernel.p, int(j), int(n_guards), d.F, d.y0, d.t0, d.h, float(lo),
+                                         float(hi), float(xtol))
 
     def __repr__(self) -> str:
         return (f"DOP853Solver(t={self.t:.6g}, {self.status}, steps={self.nsteps}, nfev={self.nfev}, "
