@@ -63,15 +63,21 @@ def test_changed_source_gets_a_new_entry(cache):
 
 def _numba_files(cache, pattern):
     """numba's cache files of generated sources in ``cache``: in its __pycache__, or under
-    $NUMBA_CACHE_DIR when that is set."""
+    $NUMBA_CACHE_DIR when that is set (a folder shared with every other test of the session:
+    ``pattern`` must name this test's own source, or the test would damage the others' entries)."""
     return [f for d in jitcache.numba_cache_folders(cache / "any.py") for f in d.glob(pattern)]
+
+
+def _own_entries(source):
+    """The pattern of numba's files of the generated ``source`` (named by its content hash)."""
+    return f"{jitcache.source_path(source).stem}.*.nb[ic]"
 
 
 def test_corrupt_entries_are_rebuilt(cache):
     _compile(SRC)
     path = jitcache.source_path(SRC)
     path.write_text("def kern(y, out):\n    out[0] = 12345.0\n")   # not the source its name promises
-    for f in _numba_files(cache, "landau_kernel_*.nb[ic]"):
+    for f in _numba_files(cache, _own_entries(SRC)):
         f.write_bytes(b"garbage")                                 # unreadable numba entries
     kern = _compile(SRC)
     assert _run(kern) == math.sin(0.3) + 2.0
@@ -87,7 +93,7 @@ def test_only_allowed_builtins_are_reachable(cache):
 
 def test_corrupt_numba_entry_alone_is_rebuilt(cache):
     _compile(SRC)
-    for f in _numba_files(cache, "landau_kernel_*.nb[ic]"):
+    for f in _numba_files(cache, _own_entries(SRC)):
         f.write_bytes(b"garbage")                    # the source file is intact, numba's entry not
     kern = _compile(SRC)
     assert _run(kern) == math.sin(0.3) + 2.0
