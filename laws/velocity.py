@@ -449,3 +449,42 @@ def regularised_coulomb(c: float = 6.6511, T: float = 0.63133, eps: float = 1e-6
 
 BUILTIN_VELOCITY: dict[str, Callable[..., VelocityFriction]] = {"coulomb": coulomb,
                                                                  "regularised-coulomb": regularised_coulomb}
+
+
+def law_from_options(text: str | None, negative: str | None, name: str | None, default: VelocityFriction,
+                     params: dict, *, quantity: str = "coefficient") -> VelocityFriction:
+    """A model's velocity law: ``default`` with any of ``params`` that are its parameters, or the law
+    declared by the strings ``text`` (v > 0) and ``negative`` (v < 0; default the odd extension).
+
+    The law's own values are removed from ``params`` (what is left are the model's).
+
+    Parameters
+    ----------
+    text, negative : str or None
+        The declared branches (parsed by the whitelist parser, never evaluated).
+    name : str or None
+        The declared law's name (default ``user-friction``).
+    default : VelocityFriction
+        The model's published law.
+    params : dict
+        Parameter values by name (modified in place).
+    quantity : {"coefficient", "force"}
+        What the model expects the law to give.
+
+    Raises
+    ------
+    InputError
+        ``negative`` without ``text``; an expression outside the whitelist.
+    """
+    from landau.laws.parse import referenced_names
+
+    if text is None:
+        if negative is not None:
+            raise InputError("--friction-neg needs --friction (the branch for v > 0)")
+        own = {p.name for p in default.parameters}
+        law_params = {k: params.pop(k) for k in list(params) if k in own}
+        return default.with_defaults(**law_params) if law_params else default
+    names = referenced_names(text, what="--friction") | (referenced_names(negative, what="--friction-neg")
+                                                         if negative else set())
+    law_params = {k: params.pop(k) for k in list(params) if k in names}
+    return VelocityFriction.from_strings(name or "user-friction", text, negative, law_params, quantity=quantity)

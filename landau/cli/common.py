@@ -171,18 +171,7 @@ def velocity_law_from_args(args, default, params: dict[str, float], *, quantity:
     -------
     VelocityFriction
     """
-    from landau.laws.parse import referenced_names
-    from landau.laws.velocity import VelocityFriction
+    from landau.laws.velocity import law_from_options
 
-    text = getattr(args, "friction", None)
-    neg = getattr(args, "friction_neg", None)
-    if text is None:
-        if neg is not None:
-            raise InputError("--friction-neg needs --friction (the branch for v > 0)")
-        own = {p.name for p in default.parameters}
-        law_params = {k: params.pop(k) for k in list(params) if k in own}
-        return default.with_defaults(**law_params) if law_params else default
-    names = referenced_names(text, what="--friction") | (referenced_names(neg, what="--friction-neg") if neg else set())
-    law_params = {k: params.pop(k) for k in list(params) if k in names}
-    name = getattr(args, "friction_name", None) or "user-friction"
-    return VelocityFriction.from_strings(name, text, neg, law_params, quantity=quantity)
+    return law_from_options(getattr(args, "friction", None), getattr(args, "friction_neg", None),
+                            getattr(args, "friction_name", None), default, params, quantity=quantity)

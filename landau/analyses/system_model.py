@@ -1,0 +1,97 @@
+"""The model ``system``: any smooth system E·ẏ = f(y; p) written as strings, declared as a model.
+
+Its equations are options (``rhs``, ``equilibrium`` or ``guess``, ``mass``; the Hopf parameter
+``parameter`` and the search interval ``bracket``), parsed by the whitelist parser of
+:meth:`landau.systems.system.DynamicalSystem.from_strings`; its parameters are the names its
+expressions use, declared with the values given (``--param NAME=VALUE``), any of which can be swept.
+The Hopf point is :func:`landau.derivation.general.hopf_normal_form` (Kuznetsov 2004, Sec. 3.5).
+
+References
+----------
+Kuznetsov, Y. A. (2004), *Elements of Applied Bifurcation Theory*, 3rd ed., Springer.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Mapping
+
+from landau.errors import InputError
+from landau.models import LawKind, Model, Option, Parameter, Setup
+
+#: systems built from the same strings, reused (the sweep calls the Hopf analysis point by point)
+_SYSTEMS: dict[tuple, Any] = {}
+
+
+def _frozen(mp: Mapping[str, Any] | None) -> tuple:
+    return () if not mp else tuple((str(k), str(v)) for k, v in mp.items())
+
+
+def system_of(setup: Setup):
+    """The :class:`~landau.systems.system.DynamicalSystem` of the setup's options (cached by its strings)."""
+    from landau.systems.system import DynamicalSystem
+
+    rhs = setup.option("rhs")
+    if not rhs:
+        raise InputError("system: give the right-hand side (--rhs NAME=EXPR, one per state; options={'rhs': {...}})")
+    parameter = setup.option("parameter")
+    if not parameter:
+        raise InputError("system: name the Hopf parameter (--parameter NAME; options={'parameter': NAME})")
+    eq, guess, mass = setup.option("equilibrium"), setup.option("guess"), setup.option("mass")
+    if eq is None and guess is None:
+        raise InputError("system: give the equilibrium (--equilibrium NAME=EXPR for every state) or a guess of it "
+                         "(--guess NAME=VALUE)")
+    if eq is not None and guess is not None:
+        raise InputError("system: give --equilibrium or --guess, not both")
+    names = tuple(sorted(setup.params))
+    key = (_frozen(rhs), str(parameter), _frozen(eq), _frozen(guess), _frozen(mass), names)
+    if key not in _SYSTEMS:
+        system = DynamicalSystem.from_strings(dict(rhs), str(parameter), {n: 1.0 for n in names}, equilibrium=eq,
+                                              guess=guess, mass=mass, name="system")
+        unused = sorted(set(names) - {s.name for s in system.parameters})
+        if unused:
+            raise InputError(f"--param {unused[0]}: no expression of the system uses it")
+        _SYSTEMS[key] = system
+    return _SYSTEMS[key]
+
+
+def _declare(setup: Setup) -> tuple[Parameter, ...]:
+    parameter = setup.option("parameter")
+    out = [Parameter(n, float(v), "1", "real", "a parameter of the system's expressions", "the user's system")
+           for n, v in sorted(setup.params.items())]
+    if parameter:
+        out.append(Parameter(str(parameter), None, "1", "real", "the Hopf parameter", "the user's system"))
+    return tuple(out)
+
+
+def system_hopf(setup: Setup):
+    """The Hopf point of the system of the setup's options in ``bracket``."""
+    from landau.derivation.general import hopf_normal_form
+
+    bracket = setup.option("bracket")
+    if bracket is None:
+        raise InputError("system: give the interval of the Hopf parameter holding one Hopf point (--bracket LO:HI; "
+                         "options={'bracket': (lo, hi)})")
+    system = system_of(setup)
+    if system.parameter.name in setup.params:
+        raise InputError(f"system: {system.parameter.name!r} is the Hopf parameter: its critical value is computed, "
+                         "it cannot be given or swept")
+    return hopf_normal_form(system, dict(setup.params), tuple(bracket))
+
+
+SYSTEM = Model(
+    name="system",
+    description="any smooth system E dy/dt = f(y; p) given by --rhs, --parameter, --param, --bracket",
+    law_kind=LawKind.NONE,
+    declare=_declare,
+    hopf_parameter=lambda setup: setup.option("parameter"),
+    hopf=system_hopf,
+    options=(Option("rhs", "a state and its right-hand side dNAME/dt (NAME=EXPR, repeatable, in order)"),
+             Option("equilibrium", "the equilibrium of a state as an expression of the parameters (NAME=EXPR)"),
+             Option("guess", "instead of the equilibrium, a starting value of a state for Newton's method"),
+             Option("mass", "the mass entry E_ii of a state (default 1; 0: an algebraic row)"),
+             Option("parameter", "the Hopf parameter"),
+             Option("bracket", "interval LO:HI of the Hopf parameter holding one Hopf point")),
+    source="Kuznetsov (2004), Sec. 3.5 (the normal form)",
+)
+
+__all__ = ["SYSTEM", "system_hopf", "system_of"]

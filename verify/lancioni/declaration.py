@@ -1,0 +1,113 @@
+"""The frictional impact oscillator of Lancioni, Lenci & Galvanetto declared as the model ``impact-oscillator``.
+
+A bar on a moving belt (their eq. 1) with Coulomb friction μ or any velocity law F(v)
+(``friction``/``friction_neg`` options, its parameters by name), parameter set 1 of Sec. 3
+(Leine, Brogliato & Nijmeijer 2002) with g = 10 m/s².  Hopf parameter: μ for Coulomb friction,
+else the ``parameter`` option (default the law's first parameter).  The Hopf point is that of the
+slip equilibrium, :func:`landau.verify.lancioni.slip.slip_hopf`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from landau.errors import InputError
+from landau.models import LawKind, Model, Option, Parameter, Setup
+
+SOURCE = "Lancioni, Lenci & Galvanetto, Sec. 3, set 1 (Leine, Brogliato & Nijmeijer 2002)"
+#: the mechanical parameters' domains and meanings (their defaults are set 1, slip.SET1)
+_MECHANICAL = {"m1": ("positive", "kg", "mass of the bar"), "m2": ("positive", "kg", "mass of the frame"),
+               "l": ("positive", "m", "length of the bar"), "k_y": ("nonnegative", "N/m", "vertical stiffness"),
+               "k_phi": ("nonnegative", "N m", "rotational stiffness"),
+               "c_y": ("nonnegative", "N s/m", "vertical damping"),
+               "c_phi": ("nonnegative", "N m s", "rotational damping"),
+               "phi0": ("real", "rad", "rest angle of the rotational spring"),
+               "y0": ("real", "m", "rest position of the vertical spring"),
+               "g": ("nonnegative", "m/s^2", "gravitational acceleration")}
+#: the Coulomb coefficient used by a simulation when none is given (above the Hopf point 0.40978)
+MU_SIMULATE = 0.42
+
+
+def friction_law(setup: Setup, params: dict):
+    """The friction law of the setup (Coulomb μ, or the ``friction`` option), its values removed from ``params``."""
+    from landau.laws.velocity import coulomb, law_from_options
+
+    return law_from_options(setup.option("friction"), setup.option("friction_neg"), setup.option("friction_name"),
+                            coulomb(), params)
+
+
+def _declare(setup: Setup) -> tuple[Parameter, ...]:
+    from landau.verify.lancioni.slip import SET1
+
+    mech = tuple(Parameter(n, float(SET1[n]), unit, dom, meaning, SOURCE) for n, (dom, unit, meaning) in _MECHANICAL.items())
+    law = friction_law(setup, {})
+    own = tuple(Parameter(p.name, None if p.default is None else float(p.default), p.units or "1",
+                          "positive" if p.positive else "real", p.description, p.source or "the friction law")
+                for p in law.parameters)
+    if setup.option("friction") is None:   # Coulomb: mu is the friction coefficient
+        own = (Parameter("mu", 0.4, "1", "nonnegative", "Coulomb friction coefficient", SOURCE),)
+    return (*mech, *own,
+            Parameter("v_belt", -1.0, "m/s", "nonzero", "belt velocity (< 0: positive slip, the direction with the "
+                      "Hopf point)", SOURCE),
+            Parameter("eN", 0.0, "1", "nonnegative", "normal restitution coefficient of the impacts", SOURCE))
+
+
+def _hopf_parameter(setup: Setup) -> str | None:
+    parameter = setup.option("parameter")
+    if parameter is not None:
+        return str(parameter)
+    if setup.option("friction") is None:
+        return "mu"
+    law = friction_law(setup, {})
+    return law.parameters[0].name if law.parameters else None
+
+
+def impact_oscillator_hopf(setup: Setup):
+    """The Hopf point of the slip equilibrium (:func:`landau.verify.lancioni.slip.slip_hopf`), with the
+    friction law's expression and the belt velocity in ``extra``."""
+    from landau.verify.lancioni import slip as S
+
+    params = dict(setup.params)
+    parameter = setup.option("parameter")
+    hp = _hopf_parameter(setup)
+    if hp in params:
+        raise InputError(f"impact-oscillator: {hp!r} is the bifurcation parameter (its critical value is computed), "
+                         "it cannot be given or swept")
+    params.pop("eN", None)
+    user = setup.option("friction") is not None
+    law = friction_law(setup, params)
+    v = params.pop("v_belt", -1.0)
+    unknown = sorted(set(params) - set(S.PARAM_NAMES))
+    if unknown:
+        raise InputError(f"impact-oscillator: unknown parameter(s) {', '.join(unknown)} (known: the law's "
+                         f"{', '.join(p.name for p in law.parameters) or 'none'}, {', '.join(S.PARAM_NAMES)}, v_belt)")
+    if v >= 0:
+        raise InputError(f"impact-oscillator: v_belt must be < 0 (positive slip, the belt direction with the Hopf "
+                         f"point), got {v!r}")
+    friction = law if user or parameter not in (None, "mu") else None
+    if friction is None:  # the paper's Coulomb friction, bifurcation parameter mu
+        h = S.slip_hopf(params)
+    else:
+        h = S.slip_hopf(params, friction=friction, parameter=parameter, v=v)
+    extra = {**h.extra, "friction": law.name, "friction_positive": str(law.positive),
+             "friction_negative": str(law.branch(-1)), "v_belt": v}
+    return replace(h, extra=extra)
+
+
+IMPACT_OSCILLATOR = Model(
+    name="impact-oscillator",
+    description="frictional impact oscillator (Lancioni, Lenci & Galvanetto): slip equilibrium; parameter mu, or a "
+                "parameter of --friction",
+    law_kind=LawKind.VELOCITY,
+    declare=_declare,
+    hopf_parameter=_hopf_parameter,
+    hopf=impact_oscillator_hopf,
+    options=(Option("friction", "friction F(v) for sliding velocity v > 0"),
+             Option("friction_neg", "friction for v < 0 (default the odd extension)"),
+             Option("friction_name", "a name for the friction law"),
+             Option("parameter", "the bifurcation parameter (default mu, or the law's first parameter)")),
+    defaults={"t_end": 10.0},
+    source=SOURCE,
+)
+
+__all__ = ["IMPACT_OSCILLATOR", "friction_law", "impact_oscillator_hopf"]
