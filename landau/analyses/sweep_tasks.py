@@ -7,8 +7,9 @@ variables are named as in the matching ``--json`` output.
 
 * ``hopf`` of the spring–block (Putelat et al. 2010): a whole chunk through the vectorised
   compiled kernels of :meth:`~landau.derivation.multiscale.Derivation.evaluate` (k_c, ω_c, Γ̄, Ω̄,
-  Λ, χ, C), one evaluation route for every chunk; of the other models, point by point through
-  the model's own Hopf analysis (``landau hopf MODEL``).
+  Λ, χ, C), one evaluation route for every chunk, with the optional terms the grid names built in;
+  of the other models (and a spring–block with α_LD), point by point through the model's own Hopf
+  analysis (:attr:`landau.models.Model.hopf`).
 * ``check`` (spring–block): :func:`landau.check` at each point, its verdict and numbers.
 * ``simulate`` (forced oscillator of Skurativskyi et al. 2019): the attractor reached by
   continuation in the forcing frequency ω (impacts per period, Poincaré points, the largest
@@ -18,31 +19,25 @@ variables are named as in the matching ``--json`` output.
 * ``scene``: a published value (a scene of ``landau scene list``, named as the model) as a function
   of the scene's parameters, with its difference to the published number.
 
-The models above this layer are reached through :data:`IMPLEMENTATIONS` (module and function
-names, imported in the worker).
+A task's model is a :class:`landau.models.Model`, looked up by name in the registry: the model
+declares its parameters (a grid axis or a fixed value may be any of them; a value outside a
+parameter's domain makes that point ``failed`` with the domain error, never a physical status),
+its Hopf parameter (never given or swept in ``hopf``) and the other tasks it runs
+(:attr:`landau.models.Model.tasks`, task factories that live beside the model).
 """
 
 from __future__ import annotations
 
-import argparse
-import importlib
 import json
 from dataclasses import dataclass, field
-from typing import Any, ClassVar
+from typing import Any, Callable, ClassVar
 
 import numpy as np
 
 from landau.analyses.sweep_engine import Chunk, ChunkResult, Grid, chunks
 from landau.errors import InputError, LandauError, NoHopfError
-
-#: task -> model -> "module:function" computing a chunk (imported where the chunk runs)
-IMPLEMENTATIONS: dict[str, dict[str, str]] = {
-    "simulate": {"forced-oscillator": "landau.verify.skurativskyi.sweep:simulate_chunk"},
-    "regime": {"spring-block": "landau.verify.springblock.regime_map:regime_chunk"},
-}
-
-#: SI units of the spring–block's system parameters and of the variables of the tasks
-SPRING_BLOCK_UNITS = {"V": "m/s", "k": "N/m", "M": "kg", "g": "m/s^2", "sigma": "Pa", "eps2": "1"}
+from landau.models import LawKind, Model, Setup
+from landau.models import get as get_model
 
 
 def _skip(status: list, message: list, rows: list, why: str, exc: BaseException) -> None:
@@ -52,11 +47,6 @@ def _skip(status: list, message: list, rows: list, why: str, exc: BaseException)
     status.append(why)
     message.append(_first_line(exc))
     rows.append({})
-
-
-def _resolve(ref: str):
-    mod, fn = ref.split(":")
-    return getattr(importlib.import_module(mod), fn)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -116,13 +106,14 @@ _LAWS: dict[tuple, Any] = {}
 _DERIVATIONS: dict[tuple, Any] = {}
 
 
-def _derivation(spec: LawSpec):
-    d = _DERIVATIONS.get((spec,))
+def _derivation(spec: LawSpec, terms: tuple[str, ...] = ()):
+    """The spring–block's derivation for the law ``spec`` with the optional ``terms`` (one per process)."""
+    d = _DERIVATIONS.get((spec, terms))
     if d is None:
         from landau.derivation.multiscale import derive
         from landau.systems.system import SpringBlock
 
-        d = _DERIVATIONS[(spec,)] = derive(SpringBlock(spec.build()))
+        d = _DERIVATIONS[(spec, terms)] = derive(SpringBlock(spec.build(), terms))
     return d
 
 
@@ -152,26 +143,35 @@ class Task:
             raise InputError(f"{self.name} {self.model}: this model has no rate-and-state law")
         return self.law
 
+    @property
+    def model_object(self) -> Model:
+        """The registered model (:func:`landau.models.get`)."""
+        return get_model(self.model)
+
+    def setup(self, params: dict[str, float] | None = None) -> Setup:
+        """The model's :class:`~landau.models.Setup` for this task's law and options, at ``params``."""
+        return Setup(self.law.build() if self.law is not None else None, dict(params or {}), dict(self.options))
+
     def units(self) -> dict[str, str]:
         from landau.derivation.multiscale import UNITS
 
-        own = {p.name: p.units for p in self.law.build().parameters if p.units} if self.law else {}
-        return {**UNITS, **SPRING_BLOCK_UNITS, **own}
+        declared = {p.name: p.unit for p in self.model_object.parameters(self.setup(dict(self.fixed)))}
+        return {**UNITS, "eps2": "1", **declared}
 
     def attrs(self) -> dict[str, Any]:
         from landau import __version__
-        from landau.derivation.multiscale import CONVENTION
 
+        model = self.model_object
         return {"task": self.name, "model": self.model, "law": self.law.name if self.law else "",
                 "law_declaration": self.law.declaration() if self.law else "",
-                "convention": "putelat2010" if self.model == "spring-block" else "",
-                "convention_description": CONVENTION if self.model == "spring-block" else "",
+                "convention": model.convention, "convention_description": model.convention_description,
                 "landau_version": __version__,
                 "fixed_parameters": json.dumps(dict(self.fixed), sort_keys=True),
                 "task_options": json.dumps(dict(self.options), sort_keys=True)}
 
     def check_grid(self, grid: Grid) -> None:
-        """Refuse (InputError) a grid this task cannot run."""
+        """Refuse (InputError) a grid this task cannot run: a name the model does not declare."""
+        check_declared(self, grid)
 
     def for_grid(self, grid: Grid) -> "Task":
         """The task as it runs on ``grid`` (a choice made once, in the calling process)."""
@@ -186,24 +186,35 @@ class Task:
     def run(self, chunk: Chunk) -> ChunkResult:
         raise NotImplementedError
 
+    def point(self, chunk: Chunk, j: int) -> dict[str, float]:
+        """The parameters of the chunk's point ``j``: the fixed values and the swept ones."""
+        return {**dict(self.fixed), **{k: float(v[j]) for k, v in chunk.points.items()}}
 
-def _spring_block_grid(task: Task, grid: Grid, allowed_extra: tuple[str, ...] = ()) -> None:
-    from landau.systems.system import SpringBlock
+    def invalid(self, chunk: Chunk) -> tuple[np.ndarray, list[str]]:
+        """The chunk's points with a value outside its parameter's declared domain, and their messages."""
+        n = len(chunk.index)
+        values = {**{k: np.full(n, float(v)) for k, v in self.fixed}, **chunk.points}
+        return self.model_object.invalid_points(values, self.setup(dict(self.fixed)))
 
-    block = SpringBlock(task.spec.build())
-    known = {p.name for p in block.law.parameters} | set(block.defaults) | {"V", *allowed_extra}
-    for name in (*grid.names, *dict(task.fixed)):
-        if name not in known:
-            raise InputError(f"{task.name} spring-block: unknown parameter {name!r} for law {block.law.name!r} "
-                             f"(known: {', '.join(sorted(known))})")
-    if "V" not in grid.names and "V" not in dict(task.fixed):
-        raise InputError(f"{task.name} spring-block: give the driving velocity as --grid V=... or --param V=...")
-    for name in grid.names:
-        vals = np.asarray(grid.axes[grid.names.index(name)].values)
-        if name in ("V", "M", "L", "V_s", "sigma", "k", "eps2") and np.any(vals <= 0) and name != "M":
-            raise InputError(f"--grid {name}: values must be > 0")
-        if name == "M" and np.any(vals < 0):
-            raise InputError("--grid M: values must be >= 0")
+
+def check_declared(task: Task, grid: Grid, *, refuse_hopf_parameter: bool = False) -> None:
+    """Every swept and fixed name is a parameter the model declares (for this law and options); with
+    ``refuse_hopf_parameter``, the Hopf parameter is neither swept nor fixed (its critical value is
+    what the task computes)."""
+    model = task.model_object
+    setup = task.setup(dict(task.fixed))
+    names = (*grid.names, *dict(task.fixed))
+    if refuse_hopf_parameter:
+        hp = model.bifurcation_parameter(setup)
+        if hp is not None and hp in names:
+            raise InputError(f"{task.name} {task.model}: {hp} is the bifurcation parameter (its critical value is "
+                             "computed), it cannot be swept or fixed")
+    model.check_params(names, setup, what=f"{task.name} {task.model}")
+
+
+def _skip_invalid(bad: np.ndarray, why: list[str]):
+    """The (status, message) of the points outside a domain, None elsewhere."""
+    return [("failed", why[j]) if bad[j] else None for j in range(len(bad))]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -214,43 +225,65 @@ HOPF_NAMES = ["kc", "omega_c", "Gamma_bar", "Omega_bar", "Lambda", "chi", "C"]
 
 @dataclass(frozen=True)
 class SpringBlockHopf(Task):
-    """k_c, ω_c and the amplitude-equation coefficients over a chunk (vectorised)."""
+    """k_c, ω_c and the amplitude-equation coefficients over a chunk (vectorised), with the optional
+    spring–block terms (:mod:`landau.systems.springblock_terms`) that the grid or the fixed values name."""
 
     method: str = "auto"
+    terms: tuple[str, ...] = ()
 
     def check_grid(self, grid: Grid) -> None:
-        if "k" in grid.names or "k" in dict(self.fixed):
-            raise InputError("hopf spring-block: k is the bifurcation parameter (its critical value k_c is "
-                             "computed), it cannot be swept")
-        _spring_block_grid(self, grid)
+        check_declared(self, grid, refuse_hopf_parameter=True)
 
-    def for_grid(self, grid: Grid) -> "SpringBlockHopf":
+    def for_grid(self, grid: Grid) -> Task:
         """One evaluation route for every chunk, so that no number depends on how the grid was cut:
-        the exactly cancelled form (:mod:`landau.derivation.rational`) when only V is swept and the
-        law's derivatives are rational in V, else the screened float route ("general")."""
-        if self.method != "auto":
-            return self
+        the terms named by the grid built in; the exactly cancelled form (:mod:`landau.derivation.rational`)
+        when only V is swept and the law's derivatives are rational in V, else the screened float route
+        ("general").  With α_LD (whose Hopf line is not affine in the derivation's parameters) the
+        model's own Hopf analysis point by point (:class:`PointwiseHopf`)."""
         from dataclasses import replace
 
+        from landau.systems.springblock_terms import check_terms
+
+        named = {*grid.names, *dict(self.fixed)}
+        terms = check_terms(tuple(t for t in _term_names() if t in named))
+        if "alpha_ld" in terms:
+            return PointwiseHopf("hopf", self.model, self.law, self.fixed, self.options, chunk_size=1)
+        task = replace(self, terms=terms)
+        if self.method != "auto":
+            return task
         method = "general"
         if grid.names == ("V",):
             fixed = {k: v for k, v in self.fixed if k != "V"}
             try:
-                _derivation(self.spec).evaluate(np.array([grid.axes[0].values[0]]), fixed, HOPF_NAMES,
-                                               method="rational")
+                _derivation(self.spec, terms).evaluate(np.array([grid.axes[0].values[0]]), fixed, HOPF_NAMES,
+                                                      method="rational")
                 method = "rational"
             except InputError:
                 pass
-        return replace(self, method=method)
+        return replace(task, method=method)
 
     def prepare(self) -> None:
-        _derivation(self.spec)
+        _derivation(self.spec, self.terms)
 
     def run(self, chunk: Chunk) -> ChunkResult:
-        d = _derivation(self.spec)
-        pts = dict(chunk.points)
+        n = len(chunk.index)
+        bad, why = self.invalid(chunk)
+        good = np.flatnonzero(~bad)
+        out = {k: np.full(n, np.nan) for k in _HOPF_OUTPUTS}
+        status, message, crit = ["failed"] * n, list(why), [""] * n
+        if len(good):
+            res = self._evaluate({k: np.asarray(v)[good] for k, v in chunk.points.items()}, len(good))
+            for k in _HOPF_OUTPUTS:
+                out[k][good] = res.values[k]
+            for i, j in enumerate(good):
+                status[j], message[j], crit[j] = res.status[i], res.message[i], res.strings["criticality"][i]
+        return ChunkResult(chunk.index, status, message, out, {"criticality": crit})
+
+    def _evaluate(self, pts: dict[str, np.ndarray], n: int) -> ChunkResult:
+        """The coefficients at ``n`` points whose parameters are all in their domains."""
+        d = _derivation(self.spec, self.terms)
         fixed = dict(self.fixed)
-        V = pts.pop("V") if "V" in pts else np.full(len(chunk.index), float(fixed.pop("V")))
+        V = pts.pop("V") if "V" in pts else np.full(n, float(fixed.pop("V", self.model_object.defaults["V"])))
         fixed.pop("V", None)
         params = {**fixed, **pts}
         try:
@@ -262,7 +295,6 @@ class SpringBlockHopf(Task):
             rows = [d.evaluate(np.array([V[j]]), {**fixed, **{k: float(v[j]) for k, v in pts.items()}},
                                HOPF_NAMES, method=self.method) for j in range(len(V))]
             r = {n: np.array([float(np.ravel(row[n])[0]) for row in rows]) for n in [*HOPF_NAMES, "degenerate"]}
-        n = len(chunk.index)
         vals = {k: np.broadcast_to(np.asarray(r[k], dtype=float), (n,)).copy() for k in HOPF_NAMES}
         degenerate = np.broadcast_to(np.asarray(r.get("degenerate", False), dtype=bool), (n,))
         kc = vals["kc"]
@@ -280,49 +312,51 @@ class SpringBlockHopf(Task):
                "dRe_lambda_dp": -vals["Gamma_bar"], "dIm_lambda_dp": vals["Omega_bar"],
                "Gamma_bar": vals["Gamma_bar"], "Omega_bar": vals["Omega_bar"], "Lambda": lam,
                "chi": vals["chi"], "C": vals["C"]}
-        return ChunkResult(chunk.index, list(status), message, out, {"criticality": list(crit)})
+        return ChunkResult(np.arange(n), list(status), message, out, {"criticality": list(crit)})
+
+
+#: the variables of the spring–block's vectorised hopf task
+_HOPF_OUTPUTS = ("p_c", "k_c", "kc", "omega_c", "dRe_lambda_dp", "dIm_lambda_dp", "Gamma_bar", "Omega_bar", "Lambda",
+                 "chi", "C")
+
+
+def _term_names() -> tuple[str, ...]:
+    from landau.systems.springblock_terms import TERMS
+
+    return tuple(TERMS)
 
 
 @dataclass(frozen=True)
 class PointwiseHopf(Task):
-    """The Hopf point of any model registered with ``landau hopf``, point by point: the model's
-    function is called with the arguments the command line would give it (swept values as
-    ``--param NAME=VALUE``, ``V`` as ``--V``)."""
+    """The Hopf point of any registered model, point by point: the model's
+    :attr:`~landau.models.Model.hopf` at each point's parameters (a point outside a parameter's
+    domain is ``failed`` with the domain error; one without a Hopf point ``no-hopf``)."""
 
     lead: ClassVar[bool] = True
 
-    def _function(self):
-        hopf = importlib.import_module("landau.cli.hopf")
-        hopf._load_models()
-        if self.model not in hopf.MODELS:
-            raise InputError(f"hopf: unknown model {self.model!r}; known: {', '.join(hopf.MODELS)}")
-        return hopf.MODELS[self.model][1]
-
     def check_grid(self, grid: Grid) -> None:
-        self._function()
-        unknown = sorted(set(dict(self.options)) - {"friction", "friction_neg", "friction_name", "kinetic",
-                                                     "kinetic_pos", "parameter", "chunk_size"})
+        model = self.model_object
+        unknown = sorted(set(dict(self.options)) - {o.name for o in model.options} - {"chunk_size", "method"})
         if unknown:
-            raise InputError(f"hopf {self.model}: option(s) {', '.join(unknown)} do not apply")
+            raise InputError(f"hopf {self.model}: option(s) {', '.join(unknown)} do not apply (the model takes: "
+                             f"{', '.join(o.name for o in model.options) or 'none'})")
+        check_declared(self, grid, refuse_hopf_parameter=True)
 
     def run(self, chunk: Chunk) -> ChunkResult:
-        fn = self._function()
+        model = self.model_object
+        assert model.hopf is not None   # make_task gives this task only to models with a Hopf analysis
+        bad, why = self.invalid(chunk)
         status: list[str] = []
         message: list[str] = []
         rows: list[dict[str, float]] = []
         crit: list[str] = []
-        opts = dict(self.options)
         for j in range(len(chunk.index)):
-            point = {**dict(self.fixed), **{k: float(v[j]) for k, v in chunk.points.items()}}
-            V = point.pop("V", None)
-            args = argparse.Namespace(law=None, mu=None, state=[], friction=opts.get("friction"),
-                                      friction_neg=opts.get("friction_neg"),
-                                      friction_name=opts.get("friction_name", "user-friction"),
-                                      kinetic=opts.get("kinetic"), kinetic_pos=opts.get("kinetic_pos"),
-                                      parameter=opts.get("parameter"), V=None if V is None else repr(V),
-                                      param=[f"{k}={v!r}" for k, v in point.items()])
+            if bad[j]:
+                _skip(status, message, rows, "failed", InputError(why[j]))
+                crit.append("")
+                continue
             try:
-                res = fn(args)
+                res = model.hopf(self.setup(self.point(chunk, j)))
             except NoHopfError as exc:
                 _skip(status, message, rows, "no-hopf", exc)
                 crit.append("")
@@ -359,7 +393,20 @@ class SpringBlockCheck(Task):
     def check_grid(self, grid: Grid) -> None:
         if "k" in grid.names or "k" in dict(self.fixed):
             raise InputError("check spring-block: the stiffness is set by eps2 = |k - k_c|/k_c (sweep eps2, not k)")
-        _spring_block_grid(self, grid, ("eps2",))
+        check_declared(self, _without(grid, "eps2"))
+
+    def invalid(self, chunk: Chunk) -> tuple[np.ndarray, list[str]]:
+        eps2 = chunk.points.get("eps2")
+        others = Chunk(chunk.number, chunk.index, {k: v for k, v in chunk.points.items() if k != "eps2"})
+        fixed = tuple((k, v) for k, v in self.fixed if k != "eps2")
+        from dataclasses import replace
+
+        bad, why = Task.invalid(replace(self, fixed=fixed), others)
+        if eps2 is not None:
+            for j in np.flatnonzero(~(np.asarray(eps2) > 0) & ~bad):
+                why[j] = f"check: eps2 = |k - k_c|/k_c must be > 0, got {float(eps2[j])!r}"
+                bad[j] = True
+        return bad, why
 
     def run(self, chunk: Chunk) -> ChunkResult:
         from landau.analyses.checking import check
@@ -369,10 +416,16 @@ class SpringBlockCheck(Task):
         message: list[str] = []
         rows: list[dict[str, float]] = []
         strs: dict[str, list[str]] = {"verdict": [], "criticality_predicted": []}
+        bad, why = self.invalid(chunk)
         for j in range(len(chunk.index)):
-            point = {**dict(self.fixed), **{k: float(v[j]) for k, v in chunk.points.items()}}
-            V = point.pop("V")
+            point = self.point(chunk, j)
+            V = point.pop("V", self.model_object.defaults["V"])
             eps2 = point.pop("eps2", opts.get("eps2", 1e-3))
+            if bad[j]:
+                _skip(status, message, rows, "failed", InputError(why[j]))
+                strs["verdict"].append("")
+                strs["criticality_predicted"].append("")
+                continue
             try:
                 res = check(self.spec.build(), V=V, eps2=eps2, params=point,
                             bistability=bool(opts.get("bistability", False)))
@@ -413,8 +466,14 @@ class SceneTask(Task):
         return {"value": self._scene().units, "published": self._scene().units, "rel_diff": "1"}
 
     def attrs(self) -> dict[str, Any]:
+        from landau import __version__
+
         sc = self._scene()
-        return {**super().attrs(), "scene_parameter": sc.parameter, "source": sc.source}
+        return {"task": self.name, "model": self.model, "law": "", "law_declaration": "", "convention": "",
+                "convention_description": "", "landau_version": __version__,
+                "fixed_parameters": json.dumps(dict(self.fixed), sort_keys=True),
+                "task_options": json.dumps(dict(self.options), sort_keys=True),
+                "scene_parameter": sc.parameter, "source": sc.source}
 
     def check_grid(self, grid: Grid) -> None:
         known = set(self._scene().defaults)
@@ -452,38 +511,52 @@ class SceneTask(Task):
 # ---------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class ModelTask(Task):
-    """A task whose chunk function lives in the model's module (:data:`IMPLEMENTATIONS`)."""
+    """A task whose chunk function lives beside the model (a model's :attr:`~landau.models.Model.tasks`
+    factory builds it): ``chunk_fn(task, chunk) -> ChunkResult``, ``grid_fn(task, grid)`` checks a grid
+    beyond the declared names, ``prepare_fn(task)`` compiles before the workers start.  The functions
+    are module-level, so that the task pickles by reference to the workers."""
 
     along: str | None = None
     overlap: int = 0
     descending: bool = False
-    check_ref: str | None = None
+    chunk_fn: Callable[["ModelTask", Chunk], ChunkResult] | None = None
+    grid_fn: Callable[["ModelTask", Grid], None] | None = None
+    prepare_fn: Callable[["ModelTask"], None] | None = None
     extra_units: tuple[tuple[str, str], ...] = field(default=())
+    #: names a grid may hold besides the model's declared parameters (a task's own axes)
+    extra_names: tuple[str, ...] = ()
 
     def units(self) -> dict[str, str]:
         return {**super().units(), **dict(self.extra_units)}
 
     def check_grid(self, grid: Grid) -> None:
-        if self.law is not None and self.model == "spring-block":
-            _spring_block_grid(self, grid, ("k",))
-        if self.check_ref:
-            _resolve(self.check_ref)(self, grid)
+        check_declared(self, _without(grid, *self.extra_names))
+        if self.grid_fn is not None:
+            self.grid_fn(self, grid)
 
     def chunks(self, grid: Grid) -> list[Chunk]:
         return chunks(grid, self.chunk_size, self.along, self.overlap, self.descending)
 
     def prepare(self) -> None:
-        ref = IMPLEMENTATIONS[self.name][self.model]
-        mod = importlib.import_module(ref.split(":")[0])
-        if hasattr(mod, "prepare"):
-            mod.prepare(self)
+        if self.prepare_fn is not None:
+            self.prepare_fn(self)
 
     def run(self, chunk: Chunk) -> ChunkResult:
-        return _resolve(IMPLEMENTATIONS[self.name][self.model])(self, chunk)
+        assert self.chunk_fn is not None   # every factory sets it
+        return self.chunk_fn(self, chunk)
 
 
-#: tasks and the models each runs on
-TASKS = {"hopf": "the Hopf point and amplitude-equation coefficients (any model of landau hopf)",
+def _without(grid: Grid, *names: str) -> Grid:
+    """``grid`` less the axes ``names`` (for the check of the declared names)."""
+    if not any(n in grid.names for n in names):
+        return grid
+    from dataclasses import replace
+
+    return replace(grid, axes=tuple(a for a in grid.axes if a.name not in names))
+
+
+#: tasks and what each computes
+TASKS = {"hopf": "the Hopf point and amplitude-equation coefficients (any model with a Hopf analysis)",
          "check": "the direct-simulation verdict of landau.check (spring-block)",
          "simulate": "statistics of a settled run (forced-oscillator: continuation in omega)",
          "regime": "the regime by direct simulation started on both sides (spring-block)",
@@ -491,36 +564,32 @@ TASKS = {"hopf": "the Hopf point and amplitude-equation coefficients (any model 
 
 
 def make_task(task: str, model: str, law: LawSpec | None, fixed: dict[str, Any], options: dict[str, Any]) -> Task:
-    """The :class:`Task` for ``task`` on ``model``.
+    """The :class:`Task` for ``task`` on ``model`` (a registered model, or a scene's name for ``scene``).
 
     Raises
     ------
     InputError
-        An unknown task, a model the task does not run on, a missing law.
+        An unknown task or model, a model that does not run the task, a law the model does not take.
     """
     if task not in TASKS:
         raise InputError(f"unknown sweep task {task!r} (tasks: {', '.join(TASKS)})")
     fx = tuple(sorted((k, float(v)) for k, v in fixed.items()))
     opts = tuple(sorted(options.items()))
-    if model == "spring-block" and law is None:
-        raise InputError(f"{task} spring-block: name a law (built-in or --mu/--state)")
-    if model != "spring-block" and law is not None:
-        raise InputError(f"{task} {model}: this model takes no rate-and-state law")
-    if task == "hopf":
-        if model == "spring-block":
-            return SpringBlockHopf("hopf", model, law, fx, opts, chunk_size=int(options.get("chunk_size", 4096)),
-                                   method=str(options.get("method", "auto")))
-        return PointwiseHopf("hopf", model, None, fx, opts, chunk_size=int(options.get("chunk_size", 1)))
     if task == "scene":
         if law is not None:
             raise InputError(f"scene {model}: a scene takes no law (its model and law are the paper's)")
         return SceneTask("scene", model, None, fx, opts, chunk_size=int(options.get("chunk_size", 1)))
-    if task == "check":
-        if model != "spring-block":
-            raise InputError(f"check: the sweep runs the spring-block's check (got model {model!r})")
-        return SpringBlockCheck("check", model, law, fx, opts, chunk_size=1)
-    impl = IMPLEMENTATIONS[task]
-    if model not in impl:
-        raise InputError(f"{task}: runs on {', '.join(impl)} (got model {model!r})")
-    mod = importlib.import_module(impl[model].split(":")[0])
-    return mod.make_task(task, model, law, fx, opts)
+    m = get_model(model)
+    if not m.offers(task):
+        from landau.models import offering
+
+        raise InputError(f"{task}: the model {model!r} does not run this task (models that do: "
+                         f"{', '.join(offering(task)) or 'none'})")
+    if m.law_kind is LawKind.RATE_AND_STATE:
+        if law is None:
+            raise InputError(f"{task} {model}: name a law (built-in or --mu/--state)")
+    elif law is not None:
+        raise InputError(f"{task} {model}: this model takes no rate-and-state law")
+    if task in m.tasks:
+        return m.tasks[task](task, model, law, fx, opts)
+    return PointwiseHopf("hopf", model, law, fx, opts, chunk_size=int(options.get("chunk_size", 1)))

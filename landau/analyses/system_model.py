@@ -54,10 +54,24 @@ def system_of(setup: Setup):
     return _SYSTEMS[key]
 
 
+def _used_names(setup: Setup) -> set[str]:
+    """The names the system's expressions use besides its states (its parameters and the Hopf parameter)."""
+    from landau.laws.parse import referenced_names
+
+    rhs = setup.option("rhs") or {}
+    names: set[str] = set()
+    for what in ("rhs", "equilibrium", "mass"):
+        for state, text in (setup.option(what) or {}).items():
+            names |= referenced_names(str(text), what=f"{what} {state}")
+    return names - set(rhs)
+
+
 def _declare(setup: Setup) -> tuple[Parameter, ...]:
     parameter = setup.option("parameter")
-    out = [Parameter(n, float(v), "1", "real", "a parameter of the system's expressions", "the user's system")
-           for n, v in sorted(setup.params.items())]
+    given = dict(setup.params)
+    names = (_used_names(setup) | set(given)) - {parameter}
+    out = [Parameter(n, given.get(n), "1", "real", "a parameter of the system's expressions", "the user's system")
+           for n in sorted(names)]
     if parameter:
         out.append(Parameter(str(parameter), None, "1", "real", "the Hopf parameter", "the user's system"))
     return tuple(out)

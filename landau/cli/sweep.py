@@ -29,10 +29,11 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from landau.cli.common import add_law_arguments, parse_params
+from landau.cli.common import add_friction_arguments, add_law_arguments, parse_params
+from landau.cli.model_args import add_model_options
 from landau.errors import InputError
 
-#: --param names refused for the spring-block (the swept or computed ones are fine)
+#: --param names refused for a rate-and-state model (the swept or computed ones are fine)
 _RESERVED = {"v": "v is the slip rate, the variable of the friction law, not a parameter"}
 
 
@@ -56,15 +57,15 @@ def configure(p) -> None:
                              ("rtol", float, "integration tolerance")):
         p.add_argument(f"--{name}", type=kind, default=None, help=f"simulate: {what}")
     p.add_argument("--lyapunov", action="store_true", help="simulate: also the largest Lyapunov exponent")
-    p.add_argument("--friction", default=None, metavar="EXPR", help="hopf impact-oscillator: F(v) for v > 0")
-    p.add_argument("--kinetic", default=None, metavar="EXPR", help="hopf galvanetto-one-block: the kinetic law")
-    p.add_argument("--parameter", default=None, metavar="NAME", help="hopf impact-oscillator: bifurcation parameter")
+    add_friction_arguments(p)
+    add_model_options(p)
 
 
-def _options(args) -> dict[str, Any]:
+def _options(args, model) -> dict[str, Any]:
+    from landau.cli.model_args import model_options
+
     opts: dict[str, Any] = {}
-    for key in ("chunk_size", "eps2", "direction", "n_first", "n_step", "n_keep", "overlap", "rtol", "friction",
-                "kinetic", "parameter"):
+    for key in ("chunk_size", "eps2", "direction", "n_first", "n_step", "n_keep", "overlap", "rtol"):
         val = getattr(args, key, None)
         if val is not None:
             if isinstance(val, float) and not math.isfinite(val):
@@ -72,13 +73,25 @@ def _options(args) -> dict[str, Any]:
             opts[key] = val
     if args.lyapunov:
         opts["lyapunov"] = True
+    if model is not None:
+        opts.update(model_options(model, args, f"landau sweep {args.task}"))
     return opts
 
 
-def _law(args):
-    from landau.analyses.sweep_tasks import LawSpec
+def _model(args):
+    """The registered model of the sweep (None for a scene, whose MODEL is a scene's name)."""
+    if args.task == "scene":
+        return None
+    from landau.models import get
 
-    if args.model != "spring-block":
+    return get(args.model)
+
+
+def _law(args, model):
+    from landau.analyses.sweep_tasks import LawSpec
+    from landau.models import LawKind
+
+    if model is None or model.law_kind is not LawKind.RATE_AND_STATE:
         if args.law is not None or args.mu is not None or args.state:
             raise InputError(f"landau sweep {args.task} {args.model}: this model takes no rate-and-state law")
         return None
@@ -95,7 +108,7 @@ def _law(args):
     if args.law is None:
         from landau.laws import BUILTIN
 
-        raise InputError(f"landau sweep {args.task} spring-block: name a law ({', '.join(BUILTIN)}) or give --mu "
+        raise InputError(f"landau sweep {args.task} {args.model}: name a law ({', '.join(BUILTIN)}) or give --mu "
                          "and --state")
     return LawSpec(args.law)
 
@@ -140,13 +153,14 @@ def run(args) -> dict:
     if args.out is None:
         raise InputError("--out FILE.nc is required (the sweep is written and resumed there)")
     set_quiet(getattr(args, "json", False))
-    law = _law(args)
-    reserved = _RESERVED if args.model == "spring-block" else {}
-    fixed = parse_params(args.param, reserved)
+    model = _model(args)
+    law = _law(args, model)
+    fixed = parse_params(args.param, _RESERVED if law is not None else {})
+    options = _options(args, model)
     executor, close = _executor(args)
     try:
         ds, counts = sweep(args.task, args.grid, model=args.model, law=law, params=fixed, executor=executor,
-                           workers=args.workers, out=args.out, progress=True, options=_options(args),
+                           workers=args.workers, out=args.out, progress=True, options=options,
                            return_counts=True)
     finally:
         if close is not None:

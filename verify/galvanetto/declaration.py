@@ -54,7 +54,7 @@ def _declare(setup: Setup, blocks: int) -> tuple[Parameter, ...]:
 
 def kinetic_law(setup: Setup, params: dict):
     """The kinetic law of the setup (eq. 7 or the ``kinetic`` option) with its values taken from ``params``."""
-    from landau.verify.galvanetto.model import KineticFriction
+    from landau.laws.kinetic import KineticFriction
 
     kinetic, kinetic_pos = setup.option("kinetic"), setup.option("kinetic_pos")
     if kinetic_pos is not None and kinetic is None:

@@ -14,7 +14,7 @@
 * :mod:`landau.verify.lancioni.period_adding` — the e_N = 0 detached branch near μ = 0.38957 (why
   eq. (1) has no period-adding cascade);
 * :mod:`landau.verify.lancioni.diagrams` — bifurcation diagrams in μ and the sinusoidal belt runs;
-* :mod:`landau.cli.hopf_lancioni` — ``landau hopf impact-oscillator`` (in the command line package).
+* :mod:`landau.verify.lancioni.declaration` — the model ``impact-oscillator`` (``landau hopf impact-oscillator``).
 
 Friction.  The paper's Coulomb coefficient μ is the default; every model, analysis and
 command also takes a velocity-dependent friction coefficient law

@@ -79,7 +79,7 @@ def make_task(task: str, model: str, law, fixed: tuple, options: tuple) -> Model
     PAPER.with_(**dict(fixed))  # an unknown parameter is refused here, by name
     return ModelTask(task, model, None, fixed, options, chunk_size=int(opts.get("chunk_size", CHUNK_SIZE)),
                      continuation=True, along="omega", overlap=spec.overlap, descending=direction == "down",
-                     check_ref="landau.verify.skurativskyi.sweep:check_grid", extra_units=tuple(UNITS.items()))
+                     chunk_fn=simulate_chunk, grid_fn=check_grid, prepare_fn=prepare, extra_units=tuple(UNITS.items()))
 
 
 def _spec(opts: dict) -> SweepSpec:

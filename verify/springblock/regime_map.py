@@ -55,7 +55,7 @@ def make_task(task: str, model: str, law, fixed: tuple, options: tuple) -> Model
     if unknown:
         raise InputError(f"regime spring-block: option(s) {', '.join(unknown)} do not apply (known: chunk_size, rtol)")
     return ModelTask(task, model, law, fixed, options, chunk_size=int(opts.get("chunk_size", 1)),
-                     check_ref="landau.verify.springblock.regime_map:check_grid", extra_units=tuple(UNITS.items()))
+                     chunk_fn=regime_chunk, grid_fn=check_grid, prepare_fn=prepare, extra_units=tuple(UNITS.items()))
 
 
 def check_grid(task: ModelTask, grid) -> None:
