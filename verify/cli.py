@@ -38,7 +38,8 @@ def configure(p) -> None:
                    help="an extra bound on |relative amplitude error| at each eps2 (default: none — a point agrees "
                         f"when its error falls like eps2, fitted exponent in {contract.EXPONENT_BAND[0]:g} to "
                         f"{contract.EXPONENT_BAND[1]:g}, and extrapolates to within "
-                        f"{contract.EXTRAPOLATION_BOUND:.0%} at eps2 -> 0)")
+                        # "%%": argparse %-formats help texts (a lone "%" would print its own state)
+                        f"{100 * contract.EXTRAPOLATION_BOUND:g}%% at eps2 -> 0)")
     p.add_argument("--no-bistability", action="store_true",
                    help="subcritical points: only shoot the unstable cycle, skip the (slow) bisection")
     p.add_argument("--work-precision", action="store_true", help="write the Fig. 3 work-precision table and PNG")

@@ -108,9 +108,41 @@ class _VersionAction(argparse.Action):
         parser.exit()
 
 
+#: a Sphinx cross-reference role, :role:`target` or :role:`~a.b.target` or :role:`text <target>`
+_ROLE = re.compile(r":(?:py:)?[a-z]+:`(~?)([^`]+)`")
+#: a reStructuredText inline literal, ``text`` (it may wrap onto the next line)
+_LITERAL = re.compile(r"``(.+?)``", re.S)
+#: a substitution reference, |name| (not a pipe between words: up|down|both)
+_SUBSTITUTION = re.compile(r"(?<![\w|])\|(\w[\w-]*)\|(?![\w|])")
+#: "paragraph::" or "paragraph: ::" introducing a literal block, and "::" on a line of its own
+_BLOCK_MARKER = re.compile(r"(?<=\S)( ?)::[ \t]*$", re.M)
+_BLOCK_MARKER_ALONE = re.compile(r"^[ \t]*::[ \t]*\n", re.M)
+
+
+def _role_text(match: re.Match) -> str:
+    short, target = match.group(1), match.group(2)
+    if target.endswith(">") and "<" in target:  # :ref:`text <target>`
+        return target[: target.index("<")].strip()
+    return target.rsplit(".", 1)[-1] if short else target
+
+
+def plain_text(doc: str) -> str:
+    """A docstring as help text: its reStructuredText markup turned into plain text.
+
+    A role gives its target (":func:`landau.check`" -> "landau.check", ":class:`~a.b.C`" -> "C"),
+    an inline literal or a substitution its text ("``x``" -> "x", "|x|" -> "x"), and a paragraph
+    that introduces a literal block ends with one colon ("Examples::" -> "Examples:").
+    """
+    doc = _ROLE.sub(_role_text, doc)
+    doc = _LITERAL.sub(r"\1", doc)
+    doc = _SUBSTITUTION.sub(r"\1", doc)
+    doc = _BLOCK_MARKER_ALONE.sub("", doc)
+    return _BLOCK_MARKER.sub(lambda m: "" if m.group(1) else ":", doc)
+
+
 def _summary(modname: str) -> str | None:
     """The first line of a sub-command module's docstring (imports the module)."""
-    doc = (importlib.import_module(modname).__doc__ or "").strip()
+    doc = plain_text(importlib.import_module(modname).__doc__ or "").strip()
     return doc.splitlines()[0] if doc else None
 
 
@@ -142,8 +174,9 @@ def build_parser(only: str | None = None) -> tuple[argparse.ArgumentParser, dict
         if spec is None:
             continue
         mod = importlib.import_module(modname)
-        p = sub.add_parser(name, help=(mod.__doc__ or "").strip().splitlines()[0] if mod.__doc__ else None,
-                           description=mod.__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+        doc = plain_text(mod.__doc__) if mod.__doc__ else None  # help prints no reStructuredText markup
+        p = sub.add_parser(name, help=doc.strip().splitlines()[0] if doc else None,
+                           description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
         p.add_argument("--json", action="store_true", help="print one JSON document on stdout")
         mod.configure(p)
         modules[name] = mod
