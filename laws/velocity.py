@@ -488,3 +488,15 @@ def law_from_options(text: str | None, negative: str | None, name: str | None, d
                                                          if negative else set())
     law_params = {k: params.pop(k) for k in list(params) if k in names}
     return VelocityFriction.from_strings(name or "user-friction", text, negative, law_params, quantity=quantity)
+
+
+def declared_names(text: str | None, negative: str | None) -> tuple[str, ...]:
+    """The parameter names of a law declared by the strings ``text`` and ``negative`` (every name
+    they use but the sliding velocity ``v``), sorted; () without ``text``."""
+    from landau.laws.parse import referenced_names
+
+    if text is None:
+        return ()
+    names = referenced_names(text, what="--friction") | (referenced_names(negative, what="--friction-neg")
+                                                         if negative else set())
+    return tuple(sorted(names - {V_SLIP.name}))

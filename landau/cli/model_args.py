@@ -136,8 +136,8 @@ def setup_from_args(model: Model, args, command: str) -> Setup:
                        if k not in params and k not in {p.name for p in law.parameters}})
     else:
         if law_given:
-            raise InputError(f"{command} {model.name}: LAW, --mu and --state give a rate-and-state law, which this "
-                             f"model does not take ({_law_words(model)})")
+            raise InputError(f"{command} {model.name}: LAW, --mu and --state (a rate-and-state law) belong to another "
+                             f"model; {_law_words(model)}")
         params = parse_params(args.param, {} if model.law_kind is LawKind.NONE else NOT_PARAMS)
     declared_V = any(p.name == "V" for p in model.parameters(Setup(law, {}, options)))
     if _given(args, "V"):

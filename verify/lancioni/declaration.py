@@ -40,10 +40,10 @@ def _declare(setup: Setup) -> tuple[Parameter, ...]:
     from landau.verify.lancioni.slip import SET1
 
     mech = tuple(Parameter(n, float(SET1[n]), unit, dom, meaning, SOURCE) for n, (dom, unit, meaning) in _MECHANICAL.items())
-    law = friction_law(setup, {})
-    own = tuple(Parameter(p.name, None if p.default is None else float(p.default), p.units or "1",
-                          "positive" if p.positive else "real", p.description, p.source or "the friction law")
-                for p in law.parameters)
+    from landau.laws.velocity import declared_names
+
+    own = tuple(Parameter(n, setup.params.get(n), "1", "real", "a parameter of the friction law", "the user's law")
+                for n in declared_names(setup.option("friction"), setup.option("friction_neg")))
     if setup.option("friction") is None:   # Coulomb: mu is the friction coefficient
         own = (Parameter("mu", 0.4, "1", "nonnegative", "Coulomb friction coefficient", SOURCE),)
     return (*mech, *own,
@@ -58,8 +58,11 @@ def _hopf_parameter(setup: Setup) -> str | None:
         return str(parameter)
     if setup.option("friction") is None:
         return "mu"
-    law = friction_law(setup, {})
-    return law.parameters[0].name if law.parameters else None
+    from landau.laws.velocity import declared_names
+
+    names = declared_names(setup.option("friction"), setup.option("friction_neg"))
+    given = [n for n in setup.params if n in names]   # the law's first parameter, in the order given
+    return given[0] if given else (names[0] if names else None)
 
 
 def impact_oscillator_hopf(setup: Setup):
@@ -69,10 +72,6 @@ def impact_oscillator_hopf(setup: Setup):
 
     params = dict(setup.params)
     parameter = setup.option("parameter")
-    hp = _hopf_parameter(setup)
-    if hp in params:
-        raise InputError(f"impact-oscillator: {hp!r} is the bifurcation parameter (its critical value is computed), "
-                         "it cannot be given or swept")
     params.pop("eN", None)
     user = setup.option("friction") is not None
     law = friction_law(setup, params)

@@ -27,17 +27,19 @@ _MECHANICAL = {"m": ("positive", "kg", "mass of the cart"), "m0e": ("nonnegative
 
 
 def _declare(setup: Setup) -> tuple[Parameter, ...]:
-    from landau.laws.velocity import law_from_options, regularised_coulomb
+    from landau.laws.velocity import declared_names, regularised_coulomb
     from landau.verify.skurativskyi.model import Params
 
     base = Params()
     mech = tuple(Parameter(n, float(getattr(base, n)), unit, dom, meaning, SOURCE)
                  for n, (dom, unit, meaning) in _MECHANICAL.items())
-    law = law_from_options(setup.option("friction"), setup.option("friction_neg"), setup.option("friction_name"),
-                           regularised_coulomb(), {}, quantity="force")
-    own = tuple(Parameter(p.name, None if p.default is None else float(p.default), p.units or "1",
-                          "positive" if p.positive else "real", p.description, p.source or "the friction law")
-                for p in law.parameters)
+    if setup.option("friction") is None:   # the paper's regularised Coulomb law (c, T, eps)
+        own = tuple(Parameter(p.name, None if p.default is None else float(p.default), p.units or "1",
+                              "positive" if p.positive else "real", p.description, p.source or SOURCE)
+                    for p in regularised_coulomb().parameters)
+    else:
+        own = tuple(Parameter(n, setup.params.get(n), "1", "real", "a parameter of the friction law", "the user's law")
+                    for n in declared_names(setup.option("friction"), setup.option("friction_neg")))
     return (*mech, *own)
 
 
