@@ -50,8 +50,9 @@ def __getattr__(name: str):
         value = globals()["__version__"] = _package_version()
         return value
     if name == "plotting":  # ``import landau; landau.plotting.plot_check(...)``
-        import importlib
-        return importlib.import_module("landau.plotting")
+        import landau.plotting
+
+        return landau.plotting
     if name in _LAZY:
         import importlib
         value = getattr(importlib.import_module(_LAZY[name]), name)

@@ -6,15 +6,14 @@ parameter dict (defaults updated by the user's overrides) and returns either a f
 a dict with a ``"value"`` key plus any extra fields worth reporting.  A scene computes
 only what its output needs: ``compute`` is called lazily, only by :func:`run_scene`.
 
-Scene modules register themselves on import; the modules are listed in
-:data:`SCENE_MODULES` so that ``landau scene list`` imports nothing it does not need
-until asked.
+Scene modules register themselves on import; they are declared as entry points of the
+``landau.scenes`` group (landau's own in its ``pyproject.toml``; a plug-in package adds its own
+the same way), loaded on the first use of the registry.
 """
 
 from __future__ import annotations
 
 import fnmatch
-import importlib
 import math
 import time
 from dataclasses import dataclass, field
@@ -22,14 +21,8 @@ from typing import Any, Callable, Mapping, Sequence
 
 from landau.errors import InputError, LandauError
 
-#: Modules that register scenes (imported on first use of the registry).
-SCENE_MODULES: list[str] = [
-    "landau.verify.springblock.scenes",
-    "landau.verify.galvanetto.scenes",
-    "landau.verify.springblock.scenes_transitions",
-    "landau.verify.lancioni.scenes",
-    "landau.verify.skurativskyi.scenes",
-]
+#: the entry-point group of the modules that register scenes
+GROUP = "landau.scenes"
 
 _REGISTRY: dict[str, "Scene"] = {}
 _loaded = False
@@ -158,8 +151,14 @@ def _load() -> None:
     global _loaded
     if _loaded:
         return
-    for mod in SCENE_MODULES:
-        importlib.import_module(mod)
+    from importlib.metadata import entry_points
+
+    eps = list(entry_points(group=GROUP))
+    if not eps:
+        raise InputError("no scenes are installed: the package's entry points are missing (reinstall it: "
+                         "pip install -e . in the source tree)")
+    for ep in eps:
+        ep.load()   # the module registers its scenes
     _loaded = True
 
 

@@ -3,20 +3,25 @@
 from __future__ import annotations
 
 import argparse
-import importlib
 import time
 from pathlib import Path
 
 from landau.errors import InputError
 from landau.paper_figures import using_workers
 
-#: paper name -> package holding its FIGURES table
-PAPERS: dict[str, str] = {
-    "putelat2010": "landau.paper_figures.putelat2010",
-    "galvanetto2004": "landau.paper_figures.galvanetto2004",
-    "lancioni": "landau.paper_figures.lancioni",
-    "skurativskyi2019": "landau.paper_figures.skurativskyi2019",
-}
+#: the entry-point group of the papers' figure tables (paper name -> its FIGURES)
+GROUP = "landau.figures"
+
+
+def papers() -> dict:
+    """Paper name -> its entry point (loaded by :func:`load`)."""
+    from importlib.metadata import entry_points
+
+    return {ep.name: ep for ep in entry_points(group=GROUP)}
+
+
+#: the papers with figures, in the order of the entry points
+PAPERS = tuple(papers())
 
 
 def configure(p: argparse.ArgumentParser) -> None:
@@ -30,10 +35,11 @@ def configure(p: argparse.ArgumentParser) -> None:
 
 
 def load(paper: str):
-    if paper not in PAPERS:
-        raise InputError(f"unknown paper {paper!r} (known: {', '.join(PAPERS)})")
+    eps = papers()
+    if paper not in eps:
+        raise InputError(f"unknown paper {paper!r} (known: {', '.join(eps)})")
     try:
-        return importlib.import_module(PAPERS[paper]).FIGURES
+        return eps[paper].load()
     except ModuleNotFoundError as exc:
         raise InputError(f"figures for {paper!r} are not available: {exc}") from None
 

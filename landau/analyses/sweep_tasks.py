@@ -286,6 +286,10 @@ class SpringBlockHopf(Task):
         V = pts.pop("V") if "V" in pts else np.full(n, float(fixed.pop("V", self.model_object.defaults["V"])))
         fixed.pop("V", None)
         params = {**fixed, **pts}
+        if "g" in params and "sigma" not in params:   # the load follows g, as SpringBlock.resolve has it
+            from landau.systems.system import M_DEFAULT, default_normal_load
+
+            params["sigma"] = default_normal_load(params.get("M", M_DEFAULT), params["g"])
         try:
             r = d.evaluate(V, params, HOPF_NAMES, method=self.method)
         except InputError:
@@ -367,8 +371,9 @@ class PointwiseHopf(Task):
                 continue
             doc = res.as_dict()
             c = str(doc.get("criticality", ""))
+            # the result's numbers, less the point's own parameters (the sweep's coordinates)
             rows.append({k: float(v) for k, v in doc.items()
-                         if isinstance(v, (int, float)) and not isinstance(v, bool)})
+                         if isinstance(v, (int, float)) and not isinstance(v, bool) and k not in chunk.points})
             crit.append(c)
             status.append("degenerate" if c == "degenerate" else "ok")
             message.append("")

@@ -212,31 +212,62 @@ def plot_file(path, out, formats=("png", "pdf", "svg")) -> dict:
         raise InputError(f"--sweep {path!r} is not a netCDF sweep file") from None
     from matplotlib.figure import Figure
 
-    task = ds.attrs.get("task")
-    doc: dict[str, Any]
-    if task == "regime" and "regime" in ds:
-        from landau.analyses.regime_overlay import regime_overlay
-        from landau.verify.springblock.regime_map import plot_regime_map
+    task = str(ds.attrs.get("task", ""))
+    if "status" not in ds or not task:
+        raise InputError(f"--sweep {path!r} is not a landau sweep file (no task or status)")
+    plotter = None
+    if task != "scene" and ds.attrs.get("model"):
+        from landau.models import get
 
-        fig = Figure(figsize=(6.4, 4.8))
-        overlay = regime_overlay(ds)
-        plot_regime_map(ds, fig.subplots(), overlay=overlay)
-        vals, counts = np.unique(ds.regime.values.astype(str), return_counts=True)
-        doc = {"kind": "regime-map", "regimes": {str(v): int(c) for v, c in zip(vals, counts, strict=True)}}
-        if overlay is not None:
-            # the codimension-two velocities drawn, as landau derive --codim2 gives them
-            doc["V_star"] = [float(v) for v in overlay["V_star"]]
-            doc["fold_points"] = int(np.isfinite(overlay["k_fold"]).sum())
-    elif task == "simulate" and ds.attrs.get("model") == "forced-oscillator":
-        from landau.verify.skurativskyi.sweep import plot_diagram
-
-        fig = Figure(figsize=(7.2, 5.6))
-        plot_diagram(ds, fig)
-        doc = {"kind": "bifurcation-diagram"}
-    else:
-        raise InputError(f"--sweep {path!r} holds a {task or 'non-sweep'!r} sweep: landau plot draws a regime map "
-                         "(landau sweep regime) or a bifurcation diagram (landau sweep simulate forced-oscillator)")
+        plotter = get(str(ds.attrs["model"])).plots.get(task)
+    fig = Figure(figsize=(7.2, 5.6))
+    doc: dict[str, Any] = (plotter or plot_any_sweep)(ds, fig)
     fig.tight_layout()
     doc.update({"law": ds.attrs.get("law", ""), "model": ds.attrs.get("model", ""), "points": int(ds.status.size),
                 "out": str(atomic_savefig(fig, out, dpi=120))})
     return doc
+
+
+#: the variables a generic sweep figure draws first, where the sweep has them
+_FIRST = ("k_c", "p_c", "Lambda", "C", "omega_c", "value", "rel_diff")
+
+
+def plot_any_sweep(ds, fig) -> dict:
+    """Any sweep's numbers over its axes: up to three float variables (k_c or p_c and Λ first for a
+    ``hopf`` sweep), each against the first axis (log-scaled where it spans decades), one line per
+    value of a second axis; points without a result are left out.  Returns the command's document."""
+    import numpy as np
+
+    dims = list(ds.status.dims)
+    floats = [v for v in ds.data_vars if v not in ("status", "message") and ds[v].dtype.kind == "f"
+              and ds[v].dims == tuple(dims)]
+    chosen = [v for v in _FIRST if v in floats and not (v == "p_c" and "k_c" in floats)][:3] or floats[:3]
+    if not chosen or not dims:
+        raise InputError("--sweep: the file holds no numbers to draw")
+    x = dims[0]
+    axes = fig.subplots(len(chosen), 1, sharex=True, squeeze=False)[:, 0]
+    xv = np.asarray(ds[x].values, dtype=float)
+    for ax, name in zip(axes, chosen, strict=True):
+        da = ds[name].where(ds.status.isin(["ok", "degenerate"]))
+        rest = [d for d in dims if d != x]
+        lines = [da] if not rest else [da.isel({d: 0 for d in rest[1:]}).isel({rest[0]: i})
+                                       for i in range(ds.sizes[rest[0]])]
+        for i, line in enumerate(lines):
+            label = f"{rest[0]} = {float(ds[rest[0]].values[i]):.4g}" if rest else None
+            ax.plot(xv, np.asarray(line.transpose(x, ...).values, dtype=float).reshape(len(xv), -1)[:, 0],
+                    marker=".", label=label)
+        unit = ds[name].attrs.get("units", "")
+        ax.set_ylabel(f"{name} [{unit}]" if unit and unit != "1" else name)
+        finite = np.asarray(da.values, dtype=float)
+        finite = finite[np.isfinite(finite)]
+        if finite.size and finite.min() > 0 and finite.max() / finite.min() > 100:
+            ax.set_yscale("log")
+        if rest and len(lines) <= 12:
+            ax.legend(fontsize="small")
+    xunit = ds[x].attrs.get("units", "")
+    axes[-1].set_xlabel(f"{x} [{xunit}]" if xunit and xunit != "1" else x)
+    if xv.min() > 0 and xv.max() / xv.min() > 100:
+        axes[-1].set_xscale("log")
+    law = ds.attrs.get("law", "")
+    fig.suptitle(f"{ds.attrs.get('task', '')} {ds.attrs.get('model', '')}" + (f" ({law})" if law else ""))
+    return {"kind": "sweep-lines", "variables": chosen, "x": x}

@@ -190,6 +190,8 @@ class Model:
     source: str = ""
     #: the law of this model used when none is named (a rate-and-state law's name), if any
     default_law: str | None = None
+    #: figures of its sweeps beyond the generic one (``landau plot --sweep``): task -> ``plot(ds, fig) -> dict``
+    plots: Mapping[str, Callable[..., dict]] = field(default_factory=dict)
 
     # --- parameters --------------------------------------------------------------------------
     def parameters(self, setup: Setup | None = None) -> tuple[Parameter, ...]:

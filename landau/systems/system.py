@@ -39,6 +39,12 @@ G_DEFAULT = 9.81
 SYSTEM_UNITS = {"M": "kg", "g": "m/s^2", "sigma": "N", "V": "m/s", "k": "N/m"}
 
 
+def default_normal_load(M, g):
+    """σ = M·g, the normal load where only g is given (M_DEFAULT·g for the quasi-static M = 0); vectorised."""
+    M, g = np.asarray(M, dtype=float), np.asarray(g, dtype=float)
+    return np.where(M > 0, M * g, M_DEFAULT * g)
+
+
 def _as_sympy(x, what: str) -> sp.Expr:
     """A sympy expression from a sympy object or a plain int/float (never from a string)."""
     if isinstance(x, sp.Basic):
@@ -417,7 +423,7 @@ class SpringBlock:
             raise InputError(f"law {self.law.name!r}: parameter(s) {', '.join(missing)} have no default; "
                              "give them with --param NAME=VALUE")
         if "sigma" not in over and "g" in over:
-            p["sigma"] = p["M"] * p["g"] if p["M"] > 0 else M_DEFAULT * p["g"]
+            p["sigma"] = float(default_normal_load(p["M"], p["g"]))
         if p["M"] < 0:
             raise InputError(f"parameter 'M' must be >= 0, got {p['M']!r}")
         if p["sigma"] <= 0:

@@ -49,6 +49,13 @@ def _simulate_task(task, model, law, fixed, options):
     return make_task(task, model, law, fixed, options)
 
 
+def _plot_simulate(ds, fig) -> dict:
+    from landau.verify.skurativskyi.sweep import plot_diagram
+
+    plot_diagram(ds, fig)
+    return {"kind": "bifurcation-diagram"}
+
+
 FORCED_OSCILLATOR = Model(
     name="forced-oscillator",
     description="forced cart with Hertz contact (Skurativskyi et al. 2019), regularised Coulomb friction or --friction",
@@ -59,6 +66,7 @@ FORCED_OSCILLATOR = Model(
              Option("friction_neg", "the friction for v < 0 (default the odd extension)"),
              Option("friction_name", "a name for the friction law")),
     defaults={"t_end": 10.0},
+    plots={"simulate": _plot_simulate},
     source=SOURCE,
 )
 

@@ -20,6 +20,7 @@ Burridge, R. & Knopoff, L. (1967), Model and theoretical seismicity, Bull. Seism
 
 from __future__ import annotations
 
+from landau.derivation.coefficients import CONVENTION
 from landau.errors import InputError
 from landau.models import LawKind, Model, Option, Parameter, Setup
 
@@ -111,6 +112,30 @@ def _regime_task(task, model, law, fixed, options):
     return make_task(task, model, law, fixed, options)
 
 
+def plot_regime_sweep(ds, fig) -> dict:
+    """A ``regime`` sweep over (V, k) as the regime map with the amplitude equation's boundaries on top
+    (k_c(V), the fold of cycles, V*: :func:`landau.analyses.regime_overlay.regime_overlay`); over other
+    axes the generic figure of its numbers."""
+    import numpy as np
+
+    from landau.analyses.regime_overlay import regime_overlay
+    from landau.verify.springblock.regime_map import plot_regime_map
+
+    if set(ds.status.dims) != {"V", "k"}:
+        from landau.cli.sweep import plot_any_sweep
+
+        return plot_any_sweep(ds, fig)
+    overlay = regime_overlay(ds)
+    plot_regime_map(ds, fig.subplots(), overlay=overlay)
+    vals, counts = np.unique(ds.regime.values.astype(str), return_counts=True)
+    doc = {"kind": "regime-map", "regimes": {str(v): int(c) for v, c in zip(vals, counts, strict=True)}}
+    if overlay is not None:
+        # the codimension-two velocities drawn, as landau derive --codim2 gives them
+        doc["V_star"] = [float(v) for v in overlay["V_star"]]
+        doc["fold_points"] = int(np.isfinite(overlay["k_fold"]).sum())
+    return doc
+
+
 SPRING_BLOCK = Model(
     name="spring-block",
     description="spring-block with a rate-and-state law (Putelat et al. 2010); parameter k at --V",
@@ -121,6 +146,8 @@ SPRING_BLOCK = Model(
     tasks={"hopf": _hopf_task, "check": _check_task, "regime": _regime_task},
     defaults={"V": V_DEFAULT, "t_end": 20.0},
     convention="putelat2010",
+    convention_description=CONVENTION,
+    plots={"regime": plot_regime_sweep},
     source="Putelat, Dawes & Willis (2010), eq. (4); Rice (1993); Linker & Dieterich (1992)",
     default_law="dieterich",
 )
