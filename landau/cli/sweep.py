@@ -193,8 +193,6 @@ def plot_file(path, out, formats=("png", "pdf", "svg")) -> dict:
     JSON document of the command."""
     from pathlib import Path
 
-    import numpy as np
-
     from landau.analyses.sweep_engine import _engine, xarray
     from landau.support.io import atomic_savefig
 

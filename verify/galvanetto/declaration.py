@@ -1,4 +1,4 @@
-"""The stick–slip models of Galvanetto (2004) declared as models: ``galvanetto-one-block`` and ``galvanetto-two-blocks``.
+"""The stick–slip models of Galvanetto (2004) as models: ``galvanetto-one-block`` and ``galvanetto-two-blocks``.
 
 Dimensionless blocks on a belt moving at V (Galvanetto 2004, eq. 1), kinetic friction eq. (7)
 (parameters γ, δ) or the user's law of the relative velocity r = Ẋ − V (``kinetic`` option, the

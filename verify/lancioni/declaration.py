@@ -39,7 +39,8 @@ def friction_law(setup: Setup, params: dict):
 def _declare(setup: Setup) -> tuple[Parameter, ...]:
     from landau.verify.lancioni.slip import SET1
 
-    mech = tuple(Parameter(n, float(SET1[n]), unit, dom, meaning, SOURCE) for n, (dom, unit, meaning) in _MECHANICAL.items())
+    mech = tuple(Parameter(n, float(SET1[n]), unit, dom, meaning, SOURCE)
+                 for n, (dom, unit, meaning) in _MECHANICAL.items())
     from landau.laws.velocity import declared_names
 
     own = tuple(Parameter(n, setup.params.get(n), "1", "real", "a parameter of the friction law", "the user's law")

@@ -213,7 +213,8 @@ def chain_hopf_setup(setup: Setup):
 
 SPRING_BLOCK_CHAIN = Model(
     name="spring-block-chain",
-    description="N spring-blocks coupled by k_coupling (Burridge-Knopoff with a rate-and-state law); parameter k at --V",
+    description="N spring-blocks coupled by k_coupling (Burridge-Knopoff with a rate-and-state law); "
+                "parameter k at --V",
     law_kind=LawKind.RATE_AND_STATE,
     declare=_chain_parameters,
     hopf_parameter="k",
