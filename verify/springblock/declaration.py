@@ -122,13 +122,13 @@ def plot_regime_sweep(ds, fig) -> dict:
     from landau.verify.springblock.regime_map import plot_regime_map
 
     if set(ds.status.dims) != {"V", "k"}:
-        from landau.cli.sweep import plot_any_sweep
+        from landau.report.sweep_figure import plot_any_sweep
 
         return plot_any_sweep(ds, fig)
     overlay = regime_overlay(ds)
     plot_regime_map(ds, fig.subplots(), overlay=overlay)
     vals, counts = np.unique(ds.regime.values.astype(str), return_counts=True)
-    doc = {"kind": "regime-map", "regimes": {str(v): int(c) for v, c in zip(vals, counts, strict=True)}}
+    doc: dict = {"kind": "regime-map", "regimes": {str(v): int(c) for v, c in zip(vals, counts, strict=True)}}
     if overlay is not None:
         # the codimension-two velocities drawn, as landau derive --codim2 gives them
         doc["V_star"] = [float(v) for v in overlay["V_star"]]
