@@ -238,15 +238,15 @@ class SpringBlockHopf(Task):
         """One evaluation route for every chunk, so that no number depends on how the grid was cut:
         the terms named by the grid built in; the exactly cancelled form (:mod:`landau.derivation.rational`)
         when only V is swept and the law's derivatives are rational in V, else the screened float route
-        ("general").  With α_LD (whose Hopf line is not affine in the derivation's parameters) the
+        ("general").  With a term that puts k in the state rates (α_LD: the Hopf line is not affine in k) the
         model's own Hopf analysis point by point (:class:`PointwiseHopf`)."""
         from dataclasses import replace
 
-        from landau.systems.springblock_terms import check_terms
+        from landau.systems.springblock_terms import check_terms, stiffness_in_rates
 
         named = {*grid.names, *dict(self.fixed)}
         terms = check_terms(tuple(t for t in _term_names() if t in named))
-        if "alpha_ld" in terms:
+        if stiffness_in_rates(terms):
             return PointwiseHopf("hopf", self.model, self.law, self.fixed, self.options, chunk_size=1)
         task = replace(self, terms=terms)
         if self.method != "auto":

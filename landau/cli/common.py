@@ -10,7 +10,11 @@ from landau.errors import InputError
 from landau.laws import BUILTIN, FrictionLaw, get_law
 from landau.systems.system import SpringBlock
 
-SYSTEM_PARAMS = ("M", "g", "sigma", "eta", "gamma_ld", "alpha_ld")
+
+def _system_params() -> tuple[str, ...]:
+    from landau.systems.springblock_terms import TERMS
+
+    return ("M", "g", "sigma", *TERMS)
 
 
 def add_law_arguments(p: argparse.ArgumentParser) -> None:
@@ -117,11 +121,12 @@ def resolve_law(args) -> tuple[FrictionLaw, dict[str, float]]:
         for item in args.state:
             name, rate = split_assignment(item, "--state", "RATE", states)
             states[name] = rate
-        law_params = {k: v for k, v in params.items() if k not in SYSTEM_PARAMS}
+        system_params = _system_params()
+        law_params = {k: v for k, v in params.items() if k not in system_params}
         if args.law is not None and (not args.law.strip() or len(args.law) > 100):
             raise InputError("the inline law's name must be 1 to 100 characters")
         law = FrictionLaw.from_strings(args.law or "inline", args.mu, states, law_params)
-        return law, {k: v for k, v in params.items() if k in SYSTEM_PARAMS}
+        return law, {k: v for k, v in params.items() if k in system_params}
     if args.law is None:
         raise InputError(f"name a law ({', '.join(BUILTIN)}) or give --mu and --state")
     return get_law(args.law), params

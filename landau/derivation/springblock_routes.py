@@ -53,11 +53,14 @@ def hopf_point(block, V: float, params: Mapping[str, float]):
     from landau.derivation.general import hopf_normal_form
     from landau.derivation.hopf import spring_block_result
     from landau.derivation.linear import HopfLine
+    from landau.systems.springblock_terms import TERMS
     from landau.systems.system import SpringBlock
 
-    plain = SpringBlock(block.law, tuple(t for t in block.terms if t != "alpha_ld"))
+    # the start: the Hopf line without the terms that put k in the state rates
+    rate_terms = {t for t in block.terms if TERMS[t].stiffness_in_rates}
+    plain = SpringBlock(block.law, tuple(t for t in block.terms if t not in rate_terms))
     guess = float(np.ravel(HopfLine(plain).evaluate(np.array([float(V)]),
-                                                    {k: v for k, v in params.items() if k != "alpha_ld"})[0])[0])
+                                                    {k: v for k, v in params.items() if k not in rate_terms})[0])[0])
     if not (np.isfinite(guess) and guess > 0):
         guess = None
     block.argvals(float(V), params)                     # the law's and the terms' checks at steady sliding
@@ -65,7 +68,7 @@ def hopf_point(block, V: float, params: Mapping[str, float]):
     values["V"] = float(V)
     if guess is None:
         raise NoHopfError(f"law {block.law.name!r} with {', '.join(block.terms)}: no Hopf point located at "
-                          f"V = {V:g} m/s (none without alpha_ld to start from)")
+                          f"V = {V:g} m/s (none without {', '.join(sorted(rate_terms))} to start from)")
     res = hopf_normal_form(block.system, values, (guess / BRACKET_FACTOR, guess * BRACKET_FACTOR))
     a = res.dlambda_dp
     out = spring_block_result(block.law.name, float(V), res.p_c, res.omega_c, -a.real, a.imag, res.Lambda,

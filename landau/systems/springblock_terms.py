@@ -58,7 +58,8 @@ system, J. Mech. Phys. Solids 58(1), 27–53.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Callable, Mapping
 
 import numpy as np
 import sympy as sp
@@ -74,24 +75,104 @@ alpha_ld = sp.Symbol("alpha_ld", real=True)
 
 
 @dataclass(frozen=True)
+class Balance:
+    """What a term's contribution is written in: the force balance of the block at one instant.
+
+    M v̇ = F − σ μ(v, φ) + Σ forces,   σ = σ₀ + Σ loads(F),   dφᵢ/dt = Gᵢ(v, φ) + Σ rate contributions,
+
+    with F = k(x_lp − x) the spring force and Ḟ = k(V_lp − v) its rate.  Each consumer (the derivation's
+    X, u form, the compiled scaled field, the quasi-dynamic cell, the load histories) fills these with
+    its own expressions and the terms' contributions are substituted into them.
+
+    Attributes
+    ----------
+    v : sympy.Expr
+        The slip rate.
+    phis : tuple of sympy.Expr
+        The law's states.
+    F, F_dot : sympy.Expr
+        The spring force and its time derivative.
+    V_lp : sympy.Expr
+        The load-point velocity.
+    k, sigma0 : sympy.Expr
+        The stiffness and σ₀, the normal load at zero spring force.
+    sigma, sigma_dot : sympy.Expr
+        The normal load and its time derivative (from the terms' loads).
+    mu : sympy.Expr
+        μ(v, φ) at this instant.
+    dmu_dphi : tuple of sympy.Expr
+        ∂μ/∂φᵢ at this instant.
+    symbol : mapping of str to sympy.Symbol
+        Each term's parameter symbol as the consumer names it.
+    """
+
+    v: sp.Expr
+    phis: tuple
+    F: sp.Expr
+    F_dot: sp.Expr
+    V_lp: sp.Expr
+    k: sp.Expr
+    sigma0: sp.Expr
+    sigma: sp.Expr = sp.Integer(0)
+    sigma_dot: sp.Expr = sp.Integer(0)
+    mu: sp.Expr = sp.Integer(0)
+    dmu_dphi: tuple = ()
+    symbol: Mapping[str, sp.Symbol] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
 class Term:
-    """One optional spring–block term: its parameter symbol, unit, meaning and source."""
+    """One optional spring–block term: its parameter, and its contributions to the force balance.
+
+    Each contribution is a function of a :class:`Balance` (None: the term makes none): ``load`` is
+    added to the normal load σ and may depend on the spring force ``F`` only; ``force`` is added to
+    the force on the block; ``rates`` to the state rates dφᵢ/dt (a tuple, the first states).  This
+    is the one place a term is written: the derivation, its LaTeX, the compiled field, the
+    quasi-dynamic cell and the load histories all build their equations from it
+    (:func:`force_balance`, :func:`mechanical_rhs`).
+    """
 
     symbol: sp.Symbol
     unit: str
     meaning: str
     source: str
     nonnegative: bool = False
+    load: Callable[[Balance], sp.Expr] | None = None
+    force: Callable[[Balance], sp.Expr] | None = None
+    rates: Callable[[Balance], tuple] | None = None
+    #: the stiffness enters the state rates through this term (the Hopf line is then not affine in k
+    #: in the derivation's parameters: its Hopf point comes from the general engine)
+    stiffness_in_rates: bool = False
 
 
 #: the optional terms, in their argument order
 TERMS: dict[str, Term] = {
-    "eta": Term(eta, "N s/m", "radiation damping, force eta*v (quasi-dynamic)", "Rice (1993)", True),
+    "eta": Term(eta, "N s/m", "radiation damping, force eta*v (quasi-dynamic)", "Rice (1993)", True,
+                force=lambda b: -b.symbol["eta"] * b.v),
     "gamma_ld": Term(gamma_ld, "1", "normal load sigma = sigma0 + gamma_ld * spring force",
-                     "Linker & Dieterich (1992)"),
+                     "Linker & Dieterich (1992)", load=lambda b: b.symbol["gamma_ld"] * b.F),
+    # Linker & Dieterich (1992), eq. 6, for a general law: the state part of mu changes by -alpha dsigma/sigma
     "alpha_ld": Term(alpha_ld, "1", "state response -alpha_ld dsigma/sigma to normal-stress changes",
-                     "Linker & Dieterich (1992)"),
+                     "Linker & Dieterich (1992)",
+                     rates=lambda b: (-b.symbol["alpha_ld"] * b.sigma_dot / (b.sigma * b.dmu_dphi[0]),),
+                     stiffness_in_rates=True),
 }
+
+
+def register_term(name: str, term: Term) -> Term:
+    """Add an optional term (a plug-in, a test); its parameter ``name`` is then a parameter of every
+    spring–block that gives it (:meth:`~landau.systems.system.SpringBlock.for_params`)."""
+    if name in TERMS:
+        raise InputError(f"a spring-block term named {name!r} exists already")
+    if term.symbol.name != name:
+        raise InputError(f"term {name!r}: its parameter symbol is named {term.symbol.name!r}")
+    TERMS[name] = term
+    return term
+
+
+def unregister_term(name: str) -> None:
+    """Remove a term added by :func:`register_term`."""
+    TERMS.pop(name, None)
 
 
 def check_terms(terms) -> tuple[str, ...]:
@@ -111,30 +192,75 @@ def symbols(terms) -> tuple[sp.Symbol, ...]:
     return tuple(TERMS[t].symbol for t in check_terms(terms))
 
 
-def normal_load_ss(sigma0, mu0, V, terms):
-    """σ_ss = (σ₀ + γ_LD ηV)/(1 − γ_LD μ_ss): the normal load at steady sliding (σ₀ without γ_LD)."""
-    if "gamma_ld" not in terms:
+def _symbols(terms, symbol: Mapping[str, sp.Symbol] | None) -> dict[str, sp.Symbol]:
+    return {t: (symbol or {}).get(t, TERMS[t].symbol) for t in terms}
+
+
+def _loads(terms, b: Balance) -> sp.Expr:
+    """Σ loads(F): the terms' part of the normal load."""
+    return sp.Add(*(TERMS[t].load(b) for t in terms if TERMS[t].load is not None))
+
+
+def _forces(terms, b: Balance) -> sp.Expr:
+    """Σ forces: the terms' forces on the block."""
+    return sp.Add(*(TERMS[t].force(b) for t in terms if TERMS[t].force is not None))
+
+
+def steady_spring_force(terms, sigma0, mu0, V, symbol=None) -> sp.Expr:
+    """F_ss, the spring force at steady sliding: the root of F − σ(F) μ_ss + Σ forces(V) = 0 (the
+    loads are affine in F, so the root is unique where it exists)."""
+    Fs = sp.Dummy("F")
+    b = Balance(v=V, phis=(), F=Fs, F_dot=sp.Integer(0), V_lp=V, k=sp.Integer(0), sigma0=sigma0,
+                symbol=_symbols(terms, symbol))
+    eq = Fs - (sigma0 + _loads(terms, b)) * mu0 + _forces(terms, b)
+    roots = sp.solve(eq, Fs)
+    if len(roots) != 1:
+        raise InputError(f"the steady sliding of the spring-block with terms {', '.join(terms)} has no unique spring "
+                         "force (a term's load must be affine in the spring force)")
+    return roots[0]
+
+
+def normal_load_ss(sigma0, mu0, V, terms, symbol=None):
+    """σ_ss = σ₀ + Σ loads(F_ss), the normal load at steady sliding (σ₀ where no term loads the
+    block); with ``gamma_ld`` (and ``eta``): (σ₀ + γ_LD ηV)/(1 − γ_LD μ_ss)."""
+    terms = check_terms(terms)
+    if not loads_block(terms):
         return sigma0
-    damping = eta * V if "eta" in terms else 0
-    return (sigma0 + gamma_ld * damping) / (1 - gamma_ld * mu0)
+    sym = _symbols(terms, symbol)
+    m = sp.Dummy("mu_ss")   # solved with μ_ss a symbol, then substituted: its expression is kept whole
+    F_ss = steady_spring_force(terms, sigma0, m, V, sym)
+    b = Balance(v=V, phis=(), F=F_ss, F_dot=sp.Integer(0), V_lp=V, k=sp.Integer(0), sigma0=sigma0, symbol=sym)
+    num, den = sp.fraction(sp.cancel(sigma0 + _loads(terms, b)))
+    if den.as_coeff_add()[0] < 0:   # written as (…)/(1 − γ μ_ss)
+        num, den = -num, -den
+    return (num / den).xreplace({m: mu0})
 
 
-def mechanical_rhs(law, terms, X, u, at_slip, eq_phi, k, sigma0, V):
+def mechanical_rhs(law, terms, X, u, at_slip, eq_phi, k, sigma0, V, *, mu0=None, sigma_ss=None, symbol=None):
     """(u-row, state rates) of the spring–block with ``terms``, in X = x − x_ss(t), u = ẋ − V.
+
+    The force balance of :class:`Balance` with F = F_ss − kX, Ḟ = −k u, v = V + u, written so that
+    its steady values cancel term by term: M u̇ = −kX − σ_ss(μ − μ_ss) − Δσ μ + Σ(forces − forces_ss),
+    with σ = σ_ss + Δσ, Δσ = Σ(loads(F) − loads(F_ss)).
 
     Parameters
     ----------
     law : FrictionLaw
     terms : tuple of str
         Checked terms (:func:`check_terms`).
-    X, u : sympy.Symbol
-        Slip from steady sliding and slip-rate excess.
+    X, u : sympy.Expr
+        Slip from steady sliding and slip-rate excess (symbols, or a consumer's scaled expressions).
     at_slip : dict
-        {v: V + u}.
+        The substitution of the law's symbols at this instant ({v: V + u}, and a consumer's own:
+        states, parameters), applied with ``xreplace``.
     eq_phi : tuple of sympy.Expr
         The steady states φᵢ,ss (closed form or unknown symbols).
-    k, sigma0, V : sympy.Symbol
+    k, sigma0, V : sympy.Expr
         Stiffness, normal load σ₀ and driving velocity.
+    mu0, sigma_ss : sympy.Expr, optional
+        μ_ss and σ_ss where the consumer has them as parameters (default: from the law and the terms).
+    symbol : mapping, optional
+        The terms' parameter symbols as the consumer names them (default their own).
 
     Returns
     -------
@@ -143,23 +269,64 @@ def mechanical_rhs(law, terms, X, u, at_slip, eq_phi, k, sigma0, V):
     """
     from landau.laws.law import v as v_slip
 
+    sym = _symbols(terms, symbol)
     phis = law.states
     mu = law.mu
-    mu_now = mu.subs(at_slip)
-    mu_0 = mu.subs({v_slip: V, **dict(zip(phis, eq_phi, strict=True))})
-    sig_ss = normal_load_ss(sigma0, mu_0, V, terms)
-    rates = [r.subs(at_slip) for r in law.rates]
-    if "gamma_ld" in terms:
-        sig = sig_ss - gamma_ld * k * X
-        force = -k * X - (sig * mu_now - sig_ss * mu_0)
-        if "alpha_ld" in terms:
-            sig_dot = -gamma_ld * k * u
-            rates[0] = rates[0] - alpha_ld * sig_dot / (sig * sp.diff(mu, phis[0]).subs(at_slip))
-    else:
-        force = -k * X - sig_ss * (mu_now - mu_0)
-    if "eta" in terms:
-        force = force - eta * u
+    mu_now = mu.xreplace(at_slip)
+    mu_0 = mu0 if mu0 is not None else mu.subs({v_slip: V, **dict(zip(phis, eq_phi, strict=True))}).xreplace(at_slip)
+    sig_ss = sigma_ss if sigma_ss is not None else normal_load_ss(sigma0, mu_0, V, terms, sym)
+    rates = [r.xreplace(at_slip) for r in law.rates]
+    # the terms are evaluated in plain symbols for X and u (their differences from steady sliding
+    # expanded there, then X and u put back whole: a consumer's u = V(e^w − 1) is never expanded
+    # into a difference of large numbers)
+    Fs, Fv, Xd, ud = sp.Dummy("F_ss"), sp.Dummy("F"), sp.Dummy("X"), sp.Dummy("u")
+    back = {Xd: X, ud: u}
+
+    def balance(F, v, sigma=sp.Integer(0), sigma_dot=sp.Integer(0), dmu=()):
+        return Balance(v=v, phis=tuple(p.xreplace(at_slip) for p in phis), F=F, F_dot=-k * ud, V_lp=V, k=k,
+                       sigma0=sigma0, sigma=sigma, sigma_dot=sigma_dot, mu=mu_now, dmu_dphi=dmu, symbol=sym)
+
+    # σ = σ_ss + Δσ; σμ − σ_ss μ_ss = σ_ss(μ − μ_ss) + Δσ μ
+    dsig = sp.expand(_loads(terms, balance(Fs - k * Xd, V + ud)) - _loads(terms, balance(Fs, V))).xreplace(back)
+    force = -k * X - sig_ss * (mu_now - mu_0)
+    if dsig != 0:
+        force = force - dsig * mu_now
+    extra = sp.expand(_forces(terms, balance(Fs - k * Xd, V + ud)) - _forces(terms, balance(Fs, V))).xreplace(back)
+    if extra != 0:
+        force = force + extra
+    sig = sig_ss + dsig
+    sig_dot = (sp.diff(_loads(terms, balance(Fv, V + ud)), Fv) * (-k * ud)).xreplace(back)
+    dmu = tuple(sp.diff(mu, ph).xreplace(at_slip) for ph in phis)
+    b = balance(Fs - k * X, V + u, sig, sig_dot, dmu)
+    for t in terms:
+        if TERMS[t].rates is not None:
+            for i, r in enumerate(TERMS[t].rates(b)):
+                if r != 0:
+                    rates[i] = rates[i] + r
+    if force.has(Fs) or any(r.has(Fs) for r in rates):
+        F_ss = steady_spring_force(terms, sigma0, mu_0, V, sym)
+        force, rates = force.xreplace({Fs: F_ss}), [r.xreplace({Fs: F_ss}) for r in rates]
     return force, tuple(rates)
+
+
+def loads_block(terms) -> bool:
+    """True where one of ``terms`` changes the normal load (σ then follows the spring force)."""
+    return any(TERMS[t].load is not None for t in terms)
+
+
+def stiffness_in_rates(terms) -> bool:
+    """True where one of ``terms`` makes the stiffness enter the state rates (α_LD): the Hopf point
+    then comes from the general engine, not the Hopf line affine in k."""
+    return any(TERMS[t].stiffness_in_rates for t in terms)
+
+
+def load_slope(terms, params) -> float:
+    """dσ/dF, the normal load's change per unit spring force (γ_LD with ``gamma_ld``, else 0)."""
+    Fv = sp.Dummy("F")
+    b = Balance(v=sp.Integer(0), phis=(), F=Fv, F_dot=sp.Integer(0), V_lp=sp.Integer(0), k=sp.Integer(0),
+                sigma0=sp.Integer(0), symbol=_symbols(terms, None))
+    slope = sp.diff(_loads(check_terms(terms), b), Fv)
+    return float(slope.subs({TERMS[t].symbol: params.get(t, 0.0) for t in terms})) if slope != 0 else 0.0
 
 
 def check_steady_sliding(law, mu_ss, params, V=None) -> None:
@@ -189,10 +356,12 @@ def check_steady_sliding(law, mu_ss, params, V=None) -> None:
 
 
 def check_values(params) -> None:
-    """η ≥ 0 and finite term values."""
-    if params.get("eta", 0.0) < 0:
-        raise InputError(f"parameter 'eta' (radiation damping) must be >= 0, got {params['eta']!r}")
+    """Each nonnegative term's value ≥ 0 (η, radiation damping)."""
+    for name, t in TERMS.items():
+        if t.nonnegative and params.get(name, 0.0) < 0:
+            raise InputError(f"parameter {name!r} ({t.meaning}) must be >= 0, got {params[name]!r}")
 
 
-__all__ = ["TERMS", "Term", "alpha_ld", "check_steady_sliding", "check_terms", "eta", "gamma_ld",
-           "mechanical_rhs", "normal_load_ss", "symbols"]
+__all__ = ["TERMS", "Balance", "Term", "alpha_ld", "check_steady_sliding", "check_terms", "eta", "gamma_ld",
+           "load_slope", "loads_block", "mechanical_rhs", "normal_load_ss", "register_term", "steady_spring_force",
+           "stiffness_in_rates", "symbols", "unregister_term"]

@@ -505,7 +505,7 @@ class SpringBlock:
         lp = {p.name: np.broadcast_to(np.asarray(params[p.name], dtype=float), shape) for p in self.law.parameters}
         phis = self.law.steady_state_values(Vb, lp)
         self.law.check_real(Vb, phis, lp)
-        if "gamma_ld" in self.terms:
+        if _terms.loads_block(self.terms):
             with np.errstate(all="ignore"):
                 mu_ss = self._mu_numeric(Vb, *phis, *(lp[p.name] for p in self.law.parameters))
             _terms.check_steady_sliding(self.law, mu_ss, params, Vb)

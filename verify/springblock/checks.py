@@ -28,6 +28,7 @@ from landau.derivation.hopf import Criticality, HopfResult, spring_block_c1, spr
 from landau.derivation.multiscale import Derivation, derive
 from landau.errors import InputError, NoHopfError
 from landau.laws.law import FrictionLaw
+from landau.systems.springblock_terms import stiffness_in_rates
 from landau.systems.system import SpringBlock
 from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.orbits import PeriodicOrbit, ShootingError, section_point, shoot
@@ -74,7 +75,7 @@ def predict(law: FrictionLaw, V: float, params: Mapping[str, float] | None = Non
 
     V = one_velocity(V, "V", "a loop over velocities")
     block = SpringBlock.for_params(law, params)   # with the optional terms given (eta, gamma_ld, alpha_ld)
-    if "alpha_ld" in block.terms:
+    if stiffness_in_rates(block.terms):
         from landau.derivation.springblock_routes import hopf_point
 
         return hopf_point(block, float(V), block.resolve(params))

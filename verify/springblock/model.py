@@ -40,6 +40,7 @@ from landau.errors import InputError
 from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
 from landau.support.lambdify import lambdify_positional
+from landau.systems.springblock_terms import mechanical_rhs, normal_load_ss
 from landau.systems.system import SpringBlock
 from landau.verify.hybrid.callbacks import call_pointer, pointer
 from landau.verify.hybrid.radau import SIG, SIG_JAC
@@ -112,27 +113,20 @@ def compile_law(law: FrictionLaw, terms: tuple[str, ...] = ()) -> CompiledLaw:
     internal = {*ys, *lp, Msym, sig, ksym, Vsym, ell, mu0, *phi0, *tsyms}
 
     def tidy(e):
-        out = sp.expand_log(e.xreplace(sub), force=True)
+        out = sp.expand_log(e.xreplace(sub), force=True)   # (the law's symbols are replaced already: a no-op)
         stray = out.free_symbols - internal
         if stray:   # FrictionLaw declares every symbol; a stray one would be a wrong field
             raise InputError(f"law {law.name!r}: undeclared symbol(s) {sorted(map(str, stray))} in the field")
         return out
 
-    mu = tidy(law.mu)
+    # the force balance and the state rates of every term, from their one declaration
+    # (springblock_terms.mechanical_rhs), in X = ℓξ, u = V(e^w − 1); σ here is σ_ss
     tv = dict(zip(terms, tsyms, strict=True))
-    force = -ksym * ell * xi - sig * (mu - mu0)
-    if "gamma_ld" in tv:   # σ = σ_ss − γ k X (springblock_terms.mechanical_rhs, in scaled variables)
-        force += tv["gamma_ld"] * ksym * ell * xi * mu
-    if "eta" in tv:
-        force -= tv["eta"] * Vsym * (sp.exp(w) - 1)
-    f = [sp.exp(w) - 1, (ell / Vsym) * sp.exp(-w) * force / (Msym * Vsym)]
-    for i, (r, ph) in enumerate(zip(law.rates, phis, strict=True)):
-        rate = tidy(r)
-        if i == 0 and "alpha_ld" in tv and "gamma_ld" in tv:
-            sig_now = sig - tv["gamma_ld"] * ksym * ell * xi
-            sig_dot = -tv["gamma_ld"] * ksym * Vsym * (sp.exp(w) - 1)
-            rate = rate - tv["alpha_ld"] * sig_dot / (sig_now * tidy(sp.diff(law.mu, law.states[0])))
-        f.append((ell / Vsym) * sp.expand(rate / ph))
+    force, rates = mechanical_rhs(law, terms, ell * xi, Vsym * (sp.exp(w) - 1), sub, tuple(phi0), ksym, sig, Vsym,
+                                  mu0=mu0, sigma_ss=sig, symbol=tv)
+    f = [sp.exp(w) - 1, (ell / Vsym) * sp.exp(-w) * tidy(force) / (Msym * Vsym)]
+    for rate, ph in zip(rates, phis, strict=True):
+        f.append((ell / Vsym) * sp.expand(tidy(rate) / ph))
     psyms = [*lp, Msym, sig, ksym, Vsym, ell, mu0, *phi0, *tsyms]
     # the logarithms of parameters that expand_log produced, and every other parameter-only
     # subexpression, become entries of the parameter vector computed once per model
@@ -269,12 +263,14 @@ class SpringBlockModel:
         vals += [self.params[t] for t in self.terms]
         return self.compiled.parameters(vals)
 
-    @property
+    @cached_property
     def sigma_ss(self) -> float:
         """The normal load at steady sliding: σ, or (σ₀ + γ_LD ηV)/(1 − γ_LD μ₀) with ``gamma_ld``
-        (:func:`landau.systems.springblock_terms.normal_load_ss`)."""
-        g = self.params.get("gamma_ld", 0.0) if "gamma_ld" in self.terms else 0.0
-        return (self.params["sigma"] + g * self.params.get("eta", 0.0) * self.V) / (1.0 - g * self.mu0)
+        (:func:`landau.systems.springblock_terms.normal_load_ss`, evaluated)."""
+        from landau.systems.springblock_terms import TERMS
+
+        expr = normal_load_ss(sp.Float(self.params["sigma"]), sp.Float(self.mu0), sp.Float(self.V), self.terms)
+        return float(expr.xreplace({TERMS[t].symbol: sp.Float(self.params[t]) for t in self.terms}))
 
     @property
     def time_unit(self) -> float:
