@@ -33,7 +33,7 @@ import numpy as np
 
 from landau.analyses.sweep_engine import Chunk, ChunkResult
 from landau.analyses.sweep_tasks import ModelTask
-from landau.errors import InputError, IntegratorError
+from landau.errors import InputError, IntegratorError, NoHopfError
 from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.simulate import W_INDEX, integrate
 
@@ -45,24 +45,40 @@ NEAR, FAR = 1e-3, 100.0
 CHUNK_EVENTS, MAX_EVENTS = 20, 400
 REGIMES = ("steady", "small-cycle", "stick-slip", "bistable", "undecided")
 UNITS = {"amplitude_near": "m", "amplitude_far": "m", "period_near": "s", "period_far": "s",
-         "v_min_near": "1", "v_min_far": "1"}
+         "v_min_near": "1", "v_min_far": "1", "k": "N/m", "k_c": "N/m"}
+
+
+#: without k on the grid, each point is simulated at k = (1 − eps2) k_c of its own parameters (the
+#: unstable side of the Hopf point): a small cycle where the bifurcation is supercritical, a large
+#: stick–slip cycle where it is subcritical; this is the default eps2
+EPS2_DEFAULT = 0.1
 
 
 def make_task(task: str, model: str, law, fixed: tuple, options: tuple) -> ModelTask:
-    """The ``regime`` task of the spring–block (called by :func:`landau.analyses.sweep_tasks.make_task`)."""
+    """The ``regime`` task of the spring–block (built by the model's task factory).
+
+    Without ``k`` on the grid or among the fixed values, each point is run at k = (1 − eps2) k_c(point)
+    (option ``eps2``, default :data:`EPS2_DEFAULT`), and the point also records the amplitude
+    equation's prediction there (``k_c``, ``Lambda``, ``criticality``): a map over (V, η) or any other
+    parameters whose simulated regimes are compared with the predicted super/subcritical boundary."""
     opts = dict(options)
-    unknown = sorted(set(opts) - {"chunk_size", "rtol"})
+    unknown = sorted(set(opts) - {"chunk_size", "rtol", "eps2"})
     if unknown:
-        raise InputError(f"regime spring-block: option(s) {', '.join(unknown)} do not apply (known: chunk_size, rtol)")
+        raise InputError(f"regime spring-block: option(s) {', '.join(unknown)} do not apply (known: chunk_size, "
+                         "rtol, eps2)")
+    eps2 = float(opts.get("eps2", EPS2_DEFAULT))
+    if not 0 < eps2 < 1:
+        raise InputError(f"regime spring-block: eps2 = (k_c - k)/k_c must lie in (0, 1), got {eps2!r}")
     return ModelTask(task, model, law, fixed, options, chunk_size=int(opts.get("chunk_size", 1)),
                      chunk_fn=regime_chunk, grid_fn=check_grid, prepare_fn=prepare, extra_units=tuple(UNITS.items()))
 
 
 def check_grid(task: ModelTask, grid) -> None:
     fixed = dict(task.fixed)
-    for name in ("V", "k"):
-        if name not in grid.names and name not in fixed:
-            raise InputError(f"regime spring-block: give {name} as --grid {name}=... or --param {name}=...")
+    if "V" not in grid.names and "V" not in fixed:
+        raise InputError("regime spring-block: give V as --grid V=... or --param V=...")
+    if "eps2" in dict(task.options) and ("k" in grid.names or "k" in fixed):
+        raise InputError("regime spring-block: eps2 sets k = (1 - eps2) k_c where k is not given; give one of them")
     M = fixed.get("M", 1.0)
     if "M" in grid.names:
         M = min(grid.axes[grid.names.index("M")].values)
@@ -202,24 +218,49 @@ def regime_chunk(task: ModelTask, chunk: Chunk) -> ChunkResult:
     from landau.analyses.sweep_engine import _first_line
 
     law = task.spec.build()
-    rtol = float(dict(task.options).get("rtol", 1e-8))
+    opts = dict(task.options)
+    rtol = float(opts.get("rtol", 1e-8))
+    eps2 = float(opts.get("eps2", EPS2_DEFAULT))
+    bad, why = task.invalid(chunk)
     status, message, rows = [], [], []
     for j in range(len(chunk.index)):
         pt = {**dict(task.fixed), **{k: float(v[j]) for k, v in chunk.points.items()}}
-        V, k = pt.pop("V"), pt.pop("k")
+        if bad[j]:
+            rows.append({})
+            status.append("failed")
+            message.append(why[j])
+            continue
+        V, k = pt.pop("V"), pt.pop("k", None)
         try:
-            row = regime_at(law, V, k, pt, rtol)
+            prediction = {}
+            if k is None:   # at (1 - eps2) k_c of this point, with the amplitude equation's prediction
+                from landau.models import Setup
+                from landau.verify.springblock.declaration import spring_block_hopf
+
+                h = spring_block_hopf(Setup(law, {**pt, "V": V}))
+                k = (1.0 - eps2) * float(h.p_c)
+                prediction = {"k": k, "k_c": float(h.p_c), "Lambda": float(h.Lambda),
+                              "criticality": str(h.criticality)}
+            row = {**regime_at(law, V, k, pt, rtol), **prediction}
             rows.append(row)
             status.append("ok")
             message.append("" if row["regime"] != "undecided" else
                            f"a run has not settled after {MAX_EVENTS} cycles (a slow approach near the Hopf line)")
+        except NoHopfError as exc:   # no Hopf point to set k from
+            rows.append({})
+            status.append("no-hopf")
+            message.append(_first_line(exc))
         except (IntegratorError, InputError, ArithmeticError) as exc:
             rows.append({})
             status.append("failed")
             message.append(_first_line(exc))
     names = [f"{q}_{s}" for q in ("amplitude", "v_min", "period", "settled") for s in ("near", "far")]
+    if "k" not in chunk.points and "k" not in dict(task.fixed):
+        names += ["k", "k_c", "Lambda"]
     vals = {n: np.array([r.get(n, np.nan) for r in rows], dtype=float) for n in names}
     strs = {n: [r.get(n, "") for r in rows] for n in ("regime", "regime_near", "regime_far")}
+    if "k" in names:
+        strs["criticality"] = [r.get("criticality", "") for r in rows]
     return ChunkResult(chunk.index, status, message, vals, strs)
 
 
