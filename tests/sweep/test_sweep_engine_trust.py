@@ -344,3 +344,36 @@ def test_another_write_error_is_reported_by_its_own_errno(tmp_path, monkeypatch,
     assert main([*ARGV, "--out", str(out)]) == 2
     err = capsys.readouterr().err.strip()
     assert err == f"landau: error: cannot write {out}: {said}"
+
+
+# ---------------------------------------------------------------------------------------------
+# 5. the periodic write costs at most a tenth of the run
+# ---------------------------------------------------------------------------------------------
+class Sleepy(Roots):
+    """Roots, each chunk 0.02 s long."""
+
+    def run(self, chunk: Chunk) -> ChunkResult:
+        time.sleep(0.02)
+        return super().run(chunk)
+
+
+def test_the_periodic_write_waits_nine_times_as_long_as_the_last_write_took(tmp_path, monkeypatch):
+    from landau.analyses import sweep_engine
+
+    took = 0.2
+    stamps: list[float] = []
+
+    def slow_write(ds, path):   # every write rewrites the whole grid: here a fixed 0.2 s
+        stamps.append(time.monotonic())
+        time.sleep(took)
+
+    monkeypatch.setattr(sweep_engine, "write_atomic", slow_write)
+    start = time.monotonic()
+    run_table(Sleepy(size=1), make_grid({"x": [float(i) for i in range(150)]}), workers=1, progress=False,
+              out=tmp_path / "w.nc", write_every=0.0)
+    elapsed = time.monotonic() - start
+    # a fixed interval of 0 s would write after each of the 150 chunks (30 s of writing for 3 s of work);
+    # spaced by 9 x 0.2 s, the periodic writes are at least 1.8 s apart, then the final write
+    gaps = np.diff(stamps[:-1])
+    assert len(stamps) >= 2 and np.all(gaps >= 9 * took)
+    assert len(stamps) * took <= 0.1 * elapsed + 2 * took   # writing is a tenth of the run, but the first and last
