@@ -74,12 +74,15 @@ def test_a_point_outside_the_law_fails_alone():
     assert float(ds.kc.values[2]) == pytest.approx(_kc_rice_ruina(1e-4), rel=1e-10)
 
 
-def test_hopf_values_do_not_depend_on_the_chunk_they_are_computed_in():
+@pytest.mark.parametrize("grid, fixed", [
+    ({"b": list(np.linspace(0.036, 0.2, 23)), "a": [0.01, 0.0349]}, {"V": 3e-5}),   # screened float route
+    ({"V": list(np.logspace(-7, -2, 40))}, {}),                                      # exactly cancelled route
+])
+def test_hopf_values_do_not_depend_on_the_chunk_they_are_computed_in(grid, fixed):
     # the engine re-runs a failing chunk point by point: a valid point's value must be the value it has in
     # a whole chunk (one evaluation route per grid, elementwise), bit for bit, over a varied grid
-    grid = {"b": list(np.linspace(0.036, 0.2, 23)), "a": [0.01, 0.0349]}
-    whole = landau.sweep("hopf", grid, law="dieterich", params={"V": 3e-5}, workers=1, progress=False)
-    single = landau.sweep("hopf", grid, law="dieterich", params={"V": 3e-5}, workers=1, progress=False,
+    whole = landau.sweep("hopf", grid, law="dieterich", params=fixed, workers=1, progress=False)
+    single = landau.sweep("hopf", grid, law="dieterich", params=fixed, workers=1, progress=False,
                           options={"chunk_size": 1})
     assert (whole.status == "ok").sum() >= 40
     for name in ("kc", "omega_c", "Gamma_bar", "Omega_bar", "Lambda", "chi", "C"):
