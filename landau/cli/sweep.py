@@ -12,8 +12,10 @@ sliding, small cycle, large stick-slip or bistable, by simulation started on bot
 The result is an xarray Dataset in FILE.nc (dimensions: the swept parameters; variables: the
 task's quantities as in ``--json``, ``status`` and ``message`` per point).  It is written as the
 sweep goes; running the same command again reuses the finished points (``computed``/``reused``
-in the summary), also after Ctrl-C, and tries the failed ones again.  Exit code 0, or 1 when every
-point computed in the run failed (each point's ``status`` and ``message`` say why).
+in the summary), also after Ctrl-C or SIGTERM (both write what is done and exit 130), and tries the
+failed ones again; a point that fails its chunk fails alone.  Exit code 0, 1 when every point
+computed in the run failed (each point's ``status`` and ``message`` say why), 2 for bad input or a
+file that cannot be written (``cannot write FILE: no space left on device``).
 
 Examples::
 
