@@ -104,7 +104,7 @@ def sweep(task: str, grid: Any, *, model: str = "spring-block", law: Any = None,
     Notes
     -----
     A point that makes its chunk fail fails alone (its status ``failed``, its own message): the
-    other points of the chunk are computed one at a time (not for a continuation).  Local worker
+    chunk is computed again in halves down to the failing points (not for a continuation).  Local worker
     processes end with this process, also when it is killed.
     """
     from landau.analyses.sweep_engine import xarray

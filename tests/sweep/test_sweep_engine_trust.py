@@ -138,9 +138,22 @@ def test_the_engine_splits_a_failing_chunk_of_any_task():
     assert table.values["multiples"].shape == (6, 16)
     assert list(table.values["multiples"][2, :9]) == [9.0 * k for k in range(1, 10)]
     assert np.isnan(table.values["multiples"][2, 9:]).all()
-    # chunk 1 ran once whole and 4 times alone, chunk 2 (no negative x) once
-    assert task.calls == 1 + 4 + 1
+    # chunk 1 ran whole, then in halves [4, -1], [9, -2] (both raise), then alone; chunk 2 (no negative x) once
+    assert task.calls == 1 + 2 + 4 + 1
     assert (counts.computed, counts.failed) == (6, 2)
+
+
+def test_a_chunk_with_one_bad_point_is_bisected_not_run_point_by_point():
+    xs = [float(i) for i in range(64)]
+    xs[37] = -5.0
+    task = Roots(size=64)
+    table, _ = run_table(task, make_grid({"x": xs}), workers=1, progress=False)
+    assert [i for i, s in enumerate(table.status) if s != "ok"] == [37]
+    assert table.message[37] == "ValueError: x = -5 is negative"
+    good = np.arange(64) != 37
+    assert np.array_equal(table.values["root"][good], np.sqrt(np.asarray(xs)[good]))
+    # the whole chunk, then two halves per level down to the bad point: 1 + 2 log2(64) runs, not 1 + 64
+    assert task.calls == 1 + 2 * 6
 
 
 def test_a_continuation_chunk_is_not_split_and_strict_runs_keep_the_exception():
