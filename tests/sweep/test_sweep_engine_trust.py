@@ -193,6 +193,9 @@ CHILD = textwrap.dedent("""
             time.sleep(3.0)
             return out
         xarray.Dataset.to_netcdf = to_netcdf
+    if sys.argv[3] == "watchdog":   # as where prctl is missing: the workers poll their parent
+        import landau.support.lifetime as lifetime
+        lifetime._kernel_death_signal = lambda: False
     print("started", flush=True)
     try:
         run_table(Slow(), make_grid({"x": [float(i) for i in range(int(sys.argv[2]))]}), workers=2,
@@ -251,11 +254,13 @@ def _kill(pids: list[int]) -> None:
             pass
 
 
-def test_workers_die_with_a_killed_sweep(tmp_path):
-    proc, _ = _child(tmp_path, 2000)
+@pytest.mark.parametrize("mode", ["-", "watchdog"])
+def test_workers_die_with_a_killed_sweep(tmp_path, mode):
+    proc, _ = _child(tmp_path, 2000, mode)
     workers: list[int] = []
     try:
         workers = _wait_for_workers(proc.pid, 2)
+        time.sleep(0.5)   # the workers are running chunks
         os.kill(proc.pid, signal.SIGKILL)
         proc.wait(10)
         # PR_SET_PDEATHSIG ends them at once, the portable watchdog within POLL_S = 0.5 s: 5 s is ample
