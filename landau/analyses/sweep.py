@@ -72,8 +72,9 @@ def sweep(task: str, grid: Any, *, model: str = "spring-block", law: Any = None,
     workers : int, optional
         Local processes when no executor is given (default ``os.cpu_count()``).
     out : path, optional
-        A netCDF file (``.nc``) written as the sweep goes (atomically) and at the end; if it
-        already holds this sweep, its finished points are reused and only the rest computed.
+        A netCDF file (``.nc``) written as the sweep goes (atomically) and at the end, also when
+        the sweep is interrupted (Ctrl-C, or SIGTERM in the main thread); if it already holds this
+        sweep, its finished points are reused and only the rest computed (the failed ones again).
     progress : bool
         A progress bar on a terminal or in Jupyter.
     options : mapping, optional
@@ -93,6 +94,18 @@ def sweep(task: str, grid: Any, *, model: str = "spring-block", law: Any = None,
     InputError
         An unknown task, model or parameter, a bad grid, an ``out`` that holds another sweep,
         xarray or a netCDF backend missing.
+    OutputError
+        ``out`` cannot be written (the message names the file and the cause: "no space left on
+        device", "Permission denied", ...).
+    KeyboardInterrupt
+        Ctrl-C or SIGTERM (:class:`~landau.support.lifetime.Terminated`), after the finished points
+        were written.
+
+    Notes
+    -----
+    A point that makes its chunk fail fails alone (its status ``failed``, its own message): the
+    chunk is computed again in halves down to the failing points (not for a continuation).  Local worker
+    processes end with this process, also when it is killed.
     """
     from landau.analyses.sweep_engine import xarray
 

@@ -1,27 +1,55 @@
 """The sweep mechanism: a parameter grid cut into fixed chunks, run on any executor, stored as it goes.
 
 A sweep evaluates one *task* (:mod:`landau.analyses.sweep_tasks`) at every point of a grid, the
-Cartesian product of named 1-D axes.  The grid is cut into chunks whose composition depends only
-on the grid and the task (never on the executor or the number of workers), and every point is
-computed by deterministic code from its own parameters (and, for a continuation, from the chunk's
-own warm-up points), so the numbers are the same, bit for bit, whichever executor runs them.
+Cartesian product of named 1-D axes.  What it guarantees, and why:
 
-* Executors: any :class:`concurrent.futures.Executor` (``submit`` returning a future); local
-  processes by default, the calling process for one worker, ``distributed.Client(...)
-  .get_executor()`` for a dask cluster.  At most ``2 × workers`` chunks (:data:`IN_FLIGHT` on an
-  executor of unknown size) are in flight, so a grid of a million points does not queue a
-  million tasks.
-* Status per point: a task returns ``ok`` or the reason a point has no result (``no-hopf``,
-  ``degenerate``, ``outside-validity``, ``failed``) with a one-line message; an exception inside
-  a chunk marks its points ``failed`` with the exception's first line instead of ending the run.
-* Storage: the results are written to netCDF (``ds.to_netcdf`` to a temporary file next to the
-  target, then :func:`os.replace`) every few seconds and at the end, also when the run is
-  interrupted (Ctrl-C); a re-run with the same file reuses every finished point and computes the
-  rest: the ``pending`` ones (not computed yet) and the ``failed`` ones (a worker lost, a run that
+* **The same numbers whatever runs them.**  The grid is cut into chunks whose composition
+  depends only on the grid and the task (never on the executor or the number of workers), and
+  every point is computed by deterministic code from its own parameters (and, for a
+  continuation, from the chunk's own warm-up points), so the numbers are the same, bit for bit,
+  whichever executor runs them.
+* **A bad point fails alone.**  A task returns per point ``ok`` or the reason it has no result
+  (``no-hopf``, ``degenerate``, ``outside-validity``, ``failed``) with a one-line message.  When
+  ``task.run`` raises for a chunk of several points (a vectorised task meets one point it cannot
+  take: an overflow, a parameter the law refuses), the chunk is run again in halves, each
+  halved again if it raises, down to the failing points (:func:`run_chunk`): the valid points
+  get their values, each failing point status ``failed`` and its own exception's first line.
+  The split is itself deterministic (it depends only on which points raise), so the first
+  guarantee holds; and a point's value does not depend on it for the tasks that allow it: the
+  point-by-point tasks compute each point alone anyway, and the spring–block ``hopf`` task
+  evaluates every chunk of a grid by one route, chosen once per grid
+  (``SpringBlockHopf.for_grid``), elementwise, so a point in a smaller piece gets the value it
+  has in its chunk, to the last bit (tested).  A continuation chunk is not split (its points depend on the
+  points before them, so a point run alone would be another computation): all its points are
+  ``failed`` with the exception's first line.  A task says otherwise with ``splittable``.
+* **Bounded in flight.**  Any :class:`concurrent.futures.Executor` (``submit`` returning a
+  future) runs the chunks: local processes by default, the calling process for one worker,
+  ``distributed.Client(...).get_executor()`` for a dask cluster.  At most ``2 × workers`` chunks
+  (:data:`IN_FLIGHT` on an executor of unknown size) are in flight, so a grid of a million points
+  does not queue a million tasks.
+* **No orphans.**  The local processes end with the sweep's process, even when it is killed
+  with SIGKILL (:func:`landau.support.lifetime.die_with_parent`); when the run is interrupted or
+  fails, they are ended at once (the chunks they run would be thrown away).
+* **Stored atomically, never lost to a signal.**  The results are written to netCDF
+  (``ds.to_netcdf`` to a temporary file next to the target, then :func:`os.replace`: a reader
+  never sees half a file) every few seconds and at the end, also when the run is interrupted:
+  Ctrl-C, and SIGTERM, which raises :class:`~landau.support.lifetime.Terminated` (a
+  KeyboardInterrupt) in the main thread so that the same ``finally`` runs.  The temporary is
+  removed whatever ends a write; one left by a killed run (SIGKILL: no code runs) is removed by
+  the next run on the same host once its writer's pid is gone
+  (:func:`~landau.analyses.sweep_files.remove_stale_temporaries`).
+  The periodic write rewrites the whole grid, so it waits at least :data:`WRITE_SPACING` times as
+  long as the last write took: writing takes at most a tenth of the run (:class:`_Writer`).
+* **Resumable.**  A re-run with the same file reuses every finished point and computes the rest:
+  the ``pending`` ones (not computed yet) and the ``failed`` ones (a worker lost, a run that
   failed), tried again.
+* **Write errors named.**  A file that cannot be written is an
+  :class:`~landau.errors.OutputError` naming the file and the cause: a full disk as "no space left
+  on device" (whatever the netCDF backend raised,
+  :func:`~landau.analyses.sweep_files.write_error`), any other error by its errno's own message.
 
-xarray and a netCDF backend (h5netcdf, netCDF4 or scipy) are needed only here, imported on first
-use (``pip install landau-friction[sweep]``).
+xarray and a netCDF backend (h5netcdf, netCDF4 or scipy) are needed only to store a sweep
+(:mod:`landau.analyses.sweep_files`), imported on first use (``pip install landau-friction[sweep]``).
 """
 
 from __future__ import annotations
@@ -36,6 +64,14 @@ from typing import Any
 
 import numpy as np
 
+from landau.analyses.sweep_files import (  # noqa: F401 - _engine, xarray: re-exported for the commands
+    _engine,
+    _first_line,
+    read_stored,
+    remove_stale_temporaries,
+    write_atomic,
+    xarray,
+)
 from landau.errors import InputError
 
 #: chunks kept in flight on an executor of unknown size (a dask cluster): twice its workers otherwise
@@ -260,44 +296,73 @@ def _only(res: ChunkResult, mask: np.ndarray) -> ChunkResult:
                        {k: [v[j] for j in keep] for k, v in res.strings.items()}, res.error)
 
 
-def _first_line(exc: BaseException) -> str:
-    text = str(exc).strip()
-    return f"{type(exc).__name__}: {(text.splitlines()[0] if text else '')[:300]}"
+def splittable(task) -> bool:
+    """Whether a failing chunk of ``task`` may be re-run point by point: a task says so with its
+    attribute ``splittable``; by default every task but a continuation (whose points depend on the
+    points before them in the chunk, so that a point run alone is not the point of the chunk)."""
+    return bool(getattr(task, "splittable", not getattr(task, "continuation", False)))
 
 
-def run_chunk(task, chunk: Chunk) -> ChunkResult:
-    """Run ``task`` on one chunk (in a worker); an exception marks the chunk's points ``failed``."""
+def _part(chunk: Chunk, start: int, stop: int) -> Chunk:
+    """Points ``start:stop`` of ``chunk`` as a chunk of their own (parameters still arrays)."""
+    return Chunk(chunk.number, np.asarray(chunk.index)[start:stop],
+                 {k: np.asarray(v)[start:stop] for k, v in chunk.points.items()})
+
+
+def _joined(parts: list[ChunkResult]) -> ChunkResult:
+    """The results ``parts`` of consecutive pieces of a chunk as one: a variable a piece lacks (a
+    failed point returns none) is NaN there, a string "", a list padded with NaN to the longest."""
+    sizes = [len(r.index) for r in parts]
+    n = sum(sizes)
+    starts = np.concatenate([[0], np.cumsum(sizes)]).astype(int)
+    values: dict[str, np.ndarray] = {}
+    for name in dict.fromkeys(k for r in parts for k in r.values):
+        rows = [np.asarray(r.values[name], dtype=float) if name in r.values else None for r in parts]
+        widths = [row.shape[1] for row in rows if row is not None and row.ndim == 2]
+        col = np.full((n, max(widths)) if widths else (n,), np.nan)
+        for a, b, row in zip(starts[:-1], starts[1:], rows, strict=True):
+            if row is None:
+                continue
+            if col.ndim == 1:
+                col[a:b] = row.reshape(-1)
+            else:
+                row = row.reshape(b - a, -1)
+                col[a:b, :row.shape[1]] = row
+        values[name] = col
+    strings = {name: [x for r, m in zip(parts, sizes, strict=True) for x in r.strings.get(name, [""] * m)]
+               for name in dict.fromkeys(k for r in parts for k in r.strings)}
+    return ChunkResult(np.concatenate([np.asarray(r.index) for r in parts]),
+                       [s for r in parts for s in r.status], [m for r in parts for m in r.message], values, strings,
+                       next((r.error for r in parts if r.error is not None), None))
+
+
+def run_chunk(task, chunk: Chunk, split: bool = True) -> ChunkResult:
+    """Run ``task`` on one chunk (in a worker).
+
+    A chunk of several points that raises is run again in two halves (with ``split``, for a
+    :func:`splittable` task), each split again if it raises, down to single points: the valid
+    points get their values, each failing point status ``failed`` and its own exception's first
+    line, in O(k log n) runs for k failing points among n (n runs, one per point, would make a
+    chunk of 4096 points with one bad point 700 times slower than the chunk).  Otherwise the
+    exception marks every point of the chunk ``failed`` with its first line.  The result's
+    ``error`` is the exception (the first failing point's after a split).
+    """
     try:
         res = task.run(chunk)
     except (KeyboardInterrupt, SystemExit):
         raise
     except Exception as exc:  # noqa: BLE001 - one failing chunk must not end the sweep
         n = len(chunk.index)
+        if split and n > 1 and splittable(task):
+            half = n // 2
+            return _joined([run_chunk(task, _part(chunk, 0, half)), run_chunk(task, _part(chunk, half, n))])
         return ChunkResult(chunk.index, ["failed"] * n, [_first_line(exc)] * n, {}, error=exc)
     return res
 
 
 # ---------------------------------------------------------------------------------------------
-# the in-memory table and its netCDF file
+# the in-memory table (its file: landau.analyses.sweep_files)
 # ---------------------------------------------------------------------------------------------
-def _engine() -> str:
-    import importlib.util
-
-    for needs, engine in ((("netCDF4",), "netcdf4"), (("h5netcdf", "h5py"), "h5netcdf"), (("scipy",), "scipy")):
-        if all(importlib.util.find_spec(name) is not None for name in needs):
-            return engine
-    raise InputError("writing a sweep needs a netCDF backend: pip install 'landau-friction[sweep]'")
-
-
-def xarray():
-    """The xarray module, or an InputError saying how to install it."""
-    try:
-        import xarray as xr
-    except ImportError:
-        raise InputError("sweeps return an xarray Dataset: pip install 'landau-friction[sweep]'") from None
-    return xr
-
-
 class Table:
     """Every point's status, message and variables, stored flat (grid.size rows)."""
 
@@ -384,39 +449,6 @@ class Table:
                 self.values[name] = arr.astype(float).reshape(self.grid.size, -1)
 
 
-def write_atomic(ds, path: Path) -> None:
-    """Write ``ds`` to netCDF at ``path`` atomically (a temporary file next to it, then os.replace)."""
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    try:
-        ds.to_netcdf(tmp, engine=_engine())
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
-
-
-def read_stored(path: Path, grid: Grid, attrs: dict[str, Any]):
-    """The dataset stored at ``path`` if it is the same sweep (task, model, law, fixed parameters, grid);
-    InputError if it holds another."""
-    xr = xarray()
-    try:
-        with xr.open_dataset(path, engine=_engine()) as ds:
-            ds = ds.load()
-    except (OSError, ValueError) as exc:
-        raise InputError(f"{path} exists but is not a readable sweep file ({_first_line(exc)}); "
-                         "use another --out") from None
-    for key in ("task", "model", "law", "law_declaration", "fixed_parameters", "task_options"):
-        if str(ds.attrs.get(key, "")) != str(attrs.get(key, "")):
-            raise InputError(f"{path} holds a different sweep ({key} differs); use another --out")
-    for a in grid.axes:
-        if a.name not in ds.coords or not np.array_equal(np.asarray(ds[a.name].values), np.asarray(a.values)):
-            raise InputError(f"{path} holds a different sweep (the grid of {a.name} differs); use another --out")
-    if tuple(ds["status"].dims) != grid.names:
-        raise InputError(f"{path} holds a different sweep (its axes are {', '.join(ds['status'].dims)}); "
-                         "use another --out")
-    return ds
-
-
 # ---------------------------------------------------------------------------------------------
 # the run
 # ---------------------------------------------------------------------------------------------
@@ -425,6 +457,38 @@ class RunCounts:
     computed: int = 0
     reused: int = 0
     failed: int = 0
+
+
+#: the periodic write waits at least this many times as long as the last write took (see :class:`_Writer`)
+WRITE_SPACING = 9.0
+
+
+class _Writer:
+    """The netCDF file of a run: written every ``write_every`` seconds and at the end.
+
+    Every write rewrites the whole grid (the file is the full table from the start), so its cost
+    is proportional to the grid's size N; at a fixed interval a run of N points would spend
+    O(N²) writing.  The interval is therefore at least :data:`WRITE_SPACING` times the duration of
+    the last write: writing takes at most a tenth of the run's wall time (total write cost O(run
+    time), i.e. O(N) for a fixed cost per point), and a small file is still written every
+    ``write_every`` seconds."""
+
+    def __init__(self, path: Path | None, attrs: dict[str, Any], write_every: float):
+        self.path, self.attrs, self.every = path, attrs, float(write_every)
+        self.last = time.monotonic()
+        self.took = 0.0
+
+    def due(self) -> bool:
+        return self.path is not None and time.monotonic() - self.last > max(self.every, WRITE_SPACING * self.took)
+
+    def write(self, table: Table, counts: RunCounts | None = None) -> None:
+        if self.path is None:
+            return
+        start = time.monotonic()
+        extra = {} if counts is None else {"computed": counts.computed, "reused": counts.reused}
+        write_atomic(table.dataset({**self.attrs, **extra}), self.path)
+        self.last = time.monotonic()
+        self.took = self.last - start
 
 
 def execute(task, grid: Grid, *, executor: Executor | None = None, workers: int | None = None,
@@ -437,6 +501,77 @@ def execute(task, grid: Grid, *, executor: Executor | None = None, workers: int 
     table, counts = run_table(task, grid, executor=executor, workers=workers, out=out, attrs=attrs,
                               progress=progress, write_every=write_every)
     return table.dataset({**attrs, "computed": counts.computed, "reused": counts.reused}), counts
+
+
+def _stored(out: str | os.PathLike | None, table: Table, attrs: dict[str, Any]) -> Path | None:
+    """The output file (checked), its finished points loaded into ``table``, the stale temporaries
+    of killed earlier runs removed."""
+    if out is None:
+        return None
+    path = Path(out)
+    if path.suffix.lower() not in (".nc", ".nc4", ".netcdf"):
+        raise InputError(f"--out {str(path)!r}: a sweep is written as netCDF (.nc)")
+    if path.exists() and not path.is_file():
+        raise InputError(f"--out {str(path)!r} is not a regular file")
+    remove_stale_temporaries(path)
+    if path.exists():
+        table.load(read_stored(path, table.grid, attrs))
+    return path
+
+
+def _work(task, grid: Grid, table: Table, todo_mask: np.ndarray) -> list[Chunk]:
+    """The chunks with a point to compute (a continuation's finished points passed in ``done``)."""
+    work = []
+    for ch in task.chunks(grid):
+        pending = todo_mask[ch.index]
+        if not pending.any():
+            continue
+        if not pending.all() and task.continuation:
+            ch.done = {j: table.record(int(i)) for j, i in enumerate(ch.index) if not todo_mask[i]}
+        # a partly finished chunk is computed whole (the same batch as in an uninterrupted run, so the
+        # same numbers to the last bit) and only its missing points are stored
+        work.append(ch)
+    return work
+
+
+def local_pool(workers: int) -> ProcessPoolExecutor:
+    """``workers`` local processes that end with this one (:func:`landau.support.lifetime.die_with_parent`:
+    a killed sweep leaves no worker behind)."""
+    from landau.support.lifetime import die_with_parent
+
+    return ProcessPoolExecutor(max_workers=workers, initializer=die_with_parent, initargs=(os.getpid(),))
+
+
+def _stop(pool: ProcessPoolExecutor, now: bool) -> None:
+    """Shut the local pool down; ``now`` (the run is interrupted or failed): its workers are ended
+    first, since the chunks they are running would be thrown away."""
+    if now:
+        for proc in list((getattr(pool, "_processes", None) or {}).values()):
+            try:
+                proc.terminate()
+            except (OSError, ValueError):   # already gone
+                pass
+    pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _drain(executor: Executor, work: list[Chunk], task, workers: int, take, strict: bool) -> None:
+    """Run ``work`` on ``executor``, at most ``2 × workers`` chunks in flight, each result to ``take``."""
+    queue = list(reversed(work))
+    inflight: set = set()
+    try:
+        while queue or inflight:
+            while queue and len(inflight) < 2 * workers:
+                inflight.add(executor.submit(run_chunk, task, queue.pop(), not strict))
+            done, inflight = wait(inflight, return_when=FIRST_COMPLETED)
+            for f in done:
+                take(f.result())
+    except BaseException:
+        for f in inflight:  # keep whatever finished, drop the rest
+            if not strict and f.done() and not f.cancelled() and f.exception() is None:
+                take(f.result())
+            else:
+                f.cancel()
+        raise
 
 
 def run_table(task, grid: Grid, *, executor: Executor | None = None, workers: int | None = None,
@@ -453,11 +588,20 @@ def run_table(task, grid: Grid, *, executor: Executor | None = None, workers: in
         The dataset's attributes (with ``out``).
     strict : bool
         The first chunk that fails ends the run with its exception (for callers that want the
-        exception, not a ``failed`` status); the chunks in flight are cancelled.
+        exception, not a ``failed`` status); the chunks in flight are cancelled, a failing chunk
+        is not re-run point by point.
 
     Returns
     -------
     (Table, RunCounts)
+
+    Raises
+    ------
+    OutputError
+        ``out`` cannot be written (a full disk, a folder without write permission).
+    KeyboardInterrupt
+        Ctrl-C, or SIGTERM (:class:`landau.support.lifetime.Terminated`) when called from the main
+        thread: the finished points are written first.
 
     Notes
     -----
@@ -466,32 +610,16 @@ def run_table(task, grid: Grid, *, executor: Executor | None = None, workers: in
     a task with ``lead = True`` (a per-point callable that builds what it needs lazily) its first
     chunk is run here first.  The numbers do not depend on where a chunk ran.
     """
+    from landau.support.lifetime import terminate_as_interrupt
     from landau.support.progress import progress as bar_for
 
     attrs = dict(attrs or {})
     table = Table(grid, task.units())
-    path = None
     counts = RunCounts()
-    if out is not None:
-        path = Path(out)
-        if path.suffix.lower() not in (".nc", ".nc4", ".netcdf"):
-            raise InputError(f"--out {str(path)!r}: a sweep is written as netCDF (.nc)")
-        if path.exists() and not path.is_file():
-            raise InputError(f"--out {str(path)!r} is not a regular file")
-        if path.exists():
-            table.load(read_stored(path, grid, attrs))
+    path = _stored(out, table, attrs)
     todo_mask = (table.status == PENDING) | (table.status == "failed")  # a failed point is tried again
     counts.reused = int(grid.size - np.count_nonzero(todo_mask))
-    work = []
-    for ch in task.chunks(grid):
-        pending = todo_mask[ch.index]
-        if not pending.any():
-            continue
-        if not pending.all() and task.continuation:
-            ch.done = {j: table.record(int(i)) for j, i in enumerate(ch.index) if not todo_mask[i]}
-        # a partly finished chunk is computed whole (the same batch as in an uninterrupted run, so the
-        # same numbers to the last bit) and only its missing points are stored
-        work.append(ch)
+    work = _work(task, grid, table, todo_mask)
     n_todo = int(np.count_nonzero(todo_mask))
     own = None
     lead: list[Chunk] = []
@@ -505,11 +633,10 @@ def run_table(task, grid: Grid, *, executor: Executor | None = None, workers: in
                 lead, work = work[:1], work[1:]
     else:  # a foreign executor (a cluster's size is not known here): many chunks in flight
         workers = int(workers or getattr(executor, "_max_workers", None) or IN_FLIGHT // 2)
-    last = time.monotonic()
+    writer = _Writer(path, attrs, write_every)
     bar = bar_for(total=n_todo, desc=f"sweep {task.name}", unit="pt") if progress else None
 
     def take(res: ChunkResult):
-        nonlocal last
         if strict and res.error is not None:
             raise res.error
         res = _only(res, todo_mask)
@@ -518,41 +645,27 @@ def run_table(task, grid: Grid, *, executor: Executor | None = None, workers: in
         counts.failed += sum(1 for s in res.status if s == "failed")
         if bar is not None:
             bar.update(len(res.index))
-        if path is not None and time.monotonic() - last > write_every:
-            write_atomic(table.dataset(attrs), path)
-            last = time.monotonic()
+        if writer.due():
+            writer.write(table)
 
-    try:
-        for ch in lead:  # before the pool starts: forked workers inherit what it built
-            take(run_chunk(task, ch))
-        if lead or (executor is None and workers > 1 and len(work) > 1):
-            # never more processes than chunks (a large --workers on a short sweep starts no idle process)
-            own = executor = ProcessPoolExecutor(max_workers=max(1, min(workers, len(work))))
-        if executor is None:
-            for ch in work:
-                take(run_chunk(task, ch))
-        else:
-            queue = list(reversed(work))
-            inflight: set = set()
-            try:
-                while queue or inflight:
-                    while queue and len(inflight) < 2 * workers:
-                        inflight.add(executor.submit(run_chunk, task, queue.pop()))
-                    done, inflight = wait(inflight, return_when=FIRST_COMPLETED)
-                    for f in done:
-                        take(f.result())
-            except BaseException:
-                for f in inflight:  # keep whatever finished, drop the rest
-                    if not strict and f.done() and not f.cancelled() and f.exception() is None:
-                        take(f.result())
-                    else:
-                        f.cancel()
-                raise
-    finally:
-        if bar is not None:
-            bar.close()
-        if own is not None:
-            own.shutdown(wait=True, cancel_futures=True)
-        if path is not None:
-            write_atomic(table.dataset({**attrs, "computed": counts.computed, "reused": counts.reused}), path)
+    finished = False
+    with terminate_as_interrupt():
+        try:
+            for ch in lead:  # before the pool starts: forked workers inherit what it built
+                take(run_chunk(task, ch, not strict))
+            if lead or (executor is None and workers > 1 and len(work) > 1):
+                # never more processes than chunks (a large --workers on a short sweep starts no idle process)
+                own = executor = local_pool(max(1, min(workers, len(work))))
+            if executor is None:
+                for ch in work:
+                    take(run_chunk(task, ch, not strict))
+            else:
+                _drain(executor, work, task, workers, take, strict)
+            finished = True
+        finally:
+            if bar is not None:
+                bar.close()
+            if own is not None:
+                _stop(own, now=not finished)
+            writer.write(table, counts)
     return table, counts

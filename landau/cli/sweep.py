@@ -12,8 +12,10 @@ sliding, small cycle, large stick-slip or bistable, by simulation started on bot
 The result is an xarray Dataset in FILE.nc (dimensions: the swept parameters; variables: the
 task's quantities as in ``--json``, ``status`` and ``message`` per point).  It is written as the
 sweep goes; running the same command again reuses the finished points (``computed``/``reused``
-in the summary), also after Ctrl-C, and tries the failed ones again.  Exit code 0, or 1 when every
-point computed in the run failed (each point's ``status`` and ``message`` say why).
+in the summary), also after Ctrl-C or SIGTERM (both write what is done and exit 130), and tries the
+failed ones again; a point that fails its chunk fails alone.  Exit code 0, 1 when every point
+computed in the run failed (each point's ``status`` and ``message`` say why), 2 for bad input or a
+file that cannot be written (``cannot write FILE: no space left on device``).
 
 Examples::
 
@@ -113,6 +115,28 @@ def _law(args, model):
     return LawSpec(args.law)
 
 
+#: seconds a local dask worker is given to end by itself (its exit handlers included) when the sweep closes
+WORKER_EXIT_S = 60.0
+
+
+def _close_local(client, cluster) -> None:
+    """Close a ``--dask local:N`` cluster: the client, then each worker with :data:`WORKER_EXIT_S`
+    to end, then the scheduler.  ``cluster.close()`` alone gives a worker 4 s (its nanny's close
+    timeout, fixed at 5 s) and then kills it with a timestamped warning "Worker process still alive
+    after 4.0 seconds, killing" per worker; a worker's exit handlers (numba's cache signed, on a
+    loaded machine) can take longer, and a worker killed there leaves its cache unsigned, compiled
+    afresh by the next run."""
+    import asyncio
+
+    client.close()
+    try:
+        workers = list(cluster.workers.values())
+        cluster.sync(lambda: asyncio.gather(*[w.close(timeout=WORKER_EXIT_S) for w in workers]))
+    except Exception:  # noqa: BLE001 - a worker that cannot be closed gracefully: cluster.close() kills it
+        pass
+    cluster.close()
+
+
 def _executor(args):
     """(executor or None, closer) for --dask; (None, None) for local processes."""
     if args.dask is None:
@@ -132,11 +156,7 @@ def _executor(args):
             raise InputError(f"--dask local:N needs 1 <= N <= 1024, got {n}")
         cluster = LocalCluster(n_workers=n, threads_per_worker=1, dashboard_address=None)
         client = Client(cluster)
-
-        def close():
-            client.close()
-            cluster.close()
-        return client.get_executor(), close
+        return client.get_executor(), lambda: _close_local(client, cluster)
     try:
         client = Client(args.dask, timeout="20s")
     except (OSError, TimeoutError, ValueError) as exc:

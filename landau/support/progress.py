@@ -1,7 +1,8 @@
 """Progress bars that appear only where someone is watching.
 
 :func:`progress` wraps an iterable (or counts steps) with tqdm: a text bar on a terminal, a
-notebook widget in Jupyter (``tqdm.auto``), nothing when stderr is not a terminal (pipes, CI
+notebook widget in Jupyter (``tqdm.auto``, with ipywidgets installed; without it the text bar,
+without tqdm's warning that it found no widgets), nothing when stderr is not a terminal (pipes, CI
 logs), in ``--json`` mode (:func:`set_quiet`) or with ``LANDAU_PROGRESS=off``.
 """
 
@@ -9,6 +10,7 @@ from __future__ import annotations
 
 import os
 import sys
+import warnings
 from typing import Iterable, TypeVar
 
 T = TypeVar("T")
@@ -30,6 +32,24 @@ def _in_notebook() -> bool:
     except Exception:
         return False
     return shell is not None and type(shell).__name__ == "ZMQInteractiveShell"
+
+
+def _bar_class():
+    """tqdm's bar class for here: the notebook widget in a Jupyter kernel (``tqdm.auto``), else the
+    text bar.  Without ipywidgets (or with one too old) ``tqdm.auto`` falls back to the text bar
+    after a ``TqdmWarning`` "IProgress not found" printed above the bar: that warning, and only it,
+    is silenced, the text bar being the right bar then (``pip install ipywidgets`` for the widget)."""
+    if not _in_notebook():
+        from tqdm import tqdm
+
+        return tqdm
+    from tqdm import TqdmWarning
+
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message="IProgress not found", category=TqdmWarning)
+        from tqdm.auto import tqdm as auto
+
+    return auto
 
 
 def shown() -> bool:
@@ -58,9 +78,5 @@ def progress(iterable: Iterable[T] | None = None, *, total: int | None = None, d
     tqdm.tqdm
         Iterate over it, or call ``update()``/``set_description()``; a context manager.
     """
-    if _in_notebook():
-        from tqdm.auto import tqdm
-    else:
-        from tqdm import tqdm
-    return tqdm(iterable, total=total, desc=desc, unit=unit, leave=leave, disable=not shown(),
+    return _bar_class()(iterable, total=total, desc=desc, unit=unit, leave=leave, disable=not shown(),
                 dynamic_ncols=True)
