@@ -21,7 +21,8 @@
   timed (Hopf normal form included), and the simulated amplitudes must agree.
 
 Both sides are warm (compiled code loaded, derivation cached) before timing; the first call's
-cost is reported beside it.
+cost is reported beside it, and the Brusselator's check is also timed as a user's first call, in
+fresh interpreters (imports and the loading of compiled code included).
 """
 
 from __future__ import annotations
@@ -130,6 +131,45 @@ def _check_row(system, bracket):
             "verdicts": f"{ours.verdict.value} / {theirs.verdict.value}"}
 
 
+#: one check in a fresh interpreter: prints the check's own CPU seconds (argv[1]: "compiled" or "scipy")
+_FRESH = """
+import sys, time
+from landau import DynamicalSystem, check
+from landau.analyses import system_simulation
+if sys.argv[1] == "scipy":
+    system_simulation.shooting_flow = lambda *a: None
+s = DynamicalSystem.from_strings({rhs!r}, {par!r}, {params!r}, equilibrium={eq!r})
+t = time.process_time()
+check(s, eps2=1e-3, params=dict(s.defaults), bracket={bracket!r})
+print(time.process_time() - t)
+"""
+
+
+def _fresh_check_rows(repeat: int) -> list[dict]:
+    """The Brusselator's check as a user's first call: a fresh interpreter each time (disk caches warm),
+    the check's own CPU and the child's whole CPU (imports included), the two routes alternating."""
+    import subprocess
+    import sys
+
+    from benchlib import NEUTRAL
+
+    rhs, par, params = BRUSSELATOR
+    code = _FRESH.format(rhs=rhs, par=par, params=params, eq={"x": "a", "y": "b/a"}, bracket=(2.5, 4.0))
+    got: dict[str, list[tuple[float, float]]] = {"compiled": [], "scipy": []}
+    for _ in range(repeat):
+        for route in got:
+            import resource
+
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
+            out = subprocess.run([sys.executable, "-c", code, route], capture_output=True, text=True, cwd=NEUTRAL,
+                                 timeout=600, check=True).stdout
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+            child = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+            got[route].append((float(out.strip().splitlines()[-1]), child))
+    return [{"route": r, "check cpu (min)": min(c for c, _ in v), "process cpu (min)": min(p for _, p in v),
+             "runs": len(v)} for r, v in got.items()]
+
+
 def section_usersystem(quick: bool) -> None:
     sim_rows, checks, firsts = [], [], []
     for system, sim_params, y0, t_end, bracket in _systems():
@@ -143,12 +183,17 @@ def section_usersystem(quick: bool) -> None:
         checks.append(row)
         report(Goal("usersystem", "usersystem-2", f"{system.name} from strings: check with scipy flow / compiled, CPU",
                     row["ratio"], 5.0, note=f"amplitudes agree to {row['amplitude rel. difference']:.1g}"))
+    fresh = _fresh_check_rows(1 if quick else 2)
     RAW["usersystem"] = sim_rows
     RAW["usersystem_check"] = checks
+    RAW["usersystem_fresh"] = fresh
     TABLES["usersystem"] = (
         "Simulation (error at t_end against solve_ivp DOP853 at 1e-13, relative to max|y|; CPU per run, warm; "
-        f"first call, compiling or loading the kernel: {', '.join(firsts)}):\n\n"
+        f"first call in this process, loading the kernel: {', '.join(firsts)}):\n\n"
         + table(sim_rows, ["method", "rtol", "error", "cpu", "steps", "note"])
         + "\n\nlandau.check(system, eps2=1e-3) (two shots with their monodromy, rtol 1e-10; CPU per call, warm):\n\n"
         + table(checks, ["system", "check compiled cpu", "check scipy cpu", "ratio", "first call cpu",
-                         "amplitude rel. difference", "verdicts"]))
+                         "amplitude rel. difference", "verdicts"])
+        + "\n\nThe Brusselator's check as a user's first call, in a fresh interpreter (disk caches warm; "
+          "the process CPU includes importing landau, scipy and numba and loading the compiled code):\n\n"
+        + table(fresh, ["route", "check cpu (min)", "process cpu (min)", "runs"]))
