@@ -105,11 +105,12 @@ class CompiledSystem:
             if key not in known:
                 raise InputError(f"{s.name}: unknown parameter {key!r} (parameters: {', '.join(sorted(known))})")
             values[key] = finite_parameter(key, val)
-        missing = [a.name for a in (s.parameter, *s.parameters) if a.name not in values]
+        if s.parameter.name not in values:
+            raise InputError(f"{s.name}: give the Hopf parameter {s.parameter.name!r} a value (a simulation runs "
+                             "at one value of it)")
+        missing = [a.name for a in s.parameters if a.name not in values]
         if missing:
-            raise InputError(f"{s.name}: no value for parameter(s) {', '.join(missing)}"
-                             + (f" (the Hopf parameter {s.parameter.name!r} too: a simulation runs at one value)"
-                                if s.parameter.name in missing else ""))
+            raise InputError(f"{s.name}: no value for parameter(s) {', '.join(missing)}")
         return {k: finite_parameter(k, v) for k, v in values.items() if k in known}
 
     def vector(self, params: Mapping[str, float] | None) -> np.ndarray:
@@ -236,8 +237,7 @@ def _field_along(fun, ts, Y, p, F):
         fun(ts[k], Y[k], p, F[k])
 
 
-def _initial_step(cs: CompiledSystem, y0: np.ndarray, f0: np.ndarray, pvec, span: float, rtol: float,
-                  atol: np.ndarray) -> float:
+def _initial_step(y0: np.ndarray, f0: np.ndarray, span: float, rtol: float, atol: np.ndarray) -> float:
     """The first step of Hairer, Nørsett & Wanner (1993), Sec. II.4 (the low-cost form): 1 % of
     ‖y₀‖/‖f₀‖ in the tolerance's norm, 1e-6 when either is negligible, at most the span."""
     sc = atol + np.abs(y0) * rtol
@@ -255,7 +255,7 @@ def _integrate(cs: CompiledSystem, pvec: np.ndarray, t0: float, y0: np.ndarray, 
     f0 = cs.field(y0, pvec)
     if not np.all(np.isfinite(f0)):
         return -3, t0, y0, np.zeros(5, dtype=np.int64), np.array([t0]), y0[None, :].copy()
-    h = float(first_step) if first_step else _initial_step(cs, y0, f0, pvec, t_end - t0, rtol, atol)
+    h = float(first_step) if first_step else _initial_step(y0, f0, t_end - t0, rtol, atol)
     t, y = t0, y0
     rec_t, rec_y = [np.array([t0])], [y0[None, :].copy()]
     counts = np.zeros(5, dtype=np.int64)

@@ -160,7 +160,7 @@ def test_a_singular_full_mass_matrix_is_refused():
 
 
 @pytest.mark.parametrize("params, kwargs, match", [
-    ({}, {}, r"no value for parameter\(s\) b .*Hopf parameter"),
+    ({}, {}, r"give the Hopf parameter 'b' a value"),
     ({"b": 3.3, "q": 1.0}, {}, r"unknown parameter 'q'"),
     ({"b": float("nan")}, {}, r"parameter 'b' must be finite"),
     ({"b": "three"}, {}, r"parameter 'b' must be a number"),
@@ -177,6 +177,27 @@ def test_bad_input_is_refused_by_name(params, kwargs, match):
     kw = {"t_end": 10.0, "y0": [1.0, 2.0], **kwargs}
     with pytest.raises(InputError, match=match):
         simulate_system(_brusselator(), params, kw.pop("t_end"), kw.pop("y0"), **kw)
+
+
+def test_a_parameter_without_a_default_must_be_given():
+    x, u, p, k = sp.symbols("x u p k", real=True)
+    s = DynamicalSystem("rayleigh", (x, u), (u, -k * x + p * u - u ** 3), (1, 1), p, (0, 0))
+    with pytest.raises(InputError, match=r"no value for parameter\(s\) k"):
+        simulate_system(s, {"p": 0.1}, 1.0, [0.1, 0.0])
+    assert simulate_system(s, {"p": 0.1, "k": 9.0}, 1.0, [0.1, 0.0]).success
+
+
+def test_one_compiled_kernel_serves_every_parameter_value_and_mass():
+    """The parameter values and E⁻¹ are entries of the parameter vector, not of the generated code: two
+    systems with the same field (other defaults, another mass value) share one source and one compiled
+    function, and the runs differ as their parameters say."""
+    s1, s2 = _rate_state(), _rate_state()
+    c1, c2 = system_simulation.compile_system(s1), system_simulation.compile_system(s2)
+    assert c1 is system_simulation.compile_system(s1) and c1 is not c2
+    assert c1.source == c2.source and c1.fun is c2.fun and c1.jac is c2.jac
+    v = c1.vector({"k": 0.004, "M": 0.25})
+    assert v[-1] == 4.0 and v[0] == 0.004          # (k, L, M, V, a, b, sigma, 1/M)
+    assert [a.name for a in c1.arguments[:7]] == ["k", "L", "M", "V", "a", "b", "sigma"]
 
 
 def test_not_a_system_is_refused():
@@ -222,3 +243,42 @@ def test_the_check_shoots_with_the_compiled_flow_and_matches_scipy(monkeypatch):
     assert ours.amplitude_simulated == pytest.approx(theirs.amplitude_simulated, rel=1e-6)
     assert ours.frequency_simulated == pytest.approx(theirs.frequency_simulated, rel=1e-6)
     assert ours.rel_error == pytest.approx(theirs.rel_error, abs=1e-6)
+
+
+# --- the same code as plain Python ----------------------------------------------------------------
+
+_SHORT_RUN = """
+import json, warnings
+warnings.simplefilter("always")
+from landau import DynamicalSystem
+from landau.analyses.system_simulation import simulate_system
+s = DynamicalSystem.from_strings({"x": "a - (b + 1)*x + x^2*y", "y": "b*x - x^2*y"}, "b", {"a": 1.5},
+                                 equilibrium={"x": "a", "y": "b/a"})
+r = simulate_system(s, {"b": 3.3}, 5.0, [1.0, 2.0], rtol=1e-8)
+print(json.dumps({"y": r.y_final.tolist(), "steps": r.nsteps, "nfev": r.nfev, "status": r.status.value}))
+"""
+
+
+def test_runs_as_plain_python_under_numba_disable_jit():
+    """NUMBA_DISABLE_JIT=1 (CONTRIBUTING, debugging a compiled core): the generated field, the Radau IIA
+    loop and the slopes' helper run as plain Python and take the same steps as the compiled run, its
+    state equal to 1e-12 (the same operations in the same order; only exp/log/pow may round differently
+    in Python's and the compiled code's math library)."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    out = {}
+    for jit in (True, False):
+        env = dict(os.environ)
+        env.pop("NUMBA_DISABLE_JIT", None)
+        if not jit:
+            env["NUMBA_DISABLE_JIT"] = "1"
+        p = subprocess.run([sys.executable, "-c", _SHORT_RUN], capture_output=True, text=True, env=env, timeout=600)
+        assert p.returncode == 0, p.stderr
+        assert ("runs as plain Python" in p.stderr) is not jit
+        out[jit] = json.loads(p.stdout.strip().splitlines()[-1])
+    assert out[True]["status"] == out[False]["status"] == "finished"
+    assert out[True]["steps"] == out[False]["steps"] and out[True]["nfev"] == out[False]["nfev"]
+    assert np.allclose(out[True]["y"], out[False]["y"], rtol=1e-12, atol=0)
