@@ -159,14 +159,14 @@ class CompiledSystem:
 
 _DAE_ADVICE = ("the compiled Radau IIA integrates E·ẏ = f with an invertible E only; eliminate the algebraic "
                "state(s) (solve their equation f_i = 0 for them and substitute it into the other rows) and "
-               "simulate the reduced ODE — the Hopf analysis (landau.derive) takes the differential-algebraic "
-               "system as it is")
+               "simulate the reduced ODE — the Hopf analysis (landau.hopf_normal_form) takes the "
+               "differential-algebraic system as it is")
 
 
 def _dae_message(system, zero: Sequence[str]) -> str:
     rows = ", ".join(repr(z) for z in zero)
-    return f"{system.name}: state(s) {rows} have mass E_ii = 0 (algebraic rows: a differential-algebraic system); " \
-           + _DAE_ADVICE
+    which = f"state {rows} has" if len(zero) == 1 else f"states {rows} have"
+    return f"{system.name}: {which} mass E_ii = 0 (an algebraic row: a differential-algebraic system); " + _DAE_ADVICE
 
 
 _COMPILED: "weakref.WeakKeyDictionary[Any, CompiledSystem]" = weakref.WeakKeyDictionary()
