@@ -464,9 +464,24 @@ class FlowSolution:
 
 
 def shooting_flow(system, params: Mapping[str, float], rtol: float) -> Callable[[np.ndarray, float], FlowSolution]:
-    """``flow(z, T)``: the compiled integration from z over [0, T] at ``params`` (Hopf parameter included),
-    with the shooting's tolerances (rtol, atol = rtol·max(1e-12, max|z|)); an integration that does
-    not reach T raises :class:`~landau.errors.IntegratorError`."""
+    """The check's flow: the compiled integration from z over [0, T] at fixed parameters.
+
+    Parameters
+    ----------
+    system : DynamicalSystem
+        The system (E invertible).
+    params : mapping of str to float
+        Every parameter value, the Hopf parameter included (names that are not parameters of the
+        system are ignored: the check passes every default).
+    rtol : float
+        The shooting's tolerance; atol = rtol·max(1e-12, max|z|) at each start z (scipy's former rule).
+
+    Returns
+    -------
+    callable
+        ``flow(z, T) -> FlowSolution``; an integration that does not reach T raises
+        :class:`~landau.errors.IntegratorError`.
+    """
     cs = compile_system(system)
     known = {a.name for a in (system.parameter, *system.parameters)}
     pvec = cs.vector({k: v for k, v in params.items() if k in known})   # (the check passes every default)

@@ -54,6 +54,19 @@ def test_brusselator_from_strings_agrees_with_solve_ivp():
     assert np.allclose(run.f[:, k], _brusselator_rhs(0.0, run.y[:, k]), rtol=1e-14, atol=1e-14)
 
 
+def test_a_run_taken_in_several_compiled_calls_is_the_same_trajectory(monkeypatch):
+    """A long run is taken in compiled calls of at most CHUNK_STEPS attempts, each continuing from the
+    previous one's state and step size: with calls of 50 attempts the record is still increasing in time,
+    without repeated points, and the final state agrees with solve_ivp as tightly as one call's."""
+    monkeypatch.setattr(system_simulation, "CHUNK_STEPS", 50)
+    run = simulate_system(_brusselator(), {"b": B}, 60.0, [1.0, 2.0], rtol=1e-10)
+    assert run.nsteps > 20 * 50 and len(run.t) == run.nsteps + 1 and np.all(np.diff(run.t) > 0)
+    ref = _reference(_brusselator_rhs, [1.0, 2.0], 60.0)
+    assert np.max(np.abs(run.y_final - ref.y[:, -1])) < 1e-7
+    short = simulate_system(_brusselator(), {"b": B}, 60.0, [1.0, 2.0], max_steps=120)
+    assert short.status is Status.MAX_STEPS and short.nsteps <= 120
+
+
 def test_t_eval_samples_agree_with_solve_ivp():
     te = np.linspace(0.0, 30.0, 301)
     run = simulate_system(_brusselator(), {"b": B}, 30.0, {"x": 1.0, "y": 2.0}, rtol=1e-10, t_eval=te)
