@@ -79,6 +79,7 @@ def machine() -> dict:
     import sympy
 
     info.update(numpy=np.__version__, scipy=scipy.__version__, sympy=sympy.__version__, numba=numba.__version__)
+    info["commit"] = commit()
     for mod in ("sksundae", "numbalsoda"):
         try:
             m = __import__(mod)
@@ -86,6 +87,20 @@ def machine() -> dict:
         except ImportError:
             info[mod] = "not installed"
     return info
+
+
+def commit() -> str:
+    """The checkout's commit (short hash), with ``+dirty`` when tracked files differ from it; "unknown"
+    outside a git checkout."""
+    root = Path(__file__).resolve().parent.parent
+    try:
+        head = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=root, capture_output=True,
+                              text=True, timeout=30, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=root,
+                               capture_output=True, text=True, timeout=30, check=True).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+    return head + ("+dirty" if dirty else "")
 
 
 def load() -> tuple[float, float, float]:

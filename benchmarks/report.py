@@ -40,6 +40,7 @@ SECTIONS = {
     "help": "Commands: `landau --help` and `landau --version`",
     "figures": "Paper figures",
     "sweep": "Sweeps: 1 → 2 workers, hopf throughput, executor overhead",
+    "usersystem": "User systems from strings: compiled simulation and check",
 }
 #: the section of each goal number, for result files written before goals named their section
 GOAL_SECTION = {"2": "springblock", "3": "forced", "4": "galvanetto", "5": "lambda", "6": "derive",
@@ -106,8 +107,8 @@ def _run_line(name: str, res: dict) -> str:
     loads = m.get("load average (1 min) during the run", [])
     load = f"load average {min(loads):g}–{max(loads):g}" if loads else "load average not recorded"
     return (f"*Measured {m.get('date', 'before runs were dated')} on {m.get('cpu', '?')} ({m.get('cpus', '?')} CPUs), "
-            f"Python {m.get('python', '?')}, numba {m.get('numba', '?')}, {load}; "
-            f"`benchmarks/results/{name}`.*")
+            f"Python {m.get('python', '?')}, numba {m.get('numba', '?')}, {load}"
+            + (f", commit {m['commit']}" if m.get("commit") else "") + f"; `benchmarks/results/{name}`.*")
 
 
 def _section_table(res: dict, section: str) -> str:

@@ -21,7 +21,9 @@ Sections (``--only``), each described in its module:
   error (``sections_solvers.py``);
 * ``lambda``, ``derive`` — Λ(V) throughput and accuracy, derivation cost (``sections_engine.py``);
 * ``coldstart``, ``help``, ``figures`` — commands in fresh processes, cold and warm (``sections_cli.py``);
-* ``sweep`` — landau.sweep: 1 → 2 workers, hopf points per second, executor overhead (``sections_sweep.py``).
+* ``sweep`` — landau.sweep: 1 → 2 workers, hopf points per second, executor overhead (``sections_sweep.py``);
+* ``usersystem`` — a DynamicalSystem from strings: compiled simulation and check against the scipy
+  route (``sections_usersystem.py``).
 
 ``LANDAU_BENCH_BASELINE_PYTHON=/path/to/other/checkout/.venv/bin/python`` times that
 interpreter side by side with this one in ``coldstart`` and ``figures`` (per-repeat ratios,
@@ -48,11 +50,13 @@ from sections_cli import section_coldstart, section_figures, section_help  # noq
 from sections_engine import section_derive, section_lambda  # noqa: E402
 from sections_solvers import section_forced, section_galvanetto, section_springblock  # noqa: E402
 from sections_sweep import section_sweep  # noqa: E402
+from sections_usersystem import section_usersystem  # noqa: E402
 
-SECTIONS = ("springblock", "forced", "galvanetto", "lambda", "derive", "coldstart", "help", "figures", "sweep")
+SECTIONS = ("springblock", "forced", "galvanetto", "lambda", "derive", "coldstart", "help", "figures", "sweep",
+            "usersystem")
 RUNNERS = {"springblock": section_springblock, "forced": section_forced, "galvanetto": section_galvanetto,
            "lambda": section_lambda, "coldstart": section_coldstart, "help": section_help,
-           "figures": section_figures, "sweep": section_sweep}
+           "figures": section_figures, "sweep": section_sweep, "usersystem": section_usersystem}
 
 
 def main(argv=None) -> int:

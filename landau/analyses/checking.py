@@ -548,23 +548,26 @@ def _numeric_field(system, params: Mapping[str, float]):
     return f, J, E_inverse, vals
 
 
-def _shoot(rhs, jac, y0: np.ndarray, T0: float, anchor_f: np.ndarray, rtol: float):
+def _shoot(rhs, jac, y0: np.ndarray, T0: float, anchor_f: np.ndarray, rtol: float, flow=None):
     """Periodic orbit by Newton on (y(T; z) − z, (z − y0)·f(y0)) with the unknowns (z, T).
 
     Judged by the closure |y(T; z) − z|: hybrd stops "not making good progress" when its seed is already
     within the integration's noise of the cycle (Rayleigh, k = 9, ε² = 1e-3: closure 1e-17), so a stalled
-    solve closed to the integrator's tolerance rtol·max|z| (period > T0/2) counts as converged."""
+    solve closed to the integrator's tolerance rtol·max|z| (period > T0/2) counts as converged.
+    ``flow(z, T)`` integrates over [0, T] (default scipy's Radau on ``rhs``, ``jac``)."""
     import scipy.integrate
     import scipy.optimize
 
     n = y0.size
 
-    def flow(z, T):
+    def scipy_flow(z, T):
         sol = scipy.integrate.solve_ivp(rhs, (0.0, T), z, method="Radau", jac=jac, rtol=rtol,
                                         atol=rtol * max(1e-12, float(np.max(np.abs(z)))), dense_output=True)
         if sol.status != 0:
             raise IntegratorError(f"integration failed while shooting: {sol.message}")
         return sol
+
+    flow = flow or scipy_flow
 
     def residual(u):
         z, T = u[:n], u[n]
@@ -596,6 +599,7 @@ def _check_system(system, params: Mapping[str, float], bracket, eps2, tolerance,
 
     import scipy.optimize
 
+    from landau.analyses.system_simulation import shooting_flow
     from landau.derivation.general import hopf_normal_form
 
     if bracket is None:
@@ -633,10 +637,11 @@ def _check_system(system, params: Mapping[str, float], bracket, eps2, tolerance,
         pp = pr.p_c + pr.cycle_side * e * scale
         rhs, jac = field_at(pp)
         y0 = equilibrium(rhs)
+        flow = shooting_flow(system, {**params, pr.parameter: pp}, rtol)   # the compiled Radau IIA
         last: Exception | None = None
         for start, T0 in seeds(y0, jac):
             try:
-                z, T, sol, mult = _shoot(rhs, jac, start, T0, rhs(0.0, start), rtol)
+                z, T, sol, mult = _shoot(rhs, jac, start, T0, rhs(0.0, start), rtol, flow)
             except (IntegratorError, ValueError, np.linalg.LinAlgError) as exc:
                 last = exc
                 continue
@@ -752,7 +757,8 @@ def check(target, V: float | None = None, eps2: float | Sequence[float] = 1e-3,
     bistability : bool
         Subcritical spring–block points: also show bistability by bisection (slower).
     rtol : float
-        Integration tolerance of the general route.
+        Integration tolerance of the general route (its shooting integrates with the compiled Radau IIA,
+        :func:`landau.analyses.system_simulation.shooting_flow`).
 
     Returns
     -------

@@ -180,11 +180,11 @@ def test_a_shooting_failure_from_the_linear_mode_is_continued_from_a_closer_cycl
     pr = hopf_normal_form(s, par, br)
     period_1e3 = 2 * np.pi / pr.frequency(pr.p_c + pr.cycle_side * 1e-3 * abs(pr.p_c))
 
-    def flaky(rhs, jac, y0, T0, anchor_f, rtol):
+    def flaky(rhs, jac, y0, T0, anchor_f, rtol, flow=None):
         if T0 == pytest.approx(period_1e3, rel=1e-12):         # the critical-mode seed at ε² = 1e-3
             refused.append(T0)
             raise IntegratorError("shooting did not converge: The iteration is not making good progress")
-        return real(rhs, jac, y0, T0, anchor_f, rtol)
+        return real(rhs, jac, y0, T0, anchor_f, rtol, flow)
 
     monkeypatch.setattr(checking, "_shoot", flaky)
     r = check(s, eps2=1e-3, params=par, bracket=br)
