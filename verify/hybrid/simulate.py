@@ -43,7 +43,6 @@ from landau.verify.hybrid.locate import HermiteScreen, first_crossing, guard_on_
 from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.model import Guard, HybridModel, as_jump
 from landau.verify.hybrid.result import Simulation, status_from_text
-from landau.verify.hybrid.steppers import ScipyStepper
 from landau.verify.hybrid.zeno import ZenoDiagnosis, ZenoMonitor
 
 
