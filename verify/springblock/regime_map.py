@@ -51,7 +51,7 @@ UNITS = {"amplitude_near": "m", "amplitude_far": "m", "period_near": "s", "perio
 #: without k on the grid, each point is simulated at k = (1 − eps2) k_c of its own parameters (the
 #: unstable side of the Hopf point): a small cycle where the bifurcation is supercritical, a large
 #: stick–slip cycle where it is subcritical; this is the default eps2
-EPS2_DEFAULT = 0.1
+EPS2_DEFAULT = 0.03
 
 
 def make_task(task: str, model: str, law, fixed: tuple, options: tuple) -> ModelTask:
