@@ -52,6 +52,8 @@ def configure(p) -> None:
                     help="a running dask scheduler (tcp://host:8786) or local:N for a LocalCluster of N workers")
     p.add_argument("--chunk-size", type=int, default=None, help="points per task sent to a worker")
     p.add_argument("--eps2", type=float, default=None, help="check: distance from the Hopf point (default 1e-3)")
+    p.add_argument("--k-over-kc", dest="k_over_kc", type=float, default=None, metavar="R",
+                   help="regime without k on the grid: each point at k = R k_c of its own parameters (default 1.003)")
     p.add_argument("--direction", choices=("up", "down"), default=None, help="simulate: continuation direction")
     for name, kind, what in (("n-first", int, "periods of transient at a chunk's first point"),
                              ("n-step", int, "periods of transient after each step"),
@@ -67,7 +69,7 @@ def _options(args, model) -> dict[str, Any]:
     from landau.cli.model_args import model_options
 
     opts: dict[str, Any] = {}
-    for key in ("chunk_size", "eps2", "direction", "n_first", "n_step", "n_keep", "overlap", "rtol"):
+    for key in ("chunk_size", "eps2", "k_over_kc", "direction", "n_first", "n_step", "n_keep", "overlap", "rtol"):
         val = getattr(args, key, None)
         if val is not None:
             if isinstance(val, float) and not math.isfinite(val):

@@ -1,11 +1,13 @@
-"""The (V, η) regime map: each point simulated at k = (1 − eps2) k_c of its own (V, η), beside the
+"""The (V, η) regime map: each point simulated at k = 1.003 k_c of its own (V, η), beside the
 amplitude equation's prediction there.
 
-The prediction columns equal single ``landau hopf`` calls (same function: to the last bit); the
-simulated regime agrees with the predicted criticality away from the super/subcritical boundary: a
-supercritical Hopf point gives a small cycle just below k_c, a subcritical one a jump to the large
-stick–slip cycle (Putelat et al. 2010, Sec. 5; radiation damping η shifts the codimension-two
-velocity V*, Rice 1993).
+The prediction columns equal single ``landau hopf`` calls (the same function: to the last bit).  Just
+above k_c the simulation tells the two kinds of Hopf point apart by hysteresis (Putelat et al. 2010,
+Sec. 5 and Fig. 12): a supercritical point slides steadily from both starts; a subcritical one is
+bistable where the quintic amplitude equation puts a fold of cycles k_fold beyond the simulated
+stiffness (the bistable window k_c < k < k_fold), and steady where k_fold lies below it.  Points
+whose fold lies within a factor 2 of the simulated stiffness, or with no fold predicted (Λ and Λ₅
+of one sign: outside the quintic truncation), are left unjudged.
 """
 
 from __future__ import annotations
@@ -13,12 +15,10 @@ from __future__ import annotations
 import json
 
 import numpy as np
-import pytest
 
 import landau
 
-#: the regimes each predicted criticality implies just below k_c
-AGREES = {"supercritical": {"small-cycle"}, "subcritical": {"stick-slip", "bistable"}}
+R = 1.003   # k / k_c, the default of the regime task without k
 
 
 def _hopf(V, eta, capsys):
@@ -28,31 +28,44 @@ def _hopf(V, eta, capsys):
     return json.loads(capsys.readouterr().out)
 
 
-def _check_map(ds, capsys, away_only: bool):
-    crit = ds.criticality.values
-    checked = 0
+def _expected(crit: str, k_fold: float, k_c: float) -> str | None:
+    if crit == "supercritical":
+        return "steady"
+    window = k_fold / k_c - 1 if np.isfinite(k_fold) else np.nan
+    if not np.isfinite(window):
+        return None
+    if window > 2 * (R - 1):
+        return "bistable"
+    if window < (R - 1) / 2:
+        return "steady"
+    return None
+
+
+def _check_map(ds, capsys):
+    judged = {"supercritical": 0, "subcritical": 0}
     for i, V in enumerate(ds.V.values):
         for j, eta in enumerate(ds.eta.values):
+            if str(ds.status.values[i, j]) != "ok":
+                continue
             doc = _hopf(float(V), float(eta), capsys)
-            assert crit[i, j] == doc["criticality"], (V, eta)
+            crit = str(ds.criticality.values[i, j])
+            assert crit == doc["criticality"], (V, eta)
             assert float(ds.k_c.values[i, j]) == doc["p_c"], (V, eta)
-            near = [crit[i2, j] for i2 in (i - 1, i + 1) if 0 <= i2 < len(ds.V)]
-            if away_only and any(c != crit[i, j] for c in near):
-                continue   # next to the boundary along V: either verdict is fair at a finite eps2
-            assert str(ds.regime.values[i, j]) in AGREES[crit[i, j]], (V, eta, str(ds.regime.values[i, j]))
-            checked += 1
-    return checked
+            assert float(ds.k.values[i, j]) == R * doc["p_c"]
+            want = _expected(crit, float(ds.k_fold.values[i, j]), doc["p_c"])
+            if want is None:
+                continue
+            assert str(ds.regime.values[i, j]) == want, (V, eta, crit)
+            judged[crit] += 1
+    return judged
 
 
 def test_a_small_v_eta_map_agrees_with_the_prediction(capsys):
-    ds = landau.sweep("regime", {"V": [1e-5, 5e-4], "eta": [0.0, 300.0]}, law="dieterich", workers=1, progress=False)
+    ds = landau.sweep("regime", {"V": [8e-5, 5e-4], "eta": [0.0, 300.0]}, law="dieterich", workers=1, progress=False)
     assert set(ds.status.values.ravel()) == {"ok"}
-    np.testing.assert_allclose(ds.k.values, (1 - 0.03) * ds.k_c.values, rtol=1e-15)
-    assert _check_map(ds, capsys, away_only=False) == 4
-    assert set(ds.criticality.values.ravel()) == {"subcritical", "supercritical"}   # both sides are met
+    assert _check_map(ds, capsys) == {"supercritical": 3, "subcritical": 1}
 
 
-@pytest.mark.slow
 def test_the_v_eta_map_of_the_command_line(tmp_path, capsys):
     from landau.cli import main
 
@@ -64,4 +77,5 @@ def test_the_v_eta_map_of_the_command_line(tmp_path, capsys):
 
     with xr.open_dataset(out) as ds:
         ds = ds.load()
-    assert _check_map(ds, capsys, away_only=True) >= 60
+    judged = _check_map(ds, capsys)
+    assert judged["supercritical"] >= 70 and judged["subcritical"] >= 3, judged

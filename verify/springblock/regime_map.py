@@ -45,30 +45,66 @@ NEAR, FAR = 1e-3, 100.0
 CHUNK_EVENTS, MAX_EVENTS = 20, 400
 REGIMES = ("steady", "small-cycle", "stick-slip", "bistable", "undecided")
 UNITS = {"amplitude_near": "m", "amplitude_far": "m", "period_near": "s", "period_far": "s",
-         "v_min_near": "1", "v_min_far": "1", "k": "N/m", "k_c": "N/m"}
+         "v_min_near": "1", "v_min_far": "1", "k": "N/m", "k_c": "N/m", "amplitude_predicted": "m",
+         "swing_predicted": "1", "k_fold": "N/m"}
 
 
-#: without k on the grid, each point is simulated at k = (1 − eps2) k_c of its own parameters (the
-#: unstable side of the Hopf point): a small cycle where the bifurcation is supercritical, a large
-#: stick–slip cycle where it is subcritical; this is the default eps2
-EPS2_DEFAULT = 0.03
+#: without k on the grid, each point is simulated at k = K_OVER_KC · k_c of its own parameters: just
+#: above the Hopf point, on the stable side, where a supercritical point slides steadily and a
+#: subcritical one inside its fold of cycles is bistable (the hysteresis that tells the two apart)
+K_OVER_KC = 1.003
+
+
+_FOLD_DERIVATIONS: dict = {}
+
+
+def _fold(law, V: float, params) -> float:
+    """k_fold, the fold of cycles of the quintic amplitude equation at V
+    (:func:`landau.analyses.bautin.spring_block_fold`), NaN where Λ and Λ₅ have the same sign."""
+    from landau.analyses.bautin import spring_block_fold
+    from landau.derivation.multiscale import derive
+    from landau.systems.system import SpringBlock
+
+    block = SpringBlock.for_params(law, params)
+    key = (id(law), block.terms)
+    if key not in _FOLD_DERIVATIONS:
+        _FOLD_DERIVATIONS[key] = (law, derive(block))
+    fold = spring_block_fold(_FOLD_DERIVATIONS[key][1], V, params)
+    return float(fold.p_fold) if fold is not None else float("nan")
+
+
+def prediction_at(h, V: float, r: float, law=None, params=None) -> dict:
+    """The amplitude equation's numbers at k = r k_c: ``k``, ``k_c``, ``Lambda``, ``criticality``, the
+    cycle's half swing ``amplitude_predicted`` = C √|k − k_c| (Putelat et al. 2010, eq. 23: the small
+    stable cycle below a supercritical k_c, the unstable one above a subcritical k_c) and its slip-rate
+    swing as a fraction of V, ``swing_predicted`` = A ω_c / V (at 1 the weakly nonlinear cycle reverses
+    the slip: beyond the prediction's validity); above k_c at a subcritical point also ``k_fold``, the
+    fold of cycles of the quintic amplitude equation that bounds the bistable window k_c < k < k_fold
+    (NaN where none is predicted: Λ and Λ₅ of one sign)."""
+    C, w, kc = float(h.C), float(h.omega_c), float(h.p_c)
+    A = C * np.sqrt(abs(1.0 - r) * kc) if np.isfinite(C) else np.nan
+    out = {"k": r * kc, "k_c": kc, "Lambda": float(h.Lambda), "criticality": str(h.criticality),
+           "amplitude_predicted": A, "swing_predicted": A * w / V}
+    if r > 1:
+        out["k_fold"] = _fold(law, V, params) if str(h.criticality) == "subcritical" else float("nan")
+    return out
 
 
 def make_task(task: str, model: str, law, fixed: tuple, options: tuple) -> ModelTask:
     """The ``regime`` task of the spring–block (built by the model's task factory).
 
-    Without ``k`` on the grid or among the fixed values, each point is run at k = (1 − eps2) k_c(point)
-    (option ``eps2``, default :data:`EPS2_DEFAULT`), and the point also records the amplitude
-    equation's prediction there (``k_c``, ``Lambda``, ``criticality``): a map over (V, η) or any other
-    parameters whose simulated regimes are compared with the predicted super/subcritical boundary."""
+    Without ``k`` on the grid or among the fixed values, each point is run at k = r k_c(point)
+    (option ``k_over_kc`` r, default :data:`K_OVER_KC`), and the point also records the amplitude
+    equation's prediction there (:func:`prediction_at`): a map over (V, η) or any other parameters
+    whose simulated regimes and amplitudes are compared with the predicted super/subcritical boundary."""
     opts = dict(options)
-    unknown = sorted(set(opts) - {"chunk_size", "rtol", "eps2"})
+    unknown = sorted(set(opts) - {"chunk_size", "rtol", "k_over_kc"})
     if unknown:
         raise InputError(f"regime spring-block: option(s) {', '.join(unknown)} do not apply (known: chunk_size, "
-                         "rtol, eps2)")
-    eps2 = float(opts.get("eps2", EPS2_DEFAULT))
-    if not 0 < eps2 < 1:
-        raise InputError(f"regime spring-block: eps2 = (k_c - k)/k_c must lie in (0, 1), got {eps2!r}")
+                         "rtol, k_over_kc)")
+    r = float(opts.get("k_over_kc", K_OVER_KC))
+    if not (np.isfinite(r) and r > 0 and r != 1):
+        raise InputError(f"regime spring-block: k_over_kc = k/k_c must be > 0 and not 1, got {r!r}")
     return ModelTask(task, model, law, fixed, options, chunk_size=int(opts.get("chunk_size", 1)),
                      chunk_fn=regime_chunk, grid_fn=check_grid, prepare_fn=prepare, extra_units=tuple(UNITS.items()))
 
@@ -77,8 +113,9 @@ def check_grid(task: ModelTask, grid) -> None:
     fixed = dict(task.fixed)
     if "V" not in grid.names and "V" not in fixed:
         raise InputError("regime spring-block: give V as --grid V=... or --param V=...")
-    if "eps2" in dict(task.options) and ("k" in grid.names or "k" in fixed):
-        raise InputError("regime spring-block: eps2 sets k = (1 - eps2) k_c where k is not given; give one of them")
+    if "k_over_kc" in dict(task.options) and ("k" in grid.names or "k" in fixed):
+        raise InputError("regime spring-block: k_over_kc sets k = k_over_kc * k_c where k is not given; give one of "
+                         "them")
     M = fixed.get("M", 1.0)
     if "M" in grid.names:
         M = min(grid.axes[grid.names.index("M")].values)
@@ -220,7 +257,7 @@ def regime_chunk(task: ModelTask, chunk: Chunk) -> ChunkResult:
     law = task.spec.build()
     opts = dict(task.options)
     rtol = float(opts.get("rtol", 1e-8))
-    eps2 = float(opts.get("eps2", EPS2_DEFAULT))
+    r = float(opts.get("k_over_kc", K_OVER_KC))
     bad, why = task.invalid(chunk)
     status, message, rows = [], [], []
     for j in range(len(chunk.index)):
@@ -233,14 +270,12 @@ def regime_chunk(task: ModelTask, chunk: Chunk) -> ChunkResult:
         V, k = pt.pop("V"), pt.pop("k", None)
         try:
             prediction = {}
-            if k is None:   # at (1 - eps2) k_c of this point, with the amplitude equation's prediction
+            if k is None:   # at k_over_kc * k_c of this point, with the amplitude equation's prediction
                 from landau.models import Setup
                 from landau.verify.springblock.declaration import spring_block_hopf
 
-                h = spring_block_hopf(Setup(law, {**pt, "V": V}))
-                k = (1.0 - eps2) * float(h.p_c)
-                prediction = {"k": k, "k_c": float(h.p_c), "Lambda": float(h.Lambda),
-                              "criticality": str(h.criticality)}
+                prediction = prediction_at(spring_block_hopf(Setup(law, {**pt, "V": V})), V, r, law, pt)
+                k = prediction["k"]
             row = {**regime_at(law, V, k, pt, rtol), **prediction}
             rows.append(row)
             status.append("ok")
@@ -256,7 +291,7 @@ def regime_chunk(task: ModelTask, chunk: Chunk) -> ChunkResult:
             message.append(_first_line(exc))
     names = [f"{q}_{s}" for q in ("amplitude", "v_min", "period", "settled") for s in ("near", "far")]
     if "k" not in chunk.points and "k" not in dict(task.fixed):
-        names += ["k", "k_c", "Lambda"]
+        names += ["k", "k_c", "Lambda", "amplitude_predicted", "swing_predicted"] + (["k_fold"] if r > 1 else [])
     vals = {n: np.array([r.get(n, np.nan) for r in rows], dtype=float) for n in names}
     strs = {n: [r.get(n, "") for r in rows] for n in ("regime", "regime_near", "regime_far")}
     if "k" in names:
