@@ -206,7 +206,8 @@ def history_kernel(law: FrictionLaw, terms: tuple[str, ...], quasidynamic: bool)
 
     M > 0: the momentum equation (:func:`_momentum`).  M = 0: the force balance index-reduced and fed
     back, w' = −(R_y·f + λR)/R_w (:mod:`landau.verify.springblock.compiled_runs`).  The parameter
-    vector (``names``): the law's parameters, :func:`_kernel_terms`, V_lp, then λ at M = 0.
+    vector (``names``): the law's parameters, :func:`_kernel_terms`, V_lp, then at M = 0 the feedback
+    λ (V_ref + v) [1/s] as λ [1/m] and V_ref [m/s].
     """
     return per_law(law, ("load history", tuple(terms), bool(quasidynamic)),
                    lambda: _build_history_kernel(law, tuple(terms), bool(quasidynamic)))
@@ -224,11 +225,12 @@ def _build_history_kernel(law: FrictionLaw, terms: tuple[str, ...], quasidynamic
     bs = {t: sp.Symbol(f"_{t}", positive=t in ("sigma", "k", "M")) for t in blk}
     sym = {**lp, **bs}
     if quasidynamic:
-        lam = sp.Symbol("_lambda", positive=True)
+        lam, vref = sp.symbols("_lambda _V_ref", positive=True)
         w, ys, R, g, Vlp = _force_balance(law, sym, bs["k"], terms)
         states = [ys[0], w, *ys[1:]]
-        field = [g[0], index_reduced(R, g, w, ys, lam), *g[1:]]
-        extra = [Vlp, lam]
+        # the feedback at the slip rate of the moment: λ (V_ref + v) per unit length (compiled_runs)
+        field = [g[0], index_reduced(R, g, w, ys, lam * (vref + sp.exp(w))), *g[1:]]
+        extra = [Vlp, lam, vref]
     else:
         states, field, Vlp = _momentum(law, sym, bs["k"], terms)
         extra = [Vlp]
@@ -236,7 +238,7 @@ def _build_history_kernel(law: FrictionLaw, terms: tuple[str, ...], quasidynamic
     stray = set().union(*(e.free_symbols for e in field)) - set(states) - set(params)
     if stray:
         raise InputError(f"law {law.name!r}: undeclared symbol(s) {sorted(map(str, stray))} in the field")
-    names = (*sym, "V_lp") + (("lambda",) if quasidynamic else ())
+    names = (*sym, "V_lp") + (("lambda", "V_ref") if quasidynamic else ())
     label = f"{law.name} (load history{', M = 0' if quasidynamic else ''})"
     return compile_field(key, states, field, params, names, label)
 
@@ -254,8 +256,8 @@ def _pieces(law, p, k, terms, h: LoadHistory, y, T, ends, t_end, rtol, scale, qu
         if a >= t_end:
             break
         b = min(b, t_end)
-        # the feedback of the force balance, per unit of the slip time ℓ/V₀ of the run (compiled_runs)
-        pv = kern.parameters(base + [V] + ([FEEDBACK * h.velocities[0] / ell] if quasidynamic else []))
+        # the feedback of the force balance: FEEDBACK per slip time ℓ/(V₀ + v) (compiled_runs)
+        pv = kern.parameters(base + [V] + ([FEEDBACK / ell, h.velocities[0]] if quasidynamic else []))
         run = drive(kern, pv, y, a, b, rtol=rtol, atol=rtol * scale, max_steps=MAX_STEPS)
         if run.status != 0:
             why = STATUS[run.status] + (f" ({MAX_STEPS} step attempts)" if run.status == -2 else "")

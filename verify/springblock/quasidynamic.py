@@ -138,7 +138,7 @@ class QuasiDynamicCell:
 
     @cached_property
     def kernel_p(self) -> np.ndarray:
-        """The parameter vector of :attr:`kernel` (the feedback λ = :data:`FEEDBACK` per unit τ)."""
+        """The parameter vector of :attr:`kernel` (the feedback λ = :data:`FEEDBACK`)."""
         blk = _block_terms(self.terms)
         base = [self.params[prm.name] for prm in self.law.parameters]
         base += [self.V, self.k, self.ell, self.mu0, self.sigma_ss, *self.phi0]
@@ -251,7 +251,8 @@ def _block_terms(terms) -> tuple[str, ...]:
 def cell_kernel(law: FrictionLaw, terms: tuple[str, ...] = ()) -> CompiledField:
     """The cell in (ξ, w, ψ…) with the force balance index-reduced and fed back
     (:mod:`landau.verify.springblock.compiled_runs`), compiled once per law and terms; its parameter
-    vector (``names``): the law's parameters, V, k, ℓ, μ₀, σ_ss, φ₀…, η, [γ_LD, α_LD], λ."""
+    vector (``names``): the law's parameters, V, k, ℓ, μ₀, σ_ss, φ₀…, η, [γ_LD, α_LD], λ (the feedback
+    is λ (1 + v/V) per unit τ)."""
     return per_law(law, ("quasi-dynamic cell", tuple(terms)), lambda: _build_cell_kernel(law, tuple(terms)))
 
 
@@ -269,7 +270,8 @@ def _build_cell_kernel(law: FrictionLaw, terms: tuple[str, ...]) -> CompiledFiel
     tsyms = {t: sp.Symbol(f"_{t}", real=True) for t in blk}
     lam = sp.Symbol("_lambda", positive=True)
     w, ys, R, f = _expressions(law, terms, {**lp, **tsyms}, V, k, ell, phi0, mu0, sig)
-    field = [f[0], index_reduced(R, f, w, ys, lam), *f[1:]]
+    # the feedback at the slip rate of the moment, λ (1 + v/V) per unit τ (compiled_runs)
+    field = [f[0], index_reduced(R, f, w, ys, lam * (1 + sp.exp(w))), *f[1:]]
     params = [*lp.values(), V, k, ell, mu0, sig, *phi0, *tsyms.values(), lam]
     _stray(law, field, [w, *ys, *params])
     names = (*lp, "V", "k", "ell", "mu0", "sigma_ss", *(f"phi0_{i}" for i in range(len(phi0))), *blk, "lambda")
