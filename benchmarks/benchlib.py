@@ -88,6 +88,20 @@ def machine() -> dict:
     return info
 
 
+def commit() -> str:
+    """The checkout's commit (short hash, ``+dirty`` with uncommitted changes), or ``unknown``: the
+    results files carry the code they measured."""
+    here = Path(__file__).resolve().parent
+    try:
+        rev = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=here, capture_output=True, text=True,
+                             timeout=10).stdout.strip()
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=here,
+                               capture_output=True, text=True, timeout=10).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+    return (rev + ("+dirty" if dirty else "")) if rev else "unknown"
+
+
 def load() -> tuple[float, float, float]:
     return os.getloadavg()
 

@@ -32,6 +32,7 @@ PAGE = ROOT / "docs" / "performance.md"
 #: the sections of run.py, in page order, with their headings
 SECTIONS = {
     "springblock": "Spring–block: one period of a stick–slip cycle",
+    "springblock-paths": "Spring–block: the quasi-dynamic cell and load histories, compiled against scipy",
     "forced": "Forced impacting oscillator",
     "galvanetto": "Galvanetto blocks: event location",
     "lambda": "Λ(V): throughput and accuracy",
@@ -106,7 +107,8 @@ def _run_line(name: str, res: dict) -> str:
     loads = m.get("load average (1 min) during the run", [])
     load = f"load average {min(loads):g}–{max(loads):g}" if loads else "load average not recorded"
     return (f"*Measured {m.get('date', 'before runs were dated')} on {m.get('cpu', '?')} ({m.get('cpus', '?')} CPUs), "
-            f"Python {m.get('python', '?')}, numba {m.get('numba', '?')}, {load}; "
+            f"Python {m.get('python', '?')}, numba {m.get('numba', '?')}, {load}"
+            f"{', commit ' + m['commit'] if m.get('commit') else ''}; "
             f"`benchmarks/results/{name}`.*")
 
 

@@ -248,7 +248,7 @@ def drive(field: CompiledField, p: np.ndarray, y0, t0: float, t1: float, *, rtol
         tic = time.process_time()
         st, tn, yn, cnt, et, ey, rt, ry, hn, _ = radau_core(
             field.rhs, field.jac, t, y, float(t1), p, float(rtol), at, float(h), np.inf, budget,
-            int(ev_idx) if room or ev_stop else -1, 0.0, int(ev_dir), left, budget, None, None, evbuf, evdir)
+            int(ev_idx) if room or ev_stop else -1, 0.0, int(ev_dir), left, budget + 1, None, None, evbuf, evdir)
         cpu += time.process_time() - tic
         steps += int(cnt[0]) + int(cnt[1])
         counts += cnt[:5]
