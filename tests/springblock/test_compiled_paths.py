@@ -7,6 +7,7 @@
   independent route, scipy's Radau IIA of the implicit slip rate (the force balance solved by
   Newton's method at every evaluation), on a stick–slip run with the nonlinear normal-load terms
   γ_LD, α_LD; the force balance holds along the compiled run;
+* the sections v = V (rising) are the minima of the slip;
 * chunked compiled runs continue where the last chunk ended: the same end state and the same
   stopping crossing as one call;
 * a slide-hold-slide at M = 0 against the compiled history with a tiny mass (the momentum equation,
@@ -84,6 +85,22 @@ def test_compiled_cell_against_the_implicit_slip_rate_route():
     Y = np.vstack([sim.y[0] / cell.ell, np.log(sim.y[3] / cell.phi0[0])])
     R = np.array([cell._fn(w, *y)[0] for w, y in zip(W, Y.T, strict=True)])
     assert np.max(np.abs(R)) < 1e-11
+
+
+def test_sections_are_the_minima_of_the_slip():
+    """sections=True logs the upward crossings of v = V located by the compiled loop: there v = V (to
+    1e-9) and X is at its minimum (each event's X at most the smallest recorded X around it, within the
+    tolerance 1e-9 L), one per cycle."""
+    cell, T, y0 = _stick_slip_cell()
+    sim = simulate_quasidynamic(LAW, cell.V, cell.k, cell, T, y0, rtol=1e-10, sections=True)
+    ev = list(sim.events)
+    assert len(ev) >= 2 and all(e.note == "up" and e.kind == "section" for e in ev)
+    times = [e.t for e in ev]
+    assert np.all(np.diff(times) > 0)
+    for e in ev:
+        assert e.y[1] == pytest.approx(cell.V, rel=1e-9)
+        near = np.abs(sim.t - e.t) < 0.05 * T
+        assert e.y[0] <= sim.y[0, near].min() + 1e-9 * cell.ell
 
 
 def test_chunked_runs_continue_where_the_last_chunk_ended():

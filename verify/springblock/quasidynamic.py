@@ -301,7 +301,8 @@ def simulate_quasidynamic(law: FrictionLaw, V: float, k: float,
     rtol : float
         Relative and absolute tolerance of the Radau IIA (the scaled variables are O(1)).
     max_steps : int
-        Step budget; at it the run ends with status ``max-steps`` and the series up to there.
+        Budget of step attempts (accepted and rejected, ≥ 1); at it the run ends with status
+        ``max-steps`` and the series up to there.
     max_points : int
         Bound on the recorded points (evenly thinned past it).
     sections : bool

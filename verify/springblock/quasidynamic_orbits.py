@@ -17,6 +17,10 @@ z = (ξ, ψ₂, …, ψₙ): ψ₁ follows from the force balance at v = V, R(0,
   procedure as the block with mass, :func:`landau.verify.springblock.checks.subcritical_check`):
   from a point of Σ on the linear critical mode, follow the maxima of X until they fall below a
   lower bound (decay to steady sliding) or grow past an upper one or settle on a larger cycle.
+
+Every run is the cell's compiled Radau IIA in (ξ, w, ψ…) (:attr:`QuasiDynamicCell.kernel`,
+:func:`landau.verify.springblock.compiled_runs.drive`): the crossings of w = 0 are located by the
+compiled loop on its collocation cubic, and a run can stop at the first (or n-th) downward one.
 """
 
 from __future__ import annotations
