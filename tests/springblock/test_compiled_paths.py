@@ -147,3 +147,9 @@ def test_quasidynamic_step_budget_is_a_status_and_a_bad_budget_a_named_error():
     assert sim.nsteps <= 30 and len(sim.t) == sim.nsteps + 1
     with pytest.raises(InputError, match="max_steps"):
         simulate_quasidynamic(LAW, cell.V, cell.k, cell, T, y0, max_steps=0)
+    z0 = np.r_[y0[0], cell.slip_rate(y0), y0[1:]]
+    with pytest.raises(InputError, match="chunk_steps"):
+        drive(cell.kernel, cell.kernel_p, z0, 0.0, 1.0, rtol=1e-9, atol=np.full(3, 1e-9), chunk_steps=0)
+    with pytest.raises(InputError, match="max_events"):
+        drive(cell.kernel, cell.kernel_p, z0, 0.0, 1.0, rtol=1e-9, atol=np.full(3, 1e-9), ev_idx=1, ev_stop=5,
+              max_events=2)

@@ -229,19 +229,37 @@ def drive(field: CompiledField, p: np.ndarray, y0, t0: float, t1: float, *, rtol
         Bound on the crossings kept.
     chunk_steps : int
         Step attempts per compiled call (each call continues from the last one's state and step).
+
+    Returns
+    -------
+    Drive
+        The end of the run, its record, crossings and counters.
+
+    Raises
+    ------
+    InputError
+        A budget or chunk below 1, or a stop after more crossings than are kept.
     """
+    if not (int(max_steps) >= 1 and int(chunk_steps) >= 1):
+        raise InputError(f"max_steps and chunk_steps must be >= 1, got {max_steps!r}, {chunk_steps!r}")
+    if ev_stop > max_events:
+        raise InputError(f"a run stopping after {ev_stop} crossings keeps at least as many (max_events = "
+                         f"{max_events})")
     y = np.ascontiguousarray(y0, dtype=float).copy()
     at = np.ascontiguousarray(atol, dtype=float)
     t = float(t0)
     h = first_step(field, p, t, y, float(t1), rtol, at) if h0 is None else float(h0)
     rec_t, rec_y = [np.array([t])], [y[None, :].copy()]
-    ev_t, ev_y, ev_d = [], [], []
+    ev_t: list[np.ndarray] = []
+    ev_y: list[np.ndarray] = []
+    ev_d: list[np.ndarray] = []
+    kept = 0                           # crossings kept so far
     counts = np.zeros(5, dtype=np.int64)
     steps, found, cpu, st = 0, 0, 0.0, -2
     n = len(y)
     while steps < max_steps:
         budget = min(int(chunk_steps), int(max_steps) - steps)
-        room = max(int(max_events) - sum(len(e) for e in ev_t), 0)
+        room = max(int(max_events) - kept, 0)
         evbuf = np.empty((max(room, 1) if ev_idx >= 0 else 1, n + 1))
         evdir = np.empty(evbuf.shape[0])
         left = max(int(ev_stop) - found, 1) if ev_stop > 0 else 0
@@ -254,6 +272,7 @@ def drive(field: CompiledField, p: np.ndarray, y0, t0: float, t1: float, *, rtol
         counts += cnt[:5]
         keep = min(len(et), room)
         et, ey, d = et[:keep], ey[:keep], evdir[:keep].astype(int)
+        kept += keep
         ev_t.append(et)
         ev_y.append(ey)
         ev_d.append(d)
