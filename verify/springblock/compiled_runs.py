@@ -50,7 +50,7 @@ runs the load histories at M > 0, which are stiff (the inertial relaxation σa/(
 times the slip rate V/L at the default block); (iii) the feedback that guarantees the force
 balance needs an L-stable method; and (iv) it already meets the speed goal against the scipy
 route at equal error (``benchmarks/sections_springblock_paths.py``: 215–310× on the cell, whose
-compiled run at rtol 1e-9 costs about 2 ms, half of it the per-call set-up).  A DOP853 route would
+compiled run at rtol 1e-9 costs about 2 ms, a third of it the per-call set-up).  A DOP853 route would
 save most of the loop's share (6–8× fewer evaluations, no LU), not the set-up.
 
 This module holds the kernels' compilation (:func:`compile_field`: hoisted parameters, exact
