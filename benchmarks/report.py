@@ -32,6 +32,7 @@ PAGE = ROOT / "docs" / "performance.md"
 #: the sections of run.py, in page order, with their headings
 SECTIONS = {
     "springblock": "Spring–block: one period of a stick–slip cycle",
+    "springblock-paths": "Spring–block: the quasi-dynamic cell and load histories, compiled against scipy",
     "forced": "Forced impacting oscillator",
     "galvanetto": "Galvanetto blocks: event location",
     "lambda": "Λ(V): throughput and accuracy",

@@ -19,6 +19,9 @@ Sections (``--only``), each described in its module:
 
 * ``springblock``, ``forced``, ``galvanetto`` — work-precision against compiled peers at equal
   error (``sections_solvers.py``);
+* ``springblock-paths`` — the quasi-dynamic cell and the load histories on the compiled Radau IIA
+  against the scipy routes they replaced, at equal error, and their first build
+  (``sections_springblock_paths.py``, about a minute);
 * ``lambda``, ``derive`` — Λ(V) throughput and accuracy, derivation cost (``sections_engine.py``);
 * ``coldstart``, ``help``, ``figures`` — commands in fresh processes, cold and warm (``sections_cli.py``);
 * ``sweep`` — landau.sweep: 1 → 2 workers, hopf points per second, executor overhead (``sections_sweep.py``);
@@ -49,12 +52,14 @@ from benchlib import GOALS, RAW, TABLES, load, machine  # noqa: E402
 from sections_cli import section_coldstart, section_figures, section_help  # noqa: E402
 from sections_engine import section_derive, section_lambda  # noqa: E402
 from sections_solvers import section_forced, section_galvanetto, section_springblock  # noqa: E402
+from sections_springblock_paths import section_springblock_paths  # noqa: E402
 from sections_sweep import section_sweep  # noqa: E402
 from sections_usersystem import section_usersystem  # noqa: E402
 
-SECTIONS = ("springblock", "forced", "galvanetto", "lambda", "derive", "coldstart", "help", "figures", "sweep",
-            "usersystem")
-RUNNERS = {"springblock": section_springblock, "forced": section_forced, "galvanetto": section_galvanetto,
+SECTIONS = ("springblock", "springblock-paths", "forced", "galvanetto", "lambda", "derive", "coldstart", "help",
+            "figures", "sweep", "usersystem")
+RUNNERS = {"springblock": section_springblock, "springblock-paths": section_springblock_paths,
+           "forced": section_forced, "galvanetto": section_galvanetto,
            "lambda": section_lambda, "coldstart": section_coldstart, "help": section_help,
            "figures": section_figures, "sweep": section_sweep, "usersystem": section_usersystem}
 
@@ -77,6 +82,7 @@ def main(argv=None) -> int:
         print(f"unknown section(s) {', '.join(bad)} (known: {', '.join(SECTIONS)})", file=sys.stderr)
         return 2
     info = machine()
+    info["commit"] = benchlib.commit()
     info["date"] = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     loads = [load()]
     t_start = time.time()

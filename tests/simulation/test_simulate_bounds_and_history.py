@@ -80,6 +80,20 @@ def test_spring_block_streamed_record_is_bounded_and_spans_the_run():
     assert short.status.value == "max-steps" and short.t_final < 5.0 and short.t[-1] == short.t_final
 
 
+def test_spring_block_streamed_record_keeps_every_step_of_each_chunk():
+    """record_run in chunks of 10 step attempts without a point bound keeps one point per accepted step
+    and the start: the last step of a chunk whose attempts were all accepted is recorded too (the next
+    chunk's record starts at it)."""
+    from landau.laws import get_law
+    from landau.verify.springblock.model import SpringBlockModel
+    from landau.verify.springblock.simulate import record_run
+
+    model = SpringBlockModel.build(get_law("dieterich"), 1e-4, 1.7e5)
+    y0 = model.perturbed(0.01 * model.ell)
+    sim = record_run(model, y0, (0.0, 0.5), rtol=1e-8, chunk_steps=10)
+    assert sim.nsteps > 100 and len(sim.t) == sim.nsteps + 1 and np.all(np.diff(sim.t) > 0)
+
+
 def test_hybrid_engine_step_budget_is_a_status():
     """The hybrid engine at its step budget returns status max_steps (not an exception) with the
     recorded trajectory up to there."""

@@ -151,7 +151,7 @@ def test_m0_without_damping_is_a_named_error(capsys):
 @pytest.mark.slow
 def test_landau_verify_checks_the_quasidynamic_cell(capsys):
     """`landau verify` at M = 0: the cycle's amplitude against the prediction at ε² ≈ ε²_max/10, by the
-    return map of the quasi-dynamic cell (about 15 s)."""
+    return map of the quasi-dynamic cell (about 2 s)."""
     import json
 
     argv = ["verify", "dieterich", "--V", "1e-6", "--eps2", "4.6e-7", "--json"]
@@ -180,7 +180,7 @@ def test_check_finds_the_cycle_of_a_two_state_law_at_m0():
     Newton shooting on the return map to v = V): the half peak-to-peak slip against C·sqrt(k_c − k) at
     ε² = 1e-3 and ε²/4, its error falling like ε² (the check's contract), and the two Floquet
     multipliers: the amplitude mode's gap 1 − |m| against the predicted 2 Re(dλ/dk)(k_c − k)·T, the
-    other strongly contracting (about 20 s)."""
+    other strongly contracting (about 4 s)."""
     from landau import check
     from landau.analyses import contract
 
@@ -226,7 +226,7 @@ def test_bistability_probe_at_m0_decays_below_and_grows_beyond_the_unstable_cycl
 def test_landau_verify_shows_bistability_at_a_subcritical_m0_point(capsys):
     """`landau verify` at a subcritical M = 0 point with the bistability test (no --no-bistability): the
     unstable cycle by the return map, the threshold between decay and growth bracketed by bisection around
-    it, and the large stick-slip cycle beyond it stable (about 70 s)."""
+    it, and the large stick-slip cycle beyond it stable (about 3 s)."""
     import json
 
     argv = ["verify", "nanoscale", "--V", str(SUB_V), "--json"] + [f"--param={n}={v}" for n, v in SUB.items()]

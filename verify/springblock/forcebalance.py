@@ -4,9 +4,10 @@ Without inertia (M = 0) the momentum equation of the spring–block with radiati
 algebraic, 0 = F_spring − σ μ(v, φ) − η v, and fixes the slip rate at every instant.  With η > 0
 and ∂μ/∂v ≥ 0 its residual R decreases strictly in w = ln(v/v_ref), so the root is unique.
 :func:`solve_log_rate` finds it by a safeguarded Newton iteration in w (a bracket kept and
-bisected where a Newton step would leave it); the constant-velocity cell
-(:mod:`landau.verify.springblock.quasidynamic`) and the load-point histories at M = 0
-(:mod:`landau.verify.springblock.history`) share it.
+bisected where a Newton step would leave it).  The constant-velocity cell
+(:mod:`landau.verify.springblock.quasidynamic`) takes its slip rate from it wherever a state is given
+without one (the start of a run, a point of the section v = V); the compiled runs then carry w as a
+state (:mod:`landau.verify.springblock.compiled_runs`).
 
 References
 ----------

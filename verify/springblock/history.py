@@ -16,13 +16,16 @@ resolved over the tens of decades a hold spans):
 
     u' = V(t) − v,    w' = (k u − σ(u) μ − η v) / (M v),    ψᵢ' = rateᵢ / φᵢ,
 
-one constant-velocity piece at a time with scipy's Radau IIA (exact Jacobian from the symbolic
-law).  At M = 0 with η > 0 (the quasi-dynamic limit, Rice 1993) the momentum equation is the force
-balance k u = σ(u) μ(v, φ) + η v, solved for w at every evaluation
-(:func:`~landau.verify.springblock.forcebalance.solve_log_rate`, as the constant-velocity cell of
-:mod:`landau.verify.springblock.quasidynamic`), and (u, ψ…) are integrated with the Jacobian
-f_y − f_w R_y/R_w of the implicit slip rate.  Every run starts from steady sliding at the first
-velocity (v = V₀, φ = φ_ss(V₀), k u = (σ₀ μ_ss + ηV₀)/(1 − γ_LD μ_ss)).  :func:`parse_history` reads the command line's
+one constant-velocity piece at a time with the compiled Radau IIA of
+:mod:`landau.verify.hybrid.radau` (field and exact Jacobian generated from the symbolic law and
+compiled once per law and set of terms, :func:`history_kernel`; V(t) is an entry of the parameter
+vector), every piece a fresh run from the state the previous one left.  At M = 0 with η > 0 (the
+quasi-dynamic limit, Rice 1993) the momentum equation is the force balance
+k u = σ(u) μ(v, φ) + η v; differentiated once and fed back, w' = −(R_y·y' + λR)/R_w
+(:mod:`landau.verify.springblock.compiled_runs`), it keeps w a state of the same compiled run, and
+as it does not contain V the state (u, w, ψ…) is exactly continuous across a jump of V.  Every run
+starts from steady sliding at the first velocity (v = V₀, φ = φ_ss(V₀),
+k u = (σ₀ μ_ss + ηV₀)/(1 − γ_LD μ_ss)).  :func:`parse_history` reads the command line's
 ``"V0@t0,V1@t1,..."``; :func:`simulate_history` returns a
 :class:`~landau.verify.hybrid.result.Simulation` whose series are the load-point velocity ``V``,
 the slip rate ``v``, the friction coefficient ``mu`` = μ(v, φ) and the states, and with ``eta``
@@ -43,7 +46,20 @@ from landau.errors import InputError, IntegratorError
 from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
 from landau.verify.hybrid.log import EventLog
+from landau.verify.hybrid.radau import STATUS
 from landau.verify.hybrid.result import Simulation, Status
+from landau.verify.springblock.compiled_runs import (
+    FEEDBACK,
+    CompiledField,
+    cached_field,
+    compile_field,
+    drive,
+    index_reduced,
+    per_law,
+)
+
+#: budget of step attempts of one piece of a history
+MAX_STEPS = 5_000_000
 
 
 @dataclass(frozen=True)
@@ -99,20 +115,34 @@ def parse_history(text: str) -> LoadHistory:
 
 
 def _steady_state(law: FrictionLaw, V: float, p: Mapping[str, float]) -> tuple[list[float], float]:
-    from landau.verify.springblock.model import _steady_state as ss
+    """(φ_ss, μ_ss) at sliding velocity V, computed once per law, V and law parameters in this process."""
+    memo = per_law(law, ("steady states",), dict)
+    key = (float(V), tuple(float(p[prm.name]) for prm in law.parameters))
+    if key not in memo:
+        from landau.verify.springblock.model import _steady_state as ss
 
-    phi = ss(law, V, p)
-    vals = {prm.symbol: p[prm.name] for prm in law.parameters}
-    mu = float(law.mu.subs({v_slip: V, **dict(zip(law.states, phi, strict=True)), **vals}))
-    if not math.isfinite(mu):
-        raise InputError(f"law {law.name!r}: the friction coefficient is not finite at steady sliding V = {V:g} m/s")
-    return phi, mu
+        phi = ss(law, V, p)
+        vals = {prm.symbol: p[prm.name] for prm in law.parameters}
+        mu = float(law.mu.subs({v_slip: V, **dict(zip(law.states, phi, strict=True)), **vals}))
+        if not math.isfinite(mu):
+            raise InputError(f"law {law.name!r}: the friction coefficient is not finite at steady sliding "
+                             f"V = {V:g} m/s")
+        memo[key] = (tuple(phi), mu)
+    phi, mu = memo[key]
+    return list(phi), mu
+
+
+def _value(x):
+    """A parameter value as the expressions take it: a float, or a sympy symbol of a compiled kernel."""
+    return x if isinstance(x, sp.Basic) else float(x)
 
 
 def _history_law(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str, ...]):
     """The law in the history's variables, shared by the fields at M > 0 and M = 0: the symbols
     u, w = ln v, ψ = ln φ…, V_lp, the normal load σ = σ₀ + γ_LD k u (Linker & Dieterich 1992), μ and
-    the state rates (the first with the α_LD response to dσ/dt), every law parameter substituted."""
+    the state rates (the first with the α_LD response to dσ/dt), every law parameter substituted.
+    The values in ``p`` and ``k`` are numbers, or sympy symbols for the compiled kernel
+    (:func:`history_kernel`): both are built from these expressions."""
     ns = len(law.states)
     u, w = sp.symbols("u_ w_", real=True)
     psi = sp.symbols(f"psi_0:{ns}", real=True)
@@ -123,94 +153,121 @@ def _history_law(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tupl
     def tidy(e):
         return sp.expand_log(e.subs(vals).xreplace(sub), force=True)
 
-    gam = float(p.get("gamma_ld", 0.0)) if "gamma_ld" in terms else 0.0
-    sigma = float(p["sigma"]) + gam * k * u          # the normal load follows the spring force
+    gam = _value(p.get("gamma_ld", 0.0)) if "gamma_ld" in terms else 0.0
+    sigma = _value(p["sigma"]) + gam * k * u          # the normal load follows the spring force
     rates = [tidy(r) for r in law.rates]
     if "alpha_ld" in terms and gam != 0:
         sig_dot = gam * k * (Vlp - sp.exp(w))
-        rates[0] = rates[0] - float(p["alpha_ld"]) * sig_dot / (sigma * tidy(sp.diff(law.mu, law.states[0])))
+        rates[0] = rates[0] - _value(p["alpha_ld"]) * sig_dot / (sigma * tidy(sp.diff(law.mu, law.states[0])))
     return u, w, psi, Vlp, sigma, tidy(law.mu), rates
 
 
-def _field(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str, ...] = ()):
-    """f(t, y; V) and its Jacobian in (u, w, ψ…), and μ(w, ψ…), compiled by lambdify from the law
-    (with the optional ``terms``: η, γ_LD, α_LD, module docstring)."""
+def _momentum(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str, ...] = ()):
+    """M > 0: (ys, f, V_lp), the field f(y; V_lp) in y = (u, w, ψ…) (with the optional ``terms``:
+    η, γ_LD, α_LD, module docstring)."""
     u, w, psi, Vlp, sigma, mu, rates = _history_law(law, p, k, terms)
-    M = float(p["M"])
-    if M == 0:       # quasi-dynamic: the field is _field_m0's
-        return None, None, sp.lambdify([[u, w, *psi]], mu, "numpy")
-    eta = float(p.get("eta", 0.0)) if "eta" in terms else 0.0
+    M = _value(p["M"])
+    eta = _value(p.get("eta", 0.0)) if "eta" in terms else 0.0
     f = [Vlp - sp.exp(w), (k * u - sigma * mu - eta * sp.exp(w)) * sp.exp(-w) / M]
     f += [sp.expand(r * sp.exp(-q)) for r, q in zip(rates, psi, strict=True)]
-    ys = [u, w, *psi]
-    J = sp.Matrix(f).jacobian(sp.Matrix(ys))
-    fn = sp.lambdify([ys, Vlp], f, "numpy")
-    jn = sp.lambdify([ys, Vlp], J, "numpy")
-    mun = sp.lambdify([ys], mu, "numpy")
-    return fn, jn, mun
+    return [u, w, *psi], f, Vlp
 
 
-def _field_m0(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str, ...]):
-    """The quasi-dynamic history (M = 0): the force residual R(w, u, ψ…) ÷ σ₀ with R_w and R_y, and the
-    field (u', ψ'…) with its derivatives in w and y = (u, ψ…), compiled by lambdify (w = ln v)."""
+def _force_balance(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str, ...]):
+    """M = 0: (w, ys, R, f, V_lp), the force residual R(w, u, ψ…) ÷ σ₀ and the field (u', ψ'…) of
+    ys = (u, ψ…) with w = ln v implicit."""
     u, w, psi, Vlp, sigma, mu, rates = _history_law(law, p, k, terms)
-    sigma0 = float(p["sigma"])
-    eta = float(p["eta"])
-    R = (k * u - sigma * mu - eta * sp.exp(w)) / sigma0
+    R = (k * u - sigma * mu - _value(p["eta"]) * sp.exp(w)) / _value(p["sigma"])
     f = [Vlp - sp.exp(w)] + [sp.expand(r * sp.exp(-q)) for r, q in zip(rates, psi, strict=True)]
-    ys = [u, *psi]
-    res = sp.lambdify([w, *ys], (R, sp.diff(R, w), [sp.diff(R, q) for q in ys]), "math")
-    fld = sp.lambdify([w, *ys, Vlp], (f, [sp.diff(e, w) for e in f], [[sp.diff(e, q) for q in ys] for e in f]),
-                      "math")
-    return res, fld
+    return w, [u, *psi], R, f, Vlp
 
 
-def _pieces_m0(law, p, k, terms, h: LoadHistory, y, T, ends, t_end, rtol, scale):
-    """Integrate the history at M = 0 piece by piece: the slip rate from the force balance at every
-    evaluation (:func:`~landau.verify.springblock.forcebalance.solve_log_rate`), (u, ψ…) by Radau IIA
-    with the implicit-function Jacobian f_y − f_w R_y/R_w.  Returns the pieces' (t, Y, V) in (u, w, ψ…)."""
-    from scipy.integrate import solve_ivp
+def _mu_function(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str, ...]):
+    """μ at the states y = (u, w, ψ…) (arrays): the law's μ lambdified once per law, with its
+    parameters as arguments."""
+    def build():
+        lp = {prm.name: sp.Symbol(f"_q{i}", real=True) for i, prm in enumerate(law.parameters)}
+        u, w, psi, _, _, mu, _ = _history_law(law, {**lp, "sigma": 1.0}, 1.0, ())
+        return sp.lambdify([[u, w, *psi], *lp.values()], mu, "numpy")
 
-    from landau.verify.springblock.forcebalance import solve_log_rate
+    fn = per_law(law, ("history mu",), build)
+    vals = [float(p[prm.name]) for prm in law.parameters]
+    return lambda Y: fn(Y, *vals)
 
-    res, fld = _field_m0(law, p, k, terms)
-    centre = float(y[1])
-    last = [centre]
 
-    def rate(yy):
-        last[0] = solve_log_rate(res, yy, last[0], centre)
-        return last[0]
+def _kernel_terms(terms: tuple[str, ...], quasidynamic: bool) -> tuple[str, ...]:
+    """The block parameters of a history kernel, after the law's: σ₀, k, M (M > 0), the terms."""
+    blk = tuple(t for t in ("eta", "gamma_ld", "alpha_ld") if t in terms or (t == "eta" and quasidynamic))
+    return ("sigma", "k") + (() if quasidynamic else ("M",)) + blk
 
-    def f(_t, yy, V):
-        return np.asarray(fld(rate(yy), *yy, V)[0], float)
 
-    def jac(_t, yy, V):
-        w = rate(yy)
-        _, Rw, Ry = res(w, *yy)
-        _, fw, fy = fld(w, *yy, V)
-        return np.asarray(fy, float) - np.outer(np.asarray(fw, float), np.asarray(Ry, float)) / Rw
+def history_kernel(law: FrictionLaw, terms: tuple[str, ...], quasidynamic: bool) -> CompiledField:
+    """The history's field in y = (u, w, ψ…), compiled once per law, terms and kind (any parameter values).
 
-    z = np.r_[y[0], y[2:]]
-    zscale = np.r_[scale[0], scale[2:]]
+    M > 0: the momentum equation (:func:`_momentum`).  M = 0: the force balance index-reduced and fed
+    back, w' = −(R_y·f + λR)/R_w (:mod:`landau.verify.springblock.compiled_runs`).  The parameter
+    vector (``names``): the law's parameters, :func:`_kernel_terms`, V_lp, then at M = 0 the feedback
+    λ (V_ref + v) [1/s] as λ [1/m] and V_ref [m/s].
+    """
+    return per_law(law, ("load history", tuple(terms), bool(quasidynamic)),
+                   lambda: _build_history_kernel(law, tuple(terms), bool(quasidynamic)))
+
+
+def _build_history_kernel(law: FrictionLaw, terms: tuple[str, ...], quasidynamic: bool) -> CompiledField:
+    from landau.verify.springblock.model import _law_key
+
+    key = ("load history", _law_key(law), terms, quasidynamic)
+    hit = cached_field(key)
+    if hit is not None:
+        return hit
+    lp = {prm.name: sp.Symbol(f"_q{i}", real=True) for i, prm in enumerate(law.parameters)}
+    blk = _kernel_terms(terms, quasidynamic)
+    bs = {t: sp.Symbol(f"_{t}", positive=t in ("sigma", "k", "M")) for t in blk}
+    sym = {**lp, **bs}
+    if quasidynamic:
+        lam, vref = sp.symbols("_lambda _V_ref", positive=True)
+        w, ys, R, g, Vlp = _force_balance(law, sym, bs["k"], terms)
+        states = [ys[0], w, *ys[1:]]
+        # the feedback at the slip rate of the moment: λ (V_ref + v) per unit length (compiled_runs)
+        field = [g[0], index_reduced(R, g, w, ys, lam * (vref + sp.exp(w))), *g[1:]]
+        extra = [Vlp, lam, vref]
+    else:
+        states, field, Vlp = _momentum(law, sym, bs["k"], terms)
+        extra = [Vlp]
+    params = [*sym.values(), *extra]
+    stray = set().union(*(e.free_symbols for e in field)) - set(states) - set(params)
+    if stray:
+        raise InputError(f"law {law.name!r}: undeclared symbol(s) {sorted(map(str, stray))} in the field")
+    names = (*sym, "V_lp") + (("lambda", "V_ref") if quasidynamic else ())
+    label = f"{law.name} (load history{', M = 0' if quasidynamic else ''})"
+    return compile_field(key, states, field, params, names, label)
+
+
+def _pieces(law, p, k, terms, h: LoadHistory, y, T, ends, t_end, rtol, scale, quasidynamic):
+    """Integrate the history piece by piece with the compiled Radau IIA (:func:`history_kernel`), each
+    piece a fresh run from the state the last one left (exactly continuous: at M = 0 the force balance
+    does not contain V_lp).  Returns the pieces' (t, Y, V) in (u, w, ψ…), the steps and f evaluations."""
+    kern = history_kernel(law, terms, quasidynamic)
+    base = [p[prm.name] for prm in law.parameters]
+    base += [k if t == "k" else p[t] for t in _kernel_terms(terms, quasidynamic)]
+    ell = float(scale[0])
     out, nsteps, nfev = [], 0, 0
     for V, a, b in zip(h.velocities, T, ends, strict=True):
         if a >= t_end:
             break
         b = min(b, t_end)
-        try:
-            sol = solve_ivp(f, (a, b), z, method="Radau", rtol=rtol, atol=rtol * zscale, jac=jac, args=(V,))
-        except IntegratorError as exc:
-            raise IntegratorError(f"load-point history (M = 0), piece V = {V:g} m/s from t = {a:g} s: {exc}",
-                                  t=a, state=list(z)) from exc
-        if not sol.success or not np.all(np.isfinite(sol.y[:, -1])):
-            raise IntegratorError(f"load-point history (M = 0), piece V = {V:g} m/s from t = {a:g} s: "
-                                  f"{sol.message}", t=float(sol.t[-1]), state=sol.y[:, -1])
-        W = np.array([solve_log_rate(res, q, centre, centre) for q in sol.y[:, 1:].T])
-        Y = np.vstack([sol.y[0, 1:], W, sol.y[1:, 1:]])
-        out.append((sol.t[1:], Y, np.full(len(sol.t) - 1, V)))
-        nsteps += len(sol.t) - 1
-        nfev += int(sol.nfev)
-        z = sol.y[:, -1]
+        # the feedback of the force balance: FEEDBACK per slip time ℓ/(V₀ + v) (compiled_runs)
+        pv = kern.parameters(base + [V] + ([FEEDBACK / ell, h.velocities[0]] if quasidynamic else []))
+        run = drive(kern, pv, y, a, b, rtol=rtol, atol=rtol * scale, max_steps=MAX_STEPS)
+        if run.status != 0:
+            why = STATUS[run.status] + (f" ({MAX_STEPS} step attempts)" if run.status == -2 else "")
+            raise IntegratorError(f"load-point history{' (M = 0)' if quasidynamic else ''}, piece V = {V:g} m/s "
+                                  f"from t = {a:g} s: {why} (state = u [m], ln v, ln phi...)", t=float(run.t),
+                                  state=list(run.y))
+        out.append((run.rec_t[1:], run.rec_y[1:].T, np.full(len(run.rec_t) - 1, V)))
+        nsteps += int(run.counts[0])
+        nfev += int(run.counts[2])
+        y = run.y
     return out, nsteps, nfev
 
 
@@ -261,8 +318,6 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     Marone, C. (1998), Laboratory-derived friction laws and their application to seismic
     faulting, Annu. Rev. Earth Planet. Sci. 26, 643–696 (velocity steps, slide-hold-slide).
     """
-    from scipy.integrate import solve_ivp
-
     from landau.systems.system import SpringBlock
 
     h = parse_history(history) if isinstance(history, str) else history
@@ -288,7 +343,7 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
 
         for V in sorted({V for V in h.velocities if V > 0}):
             check_steady_sliding(law, _steady_state(law, V, p)[1], p, V)
-    fn, jn, mun = _field(law, p, k, terms)
+    mun = _mu_function(law, p, k, terms)
     eta = float(p.get("eta", 0.0)) if "eta" in terms else 0.0
     gam = float(p.get("gamma_ld", 0.0)) if "gamma_ld" in terms else 0.0
     F0 = (float(p["sigma"]) * mu0 + eta * h.velocities[0]) / (1.0 - gam * mu0)   # spring force k u at steady sliding
@@ -296,28 +351,11 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     scale = np.array([p.get("L", 1e-6)] + [1.0] * (len(y) - 1))
     ts, ys, vs = [np.array([T[0]])], [y[:, None]], [np.array([h.velocities[0]])]
     ends = T[1:] + [t_end]
-    nsteps = nfev = 0
-    if quasidynamic:
-        pieces, nsteps, nfev = _pieces_m0(law, p, k, terms, h, y, T, ends, t_end, rtol, scale)
-        for tt, Y, Vl in pieces:
-            ts.append(tt)
-            ys.append(Y)
-            vs.append(Vl)
-    for V, a, b in zip(h.velocities, T, ends, strict=True):
-        if quasidynamic or a >= t_end:
-            break
-        b = min(b, t_end)
-        sol = solve_ivp(lambda t, yy, V=V: fn(yy, V), (a, b), y, method="Radau", rtol=rtol, atol=rtol * scale,
-                        jac=lambda t, yy, V=V: np.asarray(jn(yy, V), float))
-        if not sol.success or not np.all(np.isfinite(sol.y[:, -1])):
-            raise IntegratorError(f"load-point history, piece V = {V:g} m/s from t = {a:g} s: {sol.message}",
-                                  t=float(sol.t[-1]), state=sol.y[:, -1])
-        ts.append(sol.t[1:])
-        ys.append(sol.y[:, 1:])
-        vs.append(np.full(len(sol.t) - 1, V))
-        nsteps += len(sol.t) - 1
-        nfev += int(sol.nfev)
-        y = sol.y[:, -1]
+    pieces, nsteps, nfev = _pieces(law, p, k, terms, h, y, T, ends, t_end, rtol, scale, quasidynamic)
+    for tt, Y, Vl in pieces:
+        ts.append(tt)
+        ys.append(Y)
+        vs.append(Vl)
     t = np.concatenate(ts)
     Y = np.concatenate(ys, axis=1)
     Vl = np.concatenate(vs)

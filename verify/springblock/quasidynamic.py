@@ -14,9 +14,16 @@ in the scaled variables of :mod:`landau.verify.springblock.model` (ξ = X/ℓ, �
 
     ξ' = e^w − 1,        ψᵢ' = (ℓ/V) rateᵢ(v, φ)/φᵢ,
 
-are integrated by scipy's Radau IIA with the exact Jacobian (the implicit-function derivative
-dw/dy = −R_y/R_w of the force residual R joins the partial derivatives).  This is the cell of
-QDYN and of the SEAS benchmark BP1 (Erickson et al. 2020).
+are integrated together with w by the compiled Radau IIA of :mod:`landau.verify.hybrid.radau`: the
+force balance R = 0 differentiated once and fed back, w' = −(R_y·y' + λR)/R_w, makes (ξ, w, ψ…) an
+ODE whose solutions include the DAE's and whose manifold R = 0 attracts
+(:mod:`landau.verify.springblock.compiled_runs` gives the reasons for this form and for Radau IIA
+over DOP853).  Its field and exact Jacobian are generated from the same symbolic residual and
+field as the cell's lambdified functions (:func:`_expressions`) and compiled once per law and set
+of terms (:func:`cell_kernel`, any parameter values); the Newton solve above gives the starting
+slip rate, and the implicit-function Jacobian f_y − f_w R_y/R_w of the reduced system in (ξ, ψ…)
+gives the critical mode at steady sliding.  This is the cell of QDYN and of the SEAS benchmark
+BP1 (Erickson et al. 2020).
 
 :func:`simulate_quasidynamic` returns a :class:`~landau.verify.hybrid.result.Simulation` with
 the series X [m], v [m/s], μ and the states; the cell's periodic orbits (the first return to the
@@ -33,6 +40,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any, Callable, Mapping
 
 import numpy as np
@@ -42,7 +50,17 @@ from landau.errors import InputError, IntegratorError
 from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
 from landau.verify.hybrid.log import Event, EventLog
+from landau.verify.hybrid.radau import STATUS
 from landau.verify.hybrid.result import Simulation, Status
+from landau.verify.springblock.compiled_runs import (
+    FEEDBACK,
+    CompiledField,
+    cached_field,
+    compile_field,
+    drive,
+    index_reduced,
+    per_law,
+)
 from landau.verify.springblock.forcebalance import W_BOUND, solve_log_rate
 
 
@@ -113,6 +131,20 @@ class QuasiDynamicCell:
         """Seconds per unit of the scaled time τ = tV/ℓ."""
         return self.ell / self.V
 
+    @property
+    def kernel(self) -> CompiledField:
+        """The compiled cell in (ξ, w, ψ…) (:func:`cell_kernel`)."""
+        return cell_kernel(self.law, self.terms)
+
+    @cached_property
+    def kernel_p(self) -> np.ndarray:
+        """The parameter vector of :attr:`kernel` (the feedback λ = :data:`FEEDBACK`)."""
+        blk = _block_terms(self.terms)
+        base = [self.params[prm.name] for prm in self.law.parameters]
+        base += [self.V, self.k, self.ell, self.mu0, self.sigma_ss, *self.phi0]
+        base += [*(self.params[t] for t in blk), FEEDBACK]
+        return self.kernel.parameters(base)
+
     def slip_rate(self, y, w0: float = 0.0) -> float:
         """w = ln(v/V) solving the force balance at the scaled state y = (ξ, ψ…) (safeguarded Newton,
         :func:`~landau.verify.springblock.forcebalance.solve_log_rate`)."""
@@ -133,9 +165,13 @@ class QuasiDynamicCell:
         """μ(v, φ) at w = ln(v/V) and the scaled states (arrays broadcast)."""
         vv = self.V * np.exp(np.asarray(w, float))
         phis = [p0 * np.exp(np.asarray(y[1 + i], float)) for i, p0 in enumerate(self.phi0)]
+        return np.broadcast_to(np.asarray(self._mu_fn(vv, *phis), float), vv.shape)
+
+    @cached_property
+    def _mu_fn(self) -> Callable[..., Any]:
+        """μ(v, φ…) with the law's parameters substituted (numpy, lambdified once per cell)."""
         vals = {prm.symbol: self.params[prm.name] for prm in self.law.parameters}
-        f = sp.lambdify([v_slip, *self.law.states], self.law.mu.subs(vals), "numpy")
-        return np.broadcast_to(np.asarray(f(vv, *phis), float), vv.shape)
+        return sp.lambdify([v_slip, *self.law.states], self.law.mu.subs(vals), "numpy")
 
     def critical_mode(self) -> tuple[complex, np.ndarray]:
         """Eigenvalue with the largest real part of the Jacobian at steady sliding (per unit τ) and its
@@ -158,8 +194,11 @@ class QuasiDynamicCell:
         return np.array([X / self.ell, *(math.log(ph / p0) for ph, p0 in zip(phis, self.phi0, strict=True))])
 
 
-def _field(law, terms, p, V, k, ell, phi0, mu0, sigma_ss):
-    """fn(w, ξ, ψ…) -> (R, R_w, f, R_y, f_w, f_y): the force residual (÷ σ_ss) and the field, by lambdify."""
+def _expressions(law, terms, p, V, k, ell, phi0, mu0, sigma_ss):
+    """(w, ys, R, f): the force residual R(w, ξ, ψ…) ÷ σ_ss and the field f of ys = (ξ, ψ…), from the
+    law and the terms.  The parameters (``p`` by name, V, k, ℓ, φ₀, μ₀, σ_ss) are numbers (the cell's
+    lambdified functions) or sympy symbols (its compiled kernel, :func:`cell_kernel`): both are built
+    from these expressions."""
     ns = len(law.states)
     w, xi = sp.symbols("w_ xi_", real=True)
     psi = sp.symbols(f"psi_0:{ns}", real=True)
@@ -184,15 +223,59 @@ def _field(law, terms, p, V, k, ell, phi0, mu0, sigma_ss):
             sig_dot = -g * k * V * (sp.exp(w) - 1)
             rate = rate - p["alpha_ld"] * sig_dot / (sig * tidy(sp.diff(law.mu, law.states[0])))
         f.append((ell / V) * sp.expand(rate / ph))
-    ys = [xi, *psi]
+    return w, [xi, *psi], R, f
+
+
+def _stray(law, exprs, known) -> None:
+    stray = set().union(*(sp.sympify(e).free_symbols for e in exprs)) - set(known)
+    if stray:
+        raise InputError(f"law {law.name!r}: undeclared symbol(s) {sorted(map(str, stray))} in the field")
+
+
+def _field(law, terms, p, V, k, ell, phi0, mu0, sigma_ss):
+    """fn(w, ξ, ψ…) -> (R, R_w, f, R_y, f_w, f_y): the force residual (÷ σ_ss) and the field, by lambdify."""
+    w, ys, R, f = _expressions(law, terms, p, V, k, ell, phi0, mu0, sigma_ss)
     Rw = sp.diff(R, w)
     Ry = [sp.diff(R, q) for q in ys]
     fw = [sp.diff(e, w) for e in f]
     fy = [[sp.diff(e, q) for q in ys] for e in f]
-    stray = set().union(*(sp.sympify(e).free_symbols for e in [R, *f])) - {w, *ys}
-    if stray:
-        raise InputError(f"law {law.name!r}: undeclared symbol(s) {sorted(map(str, stray))} in the field")
+    _stray(law, [R, *f], [w, *ys])
     return sp.lambdify([w, *ys], (R, Rw, f, Ry, fw, fy), "math")
+
+
+def _block_terms(terms) -> tuple[str, ...]:
+    """The block parameters of the compiled kernels: η always (M = 0 needs it), γ_LD and α_LD when built in."""
+    return ("eta",) + tuple(t for t in ("gamma_ld", "alpha_ld") if t in terms)
+
+
+def cell_kernel(law: FrictionLaw, terms: tuple[str, ...] = ()) -> CompiledField:
+    """The cell in (ξ, w, ψ…) with the force balance index-reduced and fed back
+    (:mod:`landau.verify.springblock.compiled_runs`), compiled once per law and terms; its parameter
+    vector (``names``): the law's parameters, V, k, ℓ, μ₀, σ_ss, φ₀…, η, [γ_LD, α_LD], λ (the feedback
+    is λ (1 + v/V) per unit τ)."""
+    return per_law(law, ("quasi-dynamic cell", tuple(terms)), lambda: _build_cell_kernel(law, tuple(terms)))
+
+
+def _build_cell_kernel(law: FrictionLaw, terms: tuple[str, ...]) -> CompiledField:
+    from landau.verify.springblock.model import _law_key
+
+    key = ("quasi-dynamic cell", _law_key(law), terms)
+    hit = cached_field(key)
+    if hit is not None:
+        return hit
+    blk = _block_terms(terms)
+    lp = {prm.name: sp.Symbol(f"_q{i}", real=True) for i, prm in enumerate(law.parameters)}
+    V, k, ell, mu0, sig = sp.symbols("_V _k _ell _mu0 _sigma_ss", positive=True)
+    phi0 = [sp.Symbol(f"_phi0_{i}", positive=True) for i in range(len(law.states))]
+    tsyms = {t: sp.Symbol(f"_{t}", real=True) for t in blk}
+    lam = sp.Symbol("_lambda", positive=True)
+    w, ys, R, f = _expressions(law, terms, {**lp, **tsyms}, V, k, ell, phi0, mu0, sig)
+    # the feedback at the slip rate of the moment, λ (1 + v/V) per unit τ (compiled_runs)
+    field = [f[0], index_reduced(R, f, w, ys, lam * (1 + sp.exp(w))), *f[1:]]
+    params = [*lp.values(), V, k, ell, mu0, sig, *phi0, *tsyms.values(), lam]
+    _stray(law, field, [w, *ys, *params])
+    names = (*lp, "V", "k", "ell", "mu0", "sigma_ss", *(f"phi0_{i}" for i in range(len(phi0))), *blk, "lambda")
+    return compile_field(key, [ys[0], w, *ys[1:]], field, params, names, f"{law.name} (quasi-dynamic cell)")
 
 
 def simulate_quasidynamic(law: FrictionLaw, V: float, k: float,
@@ -218,7 +301,8 @@ def simulate_quasidynamic(law: FrictionLaw, V: float, k: float,
     rtol : float
         Relative and absolute tolerance of the Radau IIA (the scaled variables are O(1)).
     max_steps : int
-        Step budget; at it the run ends with status ``max-steps`` and the series up to there.
+        Budget of step attempts (accepted and rejected, ≥ 1); at it the run ends with status
+        ``max-steps`` and the series up to there.
     max_points : int
         Bound on the recorded points (evenly thinned past it).
     sections : bool
@@ -236,8 +320,6 @@ def simulate_quasidynamic(law: FrictionLaw, V: float, k: float,
     IntegratorError
         The integrator failed (with the time and the state).
     """
-    from scipy.integrate import Radau
-
     cell = params if isinstance(params, QuasiDynamicCell) else QuasiDynamicCell.build(law, V, k, params)
     if not (math.isfinite(t_end) and t_end > 0):
         raise InputError(f"the end time must be a finite number > 0, got {t_end!r}")
@@ -246,58 +328,33 @@ def simulate_quasidynamic(law: FrictionLaw, V: float, k: float,
     y = cell.perturbed(0.01 * cell.ell) if y0 is None else np.asarray(y0, float)
     if y.shape != (cell.n,) or not np.all(np.isfinite(y)):
         raise InputError(f"initial state must be {cell.n} finite numbers (xi, psi...), got {y0!r}")
+    if not int(max_steps) >= 1:
+        raise InputError(f"max_steps must be >= 1, got {max_steps!r}")
     tu = cell.time_unit
-    w_start = cell.slip_rate(y)
-    last_w = [w_start]
-
-    def f(_t, yy):
-        out, last_w[0] = cell.rhs(yy, last_w[0])
-        return out
-
-    def jac(_t, yy):
-        w = cell.slip_rate(yy, last_w[0])
-        return cell.jacobian(yy, w)
-
-    solver = Radau(f, 0.0, y, t_end / tu, rtol=rtol, atol=rtol, jac=jac)
-    ts, ys, ws = [0.0], [y.copy()], [w_start]
+    z0 = np.r_[y[0], cell.slip_rate(y), y[1:]]
+    run = drive(cell.kernel, cell.kernel_p, z0, 0.0, t_end / tu, rtol=rtol, atol=np.full(cell.n + 1, rtol),
+                max_steps=int(max_steps), ev_idx=1 if sections else -1)
+    if run.status in (-1, -3):
+        raise IntegratorError(f"quasi-dynamic spring-block[{law.name}]: {STATUS[run.status]} "
+                              "(state = xi, w, psi...)", t=float(run.t * tu), state=list(run.y))
+    status = Status.MAX_STEPS if run.status == -2 else Status.FINISHED
     log = EventLog()
-    status, steps = Status.FINISHED, 0
-    while solver.status == "running":
-        if steps >= max_steps:
-            status = Status.MAX_STEPS
-            break
-        t_prev, w_prev = ts[-1], ws[-1]
-        msg = solver.step()
-        steps += 1
-        if solver.status == "failed" or not np.all(np.isfinite(solver.y)):
-            raise IntegratorError(f"quasi-dynamic spring-block[{law.name}]: {msg or 'non-finite state'} "
-                                  "(state = xi, psi...)", t=float(solver.t * tu), state=list(solver.y))
-        wn = cell.slip_rate(solver.y, w_prev)
-        if sections and w_prev < 0 <= wn:
-            from scipy.optimize import brentq
-
-            dense = solver.dense_output()
-            tc = brentq(lambda s, d=dense: cell.slip_rate(d(s), 0.0), t_prev, solver.t, xtol=1e-14 * max(1.0, solver.t))
-            yc = dense(tc)
-            row = _physical(cell, np.array([tc]), yc[:, None], np.array([0.0]))[:, 0]
-            log.append(Event(float(tc * tu), row, "crossing", "slip", "slip", "section", row, "up"))
-        ts.append(float(solver.t))
-        ys.append(solver.y.copy())
-        ws.append(wn)
-    t = np.asarray(ts) * tu
-    Y = np.array(ys).T
-    W = np.asarray(ws)
+    for tc, zc in zip(run.ev_t[run.ev_dir > 0], run.ev_y[run.ev_dir > 0], strict=True):
+        row = _physical(cell, np.array([tc * tu]), np.delete(zc, 1)[:, None], zc[1:2])[:, 0]
+        log.append(Event(float(tc * tu), row, "crossing", "slip", "slip", "section", row, "up"))
+    t = run.rec_t * tu
+    Z = run.rec_y.T
     if len(t) > max_points:
         keep = np.unique(np.r_[np.linspace(0, len(t) - 1, max_points).astype(int), len(t) - 1])
-        t, Y, W = t[keep], Y[:, keep], W[keep]
-    out = _physical(cell, t, Y, W)
+        t, Z = t[keep], Z[:, keep]
+    out = _physical(cell, t, np.delete(Z, 1, axis=0), Z[1])
     names = ("X", "v", "mu") + tuple(s.name for s in law.states)
     msg = status.advice
     if status is Status.MAX_STEPS:
-        msg = (f"stopped at the step limit ({max_steps} steps) at t = {t[-1]:.6g} s before the end "
+        msg = (f"stopped at the step limit ({max_steps} step attempts) at t = {t[-1]:.6g} s before the end "
                f"t = {t_end:.6g} s: {status.advice}")
     return Simulation("spring-block (quasi-dynamic, M = 0)", t, out, log, status, msg, float(t[-1]),
-                      out[:, -1].copy(), steps, int(solver.nfev), None, names)
+                      out[:, -1].copy(), int(run.counts[0]), int(run.counts[2]), None, names)
 
 
 def _physical(cell: QuasiDynamicCell, t, Y, W) -> np.ndarray:

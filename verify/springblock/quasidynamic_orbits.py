@@ -17,6 +17,10 @@ z = (ξ, ψ₂, …, ψₙ): ψ₁ follows from the force balance at v = V, R(0,
   procedure as the block with mass, :func:`landau.verify.springblock.checks.subcritical_check`):
   from a point of Σ on the linear critical mode, follow the maxima of X until they fall below a
   lower bound (decay to steady sliding) or grow past an upper one or settle on a larger cycle.
+
+Every run is the cell's compiled Radau IIA in (ξ, w, ψ…) (:attr:`QuasiDynamicCell.kernel`,
+:func:`landau.verify.springblock.compiled_runs.drive`): the crossings of w = 0 are located by the
+compiled loop on its collocation cubic, and a run can stop at the first (or n-th) downward one.
 """
 
 from __future__ import annotations
@@ -27,6 +31,8 @@ import numpy as np
 
 from landau.errors import InputError, IntegratorError, LandauError
 from landau.verify.hybrid.analysis import ShootingError, shoot_fixed_point
+from landau.verify.hybrid.radau import STATUS
+from landau.verify.springblock.compiled_runs import drive
 from landau.verify.springblock.orbits import PeriodicOrbit
 from landau.verify.springblock.quasidynamic import QuasiDynamicCell, simulate_quasidynamic
 
@@ -93,32 +99,18 @@ def section_point(cell: QuasiDynamicCell, amplitude: float) -> np.ndarray:
     return _off_section(y)
 
 
-class _Field:
-    """dy/dτ and its Jacobian for scipy's ``solve_ivp``, with the last slip rate as the next guess."""
-
-    def __init__(self, cell: QuasiDynamicCell):
-        self.cell, self.last = cell, 0.0
-
-    def f(self, _t, yy):
-        out, self.last = self.cell.rhs(yy, self.last)
-        return out
-
-    def jac(self, _t, yy):
-        return self.cell.jacobian(yy, self.cell.slip_rate(yy, self.last))
-
-    def crossing(self, direction: int, terminal: bool | int) -> "_Crossing":
-        """The event w = 0 in ``direction`` (−1: X maximal, +1: X minimal)."""
-        return _Crossing(self, direction, terminal)
-
-
-class _Crossing:
-    """The event w = ln(v/V) = 0 of scipy's ``solve_ivp`` (with ``direction`` and ``terminal``)."""
-
-    def __init__(self, fld: _Field, direction: int, terminal: bool | int):
-        self.fld, self.direction, self.terminal = fld, direction, terminal
-
-    def __call__(self, _t, yy) -> float:
-        return self.fld.cell.slip_rate(yy, self.fld.last)
+def _run(cell: QuasiDynamicCell, y, t0: float, t1: float, rtol: float, ev_dir: int = 0, ev_stop: int = 0,
+         events: bool = False):
+    """The compiled run of the cell (:attr:`QuasiDynamicCell.kernel`, state (ξ, w, ψ…)) from the state
+    ``y`` = (ξ, ψ…) over [t0, t1] (scaled time), the crossings of w = 0 located when ``events``."""
+    y = np.asarray(y, float)
+    z0 = np.r_[y[0], cell.slip_rate(y), y[1:]]
+    run = drive(cell.kernel, cell.kernel_p, z0, t0, t1, rtol=rtol, atol=np.full(cell.n + 1, rtol),
+                ev_idx=1 if events else -1, ev_dir=ev_dir, ev_stop=ev_stop)
+    if run.status < 0:
+        raise IntegratorError(f"quasi-dynamic cell (M = 0): {STATUS[run.status]} (state = xi, w, psi...)",
+                              t=float(run.t * cell.time_unit), state=list(run.y))
+    return run
 
 
 def return_map(cell: QuasiDynamicCell, z, *, rtol: float = 1e-11, periods: float = 50.0):
@@ -140,23 +132,20 @@ def return_map(cell: QuasiDynamicCell, z, *, rtol: float = 1e-11, periods: float
         The return point (of the type of ``z``), the return time [s] and the smallest ξ on the way
         (at v = V, v rising).
     """
-    from scipy.integrate import solve_ivp
-
     scalar = np.ndim(z) == 0
     T = linear_period(cell)
     y0 = on_section(cell, z)
-    fld = _Field(cell)
     # leave the section first (a quarter period without events), then stop at the next downward crossing
-    first = solve_ivp(fld.f, (0.0, 0.25 * T), y0, method="Radau", rtol=rtol, atol=rtol, jac=fld.jac)
-    down, up = fld.crossing(-1, True), fld.crossing(1, False)
-    sol = solve_ivp(fld.f, (0.25 * T, periods * T), first.y[:, -1], method="Radau", rtol=rtol, atol=rtol,
-                    jac=fld.jac, events=[down, up])
-    if not (first.success and sol.success) or not sol.t_events[0].size:
+    first = _run(cell, y0, 0.0, 0.25 * T, rtol)
+    sol = _run(cell, np.delete(first.y, 1), first.t, periods * T, rtol, ev_dir=-1, ev_stop=1, events=True)
+    down = np.flatnonzero(sol.ev_dir < 0)
+    if sol.status != 1 or not down.size:
         raise IntegratorError(f"no return to the section v = V within {periods:g} periods",
-                              t=float(sol.t[-1] * cell.time_unit), state=list(sol.y[:, -1]))
-    x_min = min([float(q[0]) for q in sol.y_events[1]] or [float(y0[0])])
-    zr = _off_section(sol.y_events[0][0])
-    return (float(zr[0]) if scalar else zr), float(sol.t_events[0][0] * cell.time_unit), x_min
+                              t=float(sol.t * cell.time_unit), state=list(sol.y))
+    ups = sol.ev_y[sol.ev_dir > 0]
+    x_min = min([float(q[0]) for q in ups] or [float(y0[0])])
+    zr = _off_section(np.delete(sol.ev_y[down[0]], 1))
+    return (float(zr[0]) if scalar else zr), float(sol.ev_t[down[0]] * cell.time_unit), x_min
 
 
 def _map_error(cell: QuasiDynamicCell, z, exc) -> ShootingError:
@@ -283,19 +272,12 @@ def find_cycle(cell: QuasiDynamicCell, amplitude_guess: float, *, rtol: float = 
 def _crossings(cell: QuasiDynamicCell, y, t: float, count: int, t_end: float, rtol: float):
     """The next ``count`` downward crossings of Σ from the state ``y`` at τ = ``t`` (before ``t_end``):
     (states (rows), times)."""
-    from scipy.integrate import solve_ivp
-
-    fld = _Field(cell)
     T = linear_period(cell)
-    first = solve_ivp(fld.f, (t, t + 0.25 * T), y, method="Radau", rtol=rtol, atol=rtol, jac=fld.jac)
-    sol = first
-    if first.success:
-        sol = solve_ivp(fld.f, (first.t[-1], max(t_end, first.t[-1] + T)), first.y[:, -1], method="Radau",
-                        rtol=rtol, atol=rtol, jac=fld.jac, events=[fld.crossing(-1, count)])
-    if not sol.success:
-        raise IntegratorError(f"quasi-dynamic cell (M = 0): {sol.message}", t=float(sol.t[-1] * cell.time_unit),
-                              state=list(sol.y[:, -1]))
-    return sol.y_events[0], sol.t_events[0]
+    first = _run(cell, y, t, t + 0.25 * T, rtol)
+    sol = _run(cell, np.delete(first.y, 1), first.t, max(t_end, first.t + T), rtol, ev_dir=-1, ev_stop=count,
+               events=True)
+    down = sol.ev_dir < 0
+    return np.delete(sol.ev_y[down], 1, axis=1), sol.ev_t[down]
 
 
 def fate(cell: QuasiDynamicCell, z0, low: float, high: float, *, settle_above: float | None = None,

@@ -293,11 +293,12 @@ def record_run(model: SpringBlockModel, y0, t_span: tuple[float, float], *, rtol
         room = max(int(max_events) - n_ev, 0)
         evbuf = np.empty((max(room, 1) if event_index >= 0 else 1, nn + 1))
         evdir = np.empty(evbuf.shape[0])
-        # a budget of step attempts (accepted and rejected), as integrate's max_steps
+        # a budget of step attempts (accepted and rejected), as integrate's max_steps; room for the
+        # start and every step of the call in the record
         tic = time.process_time()
         st, tn, yn, cnt, et, ey, rt, ry, hn, _ = radau_core(
             c.rhs, c.jac, t, y, t1 / tu, model.p, float(rtol), at, float(h), np.inf, budget,
-            int(event_index) if room else -1, float(event_value), 0, 0, budget, None, None, evbuf, evdir)
+            int(event_index) if room else -1, float(event_value), 0, 0, budget + 1, None, None, evbuf, evdir)
         cpu += time.process_time() - tic
         steps += int(cnt[0]) + int(cnt[1])
         counts += cnt[:5]
