@@ -309,6 +309,57 @@ def mechanical_rhs(law, terms, X, u, at_slip, eq_phi, k, sigma0, V, *, mu0=None,
     return force, tuple(rates)
 
 
+def force_balance(law, terms, at, *, v, F, F_dot, V_lp, k, sigma0, symbol=None):
+    """The force balance of :class:`Balance` at one instant, in physical form, for the consumers that
+    integrate it as it stands (the load histories): σ = σ₀ + Σ loads(F), μ(v, φ), Σ forces and the state
+    rates with every term's contribution, so that M v̇ = F − σ μ + Σ forces.
+
+    Parameters
+    ----------
+    law : FrictionLaw
+    terms : tuple of str
+    at : dict
+        The substitution of the law's symbols at this instant (v, φ…, parameters), applied with ``xreplace``.
+    v, F, F_dot, V_lp, k, sigma0 : sympy.Expr or float
+        Slip rate, spring force, its rate, load-point velocity, stiffness, σ₀.
+    symbol : mapping, optional
+        The terms' parameters as the consumer has them (symbols, or numbers).
+
+    Returns
+    -------
+    (sigma, mu, forces, rates)
+    """
+    terms = check_terms(terms)
+    sym = _symbols(terms, symbol)
+    phis = tuple(p.xreplace(at) for p in law.states)
+    mu_now = law.mu.xreplace(at)
+    Fv = sp.Dummy("F")
+    b = Balance(v=v, phis=phis, F=Fv, F_dot=F_dot, V_lp=V_lp, k=k, sigma0=sigma0, mu=mu_now, symbol=sym)
+    loads = _loads(terms, b)
+    sigma = sigma0 + loads.xreplace({Fv: F})
+    sigma_dot = sp.diff(loads, Fv).xreplace({Fv: F}) * F_dot
+    dmu = tuple(sp.diff(law.mu, ph).xreplace(at) for ph in law.states)
+    b = Balance(v=v, phis=phis, F=F, F_dot=F_dot, V_lp=V_lp, k=k, sigma0=sigma0, sigma=sigma, sigma_dot=sigma_dot,
+                mu=mu_now, dmu_dphi=dmu, symbol=sym)
+    rates = [r.xreplace(at) for r in law.rates]
+    for t in terms:
+        if TERMS[t].rates is not None:
+            for i, r in enumerate(TERMS[t].rates(b)):
+                if r != 0:
+                    rates[i] = rates[i] + r
+    return sigma, mu_now, _forces(terms, b), tuple(rates)
+
+
+def steady_values(terms, sigma0: float, mu0: float, V: float, params) -> tuple[float, float]:
+    """(F_ss, σ_ss) at steady sliding as numbers: the spring force and the normal load of
+    :func:`steady_spring_force` and :func:`normal_load_ss` at these values."""
+    terms = check_terms(terms)
+    sym = {t: sp.Float(float(params[t])) for t in terms}
+    F_ss = steady_spring_force(terms, sp.Float(float(sigma0)), sp.Float(float(mu0)), sp.Float(float(V)), sym)
+    sigma_ss = normal_load_ss(sp.Float(float(sigma0)), sp.Float(float(mu0)), sp.Float(float(V)), terms, sym)
+    return float(F_ss), float(sigma_ss)
+
+
 def loads_block(terms) -> bool:
     """True where one of ``terms`` changes the normal load (σ then follows the spring force)."""
     return any(TERMS[t].load is not None for t in terms)
@@ -362,6 +413,6 @@ def check_values(params) -> None:
             raise InputError(f"parameter {name!r} ({t.meaning}) must be >= 0, got {params[name]!r}")
 
 
-__all__ = ["TERMS", "Balance", "Term", "alpha_ld", "check_steady_sliding", "check_terms", "eta", "gamma_ld",
-           "load_slope", "loads_block", "mechanical_rhs", "normal_load_ss", "register_term", "steady_spring_force",
-           "stiffness_in_rates", "symbols", "unregister_term"]
+__all__ = ["TERMS", "Balance", "Term", "alpha_ld", "check_steady_sliding", "check_terms", "eta", "force_balance",
+           "gamma_ld", "load_slope", "loads_block", "mechanical_rhs", "normal_load_ss", "register_term",
+           "steady_spring_force", "steady_values", "stiffness_in_rates", "symbols", "unregister_term"]

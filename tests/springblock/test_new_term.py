@@ -89,3 +89,34 @@ def test_landau_check(dashpot):
     assert ours.p == pytest.approx(eta.p, rel=1e-12)   # the stiffness simulated, (1 - eps2) k_c or so
     assert ours.verdict == eta.verdict
     assert ours.amplitude_simulated == pytest.approx(eta.amplitude_simulated, rel=1e-6)
+
+
+def test_the_quasi_dynamic_cell(dashpot):
+    """M = 0: the cell's force residual and field with (η, c_dash) equal those with η + c_dash alone (both
+    add −c u in the force balance written about steady sliding)."""
+    from landau.verify.springblock.quasidynamic import QuasiDynamicCell
+
+    law = get_law("dieterich")
+    ours = QuasiDynamicCell.build(law, V, 1.5e5, {"M": 0.0, "eta": 1e3, dashpot: C})
+    ref = QuasiDynamicCell.build(law, V, 1.5e5, {"M": 0.0, "eta": 1e3 + C})
+    for state in ((0.0, 0.0, 0.0), (0.2, -0.4, 0.3)):
+        got, want = ours._fn(*state), ref._fn(*state)
+        np.testing.assert_allclose(got[0], want[0], rtol=1e-12, atol=1e-15)        # R
+        np.testing.assert_allclose(got[2], want[2], rtol=1e-12, atol=1e-15)        # the field
+
+
+def test_a_load_history(dashpot):
+    """A velocity step with the dashpot: it carries no force at steady sliding (v = V_lp), so the new
+    steady friction is μ₁ + (a − b) ln(V₂/V₁) (Dieterich 1979; Putelat et al. 2010 eq. 28), and the spring
+    force column follows k u as without it."""
+    from landau.verify.springblock.history import simulate_history
+
+    law = get_law("dieterich")
+    p = law.defaults()
+    sim = simulate_history(law, "1e-5@0,1e-4@20", 2e5, {dashpot: C}, t_end=400.0)
+    names = list(sim.state_names)
+    mu = sim.y[names.index("mu")]
+    mu1 = p["a_v"] + (p["a"] - p["b"]) * np.log(1e-5 / p["V_s"])
+    assert mu[0] == pytest.approx(mu1, rel=1e-9)
+    assert mu[-1] == pytest.approx(mu1 + (p["a"] - p["b"]) * np.log(10.0), rel=1e-6)
+    assert "F" in names and "sigma" not in names   # a force term, no load term

@@ -138,11 +138,14 @@ def _value(x):
 
 
 def _history_law(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str, ...]):
-    """The law in the history's variables, shared by the fields at M > 0 and M = 0: the symbols
-    u, w = ln v, ψ = ln φ…, V_lp, the normal load σ = σ₀ + γ_LD k u (Linker & Dieterich 1992), μ and
-    the state rates (the first with the α_LD response to dσ/dt), every law parameter substituted.
-    The values in ``p`` and ``k`` are numbers, or sympy symbols for the compiled kernel
-    (:func:`history_kernel`): both are built from these expressions."""
+    """The law and the terms in the history's variables, shared by the fields at M > 0 and M = 0: the
+    symbols u (the spring's extension, F = k u), w = ln v, ψ = ln φ…, V_lp, and from the terms' one
+    declaration (:func:`landau.systems.springblock_terms.force_balance`) the normal load σ, μ, the
+    terms' forces and the state rates, every law parameter substituted.  The values in ``p`` and ``k``
+    are numbers, or sympy symbols for the compiled kernel (:func:`history_kernel`): both are built from
+    these expressions."""
+    from landau.systems.springblock_terms import force_balance
+
     ns = len(law.states)
     u, w = sp.symbols("u_ w_", real=True)
     psi = sp.symbols(f"psi_0:{ns}", real=True)
@@ -153,31 +156,31 @@ def _history_law(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tupl
     def tidy(e):
         return sp.expand_log(e.subs(vals).xreplace(sub), force=True)
 
-    gam = _value(p.get("gamma_ld", 0.0)) if "gamma_ld" in terms else 0.0
-    sigma = _value(p["sigma"]) + gam * k * u          # the normal load follows the spring force
-    rates = [tidy(r) for r in law.rates]
-    if "alpha_ld" in terms and gam != 0:
-        sig_dot = gam * k * (Vlp - sp.exp(w))
-        rates[0] = rates[0] - _value(p["alpha_ld"]) * sig_dot / (sigma * tidy(sp.diff(law.mu, law.states[0])))
-    return u, w, psi, Vlp, sigma, tidy(law.mu), rates
+    # the law's own symbols are kept for tidy (parameters first, then the variables, as before)
+    at = {s: s for s in (v_slip, *law.states)}
+    sigma, mu, forces, rates = force_balance(law, terms, at, v=sp.exp(w), F=k * u, F_dot=k * (Vlp - sp.exp(w)),
+                                             V_lp=Vlp, k=k, sigma0=_value(p["sigma"]),
+                                             symbol={t: _value(p[t]) for t in terms})
+    return u, w, psi, Vlp, sigma, tidy(mu), tidy(forces), [tidy(r) for r in rates]
 
 
 def _momentum(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str, ...] = ()):
-    """M > 0: (ys, f, V_lp), the field f(y; V_lp) in y = (u, w, ψ…) (with the optional ``terms``:
-    η, γ_LD, α_LD, module docstring)."""
-    u, w, psi, Vlp, sigma, mu, rates = _history_law(law, p, k, terms)
+    """M > 0: (ys, f, V_lp), the field f(y; V_lp) in y = (u, w, ψ…): M v̇ = k u − σ μ + Σ forces (with the
+    optional ``terms``, module docstring)."""
+    u, w, psi, Vlp, sigma, mu, forces, rates = _history_law(law, p, k, terms)
     M = _value(p["M"])
-    eta = _value(p.get("eta", 0.0)) if "eta" in terms else 0.0
-    f = [Vlp - sp.exp(w), (k * u - sigma * mu - eta * sp.exp(w)) * sp.exp(-w) / M]
+    f = [Vlp - sp.exp(w), (k * u - sigma * mu + forces) * sp.exp(-w) / M]
     f += [sp.expand(r * sp.exp(-q)) for r, q in zip(rates, psi, strict=True)]
     return [u, w, *psi], f, Vlp
 
 
 def _force_balance(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str, ...]):
-    """M = 0: (w, ys, R, f, V_lp), the force residual R(w, u, ψ…) ÷ σ₀ and the field (u', ψ'…) of
-    ys = (u, ψ…) with w = ln v implicit."""
-    u, w, psi, Vlp, sigma, mu, rates = _history_law(law, p, k, terms)
-    R = (k * u - sigma * mu - _value(p["eta"]) * sp.exp(w)) / _value(p["sigma"])
+    """M = 0: (w, ys, R, f, V_lp), the force residual R(w, u, ψ…) = (k u − σ μ + Σ forces)/σ₀ and the
+    field (u', ψ'…) of ys = (u, ψ…) with w = ln v implicit (η, which M = 0 needs, always among the terms)."""
+    from landau.systems.springblock_terms import check_terms
+
+    u, w, psi, Vlp, sigma, mu, forces, rates = _history_law(law, p, k, check_terms(("eta", *terms)))
+    R = (k * u - sigma * mu + forces) / _value(p["sigma"])
     f = [Vlp - sp.exp(w)] + [sp.expand(r * sp.exp(-q)) for r, q in zip(rates, psi, strict=True)]
     return w, [u, *psi], R, f, Vlp
 
@@ -187,7 +190,7 @@ def _mu_function(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tupl
     parameters as arguments."""
     def build():
         lp = {prm.name: sp.Symbol(f"_q{i}", real=True) for i, prm in enumerate(law.parameters)}
-        u, w, psi, _, _, mu, _ = _history_law(law, {**lp, "sigma": 1.0}, 1.0, ())
+        u, w, psi, _, _, mu, _, _ = _history_law(law, {**lp, "sigma": 1.0}, 1.0, ())
         return sp.lambdify([[u, w, *psi], *lp.values()], mu, "numpy")
 
     fn = per_law(law, ("history mu",), build)
@@ -197,7 +200,9 @@ def _mu_function(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tupl
 
 def _kernel_terms(terms: tuple[str, ...], quasidynamic: bool) -> tuple[str, ...]:
     """The block parameters of a history kernel, after the law's: σ₀, k, M (M > 0), the terms."""
-    blk = tuple(t for t in ("eta", "gamma_ld", "alpha_ld") if t in terms or (t == "eta" and quasidynamic))
+    from landau.systems.springblock_terms import check_terms
+
+    blk = check_terms(("eta", *terms)) if quasidynamic else check_terms(terms)
     return ("sigma", "k") + (() if quasidynamic else ("M",)) + blk
 
 
@@ -337,16 +342,14 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
         t_end = T[-1] + longest
     if not (math.isfinite(t_end) and t_end > T[-1]):
         raise InputError(f"the end time must be after the last piece's start t = {T[-1]:g} s, got {t_end!r}")
-    phi0, mu0 = _steady_state(law, h.velocities[0], p)
-    if "gamma_ld" in terms:   # steady sliding at every sliding velocity of the history needs 1 - gamma mu_ss > 0
-        from landau.systems.springblock_terms import check_steady_sliding
+    from landau.systems.springblock_terms import check_steady_sliding, load_slope, loads_block, steady_values
 
+    phi0, mu0 = _steady_state(law, h.velocities[0], p)
+    if loads_block(terms):   # steady sliding at every sliding velocity of the history needs 1 - gamma mu_ss > 0
         for V in sorted({V for V in h.velocities if V > 0}):
             check_steady_sliding(law, _steady_state(law, V, p)[1], p, V)
     mun = _mu_function(law, p, k, terms)
-    eta = float(p.get("eta", 0.0)) if "eta" in terms else 0.0
-    gam = float(p.get("gamma_ld", 0.0)) if "gamma_ld" in terms else 0.0
-    F0 = (float(p["sigma"]) * mu0 + eta * h.velocities[0]) / (1.0 - gam * mu0)   # spring force k u at steady sliding
+    F0 = steady_values(terms, p["sigma"], mu0, h.velocities[0], p)[0]   # spring force k u at steady sliding
     y = np.array([F0 / k, math.log(h.velocities[0]), *(math.log(x) for x in phi0)])
     scale = np.array([p.get("L", 1e-6)] + [1.0] * (len(y) - 1))
     ts, ys, vs = [np.array([T[0]])], [y[:, None]], [np.array([h.velocities[0]])]
@@ -365,11 +368,11 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     mu = np.broadcast_to(np.asarray(mun(Y), float), t.shape)
     out = np.vstack([Vl, np.exp(Y[1]), mu, np.exp(Y[2:])])
     names = ("V", "v", "mu") + tuple(s.name for s in law.states)
-    if "eta" in terms or "gamma_ld" in terms:   # the spring force, and the normal load that follows it
+    if terms:   # the spring force, and the normal load that follows it (loads affine in F)
         out = np.vstack([out, k * Y[0]])
         names += ("F",)
-        if "gamma_ld" in terms:
-            out = np.vstack([out, float(p["sigma"]) + gam * k * Y[0]])
+        if loads_block(terms):
+            out = np.vstack([out, float(p["sigma"]) + load_slope(terms, p) * k * Y[0]])
             names += ("sigma",)
     regimes = tuple((a, min(b, t_end), "hold" if V == 0 else "slide")
                     for V, a, b in zip(h.velocities, T, ends, strict=True) if a < t_end)

@@ -40,7 +40,7 @@ from landau.errors import InputError
 from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
 from landau.support.lambdify import lambdify_positional
-from landau.systems.springblock_terms import mechanical_rhs, normal_load_ss
+from landau.systems.springblock_terms import mechanical_rhs, steady_values
 from landau.systems.system import SpringBlock
 from landau.verify.hybrid.callbacks import call_pointer, pointer
 from landau.verify.hybrid.radau import SIG, SIG_JAC
@@ -266,11 +266,8 @@ class SpringBlockModel:
     @cached_property
     def sigma_ss(self) -> float:
         """The normal load at steady sliding: σ, or (σ₀ + γ_LD ηV)/(1 − γ_LD μ₀) with ``gamma_ld``
-        (:func:`landau.systems.springblock_terms.normal_load_ss`, evaluated)."""
-        from landau.systems.springblock_terms import TERMS
-
-        expr = normal_load_ss(sp.Float(self.params["sigma"]), sp.Float(self.mu0), sp.Float(self.V), self.terms)
-        return float(expr.xreplace({TERMS[t].symbol: sp.Float(self.params[t]) for t in self.terms}))
+        (:func:`landau.systems.springblock_terms.steady_values`)."""
+        return steady_values(self.terms, self.params["sigma"], self.mu0, self.V, self.params)[1]
 
     @property
     def time_unit(self) -> float:

@@ -49,6 +49,7 @@ import sympy as sp
 from landau.errors import InputError, IntegratorError
 from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
+from landau.systems.springblock_terms import check_terms, mechanical_rhs, steady_values
 from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.radau import STATUS
 from landau.verify.hybrid.result import Simulation, Status
@@ -110,8 +111,7 @@ class QuasiDynamicCell:
             raise InputError(f"law {law.name!r}: friction coefficient not finite at steady sliding V = {V!r}")
         if block.terms:
             block.argvals(float(V), p)        # no steady sliding (gamma_ld): a named error
-        g = p.get("gamma_ld", 0.0) if "gamma_ld" in block.terms else 0.0
-        sigma_ss = (p["sigma"] + g * p["eta"] * V) / (1.0 - g * mu0)
+        sigma_ss = steady_values(block.terms, p["sigma"], mu0, V, p)[1]   # the terms' steady normal load
         fn = _field(law, block.terms, p, float(V), float(k), ell, phi0, mu0, sigma_ss)
         cell = cls(law, float(V), float(k), dict(p), ell, phi0, mu0, sigma_ss, block.terms, fn)
         _, Rw, *_ = fn(0.0, *([0.0] * (1 + len(phi0))))
@@ -210,19 +210,16 @@ def _expressions(law, terms, p, V, k, ell, phi0, mu0, sigma_ss):
     def tidy(e):
         return sp.expand_log(e.subs(vals).xreplace(sub), force=True)
 
-    mu = tidy(law.mu)
-    eta = p["eta"]
-    g = p.get("gamma_ld", 0.0) if "gamma_ld" in terms else 0.0
-    X = ell * xi
-    sig = sigma_ss - g * k * X
-    R = (-k * X - (sig * mu - sigma_ss * mu0) - eta * V * (sp.exp(w) - 1)) / sigma_ss
+    # the force balance and the state rates of every term, from their one declaration
+    # (springblock_terms.mechanical_rhs) in X = ℓξ, u = V(e^w − 1); η, which M = 0 needs, always built in
+    terms = check_terms(("eta", *terms))
+    force, rates = mechanical_rhs(law, terms, ell * xi, V * (sp.exp(w) - 1), {s: s for s in (v_slip, *law.states)},
+                                  tuple(phi0), k, p.get("sigma", sigma_ss), V, mu0=mu0, sigma_ss=sigma_ss,
+                                  symbol={t: p[t] for t in terms})
+    R = tidy(force) / sigma_ss
     f = [sp.exp(w) - 1]
-    for i, (r, ph) in enumerate(zip(law.rates, phis, strict=True)):
-        rate = tidy(r)
-        if i == 0 and "alpha_ld" in terms and g != 0:
-            sig_dot = -g * k * V * (sp.exp(w) - 1)
-            rate = rate - p["alpha_ld"] * sig_dot / (sig * tidy(sp.diff(law.mu, law.states[0])))
-        f.append((ell / V) * sp.expand(rate / ph))
+    for rate, ph in zip(rates, phis, strict=True):
+        f.append((ell / V) * sp.expand(tidy(rate) / ph))
     return w, [xi, *psi], R, f
 
 
@@ -244,8 +241,8 @@ def _field(law, terms, p, V, k, ell, phi0, mu0, sigma_ss):
 
 
 def _block_terms(terms) -> tuple[str, ...]:
-    """The block parameters of the compiled kernels: η always (M = 0 needs it), γ_LD and α_LD when built in."""
-    return ("eta",) + tuple(t for t in ("gamma_ld", "alpha_ld") if t in terms)
+    """The block parameters of the compiled kernels: η always (M = 0 needs it), and the terms built in."""
+    return check_terms(("eta", *terms))
 
 
 def cell_kernel(law: FrictionLaw, terms: tuple[str, ...] = ()) -> CompiledField:
