@@ -40,7 +40,7 @@ def _declare(setup: Setup) -> tuple[Parameter, ...]:
     from landau.verify.lancioni.slip import SET1
 
     mech = tuple(Parameter(n, float(SET1[n]), unit, dom, meaning, SOURCE) for n, (dom, unit, meaning) in _MECHANICAL.items())
-    law = friction_law(setup, {})
+    law = friction_law(setup, dict(setup.params))   # the given values of a user law's parameters
     own = tuple(Parameter(p.name, None if p.default is None else float(p.default), p.units or "1",
                           "positive" if p.positive else "real", p.description, p.source or "the friction law")
                 for p in law.parameters)
@@ -94,6 +94,12 @@ def impact_oscillator_hopf(setup: Setup):
     return replace(h, extra=extra)
 
 
+def _simulate(setup: Setup, **kw):
+    from landau.verify.lancioni.run import simulate
+
+    return simulate(setup, **kw)
+
+
 IMPACT_OSCILLATOR = Model(
     name="impact-oscillator",
     description="frictional impact oscillator (Lancioni, Lenci & Galvanetto): slip equilibrium; parameter mu, or a "
@@ -102,11 +108,12 @@ IMPACT_OSCILLATOR = Model(
     declare=_declare,
     hopf_parameter=_hopf_parameter,
     hopf=impact_oscillator_hopf,
+    simulate=_simulate,
     options=(Option("friction", "friction F(v) for sliding velocity v > 0"),
              Option("friction_neg", "friction for v < 0 (default the odd extension)"),
              Option("friction_name", "a name for the friction law"),
              Option("parameter", "the bifurcation parameter (default mu, or the law's first parameter)")),
-    defaults={"t_end": 10.0},
+    defaults={"t_end": 10.0, "key_parameters": ("mu", "v_belt")},
     source=SOURCE,
 )
 

@@ -34,7 +34,7 @@ def _declare(setup: Setup) -> tuple[Parameter, ...]:
     mech = tuple(Parameter(n, float(getattr(base, n)), unit, dom, meaning, SOURCE)
                  for n, (dom, unit, meaning) in _MECHANICAL.items())
     law = law_from_options(setup.option("friction"), setup.option("friction_neg"), setup.option("friction_name"),
-                           regularised_coulomb(), {}, quantity="force")
+                           regularised_coulomb(), dict(setup.params), quantity="force")
     own = tuple(Parameter(p.name, None if p.default is None else float(p.default), p.units or "1",
                           "positive" if p.positive else "real", p.description, p.source or "the friction law")
                 for p in law.parameters)
@@ -47,16 +47,23 @@ def _simulate_task(task, model, law, fixed, options):
     return make_task(task, model, law, fixed, options)
 
 
+def _simulate(setup: Setup, **kw):
+    from landau.verify.skurativskyi.run import simulate
+
+    return simulate(setup, **kw)
+
+
 FORCED_OSCILLATOR = Model(
     name="forced-oscillator",
     description="forced cart with Hertz contact (Skurativskyi et al. 2019), regularised Coulomb friction or --friction",
     law_kind=LawKind.VELOCITY,
     declare=_declare,
+    simulate=_simulate,
     tasks={"simulate": _simulate_task},
     options=(Option("friction", "friction force F_R(v) [N] for sliding velocity v > 0"),
              Option("friction_neg", "the friction for v < 0 (default the odd extension)"),
              Option("friction_name", "a name for the friction law")),
-    defaults={"t_end": 10.0},
+    defaults={"t_end": 10.0, "key_parameters": ("omega",)},
     source=SOURCE,
 )
 

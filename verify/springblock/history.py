@@ -165,10 +165,18 @@ def _field_m0(law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[s
     return res, fld
 
 
-def _pieces_m0(law, p, k, terms, h: LoadHistory, y, T, ends, t_end, rtol, scale):
+def _piece_times(t_eval: np.ndarray | None, a: float, b: float, last: bool) -> np.ndarray | None:
+    """The output times of the piece [a, b) ([a, b] for the last one), or None (the steps)."""
+    if t_eval is None:
+        return None
+    return t_eval[(t_eval >= a) & ((t_eval <= b) if last else (t_eval < b))]
+
+
+def _pieces_m0(law, p, k, terms, h: LoadHistory, y, T, ends, t_end, rtol, scale, t_eval=None):
     """Integrate the history at M = 0 piece by piece: the slip rate from the force balance at every
     evaluation (:func:`~landau.verify.springblock.forcebalance.solve_log_rate`), (u, ψ…) by Radau IIA
-    with the implicit-function Jacobian f_y − f_w R_y/R_w.  Returns the pieces' (t, Y, V) in (u, w, ψ…)."""
+    with the implicit-function Jacobian f_y − f_w R_y/R_w.  Returns the pieces' (t, Y, V) in (u, w, ψ…):
+    at the accepted steps, or at the times ``t_eval`` from the integrator's dense output."""
     from scipy.integrate import solve_ivp
 
     from landau.verify.springblock.forcebalance import solve_log_rate
@@ -197,26 +205,38 @@ def _pieces_m0(law, p, k, terms, h: LoadHistory, y, T, ends, t_end, rtol, scale)
         if a >= t_end:
             break
         b = min(b, t_end)
+        te = _piece_times(t_eval, a, b, b >= t_end)
         try:
-            sol = solve_ivp(f, (a, b), z, method="Radau", rtol=rtol, atol=rtol * zscale, jac=jac, args=(V,))
+            sol = solve_ivp(f, (a, b), z, method="Radau", rtol=rtol, atol=rtol * zscale, jac=jac, args=(V,),
+                            dense_output=te is not None)
         except IntegratorError as exc:
             raise IntegratorError(f"load-point history (M = 0), piece V = {V:g} m/s from t = {a:g} s: {exc}",
                                   t=a, state=list(z)) from exc
         if not sol.success or not np.all(np.isfinite(sol.y[:, -1])):
             raise IntegratorError(f"load-point history (M = 0), piece V = {V:g} m/s from t = {a:g} s: "
                                   f"{sol.message}", t=float(sol.t[-1]), state=sol.y[:, -1])
-        W = np.array([solve_log_rate(res, q, centre, centre) for q in sol.y[:, 1:].T])
-        Y = np.vstack([sol.y[0, 1:], W, sol.y[1:, 1:]])
-        out.append((sol.t[1:], Y, np.full(len(sol.t) - 1, V)))
+        tt, Z = (sol.t[1:], sol.y[:, 1:]) if te is None else (te, sol.sol(te).reshape(len(z), -1))
+        W = np.array([solve_log_rate(res, q, centre, centre) for q in Z.T])
+        Y = np.vstack([Z[0], W.reshape(-1), Z[1:]])
+        out.append((tt, Y, np.full(len(tt), V)))
         nsteps += len(sol.t) - 1
         nfev += int(sol.nfev)
         z = sol.y[:, -1]
     return out, nsteps, nfev
 
 
+def default_end(h: LoadHistory, params: Mapping[str, float]) -> float:
+    """The end of a history's run where none is given: the last piece's start plus as long as the
+    longest earlier piece (a single piece: 100 L/V₀) [s]."""
+    T = list(h.times)
+    longest = max([b - a for a, b in zip(T, T[1:], strict=False)]
+                  or [100 * params.get("L", 1e-6) / h.velocities[0]])
+    return T[-1] + longest
+
+
 def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
                      params: Mapping[str, float] | None = None, t_end: float | None = None, *,
-                     rtol: float = 1e-9, max_points: int = 200_000) -> Simulation:
+                     rtol: float = 1e-9, max_points: int = 200_000, t_eval=None) -> Simulation:
     """The spring–block under a load-point velocity history (module docstring).
 
     Parameters
@@ -237,6 +257,9 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
         Relative tolerance of the Radau IIA (absolute: ``rtol`` in u/L, w and ψ).
     max_points : int, optional
         Bound on the recorded points (evenly thinned past it).
+    t_eval : array_like, optional
+        Increasing times in [t₀, ``t_end``] to give the series at, from each piece's Radau IIA dense
+        output (the same steps as without it); default: the accepted steps.
 
     Returns
     -------
@@ -278,10 +301,17 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
                          f"eta = {p.get('eta', 0.0)!r}")
     T = list(h.times)
     if t_end is None:
-        longest = max([b - a for a, b in zip(T, T[1:], strict=False)] or [100 * p.get("L", 1e-6) / h.velocities[0]])
-        t_end = T[-1] + longest
+        t_end = default_end(h, p)
     if not (math.isfinite(t_end) and t_end > T[-1]):
         raise InputError(f"the end time must be after the last piece's start t = {T[-1]:g} s, got {t_end!r}")
+    if t_eval is not None:
+        t_eval = np.asarray(t_eval, float).reshape(-1)
+        if not (len(t_eval) and np.all(np.isfinite(t_eval)) and np.all(np.diff(t_eval) > 0)
+                and t_eval[0] >= T[0] and t_eval[-1] <= t_end):
+            raise InputError(f"t_eval must be increasing finite times in [{T[0]:g}, {t_end:g}] s")
+        appended = bool(t_eval[-1] < t_end)   # the end of the run, for the final state
+        if appended:
+            t_eval = np.r_[t_eval, t_end]
     phi0, mu0 = _steady_state(law, h.velocities[0], p)
     if "gamma_ld" in terms:   # steady sliding at every sliding velocity of the history needs 1 - gamma mu_ss > 0
         from landau.systems.springblock_terms import check_steady_sliding
@@ -295,10 +325,12 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     y = np.array([F0 / k, math.log(h.velocities[0]), *(math.log(x) for x in phi0)])
     scale = np.array([p.get("L", 1e-6)] + [1.0] * (len(y) - 1))
     ts, ys, vs = [np.array([T[0]])], [y[:, None]], [np.array([h.velocities[0]])]
+    if t_eval is not None:   # the series at the times asked for only
+        ts, ys, vs = [], [], []
     ends = T[1:] + [t_end]
     nsteps = nfev = 0
     if quasidynamic:
-        pieces, nsteps, nfev = _pieces_m0(law, p, k, terms, h, y, T, ends, t_end, rtol, scale)
+        pieces, nsteps, nfev = _pieces_m0(law, p, k, terms, h, y, T, ends, t_end, rtol, scale, t_eval)
         for tt, Y, Vl in pieces:
             ts.append(tt)
             ys.append(Y)
@@ -307,21 +339,23 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
         if quasidynamic or a >= t_end:
             break
         b = min(b, t_end)
+        te = _piece_times(t_eval, a, b, b >= t_end)
         sol = solve_ivp(lambda t, yy, V=V: fn(yy, V), (a, b), y, method="Radau", rtol=rtol, atol=rtol * scale,
-                        jac=lambda t, yy, V=V: np.asarray(jn(yy, V), float))
+                        jac=lambda t, yy, V=V: np.asarray(jn(yy, V), float), dense_output=te is not None)
         if not sol.success or not np.all(np.isfinite(sol.y[:, -1])):
             raise IntegratorError(f"load-point history, piece V = {V:g} m/s from t = {a:g} s: {sol.message}",
                                   t=float(sol.t[-1]), state=sol.y[:, -1])
-        ts.append(sol.t[1:])
-        ys.append(sol.y[:, 1:])
-        vs.append(np.full(len(sol.t) - 1, V))
+        tt, Y = (sol.t[1:], sol.y[:, 1:]) if te is None else (te, sol.sol(te).reshape(len(y), -1))
+        ts.append(tt)
+        ys.append(Y)
+        vs.append(np.full(len(tt), V))
         nsteps += len(sol.t) - 1
         nfev += int(sol.nfev)
         y = sol.y[:, -1]
     t = np.concatenate(ts)
     Y = np.concatenate(ys, axis=1)
     Vl = np.concatenate(vs)
-    if len(t) > max_points:
+    if len(t) > max_points and t_eval is None:
         keep = np.unique(np.linspace(0, len(t) - 1, max_points).astype(int))
         t, Y, Vl = t[keep], Y[:, keep], Vl[keep]
     mu = np.broadcast_to(np.asarray(mun(Y), float), t.shape)
@@ -335,9 +369,11 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
             names += ("sigma",)
     regimes = tuple((a, min(b, t_end), "hold" if V == 0 else "slide")
                     for V, a, b in zip(h.velocities, T, ends, strict=True) if a < t_end)
-    final = out[:, -1].copy()
+    final, t_final = out[:, -1].copy(), float(t[-1])
+    if t_eval is not None and appended:
+        t, out = t[:-1], out[:, :-1]
     return Simulation("spring-block (load-point history)", t, out, EventLog(), Status.FINISHED,
-                      Status.FINISHED.advice, float(t[-1]), final, nsteps, nfev, None, names, regimes)
+                      Status.FINISHED.advice, t_final, final, nsteps, nfev, None, names, regimes)
 
 
 def peak_after(sim: Simulation, t_from: float) -> float:
