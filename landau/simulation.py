@@ -224,7 +224,7 @@ def simulate(model, law=None, *, params: Mapping[str, Any] | None = None, t_end:
     sim = m.simulate(setup, t_end=t_end, y0=y0, history=history, t_eval=grid, max_steps=max_steps,
                      sections=bool(sections))
     hints = {**sim.plot_hints, "title": _title(m, sim, setup)}
-    return replace(sim, model=m.name, plot_hints=hints)
+    return replace(sim, plot_hints=hints)
 
 
 __all__ = ["simulate", "uniform_times"]

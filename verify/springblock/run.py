@@ -248,10 +248,10 @@ def _load_history(law, block, params, history, k, V, y0, t_end, t_eval):
     from landau.verify.springblock.history import parse_history, simulate_history
 
     if V is not None:
-        raise InputError("spring-block: a velocity history gives the load-point velocities; leave out V")
+        raise InputError("spring-block: a velocity history gives the load-point velocities; leave out V (--V)")
     if y0 is not None:
         raise InputError("spring-block: a velocity history starts from steady sliding at its first velocity; "
-                         "leave out y0")
+                         "leave out y0 (--y0)")
     hist = parse_history(history_text(history))
     notes = [f"load point: {hist} (m/s @ s); starts from steady sliding at V = {hist.velocities[0]:g} m/s"]
     if k is None:
