@@ -17,6 +17,7 @@ if TYPE_CHECKING:  # the same names as _LAZY, for type checkers and the API docu
     from landau.derivation.general import hopf_normal_form
     from landau.derivation.linear import HopfLine, HopfPoint, critical_stiffness
     from landau.derivation.multiscale import CONVENTION, Coefficient, Derivation, derive
+    from landau.simulation import simulate
     from landau.systems.system import DynamicalSystem, SpringBlock
 
 # The derivation engine (sympy) loads on first use of one of its names, so that importing a
@@ -32,6 +33,7 @@ _LAZY = {
     "CheckResult": "landau.analyses.checking", "Verdict": "landau.analyses.checking",
     "check": "landau.analyses.checking",
     "sweep": "landau.analyses.sweep",
+    "simulate": "landau.simulation",
 }
 
 
@@ -70,5 +72,5 @@ __all__ = [
     "CONVENTION", "CheckResult", "Coefficient", "Convention", "Criticality", "Derivation", "DynamicalSystem",
     "HopfLine", "HopfPoint", "HopfResult", "InputError", "IntegratorError", "LandauError",
     "NoHopfError", "SingularPointError", "SpringBlock", "Verdict", "check", "critical_stiffness",
-    "derive", "hopf_normal_form", "sweep",
+    "derive", "hopf_normal_form", "simulate", "sweep",
 ]

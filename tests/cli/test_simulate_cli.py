@@ -221,11 +221,11 @@ def test_failed_run_exits_1(monkeypatch, capsys, tmp_path):
     hold the run up to where it stopped."""
     from dataclasses import replace
 
-    import landau.cli.simulate as S
+    import landau.verify.galvanetto.run as G
     from landau.verify.hybrid.result import Status
 
     failed = replace(_harmonic(), status=Status.ZENO, message=Status.ZENO.advice)
-    monkeypatch.setattr(S, "_galvanetto", lambda args, t_end, n: (failed, {}, {}, []))
+    monkeypatch.setattr(G, "simulate_one_block", lambda setup, **kw: failed)
     out = tmp_path / "run.csv"
     assert main(["simulate", "galvanetto-one-block", "--out", str(out)]) == 1
     text = capsys.readouterr().out

@@ -79,7 +79,7 @@ def test_two_blocks_take_a_user_law_with_its_own_positive_branch(capsys):
     (["galvanetto-one-block", "--kinetic", "exp(q*r)"], "q"),
     (["galvanetto-one-block", "--kinetic", "1/(1 + r)", "--V", "1"], "not finite"),
     (["galvanetto-two-blocks", "--hopf"], "--hopf applies to galvanetto-one-block"),
-    (["impact-oscillator", "--kinetic", "1"], "galvanetto models only"),
+    (["impact-oscillator", "--kinetic", "1"], "--kinetic applies to galvanetto-one-block, galvanetto-two-blocks only"),
 ])
 def test_bad_kinetic_input_exits_2_with_one_line(capsys, argv, needle):
     code = main(["simulate", *argv, "--t-end", "1"])

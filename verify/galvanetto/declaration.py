@@ -105,6 +105,18 @@ def one_block_hopf(setup: Setup):
                          "bring V and the law's parameters nearer their physical scale") from None
 
 
+def _simulate_one(setup: Setup, **kw):
+    from landau.verify.galvanetto.run import simulate_one_block
+
+    return simulate_one_block(setup, **kw)
+
+
+def _simulate_two(setup: Setup, **kw):
+    from landau.verify.galvanetto.run import simulate_two_blocks
+
+    return simulate_two_blocks(setup, **kw)
+
+
 _KINETIC_OPTIONS = (Option("kinetic", "kinetic friction for r = Xdot - V < 0 in r, gamma, delta"),
                     Option("kinetic_pos", "the r > 0 branch (default the odd reflection of the r < 0 one)"))
 
@@ -115,8 +127,10 @@ GALVANETTO_ONE_BLOCK = Model(
     declare=lambda setup: _declare(setup, 1),
     hopf_parameter="c",
     hopf=one_block_hopf,
+    simulate=_simulate_one,
     options=_KINETIC_OPTIONS,
-    defaults={"t_end": 60.0},
+    # simulate_options: settings of the simulation only (hopf: add the damped block's Hopf point)
+    defaults={"t_end": 60.0, "key_parameters": ("V", "c"), "simulate_options": ("hopf",)},
     source=SOURCE,
 )
 
@@ -125,8 +139,9 @@ GALVANETTO_TWO_BLOCKS = Model(
     description="two coupled blocks on a belt (Galvanetto 2004), kinetic law eq. (7) or --kinetic EXPR",
     law_kind=LawKind.KINETIC,
     declare=lambda setup: _declare(setup, 2),
+    simulate=_simulate_two,
     options=_KINETIC_OPTIONS,
-    defaults={"t_end": 60.0},
+    defaults={"t_end": 60.0, "key_parameters": ("V", "alpha", "beta")},
     source=SOURCE,
 )
 

@@ -159,7 +159,7 @@ def _regime_legend(ax_handles: list, regimes, span):
 
 def plot_simulation(sim, kind: str = "overview", *, phase: tuple[int, int] = (0, 1), period: float | None = None,
                     units: Mapping[str, str] | None = None, fig=None, discard: float = 0.0,
-                    log: Sequence[str] | None = None, section_label: str | None = None):
+                    log: Sequence[str] | None = None, section_label: str | None = None, title: str | None = None):
     """Draw a simulation (see the module docstring) and return the Figure.
 
     Parameters
@@ -182,6 +182,8 @@ def plot_simulation(sim, kind: str = "overview", *, phase: tuple[int, int] = (0,
         States drawn on a logarithmic axis (default: the positive ones spanning > 2 decades).
     section_label : str, optional
         What the section events are (legend of the Poincaré plot).
+    title : str, optional
+        The title's words before the run's status (default the model's name).
 
     Returns
     -------
@@ -205,7 +207,7 @@ def plot_simulation(sim, kind: str = "overview", *, phase: tuple[int, int] = (0,
     tu = units.get("t", "s")
     tlabel = f"t [{tu}]" if tu else "t"
     logset = set(log) if log is not None else {nm for i, nm in enumerate(names) if len(sim.t) and _is_log(sim.y[i])}
-    title = sim.model + ("" if sim.success else f" (stopped: {sim.status.value})")
+    title = (title or sim.model) + ("" if sim.success else f" (stopped: {sim.status.value})")
     if discard:
         title += f", t ≥ {discard:g}"
     if kind == "poincare":

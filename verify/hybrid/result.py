@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass, field
+from typing import Any, Mapping
 
 import numpy as np
 
@@ -109,6 +110,18 @@ class Simulation:
     regimes : tuple of (float, float, str)
         The run's regimes in time order, ``(t0, t1, name)`` with names such as ``"stick"``,
         ``"slip"``, ``"flight"``, ``"contact"`` (empty when the model has none).
+    law : str
+        The friction law's name (``""`` where the run does not say).
+    units : mapping of str to str
+        The unit of each series by state name, and of ``"t"`` (used by :meth:`plot` and
+        :meth:`to_csv` when none are given).
+    parameters : mapping
+        Every parameter value the run used (the defaults completed), by name.
+    notes : tuple of str
+        What a reader of the run should know (the start, a default chosen, the output times).
+    plot_hints : mapping
+        How :meth:`plot` draws the run where not told: ``title``, ``phase`` (the phase portrait's
+        components), ``section_phase``, ``section_label`` and ``period`` (a stroboscopic section).
     """
 
     model: str
@@ -124,6 +137,11 @@ class Simulation:
     f: np.ndarray | None = field(default=None, repr=False)
     state_names: tuple[str, ...] = ()
     regimes: tuple[tuple[float, float, str], ...] = field(default=(), repr=False)
+    law: str = ""
+    units: Mapping[str, str] = field(default_factory=dict, repr=False)
+    parameters: Mapping[str, Any] = field(default_factory=dict, repr=False)
+    notes: tuple[str, ...] = field(default=(), repr=False)
+    plot_hints: Mapping[str, Any] = field(default_factory=dict, repr=False)
 
     @property
     def success(self) -> bool:
@@ -165,6 +183,34 @@ class Simulation:
             h11 = s * s * (s - 1)
             out = h00 * y0 + h10 * h * f0 + h01 * y1 + h11 * h * f1
         return out[:, 0] if np.ndim(times) == 0 else out
+
+    def on_times(self, times, note: str = "") -> "Simulation":
+        """The run with its series at ``times`` (inside the recorded span) by :meth:`at`, the
+        events, regimes, final state and counters unchanged; ``note`` is added to the notes.
+
+        Parameters
+        ----------
+        times : array_like
+            Increasing times inside [t[0], t[-1]].
+        note : str, optional
+            How the values were obtained (appended to :attr:`notes`).
+
+        Returns
+        -------
+        Simulation
+
+        Raises
+        ------
+        ValueError
+            Times not increasing, or outside the recorded span.
+        """
+        from dataclasses import replace
+
+        ts = np.asarray(times, float).reshape(-1)
+        if len(ts) and not (np.all(np.isfinite(ts)) and np.all(np.diff(ts) > 0)):
+            raise ValueError("the output times must be finite and increasing")
+        y = self.at(ts).reshape(self.y.shape[0], -1) if len(ts) else self.y[:, :0]
+        return replace(self, t=ts, y=y, f=None, notes=tuple(self.notes) + ((note,) if note else ()))
 
     def after(self, t_from: float) -> "Simulation":
         """The run without its transient: the recorded points, events and regimes at t ≥ ``t_from``
@@ -234,9 +280,12 @@ class Simulation:
         ts = self.t[0] + period * np.arange(int(np.floor((self.t[-1] - self.t[0]) / period)) + 1)
         return ts, self.at(ts).reshape(self.y.shape[0], -1)
 
-    def plot(self, kind: str = "overview", *, phase: tuple[int, int] = (0, 1), period: float | None = None,
-             units=None, fig=None, discard: float = 0.0, log=None, section_label: str | None = None):
-        """Draw the run with matplotlib (:func:`landau.verify.hybrid.plotting.plot_simulation`).
+    def plot(self, kind: str = "overview", *, phase: tuple[int, int] | None = None, period: float | None = None,
+             units=None, fig=None, discard: float = 0.0, log=None, section_label: str | None = None,
+             title: str | None = None):
+        """Draw the run with matplotlib (:func:`landau.verify.hybrid.plotting.plot_simulation`): the
+        figure ``landau simulate --out run.png`` writes.  What is not given comes from the run
+        (:attr:`units`, :attr:`plot_hints`); it never calls ``pyplot.show``.
 
         Parameters
         ----------
@@ -244,12 +293,14 @@ class Simulation:
             ``"overview"``: the time series of every state (regimes shaded, a logarithmic axis
             for a positive quantity spanning decades) and a phase portrait coloured by regime;
             ``"poincare"``: the Poincaré section (see :meth:`section_points`).
-        phase : (int, int)
-            The two state components of the phase plane (default the first two).
+        phase : (int, int), optional
+            The two state components of the phase plane (default the run's ``phase`` hint, or
+            ``section_phase`` for a section, else the first two).
         period : float, optional
-            Strobe period for ``"poincare"`` (default: the logged section events).
+            Strobe period for ``"poincare"`` (default the run's ``period`` hint, else the logged
+            section events).
         units : mapping, optional
-            State name (and ``"t"``) → unit for the axis labels.
+            State name (and ``"t"``) → unit for the axis labels (default :attr:`units`).
         fig : matplotlib Figure, optional
             Draw into this figure instead of a new one.
         discard : float, optional
@@ -258,6 +309,8 @@ class Simulation:
             States on a logarithmic axis (default: chosen from the data).
         section_label : str, optional
             What the section events are, for the Poincaré plot's legend.
+        title : str, optional
+            The figure's title (default the run's ``title`` hint: the model, law and key parameters).
 
         Returns
         -------
@@ -266,8 +319,16 @@ class Simulation:
         """
         from landau.verify.hybrid.plotting import plot_simulation
 
-        return plot_simulation(self, kind, phase=phase, period=period, units=units, fig=fig, discard=discard,
-                               log=log, section_label=section_label)
+        hints = self.plot_hints
+        if phase is None:
+            phase = tuple(hints.get("section_phase" if kind == "poincare" else "phase", None)
+                          or hints.get("phase", (0, 1)))
+        if period is None and kind == "poincare":
+            period = hints.get("period")
+        return plot_simulation(self, kind, phase=phase, period=period,
+                               units=self.units if units is None else units, fig=fig, discard=discard, log=log,
+                               section_label=section_label or hints.get("section_label"),
+                               title=title or hints.get("title"))
 
     def to_csv(self, path, units=None):
         """Write the time series as CSV (header ``t [s], name [unit], ...``), atomically.
@@ -277,7 +338,7 @@ class Simulation:
         path : str or os.PathLike
             The file to write.
         units : mapping of str to str, optional
-            Units by state name (and ``"t"``, default s) for the header.
+            Units by state name (and ``"t"``, default s) for the header (default :attr:`units`).
 
         Returns
         -------
@@ -286,7 +347,7 @@ class Simulation:
         """
         from landau.support.io import atomic_write_text
 
-        units = dict(units or {})
+        units = dict(self.units if units is None else units)
         names = self._names()
         tu = units.get("t", "s")
         head = [f"t [{tu}]" if tu else "t"] + [f"{nm} [{units[nm]}]" if units.get(nm) else nm for nm in names]

@@ -94,6 +94,12 @@ def impact_oscillator_hopf(setup: Setup):
     return replace(h, extra=extra)
 
 
+def _simulate(setup: Setup, **kw):
+    from landau.verify.lancioni.run import simulate
+
+    return simulate(setup, **kw)
+
+
 IMPACT_OSCILLATOR = Model(
     name="impact-oscillator",
     description="frictional impact oscillator (Lancioni, Lenci & Galvanetto): slip equilibrium; parameter mu, or a "
@@ -102,11 +108,12 @@ IMPACT_OSCILLATOR = Model(
     declare=_declare,
     hopf_parameter=_hopf_parameter,
     hopf=impact_oscillator_hopf,
+    simulate=_simulate,
     options=(Option("friction", "friction F(v) for sliding velocity v > 0"),
              Option("friction_neg", "friction for v < 0 (default the odd extension)"),
              Option("friction_name", "a name for the friction law"),
              Option("parameter", "the bifurcation parameter (default mu, or the law's first parameter)")),
-    defaults={"t_end": 10.0},
+    defaults={"t_end": 10.0, "key_parameters": ("mu", "v_belt")},
     source=SOURCE,
 )
 

@@ -56,16 +56,23 @@ def _plot_simulate(ds, fig) -> dict:
     return {"kind": "bifurcation-diagram"}
 
 
+def _simulate(setup: Setup, **kw):
+    from landau.verify.skurativskyi.run import simulate
+
+    return simulate(setup, **kw)
+
+
 FORCED_OSCILLATOR = Model(
     name="forced-oscillator",
     description="forced cart with Hertz contact (Skurativskyi et al. 2019), regularised Coulomb friction or --friction",
     law_kind=LawKind.VELOCITY,
     declare=_declare,
+    simulate=_simulate,
     tasks={"simulate": _simulate_task},
     options=(Option("friction", "friction force F_R(v) [N] for sliding velocity v > 0"),
              Option("friction_neg", "the friction for v < 0 (default the odd extension)"),
              Option("friction_name", "a name for the friction law")),
-    defaults={"t_end": 10.0},
+    defaults={"t_end": 10.0, "key_parameters": ("omega",)},
     plots={"simulate": _plot_simulate},
     source=SOURCE,
 )

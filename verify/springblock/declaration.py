@@ -106,6 +106,12 @@ def _check_task(task, model, law, fixed, options):
     return SpringBlockCheck("check", model, law, fixed, options, chunk_size=1)
 
 
+def _simulate(setup: Setup, **kw):
+    from landau.verify.springblock.run import simulate
+
+    return simulate(setup, **kw)
+
+
 def _regime_task(task, model, law, fixed, options):
     from landau.verify.springblock.regime_map import make_task
 
@@ -143,8 +149,9 @@ SPRING_BLOCK = Model(
     declare=_block_parameters,
     hopf_parameter="k",
     hopf=spring_block_hopf,
+    simulate=_simulate,
     tasks={"hopf": _hopf_task, "check": _check_task, "regime": _regime_task},
-    defaults={"V": V_DEFAULT, "t_end": 20.0},
+    defaults={"V": V_DEFAULT, "t_end": 20.0, "key_parameters": ("V", "k"), "history": True},
     convention="putelat2010",
     convention_description=CONVENTION,
     plots={"regime": plot_regime_sweep},

@@ -248,10 +248,19 @@ def _build_history_kernel(law: FrictionLaw, terms: tuple[str, ...], quasidynamic
     return compile_field(key, states, field, params, names, label)
 
 
-def _pieces(law, p, k, terms, h: LoadHistory, y, T, ends, t_end, rtol, scale, quasidynamic):
+def _piece_times(t_eval: np.ndarray | None, a: float, b: float, last: bool) -> np.ndarray | None:
+    """The output times of the piece [a, b) ([a, b] for the last one), or None (the steps)."""
+    if t_eval is None:
+        return None
+    return t_eval[(t_eval >= a) & ((t_eval <= b) if last else (t_eval < b))]
+
+
+def _pieces(law, p, k, terms, h: LoadHistory, y, T, ends, t_end, rtol, scale, quasidynamic, t_eval=None):
     """Integrate the history piece by piece with the compiled Radau IIA (:func:`history_kernel`), each
     piece a fresh run from the state the last one left (exactly continuous: at M = 0 the force balance
-    does not contain V_lp).  Returns the pieces' (t, Y, V) in (u, w, ψ…), the steps and f evaluations."""
+    does not contain V_lp).  Returns the pieces' (t, Y, V) in (u, w, ψ…), the steps and f evaluations:
+    at the accepted steps, or with ``t_eval`` at those times, each the end of a compiled run (the run
+    goes on from it with the step it had reached)."""
     kern = history_kernel(law, terms, quasidynamic)
     base = [p[prm.name] for prm in law.parameters]
     base += [k if t == "k" else p[t] for t in _kernel_terms(terms, quasidynamic)]
@@ -263,22 +272,44 @@ def _pieces(law, p, k, terms, h: LoadHistory, y, T, ends, t_end, rtol, scale, qu
         b = min(b, t_end)
         # the feedback of the force balance: FEEDBACK per slip time ℓ/(V₀ + v) (compiled_runs)
         pv = kern.parameters(base + [V] + ([FEEDBACK / ell, h.velocities[0]] if quasidynamic else []))
-        run = drive(kern, pv, y, a, b, rtol=rtol, atol=rtol * scale, max_steps=MAX_STEPS)
-        if run.status != 0:
-            why = STATUS[run.status] + (f" ({MAX_STEPS} step attempts)" if run.status == -2 else "")
-            raise IntegratorError(f"load-point history{' (M = 0)' if quasidynamic else ''}, piece V = {V:g} m/s "
-                                  f"from t = {a:g} s: {why} (state = u [m], ln v, ln phi...)", t=float(run.t),
-                                  state=list(run.y))
-        out.append((run.rec_t[1:], run.rec_y[1:].T, np.full(len(run.rec_t) - 1, V)))
-        nsteps += int(run.counts[0])
-        nfev += int(run.counts[2])
-        y = run.y
+        te = _piece_times(t_eval, a, b, b >= t_end)
+        stops = [b] if te is None else [*(x for x in te if a < x < b), b]
+        h0, t0, at_t, at_y = None, a, [], []
+        if te is not None and len(te) and te[0] == a:
+            at_t.append(a)
+            at_y.append(np.array(y, float))
+        for t1 in stops:
+            run = drive(kern, pv, y, t0, t1, rtol=rtol, atol=rtol * scale, max_steps=MAX_STEPS, h0=h0)
+            if run.status != 0:
+                why = STATUS[run.status] + (f" ({MAX_STEPS} step attempts)" if run.status == -2 else "")
+                raise IntegratorError(f"load-point history{' (M = 0)' if quasidynamic else ''}, piece V = {V:g} "
+                                      f"m/s from t = {a:g} s: {why} (state = u [m], ln v, ln phi...)",
+                                      t=float(run.t), state=list(run.y))
+            if te is None:
+                out.append((run.rec_t[1:], run.rec_y[1:].T, np.full(len(run.rec_t) - 1, V)))
+            elif t1 in te:
+                at_t.append(t1)
+                at_y.append(run.y)
+            nsteps += int(run.counts[0])
+            nfev += int(run.counts[2])
+            y, t0, h0 = run.y, t1, (run.h if run.h > 0 else None)
+        if te is not None:
+            out.append((np.array(at_t), np.array(at_y).reshape(len(at_t), -1).T, np.full(len(at_t), V)))
     return out, nsteps, nfev
+
+
+def default_end(h: LoadHistory, params: Mapping[str, float]) -> float:
+    """The end of a history's run where none is given: the last piece's start plus as long as the
+    longest earlier piece (a single piece: 100 L/V₀) [s]."""
+    T = list(h.times)
+    longest = max([b - a for a, b in zip(T, T[1:], strict=False)]
+                  or [100 * params.get("L", 1e-6) / h.velocities[0]])
+    return T[-1] + longest
 
 
 def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
                      params: Mapping[str, float] | None = None, t_end: float | None = None, *,
-                     rtol: float = 1e-9, max_points: int = 200_000) -> Simulation:
+                     rtol: float = 1e-9, max_points: int = 200_000, t_eval=None) -> Simulation:
     """The spring–block under a load-point velocity history (module docstring).
 
     Parameters
@@ -300,6 +331,9 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     max_points : int, optional
         Bound on the recorded points (evenly thinned past it).
 
+    t_eval : array_like, optional
+        Increasing times in [t₀, ``t_end``] to give the series at (each the end of a compiled run,
+        which goes on from there with the step it had reached); default: the accepted steps.
     Returns
     -------
     Simulation
@@ -338,10 +372,18 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
                          f"eta = {p.get('eta', 0.0)!r}")
     T = list(h.times)
     if t_end is None:
-        longest = max([b - a for a, b in zip(T, T[1:], strict=False)] or [100 * p.get("L", 1e-6) / h.velocities[0]])
-        t_end = T[-1] + longest
+        t_end = default_end(h, p)
     if not (math.isfinite(t_end) and t_end > T[-1]):
         raise InputError(f"the end time must be after the last piece's start t = {T[-1]:g} s, got {t_end!r}")
+    appended = False
+    if t_eval is not None:
+        t_eval = np.asarray(t_eval, float).reshape(-1)
+        if not (len(t_eval) and np.all(np.isfinite(t_eval)) and np.all(np.diff(t_eval) > 0)
+                and t_eval[0] >= T[0] and t_eval[-1] <= t_end):
+            raise InputError(f"t_eval must be increasing finite times in [{T[0]:g}, {t_end:g}] s")
+        appended = bool(t_eval[-1] < t_end)   # the end of the run, for the final state
+        if appended:
+            t_eval = np.r_[t_eval, t_end]
     from landau.systems.springblock_terms import check_steady_sliding, load_slope, loads_block, steady_values
 
     phi0, mu0 = _steady_state(law, h.velocities[0], p)
@@ -353,8 +395,10 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     y = np.array([F0 / k, math.log(h.velocities[0]), *(math.log(x) for x in phi0)])
     scale = np.array([p.get("L", 1e-6)] + [1.0] * (len(y) - 1))
     ts, ys, vs = [np.array([T[0]])], [y[:, None]], [np.array([h.velocities[0]])]
+    if t_eval is not None:   # the series at the times asked for only
+        ts, ys, vs = [], [], []
     ends = T[1:] + [t_end]
-    pieces, nsteps, nfev = _pieces(law, p, k, terms, h, y, T, ends, t_end, rtol, scale, quasidynamic)
+    pieces, nsteps, nfev = _pieces(law, p, k, terms, h, y, T, ends, t_end, rtol, scale, quasidynamic, t_eval)
     for tt, Y, Vl in pieces:
         ts.append(tt)
         ys.append(Y)
@@ -362,7 +406,7 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     t = np.concatenate(ts)
     Y = np.concatenate(ys, axis=1)
     Vl = np.concatenate(vs)
-    if len(t) > max_points:
+    if len(t) > max_points and t_eval is None:
         keep = np.unique(np.linspace(0, len(t) - 1, max_points).astype(int))
         t, Y, Vl = t[keep], Y[:, keep], Vl[keep]
     mu = np.broadcast_to(np.asarray(mun(Y), float), t.shape)
@@ -376,9 +420,11 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
             names += ("sigma",)
     regimes = tuple((a, min(b, t_end), "hold" if V == 0 else "slide")
                     for V, a, b in zip(h.velocities, T, ends, strict=True) if a < t_end)
-    final = out[:, -1].copy()
+    final, t_final = out[:, -1].copy(), float(t[-1])
+    if t_eval is not None and appended:
+        t, out = t[:-1], out[:, :-1]
     return Simulation("spring-block (load-point history)", t, out, EventLog(), Status.FINISHED,
-                      Status.FINISHED.advice, float(t[-1]), final, nsteps, nfev, None, names, regimes)
+                      Status.FINISHED.advice, t_final, final, nsteps, nfev, None, names, regimes)
 
 
 def peak_after(sim: Simulation, t_from: float) -> float:
