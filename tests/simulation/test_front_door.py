@@ -64,11 +64,13 @@ def _mu_ss(V: float) -> float:
 def test_velocity_step_on_a_uniform_grid():
     V1, V2 = 1e-5, 1e-4
     rec = landau.simulate("spring-block", history=[(V1, 0.0), (V2, 5.0)], t_end=60)
-    assert not np.any((rec.t > 15) & (rec.t < 60))      # the steps' record: nothing from 14.6 s to the end
+    assert np.max(np.diff(rec.t)) > 10      # the steps' record: no point over more than 10 s of the settled run
     sim = landau.simulate("spring-block", history=[(V1, 0.0), (V2, 5.0)], t_end=60, dt=0.5)
     np.testing.assert_array_equal(sim.t, 0.5 * np.arange(121))   # 0, 0.5, ..., 60 exactly
-    assert sim.t_final == 60.0 and any("dense output" in n for n in sim.notes)
-    np.testing.assert_array_equal(sim.y_final, rec.y_final)   # the same steps: the same end, bit for bit
+    assert sim.t_final == 60.0 and any("output times" in n for n in sim.notes)
+    # each output time ends a compiled run, so the steps differ from the record's: the same end within
+    # the integration's tolerance (rtol 1e-9; the slip-rate logarithm and u agree to 1e-9 relative)
+    np.testing.assert_allclose(sim.y_final, rec.y_final, rtol=1e-8)
     col = {n: i for i, n in enumerate(sim.state_names)}
     before = sim.t < 5
     np.testing.assert_array_equal(sim.y[col["V"], before], V1)
@@ -79,10 +81,10 @@ def test_velocity_step_on_a_uniform_grid():
 
 
 def test_velocity_step_transient_at_given_times_against_the_compiled_model():
-    """The dense output inside the transient (it lasts ~0.1 s after the step) against the compiled
-    spring–block driven at V2 from steady sliding at V1 (its own variables X = x − x0(t), Radau IIA
-    at rtol 1e-11): agreement to 1e-7 (measured 1e-9); the linear interpolation of the step record
-    is off by 1e-4 there (measured 1.5e-4 at t = 5.01 s), so the values are the dense output's."""
+    """The series at given times inside the transient (it lasts ~0.1 s after the step) against the
+    compiled spring–block driven at V2 from steady sliding at V1 (its own variables X = x − x0(t),
+    Radau IIA at rtol 1e-11): agreement to 1e-7; the linear interpolation of the step record is off by
+    1e-4 there (measured 1.5e-4 at t = 5.01 s), so the values are computed at those times."""
     from landau.laws import get_law
     from landau.verify.springblock.model import SpringBlockModel
     from landau.verify.springblock.simulate import integrate
