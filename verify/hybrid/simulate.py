@@ -41,6 +41,7 @@ from landau.errors import InputError, IntegratorError
 from landau.verify.hybrid.locate import HermiteScreen, first_crossing, guard_on_dense, root_new_side
 from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.model import Guard, HybridModel, as_jump
+from landau.verify.hybrid.record import Recorder, Segment, close_segment
 from landau.verify.hybrid.result import Simulation, status_from_text
 from landau.verify.hybrid.steppers import ScipyStepper
 from landau.verify.hybrid.zeno import ZenoDiagnosis, ZenoMonitor
@@ -98,18 +99,6 @@ class EngineOptions:
     screen: bool = True
     max_steps: int = 2_000_000
     max_samples: int = 200_000
-
-
-@dataclass(frozen=True)
-class Segment:
-    """A sampled piece of trajectory inside one mode (step points + guard samples)."""
-
-    mode: str
-    t: np.ndarray
-    y: np.ndarray  # shape (n, m)
-
-    def __repr__(self) -> str:
-        return f"Segment({self.mode!r}, t=[{self.t[0]:.6g}, {self.t[-1]:.6g}], {len(self.t)} points)"
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -344,7 +333,7 @@ class _Run:
                        and not options.record else None)
         self.nsteps = self.nfev = 0
         self.n_zero = 0
-        self.rec = _Recorder(options.max_samples)
+        self.rec = Recorder(options.max_samples)
         self.rbufs: dict[int, Any] = {}   # the compiled loop's record buffers, one per state dimension
         self.checked: dict[str, bool] = {}  # modes whose compiled guards agreed with the Python guards
         self.atol = options.guard_atol
@@ -643,7 +632,7 @@ def _log_sections(run: _Run, ph: _Phase, located: list[tuple[float, int, str]], 
                 state[j] = DISARMED
             if guards[j].terminal or (run.stop is not None and run.stop(ev)):
                 run.t, run.y = th, yh
-                _push_seg(run.segs, run.options, run.mname, ph.seg_t, ph.seg_y, ts, Y, th, yh)
+                close_segment(run.segs, run.options, run.mname, ph.seg_t, ph.seg_y, ts, Y, th, yh)
                 return True
     return False
 
@@ -662,7 +651,7 @@ def _switch_hit(run: _Run, ph: _Phase, located: list[tuple[float, int, str]], ts
     simul = [guards[x[1]].name for x in sw[1:] if x[0] - hit[0] <= options.simultaneous_tol]
     th = hit[0]
     yh = dense(th) if th < t_new else ph.solver.y.copy()
-    _push_seg(run.segs, options, run.mname, ph.seg_t, ph.seg_y, ts, Y, th, yh)
+    close_segment(run.segs, options, run.mname, ph.seg_t, ph.seg_y, ts, Y, th, yh)
     if options.record:
         run.rec.count += len(ts)
         run.rec.bound(run.segs, [np.empty(0)], [np.empty((len(yh), 0))])
@@ -808,55 +797,3 @@ class _LazyDense:
         if self.sol is None:
             self.sol = self.solver.dense_output()
         return self.sol(t)
-
-
-class _Recorder:
-    """Recorded samples within ``cap`` (:class:`EngineOptions` ``max_samples``): a stride over
-    the steps (1: every sample of every step; 2ᵏ: the end of every 2ᵏ-th step only) and the
-    thinning of what is kept when the count passes ``cap``."""
-
-    __slots__ = ("cap", "stride", "count", "k")
-
-    def __init__(self, cap: int):
-        self.cap, self.stride, self.count, self.k = max(int(cap), 16), 1, 0, 0
-
-    def push(self, seg_t, seg_y, ts, Y) -> None:
-        if self.stride > 1:
-            self.k += 1
-            if self.k % self.stride:
-                return
-            ts, Y = ts[-1:], Y[:, -1:]
-        seg_t.append(ts)
-        seg_y.append(Y)
-        self.count += len(ts)
-
-    def bound(self, segs, seg_t, seg_y) -> None:
-        if self.count <= self.cap:
-            return
-        for i, s in enumerate(segs):
-            keep = _thin(len(s.t))
-            segs[i] = Segment(s.mode, s.t[keep], s.y[:, keep])
-        t, y = np.concatenate(seg_t), np.concatenate(seg_y, axis=1)
-        keep = _thin(len(t))
-        seg_t[:], seg_y[:] = [t[keep]], [y[:, keep]]
-        self.count = sum(len(s.t) for s in segs) + len(seg_t[0])
-        if self.count > self.cap and len(segs) > 1:
-            # many short phases (each keeps its two ends): drop every other earlier phase
-            segs[:] = segs[-2::-2][::-1] + segs[-1:]
-            self.count = sum(len(s.t) for s in segs) + len(seg_t[0])
-        self.stride *= 2
-
-
-def _thin(n: int) -> np.ndarray:
-    """Every other index of range(n), the last one included."""
-    idx = np.arange(0, n, 2)
-    return idx if n == 0 or idx[-1] == n - 1 else np.append(idx, n - 1)
-
-
-def _push_seg(segs, options, mname, seg_t, seg_y, ts, Y, th, yh):
-    if not options.record:
-        return
-    keep = ts[1:] < th
-    seg_t.append(np.concatenate([ts[1:][keep], [th]]))
-    seg_y.append(np.column_stack([Y[:, keep], yh]))
-    segs.append(Segment(mname, np.concatenate(seg_t), np.concatenate(seg_y, axis=1)))
