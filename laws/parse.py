@@ -202,13 +202,33 @@ def parse_expression(text: str, symbols: Mapping[str, sp.Symbol], *, what: str =
 
 
 def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
+    """The whitelist walk behind :func:`parse_expression`, in three phases: the syntax tree of
+    ``text`` (``^`` read as a power; :func:`_syntax_tree`), bounded in size and depth before any
+    sympy object is built (:func:`_bound_tree`), then walked node by node into sympy, each node
+    kind accepted or refused by name (:class:`_Walker`, never executed); the result must be
+    real."""
+    tree = _syntax_tree(text, what)
+    _bound_tree(tree, what)
+    expr = _Walker(symbols, what).walk(tree)
+    if expr.has(sp.I) or expr.is_extended_real is False:
+        raise ParseError(f"{what} = {str(expr)[:80]} is not real for positive slip rate, states and parameters")
+    return expr
+
+
+def _syntax_tree(text: str, what: str) -> ast.Expression:
+    """The syntax tree of ``text`` as one Python expression, ``^`` read as a power; a
+    :class:`~landau.errors.ParseError` with the parser's message and column when it is not one."""
     # '^' means power in papers; Python would parse it as a low-precedence XOR
     text = text.replace("^", "**")
     try:
-        tree = ast.parse(text.strip(), mode="eval")
+        return ast.parse(text.strip(), mode="eval")
     except SyntaxError as exc:
         raise ParseError(f"{what} {text!r} is not a valid expression: {exc.msg} at column {exc.offset}") from None
-    # bound the tree before any sympy object is built
+
+
+def _bound_tree(tree: ast.AST, what: str) -> None:
+    """Refuse a tree with more than :data:`MAX_NODES` nodes or deeper than :data:`MAX_DEPTH`
+    (walked without recursion, before any sympy object is built)."""
     nodes = 0
     stack: list[tuple[ast.AST, int]] = [(tree, 0)]
     while stack:
@@ -220,26 +240,43 @@ def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
             raise ParseError(f"{what} is too deeply nested (more than {MAX_DEPTH} levels)")
         stack.extend((child, depth + 1) for child in ast.iter_child_nodes(node))
 
-    def bounded(result: sp.Expr, token: str) -> sp.Expr:
+
+class _Walker:
+    """The translation of a bounded syntax tree into sympy over ``symbols``: :meth:`walk` accepts
+    numbers, declared names and constants, the arithmetic operators and calls of
+    :data:`FUNCTIONS`, and refuses every other node with a :class:`~landau.errors.ParseError`
+    naming it; powers, ``exp`` and the results' sizes are built under the module's cost bounds.
+    ``what`` names the expression in the messages."""
+
+    def __init__(self, symbols: Mapping[str, sp.Symbol], what: str) -> None:
+        self.symbols, self.what = symbols, what
+
+    # -- the bounds on what is built
+    def bounded(self, result: sp.Expr, token: str) -> sp.Expr:
+        """``result``, refused when it is not finite or a number outside 1e-300 ≤ |x| ≤ 1e300."""
         if result.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
-            raise ParseError(f"{what}: {token!r} is not finite")
+            raise ParseError(f"{self.what}: {token!r} is not finite")
         if result.is_Number:
             dec = _number_decades(result)
             if dec is not None and abs(dec) > MAX_DECADES:
-                raise ParseError(f"{what}: {token!r} is out of range (|x| must lie between 1e-300 and 1e300)")
+                raise ParseError(f"{self.what}: {token!r} is out of range (|x| must lie between 1e-300 and 1e300)")
         return result
 
-    def out_of_range(token: str) -> ParseError:
-        return ParseError(f"{what}: {token!r} is out of range (|x| must lie between 1e-300 and 1e300)")
+    def out_of_range(self, token: str) -> ParseError:
+        """The error of a number outside 1e-300 ≤ |x| ≤ 1e300."""
+        return ParseError(f"{self.what}: {token!r} is out of range (|x| must lie between 1e-300 and 1e300)")
 
-    def not_real(token: str, why: str) -> ParseError:
-        return ParseError(f"{what}: {token!r} is not real ({why})")
+    def not_real(self, token: str, why: str) -> ParseError:
+        """The error of a value that is not real, with the reason."""
+        return ParseError(f"{self.what}: {token!r} is not real ({why})")
 
-    def number_power(base: sp.Expr, ex: sp.Expr, token: str) -> sp.Expr:
+    # -- powers, exp and calls
+    def number_power(self, base: sp.Expr, ex: sp.Expr, token: str) -> sp.Expr:
         """base**ex for symbol-free base and exponent: exact while that is cheap (an exact number
         to a small integer or a small root), else a float computed by mpmath (30 digits)."""
         import math
 
+        what = self.what
         b, e = _finite_real(base), _finite_real(ex)
         if b is None or e is None:
             raise ParseError(f"{what}: {token!r} is not a finite real number")
@@ -248,10 +285,10 @@ def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
                 raise ParseError(f"{what}: {token!r} divides by zero (not finite)")
             return sp.Integer(0)
         if e * math.log10(abs(b)) > MAX_DECADES or e * math.log10(abs(b)) < -MAX_DECADES:
-            raise out_of_range(token)
+            raise self.out_of_range(token)
         integral = ex.is_Integer or (ex.is_Float and float(ex).is_integer())
         if b < 0 and not integral:
-            raise not_real(token, "a negative number to a non-integer power")
+            raise self.not_real(token, "a negative number to a non-integer power")
         if ex.is_Rational and (base.is_Rational or (not base.is_Number and abs(e) <= MAX_EXPONENT)) \
                 and _exact_ok(base, ex):
             return base ** ex
@@ -261,14 +298,18 @@ def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
             return sp.Float(base.evalf(30), 30) ** int(e)
         return sp.Float(base.evalf(30), 30) ** sp.Float(ex.evalf(30), 30)
 
-    def power(base: sp.Expr, ex: sp.Expr, token: str) -> sp.Expr:
+    def power(self, base: sp.Expr, ex: sp.Expr, token: str) -> sp.Expr:
+        """base**ex under the bounds: numbers by :meth:`number_power`, a number to a symbolic power
+        only for a nonnegative base, a symbolic base to a numeric exponent of magnitude at most
+        :data:`MAX_EXPONENT` (the numbers sympy distributes it over bounded in size and cost)."""
+        what = self.what
         if not base.free_symbols:
             if not ex.free_symbols:
-                return number_power(base, ex, token)
+                return self.number_power(base, ex, token)
             b = _finite_real(base)
             if b is None or b < 0:
-                raise not_real(token, "a negative number to a symbolic power")
-            return exp_of(ex, token) if base == sp.E else base ** ex
+                raise self.not_real(token, "a negative number to a symbolic power")
+            return self.exp_of(ex, token) if base == sp.E else base ** ex
         if ex.is_Number:
             if abs(float(ex)) > MAX_EXPONENT:
                 raise ParseError(f"{what}: exponent in {token!r} exceeds {MAX_EXPONENT} in magnitude")
@@ -279,20 +320,20 @@ def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
             if abs(ev) > MAX_EXPONENT:
                 raise ParseError(f"{what}: exponent in {token!r} exceeds {MAX_EXPONENT} in magnitude")
         if ex.is_Number and not ex.is_Integer and base.is_extended_negative:
-            raise not_real(token, "a negative base to a non-integer power")
+            raise self.not_real(token, "a negative base to a non-integer power")
         if ex.is_Number:
             # sympy distributes a numeric power over the numbers of a product: bound their size and cost
             numbers = _exact_factors(base) + [(f, sp.Integer(1)) for f in sp.Mul.make_args(base) if f.is_Float]
             for c, r in numbers:
                 dec = _number_decades(c)
                 if dec is not None and abs(float(r * ex)) * abs(dec) > MAX_DECADES:
-                    raise out_of_range(token)
+                    raise self.out_of_range(token)
             if ex.is_Rational and not _exact_ok(base, ex):
                 ex = sp.Float(ex, 30)
         return base ** ex
 
-    def exp_of(arg: sp.Expr, token: str) -> sp.Expr:
-        """exp(arg) with the powers sympy makes of it (exp(c*log(x)) is x**c) built by :func:`power`,
+    def exp_of(self, arg: sp.Expr, token: str) -> sp.Expr:
+        """exp(arg) with the powers sympy makes of it (exp(c*log(x)) is x**c) built by :meth:`power`,
         under its cost bound."""
         powers, rest = [], []
         for t in sp.Add.make_args(arg):
@@ -301,75 +342,98 @@ def _parse(text: str, symbols: Mapping[str, sp.Symbol], what: str) -> sp.Expr:
             fs = [sp.logcombine(f) if not isinstance(f, sp.log) and f.has(sp.log) else f for f in sp.Mul.make_args(m)]
             logs = [f for f in fs if isinstance(f, sp.log)]
             if len(logs) == 1 and all(f.is_comparable for f in fs if f is not logs[0]):
-                powers.append(power(logs[0].args[0], c * sp.Mul(*[f for f in fs if f is not logs[0]]), token))
+                powers.append(self.power(logs[0].args[0], c * sp.Mul(*[f for f in fs if f is not logs[0]]), token))
             else:
                 rest.append(t)
         return sp.Mul(*powers) * sp.exp(sp.Add(*rest))
 
-    def call(name: str, arg: sp.Expr, token: str) -> sp.Expr:
+    def call(self, name: str, arg: sp.Expr, token: str) -> sp.Expr:
+        """The whitelisted function ``name`` of ``arg`` (exp, sinh, cosh of a number at most
+        :data:`MAX_EXP_ARG`; sqrt and exp through :meth:`power` and :meth:`exp_of`)."""
         if name in ("exp", "sinh", "cosh") and not arg.free_symbols:
             x = _finite_real(arg)
             if x is not None and abs(x) > MAX_EXP_ARG:
-                raise ParseError(f"{what}: {token!r} is out of range (argument above {MAX_EXP_ARG:g})")
+                raise ParseError(f"{self.what}: {token!r} is out of range (argument above {MAX_EXP_ARG:g})")
         if name == "sqrt":
-            return power(arg, sp.Rational(1, 2), token)
+            return self.power(arg, sp.Rational(1, 2), token)
         if name == "exp":
-            return exp_of(arg, token)
+            return self.exp_of(arg, token)
         return FUNCTIONS[name](arg)
 
-    def walk(node: ast.AST) -> sp.Expr:
+    # -- the walk: one method per accepted node kind, everything else refused by name
+    def walk(self, node: ast.AST) -> sp.Expr:
+        """The sympy expression of ``node``; a :class:`~landau.errors.ParseError` naming the first
+        node that is not on the whitelist."""
+        what = self.what
         token = ast.unparse(node)[:60] if not isinstance(node, ast.Expression) else ""
         if isinstance(node, ast.Expression):
-            return walk(node.body)
+            return self.walk(node.body)
         if isinstance(node, ast.Constant):
-            if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
-                raise ParseError(f"{what}: literal {node.value!r} is not a number")
-            if (isinstance(node.value, float) and node.value != node.value
-                    or node.value in (float("inf"), float("-inf"))):
-                raise ParseError(f"{what}: literal {token!r} is not a finite number")
-            val = sp.Integer(node.value) if isinstance(node.value, int) else sp.Float(repr(node.value))
-            return bounded(val, token)
+            return self._constant(node, token)
         if isinstance(node, ast.Name):
-            if node.id in symbols:
-                return symbols[node.id]
-            if node.id in CONSTANTS:
-                return CONSTANTS[node.id]
-            if node.id in FUNCTIONS:
-                raise ParseError(f"{what}: function {node.id!r} used without arguments")
-            raise ParseError(f"{what}: unknown symbol {node.id!r} (declare it as a parameter or state)")
+            return self._name(node)
         if isinstance(node, ast.BinOp):
-            op = _BINOPS.get(type(node.op))
-            if op is None:
-                raise ParseError(f"{what}: operator {type(node.op).__name__!r} is not allowed")
-            left, right = walk(node.left), walk(node.right)
-            if isinstance(node.op, ast.Pow):
-                return bounded(power(left, right, token), token)
-            if isinstance(node.op, ast.Div) and right == 0:
-                raise ParseError(f"{what}: {token!r} divides by zero (not finite)")
-            return bounded(op(left, right), token)
+            return self._binop(node, token)
         if isinstance(node, ast.UnaryOp):
             uop = _UNARY.get(type(node.op))
             if uop is None:
                 raise ParseError(f"{what}: operator {type(node.op).__name__!r} is not allowed")
-            return uop(walk(node.operand))
+            return uop(self.walk(node.operand))
         if isinstance(node, ast.Call):
-            if not isinstance(node.func, ast.Name):
-                raise ParseError(f"{what}: only plain function calls are allowed, not {ast.unparse(node.func)!r}")
-            name = node.func.id
-            if name not in FUNCTIONS:
-                raise ParseError(f"{what}: unknown function {name!r} (allowed: {', '.join(sorted(FUNCTIONS))})")
-            if node.keywords:
-                raise ParseError(f"{what}: keyword arguments are not allowed in {name}()")
-            if len(node.args) != 1:
-                raise ParseError(f"{what}: {name}() takes exactly one argument")
-            return bounded(call(name, walk(node.args[0]), token), token)
+            return self._call(node, token)
         if isinstance(node, ast.Attribute):
             raise ParseError(f"{what}: attribute access {ast.unparse(node)!r} is not allowed")
         if isinstance(node, ast.Subscript):
             raise ParseError(f"{what}: subscript {ast.unparse(node)!r} is not allowed")
         raise ParseError(f"{what}: {type(node).__name__} {token!r} is not allowed")
 
-    expr = walk(tree)
-    if expr.has(sp.I) or expr.is_extended_real is False:
-        raise ParseError(f"{what} = {str(expr)[:80]} is not real for positive slip rate, states and parameters")
-    return expr
+    def _constant(self, node: ast.Constant, token: str) -> sp.Expr:
+        """A literal: a finite int or float (exact integer, float from its repr), within range."""
+        what = self.what
+        if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
+            raise ParseError(f"{what}: literal {node.value!r} is not a number")
+        if (isinstance(node.value, float) and node.value != node.value
+                or node.value in (float("inf"), float("-inf"))):
+            raise ParseError(f"{what}: literal {token!r} is not a finite number")
+        val = sp.Integer(node.value) if isinstance(node.value, int) else sp.Float(repr(node.value))
+        return self.bounded(val, token)
+
+    def _name(self, node: ast.Name) -> sp.Expr:
+        """A declared symbol or a constant (:data:`CONSTANTS`); a function name without its call
+        and an undeclared name are refused."""
+        what = self.what
+        if node.id in self.symbols:
+            return self.symbols[node.id]
+        if node.id in CONSTANTS:
+            return CONSTANTS[node.id]
+        if node.id in FUNCTIONS:
+            raise ParseError(f"{what}: function {node.id!r} used without arguments")
+        raise ParseError(f"{what}: unknown symbol {node.id!r} (declare it as a parameter or state)")
+
+    def _binop(self, node: ast.BinOp, token: str) -> sp.Expr:
+        """An arithmetic operation of :data:`_BINOPS` (a power through :meth:`power`, a division
+        by an exact zero refused)."""
+        what = self.what
+        op = _BINOPS.get(type(node.op))
+        if op is None:
+            raise ParseError(f"{what}: operator {type(node.op).__name__!r} is not allowed")
+        left, right = self.walk(node.left), self.walk(node.right)
+        if isinstance(node.op, ast.Pow):
+            return self.bounded(self.power(left, right, token), token)
+        if isinstance(node.op, ast.Div) and right == 0:
+            raise ParseError(f"{what}: {token!r} divides by zero (not finite)")
+        return self.bounded(op(left, right), token)
+
+    def _call(self, node: ast.Call, token: str) -> sp.Expr:
+        """A plain call of a whitelisted function with one positional argument."""
+        what = self.what
+        if not isinstance(node.func, ast.Name):
+            raise ParseError(f"{what}: only plain function calls are allowed, not {ast.unparse(node.func)!r}")
+        name = node.func.id
+        if name not in FUNCTIONS:
+            raise ParseError(f"{what}: unknown function {name!r} (allowed: {', '.join(sorted(FUNCTIONS))})")
+        if node.keywords:
+            raise ParseError(f"{what}: keyword arguments are not allowed in {name}()")
+        if len(node.args) != 1:
+            raise ParseError(f"{what}: {name}() takes exactly one argument")
+        return self.bounded(self.call(name, self.walk(node.args[0]), token), token)

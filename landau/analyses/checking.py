@@ -52,9 +52,9 @@ import numpy as np
 
 from landau.analyses import contract
 from landau.analyses.contract import Scaling, fit_scaling
+from landau.analyses.shooting import CycleShooter
 from landau.derivation.hopf import Criticality, HopfResult
 from landau.errors import InputError, IntegratorError, LandauError
-from landau.support.lambdify import lambdify_positional
 
 #: bracket tolerance of the supercritical route's legacy single-point procedure at ε² = 1e-3
 SUPERCRITICAL_TOLERANCE = 0.02
@@ -526,80 +526,10 @@ def _primary(eps2) -> float:
 # general smooth systems
 # ---------------------------------------------------------------------------------------------
 
-def _numeric_field(system, params: Mapping[str, float]):
-    import sympy as sp
-
-    missing = [s.name for s in system.parameters if s.name not in params]
-    if missing:
-        raise InputError(f"{system.name}: missing parameter(s) {', '.join(missing)}")
-    vals = [float(params[s.name]) for s in system.parameters]
-    args = [*system.states, system.parameter, *system.parameters]
-    f = lambdify_positional(args, list(system.rhs), "numpy")
-    J = lambdify_positional(args, sp.Matrix(system.rhs).jacobian(system.states), "numpy")
-    E_of = lambdify_positional([system.parameter, *system.parameters], system.mass_matrix, "numpy")
-
-    def E_inverse(p: float) -> np.ndarray:
-        E = np.asarray(E_of(p, *vals), dtype=float)
-        if not np.all(np.isfinite(E)) or abs(np.linalg.det(E)) < 1e-300 or np.linalg.cond(E) > 1e14:
-            raise InputError(f"{system.name}: direct simulation needs an invertible mass matrix E; a "
-                             "differential-algebraic system (singular E) is not supported by the generic check")
-        return np.linalg.inv(E)
-
-    return f, J, E_inverse, vals
-
-
-def _shoot(rhs, jac, y0: np.ndarray, T0: float, anchor_f: np.ndarray, rtol: float, flow=None):
-    """Periodic orbit by Newton on (y(T; z) − z, (z − y0)·f(y0)) with the unknowns (z, T).
-
-    Judged by the closure |y(T; z) − z|: hybrd stops "not making good progress" when its seed is already
-    within the integration's noise of the cycle (Rayleigh, k = 9, ε² = 1e-3: closure 1e-17), so a stalled
-    solve closed to the integrator's tolerance rtol·max|z| (period > T0/2) counts as converged.
-    ``flow(z, T)`` integrates over [0, T] (default scipy's Radau on ``rhs``, ``jac``)."""
-    import scipy.integrate
-    import scipy.optimize
-
-    n = y0.size
-
-    def scipy_flow(z, T):
-        sol = scipy.integrate.solve_ivp(rhs, (0.0, T), z, method="Radau", jac=jac, rtol=rtol,
-                                        atol=rtol * max(1e-12, float(np.max(np.abs(z)))), dense_output=True)
-        if sol.status != 0:
-            raise IntegratorError(f"integration failed while shooting: {sol.message}")
-        return sol
-
-    flow = flow or scipy_flow
-
-    def residual(u):
-        z, T = u[:n], u[n]
-        return np.append(flow(z, T).y[:, -1] - z, np.dot(z - y0, anchor_f))
-
-    res = scipy.optimize.root(residual, np.append(y0, T0), method="hybr", options={"xtol": 1e-11})
-    z, T = res.x[:n], float(res.x[n])
-    closure, size = float(np.max(np.abs(res.fun[:n]))), float(np.max(np.abs(z)))
-    converged = closure <= 1e-7 * max(1.0, size) if res.success else \
-        closure <= rtol * max(1e-12, size) and math.isfinite(T) and T > 0.5 * T0   # stalled on the cycle
-    if not converged:
-        raise IntegratorError(f"shooting did not converge: {' '.join(res.message.split())} (closure {closure:.3g})")
-    sol = flow(z, T)
-    # monodromy by central differences (small systems)
-    h = 1e-6 * max(1.0, float(np.max(np.abs(z))))
-    Mono = np.empty((n, n))
-    for j in range(n):
-        d = np.zeros(n)
-        d[j] = h
-        Mono[:, j] = (flow(z + d, T).y[:, -1] - flow(z - d, T).y[:, -1]) / (2 * h)
-    mult = np.linalg.eigvals(Mono)
-    # drop the trivial multiplier (closest to 1)
-    mult = np.delete(mult, int(np.argmin(np.abs(mult - 1.0))))
-    return z, T, sol, mult
-
-
 def _check_system(system, params: Mapping[str, float], bracket, eps2, tolerance, rtol: float) -> CheckResult:
-    import warnings
-
-    import scipy.optimize
-
-    from landau.analyses.system_simulation import shooting_flow
+    """The check of a general smooth system: the normal form in ``bracket``, then the cycle at each
+    measured ε² by shooting (:class:`~landau.analyses.shooting.CycleShooter`: from the critical mode,
+    else by continuation from a cycle found closer to the Hopf point), judged by the contract."""
     from landau.derivation.general import hopf_normal_form
 
     if bracket is None:
@@ -620,74 +550,20 @@ def _check_system(system, params: Mapping[str, float], bracket, eps2, tolerance,
         return _result(common, None, pr, p, Verdict.OUTSIDE_VALIDITY,
                        f"the predicted frequency {pr.frequency(p):.3g} rad/s is not positive at eps2 = {primary:g}",
                        None, [], None, lo, hi)
-    f, J, E_inverse, vals = _numeric_field(system, params)
-    cycles: dict[float, tuple[np.ndarray, np.ndarray, float]] = {}   # ε² -> (equilibrium, point on cycle, period)
-
-    def field_at(pp: float):
-        Einv = E_inverse(pp)
-        return (lambda t, y: Einv @ np.asarray(f(*y, pp, *vals), dtype=float),
-                lambda t, y: Einv @ np.asarray(J(*y, pp, *vals), dtype=float))
-
-    def equilibrium(rhs) -> np.ndarray:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)
-            return scipy.optimize.fsolve(lambda y: rhs(0.0, y), np.asarray(pr.equilibrium, dtype=float), xtol=1e-13)
-
-    def shoot_at(e: float, seeds):
-        pp = pr.p_c + pr.cycle_side * e * scale
-        rhs, jac = field_at(pp)
-        y0 = equilibrium(rhs)
-        flow = shooting_flow(system, {**params, pr.parameter: pp}, rtol)   # the compiled Radau IIA
-        last: Exception | None = None
-        for start, T0 in seeds(y0, jac):
-            try:
-                z, T, sol, mult = _shoot(rhs, jac, start, T0, rhs(0.0, start), rtol, flow)
-            except (IntegratorError, ValueError, np.linalg.LinAlgError) as exc:
-                last = exc
-                continue
-            cycles[e] = (y0, z, T)
-            return y0, z, T, sol, mult
-        raise IntegratorError(str(last) if last else "no seed")
-
-    def from_mode(e: float):
-        def seeds(y0, jac):
-            pp = pr.p_c + pr.cycle_side * e * scale
-            lam, vecs = np.linalg.eig(jac(0.0, y0))
-            i = int(np.argmin(np.abs(lam.imag - pr.omega_c) + np.abs(lam.real)))
-            q = vecs[:, i] / vecs[system.normalise, i]      # normalised component = 1
-            yield y0 + pr.amplitude(pp) * np.real(q), 2 * np.pi / pr.frequency(pp)
-        return seeds
-
-    def from_cycle(e: float, known: float):
-        """The known cycle at ε² = known, scaled about the equilibrium by sqrt(e/known) (the amplitude law)."""
-        y0k, zk, Tk = cycles[known]
-
-        def seeds(y0, jac):
-            yield y0 + (zk - y0k) * math.sqrt(e / known), Tk
-        return seeds
-
-    def continue_to(e: float):
-        """Natural continuation in ε² from the nearest cycle already found (steps of a factor 2)."""
-        known = min(cycles, key=lambda c: abs(math.log(c / e)))
-        steps = max(1, math.ceil(abs(math.log(e / known)) / math.log(2.0)))
-        out = None
-        for j in range(1, steps + 1):
-            ej = known * (e / known) ** (j / steps)
-            out = shoot_at(ej, from_cycle(ej, min(cycles, key=lambda c: abs(math.log(c / ej)))))
-        return out
+    shooter = CycleShooter(system, params, pr, scale, rtol)
 
     def measure(e: float, is_primary: bool, depth: int = 0) -> _Point:
         pp = pr.p_c + pr.cycle_side * e * scale
         pt = _Point(e, pp, pr.amplitude(pp), pr.frequency(pp), rtol=rtol)
         try:
             try:
-                y0, z, T, sol, mult = shoot_at(e, from_mode(e))
+                y0, z, T, sol, mult = shooter.shoot_at(e, shooter.from_mode(e))
             except IntegratorError:
-                if not cycles and depth < 2 and e / contract.RATIO >= lo:
+                if not shooter.cycles and depth < 2 and e / contract.RATIO >= lo:
                     measure(e / contract.RATIO, False, depth + 1)     # a closer cycle to continue from
-                if not cycles:
+                if not shooter.cycles:
                     raise
-                y0, z, T, sol, mult = continue_to(e)
+                y0, z, T, sol, mult = shooter.continue_to(e)
         except (IntegratorError, ValueError, np.linalg.LinAlgError) as exc:
             pt.error = str(exc)
             return pt

@@ -8,7 +8,7 @@ import pytest
 import sympy as sp
 
 from landau import DynamicalSystem, Verdict, check
-from landau.analyses import checking, contract
+from landau.analyses import checking, contract, shooting
 from landau.errors import InputError, IntegratorError
 from landau.testing import assert_prediction
 
@@ -172,7 +172,7 @@ def test_a_shooting_failure_from_the_linear_mode_is_continued_from_a_closer_cycl
     ε² = 1e-3 with the predicted period; the check then finds the cycle at ε²/4 and continues to 1e-3
     from it, and agrees."""
     s, par, br = _brusselator()
-    real = checking._shoot
+    real = shooting.shoot
     refused = []
 
     from landau.derivation.general import hopf_normal_form
@@ -186,7 +186,7 @@ def test_a_shooting_failure_from_the_linear_mode_is_continued_from_a_closer_cycl
             raise IntegratorError("shooting did not converge: The iteration is not making good progress")
         return real(rhs, jac, y0, T0, anchor_f, rtol, flow)
 
-    monkeypatch.setattr(checking, "_shoot", flaky)
+    monkeypatch.setattr(shooting, "shoot", flaky)
     r = check(s, eps2=1e-3, params=par, bracket=br)
     assert refused, "the emulated failure did not happen"
     assert r.verdict is Verdict.AGREES and r.rel_error == pytest.approx(0.0017, abs=2e-4)

@@ -8,7 +8,7 @@ amplitude equation's seed is therefore on the cycle to ~1e-9, and MINPACK's hybr
 integration's noise of its root, stopped with "The iteration is not making good progress" at ε² = 1e-3
 although the orbit closed to 1e-17 — the check said "failed (shooting did not converge)" there while it
 agreed at 1e-2 and 1e-4.  Van der Pol (β = 4) did the same at ε² = 3e-4.  The shot is now judged by the
-orbit's closure (``landau.analyses.checking._shoot``).
+orbit's closure (``landau.analyses.shooting.shoot``).
 """
 
 import numpy as np
@@ -16,7 +16,7 @@ import pytest
 import sympy as sp
 
 from landau import DynamicalSystem, Verdict, check
-from landau.analyses import checking
+from landau.analyses import shooting
 
 
 def _rayleigh(k: float = 9.0):
@@ -38,13 +38,13 @@ def _van_der_pol(beta: float = 4.0):
 def _counted_check(monkeypatch, system, params, bracket, eps2):
     """The check, with the number of shots it took (one per measured ε² when each seed converges)."""
     shots = []
-    real = checking._shoot
+    real = shooting.shoot
 
     def counted(*args):
         shots.append(args[3])
         return real(*args)
 
-    monkeypatch.setattr(checking, "_shoot", counted)
+    monkeypatch.setattr(shooting, "shoot", counted)
     return check(system, eps2=eps2, params=params, bracket=bracket), len(shots)
 
 
@@ -97,4 +97,4 @@ def test_an_orbit_that_does_not_close_is_still_refused():
     A = np.array([[-0.1, -1.0], [1.0, -0.1]])
     y0 = np.array([0.01, 0.0])
     with pytest.raises(IntegratorError, match=r"shooting did not converge: .*\(closure "):
-        checking._shoot(lambda t, y: A @ y, lambda t, y: A, y0, 2 * np.pi, A @ y0, 1e-10)
+        shooting.shoot(lambda t, y: A @ y, lambda t, y: A, y0, 2 * np.pi, A @ y0, 1e-10)

@@ -33,8 +33,8 @@ __all__ = ["guarded_steps", "StepRecord", "run_to_upcrossing", "upcrossing_step"
 
 class StepRecord:
     """The buffer in which the compiled loop (:func:`landau.verify.hybrid.dop853.run_screened`)
-    records quiet steps for the engine's recorder (the ``_Recorder`` of
-    :mod:`landau.verify.hybrid.simulate`: its count, bound, stride and step counter go in, the
+    records quiet steps for the engine's recorder (the ``Recorder`` of
+    :mod:`landau.verify.hybrid.record`: its count, bound, stride and step counter go in, the
     samples come out in one piece per call)."""
 
     __slots__ = ("t", "y", "info")

@@ -42,6 +42,7 @@ from landau.verify.hybrid.dop853 import CompiledDOP853
 from landau.verify.hybrid.locate import HermiteScreen, first_crossing, guard_on_dense, root_new_side
 from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.model import Guard, HybridModel, as_jump
+from landau.verify.hybrid.record import Recorder, Segment, close_segment
 from landau.verify.hybrid.result import Simulation, status_from_text
 from landau.verify.hybrid.zeno import ZenoDiagnosis, ZenoMonitor
 
@@ -98,18 +99,6 @@ class EngineOptions:
     screen: bool = True
     max_steps: int = 2_000_000
     max_samples: int = 200_000
-
-
-@dataclass(frozen=True)
-class Segment:
-    """A sampled piece of trajectory inside one mode (step points + guard samples)."""
-
-    mode: str
-    t: np.ndarray
-    y: np.ndarray  # shape (n, m)
-
-    def __repr__(self) -> str:
-        return f"Segment({self.mode!r}, t=[{self.t[0]:.6g}, {self.t[-1]:.6g}], {len(self.t)} points)"
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -269,6 +258,11 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
     returns a silently truncated result), and :class:`~landau.errors.InputError` for an
     unknown mode, a non-finite initial state or a time span that is not finite and increasing.
 
+    The loop runs phase by phase: a guard already violated at the phase start fires at once
+    (:func:`_violated_at_start`); otherwise the mode is integrated until a switching guard
+    crosses, the run stops or ends (:func:`_run_phase`); the transition is then applied, logged
+    and watched for accumulation (:func:`_apply_transition`).
+
     Parameters
     ----------
     model : HybridModel
@@ -293,261 +287,426 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
         A :class:`~landau.verify.hybrid.result.Simulation`: the recorded trajectory, the event
         log, the status, the final state and mode.
     """
-    t0, t_end = map(float, t_span)
-    if not (np.isfinite(t0) and np.isfinite(t_end) and t_end > t0):
-        raise InputError(f"time span must be finite and increasing (t0 < t_end), got {tuple(t_span)!r}")
-    t, y, mname = t0, np.array(y0, dtype=float), mode
-    if not np.all(np.isfinite(y)):
-        raise InputError(f"initial state must be finite, got {y.tolist()!r}")
-    if mname not in model.modes:
-        raise InputError(f"model {model.name!r} has no mode {mname!r} (modes: {', '.join(sorted(model.modes))})")
-    log = EventLog()
-    segs: list[Segment] = []
-    monitor = ZenoMonitor(options.zeno_interval, options.max_event_rate, options.rate_window,
-                          relative=options.zeno_relative)
-    nodes = np.arange(1, options.samples + 2) / (options.samples + 1)
-    screen = HermiteScreen(options.samples) if options.screen and options.samples > 0 and not options.record else None
-    nsteps = nfev = 0
-    n_zero = 0
-    rec = _Recorder(options.max_samples)
-    rbufs: dict[int, Any] = {}   # the compiled loop's record buffers, one per state dimension
-    checked: dict[str, bool] = {}  # modes whose compiled guards agreed with the Python guards
-    atol = options.guard_atol
-
-    def finish(status, zeno=None):
-        extra = screen.nfev if screen is not None else 0  # the screen's y'' at phase starts
-        return _solution(model, t0, t, y, mname, status, log, segs, zeno, nsteps, nfev + extra)
-
+    run = _Run(model, mode, y0, t_span, stepper, options, stop)
     while True:
-        m = model.mode(mname)
-        guards = m.guards
-        g0 = _eval_guards(guards, t, y)
-        # ---- zero-length phase: a guard already violated at the phase start
-        is_switch = np.array([gd.transition is not None for gd in guards], bool)
-        viol = [j for j in np.nonzero((g0 < -atol) & is_switch)[0]
-                if not _leaving(guards[j], g0[j], t, y, options.recover_tol)]
-        fire_now = int(viol[0]) if len(viol) else None
-        solver = None
+        m = model.mode(run.mname)
+        g0 = _eval_guards(m.guards, run.t, run.y)
+        fire_now = _violated_at_start(m.guards, g0, run.t, run.y, options.guard_atol, options.recover_tol)
         if fire_now is None:
-            state = np.where(g0 > atol, ARMED, np.where(is_switch, PENDING, DISARMED))
-            g0 = np.maximum(g0, -atol)  # recovering guards start as pending
-            dec_before = np.zeros(len(guards), bool)
-            g_last = g0.copy()
-            if t == t0 and len(log) == 0:
-                # scipy's initial step selection never ends on a NaN vector field
-                f0 = np.asarray(m.rhs(t, y), dtype=float)
-                if not np.all(np.isfinite(f0)):
-                    raise IntegratorError(f"mode {mname!r}: the vector field is not finite at the initial "
-                                          f"state ({f0.tolist()!r})", t=t, state=y)
-            fun = m.kernel() if m.kernel is not None and _is_compiled(stepper) else m.rhs
-            solver = stepper(fun, t, y, t_end, m.jac)
-            seg_t, seg_y = [np.array([t])], [y[:, None]]
-            hit = None  # (t_hit, j, kind)
-            # the Hermite screen needs the vector field at the step ends; it is off when samples
-            # are recorded for plots.  A compiled stepper with run_quiet screens affine guards on
-            # its own dense output inside its compiled loop instead.
-            affine = _affine_guards(m) if screen is not None and hasattr(solver, "run_quiet") else None
-            # guards compiled as one vector function: screened inside the compiled loop as well
-            gk = (_guard_kernel(m, solver, t, y, g0, atol, checked)
-                  if affine is None and options.screen and options.samples > 0 else None)
-            rbuf = _step_record(rbufs, len(y)) if gk is not None and options.record else None
-            gvals = np.empty((len(guards), 3 * len(nodes) - 2)) if gk is not None else None  # a step's values
-            roots = _affine_guards(m) if hasattr(solver, "affine_root") else None
-            active = (screen if affine is None and gk is None and screen is not None and _keeps_current_f(solver)
-                      else None)
-            if active is not None:
-                active.start(solver.y, solver.f, len(guards), m.rhs)
-            while hit is None:
-                if affine is not None and screen is not None:   # (affine is only built with a screen)
-                    msg, all_quiet, k = solver.run_quiet(*affine, nodes[:-1], g_last, dec_before, state, atol,
-                                                         screen.dip_factor, max(1, options.max_steps - nsteps))
-                    nsteps += k
-                elif gk is not None:
-                    from landau.verify.hybrid.guarded import guarded_steps
-
-                    if rbuf is not None:
-                        rbuf.load(rec)
-                    msg, code, k = guarded_steps(solver, gk, nodes[:-1], g_last, dec_before, state, atol,
-                                                 screen.dip_factor if screen is not None else 2.0,
-                                                 max(1, options.max_steps - nsteps), rbuf, gvals)
-                    nsteps += k
-                    if rbuf is not None:   # the quiet steps' samples, as the per-step record keeps them
-                        rbuf.flush(rec, seg_t, seg_y)
-                        rec.bound(segs, seg_t, seg_y)
-                    if code == 4 and nsteps < options.max_steps:
-                        continue
-                    all_quiet = None if code in (3, 4) else code == 2
-                else:
-                    msg, all_quiet = solver.step(), False
-                    nsteps += 1
-                if solver.status == "failed":
-                    raise IntegratorError(f"mode {mname!r}: {msg}", t=solver.t, state=solver.y)
-                if all_quiet is None or (nsteps >= options.max_steps and solver.status != "finished"):
-                    # the step budget ran out (every step so far quiet or scanned)
-                    nfev += solver.nfev
-                    t, y = solver.t, np.array(solver.y, dtype=float)
-                    if options.record:
-                        if seg_t[-1][-1] < t:
-                            seg_t.append(np.array([t]))
-                            seg_y.append(y[:, None])
-                        segs.append(Segment(mname, np.concatenate(seg_t), np.concatenate(seg_y, axis=1)))
-                    return finish("max_steps")
-                if all_quiet:
-                    nfev += solver.nfev
-                    t, y = solver.t, solver.y.copy()
-                    if options.record:
-                        if seg_t[-1][-1] < t:
-                            seg_t.append(np.array([t]))
-                            seg_y.append(y[:, None])
-                        segs.append(Segment(mname, np.concatenate(seg_t), np.concatenate(seg_y, axis=1)))
-                    return finish("t_end")
-                t_old, t_new = solver.t_old, solver.t
-                probe = (active.advance(t_old, t_new, np.asarray(solver.y, dtype=float),
-                                        np.asarray(solver.f, dtype=float))
-                         if active is not None else 0 if np.isfinite(solver.y).all() else -1)
-                if probe < 0:
-                    raise IntegratorError(f"mode {mname!r}: non-finite state", t=t_old, state=y)
-                if probe > 0 and active is not None and active.quiet(guards, g_last, dec_before, state, atol):
-                    if solver.status == "finished":
-                        nfev += solver.nfev
-                        t, y = solver.t, solver.y.copy()
-                        return finish("t_end")
-                    continue
-                dense = _LazyDense(solver)  # built only if a sample or a root needs it
-                ts_int = t_old + (t_new - t_old) * nodes[:-1]
-                # the samples' states (for the Python guards and the record; the compiled loop gave
-                # the compiled guards' values at the same samples)
-                Y = (None if gvals is not None and not options.record else
-                     np.column_stack([dense(ts_int), solver.y]) if len(ts_int) else solver.y[:, None])
-                ts = np.concatenate([[t_old], ts_int, [t_new]])
-                cands: list[tuple[Any, int, str]] = []   # (bracket or time, guard, kind)
-                for j, g in enumerate(guards):
-                    if gvals is not None:
-                        G_step = gvals[j, :len(ts) - 1]
-                    else:   # Y is built whenever the compiled loop gave no guard values
-                        assert Y is not None
-                        G_step = np.atleast_1d(g.fun(ts[1:], Y))
-                    G = np.concatenate([[g_last[j]], G_step])
-                    st = state[j]
-                    g_last[j] = G[-1]
-                    start = 0
-                    if st != ARMED:  # arm at the first positive sample
-                        pos = np.nonzero(G[1:] > atol)[0]
-                        kpos = pos[0] + 1 if len(pos) else len(G)
-                        if st == PENDING and g.transition is None:
-                            st = DISARMED  # a section never fires at a phase start
-                        if st == PENDING:
-                            negs = np.nonzero(G[1:] < -atol)[0]
-                            if len(negs) and negs[0] + 1 < kpos:
-                                kneg = negs[0] + 1
-                                # a short excursion into the mode between samples? (the mirror
-                                # of the double-crossing check): maximise g before the first
-                                # negative sample
-                                gs = guard_on_dense(g.fun, dense)
-                                from scipy.optimize import minimize_scalar
-
-                                res = minimize_scalar(lambda s, gs=gs: -gs(s), bounds=(ts[0], ts[kneg]),
-                                                      method="bounded",
-                                                      options={"xatol": 1e-10 * (ts[kneg] - ts[0]) + 1e-15})
-                                if -res.fun > atol:
-                                    cands.append(((float(res.x), ts[kneg]), j, "cross"))
-                                    state[j] = ARMED
-                                else:
-                                    # leaves the mode before ever entering it: zero-length phase
-                                    cands.append((ts[negs[0]], j, "zero"))
-                                continue
-                        if kpos == len(G):
-                            continue
-                        start = kpos
-                        state[j] = ARMED
-                    br = first_crossing(G, ts, start, guard_on_dense(g.fun, dense), bool(dec_before[j]))
-                    if br is not None:
-                        cands.append((br, j, "cross"))
-                    dec_before[j] = G[-1] < G[-2]
-                if cands:
-                    located: list[tuple[float, int, str]] = []
-                    for c, j, kind in cands:
-                        if kind == "zero":
-                            located.append((c, j, "zero-length"))
-                        else:
-                            a, b = c
-                            if roots is not None:   # the guard's affine form, in compiled code
-                                r = solver.affine_root(roots[0][j], roots[1][j], roots[2][j], a, b, options.xtol)
-                            elif gk is not None and hasattr(solver, "kernel_root"):   # compiled guard vector
-                                r = solver.kernel_root(gk, j, len(guards), a, b, options.xtol)
-                            else:
-                                r = root_new_side(guard_on_dense(guards[j].fun, dense), a, b, options.xtol)
-                            located.append((r, j, "switch"))
-                    located.sort(key=lambda x: (x[0], x[1]))
-                    # sections before the first switching guard are logged; the run goes on
-                    t_sw = min((x[0] for x in located if guards[x[1]].transition is not None), default=np.inf)
-                    for th, j, _kind in located:
-                        if guards[j].transition is None and th <= t_sw:
-                            yh = dense(th)
-                            ev = Event(th, yh, guards[j].name, mname, mname, "section", yh)
-                            log.append(ev)
-                            if g_last[j] <= atol:
-                                state[j] = DISARMED
-                            if guards[j].terminal or (stop is not None and stop(ev)):
-                                t, y = th, yh
-                                _push_seg(segs, options, mname, seg_t, seg_y, ts, Y, th, yh)
-                                return finish("stop")
-                    sw = [x for x in located if guards[x[1]].transition is not None]
-                    if sw:
-                        hit = sw[0]
-                        simul = [guards[x[1]].name for x in sw[1:] if x[0] - hit[0] <= options.simultaneous_tol]
-                        th = hit[0]
-                        yh = dense(th) if th < t_new else solver.y.copy()
-                        _push_seg(segs, options, mname, seg_t, seg_y, ts, Y, th, yh)
-                        if options.record:
-                            rec.count += len(ts)
-                            rec.bound(segs, [np.empty(0)], [np.empty((len(yh), 0))])
-                        nfev += solver.nfev
-                        t, y = th, yh
-                        j = hit[1]
-                        kind = hit[2]
-                        break
-                if options.record:
-                    rec.push(seg_t, seg_y, ts[1:], Y)
-                    rec.bound(segs, seg_t, seg_y)
-                if solver.status == "finished":
-                    nfev += solver.nfev
-                    t, y = solver.t, solver.y.copy()
-                    if options.record:
-                        if seg_t[-1][-1] < t:  # a thinned record keeps the final state
-                            seg_t.append(np.array([t]))
-                            seg_y.append(y[:, None])
-                        segs.append(Segment(mname, np.concatenate(seg_t), np.concatenate(seg_y, axis=1)))
-                    return finish("t_end")
+            outcome = _run_phase(run, m, g0)
+            if isinstance(outcome, HybridSolution):
+                return outcome
+            j, kind, simul = outcome
         else:
             j, kind, simul = fire_now, "zero-length", []
-        # ---- apply the transition of guard j at (t, y)
-        g = guards[j]
-        assert g.transition is not None  # j is a switching guard
-        jump = as_jump(g.transition(t, y))
-        n_zero = n_zero + 1 if kind == "zero-length" else 0
-        if n_zero > options.max_zero_length:
-            raise IntegratorError(f"{n_zero} consecutive zero-length phases (transition loop) "
-                                  f"at guard {g.name!r} of mode {mname!r}", t=t, state=y)
-        note = jump.note + (f"; simultaneous with {simul}" if simul else "")
-        ev = Event(t, y, g.name, mname, jump.mode, kind, jump.y, note)
-        log.append(ev)
-        mname, y = jump.mode, np.array(jump.y, dtype=float)
-        if g.terminal or (stop is not None and stop(ev)):
-            return finish("stop")
-        if len(log) >= options.max_events:
-            return finish("max_events")
-        diag = monitor.push(t)
-        if diag is not None:
-            handler = model.mode(ev.from_mode).on_zeno
-            if handler is None or diag.kind != "zeno":
-                return finish(diag.kind, diag)
-            jz = as_jump(handler(t, y))
-            log.append(Event(t, y, "zeno", mname, jz.mode, "zeno", jz.y,
-                             f"chattering ended: event spacing {diag.last_interval:.3g} < tolerance; "
-                             f"accumulation extrapolated at t={diag.t_accumulation:.12g}"))
-            mname, y = jz.mode, np.array(jz.y, dtype=float)
-            monitor.reset()
+        ended = _apply_transition(run, m.guards, j, kind, simul)
+        if ended is not None:
+            return ended
+
+
+class _Run:
+    """The state of one :func:`simulate` run that outlives a phase: where the run is (``t``,
+    ``y``, mode ``mname``), what it has logged and recorded, its step and evaluation counts, and
+    the settings and helpers every phase uses."""
+
+    __slots__ = ("model", "t0", "t_end", "t", "y", "mname", "stepper", "options", "stop", "log", "segs",
+                 "monitor", "nodes", "screen", "nsteps", "nfev", "n_zero", "rec", "rbufs", "checked", "atol")
+
+    def __init__(self, model: HybridModel, mode: str, y0, t_span: tuple[float, float], stepper: Callable,
+                 options: EngineOptions, stop: Callable[[Event], bool] | None) -> None:
+        """Check the inputs (:class:`~landau.errors.InputError` naming what is wrong) and set the
+        run up at ``(t0, y0)`` in ``mode``."""
+        t0, t_end = map(float, t_span)
+        if not (np.isfinite(t0) and np.isfinite(t_end) and t_end > t0):
+            raise InputError(f"time span must be finite and increasing (t0 < t_end), got {tuple(t_span)!r}")
+        y = np.array(y0, dtype=float)
+        if not np.all(np.isfinite(y)):
+            raise InputError(f"initial state must be finite, got {y.tolist()!r}")
+        if mode not in model.modes:
+            raise InputError(f"model {model.name!r} has no mode {mode!r} (modes: {', '.join(sorted(model.modes))})")
+        self.model, self.t0, self.t_end = model, t0, t_end
+        self.t, self.y, self.mname = t0, y, mode
+        self.stepper, self.options, self.stop = stepper, options, stop
+        self.log = EventLog()
+        self.segs: list[Segment] = []
+        self.monitor = ZenoMonitor(options.zeno_interval, options.max_event_rate, options.rate_window,
+                                   relative=options.zeno_relative)
+        self.nodes = np.arange(1, options.samples + 2) / (options.samples + 1)
+        self.screen = (HermiteScreen(options.samples) if options.screen and options.samples > 0
+                       and not options.record else None)
+        self.nsteps = self.nfev = 0
+        self.n_zero = 0
+        self.rec = Recorder(options.max_samples)
+        self.rbufs: dict[int, Any] = {}   # the compiled loop's record buffers, one per state dimension
+        self.checked: dict[str, bool] = {}  # modes whose compiled guards agreed with the Python guards
+        self.atol = options.guard_atol
+
+    def finish(self, status: str, zeno: ZenoDiagnosis | None = None) -> HybridSolution:
+        """The run's :class:`HybridSolution`, ended at the current ``(t, y)`` with ``status``."""
+        extra = self.screen.nfev if self.screen is not None else 0  # the screen's y'' at phase starts
+        return _solution(self.model, self.t0, self.t, self.y, self.mname, status, self.log, self.segs, zeno,
+                         self.nsteps, self.nfev + extra)
+
+
+class _Phase:
+    """One phase of a run (the integration of one mode from a phase start): the mode's guards
+    and their scan state (``state`` armed/pending/disarmed, the last values ``g_last``, whether
+    each was decreasing ``dec_before``), the mode's solver, the segment being recorded, and the
+    compiled helpers the phase uses (``affine``: guards screened inside the stepper's compiled
+    loop; ``gk``: the compiled guard vector; ``roots``: the affine forms for compiled root
+    refinement; ``active``: the Hermite screen)."""
+
+    __slots__ = ("m", "guards", "solver", "state", "dec_before", "g_last", "seg_t", "seg_y", "affine", "gk",
+                 "rbuf", "gvals", "roots", "active")
+
+    m: Any
+    guards: tuple[Guard, ...]
+    solver: Any
+    state: np.ndarray
+    dec_before: np.ndarray
+    g_last: np.ndarray
+    seg_t: list[np.ndarray]
+    seg_y: list[np.ndarray]
+    affine: tuple[np.ndarray, np.ndarray, np.ndarray] | None
+    gk: Any
+    rbuf: Any
+    gvals: np.ndarray | None
+    roots: tuple[np.ndarray, np.ndarray, np.ndarray] | None
+    active: HermiteScreen | None
+
+
+def _violated_at_start(guards, g0: np.ndarray, t: float, y: np.ndarray, atol: float,
+                       recover_tol: float) -> int | None:
+    """The first switching guard already violated at the phase start (``g0 < -atol``) that is not
+    leaving it (:func:`_leaving`): its transition fires at once (a zero-length phase); None when
+    there is none."""
+    is_switch = np.array([gd.transition is not None for gd in guards], bool)
+    viol = [j for j in np.nonzero((g0 < -atol) & is_switch)[0]
+            if not _leaving(guards[j], g0[j], t, y, recover_tol)]
+    return int(viol[0]) if len(viol) else None
+
+
+def _run_phase(run: _Run, m, g0: np.ndarray) -> HybridSolution | tuple[int, str, list[str]]:
+    """Integrate mode ``m`` from the phase start until a switching guard crosses, the run stops
+    or it ends.  Returns the run's :class:`HybridSolution` when it ends in this phase, else the
+    hit ``(j, kind, simul)``: the guard that fired, the event kind and the simultaneous guards'
+    names; ``run.t``, ``run.y`` are then the root and the state there."""
+    ph = _start_phase(run, m, g0)
+    while True:
+        all_quiet, msg = _take_steps(run, ph)
+        if all_quiet is _AGAIN:
+            continue
+        solver = ph.solver
+        if solver.status == "failed":
+            raise IntegratorError(f"mode {run.mname!r}: {msg}", t=solver.t, state=solver.y)
+        if all_quiet is None or (run.nsteps >= run.options.max_steps and solver.status != "finished"):
+            # the step budget ran out (every step so far quiet or scanned)
+            return _end_at_solver(run, ph, "max_steps", np.array(solver.y, dtype=float))
+        if all_quiet:
+            return _end_at_solver(run, ph, "t_end", solver.y.copy())
+        t_old, t_new = solver.t_old, solver.t
+        if _screened_quiet(run, ph, t_old, t_new):
+            if solver.status == "finished":
+                return _end_at_solver(run, ph, "t_end", solver.y.copy())
+            continue
+        dense = _LazyDense(solver)  # built only if a sample or a root needs it
+        ts_int = t_old + (t_new - t_old) * run.nodes[:-1]
+        # the samples' states (for the Python guards and the record; the compiled loop gave
+        # the compiled guards' values at the same samples)
+        Y = (None if ph.gvals is not None and not run.options.record else
+             np.column_stack([dense(ts_int), solver.y]) if len(ts_int) else solver.y[:, None])
+        ts = np.concatenate([[t_old], ts_int, [t_new]])
+        cands = _scan_guards(run, ph, ts, Y, dense)
+        if cands:
+            located = _locate_roots(run, ph, cands, dense)
+            if _log_sections(run, ph, located, ts, Y, dense):
+                return run.finish("stop")
+            hit = _switch_hit(run, ph, located, ts, Y, dense, t_new)
+            if hit is not None:
+                return hit
+        if run.options.record:
+            run.rec.push(ph.seg_t, ph.seg_y, ts[1:], Y)
+            run.rec.bound(run.segs, ph.seg_t, ph.seg_y)
+        if solver.status == "finished":
+            return _end_at_solver(run, ph, "t_end", solver.y.copy())
+
+
+#: :func:`_take_steps`' answer when the compiled loop stopped only to hand over its record buffer
+_AGAIN = object()
+
+
+def _start_phase(run: _Run, m, g0: np.ndarray) -> _Phase:
+    """Set a phase up: classify the guards by their values ``g0`` at the phase start (armed above
+    ``guard_atol``, else pending for a switching guard and disarmed for a section), check the
+    vector field at the run's very start, make the mode's solver and choose how its steps are
+    screened (the stepper's compiled quiet loop with affine guards, the compiled guard vector, the
+    Hermite screen, or a dense-output scan of every step)."""
+    options, atol, screen, t, y = run.options, run.atol, run.screen, run.t, run.y
+    ph = _Phase()
+    ph.m, ph.guards = m, m.guards
+    is_switch = np.array([gd.transition is not None for gd in ph.guards], bool)
+    ph.state = np.where(g0 > atol, ARMED, np.where(is_switch, PENDING, DISARMED))
+    g0 = np.maximum(g0, -atol)  # recovering guards start as pending
+    ph.dec_before = np.zeros(len(ph.guards), bool)
+    ph.g_last = g0.copy()
+    if t == run.t0 and len(run.log) == 0:
+        # scipy's initial step selection never ends on a NaN vector field
+        f0 = np.asarray(m.rhs(t, y), dtype=float)
+        if not np.all(np.isfinite(f0)):
+            raise IntegratorError(f"mode {run.mname!r}: the vector field is not finite at the initial "
+                                  f"state ({f0.tolist()!r})", t=t, state=y)
+    fun = m.kernel() if m.kernel is not None and _is_compiled(run.stepper) else m.rhs
+    solver = ph.solver = run.stepper(fun, t, y, run.t_end, m.jac)
+    ph.seg_t, ph.seg_y = [np.array([t])], [y[:, None]]
+    # the Hermite screen needs the vector field at the step ends; it is off when samples
+    # are recorded for plots.  A compiled stepper with run_quiet screens affine guards on
+    # its own dense output inside its compiled loop instead.
+    ph.affine = _affine_guards(m) if screen is not None and hasattr(solver, "run_quiet") else None
+    # guards compiled as one vector function: screened inside the compiled loop as well
+    ph.gk = (_guard_kernel(m, solver, t, y, g0, atol, run.checked)
+             if ph.affine is None and options.screen and options.samples > 0 else None)
+    ph.rbuf = _step_record(run.rbufs, len(y)) if ph.gk is not None and options.record else None
+    ph.gvals = (np.empty((len(ph.guards), 3 * len(run.nodes) - 2)) if ph.gk is not None
+                else None)  # a step's values
+    ph.roots = _affine_guards(m) if hasattr(solver, "affine_root") else None
+    ph.active = (screen if ph.affine is None and ph.gk is None and screen is not None and _keeps_current_f(solver)
+                 else None)
+    if ph.active is not None:
+        ph.active.start(solver.y, solver.f, len(ph.guards), m.rhs)
+    return ph
+
+
+def _take_steps(run: _Run, ph: _Phase) -> tuple[Any, Any]:
+    """Advance the phase's solver: many quiet steps in one compiled call (the stepper's
+    ``run_quiet`` with affine guards, or the compiled guard vector's loop), else one step.
+    Returns ``(all_quiet, msg)``: ``all_quiet`` True when the run reached its end with every step
+    quiet, False when the last step taken must be scanned, None when the step budget ran out,
+    :data:`_AGAIN` when the compiled loop only handed over its full record buffer; ``msg`` the
+    solver's message."""
+    options, screen, solver = run.options, run.screen, ph.solver
+    if ph.affine is not None and screen is not None:   # (affine is only built with a screen)
+        msg, all_quiet, k = solver.run_quiet(*ph.affine, run.nodes[:-1], ph.g_last, ph.dec_before, ph.state,
+                                             run.atol, screen.dip_factor, max(1, options.max_steps - run.nsteps))
+        run.nsteps += k
+    elif ph.gk is not None:
+        from landau.verify.hybrid.guarded import guarded_steps
+
+        if ph.rbuf is not None:
+            ph.rbuf.load(run.rec)
+        msg, code, k = guarded_steps(solver, ph.gk, run.nodes[:-1], ph.g_last, ph.dec_before, ph.state, run.atol,
+                                     screen.dip_factor if screen is not None else 2.0,
+                                     max(1, options.max_steps - run.nsteps), ph.rbuf, ph.gvals)
+        run.nsteps += k
+        if ph.rbuf is not None:   # the quiet steps' samples, as the per-step record keeps them
+            ph.rbuf.flush(run.rec, ph.seg_t, ph.seg_y)
+            run.rec.bound(run.segs, ph.seg_t, ph.seg_y)
+        if code == 4 and run.nsteps < options.max_steps:
+            return _AGAIN, msg
+        all_quiet = None if code in (3, 4) else code == 2
+    else:
+        msg, all_quiet = solver.step(), False
+        run.nsteps += 1
+    return all_quiet, msg
+
+
+def _end_at_solver(run: _Run, ph: _Phase, status: str, y: np.ndarray) -> HybridSolution:
+    """End the run where the phase's solver is (state ``y``), with ``status``: count the solver's
+    evaluations and close the recorded segment (a thinned record keeps the final state)."""
+    run.nfev += ph.solver.nfev
+    run.t, run.y = ph.solver.t, y
+    if run.options.record:
+        if ph.seg_t[-1][-1] < run.t:
+            ph.seg_t.append(np.array([run.t]))
+            ph.seg_y.append(y[:, None])
+        run.segs.append(Segment(run.mname, np.concatenate(ph.seg_t), np.concatenate(ph.seg_y, axis=1)))
+    return run.finish(status)
+
+
+def _screened_quiet(run: _Run, ph: _Phase, t_old: float, t_new: float) -> bool:
+    """Whether the step just taken is quiet by the Hermite screen (no guard can cross on it, so
+    it needs no dense output); raises :class:`~landau.errors.IntegratorError` on a non-finite
+    state."""
+    solver, active = ph.solver, ph.active
+    probe = (active.advance(t_old, t_new, np.asarray(solver.y, dtype=float), np.asarray(solver.f, dtype=float))
+             if active is not None else 0 if np.isfinite(solver.y).all() else -1)
+    if probe < 0:
+        raise IntegratorError(f"mode {run.mname!r}: non-finite state", t=t_old, state=run.y)
+    return bool(probe > 0 and active is not None
+                and active.quiet(ph.guards, ph.g_last, ph.dec_before, ph.state, run.atol))
+
+
+def _scan_guards(run: _Run, ph: _Phase, ts: np.ndarray, Y: np.ndarray | None,
+                 dense: _LazyDense) -> list[tuple[Any, int, str]]:
+    """Scan every guard on the step's samples ``ts`` (states ``Y``, or the compiled loop's guard
+    values): arm pending guards at their first positive sample, and collect the candidates
+    ``(bracket or time, guard, kind)`` — a crossing bracket (``"cross"``), or the time of a
+    pending guard that leaves the mode before ever entering it (``"zero"``)."""
+    atol, guards, state, g_last, dec_before = run.atol, ph.guards, ph.state, ph.g_last, ph.dec_before
+    cands: list[tuple[Any, int, str]] = []   # (bracket or time, guard, kind)
+    for j, g in enumerate(guards):
+        if ph.gvals is not None:
+            G_step = ph.gvals[j, :len(ts) - 1]
+        else:   # Y is built whenever the compiled loop gave no guard values
+            assert Y is not None
+            G_step = np.atleast_1d(g.fun(ts[1:], Y))
+        G = np.concatenate([[g_last[j]], G_step])
+        st = state[j]
+        g_last[j] = G[-1]
+        start = 0
+        if st != ARMED:  # arm at the first positive sample
+            pos = np.nonzero(G[1:] > atol)[0]
+            kpos = pos[0] + 1 if len(pos) else len(G)
+            if st == PENDING and g.transition is None:
+                st = DISARMED  # a section never fires at a phase start
+            if st == PENDING:
+                negs = np.nonzero(G[1:] < -atol)[0]
+                if len(negs) and negs[0] + 1 < kpos:
+                    _pending_leaves(cands, j, g, ts, negs, state, dense, atol)
+                    continue
+            if kpos == len(G):
+                continue
+            start = kpos
+            state[j] = ARMED
+        br = first_crossing(G, ts, start, guard_on_dense(g.fun, dense), bool(dec_before[j]))
+        if br is not None:
+            cands.append((br, j, "cross"))
+        dec_before[j] = G[-1] < G[-2]
+    return cands
+
+
+def _pending_leaves(cands: list, j: int, g: Guard, ts: np.ndarray, negs: np.ndarray, state: np.ndarray,
+                    dense: _LazyDense, atol: float) -> None:
+    """A pending guard ``j`` whose samples go negative before they go positive: a short
+    excursion into the mode between samples (the mirror of the double-crossing check: g is
+    maximised before the first negative sample) arms it with a crossing bracket; otherwise the
+    flow leaves the mode before ever entering it, a zero-length phase at the last sample where
+    the guard was still ~0."""
+    kneg = negs[0] + 1
+    gs = guard_on_dense(g.fun, dense)
+    from scipy.optimize import minimize_scalar
+
+    res = minimize_scalar(lambda s, gs=gs: -gs(s), bounds=(ts[0], ts[kneg]),
+                          method="bounded",
+                          options={"xatol": 1e-10 * (ts[kneg] - ts[0]) + 1e-15})
+    if -res.fun > atol:
+        cands.append(((float(res.x), ts[kneg]), j, "cross"))
+        state[j] = ARMED
+    else:
+        # leaves the mode before ever entering it: zero-length phase
+        cands.append((ts[negs[0]], j, "zero"))
+
+
+def _locate_roots(run: _Run, ph: _Phase, cands: list[tuple[Any, int, str]],
+                  dense: _LazyDense) -> list[tuple[float, int, str]]:
+    """The candidates' event times, sorted: each crossing bracket refined to its root on the new
+    side of the guard (in compiled code for affine guards or the compiled guard vector, else on the
+    dense output), to ``xtol``."""
+    solver, roots, gk, xtol = ph.solver, ph.roots, ph.gk, run.options.xtol
+    located: list[tuple[float, int, str]] = []
+    for c, j, kind in cands:
+        if kind == "zero":
+            located.append((c, j, "zero-length"))
+        else:
+            a, b = c
+            if roots is not None:   # the guard's affine form, in compiled code
+                r = solver.affine_root(roots[0][j], roots[1][j], roots[2][j], a, b, xtol)
+            elif gk is not None and hasattr(solver, "kernel_root"):   # compiled guard vector
+                r = solver.kernel_root(gk, j, len(ph.guards), a, b, xtol)
+            else:
+                r = root_new_side(guard_on_dense(ph.guards[j].fun, dense), a, b, xtol)
+            located.append((r, j, "switch"))
+    located.sort(key=lambda x: (x[0], x[1]))
+    return located
+
+
+def _log_sections(run: _Run, ph: _Phase, located: list[tuple[float, int, str]], ts: np.ndarray,
+                  Y: np.ndarray | None, dense: _LazyDense) -> bool:
+    """Log the section crossings up to the first switching guard's root (the run goes on past
+    them); True when one of them is terminal or ``stop`` says so (``run.t``, ``run.y`` are then
+    the crossing and the segment is closed there)."""
+    guards, state = ph.guards, ph.state
+    t_sw = min((x[0] for x in located if guards[x[1]].transition is not None), default=np.inf)
+    for th, j, _kind in located:
+        if guards[j].transition is None and th <= t_sw:
+            yh = dense(th)
+            ev = Event(th, yh, guards[j].name, run.mname, run.mname, "section", yh)
+            run.log.append(ev)
+            if ph.g_last[j] <= run.atol:
+                state[j] = DISARMED
+            if guards[j].terminal or (run.stop is not None and run.stop(ev)):
+                run.t, run.y = th, yh
+                close_segment(run.segs, run.options, run.mname, ph.seg_t, ph.seg_y, ts, Y, th, yh)
+                return True
+    return False
+
+
+def _switch_hit(run: _Run, ph: _Phase, located: list[tuple[float, int, str]], ts: np.ndarray,
+                Y: np.ndarray | None, dense: _LazyDense, t_new: float) -> tuple[int, str, list[str]] | None:
+    """The earliest switching guard among the located roots, ``(j, kind, simul)`` with the names
+    of the guards within ``simultaneous_tol`` of it, or None when none switches: the phase ends
+    at its root (``run.t``, ``run.y``; the segment closed there, the solver's evaluations
+    counted)."""
+    options, guards = run.options, ph.guards
+    sw = [x for x in located if guards[x[1]].transition is not None]
+    if not sw:
+        return None
+    hit = sw[0]
+    simul = [guards[x[1]].name for x in sw[1:] if x[0] - hit[0] <= options.simultaneous_tol]
+    th = hit[0]
+    yh = dense(th) if th < t_new else ph.solver.y.copy()
+    close_segment(run.segs, options, run.mname, ph.seg_t, ph.seg_y, ts, Y, th, yh)
+    if options.record:
+        run.rec.count += len(ts)
+        run.rec.bound(run.segs, [np.empty(0)], [np.empty((len(yh), 0))])
+    run.nfev += ph.solver.nfev
+    run.t, run.y = th, yh
+    return hit[1], hit[2], simul
+
+
+def _apply_transition(run: _Run, guards, j: int, kind: str, simul: list[str]) -> HybridSolution | None:
+    """Apply the transition of guard ``j`` at ``(run.t, run.y)`` and log it; the run's
+    :class:`HybridSolution` when it ends here (a terminal guard, ``stop``, the event cap, or
+    accumulation that the mode's ``on_zeno`` does not handle), else None.  Raises
+    :class:`~landau.errors.IntegratorError` after ``max_zero_length`` consecutive zero-length
+    phases (a transition loop)."""
+    options, t, y, mname = run.options, run.t, run.y, run.mname
+    g = guards[j]
+    assert g.transition is not None  # j is a switching guard
+    jump = as_jump(g.transition(t, y))
+    run.n_zero = run.n_zero + 1 if kind == "zero-length" else 0
+    if run.n_zero > options.max_zero_length:
+        raise IntegratorError(f"{run.n_zero} consecutive zero-length phases (transition loop) "
+                              f"at guard {g.name!r} of mode {mname!r}", t=t, state=y)
+    note = jump.note + (f"; simultaneous with {simul}" if simul else "")
+    ev = Event(t, y, g.name, mname, jump.mode, kind, jump.y, note)
+    run.log.append(ev)
+    run.mname, run.y = jump.mode, np.array(jump.y, dtype=float)
+    if g.terminal or (run.stop is not None and run.stop(ev)):
+        return run.finish("stop")
+    if len(run.log) >= options.max_events:
+        return run.finish("max_events")
+    return _watch_accumulation(run, ev)
+
+
+def _watch_accumulation(run: _Run, ev: Event) -> HybridSolution | None:
+    """Feed the event's time to the Zeno monitor: on accumulation the run ends with the
+    diagnosis, unless it is Zeno accumulation in a mode with ``on_zeno``, whose jump ends the
+    chattering (logged as a ``"zeno"`` event) and the run goes on."""
+    t = run.t
+    diag = run.monitor.push(t)
+    if diag is None:
+        return None
+    handler = run.model.mode(ev.from_mode).on_zeno
+    if handler is None or diag.kind != "zeno":
+        return run.finish(diag.kind, diag)
+    y = run.y
+    jz = as_jump(handler(t, y))
+    run.log.append(Event(t, y, "zeno", run.mname, jz.mode, "zeno", jz.y,
+                         f"chattering ended: event spacing {diag.last_interval:.3g} < tolerance; "
+                         f"accumulation extrapolated at t={diag.t_accumulation:.12g}"))
+    run.mname, run.y = jz.mode, np.array(jz.y, dtype=float)
+    run.monitor.reset()
+    return None
 
 
 def _is_compiled(stepper) -> bool:
@@ -641,55 +800,3 @@ class _LazyDense:
         if self.sol is None:
             self.sol = self.solver.dense_output()
         return self.sol(t)
-
-
-class _Recorder:
-    """Recorded samples within ``cap`` (:class:`EngineOptions` ``max_samples``): a stride over
-    the steps (1: every sample of every step; 2ᵏ: the end of every 2ᵏ-th step only) and the
-    thinning of what is kept when the count passes ``cap``."""
-
-    __slots__ = ("cap", "stride", "count", "k")
-
-    def __init__(self, cap: int):
-        self.cap, self.stride, self.count, self.k = max(int(cap), 16), 1, 0, 0
-
-    def push(self, seg_t, seg_y, ts, Y) -> None:
-        if self.stride > 1:
-            self.k += 1
-            if self.k % self.stride:
-                return
-            ts, Y = ts[-1:], Y[:, -1:]
-        seg_t.append(ts)
-        seg_y.append(Y)
-        self.count += len(ts)
-
-    def bound(self, segs, seg_t, seg_y) -> None:
-        if self.count <= self.cap:
-            return
-        for i, s in enumerate(segs):
-            keep = _thin(len(s.t))
-            segs[i] = Segment(s.mode, s.t[keep], s.y[:, keep])
-        t, y = np.concatenate(seg_t), np.concatenate(seg_y, axis=1)
-        keep = _thin(len(t))
-        seg_t[:], seg_y[:] = [t[keep]], [y[:, keep]]
-        self.count = sum(len(s.t) for s in segs) + len(seg_t[0])
-        if self.count > self.cap and len(segs) > 1:
-            # many short phases (each keeps its two ends): drop every other earlier phase
-            segs[:] = segs[-2::-2][::-1] + segs[-1:]
-            self.count = sum(len(s.t) for s in segs) + len(seg_t[0])
-        self.stride *= 2
-
-
-def _thin(n: int) -> np.ndarray:
-    """Every other index of range(n), the last one included."""
-    idx = np.arange(0, n, 2)
-    return idx if n == 0 or idx[-1] == n - 1 else np.append(idx, n - 1)
-
-
-def _push_seg(segs, options, mname, seg_t, seg_y, ts, Y, th, yh):
-    if not options.record:
-        return
-    keep = ts[1:] < th
-    seg_t.append(np.concatenate([ts[1:][keep], [th]]))
-    seg_y.append(np.column_stack([Y[:, keep], yh]))
-    segs.append(Segment(mname, np.concatenate(seg_t), np.concatenate(seg_y, axis=1)))

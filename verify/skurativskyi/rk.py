@@ -187,6 +187,140 @@ def any_step(stiff, low, p, t, y, k1, h, rtol, atol, ynew, k7, err, yt, k2, k3, 
     return True, 6
 
 
+@njit(cache=True, inline="always")
+def _first_strobe(strobe_t0, strobe_dt, t):
+    """``(ist, ts)``: the index and time of the first stroboscopic sample t₀ + i·dt at or after
+    ``t`` (to a relative 1e-12), or ts = inf without samples (``strobe_dt`` ≤ 0)."""
+    ist = 0
+    ts = strobe_t0 if strobe_dt > 0 else np.inf
+    while ts < t - 1e-12 * max(1.0, abs(t)):
+        ist += 1
+        ts = strobe_t0 + ist * strobe_dt
+    return ist, ts
+
+
+@njit(cache=True, inline="always")
+def _strobe_sample(t, y, p, k1, renorm, st_t, st_y, nst, lyap, nly, nfev, fr):
+    """At a stroboscopic time: keep the sample (t, y) while ``st_t`` has room, and with
+    ``renorm`` (4-D systems) renormalise the tangent vector y[2:4] to length 1, adding the log of
+    its length to ``lyap`` (k1 = f(t, y) recomputed).  Returns the updated
+    ``(nst, lyap, nly, nfev)``."""
+    if nst < st_t.shape[0]:
+        st_t[nst] = t
+        st_y[nst, :] = y
+        nst += 1
+    if renorm:
+        nv = math.sqrt(y[2] * y[2] + y[3] * y[3])
+        if nv > 0:
+            lyap += math.log(nv)
+            nly += 1
+            y[2] /= nv
+            y[3] /= nv
+            rhs(t, y, p, k1, fr)
+            nfev += 1
+    return nst, lyap, nly, nfev
+
+
+@njit(cache=True, inline="always")
+def _clip_step(t, h, hmax, t_end, ts):
+    """The next step's length: ``h`` at most ``hmax``, clipped onto the next target (the end
+    ``t_end`` or the stroboscopic time ``ts``) when it would reach it to a relative 1e-13.
+    Returns ``(h, clipped, h_free, t_target)`` with ``h_free`` the length before the clip."""
+    h = min(h, hmax)
+    clipped = False
+    h_free = h
+    t_target = min(t_end, ts)
+    if t + h >= t_target - 1e-13 * max(1.0, abs(t_target)):
+        h = t_target - t
+        clipped = True
+    return h, clipped, h_free, t_target
+
+
+@njit(cache=True, inline="always")
+def _keep_sample(t, y, k1, rec_t, rec_y, rec_f, nrec):
+    """Record (t, y, f) as sample ``nrec`` of the time series while it has room; the new count."""
+    if nrec < rec_t.shape[0]:
+        rec_t[nrec] = t
+        rec_y[nrec, :] = y
+        rec_f[nrec, :] = k1
+        nrec += 1
+    return nrec
+
+
+@njit(cache=True, inline="always")
+def _accepted_factor(en, expo, stiff, loose, pi_beta, en_old, after_reject):
+    """The step factor after an accepted step with error norm ``en``: 0.9·en^(−expo) clipped at 10
+    (PI-controlled, 0.9·en^(0.75β − expo)·en_old^β, for the loose explicit steps; Gustafsson 1991;
+    Hairer, Nørsett & Wanner II.4), at most 1 right after a rejection."""
+    if en == 0:
+        fac = 10.0
+    elif stiff or not loose:
+        fac = min(10.0, 0.9 * en ** -expo)
+    else:  # PI control (Gustafsson 1991; Hairer, Nørsett & Wanner II.4)
+        fac = min(10.0, 0.9 * en ** (pi_beta * 0.75 - expo) * en_old ** pi_beta)
+    if after_reject:  # no growth right after a rejection (Hairer, Norsett & Wanner, II.4)
+        fac = min(fac, 1.0)
+    return fac
+
+
+@njit(cache=True, inline="always")
+def _contact_fraction(y, ynew, h, xI, contact):
+    """s* ∈ (0, 1]: the fraction of the step (y → ynew, length h) at the first crossing of x = xI
+    on the cubic Hermite interpolant of x (values and slopes ẋ at both ends), leaving the side
+    ``contact`` says the step started on; −1 when the step stays on that side."""
+    g0 = y[0] - xI
+    dx = ynew[0] - y[0]
+    m0 = h * y[1]
+    m1 = h * ynew[1]
+    q1 = 3 * dx - 2 * m0 - m1
+    q2 = -2 * dx + m0 + m1
+    sgn = -1.0 if contact else 1.0
+    # |g(s) − g₀| ≤ |m₀| + |q₁| + |q₂| on [0, 1]: a step that stays inside by more than
+    # that bound (plus a rounding margin) cannot cross, and cubic_crossing would return
+    # −1; skipping it changes no step
+    bnd = abs(m0) + abs(q1) + abs(q2)
+    if g0 * sgn + bnd + 1e-12 * (abs(g0) + bnd) < 0.0:
+        s_star = -1.0
+    else:
+        s_star = cubic_crossing(g0, m0, q1, q2, 0.0, sgn, False)
+    if s_star <= 0.0 and (ynew[0] - xI) * sgn > 0.0:
+        s_star = 1.0  # defensive: the end state is outside
+    return s_star
+
+
+@njit(cache=True, inline="always")
+def _step_onto_contact(stiff, low, p, t, y, k1, h, s_star, rtol, atol, ynew, k7, err, yt, k2, k3, k4, k5, k6,
+                       xI, fr):
+    """Re-take the step from (t, y) onto the contact surface: Newton's method on the step length
+    (slope ẋ) from s*·h until |x − xI| is at rounding level (at most 8 steps), the end state
+    projected onto x = xI and k7 = f there.  Returns ``(h*, f evaluations, |x − xI| before the
+    projection)``."""
+    nfev = 0
+    hs = s_star * h
+    for _it in range(8):
+        ok, nf = any_step(stiff, low, p, t, y, k1, hs, rtol, atol, ynew, k7, err, yt, k2, k3,
+                          k4, k5, k6, fr)
+        nfev += nf
+        if not ok:
+            hs *= 0.5
+            continue
+        gr = ynew[0] - xI
+        if abs(gr) <= 4e-16 * abs(xI) or ynew[1] == 0.0:
+            break
+        dh = -gr / ynew[1]
+        hn = hs + dh
+        if hn <= 0.0:
+            hn = 0.5 * hs
+        elif hn > h:
+            hn = 0.5 * (hs + h)
+        hs = hn
+    mismatch = abs(ynew[0] - xI)
+    ynew[0] = xI
+    rhs(t + hs, ynew, p, k7, fr)
+    nfev += 1
+    return hs, nfev, mismatch
+
+
 @njit(cache=True)
 def integrate_mixed(p_arr, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strobe_t0, strobe_dt,
                     n_strobe_max, renorm, max_events, max_steps, v_stiff, a_stiff, rec_cap, fr):
@@ -222,22 +356,13 @@ def integrate_mixed(p_arr, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strob
     rec_t = np.empty(rec_cap)
     rec_y = np.empty((rec_cap, n))
     rec_f = np.empty((rec_cap, n))
-    nrec = 0
-    if rec_cap > 0:
-        rec_t[0] = t
-        rec_y[0, :] = y
-        rec_f[0, :] = k1
-        nrec = 1
+    nrec = _keep_sample(t, y, k1, rec_t, rec_y, rec_f, 0)
     lyap = 0.0
     nly = 0
     g = y[0] - xI
     contact = g > 0.0 or (g == 0.0 and y[1] > 0.0)
     h = h0
-    ist = 0
-    ts = strobe_t0 if strobe_dt > 0 else np.inf
-    while ts < t - 1e-12 * max(1.0, abs(t)):
-        ist += 1
-        ts = strobe_t0 + ist * strobe_dt
+    ist, ts = _first_strobe(strobe_t0, strobe_dt, t)
     nsteps = 0
     nrej = 0
     nstiff = 0
@@ -251,19 +376,7 @@ def integrate_mixed(p_arr, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strob
     while True:
         # stroboscopic sample at the current time?
         if ts <= t_end and abs(t - ts) <= 1e-13 * max(1.0, abs(ts)):
-            if nst < n_strobe_max:
-                st_t[nst] = t
-                st_y[nst, :] = y
-                nst += 1
-            if renorm:
-                nv = math.sqrt(y[2] * y[2] + y[3] * y[3])
-                if nv > 0:
-                    lyap += math.log(nv)
-                    nly += 1
-                    y[2] /= nv
-                    y[3] /= nv
-                    rhs(t, y, p, k1, fr)
-                    nfev += 1
+            nst, lyap, nly, nfev = _strobe_sample(t, y, p, k1, renorm, st_t, st_y, nst, lyap, nly, nfev, fr)
             ist += 1
             ts = strobe_t0 + ist * strobe_dt
         if t >= t_end:
@@ -271,13 +384,7 @@ def integrate_mixed(p_arr, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strob
         if nsteps >= max_steps:
             status = MAX_STEPS
             break
-        h = min(h, hmax)
-        clipped = False
-        h_free = h
-        t_target = min(t_end, ts)
-        if t + h >= t_target - 1e-13 * max(1.0, abs(t_target)):
-            h = t_target - t
-            clipped = True
+        h, clipped, h_free, t_target = _clip_step(t, h, hmax, t_end, ts)
         if h <= 1e-15 * max(1.0, abs(t)):
             status = STEP_TOO_SMALL
             break
@@ -295,63 +402,21 @@ def integrate_mixed(p_arr, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strob
             else:
                 h *= max(0.2, 0.9 * en ** -expo)
             continue
-        if en == 0:
-            fac = 10.0
-        elif stiff or not loose:
-            fac = min(10.0, 0.9 * en ** -expo)
-        else:  # PI control (Gustafsson 1991; Hairer, Nørsett & Wanner II.4)
-            fac = min(10.0, 0.9 * en ** (pi_beta * 0.75 - expo) * en_old ** pi_beta)
-        if after_reject:  # no growth right after a rejection (Hairer, Norsett & Wanner, II.4)
-            fac = min(fac, 1.0)
-            after_reject = False
+        fac = _accepted_factor(en, expo, stiff, loose, pi_beta, en_old, after_reject)
+        after_reject = False
         en_old = max(en, 1e-4)
         h_next = h * fac
         if clipped:
             h_next = max(h_next, min(h_free, h_free * fac))
         switched = False
         if guard:
-            g0 = y[0] - xI
-            dx = ynew[0] - y[0]
-            m0 = h * y[1]
-            m1 = h * ynew[1]
-            q1 = 3 * dx - 2 * m0 - m1
-            q2 = -2 * dx + m0 + m1
-            sgn = -1.0 if contact else 1.0
-            # |g(s) − g₀| ≤ |m₀| + |q₁| + |q₂| on [0, 1]: a step that stays inside by more than
-            # that bound (plus a rounding margin) cannot cross, and cubic_crossing would return
-            # −1; skipping it changes no step
-            bnd = abs(m0) + abs(q1) + abs(q2)
-            if g0 * sgn + bnd + 1e-12 * (abs(g0) + bnd) < 0.0:
-                s_star = -1.0
-            else:
-                s_star = cubic_crossing(g0, m0, q1, q2, 0.0, sgn, False)
-            if s_star <= 0.0 and (ynew[0] - xI) * sgn > 0.0:
-                s_star = 1.0  # defensive: the end state is outside
+            # a contact crossing inside the step: re-take it onto the root
+            s_star = _contact_fraction(y, ynew, h, xI, contact)
             if s_star > 0.0:
-                # re-take the step onto the root; Newton on the step length (slope ẋ)
-                hs = s_star * h
-                for _it in range(8):
-                    ok, nf = any_step(stiff, low, p, t, y, k1, hs, rtol, atol, ynew, k7, err, yt, k2, k3,
-                                      k4, k5, k6, fr)
-                    nfev += nf
-                    if not ok:
-                        hs *= 0.5
-                        continue
-                    gr = ynew[0] - xI
-                    if abs(gr) <= 4e-16 * abs(xI) or ynew[1] == 0.0:
-                        break
-                    dh = -gr / ynew[1]
-                    hn = hs + dh
-                    if hn <= 0.0:
-                        hn = 0.5 * hs
-                    elif hn > h:
-                        hn = 0.5 * (hs + h)
-                    hs = hn
-                h = hs
-                max_mismatch = max(max_mismatch, abs(ynew[0] - xI))
-                ynew[0] = xI
-                rhs(t + h, ynew, p, k7, fr)
-                nfev += 1
+                h, nf, mismatch = _step_onto_contact(stiff, low, p, t, y, k1, h, s_star, rtol, atol, ynew, k7, err,
+                                                     yt, k2, k3, k4, k5, k6, xI, fr)
+                nfev += nf
+                max_mismatch = max(max_mismatch, mismatch)
                 switched = True
                 clipped = False
         nsteps += 1
@@ -361,11 +426,7 @@ def integrate_mixed(p_arr, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strob
         for a in range(n):
             y[a] = ynew[a]
             k1[a] = k7[a]
-        if nrec < rec_cap:
-            rec_t[nrec] = t
-            rec_y[nrec, :] = y
-            rec_f[nrec, :] = k1
-            nrec += 1
+        nrec = _keep_sample(t, y, k1, rec_t, rec_y, rec_f, nrec)
         if switched:
             if nev < max_events:
                 ev_t[nev] = t
