@@ -92,6 +92,51 @@ def system_hopf(setup: Setup):
     return hopf_normal_form(system, dict(setup.params), tuple(bracket))
 
 
+def _simulation_setup(setup: Setup) -> Setup:
+    """The setup as the simulation reads it: the Hopf parameter is a value like the others there (default
+    the first parameter given), and a system without an equilibrium starts from a guess of 0."""
+    from dataclasses import replace
+
+    opts = dict(setup.options)
+    params = dict(setup.params)
+    if not opts.get("parameter"):
+        if params:
+            opts["parameter"] = next(iter(params))
+        else:   # a system without parameters: a placeholder Hopf parameter no expression uses
+            opts["parameter"], params["no_parameter"] = "no_parameter", 0.0
+    if opts.get("equilibrium") is None and opts.get("guess") is None:
+        opts["guess"] = {}
+    return replace(setup, params=params, options=opts)
+
+
+def system_simulate(setup: Setup, *, t_end=None, y0=None, history=None, t_eval=None, max_steps=None,
+                    sections=False):
+    """A run of the system of the setup's options with the compiled Radau IIA
+    (:func:`landau.analyses.system_simulation.simulate_system`); every parameter value given, the
+    Hopf parameter's included."""
+    from dataclasses import replace
+
+    from landau.analyses.system_simulation import simulate_system
+    from landau.verify.hybrid.run_inputs import end_time, initial_state, no_history
+
+    no_history(history, "system")
+    if sections:
+        raise InputError("system: a Poincare section is not defined for a user system")
+    setup = _simulation_setup(setup)
+    hp = str(setup.option("parameter"))
+    if hp not in setup.params:
+        raise InputError(f"system: give the value of {hp!r} to simulate at (--param {hp}=VALUE)")
+    rest = {k: v for k, v in setup.params.items() if k != hp}
+    system = system_of(replace(setup, params=rest))
+    T = end_time(t_end, SYSTEM.defaults["t_end"])
+    kw = {} if max_steps is None else {"max_steps": int(max_steps)}
+    start = None if y0 is None else initial_state(y0, [s.name for s in system.states])
+    sim = simulate_system(system, dict(setup.params), T, start, t_eval=t_eval, **kw)
+    units = {"t": "1", **{s.name: "1" for s in system.states}}   # the user's own units
+    return replace(sim, units=units, parameters={k: float(v) for k, v in setup.params.items()},
+                   notes=(*sim.notes, "compiled Radau IIA (rtol 1e-8) on the system written with --rhs"))
+
+
 SYSTEM = Model(
     name="system",
     description="any smooth system E dy/dt = f(y; p) given by --rhs, --parameter, --param, --bracket",
@@ -99,12 +144,14 @@ SYSTEM = Model(
     declare=_declare,
     hopf_parameter=lambda setup: setup.option("parameter"),
     hopf=system_hopf,
+    simulate=system_simulate,
     options=(Option("rhs", "a state and its right-hand side dNAME/dt (NAME=EXPR, repeatable, in order)"),
              Option("equilibrium", "the equilibrium of a state as an expression of the parameters (NAME=EXPR)"),
              Option("guess", "instead of the equilibrium, a starting value of a state for Newton's method"),
              Option("mass", "the mass entry E_ii of a state (default 1; 0: an algebraic row)"),
              Option("parameter", "the Hopf parameter"),
              Option("bracket", "interval LO:HI of the Hopf parameter holding one Hopf point")),
+    defaults={"t_end": 100.0},
     source="Kuznetsov (2004), Sec. 3.5 (the normal form)",
 )
 

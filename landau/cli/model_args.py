@@ -83,6 +83,11 @@ _CONVERT = {
     "guess": _guesses,
     "bracket": parse_bracket,
 }
+def convert_option(name: str, value):
+    """An option's command-line value as the model takes it (NAME=EXPR lists as mappings, LO:HI as a pair)."""
+    return _CONVERT[name](value) if name in _CONVERT else value
+
+
 #: the option attributes of the parsers, with their spelling (for "belongs to another model")
 _OPTION_FLAGS = {"friction": "--friction", "friction_neg": "--friction-neg", "kinetic": "--kinetic",
                  "kinetic_pos": "--kinetic-pos", "parameter": "--parameter", "rhs": "--rhs",
@@ -157,4 +162,4 @@ def _law_words(model: Model) -> str:
             LawKind.NONE: "write its equations with --rhs"}.get(model.law_kind, "")
 
 
-__all__ = ["add_model_options", "model_options", "parse_bracket", "setup_from_args"]
+__all__ = ["add_model_options", "convert_option", "model_options", "parse_bracket", "setup_from_args"]

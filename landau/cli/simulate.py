@@ -59,6 +59,8 @@ FLAGS = {"y0": "--y0", "t_end": "--t-end", "max_steps": "--max-steps", "dt": "--
 #: the law options of the velocity and kinetic laws: attribute of the arguments -> flag
 LAW_OPTIONS = {"friction": "--friction", "friction_neg": "--friction-neg", "kinetic": "--kinetic",
                "kinetic_pos": "--kinetic-pos"}
+#: the options of a system written on the command line
+SYSTEM_OPTIONS = ("rhs", "equilibrium", "guess", "mass", "parameter")
 
 
 def configure(p) -> None:
@@ -103,6 +105,16 @@ def configure(p) -> None:
                    help="spring-block: drive the load point at velocity V_i [m/s] from time t_i [s] on (0: a hold), "
                         "starting from steady sliding at V0: velocity steps, slide-hold-slide; the CSV has "
                         "t, V, v, mu and the states (with eta or gamma_ld also F and sigma)")
+    p.add_argument("--rhs", action="append", default=[], metavar="NAME=EXPR",
+                   help="system: a state and its right-hand side dNAME/dt (repeatable, in order)")
+    p.add_argument("--equilibrium", action="append", default=[], metavar="NAME=EXPR",
+                   help="system: the equilibrium of a state (the default start, displaced)")
+    p.add_argument("--guess", action="append", default=[], metavar="NAME=VALUE",
+                   help="system: instead of --equilibrium, a guess of it for Newton's method")
+    p.add_argument("--mass", action="append", default=[], metavar="NAME=EXPR",
+                   help="system: the mass entry E_ii of a state (default 1)")
+    p.add_argument("--parameter", default=None, metavar="NAME",
+                   help="system: the Hopf parameter (its value by --param; default the first --param)")
     p.add_argument("--plot", choices=("overview", "poincare"), default="overview",
                    help="what a .png shows: time series and phase portrait (default) or the Poincaré section "
                         "(the logged sections; the forced oscillator: stroboscopic at the forcing period)")
@@ -183,8 +195,12 @@ def _law_and_params(args, model) -> tuple:
 
 def _options(args, model) -> dict:
     """The model's options given on the command line (a flag the model does not take: InputError)."""
+    from landau.cli.model_args import convert_option
+
     takes = _taken(model)
     given = {name: getattr(args, name) for name in LAW_OPTIONS if getattr(args, name) is not None}
+    given.update({name: convert_option(name, getattr(args, name)) for name in SYSTEM_OPTIONS
+                  if getattr(args, name) not in (None, [])})
     if "friction" in given:
         given["friction_name"] = args.friction_name
     if args.hopf:
