@@ -198,12 +198,12 @@ def _symbols(terms, symbol: Mapping[str, sp.Symbol] | None) -> dict[str, sp.Symb
 
 def _loads(terms, b: Balance) -> sp.Expr:
     """Σ loads(F): the terms' part of the normal load."""
-    return sp.Add(*(TERMS[t].load(b) for t in terms if TERMS[t].load is not None))
+    return sp.Add(*(load(b) for t in terms if (load := TERMS[t].load) is not None))
 
 
 def _forces(terms, b: Balance) -> sp.Expr:
     """Σ forces: the terms' forces on the block."""
-    return sp.Add(*(TERMS[t].force(b) for t in terms if TERMS[t].force is not None))
+    return sp.Add(*(force(b) for t in terms if (force := TERMS[t].force) is not None))
 
 
 def steady_spring_force(terms, sigma0, mu0, V, symbol=None) -> sp.Expr:
@@ -299,8 +299,8 @@ def mechanical_rhs(law, terms, X, u, at_slip, eq_phi, k, sigma0, V, *, mu0=None,
     dmu = tuple(sp.diff(mu, ph).xreplace(at_slip) for ph in phis)
     b = balance(Fs - k * X, V + u, sig, sig_dot, dmu)
     for t in terms:
-        if TERMS[t].rates is not None:
-            for i, r in enumerate(TERMS[t].rates(b)):
+        if (term_rates := TERMS[t].rates) is not None:
+            for i, r in enumerate(term_rates(b)):
                 if r != 0:
                     rates[i] = rates[i] + r
     if force.has(Fs) or any(r.has(Fs) for r in rates):
@@ -343,8 +343,8 @@ def force_balance(law, terms, at, *, v, F, F_dot, V_lp, k, sigma0, symbol=None):
                 mu=mu_now, dmu_dphi=dmu, symbol=sym)
     rates = [r.xreplace(at) for r in law.rates]
     for t in terms:
-        if TERMS[t].rates is not None:
-            for i, r in enumerate(TERMS[t].rates(b)):
+        if (term_rates := TERMS[t].rates) is not None:
+            for i, r in enumerate(term_rates(b)):
                 if r != 0:
                     rates[i] = rates[i] + r
     return sigma, mu_now, _forces(terms, b), tuple(rates)

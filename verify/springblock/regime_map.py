@@ -259,7 +259,9 @@ def regime_chunk(task: ModelTask, chunk: Chunk) -> ChunkResult:
     rtol = float(opts.get("rtol", 1e-8))
     r = float(opts.get("k_over_kc", K_OVER_KC))
     bad, why = task.invalid(chunk)
-    status, message, rows = [], [], []
+    status: list[str] = []
+    message: list[str] = []
+    rows: list[dict] = []
     for j in range(len(chunk.index)):
         pt = {**dict(task.fixed), **{k: float(v[j]) for k, v in chunk.points.items()}}
         if bad[j]:
