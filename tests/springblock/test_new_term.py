@@ -120,3 +120,14 @@ def test_a_load_history(dashpot):
     assert mu[0] == pytest.approx(mu1, rel=1e-9)
     assert mu[-1] == pytest.approx(mu1 + (p["a"] - p["b"]) * np.log(10.0), rel=1e-6)
     assert "F" in names and "sigma" not in names   # a force term, no load term
+
+
+def test_landau_simulate(dashpot):
+    """The front door runs the block with the term (the compiled model above) and reports its value."""
+    import landau
+
+    sim = landau.simulate("spring-block", "dieterich", params={"V": V, "k": 1.5e5, dashpot: C}, t_end=2.0)
+    assert sim.parameters[dashpot] == C and sim.status.value == "finished"
+    ref = landau.simulate("spring-block", "dieterich", params={"V": V, "k": 1.5e5, "eta": C}, t_end=2.0)
+    # η's steady force ηV moves the steady state both start from (the field about it is the dashpot's)
+    np.testing.assert_allclose(sim.y_final[1:], ref.y_final[1:], rtol=1e-6)
