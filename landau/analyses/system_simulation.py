@@ -320,7 +320,7 @@ def _start(cs: CompiledSystem, values: Mapping[str, float], pvec: np.ndarray, y0
     sub = {a: sp.Float(values[a.name]) for a in (s.parameter, *s.parameters)}
     guess = dict(zip(s.unknowns, s.unknown_guess, strict=False))
     try:
-        y = np.array([float(sp.sympify(e).xreplace(guess).xreplace(sub)) for e in s.equilibrium], dtype=float)
+        y = np.array([float(e.xreplace(guess).xreplace(sub)) for e in s.equilibrium], dtype=float)
     except (TypeError, ValueError):
         raise InputError(f"{s.name}: the equilibrium cannot be evaluated at these parameters; give y0") from None
     for _ in range(50):          # Newton's method on W·f(y) = 0 (the same zeros as f)

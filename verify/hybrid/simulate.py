@@ -38,12 +38,12 @@ from typing import Any, Callable
 import numpy as np
 
 from landau.errors import InputError, IntegratorError
-from landau.verify.hybrid.dop853 import CompiledDOP853
 from landau.verify.hybrid.locate import HermiteScreen, first_crossing, guard_on_dense, root_new_side
 from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.model import Guard, HybridModel, as_jump
 from landau.verify.hybrid.record import Recorder, Segment, close_segment
 from landau.verify.hybrid.result import Simulation, status_from_text
+from landau.verify.hybrid.steppers import DEFAULT_STEPPER
 from landau.verify.hybrid.zeno import ZenoDiagnosis, ZenoMonitor
 
 
@@ -232,9 +232,6 @@ def regime_of(mode: str) -> str:
 
 
 ARMED, PENDING, DISARMED = 1, 0, -1
-#: the compiled DOP853 over each mode's compiled kernel (scipy's DOP853, the same method, for a mode
-#: whose field is a plain Python function): the quiet steps of a mode run in one compiled call
-DEFAULT_STEPPER = CompiledDOP853(rtol=1e-10, atol=1e-12)
 
 
 def _leaving(guard: Guard, g: float, t: float, y: np.ndarray, recover_tol: float) -> bool:
@@ -274,8 +271,9 @@ def simulate(model: HybridModel, mode: str, y0, t_span: tuple[float, float],
     t_span : tuple of float
         ``(t0, t_end)``.
     stepper : callable, optional
-        Integrator of one mode's smooth field (default :data:`DEFAULT_STEPPER`: the compiled DOP853,
-        rtol 1e-10, atol 1e-12).
+        Integrator of one mode's smooth field (default
+        :data:`~landau.verify.hybrid.steppers.DEFAULT_STEPPER`: the compiled DOP853, rtol 1e-10,
+        atol 1e-12).
     options : EngineOptions, optional
         Event location, Zeno and recording settings.
     stop : callable, optional

@@ -34,6 +34,8 @@ from typing import Any, Callable, Mapping
 
 import numpy as np
 
+from landau.verify.hybrid.dop853 import CompiledDOP853
+
 #: scipy.integrate solver classes by name (scipy is imported on first use)
 _METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA")
 
@@ -81,3 +83,10 @@ def RadauStepper(rtol: float = 1e-8, atol: float = 1e-10, **kw) -> ScipyStepper:
 
 
 StepperFactory = Callable[..., Any]
+
+
+
+#: the hybrid engine's default: the compiled DOP853 over each mode's compiled kernel (scipy's DOP853,
+#: the same method, for a mode whose field is a plain Python function), so that the quiet steps of a
+#: mode run in one compiled call
+DEFAULT_STEPPER = CompiledDOP853(rtol=1e-10, atol=1e-12)
