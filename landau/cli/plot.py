@@ -89,6 +89,9 @@ def render(doc: dict) -> str:
         return f"regime map of {doc['law']} ({doc['points']} points: {doc['regimes']}) written to {doc['out']}"
     if doc.get("kind") == "bifurcation-diagram":
         return f"bifurcation diagram of the {doc['model']} ({doc['points']} points) written to {doc['out']}"
+    if doc.get("kind") == "sweep-lines":
+        return (f"{', '.join(doc['variables'])} of the {doc['model']} sweep against {doc['x']} ({doc['points']} "
+                f"points) written to {doc['out']}")
     out = [f"{doc['kind']} plot of law {doc['law']} over V = {doc['V_range'][0]:g} .. {doc['V_range'][1]:g} m/s "
            f"({doc['points']} points) written to {doc['out']}"]
     for b in doc["bands"]:

@@ -161,7 +161,8 @@ class Model:
     hopf : callable, optional
         ``hopf(setup) -> HopfResult``: the Hopf point and amplitude equation at one point.
     simulate : callable, optional
-        The model's simulation (:func:`landau.simulate`).
+        The model's simulation, ``simulate(setup, *, t_end, y0, history, t_eval, max_steps, sections)
+        -> Simulation`` (what :func:`landau.simulate` and ``landau simulate`` run).
     tasks : mapping of str to callable
         The sweep tasks the model runs besides ``hopf`` (which it runs when it has :attr:`hopf`):
         task name -> ``factory(task, model, law, fixed, options) -> Task``.
@@ -255,8 +256,6 @@ class Model:
         """True where the model runs the sweep task (or offering) ``task``."""
         if task == "hopf":
             return self.hopf is not None
-        if task == "simulate" and "simulate" not in self.tasks:
-            return False
         return task in self.tasks
 
     def offered(self) -> tuple[str, ...]:

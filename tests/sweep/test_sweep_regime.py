@@ -29,8 +29,9 @@ def test_regime_sweep_agrees_with_the_hopf_line_and_its_criticality(tmp_path, ca
     assert png.stat().st_size > 1000 and doc["points"] == 3 and doc["regimes"]["bistable"] == 1
 
 
-def test_plot_sweep_refuses_another_task(tmp_path, capsys):
+def test_plot_sweep_draws_another_task_as_lines(tmp_path, capsys):
+    """A sweep without a figure of its model's own (a hopf sweep) is drawn as its numbers over its axes."""
     out = tmp_path / "kc.nc"
-    landau.sweep("hopf", {"V": [1e-4]}, law="dieterich", workers=1, progress=False, out=out)
-    assert main(["plot", "--sweep", str(out), "--out", str(tmp_path / "x.png")]) == 2
-    assert "landau plot draws a regime map" in capsys.readouterr().err
+    landau.sweep("hopf", {"V": [1e-4, 2e-4]}, law="dieterich", workers=1, progress=False, out=out)
+    assert main(["plot", "--sweep", str(out), "--out", str(tmp_path / "x.png")]) == 0
+    assert "k_c, Lambda, C of the spring-block sweep against V (2 points)" in capsys.readouterr().out
