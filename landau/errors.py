@@ -37,6 +37,11 @@ class NoHopfError(LandauError):
     """The requested point has no Hopf bifurcation (e.g. velocity strengthening)."""
 
 
+class NonSimpleHopfError(LandauError):
+    """Several complex pairs cross the imaginary axis together (a double, non-simple Hopf point,
+    e.g. identical uncoupled oscillators): there is a crossing, but no single-mode amplitude equation."""
+
+
 class SingularPointError(InputError):
     """The law's derivatives are singular (or undefined) at the requested point."""
 

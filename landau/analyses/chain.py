@@ -97,6 +97,9 @@ def chain_hopf(chain: SpringBlockChain, params: Mapping[str, float] | None = Non
     ------
     NoHopfError
         No crossing in the bracket (e.g. velocity-strengthening friction).
+    NonSimpleHopfError
+        Several modes cross together (identical blocks with ``k_coupling`` = 0: a double crossing
+        at the single block's k_c), where no single-mode amplitude equation applies.
     """
     from landau.derivation.degenerate import with_verdict
     from landau.derivation.general import NumericSystem, normal_form_at, refine_hopf, scan_hopf

@@ -56,7 +56,7 @@ from landau.derivation.fredholm import (
 )
 from landau.derivation.hopf import GENERAL, HopfResult
 from landau.derivation.jets import Jets, TaylorJets
-from landau.errors import InputError, NoHopfError, SingularPointError
+from landau.errors import InputError, NoHopfError, NonSimpleHopfError, SingularPointError
 from landau.support.cx import Cx, as_expr
 from landau.support.lambdify import lambdify_positional
 from landau.systems.system import DynamicalSystem
@@ -302,7 +302,12 @@ def scan_hopf(num: NumericSystem, lo: float, hi: float, samples: int = SCAN_SAMP
     """Every Hopf crossing in [lo, hi] (float64): (p, y₀, critical eigenvalue), in order of p.
 
     The equilibrium is followed from ``lo`` (which may be the larger end) by Newton's method
-    from the previous sample.
+    from the previous sample.  Each pair's crossing changes the sign of the bialternate test
+    function, so two crossings between neighbouring samples cancel (weakly coupled identical
+    oscillators have nearly equal crossings): where the number of unstable complex pairs changes
+    by two or more between samples, the interval is halved until each part holds one crossing
+    (:func:`_split_crossings`), and crossings that still coincide are a double Hopf point
+    (:class:`~landau.errors.NonSimpleHopfError`).
     """
     ps = np.linspace(lo, hi, samples + 1)
     ys = [num.equilibrium_float(ps[0], y_start)]
@@ -327,12 +332,65 @@ def scan_hopf(num: NumericSystem, lo: float, hi: float, samples: int = SCAN_SAMP
             if hit is not None:
                 found.append(hit)
                 on_grid.add(i)
+    pairs = [unstable_pairs(lam) for lam in lams]
     for i in range(len(ps) - 1):
-        if tfs[i] * tfs[i + 1] < 0 and not ({i, i + 1} & on_grid):
+        if {i, i + 1} & on_grid:
+            continue
+        if abs(pairs[i] - pairs[i + 1]) >= 2:
+            # several pairs cross between two samples: their sign changes cancel (an even number)
+            # or add up in the test function, so the interval is halved until each part holds one
+            found += _split_crossings(num, float(ps[i]), ys[i], pairs[i], float(ps[i + 1]), ys[i + 1], pairs[i + 1])
+        elif tfs[i] * tfs[i + 1] < 0:
             hit = locate_crossing(num, min(ps[i], ps[i + 1]), max(ps[i], ps[i + 1]), ys[i])
             if hit is not None:
                 found.append(hit)
     return sorted(found, key=lambda h: h[0] if lo <= hi else -h[0])
+
+
+def unstable_pairs(lam: np.ndarray) -> int:
+    """The number of complex pairs with Re λ > 0 (each counted once, by its member with Im > 0)."""
+    lam = np.asarray(lam)
+    upper = lam[lam.imag > 1e-10 * (1 + np.abs(lam.real))]
+    return int(np.count_nonzero(upper.real > 0))
+
+
+#: two pairs whose crossings lie closer than this fraction of the parameter cannot be told apart
+#: by the float64 scan (nor refined apart from its starting points): the crossing is double
+DOUBLE_CROSSING = 1e-11
+
+
+def _split_crossings(num: NumericSystem, pa: float, ya, na: int, pb: float, yb,
+                     nb: int) -> list[tuple[float, np.ndarray, complex]]:
+    """The crossings between pa and pb, where the number of unstable pairs changes by ≥ 2.
+
+    The interval is halved (the equilibrium followed from pa) until each part changes the count by
+    at most one pair, then each such part is bisected by :func:`locate_crossing`.  Two pairs that
+    still cross together in a part narrower than :data:`DOUBLE_CROSSING` of the parameter are a
+    double, non-simple crossing (as for identical uncoupled oscillators): no single-mode amplitude
+    equation applies there, and :class:`~landau.errors.NonSimpleHopfError` says so.
+    """
+    found: list[tuple[float, np.ndarray, complex]] = []
+    stack = [(pa, ya, na, pb, yb, nb)]
+    while stack:
+        a, y_a, n_a, b, y_b, n_b = stack.pop()
+        if abs(n_a - n_b) == 1:
+            hit = locate_crossing(num, min(a, b), max(a, b), y_a)
+            if hit is not None:
+                found.append(hit)
+            continue
+        if n_a == n_b:
+            continue
+        if abs(b - a) <= DOUBLE_CROSSING * max(abs(a), abs(b)):
+            m = 0.5 * (a + b)
+            raise NonSimpleHopfError(
+                f"{num.sys.name}: {abs(n_a - n_b)} complex pairs cross the imaginary axis together at "
+                f"{num.p.name} = {m:.12g} (within {DOUBLE_CROSSING:g} of it): a double, non-simple Hopf "
+                "crossing (e.g. identical uncoupled oscillators), where no single-mode amplitude equation applies")
+        m = 0.5 * (a + b)
+        y_m = num.equilibrium_float(m, y_a)
+        n_m = unstable_pairs(num.eigenvalues(y_m, m))
+        stack += [(m, y_m, n_m, b, y_b, n_b), (a, y_a, n_a, m, y_m, n_m)]
+    return found
 
 
 def _end_on_axis(lam: np.ndarray, lam_next: np.ndarray) -> bool:
@@ -606,6 +664,8 @@ def hopf_normal_form(system: DynamicalSystem, params: Mapping[str, float] | None
         Bad parameters, or several Hopf points in the bracket (the message lists them).
     SingularPointError
         If the Newton refinement of the Hopf point fails.
+    NonSimpleHopfError
+        Two pairs cross together (a double, non-simple Hopf point).
 
     References
     ----------

@@ -8,11 +8,23 @@ Each run is followed through its maxima of X (the crossings of v = V from above)
 dissolve in round-off, has decayed; any other failing run is repeated once at a tolerance 100
 times tighter)
 
-* decays (three maxima below 10⁻⁶ ℓ, or 21 maxima shrinking at a constant ratio per cycle, the
-  linear decay): **steady** sliding;
+* decays (three maxima below 10⁻⁶ ℓ, or 21 maxima shrinking at a constant ratio per cycle that is
+  the linear decay's, exp(2π Re μ/Im μ) for the slowest complex pair μ of the linearisation, within
+  a factor 2, :func:`_geometric_decay`): **steady** sliding;
 * settles on a cycle (successive maxima within 10⁻⁴, the chunk within 10⁻³): a **small cycle** when
   the slip rate stays above V/10 over it, a **stick–slip** cycle when it falls below (the block
   nearly stops: the large relaxation oscillation of Sec. 3.2).
+
+Steady sliding can be the end of a run only where it is linearly stable (every eigenvalue of the
+linearisation with Re λ < 0; for k < k_c a pair has Re λ > 0 and repels every run), so no run is
+called steady elsewhere: a run that shrinks there is collapsing onto a cycle, and it is followed
+on.  Where sliding is stable, a constant ratio alone is not the linear decay either: a large cycle
+collapsing onto a small one shrinks nearly geometrically too (its distance to the cycle decays at
+a Floquet rate, so the ratio per cycle creeps towards 1 too slowly for 21 maxima to tell), and so
+does a slow passage past the ghost of a fold of cycles (a few per cent of the linear rate); the
+decay must therefore be the linearisation's own rate, within the factor 1 ± (a/a*)² that the cubic
+terms make at amplitude a (a* the amplitude equation's cycle), and a run still shrinking at a
+stable point is followed up to :data:`DECAY_EVENTS` maxima until it is.
 
 The point's ``regime`` is the common verdict, or **bistable** when the two starts end on
 different attractors (steady sliding and a cycle, or two cycles: the subcritical side of the
@@ -43,6 +55,9 @@ STICK_FRACTION = 0.1
 NEAR, FAR = 1e-3, 100.0
 #: crossings per integration chunk, and at most
 CHUNK_EVENTS, MAX_EVENTS = 20, 400
+#: at most this many crossings for a run still shrinking where steady sliding is stable (a slow
+#: passage past the ghost of a fold of cycles, before the linear decay sets in)
+DECAY_EVENTS = 2000
 REGIMES = ("steady", "small-cycle", "stick-slip", "bistable", "undecided")
 UNITS = {"amplitude_near": "m", "amplitude_far": "m", "period_near": "s", "period_far": "s",
          "v_min_near": "1", "v_min_far": "1", "k": "N/m", "k_c": "N/m", "amplitude_predicted": "m",
@@ -136,28 +151,39 @@ def _follow(model: SpringBlockModel, y0: np.ndarray, rtol: float) -> _Fate:
     """The attractor reached from ``y0`` (see the module docstring)."""
     lam, _ = model.critical_mode()
     period = 2 * math.pi / abs(lam.imag) * model.time_unit if lam.imag else 1e3 * model.time_unit
+    # steady sliding is an attractor only where it is linearly stable; there, its linear decay
+    # shrinks successive maxima by exp(2π Re μ/Im μ) per cycle (μ its slowest complex pair)
+    stable, log_ratio = _linear_decay(model)
     y, t = np.asarray(y0, dtype=float), 0.0
     xs: list[float] = []
     ts: list[float] = []
     settled, new = False, []
     tiny = 1e-6 * model.ell
-    while len(xs) < MAX_EVENTS:
+    quiet = 0
+    while len(xs) < MAX_EVENTS or (stable and len(xs) < DECAY_EVENTS and _shrinking(new)):
         try:
             run = integrate(model, y, (t, t + 50 * CHUNK_EVENTS * period), rtol=rtol, event_index=W_INDEX,
                             event_direction=-1, stop_after=CHUNK_EVENTS)
         except IntegratorError as exc:
-            if _at_rest(model, exc.state):  # the crossings of v = V dissolved in round-off: decayed
+            if stable and _at_rest(model, exc.state):  # the crossings of v = V dissolved in round-off: decayed
                 return _Fate("steady")
             raise
         down = run.event_y[run.event_dir < 0]
-        if len(down) == 0:  # no oscillation left in 50 periods per crossing wanted: relaxed
-            return _Fate("steady")
+        if len(down) == 0:
+            if stable:  # no oscillation left in 50 periods per crossing wanted: relaxed
+                return _Fate("steady")
+            quiet += 1  # unstable sliding: a long stick (or a slow start), followed on
+            if quiet > QUIET_CHUNKS:
+                raise IntegratorError(f"no crossing of v = V in {QUIET_CHUNKS} runs of {50 * CHUNK_EVENTS} linear "
+                                      "periods although steady sliding is linearly unstable here", t=run.t_final)
+            y, t = run.y_final.copy(), run.t_final
+            continue
         new = list(down[:, 0] * model.ell)
         xs += new
         ts += list(run.event_t[run.event_dir < 0])
-        if len(xs) >= 3 and all(abs(x) < tiny for x in xs[-3:]):
+        if stable and len(xs) >= 3 and all(abs(x) < tiny for x in xs[-3:]):
             return _Fate("steady")
-        if len(xs) >= 21 and _geometric_decay(xs[-21:]):
+        if stable and len(xs) >= 21 and _geometric_decay(xs[-21:], log_ratio):
             return _Fate("steady")
         a = abs(new[-1])
         if len(new) > 2 and abs(new[-1] - new[-2]) < 1e-4 * a and abs(new[-1] - new[0]) < 1e-3 * a:
@@ -186,14 +212,48 @@ def _at_rest(model: SpringBlockModel, state) -> bool:
             and all(abs(ph / p0 - 1) <= 1e-9 for ph, p0 in zip(phis, model.phi0, strict=True)))
 
 
-def _geometric_decay(x) -> bool:
-    """Whether 21 successive maxima shrink at a constant ratio per cycle (to 10 %): the linear decay onto
-    steady sliding.  An approach to a cycle from above slows down instead (its ratio tends to 1)."""
+def _shrinking(x) -> bool:
+    """Whether the maxima of the last chunk shrink (each below the one before)."""
     a = np.abs(np.asarray(x, dtype=float))
-    if np.any(a <= 0) or not np.all(np.diff(a) < 0):
+    return len(a) > 1 and bool(np.all(np.diff(a) < 0))
+
+
+def _linear_decay(model: SpringBlockModel) -> tuple[bool, float]:
+    """Whether steady sliding is linearly stable (every eigenvalue of J(0) with Re < 0), and the log of
+    the factor by which its linear decay shrinks successive maxima of X: 2π Re μ/|Im μ| for μ the
+    complex pair with the largest real part (NaN where J(0) has none: no oscillatory decay)."""
+    lam = np.linalg.eigvals(model.J(np.zeros(model.n)))
+    stable = bool(np.all(lam.real < 0))
+    pairs = lam[lam.imag > 1e-12 * np.abs(lam)]
+    if pairs.size == 0:
+        return stable, float("nan")
+    mu = pairs[int(np.argmax(pairs.real))]
+    return stable, float(2 * math.pi * mu.real / abs(mu.imag))
+
+
+def _geometric_decay(x, log_ratio: float) -> bool:
+    """Whether 21 successive maxima shrink at a constant ratio per cycle (to 10 %) that is the linear
+    decay of steady sliding: ρ = log(aᵢ₊₁₀/aᵢ)/10 over each half within a factor
+    :data:`LINEAR_MATCH` of ``log_ratio`` (:func:`_linear_decay`, negative: stable sliding).  A
+    constant ratio alone is not enough: a large cycle collapsing slowly onto a small one also
+    shrinks nearly geometrically, at a ratio unrelated to the linear one (and where sliding is
+    unstable, the linear ratio is a growth).  The cubic terms at the amplitude a reached change the
+    linear rate by the factor 1 ± (a/a*)², a* the amplitude equation's cycle at k (Putelat et al.
+    2010, eq. 23), so a run inside a* decays within the factor 2 and one collapsing from far outside
+    it does not."""
+    a = np.abs(np.asarray(x, dtype=float))
+    if not (np.isfinite(log_ratio) and log_ratio < 0) or np.any(a <= 0) or not np.all(np.diff(a) < 0):
         return False
-    r1, r2 = math.log(a[10] / a[0]), math.log(a[20] / a[10])
-    return abs(r2 - r1) <= 0.1 * abs(r1)
+    r1, r2 = math.log(a[10] / a[0]) / 10, math.log(a[20] / a[10]) / 10
+    linear = all(1 / LINEAR_MATCH <= r / log_ratio <= LINEAR_MATCH for r in (r1, r2))
+    return linear and abs(r2 - r1) <= 0.1 * abs(r1)
+
+
+#: the measured decay per cycle must be the linear one within this factor
+LINEAR_MATCH = 2.0
+#: runs of 50·CHUNK_EVENTS linear periods without a crossing of v = V tolerated where steady
+#: sliding is unstable (a long stick) before the run is reported failed
+QUIET_CHUNKS = 3
 
 
 def _far_start(model: SpringBlockModel) -> np.ndarray:
