@@ -157,7 +157,8 @@ def _follow(model: SpringBlockModel, y0: np.ndarray, rtol: float) -> _Fate:
     y, t = np.asarray(y0, dtype=float), 0.0
     xs: list[float] = []
     ts: list[float] = []
-    settled, new = False, []
+    settled = False
+    new: list[float] = []
     tiny = 1e-6 * model.ell
     quiet = 0
     while len(xs) < MAX_EVENTS or (stable and len(xs) < DECAY_EVENTS and _shrinking(new)):
