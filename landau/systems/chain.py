@@ -35,7 +35,16 @@ import sympy as sp
 from landau.errors import InputError
 from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
-from landau.systems.system import G_DEFAULT, M_DEFAULT, DynamicalSystem, SpringBlock, V, finite_parameter, k
+from landau.systems.system import (
+    G_DEFAULT,
+    M_DEFAULT,
+    DynamicalSystem,
+    SpringBlock,
+    V,
+    default_normal_load,
+    finite_parameter,
+    k,
+)
 
 #: the coupling stiffness between neighbours [N/m]
 k_coupling = sp.Symbol("k_coupling", nonnegative=True)
@@ -59,8 +68,9 @@ class SpringBlockChain:
     Notes
     -----
     Parameters: the law's, ``V`` (driving velocity, m/s), ``k_coupling`` (N/m), ``M_i`` (kg,
-    default 1.2) and ``sigma_i`` (N, default M_i·g with g = 9.81 m/s², or M·g with the default M
-    when M_i = 0), i = 1…N; ``g`` changes the default loads.
+    default 1.2) and ``sigma_i`` (N), i = 1…N, whose default is the single block's σ
+    (:meth:`SpringBlock.resolve`): 1.2 kg × 9.81 m/s² whatever M_i (a mass alone changes the inertia
+    only), and M_i·g (1.2 kg × g for M_i = 0) where ``g`` is given.
     """
 
     law: FrictionLaw
@@ -134,12 +144,15 @@ class SpringBlockChain:
                 raise InputError(f"unknown parameter {key!r} for the chain of {self.blocks} blocks with law "
                                  f"{self.law.name!r} (known: {', '.join(sorted(known))}, g)")
             p[key] = finite_parameter(key, val)
+        g_given = "g" in (overrides or {})
         g = float(g)
         for i in range(1, self.blocks + 1):
             m = p.setdefault(f"M_{i}", M_DEFAULT)
             if m < 0:
                 raise InputError(f"parameter 'M_{i}' must be >= 0, got {m!r}")
-            s = p.setdefault(f"sigma_{i}", (m if m > 0 else M_DEFAULT) * g)
+            # one default for one thing: σ_i as the single block's σ (SpringBlock.resolve): M_DEFAULT·g,
+            # following M_i only where g is given (changing a mass alone changes the inertia only)
+            s = p.setdefault(f"sigma_{i}", float(default_normal_load(m, g)) if g_given else M_DEFAULT * G_DEFAULT)
             if not s > 0:
                 raise InputError(f"parameter 'sigma_{i}' must be > 0, got {s!r}")
         if p["k_coupling"] < 0:

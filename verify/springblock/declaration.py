@@ -191,7 +191,7 @@ def _chain_parameters(setup: Setup) -> tuple[Parameter, ...]:
     for i in range(1, n + 1):
         blocks += [Parameter(f"M_{i}", M_DEFAULT, "kg", "nonnegative", f"mass of block {i}", PUTELAT),
                    Parameter(f"sigma_{i}", M_DEFAULT * G_DEFAULT, "N", "positive",
-                             f"normal load of block {i} (default M_{i} g)", PUTELAT)]
+                             f"normal load of block {i} (default: the single block's sigma)", PUTELAT)]
     return (
         Parameter("V", V_DEFAULT, "m/s", "positive", "driving (load-point) velocity", PUTELAT),
         Parameter("k", None, "N/m", "positive", "stiffness of each block's spring to the load point (Hopf parameter)",
