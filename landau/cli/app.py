@@ -212,17 +212,31 @@ def _did_you_mean(word: str, choices) -> str:
 
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
+    as_json = "--json" in argv
     try:
-        return _main(argv)
+        return _main(argv, as_json)
     except KeyboardInterrupt:
-        print("landau: interrupted", file=sys.stderr)
-        return 130
+        return _fail(as_json, 130, "Interrupted", "interrupted", "landau: interrupted")
 
 
-def _main(argv: list[str]) -> int:
+def _fail(as_json: bool, code: int, kind: str, message: str, line: str) -> int:
+    """Report an error: its one line on stderr and, with ``--json``, one JSON document on stdout
+    (``{"error": ..., "kind": ..., "exit_code": ...}``); returns the exit code."""
+    print(line, file=sys.stderr)
+    if as_json:
+        try:
+            json.dump({"error": message, "kind": kind, "exit_code": code}, sys.stdout, indent=1)
+            sys.stdout.write("\n")
+            sys.stdout.flush()
+        except (BrokenPipeError, ValueError):   # a closed stdout: the line on stderr says it
+            pass
+    return code
+
+
+def _main(argv: list[str], as_json: bool = False) -> int:
     if any(not isinstance(a, str) for a in argv):
-        print("landau: error: every argument must be a string", file=sys.stderr)
-        return 2
+        return _fail(as_json, 2, "InputError", "every argument must be a string",
+                     "landau: error: every argument must be a string")
     argv = _join_negative_values(argv)
     try:
         if argv and not argv[0].startswith("-") and argv[0] not in COMMANDS:
@@ -242,30 +256,28 @@ def _main(argv: list[str]) -> int:
         mod = modules[args.command]
         doc = mod.run(args)
     except InputError as exc:
-        print(f"landau: error: {_first_line(exc)}", file=sys.stderr)
-        return 2
+        return _fail(as_json, 2, type(exc).__name__, _first_line(exc), f"landau: error: {_first_line(exc)}")
     except LandauError as exc:
-        print(f"landau: {type(exc).__name__}: {_first_line(exc)}", file=sys.stderr)
-        return 1
+        return _fail(as_json, 1, type(exc).__name__, _first_line(exc),
+                     f"landau: {type(exc).__name__}: {_first_line(exc)}")
     except OSError as exc:
         # an output that cannot be written (a folder, a missing or read-only place, a full disk)
         where = f" {exc.filename}" if getattr(exc, "filename", None) else ""
-        print(f"landau: error: cannot write{where}: {exc.strerror or exc}", file=sys.stderr)
-        return 2
+        msg = f"cannot write{where}: {exc.strerror or exc}"
+        return _fail(as_json, 2, "OutputError", msg, f"landau: error: {msg}")
     except RecursionError:
-        print("landau: error: the input is too deeply nested (RecursionError)", file=sys.stderr)
-        return 2
+        msg = "the input is too deeply nested (RecursionError)"
+        return _fail(as_json, 2, "InputError", msg, f"landau: error: {msg}")
     except MemoryError:
         # a memory limit (ulimit -v, a container) or a computation too large for this machine: not the input's size
-        print("landau: error: out of memory (MemoryError): the computation needs more memory than this process "
-              "may use; raise the memory limit or ask for fewer points", file=sys.stderr)
-        return 2
+        msg = ("out of memory (MemoryError): the computation needs more memory than this process may use; "
+               "raise the memory limit or ask for fewer points")
+        return _fail(as_json, 2, "MemoryError", msg, f"landau: error: {msg}")
     except KeyboardInterrupt:
         raise
     except Exception as exc:  # noqa: BLE001 - the CLI promises one line, never a traceback
-        print(f"landau: internal error: {type(exc).__name__}: {_first_line(exc)} (please report this with the "
-              "command line)", file=sys.stderr)
-        return 1
+        msg = f"{type(exc).__name__}: {_first_line(exc)} (please report this with the command line)"
+        return _fail(as_json, 1, "InternalError", msg, f"landau: internal error: {msg}")
     try:
         if getattr(args, "json", False):
             json.dump(_jsonable(doc), sys.stdout, indent=1, allow_nan=False)
@@ -282,9 +294,8 @@ def _main(argv: list[str]) -> int:
             pass
         return 1
     except (ValueError, TypeError) as exc:  # a result the renderer cannot print: one line, never a traceback
-        print(f"landau: internal error: {type(exc).__name__}: {_first_line(exc)} (please report this with the "
-              "command line)", file=sys.stderr)
-        return 1
+        msg = f"{type(exc).__name__}: {_first_line(exc)} (please report this with the command line)"
+        return _fail(as_json, 1, "InternalError", msg, f"landau: internal error: {msg}")
     return int(doc.get("exit_code", 0)) if isinstance(doc, dict) else 0
 
 

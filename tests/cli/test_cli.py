@@ -48,8 +48,10 @@ def test_velocity_strengthening_is_reported_not_a_negative_kc(capsys):
 def test_bad_input_exit_2_one_line(capsys, argv, needle):
     code, out, err = run(capsys, *argv, "--json")
     assert code == 2
-    assert out == ""
     assert err.count("\n") == 1 and needle in err
+    # with --json the error is also one JSON document on stdout (the CLI contract)
+    doc = json.loads(out)
+    assert doc["exit_code"] == 2 and needle in doc["error"] and doc["kind"].endswith("Error")
 
 
 def test_inline_law_equals_builtin(capsys):

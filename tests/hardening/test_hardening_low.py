@@ -3,6 +3,7 @@ with a named error; a tiny but genuine Landau coefficient is returned, not flagg
 
 from __future__ import annotations
 
+import json
 import math
 import threading
 
@@ -113,7 +114,8 @@ def test_lancioni_domain_edges_are_accepted():
 def test_figures_empty_only_exits_2(capsys, only, tmp_path):
     code = main(["figures", "lancioni", "--only", only, "--out", str(tmp_path), "--json"])
     out, err = capsys.readouterr()
-    assert code == 2 and out == ""
+    assert code == 2 and json.loads(out) == {"error": err.strip().removeprefix("landau: error: "),
+                                            "kind": "InputError", "exit_code": 2}
     assert len(err.strip().splitlines()) == 1 and "--only" in err
     assert not any(tmp_path.iterdir())
 
