@@ -160,7 +160,7 @@ def test_plot_has_units_log_v_and_a_title(monkeypatch):
                                                                        "did you mean 'sigma'"]),
     (lambda: landau.simulate("forced-oscillator", params={"omgea": 3.0}), ["'omgea'", "did you mean 'omega'"]),
     (lambda: landau.simulate("spring-block-chain"), ["'spring-block-chain' has no simulation", "spring-block"]),
-    (lambda: landau.simulate("system"), ["'system' has no simulation"]),
+    (lambda: landau.simulate("system"), ["system: give the right-hand side"]),
     (lambda: landau.simulate("impact-oscillator", landau.laws.get_law("dieterich")),
      ["impact-oscillator takes a velocity law", "FrictionLaw 'dieterich'"]),
     (lambda: landau.simulate("spring-block", 3.0), ["rate-and-state law", "float"]),

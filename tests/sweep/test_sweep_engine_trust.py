@@ -67,10 +67,12 @@ def test_a_point_beyond_float64_fails_alone_and_the_valid_point_keeps_its_value(
 def test_a_point_outside_the_law_fails_alone():
     ds = landau.sweep("hopf", {"a": [-0.01, 0.0, 0.0349]}, law="dieterich", params={"V": 1e-4}, workers=1,
                       progress=False)
-    # a = -0.01: no Hopf point (no k_c > 0); a = 0 is refused by the law (a > 0); a = 0.0349 (the
-    # default) has its closed-form k_c
-    assert list(ds.status.values) == ["no-hopf", "failed", "ok"]
-    assert str(ds.message.values[1]) == "InputError: parameter 'a' must be > 0, got 0.0"
+    # a = -0.01 and a = 0 lie outside the declared domain a > 0: failed with the domain error (never
+    # no-hopf, a physical verdict), as landau hopf refuses them; a = 0.0349 (the default) has its
+    # closed-form k_c
+    assert list(ds.status.values) == ["failed", "failed", "ok"]
+    assert [str(m) for m in ds.message.values[:2]] == [
+        f"spring-block: parameter 'a' (direct-effect coefficient a) must be > 0, got {a!r}" for a in (-0.01, 0.0)]
     assert float(ds.kc.values[2]) == pytest.approx(_kc_rice_ruina(1e-4), rel=1e-10)
 
 

@@ -72,11 +72,19 @@ def one_block_hopf(setup: Setup):
     """The damped one block's Hopf point c₁ = F_k'(−V) with its normal form, for the setup's law."""
     from landau.verify.galvanetto.bifurcations import hopf_c1, hopf_c1_normal_form
 
+    import difflib
+
     params = dict(setup.params)
-    if "c" in params:
+    own = _own_names(setup)
+    if "c" in params and "c" not in own:   # (a law that uses c is refused by the law itself: c is the damping)
         raise InputError("galvanetto-one-block: c is the bifurcation parameter (its critical value c1 is computed), "
                          "it cannot be given or swept")
-    GALVANETTO_ONE_BLOCK.check_params(list(params), setup)
+    known = ["V", "gamma", "delta", *sorted(own)]
+    unknown = sorted(set(params) - set(known) - {"c"})
+    if unknown:
+        close = difflib.get_close_matches(unknown[0], known, n=1)
+        raise InputError(f"galvanetto-one-block: unknown parameter(s) {', '.join(unknown)} (known: {', '.join(known)})"
+                         + (f"; did you mean {close[0]!r}?" if close else ""))
     V = float(params.pop("V", V_HOPF))
     if not (math.isfinite(V) and V > 0):
         raise InputError(f"galvanetto-one-block: belt velocity V must be finite and > 0, got {V!r}")
