@@ -182,6 +182,9 @@ def _executor(args):
 
 def run(args) -> dict:
     from landau.analyses.sweep import sweep
+    from landau.analyses.sweep_budget import check_memory, parse_memory
+    from landau.analyses.sweep_engine import make_grid, parse_shard
+    from landau.analyses.sweep_files import shard_path
     from landau.support.progress import set_quiet
 
     if not args.grid:
@@ -193,11 +196,9 @@ def run(args) -> dict:
     law = _law(args, model)
     fixed = parse_params(args.param, _RESERVED if law is not None else {})
     options = _options(args, model)
-    from landau.analyses.sweep_budget import parse_memory
-    from landau.analyses.sweep_engine import parse_shard
-    from landau.analyses.sweep_files import shard_path
-
-    shard, max_memory = parse_shard(args.shard), parse_memory(args.max_memory)   # checked before a cluster starts
+    # checked before a cluster starts: a grid over the memory budget is refused without starting one
+    shard, max_memory = parse_shard(args.shard), parse_memory(args.max_memory)
+    check_memory(make_grid(args.grid), max_memory)
     out = args.out if shard is None else shard_path(args.out, shard)
     executor, close = _executor(args)
     try:

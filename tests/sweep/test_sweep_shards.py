@@ -206,12 +206,19 @@ def test_default_budget_is_a_fraction_of_the_machine(monkeypatch, tmp_path):
     assert total is None or total > 1 << 28   # a real machine has more than 256 MiB
 
 
-def test_cli_max_memory(capsys, tmp_path):
+def test_cli_max_memory(capsys, tmp_path, monkeypatch):
+    import landau.cli.sweep as command
+
+    def no_cluster(args):
+        raise AssertionError("the cluster was started before the grid was refused")
+
+    monkeypatch.setattr(command, "_executor", no_cluster)
     argv = ["sweep", "hopf", "spring-block", "dieterich", "--grid", "V=1e-6:1e-3:3000:log",
-            "--grid", "a=0.01:0.04:3000", "--out", str(tmp_path / "big.nc"), "--max-memory", "2G"]
+            "--grid", "a=0.01:0.04:3000", "--out", str(tmp_path / "big.nc"), "--dask", "local:2", "--max-memory", "2G"]
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert "9000000 points" in err and "--max-memory" in err and "Traceback" not in err
+    assert not list(tmp_path.iterdir())
     assert main([*argv[:-1], "lots"]) == 2
     assert "--max-memory 'lots'" in capsys.readouterr().err
 
