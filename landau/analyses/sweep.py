@@ -14,6 +14,12 @@ variables the task's quantities named as in the matching ``--json`` output (``p_
 declaration, the convention, the landau version, the fixed parameters and the counts
 ``computed`` and ``reused``.  The mechanism (chunks, executors, incremental netCDF, resuming) is
 :mod:`landau.analyses.sweep_engine`; the tasks are :mod:`landau.analyses.sweep_tasks`.
+
+A sweep too large for one machine runs as shards (a SLURM job array, independent machines), each
+computing every N-th chunk into a file of its own, joined by :func:`merge`::
+
+    landau.sweep("hopf", grid, law="dieterich", out="map.nc", shard=(3, 8))   # writes map.shard-3-of-8.nc
+    ds, report = merge([f"map.shard-{i}-of-8.nc" for i in range(1, 9)], "map.nc")
 """
 
 from __future__ import annotations
@@ -22,7 +28,8 @@ import os
 from concurrent.futures import Executor
 from typing import Any, Mapping
 
-from landau.analyses.sweep_engine import execute, make_grid
+from landau.analyses.sweep_engine import execute, make_grid, parse_shard
+from landau.analyses.sweep_files import merge_files, shard_path
 from landau.analyses.sweep_tasks import LawSpec, make_task
 from landau.errors import InputError
 
@@ -48,7 +55,8 @@ def law_spec(law: Any) -> LawSpec | None:
 def sweep(task: str, grid: Any, *, model: str = "spring-block", law: Any = None,
           params: Mapping[str, float] | None = None, executor: Executor | None = None,
           workers: int | None = None, out: str | os.PathLike | None = None, progress: bool = True,
-          options: Mapping[str, Any] | None = None, return_counts: bool = False):
+          options: Mapping[str, Any] | None = None, return_counts: bool = False,
+          shard: tuple[int, int] | str | None = None, max_memory: int | str | None = None):
     """Run ``task`` at every point of ``grid`` and return the results as an xarray Dataset.
 
     Parameters
@@ -82,6 +90,15 @@ def sweep(task: str, grid: Any, *, model: str = "spring-block", law: Any = None,
         ``overlap``, ``direction``, ``lyapunov`` for ``simulate``; ``chunk_size``).
     return_counts : bool
         Also return the counts ``{"computed": n, "reused": m, "failed": f}``.
+    shard : (int, int) or str, optional
+        ``(I, N)`` or ``"I/N"``: compute only the I-th of N disjoint parts of the grid (every N-th
+        chunk, starting with chunk I − 1), written to ``out`` with ``.shard-I-of-N`` before its
+        suffix (:func:`~landau.analyses.sweep_files.shard_path`); join the N files with :func:`merge`.
+        The points of a shard are those of the unsharded run, bit for bit; the others are ``pending``.
+    max_memory : int or str, optional
+        The memory the sweep may hold (bytes, or ``"8G"``, ``"500M"``); a grid whose estimate
+        exceeds it is refused before any work.  Default: half of this machine's memory
+        (:func:`~landau.analyses.sweep_engine.check_memory`).
 
     Returns
     -------
@@ -93,7 +110,7 @@ def sweep(task: str, grid: Any, *, model: str = "spring-block", law: Any = None,
     ------
     InputError
         An unknown task, model or parameter, a bad grid, an ``out`` that holds another sweep,
-        xarray or a netCDF backend missing.
+        xarray or a netCDF backend missing, a bad ``shard``, a grid over the memory budget.
     OutputError
         ``out`` cannot be written (the message names the file and the cause: "no space left on
         device", "Permission denied", ...).
@@ -114,7 +131,22 @@ def sweep(task: str, grid: Any, *, model: str = "spring-block", law: Any = None,
     g = make_grid(grid, t.units())
     t.check_grid(g)
     t = t.for_grid(g)
-    ds, counts = execute(t, g, executor=executor, workers=workers, out=out, attrs=t.attrs(), progress=progress)
+    part = parse_shard(shard)
+    if part is not None and out is not None:
+        out = shard_path(out, part)
+    ds, counts = execute(t, g, executor=executor, workers=workers, out=out, attrs=t.attrs(), progress=progress,
+                         shard=part, max_memory=max_memory)
     if return_counts:
         return ds, {"computed": counts.computed, "reused": counts.reused, "failed": counts.failed}
     return ds
+
+
+def merge(paths, out: str | os.PathLike | None = None):
+    """Join the shard files ``paths`` of one sweep into one Dataset (written to ``out`` if given).
+
+    Returns ``(dataset, report)``; the report gives per file its shard, points, finished, failed
+    and pending counts, the shards not given (``missing_shards``), the merged statuses and the
+    points still ``pending``.  Files of different sweeps are refused (InputError).  See
+    :func:`landau.analyses.sweep_files.merge_files`.
+    """
+    return merge_files(list(paths), out)

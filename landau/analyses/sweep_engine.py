@@ -43,6 +43,27 @@ Cartesian product of named 1-D axes.  What it guarantees, and why:
 * **Resumable.**  A re-run with the same file reuses every finished point and computes the rest:
   the ``pending`` ones (not computed yet) and the ``failed`` ones (a worker lost, a run that
   failed), tried again.
+* **Shards: the same numbers on independent machines.**  ``shard=(I, N)`` computes only the
+  chunks whose number is I − 1 modulo N (:func:`shard_of`): the chunks are those of the unsharded
+  run (their composition depends on the grid and the task, never on N), so every point a shard
+  computes is, bit for bit, the point of the unsharded run, and the N shards cover the grid
+  exactly once.  Chunks are dealt round-robin rather than in N consecutive blocks because a
+  sweep's cost is not uniform over its grid (a regime map is slow near the Hopf line): dealt
+  round-robin, each shard gets a share of every region.  Each shard's file holds the whole grid,
+  its points finished and the others ``pending``; :func:`~landau.analyses.sweep_files.merge_files`
+  joins them.
+* **Memory refused, not exhausted.**  The run holds the whole grid in memory (every point's
+  status, message and variables, and the chunks), about
+  :data:`~landau.analyses.sweep_budget.BYTES_PER_POINT` bytes a point for the ``hopf`` task
+  (measured: its eleven numbers and one string, the chunks and the periodic write), also in a
+  shard, whose file is the whole grid.  A grid whose estimate exceeds the memory budget —
+  ``max_memory`` bytes, by default half of this machine's memory (its physical memory or its
+  cgroup limit, whichever is smaller; :func:`~landau.analyses.sweep_budget.check_memory`) — is
+  refused with an InputError before anything is allocated or computed:
+  a sweep that would swap or be killed by the kernel hours later is refused in a millisecond.
+  The estimate does not know a task's variables before it runs: a task that stores per-point
+  lists (``simulate``'s Poincaré points) needs more per point; such sweeps are one-dimensional
+  continuations of thousands of points, far below any budget.
 * **Write errors named.**  A file that cannot be written is an
   :class:`~landau.errors.OutputError` naming the file and the cause: a full disk as "no space left
   on device" (whatever the netCDF backend raised,
@@ -64,6 +85,7 @@ from typing import Any
 
 import numpy as np
 
+from landau.analyses.sweep_budget import check_memory
 from landau.analyses.sweep_files import (  # noqa: F401 - _engine, xarray: re-exported for the commands
     _engine,
     _first_line,
@@ -224,6 +246,42 @@ def make_grid(grid: Any, units: dict[str, str] | None = None) -> Grid:
 
 
 # ---------------------------------------------------------------------------------------------
+# shards
+# ---------------------------------------------------------------------------------------------
+def parse_shard(shard: Any) -> tuple[int, int] | None:
+    """``(I, N)`` from ``"I/N"`` or a pair of integers (1 <= I <= N); None for None.
+
+    Raises
+    ------
+    InputError
+        Not of that form, N < 1 or I outside 1..N.
+    """
+    if shard is None:
+        return None
+    if isinstance(shard, str):
+        parts = shard.split("/")
+        try:
+            i, n = (int(t) for t in parts) if len(parts) == 2 else (None, None)
+        except ValueError:
+            i = n = None
+    elif isinstance(shard, (tuple, list)) and len(shard) == 2 and all(
+            isinstance(v, (int, np.integer)) and not isinstance(v, bool) for v in shard):
+        i, n = int(shard[0]), int(shard[1])
+    else:
+        i = n = None
+    if i is None or n is None:
+        raise InputError(f"--shard {shard!r}: expected I/N, the I-th of N shards (e.g. 3/8)")
+    if n < 1 or not 1 <= i <= n:
+        raise InputError(f"--shard {i}/{n}: I must be between 1 and N (N >= 1)")
+    return i, n
+
+
+def shard_of(chunk_number: int, n: int) -> int:
+    """The shard (1..n) that computes chunk ``chunk_number``: the chunks dealt round-robin."""
+    return chunk_number % n + 1
+
+
+# ---------------------------------------------------------------------------------------------
 # chunks
 # ---------------------------------------------------------------------------------------------
 @dataclass
@@ -373,6 +431,8 @@ class Table:
         self.message = np.full(grid.size, "", dtype=object)
         self.values: dict[str, np.ndarray] = {}
         self.strings: dict[str, np.ndarray] = {}
+        self.shard: tuple[int, int] | None = None   # (I, N) of a shard's run
+        self.shard_points = grid.size                # the points this run computes
 
     def _column(self, name: str, width: int | None) -> np.ndarray:
         col = self.values.get(name)
@@ -397,9 +457,9 @@ class Table:
                 col[idx, :arr.shape[1]] = arr
         for name, vals in res.strings.items():
             col = self.strings.setdefault(name, np.full(self.grid.size, "", dtype=object))
-            col[idx] = list(vals)
-        self.status[idx] = list(res.status)
-        self.message[idx] = list(res.message)
+            col[idx] = [str(v) for v in vals]   # plain str (not numpy's str_): one type to write
+        self.status[idx] = [str(v) for v in res.status]
+        self.message[idx] = [str(v) for v in res.message]
 
     def record(self, i: int) -> dict[str, Any]:
         """Point ``i`` as stored (used to resume a continuation)."""
@@ -421,10 +481,12 @@ class Table:
                 data[name] = (dims, col.reshape(g.shape))
             else:
                 data[name] = ([*dims, f"{name}_index"], col.reshape(*g.shape, col.shape[1]))
+        # the strings stay Python objects (written as variable-length strings): a fixed-width copy
+        # (``astype(str)``) takes 4 bytes a character of the longest, 1.2 kB a point for a 300-character message
         for name, col in self.strings.items():
-            data[name] = (dims, col.reshape(g.shape).astype(str))
-        data["status"] = (dims, self.status.reshape(g.shape).astype(str))
-        data["message"] = (dims, self.message.reshape(g.shape).astype(str))
+            data[name] = (dims, col.reshape(g.shape))
+        data["status"] = (dims, self.status.reshape(g.shape))
+        data["message"] = (dims, self.message.reshape(g.shape))
         ds = xr.Dataset(data, coords=coords, attrs=attrs)
         for name in self.values:
             if self.units.get(name):
@@ -443,10 +505,10 @@ class Table:
             arr = np.asarray(var.values)
             if arr.dtype.kind in "OUS":
                 self.strings[name] = arr.astype(object).reshape(-1)
-            elif arr.ndim == len(self.grid.shape):
-                self.values[name] = arr.astype(float).reshape(-1)
+            elif arr.ndim == len(self.grid.shape):   # the file's own array, not a copy (a resumed run holds one)
+                self.values[name] = arr.astype(float, copy=False).reshape(-1)
             else:
-                self.values[name] = arr.astype(float).reshape(self.grid.size, -1)
+                self.values[name] = arr.astype(float, copy=False).reshape(self.grid.size, -1)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -493,14 +555,36 @@ class _Writer:
 
 def execute(task, grid: Grid, *, executor: Executor | None = None, workers: int | None = None,
             out: str | os.PathLike | None = None, attrs: dict[str, Any], progress: bool = True,
-            write_every: float = 5.0):
+            write_every: float = 5.0, shard: Any = None, max_memory: Any = None):
     """Run ``task`` over ``grid`` and return ``(dataset, counts)``.
 
     See :func:`landau.analyses.sweep.sweep` for the parameters.
     """
     table, counts = run_table(task, grid, executor=executor, workers=workers, out=out, attrs=attrs,
-                              progress=progress, write_every=write_every)
-    return table.dataset({**attrs, "computed": counts.computed, "reused": counts.reused}), counts
+                              progress=progress, write_every=write_every, shard=shard, max_memory=max_memory)
+    return table.dataset({**attrs, **_shard_attrs(table), "computed": counts.computed,
+                          "reused": counts.reused}), counts
+
+
+def _shard_attrs(table: Table) -> dict[str, Any]:
+    """The attributes naming a shard's part of the grid (none for an unsharded run)."""
+    if table.shard is None:
+        return {}
+    return {"shard": f"{table.shard[0]}/{table.shard[1]}", "shard_points": int(table.shard_points)}
+
+
+def _owned(task, grid: Grid, shard: tuple[int, int] | None) -> tuple[list[Chunk], np.ndarray | None]:
+    """The chunks this run computes (a shard's: every N-th, :func:`shard_of`) and, for a shard, the
+    mask of their points."""
+    all_chunks = task.chunks(grid)
+    if shard is None:
+        return all_chunks, None
+    i, n = shard
+    mine = [ch for ch in all_chunks if shard_of(ch.number, n) == i]
+    owned = np.zeros(grid.size, dtype=bool)
+    for ch in mine:
+        owned[np.asarray(ch.index, dtype=np.int64)] = True
+    return mine, owned
 
 
 def _stored(out: str | os.PathLike | None, table: Table, attrs: dict[str, Any]) -> Path | None:
@@ -519,10 +603,10 @@ def _stored(out: str | os.PathLike | None, table: Table, attrs: dict[str, Any]) 
     return path
 
 
-def _work(task, grid: Grid, table: Table, todo_mask: np.ndarray) -> list[Chunk]:
+def _work(task, all_chunks: list[Chunk], table: Table, todo_mask: np.ndarray) -> list[Chunk]:
     """The chunks with a point to compute (a continuation's finished points passed in ``done``)."""
     work = []
-    for ch in task.chunks(grid):
+    for ch in all_chunks:
         pending = todo_mask[ch.index]
         if not pending.any():
             continue
@@ -576,14 +660,15 @@ def _drain(executor: Executor, work: list[Chunk], task, workers: int, take, stri
 
 def run_table(task, grid: Grid, *, executor: Executor | None = None, workers: int | None = None,
               out: str | os.PathLike | None = None, attrs: dict[str, Any] | None = None, progress: bool = True,
-              write_every: float = 5.0, strict: bool = False) -> tuple[Table, RunCounts]:
+              write_every: float = 5.0, strict: bool = False, shard: Any = None,
+              max_memory: Any = None) -> tuple[Table, RunCounts]:
     """Run ``task`` over ``grid`` and return ``(table, counts)``: the engine under :func:`execute`,
     without the Dataset (xarray is needed only with ``out``).
 
     Parameters
     ----------
-    task, grid, executor, workers, out, progress, write_every
-        As :func:`landau.analyses.sweep.sweep`.
+    task, grid, executor, workers, out, progress, write_every, shard, max_memory
+        As :func:`landau.analyses.sweep.sweep` (``out`` here is the file itself, a shard's included).
     attrs : dict, optional
         The dataset's attributes (with ``out``).
     strict : bool
@@ -597,6 +682,9 @@ def run_table(task, grid: Grid, *, executor: Executor | None = None, workers: in
 
     Raises
     ------
+    InputError
+        A bad ``shard``, a grid over the memory budget (:func:`check_memory`), an ``out`` that holds
+        another sweep.
     OutputError
         ``out`` cannot be written (a full disk, a folder without write permission).
     KeyboardInterrupt
@@ -613,13 +701,20 @@ def run_table(task, grid: Grid, *, executor: Executor | None = None, workers: in
     from landau.support.lifetime import terminate_as_interrupt
     from landau.support.progress import progress as bar_for
 
+    shard = parse_shard(shard)
+    check_memory(grid, max_memory)   # before the table (16 bytes a point at once) is allocated
     attrs = dict(attrs or {})
     table = Table(grid, task.units())
     counts = RunCounts()
     path = _stored(out, table, attrs)
     todo_mask = (table.status == PENDING) | (table.status == "failed")  # a failed point is tried again
-    counts.reused = int(grid.size - np.count_nonzero(todo_mask))
-    work = _work(task, grid, table, todo_mask)
+    all_chunks, owned = _owned(task, grid, shard)
+    if owned is not None:   # a shard computes its own points only
+        todo_mask &= owned
+        table.shard, table.shard_points = shard, int(np.count_nonzero(owned))
+        attrs.update(_shard_attrs(table))
+    counts.reused = int((grid.size if owned is None else table.shard_points) - np.count_nonzero(todo_mask))
+    work = _work(task, all_chunks, table, todo_mask)
     n_todo = int(np.count_nonzero(todo_mask))
     own = None
     lead: list[Chunk] = []

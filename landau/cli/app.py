@@ -34,6 +34,7 @@ COMMANDS: dict[str, str] = {
     "simulate": "landau.cli.simulate",
     "hopf": "landau.cli.hopf",
     "sweep": "landau.cli.sweep",
+    "sweep-merge": "landau.cli.sweep_merge",
     "figures": "landau.paper_figures.cli",
     "verify": "landau.verify.cli",
 }
@@ -59,6 +60,7 @@ SUMMARIES: dict[str, str] = {
     "figures": "Regenerate a paper's figures: landau figures PAPER [--only figN,...] [--out DIR].",
     "verify": "Check the engine's amplitude-equation predictions by direct simulation of the spring–block.",
     "sweep": "Run an analysis over a parameter grid on local processes or a dask cluster, written to netCDF.",
+    "sweep-merge": "Join the shards of a sweep (landau sweep --shard I/N) into one netCDF file.",
 }
 
 

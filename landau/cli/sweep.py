@@ -1,7 +1,8 @@
 """Run an analysis over a parameter grid on local processes or a dask cluster, written to netCDF.
 
 ``landau sweep TASK MODEL [LAW] --grid NAME=LO:HI:N[:log] | --grid NAME=v1,v2,... [--grid ...]
-[--param NAME=VALUE ...] [--workers N | --dask ADDRESS | --dask local:N] --out FILE.nc [--json]``
+[--param NAME=VALUE ...] [--workers N | --dask ADDRESS | --dask local:N] --out FILE.nc [--shard I/N]
+[--max-memory SIZE] [--json]``
 
 Tasks: ``hopf`` (any model of ``landau hopf``; the spring–block's a whole chunk at a time),
 ``check`` (spring-block: the direct-simulation verdict of ``landau.check`` and its numbers), ``simulate``
@@ -17,6 +18,12 @@ failed ones again; a point that fails its chunk fails alone.  Exit code 0, 1 whe
 computed in the run failed (each point's ``status`` and ``message`` say why), 2 for bad input or a
 file that cannot be written (``cannot write FILE: no space left on device``).
 
+``--shard I/N`` (a SLURM job array: ``--shard $SLURM_ARRAY_TASK_ID/8``) computes only the I-th of
+N disjoint parts of the grid (every N-th chunk: the points of the unsharded run, bit for bit) into
+FILE.shard-I-of-N.nc; ``landau sweep-merge FILE.nc FILE.shard-*.nc`` joins them.  A grid whose
+estimated memory exceeds ``--max-memory`` (default: half of this machine's memory) is refused
+before any work.
+
 Examples::
 
     landau sweep hopf spring-block dieterich --grid V=1e-6:1e-3:60:log --grid a=0.01:0.04:30 --out kc.nc
@@ -24,6 +31,7 @@ Examples::
     landau sweep simulate forced-oscillator --grid omega=19.9:23.2:67 --direction down --out om.nc
     landau sweep regime spring-block dieterich --grid V=1e-6:1e-3:40:log --grid k=1e4:1e6:40:log --out map.nc
     landau sweep scene skurativskyi2019/static-equilibrium --grid kI=1e8:1e9:10:log --out x0.nc
+    landau sweep hopf spring-block dieterich --grid V=1e-7:1e-2:2000:log --grid a=0.01:0.04:400 --shard 3/8 --out kc.nc
 """
 
 from __future__ import annotations
@@ -51,6 +59,12 @@ def configure(p) -> None:
     ex.add_argument("--dask", default=None, metavar="ADDRESS|local:N",
                     help="a running dask scheduler (tcp://host:8786) or local:N for a LocalCluster of N workers")
     p.add_argument("--chunk-size", type=int, default=None, help="points per task sent to a worker")
+    p.add_argument("--shard", default=None, metavar="I/N",
+                   help="compute only the I-th of N disjoint parts of the grid, into FILE.shard-I-of-N.nc "
+                        "(join them with landau sweep-merge)")
+    p.add_argument("--max-memory", dest="max_memory", default=None, metavar="SIZE",
+                   help="refuse a grid whose estimated memory exceeds SIZE (8G, 500M; default: half of this "
+                        "machine's memory)")
     p.add_argument("--eps2", type=float, default=None, help="check: distance from the Hopf point (default 1e-3)")
     p.add_argument("--k-over-kc", dest="k_over_kc", type=float, default=None, metavar="R",
                    help="regime without k on the grid: each point at k = R k_c of its own parameters (default 1.003)")
@@ -168,6 +182,9 @@ def _executor(args):
 
 def run(args) -> dict:
     from landau.analyses.sweep import sweep
+    from landau.analyses.sweep_budget import check_memory, parse_memory
+    from landau.analyses.sweep_engine import make_grid, parse_shard
+    from landau.analyses.sweep_files import shard_path
     from landau.support.progress import set_quiet
 
     if not args.grid:
@@ -179,18 +196,23 @@ def run(args) -> dict:
     law = _law(args, model)
     fixed = parse_params(args.param, _RESERVED if law is not None else {})
     options = _options(args, model)
+    # checked before a cluster starts: a grid over the memory budget is refused without starting one
+    shard, max_memory = parse_shard(args.shard), parse_memory(args.max_memory)
+    check_memory(make_grid(args.grid), max_memory)
+    out = args.out if shard is None else shard_path(args.out, shard)
     executor, close = _executor(args)
     try:
         ds, counts = sweep(args.task, args.grid, model=args.model, law=law, params=fixed, executor=executor,
                            workers=args.workers, out=args.out, progress=True, options=options,
-                           return_counts=True)
+                           return_counts=True, shard=shard, max_memory=max_memory)
     finally:
         if close is not None:
             close()
     import numpy as np
 
     statuses = {str(s): int(n) for s, n in zip(*np.unique(ds.status.values, return_counts=True), strict=True)}
-    return {"task": args.task, "model": args.model, "law": ds.attrs.get("law", ""), "out": str(args.out),
+    return {"task": args.task, "model": args.model, "law": ds.attrs.get("law", ""), "out": str(out),
+            "shard": ds.attrs.get("shard", ""),
             "dims": {k: int(v) for k, v in ds.sizes.items() if k in ds.status.dims},
             "points": int(ds.status.size), **counts, "status": statuses,
             "variables": [v for v in ds.data_vars if v not in ("status", "message")],
@@ -203,7 +225,8 @@ def render(doc: dict) -> str:
     dims = " x ".join(f"{k} ({n})" for k, n in doc["dims"].items())
     st = ", ".join(f"{k}: {n}" for k, n in doc["status"].items())
     return (f"sweep {doc['task']} {doc['model']}{' ' + doc['law'] if doc['law'] else ''} over {dims}: "
-            f"{doc['points']} points ({doc['computed']} computed, {doc['reused']} reused) written to {doc['out']}\n"
+            f"{doc['points']} points ({doc['computed']} computed, {doc['reused']} reused"
+            f"{', shard ' + doc['shard'] if doc.get('shard') else ''}) written to {doc['out']}\n"
             f"  status: {st}\n  variables: {', '.join(doc['variables'])}")
 
 
