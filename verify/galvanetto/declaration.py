@@ -70,9 +70,9 @@ def kinetic_law(setup: Setup, params: dict):
 
 def one_block_hopf(setup: Setup):
     """The damped one block's Hopf point c₁ = F_k'(−V) with its normal form, for the setup's law."""
-    from landau.verify.galvanetto.bifurcations import hopf_c1, hopf_c1_normal_form
-
     import difflib
+
+    from landau.verify.galvanetto.bifurcations import hopf_c1, hopf_c1_normal_form
 
     params = dict(setup.params)
     own = _own_names(setup)
