@@ -212,11 +212,6 @@ def check_declared(task: Task, grid: Grid, *, refuse_hopf_parameter: bool = Fals
     model.check_params(names, setup, what=f"{task.name} {task.model}")
 
 
-def _skip_invalid(bad: np.ndarray, why: list[str]):
-    """The (status, message) of the points outside a domain, None elsewhere."""
-    return [("failed", why[j]) if bad[j] else None for j in range(len(bad))]
-
-
 # ---------------------------------------------------------------------------------------------
 # hopf
 # ---------------------------------------------------------------------------------------------
