@@ -50,7 +50,9 @@ def test_named_refusal(capsys, tmp_path, monkeypatch, argv, needle):
     code, out, err = run(capsys, *argv)
     assert code == 2, (out, err)
     assert needle in err and "internal error" not in err
-    assert len(err.strip().splitlines()) == 1 and not out
+    assert len(err.strip().splitlines()) == 1
+    # nothing on stdout but, with --json, the error's one JSON document (the CLI contract)
+    assert (json.loads(out)["error"] in err) if "--json" in argv else not out
     assert not list(tmp_path.iterdir())          # nothing written
 
 
