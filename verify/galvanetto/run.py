@@ -85,6 +85,11 @@ def _run(setup: Setup, n: int, *, t_end, y0, history, t_eval, max_steps, section
         if not np.all(np.isfinite(vals)):
             raise InputError(f"{name}: the kinetic law's {side} branch is not finite on the slip velocities "
                              f"0 < |r| <= {p.V:g} ({p.law!r})")
+        # kinetic friction opposes the relative slip (Galvanetto 2004, eq. 7): F > 0 for r < 0, F < 0 for r > 0
+        if not np.all(np.sign(vals) == -np.sign(r)):
+            raise InputError(f"{name}: the kinetic law's {side} branch must be {'> 0' if r < 0 else '< 0'} on the "
+                             f"slip velocities {'-' if r < 0 else ''}{p.V:g} <= r {'< 0' if r < 0 else '> 0'} "
+                             f"(friction opposes the relative slip; {p.law!r})")
     names = ("X", "Xdot") if n == 1 else ("X1", "X2", "X1dot", "X2dot")
     if y0 is not None:
         y = initial_state(y0, names)

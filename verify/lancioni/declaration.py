@@ -85,10 +85,14 @@ def impact_oscillator_hopf(setup: Setup):
         raise InputError(f"impact-oscillator: v_belt must be < 0 (positive slip, the belt direction with the Hopf "
                          f"point), got {v!r}")
     friction = law if user or parameter not in (None, "mu") else None
-    if friction is None:  # the paper's Coulomb friction, bifurcation parameter mu
-        h = S.slip_hopf(params)
-    else:
-        h = S.slip_hopf(params, friction=friction, parameter=parameter, v=v)
+    try:
+        if friction is None:  # the paper's Coulomb friction, bifurcation parameter mu
+            h = S.slip_hopf(params)
+        else:
+            h = S.slip_hopf(params, friction=friction, parameter=parameter, v=v)
+    except (OverflowError, ZeroDivisionError, FloatingPointError) as exc:
+        raise InputError(f"impact-oscillator: the slip equilibrium's Hopf analysis leaves the float64 range with "
+                         f"law {law.name!r} ({exc}): bring the law's parameters nearer their physical scale") from None
     extra = {**h.extra, "friction": law.name, "friction_positive": str(law.positive),
              "friction_negative": str(law.branch(-1)), "v_belt": v}
     return replace(h, extra=extra)

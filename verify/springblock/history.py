@@ -62,6 +62,10 @@ from landau.verify.springblock.compiled_runs import (
 MAX_STEPS = 5_000_000
 
 
+#: the slowest load-point velocity of a history [m/s] (0 is a hold): plate rates are ~1e-9 m/s
+V_MIN = 1e-20
+
+
 @dataclass(frozen=True)
 class LoadHistory:
     """A piecewise-constant load-point velocity: ``velocities[i]`` [m/s] from ``times[i]`` [s] on.
@@ -79,6 +83,10 @@ class LoadHistory:
             raise InputError("a load-point history needs one start time per velocity, at least one")
         if not all(math.isfinite(x) and x >= 0 for x in V):
             raise InputError(f"load-point velocities must be finite and >= 0 (0: a hold), got {list(V)}")
+        slow = [x for x in V if 0 < x < V_MIN]
+        if slow:   # the slip rate's logarithm and the scaled states leave float64's range below it
+            raise InputError(f"a load-point velocity of {slow[0]:g} m/s is below {V_MIN:g} m/s, the slowest a history "
+                             "integrates (give 0 for a hold)")
         if not V[0] > 0:
             raise InputError("the first load-point velocity must be > 0: the run starts from steady sliding there")
         if not all(math.isfinite(t) for t in T) or any(b <= a for a, b in zip(T, T[1:], strict=False)):
