@@ -51,6 +51,7 @@ import numpy as np
 
 from landau.cli.common import NOT_PARAMS, add_friction_arguments, add_law_arguments, parse_params
 from landau.errors import InputError
+from landau.verify.hybrid.run_inputs import positive
 
 FORMATS = (".csv", ".npz", ".png")
 #: the front door's argument names as the command line spells them (in the words of an error)
@@ -120,16 +121,6 @@ def configure(p) -> None:
                         "(the logged sections; the forced oscillator: stroboscopic at the forcing period)")
 
 
-def _positive(text, what: str) -> float:
-    try:
-        x = float(text)
-    except (TypeError, ValueError):
-        raise InputError(f"{what}: {text!r} is not a number") from None
-    if not (math.isfinite(x) and x > 0):
-        raise InputError(f"{what} must be a finite number > 0, got {text!r}")
-    return x
-
-
 def _max_steps(args) -> int | None:
     if args.max_steps is None:
         return None
@@ -169,9 +160,9 @@ def _law_and_params(args, model) -> tuple:
             args.law = model.default_law
         law, params = resolve_law(args)
         if args.V is not None:
-            params["V"] = _positive(args.V, "--V")
+            params["V"] = positive(args.V, "--V")
         if args.k is not None:
-            params["k"] = _positive(args.k, "--k")
+            params["k"] = positive(args.k, "--k")
         return law, params
     if args.law is not None or args.mu is not None or args.state or args.k is not None or (
             args.V is not None and "V" not in declared):
@@ -189,7 +180,7 @@ def _law_and_params(args, model) -> tuple:
     if given_V:
         V = given_V[0].split("=", 1)[1]
     if V is not None:
-        params["V"] = _positive(V, "--V")
+        params["V"] = positive(V, "--V")
     return None, params
 
 
@@ -233,7 +224,7 @@ def simulate_model(args):
     from landau.simulation import simulate
 
     model = models.get(args.model)
-    t_end = _positive(args.t_end, "--t-end") if args.t_end is not None else None
+    t_end = positive(args.t_end, "--t-end") if args.t_end is not None else None
     max_steps = _max_steps(args)
     law, params = _law_and_params(args, model)
     options = _options(args, model)
@@ -251,7 +242,7 @@ def run(args) -> dict:
     for o in outs:
         if o.suffix.lower() not in FORMATS:
             raise InputError(f"--out {str(o)!r}: unknown format {o.suffix!r} (use {', '.join(FORMATS)})")
-    discard = None if args.discard is None else _positive(args.discard, "--discard")
+    discard = None if args.discard is None else positive(args.discard, "--discard")
     from landau.support.progress import progress, set_quiet
 
     set_quiet(getattr(args, "json", False))

@@ -59,14 +59,11 @@ def _as_sympy(x, what: str) -> sp.Expr:
 
 
 def finite_parameter(name: str, value) -> float:
-    """A parameter value as a finite float, else an :class:`InputError` naming the parameter."""
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"parameter {name!r} must be a number, got {value!r}") from None
-    if not np.isfinite(x):
-        raise InputError(f"parameter {name!r} must be finite, got {value!r}")
-    return x
+    """A parameter value as a finite float, else an :class:`InputError` naming the parameter
+    (:func:`landau.models.model.finite`)."""
+    from landau.models.model import finite
+
+    return finite(value, f"parameter {name!r}")
 
 
 @dataclass(frozen=True, eq=False)

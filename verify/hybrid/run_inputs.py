@@ -16,6 +16,17 @@ import numpy as np
 from landau.errors import InputError
 
 
+def positive(value, what: str) -> float:
+    """``value`` as a finite number > 0, else an InputError naming ``what`` (a flag or a parameter)."""
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{what}: {value!r} is not a number") from None
+    if not (math.isfinite(x) and x > 0):
+        raise InputError(f"{what} must be a finite number > 0, got {value!r}")
+    return x
+
+
 def end_time(t_end, default: float) -> float:
     """``t_end`` (None: ``default``) as a finite number > 0."""
     if t_end is None:

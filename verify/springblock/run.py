@@ -31,7 +31,14 @@ import numpy as np
 
 from landau.errors import InputError
 from landau.models import Setup
-from landau.verify.hybrid.run_inputs import end_time, initial_state, interpolated, output_times, step_budget
+from landau.verify.hybrid.run_inputs import (
+    end_time,
+    initial_state,
+    interpolated,
+    output_times,
+    positive,
+    step_budget,
+)
 
 #: the step budget of a run where none is given (about 1–3 minutes of CPU time)
 MAX_STEPS = 5_000_000
@@ -50,16 +57,6 @@ def law_state_units(law) -> dict:
     from landau.verify.springblock.units import infer_state_units
 
     return infer_state_units(law)
-
-
-def _positive(value, what: str) -> float:
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{what}: {value!r} is not a number") from None
-    if not (math.isfinite(x) and x > 0):
-        raise InputError(f"{what} must be a finite number > 0, got {value!r}")
-    return x
 
 
 def _law(setup: Setup):
@@ -113,7 +110,7 @@ def simulate(setup: Setup, *, t_end: float | None = None, y0=None, history=None,
     if history is not None:
         return _load_history(law, block, params, history, k, V, y0, t_end, t_eval)
     t_end = end_time(t_end, T_END)
-    V = _positive(V, "V") if V is not None else 1e-4
+    V = positive(V, "V") if V is not None else 1e-4
     notes = []
     if k is None:
         kc = _critical_stiffness(block, V, params)
@@ -123,7 +120,7 @@ def simulate(setup: Setup, *, t_end: float | None = None, y0=None, history=None,
         k = 0.9 * kc
         notes.append(f"k = 0.9 k_c(V) = {k:.6g} N/m (k_c = {kc:.6g} N/m; steady sliding is unstable below k_c)")
     else:
-        k = _positive(k, "k")
+        k = positive(k, "k")
     steps = step_budget(max_steps, MAX_STEPS)
     if params["M"] == 0:
         return _quasidynamic(law, V, k, params, t_end, y0, t_eval, steps, sections, notes)
@@ -257,7 +254,7 @@ def _load_history(law, block, params, history, k, V, y0, t_end, t_eval):
     if k is None:
         k = _history_stiffness(law, block, params, hist, notes)
     else:
-        k = _positive(k, "k")
+        k = positive(k, "k")
     if t_end is not None:
         t_end = end_time(t_end, T_END)
     grid = t_eval
