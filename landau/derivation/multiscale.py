@@ -455,9 +455,11 @@ class Derivation:
 
     def sensitivities(self, Vs, params: Mapping[str, Any] | None = None,
                       quantities: Sequence[str] = ("k_c", "omega_c", "Gamma_bar", "Lambda", "C"),
-                      parameters: Sequence[str] | None = None) -> dict[str, dict[str, np.ndarray]]:
-        """Every ∂q/∂p at once, float64, vectorised over velocities (one forward pass per quantity,
-        :func:`landau.derivation.sensitivity.evaluate`).
+                      parameters: Sequence[str] | None = None,
+                      method: str = "auto") -> dict[str, dict[str, np.ndarray]]:
+        """Every ∂q/∂p at once over velocities (one forward pass per quantity,
+        :func:`landau.derivation.sensitivity.evaluate`: at 50 digits for a few points, float64 vectorised
+        for many).
 
         Parameters
         ----------
@@ -469,6 +471,8 @@ class Derivation:
             The quantities q.
         parameters : sequence of str, optional
             The parameters p (default: all of them).
+        method : {"auto", "float64", "mpmath"}
+            The arithmetic (:func:`landau.derivation.sensitivity.evaluate`).
 
         Returns
         -------
@@ -478,7 +482,7 @@ class Derivation:
         """
         from landau.derivation import sensitivity as sens
 
-        res = sens.evaluate(self, Vs, params, list(quantities), parameters)
+        res = sens.evaluate(self, Vs, params, list(quantities), parameters, method)
         rename = {internal_name(q): q for q in quantities}
         return {rename.get(k, k): v for k, v in res.items()} | {
             "value": {rename.get(k, k): v for k, v in res["value"].items()}}
