@@ -108,8 +108,8 @@ class _Programs:
         self.d = d
         self.args = tuple(d.args)
         self._formulas: dict[str, tuple[Tape, tuple[sp.Symbol, ...]]] = {}
-        self._atom_tape: tuple[Tape, tuple[sp.Symbol, ...]] | None = None
-        self._hopf: Tape | None = None
+        self._hopf: tuple[Tape, tuple[sp.Symbol, ...], int] | None = None
+        self._atoms: dict[tuple[sp.Symbol, ...], Tape] = {}
 
     def atom_symbols(self, exprs: Sequence[sp.Expr]) -> list[sp.Symbol]:
         atoms = self.d.jets.atoms
@@ -130,6 +130,8 @@ class _Programs:
         """The Hopf line's tape over (atoms, W, args): closed form: outputs (k_c, ω_c²) (W unused);
         numeric: the Hopf polynomial's coefficients c₀…cₙ, then Re(P Q̄) and |Q|² at W; and the
         number of polynomial coefficients (0 for the closed form)."""
+        if self._hopf is not None:
+            return self._hopf
         line = self.d.hopf
         if line.closed_form is not None:
             outs = list(line.closed_form)
@@ -140,12 +142,16 @@ class _Programs:
             outs = [*coeffs, re, q2]
             ncoef = len(coeffs)
         syms = tuple(self.atom_symbols(outs))
-        return Tape([sp.sympify(e) for e in outs], [*syms, W, *self.args]), syms, ncoef
+        self._hopf = (Tape([sp.sympify(e) for e in outs], [*syms, W, *self.args]), syms, ncoef)
+        return self._hopf
 
     def atoms(self, wanted: Sequence[sp.Symbol]) -> Tape:
         """One tape of the atoms ``wanted`` over the arguments."""
-        atoms = self.d.jets.atoms
-        return Tape([_expanded(atoms[s], atoms) for s in wanted], list(self.args))
+        key = tuple(wanted)
+        if key not in self._atoms:
+            atoms = self.d.jets.atoms
+            self._atoms[key] = Tape([_expanded(atoms[s], atoms) for s in wanted], list(self.args))
+        return self._atoms[key]
 
 
 @dataclass
@@ -179,8 +185,14 @@ class _Evaluation:
     """One forward pass: the arguments, atoms and Hopf line with their tangents, then the formulas."""
 
     def __init__(self, d: "Derivation", progs: _Programs, args: Sequence[Any], which: Sequence[str],
-                 kc: Any, omega: Any, mp: bool):
+                 kc: Any, omega: Any, mp: bool, names: Sequence[str]):
         self.d, self.progs, self.mp = d, progs, mp
+        # every formula first: deriving one adds the atoms it uses, evaluated below
+        for name in names:
+            for n in (*DERIVED.get(name, ()), name):
+                if n not in ("kc", "omega_c") and n not in DERIVED:
+                    progs.formula(n)
+        progs.hopf()
         n = len(which)
         index = {s.name: i for i, s in enumerate(progs.args)}
         pt = _Point(list(args), [None] * len(args), n, mp)
@@ -355,7 +367,7 @@ def evaluate(d: "Derivation", Vs, params: Mapping[str, Any] | None, quantities: 
     args = [np.broadcast_to(np.asarray(x, dtype=float), shape) for x in args]
     kc = np.broadcast_to(np.asarray(table["kc"], dtype=float), shape)
     om = np.broadcast_to(np.asarray(table["omega_c"], dtype=float), shape)
-    ev = _Evaluation(d, _programs(d), args, which, kc, om, False)
+    ev = _Evaluation(d, _programs(d), args, which, kc, om, False, names)
     out: dict[str, dict[str, np.ndarray]] = {"value": {}}
     final = () if scalar and shape == (1,) else shape
     for q in names:
@@ -407,7 +419,7 @@ def evaluate_mp(d: "Derivation", V0: float, params: Mapping[str, float] | None, 
         if d.system.unknowns:
             # the numeric steady states at the working precision (a float64 root would limit dps)
             vals = _refine_unknowns(d, vals)
-        ev = _Evaluation(d, _programs(d), vals, which, base["kc"], base["omega_c"], True)
+        ev = _Evaluation(d, _programs(d), vals, which, base["kc"], base["omega_c"], True, names)
         out: dict[str, dict[str, Any]] = {"value": {}}
         for q in names:
             v, t = ev.quantity(q)

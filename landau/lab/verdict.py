@@ -323,7 +323,7 @@ def _sample_quantities(d, V: float, params: Mapping[str, float], names: Sequence
     base = {key: v for key, v in params.items() if key not in cols and key != "g"}
     if d.hopf.closed_form is not None:
         try:
-            table = d.evaluate(V, {**base, **cols}, ["kc", "Lambda"])
+            table = d.evaluate(np.array([V]), {**base, **cols}, ["kc", "Lambda"])
             return np.asarray(table["kc"], dtype=float), np.asarray(table["Lambda"], dtype=float)
         except LandauError:
             pass                  # a sample outside the law's domain: one by one below, it alone NaN
@@ -331,7 +331,7 @@ def _sample_quantities(d, V: float, params: Mapping[str, float], names: Sequence
     lam = np.full(samples.shape[0], np.nan)
     for i in range(samples.shape[0]):
         try:
-            t = d.evaluate(V, {**base, **{x: float(c[i]) for x, c in cols.items()}}, ["kc", "Lambda"])
+            t = d.evaluate(np.array([V]), {**base, **{x: float(c[i]) for x, c in cols.items()}}, ["kc", "Lambda"])
         except LandauError:
             continue
         kc[i], lam[i] = float(np.ravel(t["kc"])[0]), float(np.ravel(t["Lambda"])[0])
