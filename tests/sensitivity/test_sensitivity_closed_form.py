@@ -67,3 +67,11 @@ def test_sensitivity_latex_and_units():
     assert tex.startswith("\\begin{align*}") and "\\frac{\\partial k_c}{\\partial b}" in tex
     assert s.units == "N/m" and d.sensitivity("k_c", "L").units == "(N/m)/(m)"
     assert s.name == "d(k_c)/d(b)"
+
+
+def test_a_quantity_derived_lazily_brings_its_atoms():
+    # derive(law, ["k_c"]) builds only k_c: Λ's formula (and the third-derivative atoms it adds) is
+    # derived by the sensitivity itself, before the atoms are evaluated
+    lazy = landau.derive("ruina", ["k_c"]).sensitivity("Lambda", "a")(1e-4)
+    full = landau.derive("ruina").sensitivity("Lambda", "a")(1e-4)
+    assert float(lazy) == pytest.approx(float(full), rel=1e-14)
