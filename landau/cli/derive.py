@@ -2,6 +2,7 @@
 
 Example: landau derive ruina --V 1e-5,1e-4 --quantities k_c,omega_c,Lambda,C --latex ruina.tex
          landau derive dieterich --V 1e-4 --codim2 1e-7:1e-2
+         landau derive dieterich --V 1e-4 --sensitivity k_c:a,Lambda:*
 """
 
 from __future__ import annotations
@@ -34,6 +35,10 @@ def configure(p) -> None:
                    help="with --latex: write only the equations (for \\input into a paper that loads amsmath)")
     p.add_argument("--codim2", default=None, metavar="LO:HI",
                    help="find every velocity in [LO, HI] m/s where Lambda changes sign on the Hopf line")
+    p.add_argument("--sensitivity", default=None, metavar="Q:P,...",
+                   help="exact sensitivities dQ/dP at each --V (comma-separated QUANTITY:PARAMETER pairs; Q:* every "
+                        "parameter, *:P every quantity of --quantities, all: every pair); with --latex also their "
+                        "closed forms")
 
 
 def run(args) -> dict:
@@ -47,9 +52,10 @@ def run(args) -> dict:
     names = list(dict.fromkeys(internal_name(n) for n in names))   # k_c (canonical) or kc (deprecated)
     if args.V is None and args.codim2 is None and args.latex is None:
         raise InputError("give --V (velocities), --codim2 LO:HI or --latex FILE")
+    d = Derivation(block)
+    pairs = _sensitivity_pairs(d, args.sensitivity, names)
     if args.latex is not None:
         check_output(args.latex)
-    d = Derivation(block)
     doc: dict = {"law": block.law.name, "source": block.law.source, "convention": CONVENTION,
                  "units": with_canonical_names({k: UNITS[k] for k in ("V", *names)}),
                  "params": params}
@@ -67,6 +73,8 @@ def run(args) -> dict:
                 row["criticality"] = "degenerate" if res["degenerate"][i] else criticality(float(res["Lambda"][i]))
             pts.append(row)
         doc["points"] = pts
+        if pairs:
+            _add_sensitivities(d, doc, Vs, params, pairs)
     if args.codim2 is not None:
         lo, hi = parse_range(args.codim2, "--codim2")
         from landau.analyses.bautin import bautin_point
@@ -84,17 +92,54 @@ def run(args) -> dict:
     if args.fragment and args.latex is None:
         raise InputError("--fragment needs --latex FILE")
     if args.latex is not None:
-        from landau.derivation.latex import derivation_latex
         from landau.support.budget import run_bounded
         from landau.support.progress import set_quiet
 
         set_quiet(getattr(args, "json", False))
-        text = run_bounded(partial(derivation_latex, fragment=args.fragment), (d, names), seconds=LATEX_SECONDS,
+        text = run_bounded(partial(_latex, fragment=args.fragment, pairs=pairs), (d, names), seconds=LATEX_SECONDS,
                            what=f"the closed forms of {', '.join(names)} for --latex",
                            hint="ask for fewer quantities (e.g. --quantities k_c,omega_c,Gamma_bar) or evaluate "
                                 "numerically with --V instead")
         doc["latex"] = str(atomic_write_text(args.latex, text))
     return doc
+
+
+def _sensitivity_pairs(d: Derivation, spec: str | None, names: list[str]) -> list[tuple[str, str]]:
+    """The (quantity, parameter) pairs of --sensitivity ([] without it)."""
+    if spec is None:
+        return []
+    from landau.derivation.sensitivity import parse_pairs
+
+    public = ["k_c" if n == "kc" else n for n in names if n != "Lambda5"]
+    return parse_pairs(d, spec, public)
+
+
+def _add_sensitivities(d: Derivation, doc: dict, Vs, params: dict, pairs: list[tuple[str, str]]) -> None:
+    """Each point's ∂Q/∂P under ``sensitivities`` ("d(Q)/d(P)" keys), their units in ``sensitivity_units``."""
+    quantities = list(dict.fromkeys(q for q, _ in pairs))
+    wanted = list(dict.fromkeys(p for _, p in pairs))
+    res = d.sensitivities(Vs, params, quantities, wanted)
+    units: dict[str, str] = {}
+    for q, p in pairs:
+        sens = d.sensitivity(q, p)
+        units[sens.name] = sens.units
+    for i, row in enumerate(doc["points"]):
+        if row["status"] != "ok":
+            continue
+        row["sensitivities"] = {d.sensitivity(q, p).name: float(res[q][p][i]) for q, p in pairs}
+    doc["sensitivity_units"] = units
+
+
+def _latex(d: Derivation, names: list[str], fragment: bool, pairs: list[tuple[str, str]]) -> str:
+    """The derivation's LaTeX, with the closed forms of the sensitivities asked for after the coefficients."""
+    from landau.derivation.latex import derivation_latex
+
+    text = derivation_latex(d, names, fragment=fragment)
+    if not pairs:
+        return text
+    body = "\\section*{Sensitivities}\n" + "\n".join(d.sensitivity(q, p).latex() for q, p in pairs) + "\n"
+    end = "\\end{document}"
+    return text.replace(end, body + end) if not fragment and end in text else text + body
 
 
 def _side(sign: int) -> str:
@@ -133,6 +178,14 @@ def render(doc: dict) -> str:
                            f"{fc['amplitude_per_sqrt_dV']:.4g} |V - V*|^(1/2) m")
     if "codim2" in doc and not doc["codim2"]:
         out.append("no change of sign of Lambda on the Hopf line in the requested range")
+    sens = [p for p in doc.get("points", ()) if "sensitivities" in p]
+    if sens:
+        out.append("exact sensitivities:")
+        keys = list(doc["sensitivity_units"])
+        out.append(f"{'V [m/s]':>12} " + " ".join(f"{k:>22}" for k in keys))
+        for p in sens:
+            out.append(f"{fmt(p['V'])} " + " ".join(fmt(p["sensitivities"][k], 22) for k in keys))
+        out.append("units: " + ", ".join(f"{k} [{u}]" for k, u in doc["sensitivity_units"].items()))
     if "latex" in doc:
         out.append(f"LaTeX written to {doc['latex']}")
     return "\n".join(out)

@@ -428,6 +428,65 @@ class Derivation:
                                     law=table.law, params=table.params)
         return table
 
+    # --- sensitivities (landau.derivation.sensitivity) -----------------------------------
+    def sensitivity(self, quantity: str, parameter: str):
+        """The exact sensitivity ∂q/∂p of a quantity to a parameter
+        (:class:`~landau.derivation.sensitivity.Sensitivity`: call it, or ask its closed form and LaTeX).
+
+        Parameters
+        ----------
+        quantity : str
+            ``"k_c"``, ``"omega_c"``, ``"Gamma_bar"``, ``"Omega_bar"``, ``"Lambda"``, ``"chi"`` or ``"C"``.
+        parameter : str
+            ``"V"``, a law parameter, ``"M"``, ``"sigma"`` or an optional term's parameter.
+
+        Returns
+        -------
+        Sensitivity
+
+        Raises
+        ------
+        InputError
+            An unknown quantity or parameter (with the closest known name).
+        """
+        from landau.derivation import sensitivity as sens
+
+        return sens.Sensitivity(sens.check_quantity(quantity), sens.check_parameter(self, parameter), self)
+
+    def sensitivities(self, Vs, params: Mapping[str, Any] | None = None,
+                      quantities: Sequence[str] = ("k_c", "omega_c", "Gamma_bar", "Lambda", "C"),
+                      parameters: Sequence[str] | None = None,
+                      method: str = "auto") -> dict[str, dict[str, np.ndarray]]:
+        """Every ∂q/∂p at once over velocities (one forward pass per quantity,
+        :func:`landau.derivation.sensitivity.evaluate`: at 50 digits for a few points, float64 vectorised
+        for many).
+
+        Parameters
+        ----------
+        Vs : float or array_like
+            Driving velocities, m/s.
+        params : mapping, optional
+            Parameter values.
+        quantities : sequence of str, optional
+            The quantities q.
+        parameters : sequence of str, optional
+            The parameters p (default: all of them).
+        method : {"auto", "float64", "mpmath"}
+            The arithmetic (:func:`landau.derivation.sensitivity.evaluate`).
+
+        Returns
+        -------
+        dict
+            quantity (the name as given) -> {parameter -> array}, and ``"value"`` -> {quantity -> array};
+            NaN where there is no Hopf point.
+        """
+        from landau.derivation import sensitivity as sens
+
+        res = sens.evaluate(self, Vs, params, list(quantities), parameters, method)
+        rename = {internal_name(q): q for q in quantities}
+        return {rename.get(k, k): v for k, v in res.items()} | {
+            "value": {rename.get(k, k): v for k, v in res["value"].items()}}
+
     def _evaluate_mp_checked(self, V0: float, point: Mapping[str, float], names,
                              sign_estimate: Mapping[str, float] | None = None) -> tuple[dict, bool]:
         """Values at 50 digits, or more until two precisions agree (see
