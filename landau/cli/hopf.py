@@ -54,7 +54,7 @@ def run(args) -> dict:
     doc.update(res.as_dict() if hasattr(res, "as_dict") else {"result": repr(res)})
     doc["text"] = str(res)
     if "k_patch" in doc:
-        from landau.verify.springblock.patch import patch_text
+        from landau.analyses.fault_patch import patch_text
 
         doc["text"] += patch_text(doc)
     if doc.get("degenerate_at_every_order_computed"):

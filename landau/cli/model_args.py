@@ -110,9 +110,11 @@ _CONVERT = {
     "mass": lambda v: _assignments(v, "--mass", "EXPR"),
     "guess": _guesses,
     "bracket": parse_bracket,
-    **{name: (lambda v, flag=flag: one_number(v, flag)) for name, flag in
-       (("patch", "--patch"), ("shear_modulus", "--shear-modulus"), ("density", "--density"),
-        ("shear_speed", "--shear-speed"), ("poisson", "--poisson"))},
+    "patch": lambda v: one_number(v, "--patch"),
+    "shear_modulus": lambda v: one_number(v, "--shear-modulus"),
+    "density": lambda v: one_number(v, "--density"),
+    "shear_speed": lambda v: one_number(v, "--shear-speed"),
+    "poisson": lambda v: one_number(v, "--poisson"),
 }
 def convert_option(name: str, value):
     """An option's command-line value as the model takes it (NAME=EXPR lists as mappings, LO:HI as a pair)."""

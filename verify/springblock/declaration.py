@@ -67,8 +67,8 @@ def _block_parameters(setup: Setup) -> tuple[Parameter, ...]:
 def spring_block_hopf(setup: Setup):
     """The Hopf point of the spring–block at one point (:func:`landau.verify.springblock.checks.predict`);
     at a degenerate point (Λ = 0) the next order from the general engine (l₂, Λ₅); with the ``patch``
-    option, a fault patch's stiffness and verdict (:mod:`landau.verify.springblock.patch`)."""
-    from landau.verify.springblock.patch import patch_stiffness_of, with_patch
+    option, a fault patch's stiffness and verdict (:mod:`landau.analyses.fault_patch`)."""
+    from landau.analyses.fault_patch import patch_stiffness_of, with_patch
 
     law = _law(setup)
     params = dict(setup.params)
@@ -154,7 +154,7 @@ def plot_regime_sweep(ds, fig) -> dict:
 
 
 def _patch_options():
-    from landau.verify.springblock.patch import OPTIONS
+    from landau.analyses.fault_patch import OPTIONS
 
     return OPTIONS
 
