@@ -18,7 +18,7 @@ amplitude equation and criticality.  The built-in models:
 
 ``landau hopf spring-block --patch H --shear-modulus G --param sigma=PA`` analyses a fault patch of
 size H as a block of unit area: k from the patch (π μ′/H, Rice & Ruina 1983), its critical size and
-whether its steady sliding is unstable (docs/nucleation.md).
+whether its steady sliding is unstable (docs/models/nucleation.md).
 """
 
 from __future__ import annotations

@@ -11,7 +11,7 @@ and, with ``--patch H``, the stiffness of a patch of size H (the spring–block 
 equivalent to it; ``landau hopf spring-block --patch H`` analyses that patch).  μ′ = G
 (antiplane), G/(1 − ν) (in-plane); the circular geometry uses the stiffness of a circular patch
 (Eshelby 1957).  Every formula's source and regime of validity are in the output
-(``formulas``) and in docs/nucleation.md.
+(``formulas``) and in docs/models/nucleation.md.
 """
 
 from __future__ import annotations
