@@ -230,3 +230,34 @@ def test_modifier_errors_are_named():
         flash_heating("dieterich", state="psi")
     two = flash_heating("two-state-dieterich", state="phi2")
     assert two.name == "two-state-dieterich+flash" and {"f_w", "V_w"} <= set(two.defaults())
+
+
+def test_derive_latex_sweep_and_simulate_take_the_modified_law(tmp_path):
+    """No other change: ``landau derive`` (its own multiple-scales route) and ``landau sweep hopf`` give
+    the numbers of ``landau hopf`` (the same bisected k_c), ``--latex`` writes the law with V_w, and
+    ``landau simulate`` runs it."""
+    import xarray as xr
+
+    par = [x for k, v in P.items() for x in ("--param", f"{k}={v!r}")]
+
+    def run(argv):
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            assert main(argv) == 0
+        return out.getvalue()
+
+    d = json.loads(run(["derive", "dieterich+flash", "--V", "0.05,0.3", *par, "--json"]))
+    for pt, V in zip(d["points"], VS, strict=True):
+        res = predict(law(), V, BLOCK)
+        assert pt["k_c"] == pytest.approx(k_c_bisected(P, V), rel=1e-9, abs=0)
+        assert pt["Lambda"] == pytest.approx(res.Lambda, rel=1e-9, abs=0)
+    tex = tmp_path / "flash.tex"
+    run(["derive", "dieterich+flash", "--V", "0.05", *par, "--quantities", "k_c,Lambda", "--latex", str(tex)])
+    assert "V_{w}" in tex.read_text()
+    nc = tmp_path / "flash.nc"
+    run(["sweep", "hopf", "spring-block", "dieterich+flash", "--grid", "V=0.05,0.3", *par, "--out", str(nc), "--json"])
+    with xr.open_dataset(nc) as ds:
+        np.testing.assert_allclose(ds.k_c.values, [k_c_bisected(P, V) for V in VS], rtol=1e-9)
+    sim = json.loads(run(["simulate", "spring-block", "dieterich+flash", "--V", "0.05", "--k", "2e9", *par,
+                          "--t-end", "1e-3", "--json"]))
+    assert sim["status"] == "finished" and sim["parameters"]["V_w"] == P["V_w"]
