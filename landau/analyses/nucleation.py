@@ -140,8 +140,9 @@ class Nucleation:
     formulas: Mapping[str, Mapping[str, str]] = field(default_factory=lambda: FORMULAS)
 
     @property
-    def a_over_b(self) -> float:
-        return self.a / self.b
+    def a_over_b(self) -> float | None:
+        """a/b (None where b = 0)."""
+        return self.a / self.b if self.b != 0 else None
 
     def k_patch(self, h: float) -> float:
         """The stiffness of a patch of size ``h`` in this geometry (:func:`patch_stiffness`)."""
@@ -161,9 +162,10 @@ class Nucleation:
         def f(x, unit="m"):
             return "n/a" if x is None else f"{x:.6g} {unit}"
         what = "critical diameter" if self.geometry == "circular" else "critical wavelength pi mu'/k_c"
+        r = self.a_over_b
         lines = [f"{self.law} at V = {self.V:g} m/s, sigma = {self.sigma:g} Pa, G = {self.shear_modulus:g} Pa, "
                  f"{self.geometry} (mu' = {self.mu_prime:.6g} Pa)",
-                 f"  a = {self.a:.6g}, b = {self.b:.6g}, a/b = {self.a_over_b:.6g}",
+                 f"  a = {self.a:.6g}, b = {self.b:.6g}, a/b = {'n/a' if r is None else f'{r:.6g}'}",
                  f"  k_c   = {f(self.k_c, 'Pa/m')}   (quasi-static critical stiffness)",
                  f"  h*    = {f(self.h_star)}   ({what})",
                  f"  L_b   = {f(self.L_b)}   (mu' L/(b sigma))",

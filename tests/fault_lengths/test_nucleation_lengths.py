@@ -202,3 +202,13 @@ def test_patch_stiffness_and_the_hopf_analysis_of_a_patch():
 def test_patch_errors_are_exit_2(argv, words):
     err = _cli(argv, rc=2)["error"]
     assert words in err and "\n" not in err
+
+
+def test_velocity_strengthening_has_no_h_star():
+    """a > b: no critical stiffness, so no h* (said in the notes), the regime named, any patch stable."""
+    doc = _cli(["nucleation", "dieterich", "--V", "1e-9", "--sigma", "5e7", "--shear-modulus", "3e10",
+                "--param", "a=0.02", "--param", "b=0.015", "--patch", "1e4"])
+    assert doc["k_c"] is None and doc["h_star"] is None and doc["L_inf"] is None
+    assert "velocity strengthening" in doc["regime"] and any("no h*" in n for n in doc["notes"])
+    assert doc["L_b"] == pytest.approx(3e10 * 0.9e-6 / (0.015 * 5e7), rel=1e-12, abs=0)   # L of Table 1
+    assert doc["patch_steady_sliding"] == "stable"
