@@ -118,10 +118,10 @@ def regime_overlay(ds, *, n_line: int = 300, n_fold: int = MAX_FOLD_POINTS) -> d
         The arrays of :func:`boundaries`; None when the law is not a built-in one (an inline law's
         declaration is not rebuilt here).
     """
-    from landau.laws import BUILTIN, get_law
+    from landau.laws import get_law, is_law_name
 
     name = ds.attrs.get("law")
-    if name not in BUILTIN:
+    if not is_law_name(name):
         return None
     params = json.loads(ds.attrs.get("fixed_parameters", "{}") or "{}")
     params = {k: float(v) for k, v in params.items() if isinstance(v, (int, float)) and math.isfinite(v)}

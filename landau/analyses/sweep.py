@@ -39,9 +39,9 @@ def law_spec(law: Any) -> LawSpec | None:
     if law is None or isinstance(law, LawSpec):
         return law
     if isinstance(law, str):
-        from landau.laws import BUILTIN
+        from landau.laws import BUILTIN, is_law_name
 
-        if law not in BUILTIN:
+        if not is_law_name(law):
             raise InputError(f"unknown law {law!r} (built-in: {', '.join(BUILTIN)}; an inline law: "
                              "LawSpec(name, mu, states))")
         return LawSpec(law)

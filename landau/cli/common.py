@@ -19,7 +19,8 @@ def _system_params() -> tuple[str, ...]:
 
 def add_law_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("law", nargs="?", default=None,
-                   help=f"built-in law ({', '.join(BUILTIN)}) or, with --mu, a name for an inline law")
+                   help=f"built-in law ({', '.join(BUILTIN)}), with modifiers as suffixes (dieterich+flash: "
+                        "flash heating), or, with --mu, a name for an inline law")
     p.add_argument("--mu", default=None,
                    help="inline friction coefficient, e.g. 'a_v + a*log(v/V_s) + b*log(V_s*phi/L)'")
     p.add_argument("--state", action="append", default=[], metavar="NAME=RATE",

@@ -15,12 +15,16 @@ amplitude equation and criticality.  The built-in models:
   point as k decreases, with the critical mode shape.
 * ``impact-oscillator``, ``galvanetto-one-block`` — with ``--friction EXPR`` / ``--kinetic EXPR``.
 * ``system`` — any smooth system written with ``--rhs NAME=EXPR``.
+
+``landau hopf spring-block --patch H --shear-modulus G --param sigma=PA`` analyses a fault patch of
+size H as a block of unit area: k from the patch (π μ′/H, Rice & Ruina 1983), its critical size and
+whether its steady sliding is unstable (docs/models/nucleation.md).
 """
 
 from __future__ import annotations
 
 from landau.cli.common import add_friction_arguments, add_law_arguments
-from landau.cli.model_args import add_model_options, setup_from_args
+from landau.cli.model_args import add_model_options, add_patch_options, setup_from_args
 from landau.errors import InputError
 
 
@@ -33,6 +37,7 @@ def configure(p) -> None:
     p.add_argument("--V", default=None, help="spring-block: driving velocity in m/s (default 1e-4); galvanetto: the "
                                               "belt velocity")
     add_model_options(p)
+    add_patch_options(p)
 
 
 def run(args) -> dict:
@@ -48,6 +53,10 @@ def run(args) -> dict:
     doc = {"model": args.model}
     doc.update(res.as_dict() if hasattr(res, "as_dict") else {"result": repr(res)})
     doc["text"] = str(res)
+    if "k_patch" in doc:
+        from landau.analyses.fault_patch import patch_text
+
+        doc["text"] += patch_text(doc)
     if doc.get("degenerate_at_every_order_computed"):
         doc["text"] += ("\nLambda and Lambda5 are 0 within their round-off bounds ("
                         f"{doc.get('Lambda_bound', 0.0):.1e}, {doc.get('l2_bound', 0.0):.1e}): "

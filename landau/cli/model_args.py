@@ -39,6 +39,34 @@ def add_model_options(p) -> None:
     p.add_argument("--blocks", default=None, metavar="N", help="spring-block-chain: the number of blocks (1 to 12)")
 
 
+def add_elastic_arguments(p) -> None:
+    """The elastic medium and geometry of a fault (``landau nucleation``, ``landau hopf spring-block --patch``)."""
+    from landau.analyses.nucleation import GEOMETRIES
+
+    p.add_argument("--shear-modulus", default=None, metavar="PA", help="the shear modulus G in Pa")
+    p.add_argument("--density", default=None, metavar="KG_M3",
+                   help="the density rho in kg/m^3 (with --shear-speed: G = rho c_s^2)")
+    p.add_argument("--shear-speed", default=None, metavar="M_S", help="the shear-wave speed c_s in m/s")
+    p.add_argument("--poisson", default=None, metavar="NU", help="Poisson's ratio nu (inplane and circular)")
+    p.add_argument("--geometry", default=None, metavar="NAME",
+                   help=f"the fault's geometry: {', '.join(GEOMETRIES)} (default antiplane)")
+
+
+def add_patch_options(p) -> None:
+    """``--patch H`` and the elastic medium (:func:`add_elastic_arguments`) for ``landau hopf``."""
+    p.add_argument("--patch", default=None, metavar="H",
+                   help="spring-block: analyse a fault patch of size H in m (k from the patch, sigma in Pa)")
+    add_elastic_arguments(p)
+
+
+def one_number(text, what: str) -> float:
+    """One finite number from the command line, else an InputError naming ``what``."""
+    vals = parse_floats(text, what)
+    if len(vals) != 1 or not math.isfinite(vals[0]):
+        raise InputError(f"{what}: expected one finite number, got {text!r}")
+    return vals[0]
+
+
 def parse_bracket(text: str | None, what: str = "--bracket") -> tuple[float, float]:
     """``LO:HI`` (either may be negative) as two finite, different floats, in increasing order."""
     if text is None:
@@ -82,6 +110,11 @@ _CONVERT = {
     "mass": lambda v: _assignments(v, "--mass", "EXPR"),
     "guess": _guesses,
     "bracket": parse_bracket,
+    "patch": lambda v: one_number(v, "--patch"),
+    "shear_modulus": lambda v: one_number(v, "--shear-modulus"),
+    "density": lambda v: one_number(v, "--density"),
+    "shear_speed": lambda v: one_number(v, "--shear-speed"),
+    "poisson": lambda v: one_number(v, "--poisson"),
 }
 def convert_option(name: str, value):
     """An option's command-line value as the model takes it (NAME=EXPR lists as mappings, LO:HI as a pair)."""
@@ -92,7 +125,9 @@ def convert_option(name: str, value):
 _OPTION_FLAGS = {"friction": "--friction", "friction_neg": "--friction-neg", "kinetic": "--kinetic",
                  "kinetic_pos": "--kinetic-pos", "parameter": "--parameter", "rhs": "--rhs",
                  "equilibrium": "--equilibrium", "guess": "--guess", "mass": "--mass", "bracket": "--bracket",
-                 "blocks": "--blocks"}
+                 "blocks": "--blocks", "patch": "--patch", "shear_modulus": "--shear-modulus",
+                 "density": "--density", "shear_speed": "--shear-speed", "poisson": "--poisson",
+                 "geometry": "--geometry"}
 #: the law options of each law kind
 _LAW_OPTIONS = {LawKind.VELOCITY: ("friction", "friction_neg", "friction_name"),
                 LawKind.KINETIC: ("kinetic", "kinetic_pos")}
@@ -162,4 +197,5 @@ def _law_words(model: Model) -> str:
             LawKind.NONE: "write its equations with --rhs"}.get(model.law_kind, "")
 
 
-__all__ = ["add_model_options", "convert_option", "model_options", "parse_bracket", "setup_from_args"]
+__all__ = ["add_elastic_arguments", "add_patch_options", "one_number", "add_model_options", "convert_option",
+           "model_options", "parse_bracket", "setup_from_args"]

@@ -66,18 +66,29 @@ def _block_parameters(setup: Setup) -> tuple[Parameter, ...]:
 
 def spring_block_hopf(setup: Setup):
     """The Hopf point of the spring–block at one point (:func:`landau.verify.springblock.checks.predict`);
-    at a degenerate point (Λ = 0) the next order from the general engine (l₂, Λ₅)."""
-    from dataclasses import replace
-
-    from landau.derivation.general import hopf_normal_form
-    from landau.systems.system import SpringBlock
-    from landau.verify.springblock.checks import predict
+    at a degenerate point (Λ = 0) the next order from the general engine (l₂, Λ₅); with the ``patch``
+    option, a fault patch's stiffness and verdict (:mod:`landau.analyses.fault_patch`)."""
+    from landau.analyses.fault_patch import patch_stiffness_of, with_patch
 
     law = _law(setup)
     params = dict(setup.params)
     if "k" in params:
         raise InputError("spring-block: k is the bifurcation parameter (its critical value k_c is computed), it "
                          "cannot be given")
+    k_patch = patch_stiffness_of(setup)
+    if k_patch is not None:
+        return with_patch(_block_hopf(law, params), setup, k_patch)
+    return _block_hopf(law, params)
+
+
+def _block_hopf(law, params: dict):
+    """The block's Hopf point (:func:`spring_block_hopf` without the patch)."""
+    from dataclasses import replace
+
+    from landau.derivation.general import hopf_normal_form
+    from landau.systems.system import SpringBlock
+    from landau.verify.springblock.checks import predict
+
     V = float(params.pop("V", V_DEFAULT))
     SPRING_BLOCK.parameter("V").check(V, "spring-block")
     block = SpringBlock.for_params(law, params)
@@ -142,6 +153,12 @@ def plot_regime_sweep(ds, fig) -> dict:
     return doc
 
 
+def _patch_options():
+    from landau.analyses.fault_patch import OPTIONS
+
+    return OPTIONS
+
+
 SPRING_BLOCK = Model(
     name="spring-block",
     description="spring-block with a rate-and-state law (Putelat et al. 2010); parameter k at --V",
@@ -151,6 +168,7 @@ SPRING_BLOCK = Model(
     hopf=spring_block_hopf,
     simulate=_simulate,
     tasks={"hopf": _hopf_task, "check": _check_task, "regime": _regime_task},
+    options=_patch_options(),
     defaults={"V": V_DEFAULT, "t_end": 20.0, "key_parameters": ("V", "k"), "history": True},
     convention="putelat2010",
     convention_description=CONVENTION,
