@@ -18,6 +18,8 @@ numbers is kept exact only for an integer exponent or a root of denominator at m
 from __future__ import annotations
 
 import ast
+import io
+import tokenize
 from typing import Callable, Mapping
 
 import sympy as sp
@@ -150,13 +152,43 @@ def _checked_text(text, what: str) -> str:
     return text
 
 
+#: operator tokens that each make at least one syntax-tree node (comparisons, which chain into one
+#: node, and brackets and commas, which make none, are not counted)
+_NODE_OPERATORS = frozenset({"+", "-", "*", "/", "**", "//", "%", "@", "&", "|", "^", "~", "<<", ">>"})
+
+
+def _too_many_operators(text: str) -> bool:
+    """True where ``text`` has more operator tokens than :data:`MAX_NODES`: its syntax tree would be
+    refused by :func:`_bound_tree`, so it is refused before :func:`ast.parse` builds it (a sum of
+    hundreds of terms is a tree hundreds of levels deep, whose construction in CPython can end in a
+    RecursionError or a SystemError, "AST constructor recursion depth mismatch").  Counted by
+    :mod:`tokenize`, which does not recurse; a text it cannot tokenize is left to the parser's message."""
+    count = 0
+    try:
+        for tok in tokenize.generate_tokens(io.StringIO(text).readline):
+            if tok.type == tokenize.OP and tok.string in _NODE_OPERATORS:
+                count += 1
+                if count > MAX_NODES:
+                    return True
+    except (tokenize.TokenError, SyntaxError):
+        return False
+    return False
+
+
+def _python_tree(text: str) -> ast.Expression:
+    """Python's syntax tree of ``text`` as one expression (the one call of :func:`ast.parse`)."""
+    return ast.parse(text, mode="eval")
+
+
 def referenced_names(text: str, *, what: str = "expression") -> set[str]:
     """Every name an expression mentions (symbols and functions), after the same bounds as
     :func:`parse_expression`; an unparsable text gives the empty set (the parse reports it)."""
-    text = _checked_text(text, what)
+    text = _checked_text(text, what).replace("^", "**").strip()
+    if _too_many_operators(text):
+        return set()
     try:
-        tree = ast.parse(text.replace("^", "**").strip(), mode="eval")
-    except (SyntaxError, RecursionError, MemoryError, ValueError, OverflowError):
+        tree = _python_tree(text)
+    except (SyntaxError, RecursionError, MemoryError, ValueError, OverflowError, SystemError):
         return set()
     return {node.id for node in ast.walk(tree) if isinstance(node, ast.Name)}
 
@@ -220,10 +252,15 @@ def _syntax_tree(text: str, what: str) -> ast.Expression:
     :class:`~landau.errors.ParseError` with the parser's message and column when it is not one."""
     # '^' means power in papers; Python would parse it as a low-precedence XOR
     text = text.replace("^", "**")
+    if _too_many_operators(text.strip()):
+        raise ParseError(f"{what} is too large (more than {MAX_NODES} operators, so more than {MAX_NODES} "
+                         "syntax nodes)")
     try:
-        return ast.parse(text.strip(), mode="eval")
+        return _python_tree(text.strip())
     except SyntaxError as exc:
         raise ParseError(f"{what} {text!r} is not a valid expression: {exc.msg} at column {exc.offset}") from None
+    except SystemError:   # CPython's AST construction on a tree too deep for the stack left
+        raise ParseError(f"{what} is too deeply nested or too large") from None
 
 
 def _bound_tree(tree: ast.AST, what: str) -> None:

@@ -197,13 +197,14 @@ class Task:
         return self.model_object.invalid_points(values, self.setup(dict(self.fixed)))
 
 
-def check_declared(task: Task, grid: Grid, *, refuse_hopf_parameter: bool = False) -> None:
-    """Every swept and fixed name is a parameter the model declares (for this law and options); with
-    ``refuse_hopf_parameter``, the Hopf parameter is neither swept nor fixed (its critical value is
-    what the task computes)."""
+def check_declared(task: Task, grid: Grid, *, refuse_hopf_parameter: bool = False,
+                   task_axes: tuple[str, ...] = ()) -> None:
+    """Every swept and fixed name is a parameter the model declares (for this law and options), but
+    ``task_axes``, the task's own swept quantities (eps2 of the check); with ``refuse_hopf_parameter``,
+    the Hopf parameter is neither swept nor fixed (its critical value is what the task computes)."""
     model = task.model_object
     setup = task.setup(dict(task.fixed))
-    names = (*grid.names, *dict(task.fixed))
+    names = (*(n for n in grid.names if n not in task_axes), *(n for n in dict(task.fixed) if n not in task_axes))
     if refuse_hopf_parameter:
         hp = model.bifurcation_parameter(setup)
         if hp is not None and hp in names:
@@ -396,7 +397,11 @@ class SpringBlockCheck(Task):
     def check_grid(self, grid: Grid) -> None:
         if "k" in grid.names or "k" in dict(self.fixed):
             raise InputError("check spring-block: the stiffness is set by eps2 = |k - k_c|/k_c (sweep eps2, not k)")
-        check_declared(self, _without(grid, "eps2"))
+        check_declared(self, grid, task_axes=("eps2",))
+        if "eps2" in dict(self.options):   # one value for every point: refused up front, as `landau verify` does
+            from landau.analyses.checking import _eps2_request
+
+            _eps2_request(dict(self.options)["eps2"])
 
     def invalid(self, chunk: Chunk) -> tuple[np.ndarray, list[str]]:
         eps2 = chunk.points.get("eps2")
@@ -406,8 +411,9 @@ class SpringBlockCheck(Task):
 
         bad, why = Task.invalid(replace(self, fixed=fixed), others)
         if eps2 is not None:
-            for j in np.flatnonzero(~(np.asarray(eps2) > 0) & ~bad):
-                why[j] = f"check: eps2 = |k - k_c|/k_c must be > 0, got {float(eps2[j])!r}"
+            # the domain landau.check accepts, with its message: 0 < eps2 < 0.5
+            for j in np.flatnonzero(~((np.asarray(eps2) > 0) & (np.asarray(eps2) < 0.5)) & ~bad):
+                why[j] = f"check: eps2 = |k - k_c|/k_c must be in (0, 0.5), got {float(eps2[j])!r}"
                 bad[j] = True
         return bad, why
 
@@ -445,7 +451,8 @@ class SpringBlockCheck(Task):
             strs["criticality_predicted"].append(doc["criticality_predicted"])
             status.append({"outside-validity": "outside-validity", "failed": "failed"}.get(doc["verdict"], "ok"))
             message.append(doc.get("reason") or "")
-        names = [*CHECK_FLOATS, "bistable", "cycle_stable"]
+        # a swept eps2 is a coordinate of the dataset, not also a variable
+        names = [n for n in (*CHECK_FLOATS, "bistable", "cycle_stable") if n not in chunk.points]
         vals = {k: np.array([r.get(k, np.nan) for r in rows]) for k in names}
         return ChunkResult(chunk.index, status, message, vals, strs)
 
@@ -533,7 +540,7 @@ class ModelTask(Task):
         return {**super().units(), **dict(self.extra_units)}
 
     def check_grid(self, grid: Grid) -> None:
-        check_declared(self, _without(grid, *self.extra_names))
+        check_declared(self, grid, task_axes=tuple(self.extra_names))
         if self.grid_fn is not None:
             self.grid_fn(self, grid)
 
@@ -547,15 +554,6 @@ class ModelTask(Task):
     def run(self, chunk: Chunk) -> ChunkResult:
         assert self.chunk_fn is not None   # every factory sets it
         return self.chunk_fn(self, chunk)
-
-
-def _without(grid: Grid, *names: str) -> Grid:
-    """``grid`` less the axes ``names`` (for the check of the declared names)."""
-    if not any(n in grid.names for n in names):
-        return grid
-    from dataclasses import replace
-
-    return replace(grid, axes=tuple(a for a in grid.axes if a.name not in names))
 
 
 #: tasks and what each computes

@@ -300,7 +300,10 @@ def _main(argv: list[str], as_json: bool = False) -> int:
     except (ValueError, TypeError) as exc:  # a result the renderer cannot print: one line, never a traceback
         msg = f"{type(exc).__name__}: {_first_line(exc)} (please report this with the command line)"
         return _fail(as_json, 1, "InternalError", msg, f"landau: internal error: {msg}")
-    return int(doc.get("exit_code", 0)) if isinstance(doc, dict) else 0
+    code = int(doc.get("exit_code", 0)) if isinstance(doc, dict) else 0
+    if code and isinstance(doc, dict) and doc.get("failure"):   # a run that did not work says why on stderr
+        sys.stderr.write(f"landau: {doc['failure']}\n")
+    return code
 
 
 if __name__ == "__main__":  # pragma: no cover

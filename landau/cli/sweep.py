@@ -211,14 +211,19 @@ def run(args) -> dict:
     import numpy as np
 
     statuses = {str(s): int(n) for s, n in zip(*np.unique(ds.status.values, return_counts=True), strict=True)}
+    # every point computed in this run failed: the run as a whole did not work, and says why on stderr
+    all_failed = bool(counts["computed"]) and counts["failed"] == counts["computed"]
+    failure = {}
+    if all_failed:
+        first = str(np.ravel(ds.message.values)[np.flatnonzero(np.ravel(ds.status.values) == "failed")[0]])
+        failure = {"failure": f"every computed point failed ({counts['failed']}); the first: {first}"}
     return {"task": args.task, "model": args.model, "law": ds.attrs.get("law", ""), "out": str(out),
             "shard": ds.attrs.get("shard", ""),
             "dims": {k: int(v) for k, v in ds.sizes.items() if k in ds.status.dims},
             "points": int(ds.status.size), **counts, "status": statuses,
             "variables": [v for v in ds.data_vars if v not in ("status", "message")],
             "fixed_parameters": fixed,
-            # every point computed in this run failed: the run as a whole did not work
-            "exit_code": 1 if counts["computed"] and counts["failed"] == counts["computed"] else 0}
+            **failure, "exit_code": 1 if all_failed else 0}
 
 
 def render(doc: dict) -> str:

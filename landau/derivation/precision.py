@@ -214,7 +214,8 @@ def screened_route(d: "Derivation", Vs, vals, shape, bases, p, exact: bool, sign
     are ≥ :data:`RATIONAL_MIN` of them or the form exists; the rest go to :func:`refine_mpmath`.
     ``sign_only``: a suspect whose long double value is certain in sign is not doubtful."""
     law = d.block.law.name
-    values = raw(d, vals, shape, bases, np.float64)
+    # arrays also at one point (shape ()): the suspects are written back into them in place
+    values = {key: np.array(val) for key, val in raw(d, vals, shape, bases, np.float64).items()}
     with np.errstate(over="ignore"):    # a value beyond float32's range: a suspect, settled below
         r32 = raw(d, [v.astype(np.float32) for v in vals], shape, bases, np.float32)
     suspect = np.zeros(shape, dtype=bool)

@@ -23,6 +23,7 @@ from __future__ import annotations
 from landau.derivation.coefficients import CONVENTION
 from landau.errors import InputError
 from landau.models import LawKind, Model, Option, Parameter, Setup
+from landau.systems.chain import MAX_BLOCKS
 
 #: the driving velocity used where none is given (m/s), as ``landau hopf`` and ``landau simulate`` do
 V_DEFAULT = 1e-4
@@ -181,8 +182,6 @@ SPRING_BLOCK = Model(
 # ---------------------------------------------------------------------------------------------
 # the chain
 # ---------------------------------------------------------------------------------------------
-#: the most blocks the symbolic chain route takes
-MAX_BLOCKS = 12
 
 
 def chain_blocks(setup: Setup) -> int:
