@@ -308,7 +308,7 @@ def flutter_hopf(mc: ModeCoupling, parameter: str = "mu", bracket: tuple[float, 
     from landau.derivation.general import hopf_normal_form
 
     th = flutter_threshold(mc, parameter, bracket)
-    if th.kind == "mode-coupling":
+    if th.kind != "hopf":   # undamped: a collision of two imaginary pairs
         return mode_coupling_result(th)
     system = mc.with_value(parameter, th.p_c).sliding_system(parameter)
     lo, hi = _bracket_of(mc, parameter, bracket)

@@ -38,7 +38,7 @@ class StabilityDiagram:
         Its values.
     eigenvalues : ndarray, shape (m, n)
         At each value the n eigenvalues with Im λ ≥ 0 (one of each pair ±, the upper ones), sorted
-        by Im λ then Re λ; NaN where the contact opens at the steady sliding state.
+        by Im λ (to 1e-9 of the largest |λ|) then Re λ; NaN where the contact opens at the steady sliding state.
     """
 
     parameter: str
@@ -130,7 +130,9 @@ def stability_diagram(mc: ModeCoupling, values, parameter: str = "mu") -> Stabil
         except NoSteadySlidingError:
             continue
         upper = lam[np.argsort(-lam.imag, kind="stable")][:n]
-        out[i] = upper[np.lexsort((upper.real, upper.imag))]
+        # by frequency, and a merged pair (equal Im λ to round-off) by growth rate
+        scale = max(float(np.max(np.abs(upper))), 1e-300)
+        out[i] = upper[np.lexsort((upper.real, np.round(upper.imag / scale, 9)))]
     return StabilityDiagram(parameter, vals, out)
 
 

@@ -270,7 +270,14 @@ class ModeCoupling:
         if law is not None and name in {p.name for p in law.parameters}:
             return replace(self, friction=law.with_defaults(**{name: value}))
         if self.params is not None and name in HOFFMANN_NAMES:
-            return ModeCoupling.hoffmann2002(contact=self.contact.kind, friction=law, **{**self.params, name: value})
+            if name in ("m", "k1", "k2", "alpha1", "alpha2", "c1", "c2"):   # the structure's matrices change
+                return ModeCoupling.hoffmann2002(contact=self.contact.kind, friction=law,
+                                                 **{**self.params, name: value})
+            return replace(self, params={**self.params, name: value}).with_value_of_contact(name, value)
+        return self.with_value_of_contact(name, value)
+
+    def with_value_of_contact(self, name: str, value: float) -> "ModeCoupling":
+        """:meth:`with_value` for ``c_scale`` and the contact's and friction's parameters."""
         if name == "c_scale":
             return replace(self, C=self.C * value)
         if name == "kH":
