@@ -7,7 +7,8 @@ Kuznetsov's invariant c₁ (2004, eq. 3.20) with ⟨p, q⟩ = 1, and dλ/dμ by 
 Landau's engine uses neither: it derives the amplitude equation by the Fredholm route on the
 DynamicalSystem with Taylor-arithmetic jets at 50 digits.  Tolerance 1e-8 relative: the reference
 is a float64 computation (the stencil's error, ~h⁴ and eps/h with h = 1e-4 μ_c, measured below 1e-9 in dλ/dμ).
-Hardening and softening cubic contacts give the two signs of Λ; a Hertz contact the third law.
+Cubic (hardening, softening) and Hertz contacts; the default hardening contact is supercritical, a
+stiffer cubic term or a Hertz contact subcritical.
 """
 
 from __future__ import annotations
@@ -39,10 +40,11 @@ def test_lambda_and_amplitudes_against_kuznetsov(contact, params, expected):
         assert res.criticality == expected
 
 
-def test_softening_contact_can_be_subcritical():
-    # a strongly softening contact turns the onset subcritical (Λ > 0), and the reference agrees on the sign
-    params = dict(c1=2.0, c2=0.5, kNL=-1.0e9)
-    res = flutter_hopf(ModeCoupling.hoffmann2002(contact="cubic", **params))
-    Lambda, *_ = kuznetsov_l1({**HOFFMANN_DEFAULTS, **params}, res.p_c, "cubic")
+@pytest.mark.parametrize("contact,params", [("cubic", dict(kNL=5.0e9)), ("hertz", dict(kH=4.0e5))],
+                         ids=["stiff-cubic", "hertz"])
+def test_subcritical_onsets(contact, params):
+    # a stiff cubic term, or a Hertz contact, turns the onset subcritical (Λ > 0); the reference agrees
+    res = flutter_hopf(ModeCoupling.hoffmann2002(contact=contact, **params))
+    Lambda, *_ = kuznetsov_l1({**HOFFMANN_DEFAULTS, **params}, res.p_c, contact)
     assert res.Lambda == pytest.approx(Lambda, rel=1e-8)
-    assert (res.Lambda > 0) == (res.criticality == "subcritical")
+    assert Lambda > 0 and res.criticality == "subcritical"
