@@ -141,3 +141,10 @@ def test_sweep_over_damping(tmp_path, capsys):
         c1s = ds["c1"].values
     for c1, pc in zip(c1s, pcs, strict=True):
         assert pc == single(ModeCoupling.hoffmann2002(c1=float(c1), c2=0.5)).p_c
+
+
+def test_help_says_the_angles_are_in_degrees(capsys):
+    with pytest.raises(SystemExit):
+        main(["hopf", "--help"])
+    out = capsys.readouterr().out
+    assert "mode-coupling" in out and "degrees" in out

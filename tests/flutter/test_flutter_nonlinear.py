@@ -48,3 +48,11 @@ def test_subcritical_onsets(contact, params):
     Lambda, *_ = kuznetsov_l1({**HOFFMANN_DEFAULTS, **params}, res.p_c, contact)
     assert res.Lambda == pytest.approx(Lambda, rel=1e-8)
     assert Lambda > 0 and res.criticality == "subcritical"
+
+
+def test_linear_contact_is_degenerate_at_every_order():
+    # with a linear contact and Coulomb friction the sliding motion is a linear system: every nonlinear
+    # coefficient is exactly 0, so Λ = 0 and the engine's next order l₂ = 0 too (degenerate)
+    res = flutter_hopf(ModeCoupling.hoffmann2002(contact="linear"))
+    assert res.Lambda == 0.0 and res.l2 == 0.0
+    assert res.criticality == "degenerate"
