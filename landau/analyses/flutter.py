@@ -68,6 +68,25 @@ def hoffmann_threshold(m: float, k1: float, k2: float, alpha1: float, alpha2: fl
     return ((k11 - k22 - kN) ** 2 + 4 * k12**2) / (4 * k12 * kN), math.sqrt((k11 + k22 + kN) / (2 * m))
 
 
+def hoffmann_vanishing_damping_threshold(k1: float, k2: float, alpha1: float, alpha2: float, kN: float,
+                                         c1: float, c2: float) -> float:
+    """μ_c(ε → 0) of the 2-DOF model (M = m I) with damping ε diag(c₁, c₂), in closed form.
+
+    The Routh–Hurwitz condition a₁a₂a₃ − a₀a₃² − a₁²a₄ > 0 of m²λ⁴ + mε(c₁ + c₂)λ³ + (m tr K + ε²c₁c₂)λ²
+    + ε(c₁K₂₂ + c₂K₁₁)λ + det K at leading order in ε gives det K < (c₁K₂₂ + c₂K₁₁)(c₁K₁₁ + c₂K₂₂)/(c₁ + c₂)²,
+    that is (K₁₁ = k₁₁, K₂₂ = k₂₂ + k_N, det K = K₁₁K₂₂ − k₁₂(k₁₂ − μk_N))
+
+        μ_c(0⁺) = [c₁c₂/(c₁ + c₂)² (k₁₁ − k₂₂ − k_N)² + k₁₂²] / (k₁₂ k_N),
+
+    the undamped μ_c where c₁ = c₂ (proportional damping) and below it otherwise, by
+    (k₁₁ − k₂₂ − k_N)²/(4k₁₂k_N) · ((c₁ − c₂)/(c₁ + c₂))²: the destabilisation paradox (Hoffmann & Gaul 2003).
+    """
+    if not (c1 >= 0 and c2 >= 0 and c1 + c2 > 0):
+        raise InputError(f"the damping c1, c2 must be >= 0 and not both 0, got {c1!r}, {c2!r}")
+    k11, k12, k22 = hoffmann_stiffness(k1, k2, alpha1, alpha2)
+    return (c1 * c2 / (c1 + c2) ** 2 * (k11 - k22 - kN) ** 2 + k12**2) / (k12 * kN)
+
+
 def spectrum(mc: ModeCoupling) -> np.ndarray:
     """The 2n eigenvalues λ of the sliding motion's first-order matrix, sorted by Im λ, then Re λ."""
     lam = np.linalg.eigvals(mc.first_order())
@@ -354,6 +373,24 @@ def destabilisation_paradox(mc: ModeCoupling, scales=None, parameter: str = "mu"
     return Paradox(parameter, eps, pcs, undamped)
 
 
+def vanishing_damping_thresholds(mc: ModeCoupling, ratios, scale: float = 1e-4,
+                                 bracket: tuple[float, float] | None = None) -> np.ndarray:
+    """μ_c(c → 0) of the 2-DOF model against the damping ratio c₂/c₁: the damping diag(c₁, r c₁) scaled to
+    ``scale`` × c₁ of ``mc``.  At r = 1 (damping proportional to M = m I) it is the undamped μ_c; elsewhere
+    below it — the destabilisation paradox as a damping-ratio sweep (Hoffmann & Gaul 2003)."""
+    if mc.params is None:
+        raise InputError("vanishing_damping_thresholds: the damping ratio c2/c1 is a parameter of the 2-DOF model "
+                         "(for matrices use destabilisation_paradox)")
+    c1 = mc.params["c1"] if mc.params["c1"] > 0 else 1.0
+    out = []
+    for r in np.asarray(ratios, dtype=float):
+        if not (math.isfinite(r) and r > 0):
+            raise InputError(f"vanishing_damping_thresholds: a damping ratio must be > 0, got {r!r}")
+        damped = mc.with_value("c1", c1 * scale).with_value("c2", c1 * scale * r)
+        out.append(flutter_threshold(damped, "mu", bracket).p_c)
+    return np.array(out)
+
+
 def scan(mc: ModeCoupling, parameter: str, values, fn: Callable[[ModeCoupling], Any]) -> list[Any]:
     """``fn`` of the system at each value of ``parameter`` (None where the contact opens)."""
     out: list[Any] = []
@@ -367,4 +404,5 @@ def scan(mc: ModeCoupling, parameter: str, values, fn: Callable[[ModeCoupling], 
 
 __all__ = ["MU_BRACKET", "THRESHOLD_LATEX", "ModeCouplingResult", "Paradox", "Threshold", "amplitudes",
            "collision_function", "destabilisation_paradox", "flutter_hopf", "flutter_threshold", "growth_function",
-           "hoffmann_threshold", "mode_coupling_result", "spectrum", "squared_frequencies"]
+           "hoffmann_threshold", "hoffmann_vanishing_damping_threshold", "mode_coupling_result", "spectrum",
+           "squared_frequencies", "vanishing_damping_thresholds"]

@@ -105,3 +105,23 @@ def test_destabilisation_paradox():
     prop = destabilisation_paradox(ModeCoupling.hoffmann2002(contact="linear", c1=1.0, c2=1.0), scales=[1e-3])
     assert prop.limit == pytest.approx(mu0, rel=1e-5)
     assert not math.isclose(out.limit, prop.limit, rel_tol=1e-2)
+
+
+@pytest.mark.parametrize("params", UNDAMPED[:2], ids=["a", "b"])
+def test_damping_ratio_sweep_against_the_routh_hurwitz_limit(params):
+    # μ_c(ε → 0) against the damping ratio c2/c1, against the closed form of the Routh–Hurwitz condition
+    # at leading order in ε (derived in hoffmann_vanishing_damping_threshold).  The numerical threshold at
+    # ε = 1e-4 differs from the limit by O(ε²) and by the eigenvalues' conditioning near the collision
+    # (~eps/ε): measured below 1e-9 relative; tolerance 1e-8.
+    from landau.analyses.flutter import hoffmann_vanishing_damping_threshold, vanishing_damping_thresholds
+
+    mc = ModeCoupling.hoffmann2002(contact="linear", c1=1.0, c2=1.0, **params)
+    full = {**HOFFMANN_DEFAULTS, **params}
+    ratios = [0.05, 0.3, 1.0, 4.0]
+    got = vanishing_damping_thresholds(mc, ratios, scale=1e-4)
+    ref = [hoffmann_vanishing_damping_threshold(full["k1"], full["k2"], full["alpha1"], full["alpha2"], full["kH"],
+                                                1.0, r) for r in ratios]
+    assert got == pytest.approx(ref, rel=1e-8)
+    mu0, _ = hoffmann_threshold(full["m"], full["k1"], full["k2"], full["alpha1"], full["alpha2"], full["kH"])
+    assert ref[2] == pytest.approx(mu0, rel=1e-14)          # proportional: the undamped threshold
+    assert all(r < mu0 * (1 - 1e-3) for i, r in enumerate(ref) if i != 2)
