@@ -195,10 +195,8 @@ def _refine(mc: ModeCoupling, parameter: str, a: float, b: float, undamped: bool
         s = mc.with_value(parameter, p)
         return collision_function(s) if undamped else -growth_function(s)
 
-    ga, gb = g(a), g(b)
-    pc = b if gb == 0 else float(scipy.optimize.brentq(g, a, b, xtol=1e-15 * max(1.0, abs(a), abs(b)),
-                                                       rtol=4 * np.finfo(float).eps, maxiter=200))
-    del ga
+    pc = b if g(b) == 0 else float(scipy.optimize.brentq(g, a, b, xtol=1e-15 * max(1.0, abs(a), abs(b)),
+                                                         rtol=4 * np.finfo(float).eps, maxiter=200))
     at = mc.with_value(parameter, pc)
     if undamped:
         s = squared_frequencies(at)

@@ -106,6 +106,7 @@ def test_two_dof_undamped_cli_names_mode_coupling(capsys):
     (["--param", "kH=0"], "kH"),
     (["--friction-neg", "0.3"], "--friction"),
     (["--param", "q=1"], "unknown parameter"),
+    (["--friction", "mu*(1 + a*exp(-v/v0))", "--param", "a=0.2"], "'v0' is a parameter of the model"),
 ])
 def test_bad_input_is_one_line_and_exit_2(capsys, argv, words):
     code, out, err = run(capsys, "hopf", "mode-coupling", *argv)

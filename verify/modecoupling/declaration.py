@@ -66,8 +66,14 @@ def _declare(setup: Setup) -> tuple[Parameter, ...]:
     if setup.option("friction") is None:
         out.append(Parameter("mu", D["mu"], "1", "nonnegative", "Coulomb friction coefficient", SOURCE))
     else:
+        names = declared_names(setup.option("friction"), None)
+        taken = sorted(set(names) & {p.name for p in out})
+        if taken:
+            raise InputError(f"mode-coupling: the friction law's parameter {taken[0]!r} is a parameter of the model "
+                             f"({_CONTACT.get(taken[0], _HOFFMANN.get(taken[0], ('', '', '')))[2]}): rename it in "
+                             "--friction")
         out += [Parameter(n, setup.params.get(n), "1", "real", "a parameter of the friction law", "the user's law")
-                for n in declared_names(setup.option("friction"), None)]
+                for n in names]
     return tuple(out)
 
 
