@@ -15,6 +15,11 @@ amplitude equation and criticality.  The built-in models:
   point as k decreases, with the critical mode shape.
 * ``impact-oscillator``, ``galvanetto-one-block`` — with ``--friction EXPR`` / ``--kinetic EXPR``.
 * ``system`` — any smooth system written with ``--rhs NAME=EXPR``.
+* ``mode-coupling`` — friction-induced flutter of Hoffmann et al. (2002): ``--param`` m, k1, k2,
+  alpha1, alpha2 (the spring angles, in degrees), kH, kNL, P, c1, c2, v0 in SI units, ``--contact``
+  linear, cubic or hertz; or an N-DOF structure (``--mass-matrix``, ``--stiffness-matrix``,
+  ``--damping-matrix``, ``--normal``, ``--tangential``).  The bifurcation parameter is mu (or
+  ``--parameter``); undamped, the result is the mode-coupling collision (``kind``).
 
 ``landau hopf spring-block --patch H --shear-modulus G --param sigma=PA`` analyses a fault patch of
 size H as a block of unit area: k from the patch (π μ′/H, Rice & Ruina 1983), its critical size and

@@ -23,8 +23,8 @@ def add_model_options(p) -> None:
     p.add_argument("--kinetic-pos", default=None, metavar="EXPR",
                    help="galvanetto models: the r > 0 branch (default the odd reflection of --kinetic)")
     p.add_argument("--parameter", default=None, metavar="NAME",
-                   help="impact-oscillator: the bifurcation parameter (default mu, or the first parameter of "
-                        "--friction); system: the Hopf parameter")
+                   help="impact-oscillator, mode-coupling: the bifurcation parameter (default mu, or the first "
+                        "parameter of --friction); system: the Hopf parameter")
     p.add_argument("--rhs", action="append", default=[], metavar="NAME=EXPR",
                    help="system: a state and its right-hand side dNAME/dt (repeatable, in order)")
     p.add_argument("--equilibrium", action="append", default=[], metavar="NAME=EXPR",
@@ -34,9 +34,18 @@ def add_model_options(p) -> None:
     p.add_argument("--mass", action="append", default=[], metavar="NAME=EXPR",
                    help="system: the mass entry E_ii of a state (default 1; 0: an algebraic row)")
     p.add_argument("--bracket", default=None, metavar="LO:HI",
-                   help="system, spring-block-chain: interval of the Hopf parameter to search (--bracket=-1:1 if "
-                        "LO < 0)")
+                   help="system, spring-block-chain, mode-coupling: interval of the Hopf parameter to search "
+                        "(--bracket=-1:1 if LO < 0)")
     p.add_argument("--blocks", default=None, metavar="N", help="spring-block-chain: the number of blocks (1 to 12)")
+    p.add_argument("--contact", default=None, choices=("linear", "cubic", "hertz"),
+                   help="mode-coupling: the normal contact law N(y) (default cubic: kH*y + kNL*y^3)")
+    for name, what in (("mass", "M"), ("damping", "C"), ("stiffness", "K")):
+        p.add_argument(f"--{name}-matrix", default=None, metavar="[[..],[..]]",
+                       help=f"mode-coupling: the structure's {name} matrix {what} of an N-DOF system (JSON rows)")
+    p.add_argument("--normal", default=None, metavar="INDEX",
+                   help="mode-coupling with matrices: index of the normal coordinate (the penetration; default 1)")
+    p.add_argument("--tangential", default=None, metavar="INDEX",
+                   help="mode-coupling with matrices: index of the tangential coordinate (default 0)")
 
 
 def add_elastic_arguments(p) -> None:
@@ -127,7 +136,9 @@ _OPTION_FLAGS = {"friction": "--friction", "friction_neg": "--friction-neg", "ki
                  "equilibrium": "--equilibrium", "guess": "--guess", "mass": "--mass", "bracket": "--bracket",
                  "blocks": "--blocks", "patch": "--patch", "shear_modulus": "--shear-modulus",
                  "density": "--density", "shear_speed": "--shear-speed", "poisson": "--poisson",
-                 "geometry": "--geometry"}
+                 "geometry": "--geometry", "contact": "--contact", "mass_matrix": "--mass-matrix",
+                 "damping_matrix": "--damping-matrix", "stiffness_matrix": "--stiffness-matrix", "normal": "--normal",
+                 "tangential": "--tangential"}
 #: the law options of each law kind
 _LAW_OPTIONS = {LawKind.VELOCITY: ("friction", "friction_neg", "friction_name"),
                 LawKind.KINETIC: ("kinetic", "kinetic_pos")}

@@ -29,6 +29,7 @@ SETUPS = {
                       "equilibrium": {"x": "a", "y": "b/a"}, "bracket": (1.0, 30.0)}),
     "impact-oscillator": (None, {}),
     "galvanetto-one-block": (None, {}),
+    "mode-coupling": (None, {}),
 }
 #: the fixed values a model needs that have no default (the Brusselator's a)
 FIXED = {"system": {"a": 1.5}}
