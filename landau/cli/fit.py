@@ -33,10 +33,10 @@ def configure(p) -> None:
                    help="comma-separated parameters to fit (default: all of the law's but V_s)")
     p.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
                    help="starting or fixed value of a parameter, e.g. L=10um, V_s=1um/s (repeatable)")
-    p.add_argument("--mcmc", type=int, default=0, metavar="STEPS", help="emcee steps per walker (0: none)")
+    p.add_argument("--mcmc", type=int, default=None, metavar="STEPS", help="emcee steps per walker (default: no MCMC)")
     p.add_argument("--walkers", type=int, default=None, help="emcee walkers (default max(4q, 16))")
     p.add_argument("--burn", type=int, default=None, help="steps dropped as burn-in (default half)")
-    p.add_argument("--seed", type=int, default=0, help="seed of the MCMC")
+    p.add_argument("--seed", type=int, default=None, help="seed of the MCMC (default 0)")
     p.add_argument("--chains", default=None, metavar="FILE", help="save the MCMC chains to FILE (.npz)")
 
 
@@ -81,10 +81,10 @@ def run(args) -> dict:
             raise InputError("--free: no parameter named")
     if args.chains is not None and not args.mcmc:
         raise InputError("--chains needs --mcmc STEPS")
-    if args.mcmc < 0:
-        raise InputError(f"--mcmc must be >= 0 steps, got {args.mcmc}")
-    res = fit(data, law, free=free, params=params, k=k, fit_k=args.fit_k, trend=args.trend, mcmc=args.mcmc,
-              walkers=args.walkers, burn=args.burn, seed=args.seed, chains=args.chains)
+    if args.mcmc is not None and args.mcmc < 2:
+        raise InputError(f"--mcmc must be at least 2 steps, got {args.mcmc}")
+    res = fit(data, law, free=free, params=params, k=k, fit_k=args.fit_k, trend=args.trend, mcmc=args.mcmc or 0,
+              walkers=args.walkers, burn=args.burn, seed=args.seed or 0, chains=args.chains)
     doc = res.to_dict()
     doc["data"] = {"file": args.data, "samples": len(data), "t_end_s": float(data.t[-1] - data.t[0])}
     doc["units"] = "SI: lengths m, velocities m/s, k and trend 1/m"
