@@ -263,6 +263,16 @@ class ForwardModel:
                  [sp.diff(law.mu, s) for s in phis], [sp.diff(law.mu, s) for s in qs], law.mu]
         return lambdify_positional([v, *phis, *self._params], exprs, modules="numpy")
 
+    @cached_property
+    def _steady(self):
+        """φ_ss(v, law parameters) in closed form, compiled once (None without a closed form)."""
+        from landau.support.lambdify import lambdify_positional
+
+        ss = self.law.steady_state_closed_form
+        if ss is None:
+            return None
+        return lambdify_positional([self.law.v, *(p.symbol for p in self.law.parameters)], list(ss), modules="math")
+
     # --- numbers -----------------------------------------------------------------------
     def values(self, params: Mapping[str, float], k: float, V: float = 1.0) -> np.ndarray:
         """The kernel's parameter vector: the law's parameters, k′ and V_lp."""
@@ -275,8 +285,15 @@ class ForwardModel:
         """The state and sensitivities at steady sliding at V0."""
         law = self.law
         n_phi, q = len(law.states), len(self.sensitivity)
-        phi = law.steady_state_values(np.float64(V0), params).reshape(n_phi)
         pv = self.values(params, k, V0)
+        phi = None
+        if self._steady is not None:
+            with np.errstate(all="ignore"):
+                phi = np.array([float(x) for x in self._steady(V0, *pv[:-2])])
+            if not (np.all(np.isfinite(phi)) and np.all(phi > 0)):
+                phi = None
+        if phi is None:       # no closed form, or not a valid one here: the law's checked numeric route
+            phi = law.steady_state_values(np.float64(V0), params).reshape(n_phi)
         Rphi, Rq, muphi, muq, mu0 = self._initial(V0, *phi, *pv)
         Rphi = np.asarray(Rphi, float).reshape(n_phi, n_phi)
         Rq = np.asarray(Rq, float).reshape(n_phi, q)

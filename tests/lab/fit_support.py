@@ -45,9 +45,12 @@ def protocol(steps, t_end: float, dt: float) -> tuple[np.ndarray, np.ndarray]:
     return t, V
 
 
-def record(name: str, noise: float = 0.0, seed: int = 0) -> tuple[FrictionLaw, LabData, dict, float]:
-    """(law, record, true parameters, k') of set ``name``, with Gaussian noise of standard deviation ``noise``."""
-    make, params, k, steps, t_end, dt = SETS[name]
+def record(name: str, noise: float = 0.0, seed: int = 0, dt: float | None = None
+           ) -> tuple[FrictionLaw, LabData, dict, float]:
+    """(law, record, true parameters, k') of set ``name``, with Gaussian noise of standard deviation ``noise``
+    (and another sampling interval ``dt``)."""
+    make, params, k, steps, t_end, dt0 = SETS[name]
+    dt = dt or dt0
     law = make()
     t, V = protocol(steps, t_end, dt)
     mu = ForwardModel(law, []).run(t, V, params, k, rtol=1e-12).mu
