@@ -52,3 +52,26 @@ def test_same_seed_same_chain():
 @pytest.mark.slow
 def test_long_chain_spread_matches_standard_errors():
     _check_spread(_fit(300, 32, 150), 0.15)
+
+
+def test_verdict_hands_on_the_law_parameters_only(monkeypatch):
+    """FitResult.verdict calls landau.lab.verdict.rig_verdict with the law's parameters and their rows of
+    the covariance and columns of the samples (the lab's stiffness k' is not the rig's k)."""
+    import sys
+    import types
+
+    from fit_support import record
+
+    seen = {}
+    stub = types.ModuleType("landau.lab.verdict")
+    stub.rig_verdict = lambda law, fitted, rig, **kw: seen.update(law=law, fitted=fitted, rig=rig, **kw) or "ok"
+    monkeypatch.setitem(sys.modules, "landau.lab.verdict", stub)
+    law, data, true, k = record("aging", noise=2e-4, seed=3, dt=0.2)
+    res = fit(data, law, k=k, fit_k=True, free=["a", "b", "L"], mcmc=4, walkers=16, burn=2,
+              params={"V_s": true["V_s"], "a_v": true["a_v"], "a": 0.006, "b": 0.009, "L": 12e-6})
+    assert res.names == ("a", "b", "L", "k")
+    assert res.verdict({"k": 1e7, "M": 1.0, "sigma": 1e6, "eta": 0.0}, V=1e-6) == "ok"
+    assert seen["names"] == ["a", "b", "L"] and seen["V"] == 1e-6
+    assert set(seen["fitted"]) == {p.name for p in law.parameters}
+    np.testing.assert_array_equal(seen["covariance"], res.covariance[:3, :3])
+    np.testing.assert_array_equal(seen["samples"], res.samples[:, :3])
