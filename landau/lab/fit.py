@@ -136,6 +136,7 @@ class _Problem:
         self.values = dict(values)
         sens = [n for n in self.names if n != TREND] if sensitivities else []
         self.fm = forward_model(law, sens)
+        self.sensitivities = sensitivities
         self.rtol = rtol
         self.dx = data.x_lp - data.x_lp[0]
         self._last: tuple[bytes, np.ndarray, np.ndarray | None] | None = None
@@ -162,7 +163,7 @@ class _Problem:
             r, J = np.full(self.data.t.size, _FAILED), None
             self._last = (key, r, J)
             return r, J
-        if not self.fm.sensitivity and TREND not in self.names:
+        if not self.sensitivities:        # the MCMC's runs: the residual only
             self._last = (key, r, None)
             return r, None
         cols, j = [], 0

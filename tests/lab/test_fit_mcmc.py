@@ -49,6 +49,14 @@ def test_same_seed_same_chain():
     np.testing.assert_array_equal(a.samples, b.samples)
 
 
+def test_posterior_with_a_trend_term():
+    law, data, true, k = record("aging", noise=2e-4, seed=3, dt=0.2)
+    res = fit(data, law, k=k, trend=True, free=["a", "b", "L"], mcmc=6, walkers=16, burn=2,
+              params={"V_s": true["V_s"], "a_v": true["a_v"], "a": 0.006, "b": 0.009, "L": 12e-6})
+    assert res.names == ("a", "b", "L", "trend") and res.samples.shape == (4 * 16, 4)
+    assert np.all(np.isfinite(res.samples))
+
+
 @pytest.mark.slow
 def test_long_chain_spread_matches_standard_errors():
     _check_spread(_fit(300, 32, 150), 0.15)
