@@ -36,6 +36,7 @@ COMMANDS: dict[str, str] = {
     "nucleation": "landau.cli.nucleation",
     "sweep": "landau.cli.sweep",
     "sweep-merge": "landau.cli.sweep_merge",
+    "fit": "landau.cli.fit",
     "figures": "landau.paper_figures.cli",
     "verify": "landau.verify.cli",
 }
@@ -63,6 +64,8 @@ SUMMARIES: dict[str, str] = {
     "verify": "Check the engine's amplitude-equation predictions by direct simulation of the spring–block.",
     "sweep": "Run an analysis over a parameter grid on local processes or a dask cluster, written to netCDF.",
     "sweep-merge": "Join the shards of a sweep (landau sweep --shard I/N) into one netCDF file.",
+    "fit": "Fit a friction law's parameters to a laboratory record (velocity steps, slide-hold-slide) by least "
+           "squares.",
 }
 
 
