@@ -87,9 +87,7 @@ class FitResult:
 
         Only the law's parameters are handed on (with their rows of the covariance and columns of
         the samples): the lab's k′ and the trend are not the rig's."""
-        import importlib
-
-        rig_verdict = importlib.import_module("landau.lab.verdict").rig_verdict
+        from landau.lab.verdict import rig_verdict
 
         law_names = {p.name for p in self.law.parameters}
         keep = [i for i, n in enumerate(self.names) if n in law_names]
