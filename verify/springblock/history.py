@@ -488,8 +488,9 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
 
 
 def peak_after(sim: Simulation, t_from: float) -> float:
-    """The largest friction coefficient μ of ``sim`` at t ≥ ``t_from`` (a slide-hold-slide's
-    peak on reloading)."""
+    """The largest friction coefficient μ of ``sim`` at t ≥ ``t_from``, read at the recorded points
+    (a peak between two of them is read low, ~1e-6 at rtol 1e-9: :func:`landau.lab.measure.locate_peak`
+    finds it as a root of dμ/dt on the dense solution)."""
     i = list(sim.state_names).index("mu")
     keep = sim.t >= t_from
     if not keep.any():
