@@ -63,3 +63,15 @@ def test_a_step_a_few_ulps_past_a_round_time_runs():
     assert sim.t[-1] == 200.0
     mu = sim.y[sim.state_names.index("mu")]
     assert mu[-1] - mu[0] == pytest.approx(-0.005 * 2.302585092994046, abs=1e-9)
+
+
+def test_below_k_c_the_quasi_static_run_stops_with_a_named_error():
+    # k' = 1e-4/um < k_c = (b - a)/L = 5e-4/um: after the step the quasi-static slip rate blows up in
+    # finite time (no inertia to bound it); the run stops there with that reason, not a bare integrator status
+    from landau.errors import IntegratorError
+    from landau.lab.protocols import run_protocol
+
+    P = {"a_v": 0.6, "a": 0.005, "b": 0.01, "L": 1e-5, "V_s": 1e-6}
+    with pytest.raises(IntegratorError, match="blows up in finite time") as exc:
+        run_protocol(velocity_step(1, 10, at=100, after=200), "dieterich", "1e-4/um", P)
+    assert exc.value.t > 100.0

@@ -324,6 +324,9 @@ def _pieces(law, p, k, terms, h: LoadHistory, y, T, ends, t_end, rtol, scale, qu
             run = drive(kern, pv, y, t0, t1, rtol=rtol, atol=rtol * scale, max_steps=MAX_STEPS, h0=h0)
             if run.status != 0:
                 why = STATUS[run.status] + (f" ({MAX_STEPS} step attempts)" if run.status == -2 else "")
+                if quasidynamic and p["eta"] == 0 and run.status in (-1, -3):
+                    why += ("; without inertia and damping (M = 0, eta = 0) the slip rate blows up in finite time "
+                            "where the spring is softer than k_c (stick-slip): give M > 0 or eta > 0 to follow it")
                 raise IntegratorError(f"load-point history{' (M = 0)' if quasidynamic else ''}, piece V = {V:g} "
                                       f"m/s from t = {a:g} s: {why} (state = u [m], ln v, ln phi...)",
                                       t=float(run.t), state=list(run.y))
