@@ -31,7 +31,12 @@ Models (defaults: the published parameters):
 ``spring-block LAW --V-history "V0@t0,V1@t1,..."`` drives the load point at a piecewise-constant
 velocity instead (velocity steps, slide-hold-slide; starts from steady sliding at V0); its CSV
 holds t, the load-point velocity V, the slip rate v, the friction coefficient mu and the states
-(with ``eta`` or ``gamma_ld`` also the spring force F and, with ``gamma_ld``, the normal load sigma).
+(with ``eta`` or ``gamma_ld`` also the spring force F and, with ``gamma_ld``, the normal load sigma),
+the load-point displacement x_lp and the slip; its figure is friction against load-point
+displacement.  ``--param M=0`` without ``eta`` is the quasi-static run of the laboratory models;
+``--preset lab`` is that run per unit normal stress in the lab's units (``--k`` k' in 1/um, velocities
+in um/s, lengths in um), and under either preset values may carry units (``--k 1e-3/um``,
+``--V-history "1um/s@0,10um/s@10"``, ``--param L=10um``).
 
 The output format follows each ``--out`` suffix: ``.csv`` (header ``t [s], name [unit]...``),
 ``.npz`` or ``.png`` (time series with the regimes shaded and the phase portrait, or the
@@ -116,9 +121,16 @@ def configure(p) -> None:
                    help="system: the mass entry E_ii of a state (default 1)")
     p.add_argument("--parameter", default=None, metavar="NAME",
                    help="system: the Hopf parameter (its value by --param; default the first --param)")
-    p.add_argument("--plot", choices=("overview", "poincare"), default="overview",
-                   help="what a .png shows: time series and phase portrait (default) or the Poincaré section "
-                        "(the logged sections; the forced oscillator: stroboscopic at the forcing period)")
+    p.add_argument("--plot", choices=("overview", "poincare", "friction"), default=None,
+                   help="what a .png shows: time series and phase portrait (the default), the Poincaré section "
+                        "(the logged sections; the forced oscillator: stroboscopic at the forcing period) or, "
+                        "for a --V-history run (its default), friction against load-point displacement")
+    p.add_argument("--preset", choices=("si", "lab"), default="si",
+                   help="conventions: si (default; the block M = 1.2 kg, sigma = Mg, k in N/m, m/s, m) or lab "
+                        "(spring-block --V-history: quasi-static M = 0, eta = 0, per unit normal stress sigma = 1; "
+                        "bare numbers of --k in 1/um (k' = k/sigma), of velocities in um/s, of lengths in um; "
+                        "files in um, um/s). Under either, values may carry units: --k 1e-3/um, --V-history "
+                        "'1um/s@0,10um/s@10', --param L=10um")
 
 
 def _max_steps(args) -> int | None:
@@ -158,11 +170,18 @@ def _law_and_params(args, model) -> tuple:
                              "(k is the bifurcation parameter, not a law parameter)")
         if args.law is None and args.mu is None and not args.state:
             args.law = model.default_law
+        from landau.cli import lab_args
+        from landau.lab.preset import get_preset
+
+        preset = get_preset(getattr(args, "preset", "si"))
+        kinds = lab_args.convert_params(args, preset)     # values with units in SI
         law, params = resolve_law(args)
+        lab_args.finish_params(law, params, kinds, preset)
+        params = {**preset.block, **params}
         if args.V is not None:
-            params["V"] = positive(args.V, "--V")
+            params["V"] = positive(preset.velocity_value(args.V, "--V"), "--V")
         if args.k is not None:
-            params["k"] = positive(args.k, "--k")
+            params["k"] = lab_args.stiffness(args.k, law, params, preset)
         return law, params
     if args.law is not None or args.mu is not None or args.state or args.k is not None or (
             args.V is not None and "V" not in declared):
@@ -226,15 +245,27 @@ def simulate_model(args):
     model = models.get(args.model)
     t_end = positive(args.t_end, "--t-end") if args.t_end is not None else None
     max_steps = _max_steps(args)
+    from landau.cli.lab_args import check_preset, history_pairs
+    from landau.lab.preset import get_preset
+
+    check_preset(args, model)
     law, params = _law_and_params(args, model)
     options = _options(args, model)
+    history = None if args.V_history is None else history_pairs(args.V_history, get_preset(args.preset))
     try:
-        sim = simulate(model, law, params=params, t_end=t_end, y0=args.y0, history=args.V_history,
+        sim = simulate(model, law, params=params, t_end=t_end, y0=args.y0, history=history,
                        dt=getattr(args, "dt", None), samples=getattr(args, "samples", None), options=options,
                        max_steps=max_steps, sections=args.plot == "poincare")
     except InputError as exc:
         raise _flagged(exc) from None
-    return sim, dict(sim.parameters), dict(sim.units), list(sim.notes)
+    notes = list(sim.notes)
+    if args.preset == "lab":   # the series in the lab's units and column order
+        from landau.lab.preset import LAB, LAB_COLUMNS
+
+        sim = LAB.convert(sim, LAB_COLUMNS)
+        notes.append("lab preset: quasi-static (M = 0, eta = 0) per unit normal stress (sigma = 1); the series "
+                     "in um, um/s and s, the parameters in SI (k' = k/sigma in 1/m)")
+    return sim, dict(sim.parameters), dict(sim.units), notes
 
 
 def run(args) -> dict:
@@ -243,6 +274,8 @@ def run(args) -> dict:
         if o.suffix.lower() not in FORMATS:
             raise InputError(f"--out {str(o)!r}: unknown format {o.suffix!r} (use {', '.join(FORMATS)})")
     discard = None if args.discard is None else positive(args.discard, "--discard")
+    if args.plot == "friction" and args.V_history is None:
+        raise InputError("--plot friction: friction against load-point displacement is the plot of a --V-history run")
     from landau.support.progress import progress, set_quiet
 
     set_quiet(getattr(args, "json", False))
@@ -267,14 +300,21 @@ def run(args) -> dict:
             raise InputError(f"--discard {args.discard}: {exc}") from None
         notes.append(f"t < {discard:g} discarded from the files (transient)")
     has_data = len(written.t) > 0
+    kind = args.plot or ("friction" if args.V_history is not None else "overview")
     if has_data and any(o.suffix.lower() == ".png" for o in outs):
         from matplotlib.figure import Figure  # a figure pyplot never shows: the command only saves it
 
         try:
-            size = (11, max(4.5, 1.7 * len(sim._names()) + 0.8)) if args.plot == "overview" else (6.0, 4.8)
-            fig = sim.plot(args.plot, discard=discard or 0.0, fig=Figure(figsize=size, layout="constrained"))
+            if kind == "friction":   # the lab's plot of a protocol: mu against load-point displacement
+                from landau.lab.figure import plot_friction
+
+                fig = plot_friction(written, fig=Figure(figsize=(7.5, 5.5), layout="constrained"),
+                                    title=written.plot_hints.get("title"))
+            else:
+                size = (11, max(4.5, 1.7 * len(sim._names()) + 0.8)) if kind == "overview" else (6.0, 4.8)
+                fig = sim.plot(kind, discard=discard or 0.0, fig=Figure(figsize=size, layout="constrained"))
         except ValueError as exc:
-            raise InputError(f"--plot {args.plot}: {args.model}: {str(exc).split(':')[0]}") from None
+            raise InputError(f"--plot {kind}: {args.model}: {str(exc).split(':')[0]}") from None
     if has_data:
         for o in outs:
             suf = o.suffix.lower()

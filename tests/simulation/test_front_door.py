@@ -116,7 +116,7 @@ def test_command_writes_the_uniform_grid(tmp_path, capsys):
     assert doc["points"] == 41 and doc["t_final"] == 20.0
     with open(out) as fh:
         rows = list(csv.reader(fh))
-    assert rows[0] == ["t [s]", "V [m/s]", "v [m/s]", "mu [1]", "phi [s]"]
+    assert rows[0] == ["t [s]", "V [m/s]", "v [m/s]", "mu [1]", "phi [s]", "x_lp [m]", "slip [m]"]
     np.testing.assert_array_equal([float(r[0]) for r in rows[1:]], np.linspace(0.0, 20.0, 41))
 
 

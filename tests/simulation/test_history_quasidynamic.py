@@ -38,7 +38,7 @@ def test_velocity_step_at_m0_settles_at_the_steady_force_balance():
     V1, V2 = 1e-5, 1e-4
     sim = simulate_history(LAW, f"{V1}@0,{V2}@10", K, QD, t_end=30.0, rtol=1e-10)
     names = list(sim.state_names)
-    assert names == ["V", "v", "mu", "phi", "F"]
+    assert names == ["V", "v", "mu", "phi", "F", "x_lp", "slip"]
     col = {n: i for i, n in enumerate(names)}
     start, end = sim.y[:, 0], sim.y_final
     assert start[col["mu"]] == pytest.approx(_mu_ss(V1), rel=1e-12)
@@ -79,15 +79,25 @@ def test_m0_history_on_the_command_line(tmp_path, capsys):
     assert main(argv) == 0
     with open(out) as fh:
         rows = list(csv.reader(fh))
-    assert rows[0] == ["t [s]", "V [m/s]", "v [m/s]", "mu [1]", "phi [s]", "F [N]"]
+    assert rows[0] == ["t [s]", "V [m/s]", "v [m/s]", "mu [1]", "phi [s]", "F [N]", "x_lp [m]", "slip [m]"]
     v = [float(r[2]) for r in rows[1:]]
     assert min(v) < 1e-3 * 1e-5           # the hold: the slip rate falls by decades
     assert v[-1] == pytest.approx(1e-5, rel=1e-3)
 
 
-def test_m0_history_without_damping_is_a_named_error(capsys):
-    with pytest.raises(InputError, match="eta > 0"):
-        simulate_history(LAW, "1e-5@0,1e-4@10", K, {"M": 0.0, "sigma": SIGMA})
-    assert main(["simulate", "spring-block", "dieterich", "--V-history", "1e-5@0,1e-4@10", "--param", "M=0",
-                 "--param", f"sigma={SIGMA}"]) == 2
-    assert "eta > 0" in capsys.readouterr().err
+def test_m0_history_without_damping_needs_a_direct_effect(capsys):
+    # M = 0 without eta is the quasi-static run (tests/lab); its force balance fixes v only where
+    # mu grows with v, so a law without a direct effect (a < 0) is a named error
+    from landau.laws import FrictionLaw
+
+    flat = FrictionLaw.from_strings("negative-direct-effect", "mu0 - c*log(v/V0) + b*log(V0*phi/L)",
+                                    {"phi": "1 - v*phi/L"}, {"mu0": 0.6, "c": 0.002, "b": 0.01, "V0": 1e-6, "L": 1e-5})
+    with pytest.raises(InputError, match="direct effect"):
+        simulate_history(flat, "1e-5@0,1e-4@10", K, {"M": 0.0, "sigma": SIGMA})
+    assert main(["simulate", "spring-block", "--mu", "mu0 - c*log(v/V0) + b*log(V0*phi/L)",
+                 "--state", "phi=1 - v*phi/L", "--param", "mu0=0.6", "--param", "c=0.002", "--param", "b=0.01",
+                 "--param", "V0=1e-6", "--param", "L=1e-5", "--V-history", "1e-5@0,1e-4@10", "--param", "M=0",
+                 "--param", f"sigma={SIGMA}", "--k", "1e5"]) == 2
+    assert "direct effect" in capsys.readouterr().err
+    with pytest.raises(InputError, match="'eta'.*>= 0"):
+        simulate_history(LAW, "1e-5@0,1e-4@10", K, {"M": 0.0, "sigma": SIGMA, "eta": -1.0})

@@ -42,7 +42,7 @@ def test_velocity_step_with_damping_and_normal_load_settles_at_the_steady_force_
     V1, V2 = 1e-5, 1e-4
     sim = simulate_history(LAW, f"{V1}@0,{V2}@10", K, TERMS, t_end=30.0, rtol=1e-10)
     names = list(sim.state_names)
-    assert names == ["V", "v", "mu", "phi", "F", "sigma"]
+    assert names == ["V", "v", "mu", "phi", "F", "sigma", "x_lp", "slip"]
     start, end = sim.y[:, 0], sim.y_final
     col = {n: i for i, n in enumerate(names)}
     assert start[col["mu"]] == pytest.approx(_mu_ss(V1), rel=1e-12)
@@ -99,4 +99,4 @@ def test_cli_history_with_damping_writes_force_and_normal_load(tmp_path):
                  "--param", "eta=100", "--param", "gamma_ld=0.2", "--out", str(out)]) == 0
     with open(out) as fh:
         head = next(csv.reader(fh))
-    assert head == ["t [s]", "V [m/s]", "v [m/s]", "mu [1]", "phi [s]", "F [N]", "sigma [N]"]
+    assert head == ["t [s]", "V [m/s]", "v [m/s]", "mu [1]", "phi [s]", "F [N]", "sigma [N]", "x_lp [m]", "slip [m]"]

@@ -197,7 +197,7 @@ def test_velocity_step_cli(tmp_path, capsys):
     assert main(["simulate", "spring-block", "dieterich", "--V-history", "1e-6@0,1e-5@20", "--t-end", "40",
                  "--out", str(out), "--json"]) == 0
     header, rows = _csv(out)
-    assert header == ["t [s]", "V [m/s]", "v [m/s]", "mu [1]", "phi [s]"]
+    assert header == ["t [s]", "V [m/s]", "v [m/s]", "mu [1]", "phi [s]", "x_lp [m]", "slip [m]"]
     _, p = _dieterich()
     before = rows[rows[:, 0] < 20, 3][-1]
     after = rows[-1, 3]
@@ -220,7 +220,7 @@ def test_slide_hold_slide_peak_grows_with_hold_time():
     peaks = []
     for th in (1.0, 10.0, 100.0):
         sim = simulate_history(law, f"1e-5@0,0@5,1e-5@{5 + th}", k, t_end=5 + th + 5)
-        assert sim.success and sim.state_names == ("V", "v", "mu", "phi")
+        assert sim.success and sim.state_names == ("V", "v", "mu", "phi", "x_lp", "slip")
         hold = (sim.t > 5) & (sim.t < 5 + th)
         assert np.all(sim.y[0, hold] == 0.0)                 # the load point holds
         peaks.append(peak_after(sim, 5 + th) - _mu_ss(p, 1e-5))

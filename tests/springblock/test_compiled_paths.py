@@ -133,7 +133,7 @@ def test_slide_hold_slide_at_m0_against_a_tiny_mass_history():
     hist = "1e-5@0,0@5,1e-5@15"
     a = simulate_history(LAW, hist, 4e5, qd, t_end=15.3, rtol=1e-11)
     b = simulate_history(LAW, hist, 4e5, {**qd, "M": 1e-10}, t_end=15.3, rtol=1e-11)
-    assert a.state_names == b.state_names == ("V", "v", "mu", "phi", "F")
+    assert a.state_names == b.state_names == ("V", "v", "mu", "phi", "F", "x_lp", "slip")
     assert a.y[1].min() < 1e-3 * 1e-5 and a.y_final[1] < 1e-2 * 1e-5      # a real hold, mid-reload
     assert a.y_final[1:] == pytest.approx(b.y_final[1:], rel=1e-9)
     # the jumps of V are restarts: the recorded times increase, and each piece ends at its jump

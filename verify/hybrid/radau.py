@@ -585,6 +585,10 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                     acc += VINV[j, a] * Z[a, i]
                 Q[j, i] = acc
         t_new = t + h
+        if t_end - t_new <= 10 * EPS * abs(t_end):
+            # the last step, cut to the end: t + (t_end − t) may round a few ulps short of t_end (t < t_end/2),
+            # and the step left would be below the underflow bound (-1); the end is reached
+            t_new = t_end
         stop = False
         if ev_idx >= 0:
             # g(x) = g0 + c1 x + c2 x² + c3 x³ may change sign on [0, 1] only when g0 ≠ 0 (a crossing

@@ -20,7 +20,9 @@ one constant-velocity piece at a time with the compiled Radau IIA of
 :mod:`landau.verify.hybrid.radau` (field and exact Jacobian generated from the symbolic law and
 compiled once per law and set of terms, :func:`history_kernel`; V(t) is an entry of the parameter
 vector), every piece a fresh run from the state the previous one left.  At M = 0 with η > 0 (the
-quasi-dynamic limit, Rice 1993) the momentum equation is the force balance
+quasi-dynamic limit, Rice 1993) or η = 0 (the quasi-static spring–slider of the laboratory models,
+Ruina 1983; Gu et al. 1984, where v is fixed only while ∂μ/∂v > 0, checked at every sliding
+velocity of the history) the momentum equation is the force balance
 k u = σ(u) μ(v, φ) + η v; differentiated once and fed back, w' = −(R_y·y' + λR)/R_w
 (:mod:`landau.verify.springblock.compiled_runs`), it keeps w a state of the same compiled run, and
 as it does not contain V the state (u, w, ψ…) is exactly continuous across a jump of V.  Every run
@@ -30,7 +32,12 @@ k u = (σ₀ μ_ss + ηV₀)/(1 − γ_LD μ_ss)).  :func:`parse_history` reads 
 :class:`~landau.verify.hybrid.result.Simulation` whose series are the load-point velocity ``V``,
 the slip rate ``v``, the friction coefficient ``mu`` = μ(v, φ) and the states, and with ``eta``
 or ``gamma_ld`` also the spring force ``F`` = k u [N] and (``gamma_ld``) the normal load
-``sigma`` [N].
+``sigma`` [N], and last the load-point displacement ``x_lp`` = ∫V dt and the slip ``slip`` =
+x − x(t₀) [m], both from the start (:mod:`landau.verify.springblock.history_flow` gives the
+solution between the recorded points).
+
+Gu, J.-C., Rice, J. R., Ruina, A. L. & Tse, S. T. (1984), J. Mech. Phys. Solids 32, 167–196.
+Ruina, A. (1983), J. Geophys. Res. 88, 10359–10370.
 """
 
 from __future__ import annotations
@@ -97,6 +104,15 @@ class LoadHistory:
         i = np.clip(np.searchsorted(self.times, np.asarray(t, float), side="right") - 1, 0, len(self.times) - 1)
         return np.asarray(self.velocities, float)[i]
 
+    def displacement(self, t) -> np.ndarray:
+        """The load-point displacement x_lp(t) = ∫ V dt from ``times[0]`` [m] (piecewise linear in t)."""
+        t = np.asarray(t, float)
+        V, T = np.asarray(self.velocities, float), np.asarray(self.times, float)
+        ends = np.r_[T[1:], np.inf]
+        # each piece contributes V_i (min(t, T_{i+1}) − T_i) once t has passed its start
+        spans = np.clip(np.minimum(t[..., None], ends) - T, 0.0, None)
+        return spans @ V
+
     def __str__(self) -> str:
         return ",".join(f"{v:g}@{t:g}" for v, t in zip(self.velocities, self.times, strict=True))
 
@@ -138,6 +154,19 @@ def _steady_state(law: FrictionLaw, V: float, p: Mapping[str, float]) -> tuple[l
         memo[key] = (tuple(phi), mu)
     phi, mu = memo[key]
     return list(phi), mu
+
+
+def _check_direct_effect(law: FrictionLaw, V: float, p: Mapping[str, float]) -> None:
+    """The quasi-static force balance k u = σ μ(v, φ) (M = 0, η = 0) fixes v only where μ grows with v:
+    ∂μ/∂ln v > 0 at steady sliding at V (the direct effect a > 0), else an InputError."""
+    phi, _ = _steady_state(law, V, p)
+    vals = {prm.symbol: p[prm.name] for prm in law.parameters}
+    at = {v_slip: V, **dict(zip(law.states, phi, strict=True)), **vals}
+    slope = float((v_slip * sp.diff(law.mu, v_slip)).subs(at))
+    if not slope > 0:
+        raise InputError(f"law {law.name!r}: the quasi-static run (M = 0, eta = 0) needs a friction coefficient "
+                         f"that grows with the slip rate (a direct effect dmu/dln v > 0), got {slope:g} at steady "
+                         f"sliding V = {V:g} m/s (give radiation damping eta > 0, or M > 0)")
 
 
 def _value(x):
@@ -256,6 +285,15 @@ def _build_history_kernel(law: FrictionLaw, terms: tuple[str, ...], quasidynamic
     return compile_field(key, states, field, params, names, label)
 
 
+def _piece_vector(kern: CompiledField, law: FrictionLaw, p: Mapping[str, float], k: float, terms: tuple[str, ...],
+                  quasidynamic: bool, V: float, V0: float, ell: float) -> np.ndarray:
+    """The parameter vector of :func:`history_kernel` for the piece at load-point velocity V."""
+    base = [p[prm.name] for prm in law.parameters]
+    base += [k if t == "k" else p[t] for t in _kernel_terms(terms, quasidynamic)]
+    # the feedback of the force balance: FEEDBACK per slip time ℓ/(V₀ + v) (compiled_runs)
+    return kern.parameters(base + [V] + ([FEEDBACK / ell, V0] if quasidynamic else []))
+
+
 def _piece_times(t_eval: np.ndarray | None, a: float, b: float, last: bool) -> np.ndarray | None:
     """The output times of the piece [a, b) ([a, b] for the last one), or None (the steps)."""
     if t_eval is None:
@@ -270,16 +308,12 @@ def _pieces(law, p, k, terms, h: LoadHistory, y, T, ends, t_end, rtol, scale, qu
     at the accepted steps, or with ``t_eval`` at those times, each the end of a compiled run (the run
     goes on from it with the step it had reached)."""
     kern = history_kernel(law, terms, quasidynamic)
-    base = [p[prm.name] for prm in law.parameters]
-    base += [k if t == "k" else p[t] for t in _kernel_terms(terms, quasidynamic)]
-    ell = float(scale[0])
     out, nsteps, nfev = [], 0, 0
     for V, a, b in zip(h.velocities, T, ends, strict=True):
         if a >= t_end:
             break
         b = min(b, t_end)
-        # the feedback of the force balance: FEEDBACK per slip time ℓ/(V₀ + v) (compiled_runs)
-        pv = kern.parameters(base + [V] + ([FEEDBACK / ell, h.velocities[0]] if quasidynamic else []))
+        pv = _piece_vector(kern, law, p, k, terms, quasidynamic, V, h.velocities[0], float(scale[0]))
         te = _piece_times(t_eval, a, b, b >= t_end)
         stops = [b] if te is None else [*(x for x in te if a < x < b), b]
         h0, t0, at_t, at_y = None, a, [], []
@@ -290,6 +324,9 @@ def _pieces(law, p, k, terms, h: LoadHistory, y, T, ends, t_end, rtol, scale, qu
             run = drive(kern, pv, y, t0, t1, rtol=rtol, atol=rtol * scale, max_steps=MAX_STEPS, h0=h0)
             if run.status != 0:
                 why = STATUS[run.status] + (f" ({MAX_STEPS} step attempts)" if run.status == -2 else "")
+                if quasidynamic and p["eta"] == 0 and run.status in (-1, -3):
+                    why += ("; without inertia and damping (M = 0, eta = 0) the slip rate blows up in finite time "
+                            "where the spring is softer than k_c (stick-slip): give M > 0 or eta > 0 to follow it")
                 raise IntegratorError(f"load-point history{' (M = 0)' if quasidynamic else ''}, piece V = {V:g} "
                                       f"m/s from t = {a:g} s: {why} (state = u [m], ln v, ln phi...)",
                                       t=float(run.t), state=list(run.y))
@@ -313,6 +350,38 @@ def default_end(h: LoadHistory, params: Mapping[str, float]) -> float:
     longest = max([b - a for a, b in zip(T, T[1:], strict=False)]
                   or [100 * params.get("L", 1e-6) / h.velocities[0]])
     return T[-1] + longest
+
+
+def prepare_history(law: FrictionLaw, h: LoadHistory, k: float, params: Mapping[str, float] | None):
+    """The checked inputs of a history's run: (p, terms, quasidynamic, y₀, scale) — the resolved law and
+    block parameters (η = 0 added at M = 0 without it), the optional terms, whether M = 0, the state
+    (u, w, ψ…) of steady sliding at the first velocity and the absolute scale of the tolerances."""
+    from landau.systems.springblock_terms import check_steady_sliding, loads_block, steady_values
+    from landau.systems.system import SpringBlock
+
+    if not (math.isfinite(k) and k > 0):
+        raise InputError(f"stiffness k must be a finite number > 0, got {k!r}")
+    block = SpringBlock.for_params(law, params)      # with the optional terms given (eta, gamma_ld, alpha_ld)
+    p = block.resolve(params)
+    terms = block.terms
+    quasidynamic = p["M"] == 0
+    if not (p["M"] > 0 or (quasidynamic and p.get("eta", 0.0) >= 0)):
+        raise InputError("a load-point history is simulated with a block mass M > 0, or at M = 0 with radiation "
+                         "damping eta >= 0 (eta > 0 the quasi-dynamic, eta = 0 the quasi-static limit); got "
+                         f"M = {p['M']!r}, eta = {p.get('eta', 0.0)!r}")
+    if quasidynamic:
+        p = {**p, "eta": float(p.get("eta", 0.0))}   # the force balance's damping, 0 in the quasi-static limit
+    phi0, mu0 = _steady_state(law, h.velocities[0], p)
+    if quasidynamic and p["eta"] == 0:
+        for V in sorted({V for V in h.velocities if V > 0}):
+            _check_direct_effect(law, V, p)
+    if loads_block(terms):   # steady sliding at every sliding velocity of the history needs 1 - gamma mu_ss > 0
+        for V in sorted({V for V in h.velocities if V > 0}):
+            check_steady_sliding(law, _steady_state(law, V, p)[1], p, V)
+    F0 = steady_values(terms, p["sigma"], mu0, h.velocities[0], p)[0]   # spring force k u at steady sliding
+    y = np.array([F0 / k, math.log(h.velocities[0]), *(math.log(x) for x in phi0)])
+    scale = np.array([p.get("L", 1e-6)] + [1.0] * (len(y) - 1))
+    return p, terms, quasidynamic, y, scale
 
 
 def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
@@ -347,13 +416,14 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     Simulation
         ``state_names`` = (V, v, mu, states…): the load-point velocity [m/s], the slip rate
         [m/s], μ(v, φ) and the states, then the spring force F [N] with ``eta`` or ``gamma_ld`` and
-        the normal load sigma [N] with ``gamma_ld``; sampled at the integrator's steps; status
-        ``finished``.
+        the normal load sigma [N] with ``gamma_ld``, then x_lp and slip [m]; sampled at the
+        integrator's steps; status ``finished``.
 
     Raises
     ------
     InputError
-        A bad history, stiffness or end time; M < 0, or M = 0 without radiation damping η > 0.
+        A bad history, stiffness or end time; M < 0, η < 0, or M = 0 and η = 0 with a law whose μ
+        does not grow with v at a sliding velocity of the history.
     NoSteadySlidingError
         1 − γ_LD μ_ss(Vᵢ) ≤ 0 at a velocity of the history (no steady sliding there).
     IntegratorError
@@ -365,19 +435,8 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
     Marone, C. (1998), Laboratory-derived friction laws and their application to seismic
     faulting, Annu. Rev. Earth Planet. Sci. 26, 643–696 (velocity steps, slide-hold-slide).
     """
-    from landau.systems.system import SpringBlock
-
     h = parse_history(history) if isinstance(history, str) else history
-    if not (math.isfinite(k) and k > 0):
-        raise InputError(f"stiffness k must be a finite number > 0, got {k!r}")
-    block = SpringBlock.for_params(law, params)      # with the optional terms given (eta, gamma_ld, alpha_ld)
-    p = block.resolve(params)
-    terms = block.terms
-    quasidynamic = p["M"] == 0
-    if not (p["M"] > 0 or (quasidynamic and p.get("eta", 0.0) > 0)):
-        raise InputError("a load-point history is simulated with a block mass M > 0, or at M = 0 with radiation "
-                         f"damping eta > 0 (the quasi-dynamic limit); got M = {p['M']!r}, "
-                         f"eta = {p.get('eta', 0.0)!r}")
+    p, terms, quasidynamic, y, scale = prepare_history(law, h, k, params)
     T = list(h.times)
     if t_end is None:
         t_end = default_end(h, p)
@@ -392,16 +451,9 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
         appended = bool(t_eval[-1] < t_end)   # the end of the run, for the final state
         if appended:
             t_eval = np.r_[t_eval, t_end]
-    from landau.systems.springblock_terms import check_steady_sliding, load_slope, loads_block, steady_values
+    from landau.systems.springblock_terms import load_slope, loads_block
 
-    phi0, mu0 = _steady_state(law, h.velocities[0], p)
-    if loads_block(terms):   # steady sliding at every sliding velocity of the history needs 1 - gamma mu_ss > 0
-        for V in sorted({V for V in h.velocities if V > 0}):
-            check_steady_sliding(law, _steady_state(law, V, p)[1], p, V)
     mun = _mu_function(law, p, k, terms)
-    F0 = steady_values(terms, p["sigma"], mu0, h.velocities[0], p)[0]   # spring force k u at steady sliding
-    y = np.array([F0 / k, math.log(h.velocities[0]), *(math.log(x) for x in phi0)])
-    scale = np.array([p.get("L", 1e-6)] + [1.0] * (len(y) - 1))
     ts, ys, vs = [np.array([T[0]])], [y[:, None]], [np.array([h.velocities[0]])]
     if t_eval is not None:   # the series at the times asked for only
         ts, ys, vs = [], [], []
@@ -426,6 +478,9 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
         if loads_block(terms):
             out = np.vstack([out, float(p["sigma"]) + load_slope(terms, p) * k * Y[0]])
             names += ("sigma",)
+    # the load-point displacement x_lp = ∫V dt and the slip x − x(t₀) = x_lp − (u − u₀), from t₀
+    out = np.vstack([out, h.displacement(t), h.displacement(t) - (Y[0] - y[0])])
+    names += ("x_lp", "slip")
     regimes = tuple((a, min(b, t_end), "hold" if V == 0 else "slide")
                     for V, a, b in zip(h.velocities, T, ends, strict=True) if a < t_end)
     final, t_final = out[:, -1].copy(), float(t[-1])
@@ -436,8 +491,9 @@ def simulate_history(law: FrictionLaw, history: LoadHistory | str, k: float,
 
 
 def peak_after(sim: Simulation, t_from: float) -> float:
-    """The largest friction coefficient μ of ``sim`` at t ≥ ``t_from`` (a slide-hold-slide's
-    peak on reloading)."""
+    """The largest friction coefficient μ of ``sim`` at t ≥ ``t_from``, read at the recorded points
+    (a peak between two of them is read low, ~1e-6 at rtol 1e-9: :func:`landau.lab.measure.locate_peak`
+    finds it as a root of dμ/dt on the dense solution)."""
     i = list(sim.state_names).index("mu")
     keep = sim.t >= t_from
     if not keep.any():

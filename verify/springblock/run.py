@@ -267,6 +267,8 @@ def _load_history(law, block, params, history, k, V, y0, t_end, t_eval):
         notes.append(f"{len(sim.t)} output times, each the end of a compiled Radau IIA run")
     units = {"V": "m/s", "v": "m/s", "mu": "1", **law_state_units(law)}
     units.update({nm: "N" for nm in ("F", "sigma") if nm in sim.state_names})
+    units.update({"x_lp": "m", "slip": "m"})
+    notes.append("x_lp = the load-point displacement, slip = x - x(t0), both from the start of the run")
     used = {"law": law.name, "V_history": str(hist), "k": k, **params}
     if "F" in sim.state_names:
         notes.append("F = k (x_lp - x), the spring force" + (", and sigma the normal load that follows it"
