@@ -66,14 +66,15 @@ def _law(args, params: dict[str, float]):
 
 
 def run(args) -> dict:
-    from landau.lab.data import parse_quantity, read_csv
+    from landau.lab.data import read_csv
     from landau.lab.fit import fit
+    from landau.lab.units import KINDS, parse_value
 
-    params = {n: parse_quantity(v, f"--param {n}") for n, v in _pairs(args.param, "--param").items()}
+    params = {n: parse_value(v, tuple(KINDS), f"--param {n}")[0] for n, v in _pairs(args.param, "--param").items()}
     law = _law(args, params)
     data = read_csv(args.data, columns=_pairs(args.column, "--column"), units=_pairs(args.unit, "--unit"),
                     format=args.format)
-    k = parse_quantity(args.k, "--k") if args.k is not None else None
+    k = parse_value(args.k, "inverse length", "--k")[0] if args.k is not None else None
     free = None
     if args.free is not None:
         free = [s.strip() for s in args.free.split(",") if s.strip()]

@@ -24,6 +24,7 @@ from typing import Mapping
 import numpy as np
 
 from landau.errors import InputError
+from landau.lab.units import KINDS, unit_kind
 
 #: landau's column names and what each is
 COLUMNS = {"t": "time (s)", "x_lp": "load-point displacement (m)", "V_lp": "load-point velocity (m/s)",
@@ -36,30 +37,22 @@ FORMATS: dict[str, dict[str, tuple[str, str]]] = {
                  "V_lp": ("loadpoint_velocity", "um/s"), "mu": ("friction", "")},
 }
 
-_LENGTH = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "micron": 1e-6, "nm": 1e-9}
-_TIME = {"s": 1.0, "ms": 1e-3, "min": 60.0, "h": 3600.0}
-_DIMENSION = {"t": "time", "x_lp": "length", "V_lp": "velocity", "mu": "none"}
+_DIMENSION = {"t": "time", "x_lp": "length", "V_lp": "velocity", "mu": "number"}
 
 
 def unit_factor(unit: str, column: str) -> float:
-    """The factor to SI of ``unit`` for landau's column ``column`` (e.g. "um/s" for V_lp: 1e-6)."""
-    u = unit.strip().replace(" ", "")
+    """The factor to SI of ``unit`` for landau's column ``column`` (e.g. "um/s" for V_lp: 1e-6), read by
+    :func:`landau.lab.units.unit_kind`; an InputError where the unit is unknown or of another kind."""
     kind = _DIMENSION[column]
-    if kind == "none":
-        if u in ("", "-", "1"):
-            return 1.0
-    elif kind == "time" and u in _TIME:
-        return _TIME[u]
-    elif kind == "length" and u in _LENGTH:
-        return _LENGTH[u]
-    elif kind == "velocity" and "/" in u:
-        num, den = u.split("/", 1)
-        if num in _LENGTH and den in _TIME:
-            return _LENGTH[num] / _TIME[den]
-    known = {"time": ", ".join(_TIME), "length": ", ".join(_LENGTH), "velocity": "LENGTH/TIME (um/s, mm/s, m/s)",
-             "none": "none (-)"}[kind]
-    raise InputError(f"column {column!r}: unknown unit {unit!r} for a {kind if kind != 'none' else 'number'} "
-                     f"(known: {known})")
+    u = "" if unit.strip() == "-" else unit
+    try:
+        got, factor = unit_kind(u)
+    except InputError as exc:
+        raise InputError(f"column {column!r}: {exc}") from None
+    if got != kind:
+        raise InputError(f"column {column!r}: the unit {unit!r} is of {got}, expected a {kind} "
+                         f"({KINDS[kind][1]})")
+    return float(factor)
 
 
 @dataclass(frozen=True)
@@ -216,32 +209,3 @@ def _assemble(values: dict[str, np.ndarray], layout, header: list[str], source: 
         x = np.concatenate([[0.0], np.cumsum(V[:-1] * np.diff(t))])
     return LabData(t, V, mu, x, source)
 
-
-def parse_quantity(text: str, what: str) -> float:
-    """A number with an optional unit, to SI: ``"10um"`` → 1e-5, ``"1um/s"`` → 1e-6, ``"1e-3/um"`` → 1e3,
-    ``"0.5"`` → 0.5 (a bare number is SI)."""
-    s = str(text).strip().replace(" ", "")
-    m = re.fullmatch(r"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)(.*)", s)
-    if not m:
-        raise InputError(f"{what}: {text!r} is not a number (with an optional unit such as um, um/s, 1/um)")
-    x, unit = float(m.group(1)), m.group(2)
-    if unit in ("", "1"):
-        factor = 1.0
-    elif unit in _LENGTH:
-        factor = _LENGTH[unit]
-    elif unit.startswith("/") and unit[1:] in _LENGTH:
-        factor = 1.0 / _LENGTH[unit[1:]]
-    elif unit.startswith("1/") and unit[2:] in _LENGTH:
-        factor = 1.0 / _LENGTH[unit[2:]]
-    elif "/" in unit and unit.split("/", 1)[0] in _LENGTH and unit.split("/", 1)[1] in _TIME:
-        num, den = unit.split("/", 1)
-        factor = _LENGTH[num] / _TIME[den]
-    elif unit in _TIME:
-        factor = _TIME[unit]
-    else:
-        raise InputError(f"{what}: unknown unit {unit!r} in {text!r} (known: lengths {', '.join(_LENGTH)}; "
-                         "velocities LENGTH/TIME; stiffness 1/LENGTH; times s, ms, min, h)")
-    value = x * factor
-    if not math.isfinite(value):
-        raise InputError(f"{what}: {text!r} is not finite")
-    return value
