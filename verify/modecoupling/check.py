@@ -27,7 +27,7 @@ Kuznetsov, Y. A. (2004), *Elements of Applied Bifurcation Theory*, 3rd ed., Sec.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -289,9 +289,9 @@ def check_flutter(s, eps2=1e-2, *, tolerance: float | None = None, bracket: tupl
     from landau.analyses.checking import Verdict, _eps2_request, _Point, _primary, _result, _run_contract
     from landau.derivation.hopf import Criticality
 
-    if s.friction.name != "coulomb":
+    if s.law.name != "coulomb":
         raise InputError(f"mode-coupling: the check takes Coulomb friction mu (the bifurcation parameter), got the "
-                         f"law {s.friction.name!r}")
+                         f"law {s.law.name!r}")
     eps2 = _eps2_request(eps2)
     if tolerance is not None and not (0 < tolerance < 1):
         raise InputError(f"tolerance must be in (0, 1), got {tolerance!r}")
@@ -314,8 +314,7 @@ def check_flutter(s, eps2=1e-2, *, tolerance: float | None = None, bracket: tupl
                f"eps2 = {valid['eps2_first']:.3g} (amplitude {valid['amplitude_first']:.3g} m): no weakly nonlinear "
                "cycle of the sliding contact there")
         res = _result(common, None, pr, p, Verdict.OUTSIDE_VALIDITY, why, None, [], hi, lo, hi)
-        res.detail["validity"] = valid
-        return res
+        return replace(res, detail={**res.detail, "validity": valid})
 
     def measure(e: float, is_primary: bool) -> _Point:
         mu = pr.p_c + pr.cycle_side * e * scale
@@ -340,5 +339,4 @@ def check_flutter(s, eps2=1e-2, *, tolerance: float | None = None, bracket: tupl
                                                       lambda e: contract.multiplier_gap(pr, e, scale))
     res = _result(common, main, pr, p, verdict, why, sc, pts, emax if emax is not None else valid["eps2_first"],
                   lo, hi)
-    res.detail["validity"] = valid
-    return res
+    return replace(res, detail={**res.detail, "validity": valid})

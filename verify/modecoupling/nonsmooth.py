@@ -180,6 +180,12 @@ class Structure:
         object.__setattr__(self, "_Minv", np.linalg.inv(M))
 
     @property
+    def law(self) -> VelocityFriction:
+        """The friction coefficient law F(v_rel) (Coulomb μ where none was given)."""
+        assert self.friction is not None, "set in __post_init__"
+        return self.friction
+
+    @property
     def n(self) -> int:
         """The number of degrees of freedom (the state has 2n components: x, then x')."""
         return int(self.M.shape[0])
@@ -198,7 +204,7 @@ class Structure:
     def coefficient(self, side: int, vrel):
         """F(v_rel) on the slip side ``side`` (+1: v_rel > 0, −1: v_rel < 0), elementwise."""
         v = side * np.maximum(side * np.asarray(vrel, dtype=float), 0.0)
-        return np.broadcast_to(self.friction.numeric(side)(v, *self._law_values), np.shape(v)) + 0.0
+        return np.broadcast_to(self.law.numeric(side)(v, *self._law_values), np.shape(v)) + 0.0
 
     def forces(self, y):
         """(N, λ, r) at states ``y`` (shape (2n,) or (2n, m)): the contact force, the tangential force
@@ -222,7 +228,7 @@ class Structure:
 
     def kernel_key(self) -> tuple:
         """What the generated sources depend on (besides the mode)."""
-        law = self.friction
+        law = self.law
         return (self.n, int(self.normal), int(self.tangential), self.contact.law,
                 math.isfinite(self.contact.delta_max), law.branch(1), law.branch(-1),
                 tuple(p.symbol for p in law.parameters))
@@ -427,6 +433,13 @@ def _collapse(t, y):
     return Jump("collapse", np.array(y, dtype=float), "the softening contact collapses (N'(delta) = 0)")
 
 
+def _component(i: int, scale: float, offset: float = 0.0):
+    """The guard ``scale * y[i] + offset`` (vectorised over samples)."""
+    def g(t, y):
+        return scale * y[i] + offset
+    return g
+
+
 def _unit(size: int, i: int, scale: float = 1.0) -> np.ndarray:
     w = np.zeros(size)
     w[i] = scale
@@ -446,8 +459,7 @@ def hybrid_model(s: Structure, sections: tuple = ()) -> HybridModel:
     soft = math.isfinite(dmax)
     mup, mum = s.static
     sections = tuple((str(nm), int(i), float(sg)) for nm, i, sg in sections)
-    secs = tuple(Guard(nm, lambda t, y, i=i, sg=sg: sg * y[i], affine=(_unit(n2, i, sg), 0.0))
-                 for nm, i, sg in sections)
+    secs = tuple(Guard(nm, _component(i, sg), affine=(_unit(n2, i, sg), 0.0)) for nm, i, sg in sections)
 
     def delta(t, y):
         return y[nrm]
@@ -470,7 +482,7 @@ def hybrid_model(s: Structure, sections: tuple = ()) -> HybridModel:
 
     modes = []
     for name, side in (("slip+", 1), ("slip-", -1)):
-        stop = Guard("stop", lambda t, y, side=side: side * (s.v0 - y[vt]), _to_stick_or_slip(s),
+        stop = Guard("stop", _component(vt, -float(side), side * s.v0), _to_stick_or_slip(s),
                      affine=(_unit(n2, vt, -float(side)), side * s.v0))
         modes.append(mode(name, (lift, stop, *limit)))
     modes.append(mode("stick", (lift, Guard("slip+ onset", stick_up, _to("slip+", "stick ends: slip+")),

@@ -190,7 +190,7 @@ def simulate(setup: Setup, *, t_end: float | None = None, y0=None, history=None,
     sim = interpolated(sim, t_eval, t_end, "the engine's recorded samples")
     units = {nm: ("m/s" if "dot" in nm else "m") for nm in names}
     used: dict = {"contact": s.contact.law, "kH": s.contact.kH, "kNL": s.contact.kNL, "P": s.preload, "v0": s.v0,
-                  "friction": s.friction.name}
+                  "friction": s.law.name}
     used.update({k: float(v) for k, v in setup.params.items()})
     if setup.law is None and setup.option("friction") is None:
         used["mu"] = s.static[0]
@@ -198,7 +198,7 @@ def simulate(setup: Setup, *, t_end: float | None = None, y0=None, history=None,
     if sol.final_mode == "collapse":
         notes.append(f"the softening contact collapsed (penetration reached delta_max = {s.contact.delta_max:.6g} m, "
                      "where N'(delta) = 0): the run ends there")
-    return replace(sim, law=s.friction.name, units={"t": "s", **units}, parameters=used,
+    return replace(sim, law=s.law.name, units={"t": "s", **units}, parameters=used,
                    notes=(*notes, *sim.notes), plot_hints={"phase": (0, s.n)})
 
 
