@@ -136,7 +136,10 @@ class Setup:
 
     def option(self, name: str, default: Any = None) -> Any:
         val = self.options.get(name, default)
-        return default if val in (None, [], ()) else val
+        # an empty list or tuple is "not given"; an array (a matrix option) is compared by its type, never
+        # by ==, whose truth value numpy refuses
+        empty = val is None or (isinstance(val, (list, tuple)) and len(val) == 0)
+        return default if empty else val
 
 
 @dataclass(frozen=True, eq=False)

@@ -79,3 +79,25 @@ def test_cli_bad_input(args, words, capsys):
     assert main(["simulate", "mode-coupling", *args, "--json"]) == 2
     io = capsys.readouterr()
     assert words in json.loads(io.out)["error"] and "Traceback" not in io.err
+
+
+def test_matrix_family_embeds_the_two_dof_model():
+    # the 2-DOF model written as a 3-DOF structure (normal coordinate 0, tangential 2, a decoupled
+    # oscillator at 1 left at rest): the same run to the integration tolerance, events included
+    import landau
+
+    two = hoffmann_structure(mu=0.9)
+    perm = [1, 2, 0]             # 3-DOF coordinate i holds 2-DOF coordinate perm[i] (2: the extra one)
+    M, C, K = np.eye(3), np.zeros((3, 3)), np.zeros((3, 3))
+    for i, a in enumerate(perm):
+        for j, b in enumerate(perm):
+            if a < 2 and b < 2:
+                C[i, j], K[i, j] = two.C[a, b], two.K[a, b]
+    C[1, 1], K[1, 1] = 0.1, 2.0
+    opts = {"M": M.tolist(), "C": str(C.tolist()), "K": K, "normal": 0, "tangential": 2}
+    three = landau.simulate("mode-coupling", params={"mu": 0.9}, options=opts, t_end=235.0)
+    ref = landau.simulate("mode-coupling", params={"mu": 0.9}, t_end=235.0)
+    assert three.state_names == ("x0", "x1", "x2", "xdot0", "xdot1", "xdot2")
+    np.testing.assert_allclose(three.y_final[[2, 0, 5, 3]], ref.y_final, atol=1e-6)
+    assert three.y_final[1] == 0.0 and three.y_final[4] == 0.0
+    assert [e.guard for e in three.events if e.kind == "switch"] == [e.guard for e in ref.events if e.kind == "switch"]

@@ -60,7 +60,12 @@ MODE_COUPLING = Model(
     options=(Option("contact", "contact law: linear (default), cubic or hertz"),
              Option("friction", "friction coefficient F(v) for v_rel = v0 - xdot > 0"),
              Option("friction_neg", "friction for v_rel < 0 (default the odd extension)"),
-             Option("friction_name", "a name for the friction law")),
+             Option("friction_name", "a name for the friction law"),
+             Option("M", "the N-DOF family: mass matrix (array, or a string like [[1,0],[0,1]])"),
+             Option("C", "the N-DOF family: damping matrix (default 0)"),
+             Option("K", "the N-DOF family: stiffness matrix"),
+             Option("normal", "the N-DOF family: index of the normal coordinate (the penetration)"),
+             Option("tangential", "the N-DOF family: index of the tangential coordinate (along the belt)")),
     defaults={"t_end": 300.0, "key_parameters": ("mu", "P")},
     source=SOURCE,
 )
