@@ -74,5 +74,8 @@ def test_cli_verify(capsys):
     assert json.loads(capsys.readouterr().out)["point"]["verdict"] == "outside-validity"
     assert main(["verify", "mode-coupling", "--param", "mu=0.3", "--json"]) == 2
     assert "bifurcation parameter" in json.loads(capsys.readouterr().out)["error"]
+    # no closed-contact equilibrium at any mu (a preload pulling the mass off the belt): bad input, not "no flutter"
+    assert main(["verify", "mode-coupling", "--param", "P=-1", "--json"]) == 2
+    assert "no sliding equilibrium" in json.loads(capsys.readouterr().out)["error"]
     assert main(["verify", "spring-block", "--json"]) == 2
     assert "no check" in json.loads(capsys.readouterr().out)["error"]

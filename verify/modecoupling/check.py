@@ -112,18 +112,21 @@ def hopf_bracket(s, mu_max: float = SCAN_MU_MAX, points: int = SCAN_POINTS) -> t
     """An interval of Coulomb μ around the first crossing of a complex pair of the sliding equilibrium
     (the flutter onset), from a scan of the linearised eigenvalues; NoHopfError if none below ``mu_max``."""
     mus = np.linspace(0.0, mu_max, points + 1)
-    prev = None
+    prev, refused, found = None, None, False
     for mu in mus:
         try:
             _, lam, _ = linear_mode(s, mu)
-        except InputError:
-            prev = None
+        except InputError as exc:     # no closed-contact equilibrium at this mu
+            prev, refused = None, refused or exc
             continue
+        found = True
         osc = lam[np.abs(lam.imag) > 1e-9]
         g = float(osc.real.max()) if len(osc) else -math.inf
         if prev is not None and prev[1] < 0 <= g:
             return float(prev[0]), float(mu)
         prev = (mu, g)
+    if not found and refused is not None:
+        raise refused
     raise NoHopfError(f"mode-coupling: no flutter (a complex pair crossing into Re > 0) of the sliding equilibrium "
                       f"for mu in [0, {mu_max:g}]")
 
