@@ -55,6 +55,9 @@ def render(doc: dict) -> str:
         err = "-" if q["rel_error"] is None else f"{q['rel_error']:+.3e}"
         lines.append(f"  eps2 {q['eps2']:.3g}: mu = {q['p']:.8g}, A_pred {q['amplitude_predicted']:.6g}, A_sim {sim}, "
                      f"rel.err {err}, stable {q['cycle_stable']}")
+    if p.get("exponent") is not None:
+        lines.append(f"fitted exponent of |rel.err| ~ (eps2)^p: {p['exponent']:.3f}; extrapolated error at eps2 -> 0: "
+                     f"{p['extrapolated_error']:+.2e}")
     if v:
         lines.append(f"the predicted cycle opens the contact at amplitude {v['amplitude_contact_opens']:.4g} m "
                      f"(eps2 {v['eps2_contact_opens']:.3g}) and sticks at {v['amplitude_mass_sticks']:.4g} m "
