@@ -50,6 +50,21 @@ def test_amplitude_check_both_sides(case):
     assert v["amplitude_mass_sticks"] == pytest.approx(5.0 / pr.omega_c, rel=1e-15)
 
 
+def test_through_landau_check_and_its_refusals():
+    import landau
+    from landau.errors import InputError
+    from landau.laws.velocity import VelocityFriction
+
+    r = landau.check(structure(-0.1), 4e-3)
+    assert r.agrees and r.parameter == "mu" and r.detail["validity"]["first"] == "contact opens"
+    law = VelocityFriction.from_strings("stribeck", "md + (ms - md)*exp(-v/vs)", params={"md": 0.5, "ms": 0.9,
+                                                                                            "vs": 0.3})
+    with pytest.raises(InputError, match="Coulomb"):
+        check_flutter(hoffmann_structure(contact="cubic", kNL=0.5, friction=law), 4e-3)
+    with pytest.raises(InputError, match="eps2"):
+        check_flutter(structure(0.5), 0.7)
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("case", sorted(CASES))
 def test_error_falls_like_eps2(case):

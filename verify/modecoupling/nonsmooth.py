@@ -201,6 +201,13 @@ class Structure:
             kw["friction"] = None
         return replace(self, **kw)
 
+    def amplitude_check(self, eps2=1e-2, *, tolerance: float | None = None):
+        """The flutter onset's amplitude equation checked by this structure's non-smooth simulation
+        (:func:`landau.verify.modecoupling.check.check_flutter`; what :func:`landau.check` runs for it)."""
+        from landau.verify.modecoupling.check import check_flutter
+
+        return check_flutter(self, eps2, tolerance=tolerance)
+
     def coefficient(self, side: int, vrel):
         """F(v_rel) on the slip side ``side`` (+1: v_rel > 0, −1: v_rel < 0), elementwise."""
         v = side * np.maximum(side * np.asarray(vrel, dtype=float), 0.0)
