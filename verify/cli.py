@@ -44,9 +44,17 @@ def configure(p) -> None:
                    help="subcritical points: only shoot the unstable cycle, skip the (slow) bisection")
     p.add_argument("--work-precision", action="store_true", help="write the Fig. 3 work-precision table and PNG")
     p.add_argument("--out", default="verify-out", help="output directory for --work-precision (default verify-out)")
+    p.add_argument("--contact", choices=("linear", "cubic", "hertz"), default=None,
+                   help="mode-coupling: the contact law (default linear; cubic with --param kNL=...)")
 
 
 def run(args) -> dict:
+    from landau import models
+
+    if args.law in models.names():      # a registered model with its own check (mode-coupling)
+        return _model_check(models.get(args.law), args)
+    if args.contact is not None:
+        raise InputError("--contact applies to a model's check (landau verify mode-coupling) only")
     doc: dict = {"amplitude_definition": AMPLITUDE_DEFINITION, "units": {"V": "m/s", "kc": "N/m", "k_c": "N/m",
                  "amplitude": "m", "frequency": "rad/s"},
                  "contract": {"exponent_band": list(contract.EXPONENT_BAND),
@@ -109,7 +117,31 @@ def _f(x, spec="10.4g"):
     return "-".rjust(int(spec.split(".")[0])) if x is None else format(x, spec)
 
 
+def _model_check(model, args) -> dict:
+    """``landau verify MODEL``: the model's own check (:attr:`landau.models.Model.check`)."""
+    from landau import models
+    from landau.cli.common import parse_params
+    from landau.models import Setup
+
+    if model.check is None:
+        have = ", ".join(m.name for m in models.all_models() if m.check is not None)
+        raise InputError(f"verify {model.name}: the model has no check by simulation (models with one: {have}; "
+                         "a law name checks the spring-block)")
+    if args.V is not None or args.mu is not None or args.state or args.work_precision:
+        raise InputError(f"verify {model.name}: --V, --mu, --state and --work-precision belong to the spring-block")
+    if args.tol is not None and not (0 < args.tol < 1):
+        raise InputError(f"--tol must be in (0, 1), got {args.tol!r}")
+    eps2s = parse_floats(args.eps2, "--eps2")
+    for e in eps2s:
+        if not (0 < e < 0.5):
+            raise InputError(f"--eps2: values must be in (0, 0.5), got {e!r}")
+    setup = Setup(None, parse_params(args.param, {}), {"contact": args.contact} if args.contact else {})
+    return model.check(setup, eps2s[0] if len(eps2s) == 1 else eps2s, args.tol)
+
+
 def render(doc: dict) -> str:
+    if "text" in doc and "model" in doc:   # a model's own check
+        return doc["text"]
     lines = []
     if "points" in doc:
         lines.append(f"law {doc['law']}  [{doc['source']}]")

@@ -614,7 +614,9 @@ def check(target, V: float | None = None, eps2: float | Sequence[float] = 1e-3,
     ----------
     target : FrictionLaw, str, SpringBlock or DynamicalSystem
         A friction law (or the name of a built-in law) is put in the default spring–block of
-        Putelat et al. (2010) eq. (4); a general system is simulated as E·ẏ = f(y; p).
+        Putelat et al. (2010) eq. (4); a general system is simulated as E·ẏ = f(y; p); an object with
+        its own ``amplitude_check(eps2, tolerance=...)`` (the non-smooth mode-coupling structure,
+        :class:`landau.verify.modecoupling.nonsmooth.Structure`) runs that.
     V : float
         Driving velocity [m/s] (spring–block only).
     eps2 : float or sequence of float
@@ -661,6 +663,9 @@ def check(target, V: float | None = None, eps2: float | Sequence[float] = 1e-3,
     eps2 = _eps2_request(eps2)
     if tolerance is not None and not (0 < tolerance < 1):
         raise InputError(f"tolerance must be in (0, 1), got {tolerance!r}")
+    own = getattr(target, "amplitude_check", None)
+    if callable(own):   # a model object with its own check by simulation (the non-smooth mode-coupling structure)
+        return own(eps2, tolerance=tolerance)
     if isinstance(target, DynamicalSystem):
         return _check_system(target, dict(target.defaults, **(params or {})), bracket, eps2, tolerance, rtol)
     if isinstance(target, str):

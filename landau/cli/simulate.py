@@ -26,7 +26,11 @@ Models (defaults: the published parameters):
   Witkowski & Awrejcewicz (2019), identified parameters, started at rest; its friction is the
   paper's regularised Coulomb law (c, T, eps by ``--param``) or yours, ``--friction EXPR`` in
   the sliding velocity ``v`` [N] with its parameters by ``--param`` (the notes give the
-  linearised grazing estimate of their Sec. 5 for that law).
+  linearised grazing estimate of their Sec. 5 for that law);
+* ``mode-coupling`` — the mass on a belt of Hoffmann, Fischer, Allgaier & Gaul (2002) (friction-induced
+  flutter), Coulomb ``mu`` 0.9 (above the flutter onset) or ``--friction EXPR`` in v_rel, the contact law
+  ``--contact linear|cubic|hertz``, started near steady sliding: the contact opens (flight) and the mass
+  sticks as the flutter grows (angles ``alpha1``, ``alpha2`` in degrees).
 
 ``spring-block LAW --V-history "V0@t0,V1@t1,..."`` drives the load point at a piecewise-constant
 velocity instead (velocity steps, slide-hold-slide; starts from steady sliding at V0); its CSV
@@ -66,7 +70,7 @@ FLAGS = {"y0": "--y0", "t_end": "--t-end", "max_steps": "--max-steps", "dt": "--
 LAW_OPTIONS = {"friction": "--friction", "friction_neg": "--friction-neg", "kinetic": "--kinetic",
                "kinetic_pos": "--kinetic-pos"}
 #: the options of a system written on the command line
-SYSTEM_OPTIONS = ("rhs", "equilibrium", "guess", "mass", "parameter")
+SYSTEM_OPTIONS = ("rhs", "equilibrium", "guess", "mass", "parameter", "contact")
 
 
 def configure(p) -> None:
@@ -121,6 +125,9 @@ def configure(p) -> None:
                    help="system: the mass entry E_ii of a state (default 1)")
     p.add_argument("--parameter", default=None, metavar="NAME",
                    help="system: the Hopf parameter (its value by --param; default the first --param)")
+    p.add_argument("--contact", choices=("linear", "cubic", "hertz"), default=None,
+                   help="mode-coupling: the contact law N(y) of the penetration y: linear kH*y, cubic kH*y + kNL*y^3 "
+                        "(default) or hertz kH*y^(3/2)")
     p.add_argument("--plot", choices=("overview", "poincare", "friction"), default=None,
                    help="what a .png shows: time series and phase portrait (the default), the Poincaré section "
                         "(the logged sections; the forced oscillator: stroboscopic at the forcing period) or, "

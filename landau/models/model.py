@@ -136,7 +136,10 @@ class Setup:
 
     def option(self, name: str, default: Any = None) -> Any:
         val = self.options.get(name, default)
-        return default if val in (None, [], ()) else val
+        # an empty list or tuple is "not given"; an array (a matrix option) is compared by its type, never
+        # by ==, whose truth value numpy refuses
+        empty = val is None or (isinstance(val, (list, tuple)) and len(val) == 0)
+        return default if empty else val
 
 
 @dataclass(frozen=True, eq=False)
@@ -163,6 +166,10 @@ class Model:
     simulate : callable, optional
         The model's simulation, ``simulate(setup, *, t_end, y0, history, t_eval, max_steps, sections)
         -> Simulation`` (what :func:`landau.simulate` and ``landau simulate`` run).
+    check : callable, optional
+        The model's own check of its amplitude equation by simulation (``landau verify MODEL``),
+        ``check(setup, eps2, tolerance) -> dict``: the JSON document, with ``exit_code`` and ``text`` (the
+        human report).
     tasks : mapping of str to callable
         The sweep tasks the model runs besides ``hopf`` (which it runs when it has :attr:`hopf`):
         task name -> ``factory(task, model, law, fixed, options) -> Task``.
@@ -183,6 +190,7 @@ class Model:
     hopf_parameter: Callable[[Setup], str | None] | str | None = None
     hopf: Callable[[Setup], Any] | None = None
     simulate: Callable[..., Any] | None = None
+    check: Callable[..., dict] | None = None
     tasks: Mapping[str, Callable[..., Any]] = field(default_factory=dict)
     options: tuple[Option, ...] = ()
     defaults: Mapping[str, Any] = field(default_factory=dict)

@@ -37,6 +37,7 @@ class Status(enum.Enum):
     NON_FINITE = "non-finite"
     ZENO = "zeno"
     EVENT_RATE = "event-rate"
+    WALL_TIME = "wall-time"
     FAILED = "failed"
 
     @property
@@ -62,6 +63,7 @@ _ADVICE = {
     Status.ZENO: "events accumulate (Zeno): see the diagnosis; give the mode an on_zeno handler "
                  "(e.g. a sticking mode) or stop the run at the accumulation point",
     Status.EVENT_RATE: "the event rate exceeded its cap: raise max_event_rate if the chattering is real",
+    Status.WALL_TIME: "the wall-clock budget ran out: raise it or shorten the time span",
     Status.FAILED: "the integrator failed: see the message",
 }
 

@@ -160,6 +160,20 @@ def mode_coupling_hopf(setup: Setup):
     return flutter_hopf(mc, hp, setup.option("bracket"))
 
 
+def _simulate(setup: Setup, **kw):
+    """The non-smooth run (:func:`landau.verify.modecoupling.run.simulate`)."""
+    from landau.verify.modecoupling.run import simulate
+
+    return simulate(setup, **kw)
+
+
+def _check(setup: Setup, eps2, tolerance=None) -> dict:
+    """The amplitude check near the flutter onset by direct simulation (:mod:`landau.verify.modecoupling.cli`)."""
+    from landau.verify.modecoupling.cli import run
+
+    return run(setup, eps2, tolerance)
+
+
 MODE_COUPLING = Model(
     name="mode-coupling",
     description="friction-induced flutter (mode coupling) of Hoffmann et al. (2002), or an N-DOF structure given "
@@ -168,6 +182,8 @@ MODE_COUPLING = Model(
     declare=_declare,
     hopf_parameter=_hopf_parameter,
     hopf=mode_coupling_hopf,
+    simulate=_simulate,
+    check=_check,
     options=(Option("friction", "friction coefficient mu(v) of the sliding velocity v = v0 - xdot > 0 (default the "
                                 "constant mu)"),
              Option("friction_neg", "does not apply (the belt slides one way)"),
@@ -180,7 +196,7 @@ MODE_COUPLING = Model(
              Option("stiffness_matrix", "the stiffness matrix K of an N-DOF structure (JSON rows)"),
              Option("normal", "index of the normal coordinate (the penetration) of an N-DOF structure (default 1)"),
              Option("tangential", "index of the tangential coordinate of an N-DOF structure (default 0)")),
-    defaults={"t_end": 2.0, "key_parameters": ("mu", "c1", "c2")},
+    defaults={"t_end": 300.0, "key_parameters": ("mu", "c1", "c2")},
     convention="general",
     source="Hoffmann et al. (2002); Hoffmann & Gaul (2003)",
 )
