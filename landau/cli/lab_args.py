@@ -9,6 +9,7 @@ k′σ), ``--k 2e4N/m``, ``--V-history "1um/s@0,10um/s@10"``, ``--param L=10um``
 
 from __future__ import annotations
 
+from landau import models
 from landau.errors import InputError
 
 
@@ -84,10 +85,12 @@ def history_pairs(text: str, preset) -> list[tuple[float, float]]:
 
 
 def check_preset(args, model) -> None:
-    """``--preset lab`` runs a protocol of the spring–block: InputError for another model or no history."""
+    """``--preset lab`` runs a protocol of a model that declares the preset (the spring–block): InputError for
+    another model or no history."""
     if getattr(args, "preset", "si") == "lab":
-        if model.name != "spring-block":
-            raise InputError(f"--preset lab applies to spring-block only, not {model.name}")
+        if "lab" not in model.defaults.get("presets", ("si",)):
+            offering = [m.name for m in models.all_models() if "lab" in m.defaults.get("presets", ("si",))]
+            raise InputError(f"--preset lab applies to {', '.join(offering)} only, not {model.name}")
         if args.V_history is None:
             raise InputError("--preset lab runs a laboratory protocol: give --V-history (e.g. '1um/s@0,10um/s@10')")
 

@@ -94,9 +94,14 @@ def test_matrix_family_embeds_the_two_dof_model():
             if a < 2 and b < 2:
                 C[i, j], K[i, j] = two.C[a, b], two.K[a, b]
     C[1, 1], K[1, 1] = 0.1, 2.0
-    opts = {"M": M.tolist(), "C": str(C.tolist()), "K": K, "normal": 0, "tangential": 2}
-    three = landau.simulate("mode-coupling", params={"mu": 0.9}, options=opts, t_end=235.0)
-    ref = landau.simulate("mode-coupling", params={"mu": 0.9}, t_end=235.0)
+    opts = {"mass_matrix": M.tolist(), "damping_matrix": str(C.tolist()), "stiffness_matrix": K, "normal": 0,
+            "tangential": 2, "contact": "linear"}
+    contact = {"kH": 1.0, "kNL": 0.0, "P": 1.0, "v0": 1.0, "mu": 0.9}
+    three = landau.simulate("mode-coupling", params=contact, options=opts, t_end=235.0)
+    # hoffmann_structure's values through the model's parameters
+    ref = landau.simulate("mode-coupling", params={**contact, "m": 1.0, "k1": 1.0, "k2": 0.5, "alpha1": 30.0,
+                                                   "alpha2": 60.0, "c1": 0.02, "c2": 0.04},
+                          options={"contact": "linear"}, t_end=235.0)
     assert three.state_names == ("x0", "x1", "x2", "xdot0", "xdot1", "xdot2")
     np.testing.assert_allclose(three.y_final[[2, 0, 5, 3]], ref.y_final, atol=1e-6)
     assert three.y_final[1] == 0.0 and three.y_final[4] == 0.0

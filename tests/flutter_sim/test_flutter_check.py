@@ -78,14 +78,19 @@ def test_error_falls_like_eps2(case):
     assert 0.9 < slope < 1.1
 
 
+#: the structure of structure(kNL) above as the model's parameters
+SMALL = [x for n, v in (("m", 1), ("k1", 1), ("k2", 0.5), ("alpha1", 30), ("alpha2", 60), ("kH", 1), ("P", 1),
+                        ("c1", 0.02), ("c2", 0.04), ("v0", 5)) for x in ("--param", f"{n}={v}")]
+
+
 def test_cli_verify(capsys):
-    code = main(["verify", "mode-coupling", "--contact", "cubic", "--param", "kNL=0.5", "--param", "v0=5",
+    code = main(["verify", "mode-coupling", "--contact", "cubic", *SMALL, "--param", "kNL=0.5",
                  "--eps2", "4e-3", "--json"])
     doc = json.loads(capsys.readouterr().out)
     assert code == 0 and doc["exit_code"] == 0 and doc["point"]["verdict"] == "agrees"
     assert doc["point"]["validity"]["first"] == "contact opens"
     # the linear contact: the sliding system is linear (Lambda = 0), named, exit 1
-    assert main(["verify", "mode-coupling", "--json"]) == 1
+    assert main(["verify", "mode-coupling", "--contact", "linear", *SMALL, "--param", "kNL=0", "--json"]) == 1
     assert json.loads(capsys.readouterr().out)["point"]["verdict"] == "outside-validity"
     assert main(["verify", "mode-coupling", "--param", "mu=0.3", "--json"]) == 2
     assert "bifurcation parameter" in json.loads(capsys.readouterr().out)["error"]

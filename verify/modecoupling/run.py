@@ -49,7 +49,9 @@ def structure(setup: Setup):
     mu = float(mc.friction) if law is None else None
     M, C, K = (np.array(a, dtype=float) for a in (mc.M, mc.C, mc.K))
     return Structure(M, C, K, int(mc.normal), int(mc.tangential), float(mc.preload), float(mc.v0),
-                     Contact(mc.contact.kind, float(mc.contact.kH), float(mc.contact.kNL)), law, mu)
+                     # k_NL is the cubic law's only (the model's default k_NL stands beside a linear or Hertz law)
+                     Contact(mc.contact.kind, float(mc.contact.kH),
+                             float(mc.contact.kNL) if mc.contact.kind == "cubic" else 0.0), law, mu)
 
 
 def bounded_run(s, y0, t_end: float, *, max_steps: int = MAX_STEPS, wall_s: float = WALL_S, record: bool = True,

@@ -170,7 +170,8 @@ SPRING_BLOCK = Model(
     simulate=_simulate,
     tasks={"hopf": _hopf_task, "check": _check_task, "regime": _regime_task},
     options=_patch_options(),
-    defaults={"V": V_DEFAULT, "t_end": 20.0, "key_parameters": ("V", "k"), "history": True},
+    # "presets": the conventions its load-point histories take (landau.lab.preset: si, lab)
+    defaults={"V": V_DEFAULT, "t_end": 20.0, "key_parameters": ("V", "k"), "history": True, "presets": ("si", "lab")},
     convention="putelat2010",
     convention_description=CONVENTION,
     plots={"regime": plot_regime_sweep},
