@@ -30,8 +30,9 @@ code of ``.nbc``); landau does not reach into that.  The ``__pycache__`` beside 
 modules is as trusted as the modules themselves.  When ``$NUMBA_CACHE_DIR`` is set, its files
 of the loop's module are verified before the build (:func:`landau.verify.jitcache.verify_numba_entries`:
 unsigned files are removed and the loop is built afresh) and signed after it, so a restored or
-shared ``NUMBA_CACHE_DIR`` cannot hand a compiled loop planted or swapped machine code; every other
-file in ``NUMBA_CACHE_DIR`` is numba's business, and that folder must be trusted.  A build whose
+shared ``NUMBA_CACHE_DIR`` cannot hand a compiled loop planted or swapped machine code; the files of
+every other module of landau there are verified when ``landau.verify`` is imported
+(:func:`secure_numba_cache`, which also refuses a ``NUMBA_CACHE_DIR`` that others may write).  A build whose
 files cannot be written (full disk, read-only folder) keeps its machine code in memory, with one
 warning.
 
@@ -51,7 +52,7 @@ import types
 from pathlib import Path
 from typing import Any, Iterator
 
-__all__ = ["NOTICE_AFTER", "WATCHED", "compile_once", "paused_gc", "source_stamp"]
+__all__ = ["NOTICE_AFTER", "WATCHED", "compile_once", "paused_gc", "secure_numba_cache", "source_stamp"]
 
 #: modules whose source is part of a compiled loop's cache key (the simulation code)
 WATCHED: tuple[str, ...] = ("landau.verify.",)
@@ -257,3 +258,60 @@ def _shared_numba_folders() -> list[Path]:
         return [d for d in Path(root).iterdir() if d.is_dir()]
     except OSError:
         return []
+
+
+def _package_subfolder(directory: Path) -> str:
+    """The sub-folder of ``$NUMBA_CACHE_DIR`` where numba keeps the files of the modules in ``directory``:
+    the folder's name and the SHA-1 of its absolute path (numba's ``_CacheLocator.get_suitable_cache_subpath``,
+    which names it so; SHA-1 there is a short name, not a check)."""
+    path = os.path.abspath(directory)
+    return "_".join([os.path.split(path)[-1], hashlib.sha1(path.encode()).hexdigest()])
+
+
+def secure_numba_cache() -> None:
+    """Before any of landau's compiled modules is imported (``landau.verify``'s package init): a
+    ``$NUMBA_CACHE_DIR`` that another user owns or others may write is replaced by a private folder,
+    and numba's files there of every landau module are verified.
+
+    numba unpickles its index files (``.nbi``) and loads machine code (``.nbc``) from
+    ``$NUMBA_CACHE_DIR`` when that is set; a file planted or damaged there would run.  So:
+
+    * a folder that is not the user's own (:func:`landau.support.cachedir.folder_problem`: owned by
+      another user, or writable by its group or others) is not used: one warning, and
+      ``NUMBA_CACHE_DIR`` is set to ``numba`` in the landau cache root (made 0700) for this process
+      (and numba's loaded configuration with it);
+    * the files of each module of the installed package (the sub-folders numba names after the
+      package's folders) must carry their signatures
+      (:func:`landau.verify.jitcache.verify_numba_entries`): a planted index, a truncated or swapped
+      machine-code file makes every file of that module removed and the module's functions compiled
+      afresh; files numba writes in this process are signed at its exit (for every module of the
+      package, also one that had no files yet).
+
+    Only hashing reads the files here; nothing is unpickled.  Without ``$NUMBA_CACHE_DIR`` numba keeps
+    its files in ``__pycache__`` beside the modules, as trusted as the modules themselves.
+    """
+    root = os.environ.get("NUMBA_CACHE_DIR")
+    if not root:
+        return
+    from landau.support.cachedir import cache_root, folder_problem, secure_folder, warn_once
+
+    if os.path.isdir(root) and (problem := folder_problem(Path(root))) is not None:
+        private = cache_root() / "numba"
+        if not secure_folder(private, "numba's cache"):
+            return
+        warn_once(f"numba cache {root}", f"not using NUMBA_CACHE_DIR={root} for numba's cache: {problem}; using "
+                                         f"{private} (a folder of your own that only you may write)")
+        os.environ["NUMBA_CACHE_DIR"] = root = os.fspath(private)
+        numba = sys.modules.get("numba")
+        if numba is not None:
+            numba.config.CACHE_DIR = root
+    if not os.path.isdir(root):
+        return
+    from landau.verify.jitcache import verify_numba_entries
+
+    package = Path(__file__).resolve().parent      # landau.verify: every compiled module of landau lives below
+    for directory in (package, *(d for d in package.rglob("*") if d.is_dir() and d.name != "__pycache__")):
+        folder = Path(root) / _package_subfolder(directory)
+        # every module, also one without files yet: what numba writes for it in this process is signed at exit
+        for module in sorted(directory.glob("*.py")):
+            verify_numba_entries(module, [folder] if folder.is_dir() else [])
