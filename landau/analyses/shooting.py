@@ -19,9 +19,9 @@ the integration tolerance ``rtol`` (absolute tolerance ``rtol·max(1e-12, max|z|
 Unknowns (z, T); equations y(T; z) − z = 0 (closure) and (z − y0)·f(y0) = 0 (phase anchor, which
 removes the orbit's time-translation freedom), solved by MINPACK's hybrd to ``xtol`` 1e-11.
 Outcome: ``(z, T, sol, mult)``, a point of the cycle, its period, the dense Radau solution over
-one period and the n − 1 nontrivial Floquet multipliers (eigenvalues of the monodromy matrix by
-central differences, the one closest to 1 dropped).  Accepted: a converged solve whose closure
-max|y(T; z) − z| is at most 1e-7·max(1, max|z|), or a stalled one ("not making good progress",
+one period and the n − 1 nontrivial Floquet multipliers (eigenvalues of the monodromy matrix of the
+variational equations, :func:`monodromy`; the one closest to 1 dropped).  Accepted: a converged
+solve whose closure max|y(T; z) − z| is at most 1e-7·max(1, max|z|), or a stalled one ("not making good progress",
 when the seed is already within the integration's noise of the cycle) closed to the
 integrator's own tolerance rtol·max(1e-12, max|z|) with a finite period above T0/2.
 Failures (:class:`~landau.errors.IntegratorError`): "integration failed while shooting: <the
@@ -152,17 +152,37 @@ def shoot(rhs, jac, y0: np.ndarray, T0: float, anchor_f: np.ndarray, rtol: float
     if not converged:
         raise IntegratorError(f"shooting did not converge: {' '.join(res.message.split())} (closure {closure:.3g})")
     sol = flow(z, T)
-    # monodromy by central differences (small systems)
-    h = 1e-6 * max(1.0, float(np.max(np.abs(z))))
-    Mono = np.empty((n, n))
-    for j in range(n):
-        d = np.zeros(n)
-        d[j] = h
-        Mono[:, j] = (flow(z + d, T).y[:, -1] - flow(z - d, T).y[:, -1]) / (2 * h)
-    mult = np.linalg.eigvals(Mono)
+    mult = np.linalg.eigvals(monodromy(jac, sol, T, n, rtol))
     # drop the trivial multiplier (closest to 1)
     mult = np.delete(mult, int(np.argmin(np.abs(mult - 1.0))))
     return z, T, sol, mult
+
+
+def monodromy(jac, sol, T: float, n: int, rtol: float) -> np.ndarray:
+    """The monodromy matrix Φ(T) of the cycle ``sol`` (dense output over one period) by the variational
+    equations Φ' = J(y(t)) Φ, Φ(0) = I, integrated along the cycle's dense output.
+
+    Central differences of the flow took a step of 1e-6 (absolute) in every coordinate: larger than
+    a small cycle itself (a chain's 3.4e-7 m), so the difference quotient left the linear range and
+    called a stable cycle unstable.  The variational equations have no step: Φ(T) is exact to the
+    integration's tolerance.  Φ is stored row by row (vec Φ, C order), so the Jacobian of the
+    linear system is J ⊗ I.
+    """
+    import scipy.integrate
+
+    eye = np.eye(n)
+
+    def rhs(t, phi):
+        return (np.asarray(jac(t, sol.sol(t)), dtype=float) @ phi.reshape(n, n)).ravel()
+
+    def rhs_jac(t, phi):
+        return np.kron(np.asarray(jac(t, sol.sol(t)), dtype=float), eye)
+
+    out = scipy.integrate.solve_ivp(rhs, (0.0, T), eye.ravel(), method="Radau", jac=rhs_jac, rtol=rtol,
+                                    atol=rtol)
+    if out.status != 0:
+        raise IntegratorError(f"integration failed along the cycle (its variational equations): {out.message}")
+    return out.y[:, -1].reshape(n, n)
 
 
 class CycleShooter:
