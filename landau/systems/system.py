@@ -360,7 +360,8 @@ class SpringBlock:
         -------
         SpringBlock
         """
-        return cls(law, tuple(t for t in _terms.TERMS if t in (params or {})))
+        given = {_terms.term_of(key) for key in (params or {})}
+        return cls(law, tuple(t for t in _terms.TERMS if t in given))
 
     law: FrictionLaw
     terms: tuple[str, ...] = ()
@@ -378,13 +379,13 @@ class SpringBlock:
     def defaults(self) -> dict[str, float]:
         d = dict(self.law.defaults())
         d.update(M=M_DEFAULT, g=G_DEFAULT, sigma=M_DEFAULT * G_DEFAULT)
-        d.update({t: 0.0 for t in self.terms})
+        d.update({name: default for name, _, _, default in _terms.parameters(self.terms)})
         return d
 
     @property
     def units(self) -> dict[str, str]:
         """Units of the system parameters (SI, per block; per unit area: N → Pa)."""
-        return {**SYSTEM_UNITS, **{t: _terms.TERMS[t].unit for t in self.terms}}
+        return {**SYSTEM_UNITS, **{name: unit for name, _, unit, _ in _terms.parameters(self.terms)}}
 
     def resolve(self, overrides: Mapping[str, float] | None = None) -> dict[str, float]:
         """Full parameter dict (law + M, g, sigma) with overrides applied and checked.
@@ -407,9 +408,9 @@ class SpringBlock:
         over = dict(overrides or {})
         declared = {prm.name for prm in self.law.parameters} | set(p)
         for key, val in over.items():
-            if key in _terms.TERMS and key not in declared:
-                raise InputError(f"parameter {key!r} is an optional spring-block term not built into this "
-                                 f"block: use SpringBlock(law, terms=({key!r},)) or "
+            if (term := _terms.term_of(key)) is not None and key not in declared:
+                raise InputError(f"parameter {key!r} is of the optional spring-block term {term!r}, not built "
+                                 f"into this block: use SpringBlock(law, terms=({term!r},)) or "
                                  "SpringBlock.for_params(law, params)")
             if key not in declared:
                 raise InputError(f"unknown parameter {key!r} for law {self.law.name!r} "
@@ -450,21 +451,24 @@ class SpringBlock:
         at_slip = {v_slip: V + u}
         ss = self.steady_state
         eq_phi = ss if ss is not None else self.phi0
-        force, rates = _terms.mechanical_rhs(self.law, self.terms, X, u, at_slip, eq_phi, k, sigma, V)
+        # the terms' states (pore pressure, temperature) as their excesses over steady sliding
+        extra = {st.symbol.name: st.symbol for st in _terms.states(self.terms)}
+        force, rates = _terms.mechanical_rhs(self.law, self.terms, X, u, at_slip, eq_phi, k, sigma, V, extra=extra)
         rhs = (u, force, *rates)
+        ts = tuple(extra.values())
         unknowns: tuple = ()
         eqs: tuple = ()
         if ss is None:
             unknowns = self.phi0
             eqs = tuple(r.subs({v_slip: V, **dict(zip(phis, self.phi0, strict=True))}) for r in self.law.rates)
-        extra = "".join(f"+{t}" for t in self.terms)
+        named = "".join(f"+{t}" for t in self.terms)
         return DynamicalSystem(
-            name=f"spring-block[{self.law.name}]{extra}",
-            states=(X, u, *phis),
+            name=f"spring-block[{self.law.name}]{named}",
+            states=(X, u, *phis, *ts),
             rhs=rhs,
-            mass=(sp.Integer(1), M, *([sp.Integer(1)] * len(phis))),
+            mass=(sp.Integer(1), M, *([sp.Integer(1)] * (len(phis) + len(ts)))),
             parameter=k,
-            equilibrium=(sp.Integer(0), sp.Integer(0), *eq_phi),
+            equilibrium=(sp.Integer(0), sp.Integer(0), *eq_phi, *([sp.Integer(0)] * len(ts))),
             defaults=self.defaults,
             normalise=0,
             unknowns=unknowns,
@@ -495,7 +499,7 @@ class SpringBlock:
         list
             One value (or array) per entry of :attr:`args`, broadcast together.
         """
-        n = len(self.law.parameters) + 3 + len(self.terms)
+        n = len(self.law.parameters) + 3 + len(_terms.symbols(self.terms))
         vals = [Vs, *(params[s.name] for s in self.args[1:n + 1])]
         shape = np.broadcast(*[np.asarray(x, dtype=float) for x in vals]).shape
         Vb = np.broadcast_to(np.asarray(Vs, dtype=float), shape)
@@ -528,7 +532,7 @@ class SpringBlock:
         from dataclasses import replace
 
         return replace(result, at=(*result.at, *self.terms),
-                       units={**result.units, **{t: _terms.TERMS[t].unit for t in self.terms}})
+                       units={**result.units, **{name: unit for name, _, unit, _ in _terms.parameters(self.terms)}})
 
     @cached_property
     def _mu_numeric(self):
