@@ -27,7 +27,7 @@ from landau.verify.springblock.checks import predict
 
 LAW = get_law("dieterich")
 V = 1e-6
-BASE = dict(sigma=20.0, p_inf=5.0, beta=1e-3, t_drain=0.5, lambda_tp=3e5, rho_c=30.0, w_sz=1e-3, t_th=0.2)
+BASE = dict(sigma=20.0, p_inf=5.0, beta=1e-3, t_drain=0.5, lambda_tp=1e5, rho_c=30.0, w_sz=1e-3, t_th=0.2)
 CASES = {"thermal only": {**BASE, "eps_dil": 0.0}, "thermal and dilatancy": {**BASE, "eps_dil": 1e-4}}
 
 
