@@ -49,7 +49,7 @@ import sympy as sp
 from landau.errors import InputError, IntegratorError
 from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
-from landau.systems.springblock_terms import check_terms, mechanical_rhs, steady_values
+from landau.systems.springblock_terms import check_terms, mechanical_rhs, refuse_states, steady_values
 from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.radau import STATUS
 from landau.verify.hybrid.result import Simulation, Status
@@ -213,6 +213,7 @@ def _expressions(law, terms, p, V, k, ell, phi0, mu0, sigma_ss):
     # the force balance and the state rates of every term, from their one declaration
     # (springblock_terms.mechanical_rhs) in X = ℓξ, u = V(e^w − 1); η, which M = 0 needs, always built in
     terms = check_terms(("eta", *terms))
+    refuse_states(terms, "the quasi-dynamic cell (M = 0: landau simulate, check)")
     force, rates = mechanical_rhs(law, terms, ell * xi, V * (sp.exp(w) - 1), {s: s for s in (v_slip, *law.states)},
                                   tuple(phi0), k, p.get("sigma", sigma_ss), V, mu0=mu0, sigma_ss=sigma_ss,
                                   symbol={t: p[t] for t in terms})
