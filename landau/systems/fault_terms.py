@@ -43,8 +43,9 @@ consistent too, with p in N and β in 1/N).
     [J/(m³K)], ``w_sz`` w [m], ``t_th`` t_th [s].  Valid while the zone is thin against the diffusion
     lengths (one mode represents the profile) and T stays where the coefficients are constant.
 
-The derivation's state variables are the excesses over steady sliding: ``p_pore`` = p − p_∞ and
-``T_slip`` = T − T_ss.
+The block's state variables (the derivation's, and the columns of ``landau simulate``) are the excesses
+over steady sliding, named ``p`` (p − p_∞, Pa) and ``T`` (T − T_ss, K); a law whose own symbols take
+these names cannot carry the terms (:class:`~landau.systems.system.SpringBlock` refuses it).
 
 References
 ----------
@@ -74,8 +75,8 @@ rho_c = sp.Symbol("rho_c", positive=True)
 w_sz = sp.Symbol("w_sz", positive=True)
 t_th = sp.Symbol("t_th", positive=True)
 #: the derivation's variables: p − p_∞ and T − T_ss
-p_pore = sp.Symbol("p_pore", real=True)
-T_slip = sp.Symbol("T_slip", real=True)
+p_pore = sp.Symbol("p", real=True)
+T_slip = sp.Symbol("T", real=True)
 
 SEGALL_RICE_1995 = "Segall & Rice (1995)"
 TP_SOURCE = "Rice (2006); Segall & Rice (2006)"
@@ -84,7 +85,7 @@ TP_SOURCE = "Rice (2006); Segall & Rice (2006)"
 def _pore_rate(b: Balance) -> sp.Expr:
     s = b.symbol
     # dp/dt = −(p − p_∞)/t_f + (ε/β) (dφ₁/dt)/φ₁  (Segall & Rice 1995, through the first state)
-    return -(b.extra["p_pore"] - s["p_inf"]) / s["t_drain"] + s["eps_dil"] / s["beta"] * b.phi_rates[0] / b.phis[0]
+    return -(b.extra["p"] - s["p_inf"]) / s["t_drain"] + s["eps_dil"] / s["beta"] * b.phi_rates[0] / b.phis[0]
 
 
 def _steady_temperature(b: Balance) -> sp.Expr:
@@ -96,13 +97,13 @@ def _steady_temperature(b: Balance) -> sp.Expr:
 def _heating(b: Balance) -> sp.Expr:
     s = b.symbol
     # dT/dt = τ v/(ρc·2w) − T/t_th, τ = σ̄ μ
-    return b.sigma * b.mu * b.v / (s["rho_c"] * 2 * s["w_sz"]) - b.extra["T_slip"] / s["t_th"]
+    return b.sigma * b.mu * b.v / (s["rho_c"] * 2 * s["w_sz"]) - b.extra["T"] / s["t_th"]
 
 
 PORE = Term(
     eps_dil, "1", "dilatancy coefficient: porosity phi0 - eps_dil ln(V theta/L), effective stress sigma - p",
     SEGALL_RICE_1995, True,
-    load=lambda b: -b.extra["p_pore"],
+    load=lambda b: -b.extra["p"],
     parameters=(
         TermParameter(p_inf, "Pa", "ambient pore pressure (steady sliding: p = p_inf)", 0.0, "real"),
         TermParameter(t_drain, "s", "drainage (hydraulic diffusion) time", 1.0, "positive"),
@@ -123,7 +124,7 @@ THERMAL = Term(
                       steady=_steady_temperature,
                       rate=_heating, scale=lambda b: b.sigma / b.symbol["rho_c"]),),
     # dp/dt gains Λ dT/dt
-    state_rates=lambda b: {"p_pore": b.symbol["lambda_tp"] * b.extra_rates["T_slip"]},
+    state_rates=lambda b: {"p": b.symbol["lambda_tp"] * b.extra_rates["T"]},
     requires=("eps_dil",),
 )
 

@@ -374,6 +374,12 @@ class SpringBlock:
             object.__setattr__(self, "law", get_law(self.law))
         if not isinstance(self.law, FrictionLaw):
             raise InputError(f"SpringBlock needs a FrictionLaw or a built-in law's name, got {type(self.law).__name__}")
+        taken = {s.name for s in (*self.law.states, *(q.symbol for q in self.law.parameters))} | \
+            {"X", "u", "V", "k", "M", "g", "sigma"}
+        clash = sorted(st.symbol.name for st in _terms.states(self.terms) if st.symbol.name in taken)
+        if clash:
+            raise InputError(f"law {self.law.name!r}: its symbol(s) {', '.join(clash)} are the names of the states "
+                             f"the terms {', '.join(self.terms)} add; rename them in the law")
 
     @cached_property
     def defaults(self) -> dict[str, float]:
