@@ -282,8 +282,8 @@ def refuse_states(terms, consumer: str) -> None:
     with_states = [t for t in check_terms(terms) if TERMS[t].states]
     if with_states:
         raise InputError(f"{consumer} does not carry the states of the term(s) {', '.join(with_states)} "
-                         "(pore pressure, temperature) yet; the block with M > 0 does (landau simulate, check), "
-                         "and landau hopf and derive analyse it at any M")
+                         "(pore pressure, temperature) yet; landau simulate and check without a history do, "
+                         "and landau hopf and derive analyse them")
 
 
 def _symbols(terms, symbol: Mapping[str, sp.Symbol] | None) -> dict[str, sp.Symbol]:
