@@ -1,4 +1,6 @@
-"""Optional terms of the spring–block: radiation damping and variable normal stress.
+"""Optional terms of the spring–block: radiation damping and variable normal stress (and, declared in
+:mod:`landau.systems.fault_terms` on the same classes, the terms with states of their own: pore pressure
+with dilatancy, thermal pressurisation).
 
 Each term is a declared system parameter, default 0 (off), built into the equations in this
 module only; :class:`~landau.systems.system.SpringBlock` asks for them by name

@@ -326,7 +326,9 @@ class SpringBlock:
     Optional terms (:mod:`landau.systems.springblock_terms`), each a system parameter with
     default 0: radiation damping ``eta`` η [N·s/m] (Rice 1993; with M = 0 the quasi-dynamic
     limit), variable normal stress ``gamma_ld`` γ_LD and the state response ``alpha_ld`` α_LD
-    (Linker & Dieterich 1992); ``sigma`` is then σ₀, the normal load at zero spring force.
+    (Linker & Dieterich 1992); ``sigma`` is then σ₀, the normal load at zero spring force; with states of
+    their own (:mod:`landau.systems.fault_terms`), pore pressure and dilatancy ``eps_dil`` (σ − p, Segall &
+    Rice 1995) and thermal pressurisation ``lambda_tp`` (Rice 2006), with their further parameters.
     All quantities may be per unit area (σ in Pa, k in Pa/m, η in Pa·s/m, M in kg/m²).
 
     Parameters
@@ -353,8 +355,8 @@ class SpringBlock:
         ----------
         law : FrictionLaw or str
         params : mapping, optional
-            Parameter overrides; a key ``eta``, ``gamma_ld`` or ``alpha_ld`` (any value, 0 too)
-            builds that term in.
+            Parameter overrides; a key ``eta``, ``gamma_ld``, ``alpha_ld``, ``eps_dil``, ``lambda_tp`` or one of
+            their further parameters (``t_drain``…; any value, 0 too) builds that term in.
 
         Returns
         -------
