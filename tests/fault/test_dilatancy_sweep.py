@@ -11,6 +11,8 @@ interpolated one within 5 % of it (the cell is a factor 1.45 wide in t_f; Λ is 
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import pytest
 
@@ -24,13 +26,15 @@ EPS = [1e-4, 2e-4, 4e-4]
 T_DRAIN = list(np.geomspace(2.0, 40.0, 9))
 
 
-_SINGLE = derive(SpringBlock("dieterich", ("eps_dil",)))
+@functools.lru_cache(maxsize=1)
+def _single():
+    return derive(SpringBlock("dieterich", ("eps_dil",)))
 
 
 def _Lambda(eps, tf):
     """Λ of one call (the derivation ``landau hopf spring-block`` and ``landau derive`` evaluate)."""
-    return float(np.ravel(_SINGLE.evaluate(np.array([V]), {**FIXED, "eps_dil": eps, "t_drain": tf},
-                                           ["Lambda"])["Lambda"])[0])
+    return float(np.ravel(_single().evaluate(np.array([V]), {**FIXED, "eps_dil": eps, "t_drain": tf},
+                                             ["Lambda"])["Lambda"])[0])
 
 
 def test_regime_map_and_its_boundary_against_single_calls():
