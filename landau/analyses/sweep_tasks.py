@@ -238,10 +238,11 @@ class SpringBlockHopf(Task):
         model's own Hopf analysis point by point (:class:`PointwiseHopf`)."""
         from dataclasses import replace
 
-        from landau.systems.springblock_terms import check_terms, stiffness_in_rates
+        from landau.systems.springblock_terms import check_terms, stiffness_in_rates, term_of
 
         named = {*grid.names, *dict(self.fixed)}
-        terms = check_terms(tuple(t for t in _term_names() if t in named))
+        given = {term_of(n) for n in named}
+        terms = check_terms(tuple(t for t in _term_names() if t in given))
         if stiffness_in_rates(terms):
             return PointwiseHopf("hopf", self.model, self.law, self.fixed, self.options, chunk_size=1)
         task = replace(self, terms=terms)

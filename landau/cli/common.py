@@ -12,9 +12,9 @@ from landau.systems.system import SpringBlock
 
 
 def _system_params() -> tuple[str, ...]:
-    from landau.systems.springblock_terms import TERMS
+    from landau.systems.springblock_terms import TERMS, parameters
 
-    return ("M", "g", "sigma", *TERMS)
+    return ("M", "g", "sigma", *(name for name, *_ in parameters(tuple(TERMS))))
 
 
 def add_law_arguments(p: argparse.ArgumentParser) -> None:

@@ -1,4 +1,6 @@
-"""Optional terms of the spring–block: radiation damping and variable normal stress.
+"""Optional terms of the spring–block: radiation damping and variable normal stress (and, declared in
+:mod:`landau.systems.fault_terms` on the same classes, the terms with states of their own: pore pressure
+with dilatancy, thermal pressurisation).
 
 Each term is a declared system parameter, default 0 (off), built into the equations in this
 module only; :class:`~landau.systems.system.SpringBlock` asks for them by name
@@ -118,6 +120,44 @@ class Balance:
     mu: sp.Expr = sp.Integer(0)
     dmu_dphi: tuple = ()
     symbol: Mapping[str, sp.Symbol] = field(default_factory=dict)
+    #: the terms' own states (:class:`TermState`) at this instant, by name (their full values)
+    extra: Mapping[str, sp.Expr] = field(default_factory=dict)
+    #: dφᵢ/dt with every term's contribution (given to the terms' state rates)
+    phi_rates: tuple = ()
+    #: the rates of the terms' states computed so far (a term's contribution to another's state uses them)
+    extra_rates: Mapping[str, sp.Expr] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class TermParameter:
+    """A further parameter of a term (beyond the term's own, which switches it on): a drainage time, a
+    storage coefficient.  It has a default (the term is off while the term's own parameter is 0)."""
+
+    symbol: sp.Symbol
+    unit: str
+    meaning: str
+    default: float
+    #: "positive", "nonnegative" or "real"
+    domain: str = "real"
+
+
+@dataclass(frozen=True)
+class TermState:
+    """A state a term adds to the block (a pore pressure, a temperature).
+
+    ``symbol`` is the derivation's variable: the state's excess over its steady value (0 at steady
+    sliding).  ``steady`` and ``rate`` are functions of a :class:`Balance` and give the state's steady
+    value (the balance at steady sliding: v = V, σ = σ_ss, μ = μ_ss; a state the normal load depends on
+    must have a steady value free of σ) and its rate d/dt written in the full values
+    (:attr:`Balance.extra`).  ``scale`` is a typical size, the unit of a consumer's scaled variable.
+    """
+
+    symbol: sp.Symbol
+    unit: str
+    meaning: str
+    steady: Callable[[Balance], sp.Expr]
+    rate: Callable[[Balance], sp.Expr]
+    scale: Callable[[Balance], sp.Expr]
 
 
 @dataclass(frozen=True)
@@ -130,6 +170,13 @@ class Term:
     is the one place a term is written: the derivation, its LaTeX, the compiled field, the
     quasi-dynamic cell and the load histories all build their equations from it
     (:func:`force_balance`, :func:`mechanical_rhs`).
+
+    A term may add states (``states``, :class:`TermState`: a pore pressure p, a temperature T) whose
+    full values the load, the force and the rates read from :attr:`Balance.extra` (the effective
+    normal stress σ̄ = σ − p is the load −p); ``state_rates`` adds to the rates of states other terms
+    declare (name → contribution; the rates computed so far in :attr:`Balance.extra_rates`), and
+    ``requires`` names the terms it needs built in with it (their states).  ``parameters`` are its
+    further parameters (:class:`TermParameter`), system parameters whenever the term is built in.
     """
 
     symbol: sp.Symbol
@@ -143,6 +190,10 @@ class Term:
     #: the stiffness enters the state rates through this term (the Hopf line is then not affine in k
     #: in the derivation's parameters: its Hopf point comes from the general engine)
     stiffness_in_rates: bool = False
+    parameters: tuple[TermParameter, ...] = ()
+    states: tuple[TermState, ...] = ()
+    state_rates: Callable[[Balance], Mapping[str, sp.Expr]] | None = None
+    requires: tuple[str, ...] = ()
 
 
 #: the optional terms, in their argument order
@@ -176,7 +227,7 @@ def unregister_term(name: str) -> None:
 
 
 def check_terms(terms) -> tuple[str, ...]:
-    """The requested terms, validated and in canonical order."""
+    """The requested terms, validated and in canonical order, with the terms they require."""
     if isinstance(terms, str):
         terms = (terms,)
     terms = tuple(terms)
@@ -184,16 +235,80 @@ def check_terms(terms) -> tuple[str, ...]:
     if unknown:
         raise InputError(f"unknown spring-block term(s) {', '.join(map(repr, unknown))} "
                          f"(known: {', '.join(TERMS)})")
-    return tuple(t for t in TERMS if t in terms)
+    wanted = set(terms)
+    todo = list(terms)
+    while todo:
+        for r in TERMS[todo.pop()].requires:
+            if r not in wanted:
+                wanted.add(r)
+                todo.append(r)
+    return tuple(t for t in TERMS if t in wanted)
+
+
+def parameters(terms) -> tuple[tuple[str, sp.Symbol, str, float], ...]:
+    """(name, symbol, unit, default) of every parameter of ``terms``: each term's own (default 0, off),
+    then its further ones (:class:`TermParameter`), in canonical order."""
+    out = []
+    for t in check_terms(terms):
+        term = TERMS[t]
+        out.append((t, term.symbol, term.unit, 0.0))
+        out += [(q.symbol.name, q.symbol, q.unit, float(q.default)) for q in term.parameters]
+    return tuple(out)
+
+
+def term_of(name: str) -> str | None:
+    """The term a parameter ``name`` belongs to (its own or a further one), or None."""
+    for t, term in TERMS.items():
+        if name == t or any(q.symbol.name == name for q in term.parameters):
+            return t
+    return None
 
 
 def symbols(terms) -> tuple[sp.Symbol, ...]:
-    """The parameter symbols of ``terms`` (canonical order)."""
-    return tuple(TERMS[t].symbol for t in check_terms(terms))
+    """The parameter symbols of ``terms`` (canonical order, each term's own then its further ones)."""
+    return tuple(q[1] for q in parameters(terms))
+
+
+def states(terms) -> tuple[TermState, ...]:
+    """The states the terms add (canonical order)."""
+    return tuple(st for t in check_terms(terms) for st in TERMS[t].states)
+
+
+def has_states(terms) -> bool:
+    """True where one of ``terms`` adds a state (pore pressure, temperature)."""
+    return bool(states(terms))
+
+
+def refuse_states(terms, consumer: str) -> None:
+    """InputError where ``terms`` add states that ``consumer`` does not carry."""
+    with_states = [t for t in check_terms(terms) if TERMS[t].states]
+    if with_states:
+        raise InputError(f"{consumer} does not carry the states of the term(s) {', '.join(with_states)} "
+                         "(pore pressure, temperature) yet; landau simulate and check without a history do, "
+                         "and landau hopf and derive analyse them")
 
 
 def _symbols(terms, symbol: Mapping[str, sp.Symbol] | None) -> dict[str, sp.Symbol]:
-    return {t: (symbol or {}).get(t, TERMS[t].symbol) for t in terms}
+    return {name: (symbol or {}).get(name, sym) for name, sym, _, _ in parameters(terms)}
+
+
+def steady_extra(terms, b: Balance) -> dict[str, sp.Expr]:
+    """The steady values of the terms' states (canonical order; each sees those before it in ``b.extra``)."""
+    out: dict[str, sp.Expr] = {}
+    for st in states(terms):
+        out[st.symbol.name] = st.steady(Balance(**{**b.__dict__, "extra": dict(out)}))
+    return out
+
+
+def _extra_for_load(terms, sym, sigma0, V, mu0) -> dict[str, sp.Expr]:
+    """The steady states the normal load reads: their steady values must not depend on σ."""
+    if not has_states(terms):
+        return {}
+    sd = sp.Dummy("sigma_ss")
+    b = Balance(v=V, phis=(), F=sp.Integer(0), F_dot=sp.Integer(0), V_lp=V, k=sp.Integer(0), sigma0=sigma0,
+                sigma=sd, mu=mu0, symbol=sym)
+    ex = steady_extra(terms, b)
+    return {n: e for n, e in ex.items() if not sp.sympify(e).has(sd)}
 
 
 def _loads(terms, b: Balance) -> sp.Expr:
@@ -210,8 +325,9 @@ def steady_spring_force(terms, sigma0, mu0, V, symbol=None) -> sp.Expr:
     """F_ss, the spring force at steady sliding: the root of F − σ(F) μ_ss + Σ forces(V) = 0 (the
     loads are affine in F, so the root is unique where it exists)."""
     Fs = sp.Dummy("F")
+    sym = _symbols(terms, symbol)
     b = Balance(v=V, phis=(), F=Fs, F_dot=sp.Integer(0), V_lp=V, k=sp.Integer(0), sigma0=sigma0,
-                symbol=_symbols(terms, symbol))
+                symbol=sym, extra=_extra_for_load(terms, sym, sigma0, V, mu0))
     eq = Fs - (sigma0 + _loads(terms, b)) * mu0 + _forces(terms, b)
     roots = sp.solve(eq, Fs)
     if len(roots) != 1:
@@ -229,19 +345,21 @@ def normal_load_ss(sigma0, mu0, V, terms, symbol=None):
     sym = _symbols(terms, symbol)
     m = sp.Dummy("mu_ss")   # solved with μ_ss a symbol, then substituted: its expression is kept whole
     F_ss = steady_spring_force(terms, sigma0, m, V, sym)
-    b = Balance(v=V, phis=(), F=F_ss, F_dot=sp.Integer(0), V_lp=V, k=sp.Integer(0), sigma0=sigma0, symbol=sym)
+    b = Balance(v=V, phis=(), F=F_ss, F_dot=sp.Integer(0), V_lp=V, k=sp.Integer(0), sigma0=sigma0, symbol=sym,
+                extra=_extra_for_load(terms, sym, sigma0, V, m))
     num, den = sp.fraction(sp.cancel(sigma0 + _loads(terms, b)))
     if den.as_coeff_add()[0] < 0:   # written as (…)/(1 − γ μ_ss)
         num, den = -num, -den
     return (num / den).xreplace({m: mu0})
 
 
-def mechanical_rhs(law, terms, X, u, at_slip, eq_phi, k, sigma0, V, *, mu0=None, sigma_ss=None, symbol=None):
+def mechanical_rhs(law, terms, X, u, at_slip, eq_phi, k, sigma0, V, *, mu0=None, sigma_ss=None, symbol=None,
+                   extra=None):
     """(u-row, state rates) of the spring–block with ``terms``, in X = x − x_ss(t), u = ẋ − V.
 
     The force balance of :class:`Balance` with F = F_ss − kX, Ḟ = −k u, v = V + u, written so that
     its steady values cancel term by term: M u̇ = −kX − σ_ss(μ − μ_ss) − Δσ μ + Σ(forces − forces_ss),
-    with σ = σ_ss + Δσ, Δσ = Σ(loads(F) − loads(F_ss)).
+    with σ = σ_ss + Δσ, Δσ = Σ(loads(F, s) − loads(F_ss, s_ss)) (s the terms' states).
 
     Parameters
     ----------
@@ -261,11 +379,14 @@ def mechanical_rhs(law, terms, X, u, at_slip, eq_phi, k, sigma0, V, *, mu0=None,
         μ_ss and σ_ss where the consumer has them as parameters (default: from the law and the terms).
     symbol : mapping, optional
         The terms' parameter symbols as the consumer names them (default their own).
+    extra : mapping, optional
+        Where the terms add states (:func:`states`): each one's excess over its steady value, by name, as
+        the consumer writes it; required then.
 
     Returns
     -------
     (sympy.Expr, tuple of sympy.Expr)
-        The right-hand side of M u̇ and of each dφᵢ/dt.
+        The right-hand side of M u̇ and of each dφᵢ/dt, then (with ``extra``) the rate of each term state.
     """
     from landau.laws.law import v as v_slip
 
@@ -276,37 +397,77 @@ def mechanical_rhs(law, terms, X, u, at_slip, eq_phi, k, sigma0, V, *, mu0=None,
     mu_0 = mu0 if mu0 is not None else mu.subs({v_slip: V, **dict(zip(phis, eq_phi, strict=True))}).xreplace(at_slip)
     sig_ss = sigma_ss if sigma_ss is not None else normal_load_ss(sigma0, mu_0, V, terms, sym)
     rates = [r.xreplace(at_slip) for r in law.rates]
-    # the terms are evaluated in plain symbols for X and u (their differences from steady sliding
-    # expanded there, then X and u put back whole: a consumer's u = V(e^w − 1) is never expanded
+    tstates = states(terms)
+    if tstates and extra is None:
+        raise InputError(f"the term(s) {', '.join(t for t in terms if TERMS[t].states)} add states; this "
+                         "consumer does not carry them")
+    # the terms are evaluated in plain symbols for X, u and the states' excesses (their differences from
+    # steady sliding expanded there, then put back whole: a consumer's u = V(e^w − 1) is never expanded
     # into a difference of large numbers)
     Fs, Fv, Xd, ud = sp.Dummy("F_ss"), sp.Dummy("F"), sp.Dummy("X"), sp.Dummy("u")
-    back = {Xd: X, ud: u}
+    sd = {st.symbol.name: sp.Dummy(st.symbol.name) for st in tstates}
+    back = {Xd: X, ud: u, **{sd[n]: (extra or {})[n] for n in sd}}
+    ss_b = Balance(v=V, phis=tuple(eq_phi), F=Fs, F_dot=sp.Integer(0), V_lp=V, k=k, sigma0=sigma0, sigma=sig_ss,
+                   mu=mu_0, symbol=sym)
+    ex_ss = steady_extra(terms, ss_b)
+    ex_now = {n: ex_ss[n] + sd[n] for n in sd}
 
-    def balance(F, v, sigma=sp.Integer(0), sigma_dot=sp.Integer(0), dmu=()):
+    def balance(F, v, sigma=sp.Integer(0), sigma_dot=sp.Integer(0), dmu=(), ex=None):
         return Balance(v=v, phis=tuple(p.xreplace(at_slip) for p in phis), F=F, F_dot=-k * ud, V_lp=V, k=k,
-                       sigma0=sigma0, sigma=sigma, sigma_dot=sigma_dot, mu=mu_now, dmu_dphi=dmu, symbol=sym)
+                       sigma0=sigma0, sigma=sigma, sigma_dot=sigma_dot, mu=mu_now, dmu_dphi=dmu, symbol=sym,
+                       extra=ex_now if ex is None else ex)
 
     # σ = σ_ss + Δσ; σμ − σ_ss μ_ss = σ_ss(μ − μ_ss) + Δσ μ
-    dsig = sp.expand(_loads(terms, balance(Fs - k * Xd, V + ud)) - _loads(terms, balance(Fs, V))).xreplace(back)
+    dsig = sp.expand(_loads(terms, balance(Fs - k * Xd, V + ud)) - _loads(terms, balance(Fs, V, ex=ex_ss)))
+    dsig = dsig.xreplace(back)
     force = -k * X - sig_ss * (mu_now - mu_0)
     if dsig != 0:
         force = force - dsig * mu_now
-    extra = sp.expand(_forces(terms, balance(Fs - k * Xd, V + ud)) - _forces(terms, balance(Fs, V))).xreplace(back)
-    if extra != 0:
-        force = force + extra
+    extra_f = sp.expand(_forces(terms, balance(Fs - k * Xd, V + ud)) - _forces(terms, balance(Fs, V, ex=ex_ss)))
+    extra_f = extra_f.xreplace(back)
+    if extra_f != 0:
+        force = force + extra_f
     sig = sig_ss + dsig
     sig_dot = (sp.diff(_loads(terms, balance(Fv, V + ud)), Fv) * (-k * ud)).xreplace(back)
     dmu = tuple(sp.diff(mu, ph).xreplace(at_slip) for ph in phis)
-    b = balance(Fs - k * X, V + u, sig, sig_dot, dmu)
+    b = balance(Fs - k * X, V + u, sig, sig_dot, dmu, ex={n: e.xreplace(back) for n, e in ex_now.items()})
+    _add_term_rates(terms, b, rates)
+    srates = _state_rates(terms, b, rates)
+    out = [*rates, *(srates[st.symbol.name] for st in tstates)]
+    if force.has(Fs) or any(r.has(Fs) for r in out):
+        F_ss = steady_spring_force(terms, sigma0, mu_0, V, sym)
+        force, out = force.xreplace({Fs: F_ss}), [r.xreplace({Fs: F_ss}) for r in out]
+    return force, tuple(out)
+
+
+def _add_term_rates(terms, b: Balance, rates: list) -> None:
+    """Add every term's contribution to the law's state rates (in place)."""
     for t in terms:
         if (term_rates := TERMS[t].rates) is not None:
             for i, r in enumerate(term_rates(b)):
                 if r != 0:
                     rates[i] = rates[i] + r
-    if force.has(Fs) or any(r.has(Fs) for r in rates):
-        F_ss = steady_spring_force(terms, sigma0, mu_0, V, sym)
-        force, rates = force.xreplace({Fs: F_ss}), [r.xreplace({Fs: F_ss}) for r in rates]
-    return force, tuple(rates)
+
+
+def _state_rates(terms, b: Balance, rates) -> dict[str, sp.Expr]:
+    """The rates of the terms' states: each state's own rate (canonical order), then the contributions of
+    other terms (``state_rates``), all read with dφᵢ/dt (``rates``) complete."""
+    from dataclasses import replace
+
+    b = replace(b, phi_rates=tuple(rates))
+    out: dict[str, sp.Expr] = {}
+    for st in states(terms):
+        out[st.symbol.name] = st.rate(replace(b, extra_rates=dict(out)))
+    for t in terms:
+        if (contrib := TERMS[t].state_rates) is not None:
+            for name, r in contrib(replace(b, extra_rates=dict(out))).items():
+                out[name] = out[name] + r
+    return out
+
+
+def state_scales(terms, b: Balance) -> dict[str, sp.Expr]:
+    """Each term state's typical size (:attr:`TermState.scale`) at the balance ``b`` (steady sliding)."""
+    return {st.symbol.name: st.scale(b) for st in states(terms)}
 
 
 def force_balance(law, terms, at, *, v, F, F_dot, V_lp, k, sigma0, symbol=None):
@@ -330,6 +491,7 @@ def force_balance(law, terms, at, *, v, F, F_dot, V_lp, k, sigma0, symbol=None):
     (sigma, mu, forces, rates)
     """
     terms = check_terms(terms)
+    refuse_states(terms, "the load histories (landau simulate --history)")
     sym = _symbols(terms, symbol)
     phis = tuple(p.xreplace(at) for p in law.states)
     mu_now = law.mu.xreplace(at)
@@ -342,11 +504,7 @@ def force_balance(law, terms, at, *, v, F, F_dot, V_lp, k, sigma0, symbol=None):
     b = Balance(v=v, phis=phis, F=F, F_dot=F_dot, V_lp=V_lp, k=k, sigma0=sigma0, sigma=sigma, sigma_dot=sigma_dot,
                 mu=mu_now, dmu_dphi=dmu, symbol=sym)
     rates = [r.xreplace(at) for r in law.rates]
-    for t in terms:
-        if (term_rates := TERMS[t].rates) is not None:
-            for i, r in enumerate(term_rates(b)):
-                if r != 0:
-                    rates[i] = rates[i] + r
+    _add_term_rates(terms, b, rates)
     return sigma, mu_now, _forces(terms, b), tuple(rates)
 
 
@@ -354,7 +512,7 @@ def steady_values(terms, sigma0: float, mu0: float, V: float, params) -> tuple[f
     """(F_ss, σ_ss) at steady sliding as numbers: the spring force and the normal load of
     :func:`steady_spring_force` and :func:`normal_load_ss` at these values."""
     terms = check_terms(terms)
-    sym = {t: sp.Float(float(params[t])) for t in terms}
+    sym = {name: sp.Float(float(params[name])) for name, *_ in parameters(terms)}
     F_ss = steady_spring_force(terms, sp.Float(float(sigma0)), sp.Float(float(mu0)), sp.Float(float(V)), sym)
     sigma_ss = normal_load_ss(sp.Float(float(sigma0)), sp.Float(float(mu0)), sp.Float(float(V)), terms, sym)
     return float(F_ss), float(sigma_ss)
@@ -374,10 +532,13 @@ def stiffness_in_rates(terms) -> bool:
 def load_slope(terms, params) -> float:
     """dσ/dF, the normal load's change per unit spring force (γ_LD with ``gamma_ld``, else 0)."""
     Fv = sp.Dummy("F")
+    terms = check_terms(terms)
     b = Balance(v=sp.Integer(0), phis=(), F=Fv, F_dot=sp.Integer(0), V_lp=sp.Integer(0), k=sp.Integer(0),
-                sigma0=sp.Integer(0), symbol=_symbols(terms, None))
-    slope = sp.diff(_loads(check_terms(terms), b), Fv)
-    return float(slope.subs({TERMS[t].symbol: params.get(t, 0.0) for t in terms})) if slope != 0 else 0.0
+                sigma0=sp.Integer(0), symbol=_symbols(terms, None),
+                extra={st.symbol.name: sp.Dummy(st.symbol.name) for st in states(terms)})
+    slope = sp.diff(_loads(terms, b), Fv)
+    return float(slope.subs({sym: params.get(name, d) for name, sym, _, d in parameters(terms)})) if slope != 0 \
+        else 0.0
 
 
 def check_steady_sliding(law, mu_ss, params, V=None) -> None:
@@ -393,6 +554,8 @@ def check_steady_sliding(law, mu_ss, params, V=None) -> None:
     V : float or ndarray, optional
         The driving velocities (for the message).
     """
+    if "p_inf" in params:
+        _check_effective_stress(law, params, V)
     g = np.asarray(params.get("gamma_ld", 0.0), dtype=float)
     margin = 1.0 - g * np.asarray(mu_ss, dtype=float)
     if np.any(~(margin > 0)):
@@ -406,13 +569,42 @@ def check_steady_sliding(law, mu_ss, params, V=None) -> None:
             "spring pulls (Dieterich & Linker 1992); steady sliding needs gamma_ld * mu_ss < 1")
 
 
+def _check_effective_stress(law, params, V) -> None:
+    """NoSteadySlidingError where the effective normal stress σ₀ − p_∞ (+ γ_LD ηV) is not positive."""
+    eff = (np.asarray(params["sigma"], dtype=float) - np.asarray(params["p_inf"], dtype=float)
+           + np.asarray(params.get("gamma_ld", 0.0), dtype=float) * np.asarray(params.get("eta", 0.0), dtype=float)
+           * np.asarray(1.0 if V is None else V, dtype=float))
+    if np.any(~(eff > 0)):
+        i = int(np.argmax(np.ravel(~(eff > 0) * np.ones_like(eff))))
+        raise NoSteadySlidingError(
+            f"law {law.name!r}: no steady sliding with pore pressure p_inf = "
+            f"{float(np.ravel(np.broadcast_to(params['p_inf'], eff.shape))[i]):g}: the effective normal stress "
+            f"sigma - p_inf = {float(np.ravel(eff)[i]):g} must be > 0 (Segall & Rice 1995)")
+
+
 def check_values(params) -> None:
-    """Each nonnegative term's value ≥ 0 (η, radiation damping)."""
+    """Each nonnegative term's value ≥ 0 (η, radiation damping), each further parameter in its domain."""
     for name, t in TERMS.items():
         if t.nonnegative and params.get(name, 0.0) < 0:
             raise InputError(f"parameter {name!r} ({t.meaning}) must be >= 0, got {params[name]!r}")
+        for q in t.parameters:
+            val = params.get(q.symbol.name)
+            if val is None:
+                continue
+            if q.domain == "positive" and not val > 0:
+                raise InputError(f"parameter {q.symbol.name!r} ({q.meaning}) must be > 0, got {val!r}")
+            if q.domain == "nonnegative" and not val >= 0:
+                raise InputError(f"parameter {q.symbol.name!r} ({q.meaning}) must be >= 0, got {val!r}")
 
 
-__all__ = ["TERMS", "Balance", "Term", "alpha_ld", "check_steady_sliding", "check_terms", "eta", "force_balance",
+__all__ = ["TERMS", "Balance", "Term", "TermParameter", "TermState", "alpha_ld", "check_steady_sliding",
+           "check_terms", "eta", "force_balance",
            "gamma_ld", "load_slope", "loads_block", "mechanical_rhs", "normal_load_ss", "register_term",
-           "steady_spring_force", "steady_values", "stiffness_in_rates", "symbols", "unregister_term"]
+           "steady_spring_force", "steady_values", "stiffness_in_rates", "symbols", "unregister_term", "parameters",
+           "term_of", "states", "has_states", "refuse_states", "steady_extra", "state_scales"]
+
+# the fault-physics terms with states (pore pressure and dilatancy, thermal pressurisation), declared in
+# their own module on the classes above
+from landau.systems import fault_terms as _fault_terms  # noqa: E402
+
+TERMS.update(_fault_terms.FAULT_TERMS)

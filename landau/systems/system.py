@@ -326,7 +326,9 @@ class SpringBlock:
     Optional terms (:mod:`landau.systems.springblock_terms`), each a system parameter with
     default 0: radiation damping ``eta`` η [N·s/m] (Rice 1993; with M = 0 the quasi-dynamic
     limit), variable normal stress ``gamma_ld`` γ_LD and the state response ``alpha_ld`` α_LD
-    (Linker & Dieterich 1992); ``sigma`` is then σ₀, the normal load at zero spring force.
+    (Linker & Dieterich 1992); ``sigma`` is then σ₀, the normal load at zero spring force; with states of
+    their own (:mod:`landau.systems.fault_terms`), pore pressure and dilatancy ``eps_dil`` (σ − p, Segall &
+    Rice 1995) and thermal pressurisation ``lambda_tp`` (Rice 2006), with their further parameters.
     All quantities may be per unit area (σ in Pa, k in Pa/m, η in Pa·s/m, M in kg/m²).
 
     Parameters
@@ -353,14 +355,15 @@ class SpringBlock:
         ----------
         law : FrictionLaw or str
         params : mapping, optional
-            Parameter overrides; a key ``eta``, ``gamma_ld`` or ``alpha_ld`` (any value, 0 too)
-            builds that term in.
+            Parameter overrides; a key ``eta``, ``gamma_ld``, ``alpha_ld``, ``eps_dil``, ``lambda_tp`` or one of
+            their further parameters (``t_drain``…; any value, 0 too) builds that term in.
 
         Returns
         -------
         SpringBlock
         """
-        return cls(law, tuple(t for t in _terms.TERMS if t in (params or {})))
+        given = {_terms.term_of(key) for key in (params or {})}
+        return cls(law, tuple(t for t in _terms.TERMS if t in given))
 
     law: FrictionLaw
     terms: tuple[str, ...] = ()
@@ -373,18 +376,24 @@ class SpringBlock:
             object.__setattr__(self, "law", get_law(self.law))
         if not isinstance(self.law, FrictionLaw):
             raise InputError(f"SpringBlock needs a FrictionLaw or a built-in law's name, got {type(self.law).__name__}")
+        taken = {s.name for s in (*self.law.states, *(q.symbol for q in self.law.parameters))} | \
+            {"X", "u", "V", "k", "M", "g", "sigma"}
+        clash = sorted(st.symbol.name for st in _terms.states(self.terms) if st.symbol.name in taken)
+        if clash:
+            raise InputError(f"law {self.law.name!r}: its symbol(s) {', '.join(clash)} are the names of the states "
+                             f"the terms {', '.join(self.terms)} add; rename them in the law")
 
     @cached_property
     def defaults(self) -> dict[str, float]:
         d = dict(self.law.defaults())
         d.update(M=M_DEFAULT, g=G_DEFAULT, sigma=M_DEFAULT * G_DEFAULT)
-        d.update({t: 0.0 for t in self.terms})
+        d.update({name: default for name, _, _, default in _terms.parameters(self.terms)})
         return d
 
     @property
     def units(self) -> dict[str, str]:
         """Units of the system parameters (SI, per block; per unit area: N → Pa)."""
-        return {**SYSTEM_UNITS, **{t: _terms.TERMS[t].unit for t in self.terms}}
+        return {**SYSTEM_UNITS, **{name: unit for name, _, unit, _ in _terms.parameters(self.terms)}}
 
     def resolve(self, overrides: Mapping[str, float] | None = None) -> dict[str, float]:
         """Full parameter dict (law + M, g, sigma) with overrides applied and checked.
@@ -407,9 +416,9 @@ class SpringBlock:
         over = dict(overrides or {})
         declared = {prm.name for prm in self.law.parameters} | set(p)
         for key, val in over.items():
-            if key in _terms.TERMS and key not in declared:
-                raise InputError(f"parameter {key!r} is an optional spring-block term not built into this "
-                                 f"block: use SpringBlock(law, terms=({key!r},)) or "
+            if (term := _terms.term_of(key)) is not None and key not in declared:
+                raise InputError(f"parameter {key!r} is of the optional spring-block term {term!r}, not built "
+                                 f"into this block: use SpringBlock(law, terms=({term!r},)) or "
                                  "SpringBlock.for_params(law, params)")
             if key not in declared:
                 raise InputError(f"unknown parameter {key!r} for law {self.law.name!r} "
@@ -450,21 +459,24 @@ class SpringBlock:
         at_slip = {v_slip: V + u}
         ss = self.steady_state
         eq_phi = ss if ss is not None else self.phi0
-        force, rates = _terms.mechanical_rhs(self.law, self.terms, X, u, at_slip, eq_phi, k, sigma, V)
+        # the terms' states (pore pressure, temperature) as their excesses over steady sliding
+        extra = {st.symbol.name: st.symbol for st in _terms.states(self.terms)}
+        force, rates = _terms.mechanical_rhs(self.law, self.terms, X, u, at_slip, eq_phi, k, sigma, V, extra=extra)
         rhs = (u, force, *rates)
+        ts = tuple(extra.values())
         unknowns: tuple = ()
         eqs: tuple = ()
         if ss is None:
             unknowns = self.phi0
             eqs = tuple(r.subs({v_slip: V, **dict(zip(phis, self.phi0, strict=True))}) for r in self.law.rates)
-        extra = "".join(f"+{t}" for t in self.terms)
+        named = "".join(f"+{t}" for t in self.terms)
         return DynamicalSystem(
-            name=f"spring-block[{self.law.name}]{extra}",
-            states=(X, u, *phis),
+            name=f"spring-block[{self.law.name}]{named}",
+            states=(X, u, *phis, *ts),
             rhs=rhs,
-            mass=(sp.Integer(1), M, *([sp.Integer(1)] * len(phis))),
+            mass=(sp.Integer(1), M, *([sp.Integer(1)] * (len(phis) + len(ts)))),
             parameter=k,
-            equilibrium=(sp.Integer(0), sp.Integer(0), *eq_phi),
+            equilibrium=(sp.Integer(0), sp.Integer(0), *eq_phi, *([sp.Integer(0)] * len(ts))),
             defaults=self.defaults,
             normalise=0,
             unknowns=unknowns,
@@ -495,7 +507,7 @@ class SpringBlock:
         list
             One value (or array) per entry of :attr:`args`, broadcast together.
         """
-        n = len(self.law.parameters) + 3 + len(self.terms)
+        n = len(self.law.parameters) + 3 + len(_terms.symbols(self.terms))
         vals = [Vs, *(params[s.name] for s in self.args[1:n + 1])]
         shape = np.broadcast(*[np.asarray(x, dtype=float) for x in vals]).shape
         Vb = np.broadcast_to(np.asarray(Vs, dtype=float), shape)
@@ -528,7 +540,7 @@ class SpringBlock:
         from dataclasses import replace
 
         return replace(result, at=(*result.at, *self.terms),
-                       units={**result.units, **{t: _terms.TERMS[t].unit for t in self.terms}})
+                       units={**result.units, **{name: unit for name, _, unit, _ in _terms.parameters(self.terms)}})
 
     @cached_property
     def _mu_numeric(self):

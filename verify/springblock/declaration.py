@@ -46,8 +46,13 @@ def law_parameters(law) -> tuple[Parameter, ...]:
 def _term_parameters() -> tuple[Parameter, ...]:
     from landau.systems.springblock_terms import TERMS
 
-    return tuple(Parameter(name, 0.0, t.unit, "nonnegative" if t.nonnegative else "real", t.meaning, t.source)
-                 for name, t in TERMS.items())
+    out = []
+    for name, t in TERMS.items():
+        out.append(Parameter(name, 0.0, t.unit, "nonnegative" if t.nonnegative else "real", t.meaning, t.source))
+        # a term's further parameters (a drainage time, a storage coefficient), with their defaults
+        out += [Parameter(q.symbol.name, float(q.default), q.unit, q.domain, q.meaning, t.source)
+                for q in t.parameters]
+    return tuple(out)
 
 
 def _block_parameters(setup: Setup) -> tuple[Parameter, ...]:

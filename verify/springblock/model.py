@@ -40,7 +40,7 @@ from landau.errors import InputError
 from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
 from landau.support.lambdify import lambdify_positional
-from landau.systems.springblock_terms import mechanical_rhs, steady_values
+from landau.systems.springblock_terms import Balance, mechanical_rhs, parameters, state_scales, states, steady_values
 from landau.systems.system import SpringBlock
 from landau.verify.hybrid.callbacks import call_pointer, pointer
 from landau.verify.hybrid.radau import SIG, SIG_JAC
@@ -96,21 +96,25 @@ def compile_law(law: FrictionLaw, terms: tuple[str, ...] = ()) -> CompiledLaw:
             _BY_LAW[law] = _CACHE[key]
         return _CACHE[key]
     ns = len(law.states)
-    n = 2 + ns
+    tstates = states(terms)
+    n = 2 + ns + len(tstates)
     # the model's own symbols carry names no law symbol can take (a law's names are plain
     # identifiers starting with a letter), and the law's symbols are replaced all at once
     # (xreplace): a law parameter named like an internal symbol is renamed once, never twice
     ys = sp.symbols(f"_y0:{n}", real=True)
-    xi, w, psis = ys[0], ys[1], ys[2:]
+    xi, w, psis, pis = ys[0], ys[1], ys[2:2 + ns], ys[2 + ns:]
     lp = [sp.Symbol(f"_q{i}", positive=True) for i in range(len(law.parameters))]
     Msym, sig, ksym, Vsym, ell, mu0 = sp.symbols("_M _sigma _k _V _ell _mu0", positive=True)
     phi0 = [sp.Symbol(f"_phi0_{i}", positive=True) for i in range(ns)]
-    tsyms = [sp.Symbol(f"_{t}", real=True) for t in terms]
+    tnames = [name for name, *_ in parameters(terms)]
+    tsyms = [sp.Symbol(f"_{t}", real=True) for t in tnames]
+    # each term state π scaled by its typical size S (a parameter): the state's excess is S π
+    scales = [sp.Symbol(f"_S{i}", positive=True) for i in range(len(tstates))]
     sub = {p.symbol: s for p, s in zip(law.parameters, lp, strict=True)}
     vv = Vsym * sp.exp(w)
     phis = [p0 * sp.exp(ps) for p0, ps in zip(phi0, psis, strict=True)]
     sub.update({v_slip: vv, **dict(zip(law.states, phis, strict=True))})
-    internal = {*ys, *lp, Msym, sig, ksym, Vsym, ell, mu0, *phi0, *tsyms}
+    internal = {*ys, *lp, Msym, sig, ksym, Vsym, ell, mu0, *phi0, *tsyms, *scales}
 
     def tidy(e):
         out = sp.expand_log(e.xreplace(sub), force=True)   # (the law's symbols are replaced already: a no-op)
@@ -121,13 +125,16 @@ def compile_law(law: FrictionLaw, terms: tuple[str, ...] = ()) -> CompiledLaw:
 
     # the force balance and the state rates of every term, from their one declaration
     # (springblock_terms.mechanical_rhs), in X = ℓξ, u = V(e^w − 1); σ here is σ_ss
-    tv = dict(zip(terms, tsyms, strict=True))
+    tv = dict(zip(tnames, tsyms, strict=True))
+    extra = {st.symbol.name: S * pi for st, S, pi in zip(tstates, scales, pis, strict=True)}
     force, rates = mechanical_rhs(law, terms, ell * xi, Vsym * (sp.exp(w) - 1), sub, tuple(phi0), ksym, sig, Vsym,
-                                  mu0=mu0, sigma_ss=sig, symbol=tv)
+                                  mu0=mu0, sigma_ss=sig, symbol=tv, extra=extra if tstates else None)
     f = [sp.exp(w) - 1, (ell / Vsym) * sp.exp(-w) * tidy(force) / (Msym * Vsym)]
-    for rate, ph in zip(rates, phis, strict=True):
+    for rate, ph in zip(rates[:ns], phis, strict=True):
         f.append((ell / Vsym) * sp.expand(tidy(rate) / ph))
-    psyms = [*lp, Msym, sig, ksym, Vsym, ell, mu0, *phi0, *tsyms]
+    for rate, S in zip(rates[ns:], scales, strict=True):
+        f.append((ell / Vsym) * sp.expand(tidy(rate) / S))
+    psyms = [*lp, Msym, sig, ksym, Vsym, ell, mu0, *phi0, *tsyms, *scales]
     # the logarithms of parameters that expand_log produced, and every other parameter-only
     # subexpression, become entries of the parameter vector computed once per model
     h = hoist_parameters(f, psyms)
@@ -252,7 +259,7 @@ class SpringBlockModel:
 
     @property
     def n(self) -> int:
-        return 2 + len(self.law.states)
+        return 2 + len(self.law.states) + len(states(self.terms))
 
     @cached_property
     def p(self) -> np.ndarray:
@@ -260,8 +267,20 @@ class SpringBlockModel:
         :func:`compile_variational`): base values, then the derived parameter combinations."""
         vals = [self.params[nm] for nm in self.compiled.param_names]
         vals += [self.params["M"], self.sigma_ss, self.k, self.V, self.ell, self.mu0, *self.phi0]
-        vals += [self.params[t] for t in self.terms]
+        vals += [self.params[name] for name, *_ in parameters(self.terms)]
+        vals += list(self.state_scales.values())
         return self.compiled.parameters(vals)
+
+    @cached_property
+    def state_scales(self) -> dict[str, float]:
+        """The unit of each term state's scaled variable (:attr:`TermState.scale` at steady sliding)."""
+        if not states(self.terms):
+            return {}
+        sym = {name: sp.Float(float(self.params[name])) for name, *_ in parameters(self.terms)}
+        b = Balance(v=sp.Float(self.V), phis=tuple(map(sp.Float, self.phi0)), F=sp.Integer(0), F_dot=sp.Integer(0),
+                    V_lp=sp.Float(self.V), k=sp.Float(self.k), sigma0=sp.Float(self.params["sigma"]),
+                    sigma=sp.Float(self.sigma_ss), mu=sp.Float(self.mu0), symbol=sym)
+        return {name: float(e) for name, e in state_scales(self.terms, b).items()}
 
     @cached_property
     def sigma_ss(self) -> float:
@@ -306,13 +325,18 @@ class SpringBlockModel:
         out = {"X": y[..., 0] * self.ell, "v": self.V * np.exp(y[..., 1])}
         for i, s in enumerate(self.law.states):
             out[s.name] = self.phi0[i] * np.exp(y[..., 2 + i])
+        for j, (name, S) in enumerate(self.state_scales.items()):   # the term states' excesses
+            out[name] = S * y[..., 2 + len(self.law.states) + j]
         return out
 
-    def from_physical(self, X: float, v: float, phis) -> np.ndarray:
+    def from_physical(self, X: float, v: float, phis, extra: Mapping[str, float] | None = None) -> np.ndarray:
+        """Scaled state from X [m], v [m/s], the law's states and (``extra``, default 0) the term states'
+        excesses over steady sliding, by name."""
         if v <= 0 or any(ph <= 0 for ph in phis):
             raise InputError("slip rate and states must be > 0 for the log variables")
+        ex = [(extra or {}).get(name, 0.0) / S for name, S in self.state_scales.items()]
         return np.array([X / self.ell, math.log(v / self.V),
-                         *(math.log(ph / p0) for ph, p0 in zip(phis, self.phi0, strict=True))])
+                         *(math.log(ph / p0) for ph, p0 in zip(phis, self.phi0, strict=True)), *ex])
 
     def critical_mode(self) -> tuple[complex, np.ndarray]:
         """Eigenvalue with the largest real part of J(0) (per unit τ) and its eigenvector with ξ-component 1."""

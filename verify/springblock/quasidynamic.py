@@ -49,7 +49,15 @@ import sympy as sp
 from landau.errors import InputError, IntegratorError
 from landau.laws.law import FrictionLaw
 from landau.laws.law import v as v_slip
-from landau.systems.springblock_terms import check_terms, mechanical_rhs, steady_values
+from landau.systems.springblock_terms import (
+    Balance,
+    check_terms,
+    mechanical_rhs,
+    parameters,
+    state_scales,
+    states,
+    steady_values,
+)
 from landau.verify.hybrid.log import Event, EventLog
 from landau.verify.hybrid.radau import STATUS
 from landau.verify.hybrid.result import Simulation, Status
@@ -114,7 +122,7 @@ class QuasiDynamicCell:
         sigma_ss = steady_values(block.terms, p["sigma"], mu0, V, p)[1]   # the terms' steady normal load
         fn = _field(law, block.terms, p, float(V), float(k), ell, phi0, mu0, sigma_ss)
         cell = cls(law, float(V), float(k), dict(p), ell, phi0, mu0, sigma_ss, block.terms, fn)
-        _, Rw, *_ = fn(0.0, *([0.0] * (1 + len(phi0))))
+        _, Rw, *_ = fn(0.0, *([0.0] * cell.n))
         if not Rw < 0:
             raise InputError(f"law {law.name!r} at V = {V:g} m/s: the friction force decreases with the slip "
                              "rate faster than eta*v grows (dmu/dv + eta/sigma <= 0), so the quasi-dynamic "
@@ -123,8 +131,14 @@ class QuasiDynamicCell:
 
     @property
     def n(self) -> int:
-        """Number of integrated states (ξ and the ψᵢ)."""
-        return 1 + len(self.law.states)
+        """Number of integrated states (ξ, the ψᵢ and the terms' states)."""
+        return 1 + len(self.law.states) + len(states(self.terms))
+
+    @cached_property
+    def state_scales(self) -> dict[str, float]:
+        """The unit of each term state's scaled variable (its excess over steady sliding is S π)."""
+        return {n: float(e) for n, e in _scales(_block_terms(self.terms), self.params, self.V, self.k, self.mu0,
+                                                self.sigma_ss).items()}
 
     @property
     def time_unit(self) -> float:
@@ -142,7 +156,7 @@ class QuasiDynamicCell:
         blk = _block_terms(self.terms)
         base = [self.params[prm.name] for prm in self.law.parameters]
         base += [self.V, self.k, self.ell, self.mu0, self.sigma_ss, *self.phi0]
-        base += [*(self.params[t] for t in blk), FEEDBACK]
+        base += [*(self.params[name] for name, *_ in parameters(blk)), FEEDBACK]
         return self.kernel.parameters(base)
 
     def slip_rate(self, y, w0: float = 0.0) -> float:
@@ -187,11 +201,13 @@ class QuasiDynamicCell:
         _, vec = self.critical_mode()
         return (amplitude / self.ell) * vec.real
 
-    def from_physical(self, X: float, phis) -> np.ndarray:
-        """The scaled state of slip X [m] and states φ (the slip rate follows from the force balance)."""
+    def from_physical(self, X: float, phis, extra: Mapping[str, float] | None = None) -> np.ndarray:
+        """The scaled state of slip X [m], states φ and (``extra``, default 0) the term states' excesses over
+        steady sliding by name (the slip rate follows from the force balance)."""
         if any(not ph > 0 for ph in phis):
             raise InputError("the states must be > 0 for the log variables")
-        return np.array([X / self.ell, *(math.log(ph / p0) for ph, p0 in zip(phis, self.phi0, strict=True))])
+        ex = [(extra or {}).get(name, 0.0) / S for name, S in self.state_scales.items()]
+        return np.array([X / self.ell, *(math.log(ph / p0) for ph, p0 in zip(phis, self.phi0, strict=True)), *ex])
 
 
 def _expressions(law, terms, p, V, k, ell, phi0, mu0, sigma_ss):
@@ -200,8 +216,11 @@ def _expressions(law, terms, p, V, k, ell, phi0, mu0, sigma_ss):
     lambdified functions) or sympy symbols (its compiled kernel, :func:`cell_kernel`): both are built
     from these expressions."""
     ns = len(law.states)
+    terms = check_terms(("eta", *terms))
+    tstates = states(terms)
     w, xi = sp.symbols("w_ xi_", real=True)
     psi = sp.symbols(f"psi_0:{ns}", real=True)
+    pis = sp.symbols(f"pi_0:{len(tstates)}", real=True)
     vals = {prm.symbol: p[prm.name] for prm in law.parameters}
     vv = V * sp.exp(w)
     phis = [p0 * sp.exp(q) for p0, q in zip(phi0, psi, strict=True)]
@@ -211,16 +230,31 @@ def _expressions(law, terms, p, V, k, ell, phi0, mu0, sigma_ss):
         return sp.expand_log(e.subs(vals).xreplace(sub), force=True)
 
     # the force balance and the state rates of every term, from their one declaration
-    # (springblock_terms.mechanical_rhs) in X = ℓξ, u = V(e^w − 1); η, which M = 0 needs, always built in
-    terms = check_terms(("eta", *terms))
+    # (springblock_terms.mechanical_rhs) in X = ℓξ, u = V(e^w − 1); η, which M = 0 needs, always built in;
+    # each term state (pore pressure, temperature) as S π, S its scale at steady sliding
+    scales = _scales(terms, p, V, k, mu0, sigma_ss)
+    extra = {st.symbol.name: scales[st.symbol.name] * q for st, q in zip(tstates, pis, strict=True)}
     force, rates = mechanical_rhs(law, terms, ell * xi, V * (sp.exp(w) - 1), {s: s for s in (v_slip, *law.states)},
                                   tuple(phi0), k, p.get("sigma", sigma_ss), V, mu0=mu0, sigma_ss=sigma_ss,
-                                  symbol={t: p[t] for t in terms})
+                                  symbol={name: p[name] for name, *_ in parameters(terms)},
+                                  extra=extra if tstates else None)
     R = tidy(force) / sigma_ss
     f = [sp.exp(w) - 1]
-    for rate, ph in zip(rates, phis, strict=True):
+    for rate, ph in zip(rates[:ns], phis, strict=True):
         f.append((ell / V) * sp.expand(tidy(rate) / ph))
-    return w, [xi, *psi], R, f
+    for rate, st in zip(rates[ns:], tstates, strict=True):
+        f.append((ell / V) * sp.expand(tidy(rate) / scales[st.symbol.name]))
+    return w, [xi, *psi, *pis], R, f
+
+
+def _scales(terms, p, V, k, mu0, sigma_ss) -> dict:
+    """Each term state's scale at steady sliding (numbers, or the kernel's symbols)."""
+    if not states(terms):
+        return {}
+    sym = {name: p[name] for name, *_ in parameters(terms)}
+    b = Balance(v=V, phis=(), F=sp.Integer(0), F_dot=sp.Integer(0), V_lp=V, k=k, sigma0=sigma_ss, sigma=sigma_ss,
+                mu=mu0, symbol=sym)
+    return state_scales(terms, b)
 
 
 def _stray(law, exprs, known) -> None:
@@ -264,14 +298,14 @@ def _build_cell_kernel(law: FrictionLaw, terms: tuple[str, ...]) -> CompiledFiel
     lp = {prm.name: sp.Symbol(f"_q{i}", real=True) for i, prm in enumerate(law.parameters)}
     V, k, ell, mu0, sig = sp.symbols("_V _k _ell _mu0 _sigma_ss", positive=True)
     phi0 = [sp.Symbol(f"_phi0_{i}", positive=True) for i in range(len(law.states))]
-    tsyms = {t: sp.Symbol(f"_{t}", real=True) for t in blk}
+    tsyms = {name: sp.Symbol(f"_{name}", real=True) for name, *_ in parameters(blk)}
     lam = sp.Symbol("_lambda", positive=True)
     w, ys, R, f = _expressions(law, terms, {**lp, **tsyms}, V, k, ell, phi0, mu0, sig)
     # the feedback at the slip rate of the moment, λ (1 + v/V) per unit τ (compiled_runs)
     field = [f[0], index_reduced(R, f, w, ys, lam * (1 + sp.exp(w))), *f[1:]]
     params = [*lp.values(), V, k, ell, mu0, sig, *phi0, *tsyms.values(), lam]
     _stray(law, field, [w, *ys, *params])
-    names = (*lp, "V", "k", "ell", "mu0", "sigma_ss", *(f"phi0_{i}" for i in range(len(phi0))), *blk, "lambda")
+    names = (*lp, "V", "k", "ell", "mu0", "sigma_ss", *(f"phi0_{i}" for i in range(len(phi0))), *tsyms, "lambda")
     return compile_field(key, [ys[0], w, *ys[1:]], field, params, names, f"{law.name} (quasi-dynamic cell)")
 
 
@@ -345,7 +379,7 @@ def simulate_quasidynamic(law: FrictionLaw, V: float, k: float,
         keep = np.unique(np.r_[np.linspace(0, len(t) - 1, max_points).astype(int), len(t) - 1])
         t, Z = t[keep], Z[:, keep]
     out = _physical(cell, t, np.delete(Z, 1, axis=0), Z[1])
-    names = ("X", "v", "mu") + tuple(s.name for s in law.states)
+    names = ("X", "v", "mu") + tuple(s.name for s in law.states) + tuple(cell.state_scales)
     msg = status.advice
     if status is Status.MAX_STEPS:
         msg = (f"stopped at the step limit ({max_steps} step attempts) at t = {t[-1]:.6g} s before the end "
@@ -360,7 +394,9 @@ def _physical(cell: QuasiDynamicCell, t, Y, W) -> np.ndarray:
     v = cell.V * np.exp(W)
     mu = cell.mu(W, Y)
     phis = [p0 * np.exp(Y[1 + i]) for i, p0 in enumerate(cell.phi0)]
-    return np.vstack([X, v, mu, *phis])
+    ns = len(cell.phi0)
+    extra = [S * Y[1 + ns + j] for j, S in enumerate(cell.state_scales.values())]   # the term states' excesses
+    return np.vstack([X, v, mu, *phis, *extra])
 
 
 __all__ = ["W_BOUND", "QuasiDynamicCell", "simulate_quasidynamic"]

@@ -73,8 +73,9 @@ def _psi1(cell: QuasiDynamicCell, xi: float, rest) -> float:
 def on_section(cell: QuasiDynamicCell, z) -> np.ndarray:
     """The state y = (ξ, ψ₁, ψ₂, …) of the section point z = (ξ, ψ₂, …)."""
     z = np.atleast_1d(np.asarray(z, float))
-    if z.shape != (len(cell.law.states),):
-        raise InputError(f"a point of the section has {len(cell.law.states)} coordinates (xi, psi_2...), got {z!r}")
+    if z.shape != (cell.n - 1,):
+        raise InputError(f"a point of the section has {cell.n - 1} coordinates (xi, psi_2..., the terms' states), "
+                         f"got {z!r}")
     return np.r_[z[0], _psi1(cell, z[0], z[1:]), z[1:]]
 
 
@@ -238,7 +239,7 @@ def find_cycle(cell: QuasiDynamicCell, amplitude_guess: float, *, rtol: float = 
     ShootingError
         No fixed point of the return map, or the orbit does not return.
     """
-    if len(cell.law.states) > 1:
+    if cell.n > 2:     # several states (or a term's state): Newton on the section's return map
         return shoot(cell, section_point(cell, amplitude_guess), rtol=rtol)
     from scipy.optimize import brentq
 

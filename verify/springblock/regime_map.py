@@ -259,7 +259,8 @@ QUIET_CHUNKS = 3
 
 def _far_start(model: SpringBlockModel) -> np.ndarray:
     n_states = len(model.law.states)
-    return np.array([0.0, -math.log(FAR), *([math.log(FAR)] * n_states)])
+    # the terms' states (pore pressure, temperature) start at their steady values
+    return np.array([0.0, -math.log(FAR), *([math.log(FAR)] * n_states), *([0.0] * (model.n - 2 - n_states))])
 
 
 def _combine(near: _Fate, far: _Fate) -> str:

@@ -144,17 +144,22 @@ def _finish(sim, law, used: dict, units: dict, notes: list, hints: dict):
 
 def _dynamic(law, V, k, params, t_end, y0, t_eval, steps, sections, notes):
     """M > 0: eq. (4) by the compiled Radau IIA, converted to physical units."""
+    from landau.systems.springblock_terms import states as term_states
     from landau.verify.hybrid import EventLog
     from landau.verify.hybrid.plotting import regimes_from_mask
     from landau.verify.springblock.model import SpringBlockModel
     from landau.verify.springblock.simulate import W_INDEX, record_run
 
     model = SpringBlockModel.build(law, V, k, params)
-    names = ("X", "v") + tuple(s.name for s in law.states)
+    # the terms' states (pore pressure, temperature: their excesses over steady sliding) after the law's
+    extra = tuple(st.symbol.name for st in term_states(model.terms))
+    ns = len(law.states)
+    names = ("X", "v") + tuple(s.name for s in law.states) + extra
     if y0 is not None:
         vals = initial_state(y0, names)
         try:
-            start_y = model.from_physical(vals[0], vals[1], vals[2:])
+            start_y = model.from_physical(vals[0], vals[1], vals[2:2 + ns], dict(zip(extra, vals[2 + ns:],
+                                                                                   strict=True)))
         except InputError as exc:
             raise InputError(f"y0: {exc}") from None
         start = "starts at the given y0 (--y0)"
@@ -196,21 +201,26 @@ def _dynamic(law, V, k, params, t_end, y0, t_eval, steps, sections, notes):
     notes.append("X = x - x0(t) is the displacement from steady sliding; " + start)
     if how:
         notes.append(how)
-    return _finish(sim, law, used, {"X": "m", "v": "m/s", **law_state_units(law)}, notes,
-                   {"phase": (0, 1), "section_phase": (0, 2), "section_label": SECTION_LABEL})
+    units = {"X": "m", "v": "m/s", **law_state_units(law),
+             **{st.symbol.name: st.unit for st in term_states(model.terms)}}
+    return _finish(sim, law, used, units, notes, {"phase": (0, 1), "section_phase": (0, 2),
+                                                  "section_label": SECTION_LABEL})
 
 
 def _quasidynamic(law, V, k, params, t_end, y0, t_eval, steps, sections, notes):
     """M = 0 (with eta > 0): the quasi-dynamic cell, the force balance solved for v."""
+    from landau.systems.springblock_terms import states as term_states
     from landau.verify.hybrid.plotting import regimes_from_mask
     from landau.verify.springblock.quasidynamic import QuasiDynamicCell, simulate_quasidynamic
 
     cell = QuasiDynamicCell.build(law, V, k, params)
+    extra = tuple(cell.state_scales)      # the terms' states (their excesses over steady sliding)
     if y0 is not None:
-        names = ("X",) + tuple(s.name for s in law.states)
+        ns = len(law.states)
+        names = ("X",) + tuple(s.name for s in law.states) + extra
         vals = initial_state(y0, names)
         try:
-            start_y = cell.from_physical(vals[0], vals[1:])
+            start_y = cell.from_physical(vals[0], vals[1:1 + ns], dict(zip(extra, vals[1 + ns:], strict=True)))
         except InputError as exc:
             raise InputError(f"y0: {exc}") from None
         start = "starts at the given y0 (--y0) (X and the states; v follows from the force balance)"
@@ -226,7 +236,9 @@ def _quasidynamic(law, V, k, params, t_end, y0, t_eval, steps, sections, notes):
     notes.append("quasi-dynamic (M = 0): the slip rate v solves k(Vt - x) = sigma mu(v, phi) + eta v at every "
                  "instant; X = x - x0(t) is the displacement from steady sliding; " + start)
     notes += list(sim.notes)
-    return _finish(sim, law, used, {"X": "m", "v": "m/s", "mu": "1", **law_state_units(law)}, notes,
+    units = {"X": "m", "v": "m/s", "mu": "1", **law_state_units(law),
+             **{st.symbol.name: st.unit for st in term_states(cell.terms)}}
+    return _finish(sim, law, used, units, notes,
                    {"phase": (0, 1), "section_phase": (0, 3), "section_label": SECTION_LABEL})
 
 
