@@ -52,7 +52,14 @@ import types
 from pathlib import Path
 from typing import Any, Iterator
 
-__all__ = ["NOTICE_AFTER", "WATCHED", "compile_once", "paused_gc", "secure_numba_cache", "source_stamp"]
+__all__ = ["COMPILE_ADDRESS_SPACE", "NOTICE_AFTER", "WATCHED", "address_space_for_compiling", "compile_once",
+           "paused_gc", "secure_numba_cache", "source_stamp"]
+
+#: address space (bytes) an LLVM build may need beyond what the process holds: the forced oscillator's
+#: integrator, the largest loop, took 190 MB (754 780 kB of VmSize before its build, 948 256 kB after),
+#: with margin.  Below it LLVM aborts the process ("LLVM ERROR: Unable to allocate section memory",
+#: SIGABRT) where Python could have said why.
+COMPILE_ADDRESS_SPACE = 256 * 2**20
 
 #: modules whose source is part of a compiled loop's cache key (the simulation code)
 WATCHED: tuple[str, ...] = ("landau.verify.",)
@@ -202,6 +209,7 @@ def compile_once(dispatcher: Any, signature: Any, what: str, watched: tuple[str,
         from landau.verify.jitcache import verify_numba_entries
 
         verify_numba_entries(py_file, shared)
+    address_space_for_compiling(what)
     timer = None
     if os.environ.get(ENV_NOTICE, "1") != "0":
         timer = threading.Timer(NOTICE_AFTER, _notice, args=(what,))
@@ -315,3 +323,41 @@ def secure_numba_cache() -> None:
         # every module, also one without files yet: what numba writes for it in this process is signed at exit
         for module in sorted(directory.glob("*.py")):
             verify_numba_entries(module, [folder] if folder.is_dir() else [])
+
+
+def _address_space_in_use() -> int | None:
+    """The process's virtual memory (bytes, ``VmSize`` of ``/proc/self/status``), or None where unknown."""
+    try:
+        with open("/proc/self/status", encoding="ascii", errors="replace") as fh:
+            for line in fh:
+                if line.startswith("VmSize:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        return None
+    return None
+
+
+def address_space_for_compiling(what: str) -> None:
+    """Refuse by name a build that the address-space limit (``ulimit -v``, RLIMIT_AS) leaves no room for.
+
+    LLVM reserves memory for the machine code as it builds; where the limit leaves less than
+    :data:`COMPILE_ADDRESS_SPACE` beyond what the process holds, it aborts the whole process
+    (SIGABRT, ``std::bad_alloc`` or "Unable to allocate section memory") with no message of
+    landau's.  This raises :class:`~landau.errors.BudgetError` first, naming the limit.  Where
+    the limit or the usage cannot be read (not Linux), nothing is checked.
+    """
+    try:
+        import resource
+    except ImportError:     # not POSIX
+        return
+    soft, _ = resource.getrlimit(resource.RLIMIT_AS)
+    if soft == resource.RLIM_INFINITY:
+        return
+    used = _address_space_in_use()
+    if used is None or soft - used >= COMPILE_ADDRESS_SPACE:
+        return
+    from landau.errors import BudgetError
+
+    raise BudgetError(f"not enough address space to compile {what}: the limit (ulimit -v) is {soft // 1024} kB, "
+                      f"{used // 1024} kB are in use, and a build may need {COMPILE_ADDRESS_SPACE // 2**20} MB more; "
+                      "raise the limit (once compiled, the code is loaded from numba's cache)")

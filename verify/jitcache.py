@@ -308,6 +308,9 @@ def njit_cached(fn, signature):
     """
     import numba as nb
 
+    from landau.verify.compiling import address_space_for_compiling
+
+    address_space_for_compiling(f"the generated function {fn.__name__!r}")
     path = Path(fn.__code__.co_filename)
     if not path.is_file() or not _cache_file(path):   # no verified cache file: compile in memory
         disp = nb.njit(signature)(fn)
