@@ -312,7 +312,7 @@ class ChunkList(Sequence[Chunk]):
         """The flat indices of chunk ``number`` as a slice."""
         return slice(number * self.size, min(self.grid.size, (number + 1) * self.size))
 
-    def __getitem__(self, number):  # type: ignore[override]
+    def __getitem__(self, number):
         if isinstance(number, slice):
             return [self[i] for i in range(*number.indices(len(self)))]
         if not -len(self) <= number < len(self):

@@ -197,7 +197,8 @@ class Journal:
                 schema[name] = {"kind": "s", "width": None}
         arrays["schema"] = np.frombuffer(json.dumps(schema).encode(), dtype=np.uint8)
         buf = io.BytesIO()
-        np.savez(buf, **arrays)
+        savez: Any = np.savez   # (numpy's stub types the keyword arrays as its own flags)
+        savez(buf, **arrays)
         self.seq += 1
         part = self.folder / f"{time.time_ns():020d}-{os.getpid()}-{self.seq:06d}.npz"
         _atomic_bytes(part, buf.getvalue())
@@ -216,6 +217,17 @@ class Journal:
             raise InputError(f"{part}: a damaged part of a sweep's journal ({type(exc).__name__}); "
                              f"remove {part.parent} to recompute its points") from None
         return index, schema, values, strings
+
+    @staticmethod
+    def read_index(part: Path, what: str = "index") -> Any:
+        """Only a part's flat indices (``what="index"``) or its schema (``"schema"``)."""
+        try:
+            with np.load(part, allow_pickle=False) as z:
+                got = z[what]
+        except (OSError, ValueError, KeyError, zipfile.BadZipFile) as exc:
+            raise InputError(f"{part}: a damaged part of a sweep's journal ({type(exc).__name__}); "
+                             f"remove {part.parent} to recompute its points") from None
+        return json.loads(got.tobytes().decode()) if what == "schema" else got
 
     def remove(self) -> None:
         """Remove the journal: its parts first, its meta.json last (a removal cut short leaves a
@@ -265,7 +277,7 @@ def _read(var, sl: tuple[slice, ...]) -> np.ndarray:
     list keeps its last axis)."""
     var.set_auto_mask(False)
     extra = len(var.dimensions) - len(sl)
-    arr = np.asarray(var[(*sl, *([slice(None)] * extra))])
+    arr = np.asarray(var[tuple(sl) + (slice(None),) * extra])
     if var.dtype is str:
         return arr.astype(object).reshape(-1)
     n = int(np.prod([s.stop - s.start for s in sl], dtype=np.int64))
@@ -370,7 +382,7 @@ def write_flat(var, start: int, stop: int, shape: tuple[int, ...], data: np.ndar
         piece = data[at:at + n]
         at += n
         if piece.ndim == 2:
-            var[(*sl, slice(0, piece.shape[1]))] = piece.reshape(*sizes, piece.shape[1])
+            var[tuple(sl) + (slice(0, piece.shape[1]),)] = piece.reshape(*sizes, piece.shape[1])
         else:
             var[sl] = piece.reshape(sizes)
 
@@ -421,10 +433,14 @@ def _create(tmp: Path, grid: Grid, schema: dict[str, dict[str, Any]], units: dic
     return nc
 
 
-def _fill_base(nc, old, grid: Grid, schema: dict[str, dict[str, Any]]) -> None:
-    """Every point of the new file from the previous file (``old``, None: none or not trusted) or pending."""
+def _fill_base(nc, old, grid: Grid, schema: dict[str, dict[str, Any]], covered: np.ndarray) -> None:
+    """The points of the new file from the previous file (``old``, None: none or not trusted) or
+    pending, in the blocks where a point is not ``covered`` by the journal (whose parts give every
+    variable of their points: a block they cover whole is not written twice)."""
     names = [*schema, "status", "message"]
     for s, e, _ in flat_blocks(grid.shape):
+        if covered[s:e].all():
+            continue
         for name in names:
             spec = schema.get(name, {"kind": "s", "width": None})
             data = _default(spec["kind"], spec["width"], e - s, name)
@@ -496,12 +512,16 @@ def assemble(path: Path, journal: Journal, grid: Grid, attrs: dict[str, Any], un
     schemas: list[dict[str, Any]] = []
     try:
         schemas = [] if old is None else [file_schema(old)]
-        schemas += [Journal.read(p)[1] for p in parts]
+        schemas += [Journal.read_index(p, "schema") for p in parts]
         schema = merged_schema(schemas)
+        covered = np.zeros(grid.size, dtype=bool)   # one flag a point, as the run's own
+        for p in parts:
+            covered[Journal.read_index(p)] = True
         nc = _create(tmp, grid, schema, units)
         try:
             nc.setncatts({k: _attr(v) for k, v in attrs.items()})
-            _fill_base(nc, old, grid, schema)
+            _fill_base(nc, old, grid, schema, covered)
+            del covered
             for part in parts:
                 _overlay(nc, part, grid, schema)
             nc.sync()
