@@ -284,8 +284,10 @@ def _read(var, sl: tuple[slice, ...]) -> np.ndarray:
     return arr.reshape(n, -1) if extra else arr.reshape(-1)
 
 
-def flat_blocks(shape: tuple[int, ...], size: int = BLOCK) -> Iterator[tuple[int, int, list[tuple[slice, ...]]]]:
-    """The grid of ``shape`` in flat ranges of ``size`` points, each with its hyperrectangles."""
+def flat_blocks(shape: tuple[int, ...], size: int | None = None) -> Iterator[tuple[int, int, list[tuple[slice, ...]]]]:
+    """The grid of ``shape`` in flat ranges of ``size`` points (default :data:`BLOCK`), each with its
+    hyperrectangles."""
+    size = int(size or BLOCK)
     total = int(np.prod(shape, dtype=np.int64))
     for s in range(0, total, size):
         e = min(total, s + size)

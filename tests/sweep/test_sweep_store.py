@@ -94,6 +94,56 @@ def test_a_1e8_grid_written_to_a_file_fits_a_gigabyte_and_in_memory_is_refused()
         check_memory(grid, "1G")
 
 
+class Doubles:
+    """A trivial vectorised task (x -> 2x, 3x) in chunks of 4096: the engine's and the store's cost alone."""
+
+    name = "doubles"
+    continuation = False
+    lead = False
+    chunk_size = 4096
+
+    def units(self):
+        return {}
+
+    def prepare(self):
+        pass
+
+    def chunks(self, grid):
+        from landau.analyses.sweep_engine import chunks
+
+        return chunks(grid, self.chunk_size)
+
+    def run(self, chunk):
+        n = len(chunk.index)
+        x = chunk.points["x"] + 10.0 * chunk.points["y"]
+        return ChunkResult(chunk.index, ["ok"] * n, [""] * n, {"twice": 2 * x, "thrice": 3 * x})
+
+
+def test_a_sweep_to_a_file_holds_no_table_of_the_grid(tmp_path, monkeypatch):
+    """The same code path as the 10⁷-point run, on 10⁵ points: the Python-side peak (tracemalloc,
+    numpy's arrays included) of a sweep to a file is its flags and blocks, under 1.2 MB (the blocks
+    shrunk to 4096 points), where the same sweep in memory peaks above 3 MB (its table: two numbers,
+    a status and a message a point, 32 bytes); and the file holds every point."""
+    import tracemalloc
+
+    from landau.analyses import sweep_store
+    from landau.analyses.sweep_engine import run_table
+
+    monkeypatch.setattr(sweep_store, "BLOCK", 4096)
+    grid = make_grid({"x": np.arange(200.0), "y": np.arange(500.0)})
+    peaks = {}
+    for where, out in (("file", tmp_path / "d.nc"), ("memory", None)):
+        tracemalloc.start()
+        run_table(Doubles(), grid, workers=1, out=out, progress=False, attrs={"task": "doubles"})
+        peaks[where] = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
+    assert peaks["file"] < 1.2e6 and peaks["memory"] > 3e6, peaks
+    with netCDF4.Dataset(tmp_path / "d.nc") as nc:
+        twice = np.asarray(nc.variables["twice"][:])
+    x = np.arange(200.0)[:, None] + 10.0 * np.arange(500.0)[None, :]
+    assert np.array_equal(twice, 2 * x)
+
+
 def test_the_cli_accepts_a_grid_in_a_file_it_would_refuse_in_memory(tmp_path, capsys):
     """The budget the CLI checks before starting is the file's (the CLI always writes one): 9·10⁶
     points under --max-memory 100M are refused at about 0.27 GiB (2 bytes a point + 256 MiB), not at
@@ -215,10 +265,11 @@ KILLED = textwrap.dedent("""
 """)
 
 
-def _kill_and_resume(tmp_path: Path, points: int, chunk: int, kills: int, seed: int, window: float):
-    """Run the sweep, SIGKILL it ``kills`` times at random moments (seeded), up to ``window`` seconds
-    after its first stored part, then run it to the end; return the file, the points the killed runs
-    stored (from their journal), the finished run's counts."""
+def _kill_and_resume(tmp_path: Path, points: int, chunk: int, kills: int, seed: int, parts: int,
+                     window: float = 0.05):
+    """Run the sweep, SIGKILL it ``kills`` times at random moments (seeded) of its computation, then run
+    it to the end; return the file, the points the killed runs stored (their journal, or the file of
+    one that had finished), the finished run's counts."""
     rng = np.random.default_rng(seed)
     out = tmp_path / "k.nc"
     env = {**os.environ, "LANDAU_PROGRESS": "off"}
@@ -227,9 +278,12 @@ def _kill_and_resume(tmp_path: Path, points: int, chunk: int, kills: int, seed: 
         proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
         try:
             assert proc.stdout.readline().startswith("started")
-            end = time.monotonic() + 120   # the moment counted from its first stored part (computing, not importing)
-            while not Journal(out, {}).parts() and proc.poll() is None and time.monotonic() < end:
-                time.sleep(0.01)
+            # a random moment of the computation (not of the imports): after 1 to ``parts`` more stored
+            # parts, then up to ``window`` seconds more (mid-chunk, mid-write)
+            target = len(Journal(out, {}).parts()) + int(rng.integers(1, parts + 1))
+            end = time.monotonic() + 120
+            while len(Journal(out, {}).parts()) < target and proc.poll() is None and time.monotonic() < end:
+                time.sleep(0.005)
             time.sleep(float(rng.uniform(0, window)))
             os.kill(proc.pid, signal.SIGKILL)
             proc.wait(30)
@@ -274,13 +328,13 @@ def test_killed_twice_then_resumed_every_point_once(tmp_path):
     """A 600-point sweep killed with SIGKILL twice mid-run, then run again: every point equals the
     point of an uninterrupted run and computed alone, bit for bit; the killed runs' stored points are
     reused, none lost or computed twice."""
-    out, flat, computed, reused = _kill_and_resume(tmp_path, 600, 10, 2, seed=34, window=1.5)
+    out, flat, computed, reused = _kill_and_resume(tmp_path, 600, 10, 2, seed=34, parts=25)
     _check_resumed(out, flat, computed, reused, 600, 10)
 
 
 @pytest.mark.slow
 def test_killed_twenty_times_then_resumed_every_point_once(tmp_path):
     """The acceptance: a 10⁴-point sweep killed at 20 random moments (seed 2026), then resumed."""
-    out, flat, computed, reused = _kill_and_resume(tmp_path, 10_000, 20, 20, seed=2026, window=1.5)
+    out, flat, computed, reused = _kill_and_resume(tmp_path, 10_000, 20, 20, seed=2026, parts=40)
     print(f"the killed runs stored {len(flat)} points, the last run computed {computed}")
     _check_resumed(out, flat, computed, reused, 10_000, 20)
