@@ -24,9 +24,10 @@ import numpy as np
 
 #: task -> (grid, options): sized so that a run takes seconds on one worker
 CASES = {
-    "hopf": ({"V": np.logspace(-6, -3, 100).tolist(), "a": np.linspace(0.005, 0.04, 200).tolist()}, {}),
-    "check": ({"V": [1e-5, 3e-5, 1e-4, 3e-4]}, {"eps2": 1e-3}),
-    "regime": ({"V": [1e-4, 3e-4], "k": [0.9 * 777410.5656372706, 1.1 * 777410.5656372706]}, {}),
+    "hopf": ({"V": np.logspace(-6, -3, 400).tolist(), "a": np.linspace(0.005, 0.04, 500).tolist()}, {}),
+    "check": ({"V": np.logspace(-5, -3, 8).tolist()}, {"eps2": 1e-3}),
+    "regime": ({"V": np.logspace(-4, -3, 8).tolist(),
+                "k": (777410.5656372706 * np.linspace(0.8, 1.2, 8)).tolist()}, {}),
 }
 
 
