@@ -124,6 +124,22 @@ def sweep(task: str, grid: Any, *, model: str = "spring-block", law: Any = None,
     chunk is computed again in halves down to the failing points (not for a continuation).  Local worker
     processes end with this process, also when it is killed.
     """
+    ds, counts = _execute(task, grid, model=model, law=law, params=params, executor=executor, workers=workers,
+                          out=out, progress=progress, options=options, shard=shard, max_memory=max_memory,
+                          load=True)
+    if return_counts:
+        return ds, counts
+    return ds
+
+
+def _execute(task: str, grid: Any, *, model: str, law: Any, params: Mapping[str, float] | None,
+             executor: Executor | None, workers: int | None, out: str | os.PathLike | None, progress: bool,
+             options: Mapping[str, Any] | None, shard: Any, max_memory: Any, load: bool):
+    """:func:`sweep`'s run: ``(dataset, counts)``, or with ``out`` and not ``load`` ``(facts, counts)``
+    (the file's statuses and variables, nothing loaded: :func:`landau.analyses.sweep_engine.execute`).
+    A stored file not reused (edited, of another version) is said with a warning."""
+    import warnings
+
     from landau.analyses.sweep_engine import xarray
 
     xarray()
@@ -135,10 +151,23 @@ def sweep(task: str, grid: Any, *, model: str = "spring-block", law: Any = None,
     if part is not None and out is not None:
         out = shard_path(out, part)
     ds, counts = execute(t, g, executor=executor, workers=workers, out=out, attrs=t.attrs(), progress=progress,
-                         shard=part, max_memory=max_memory)
-    if return_counts:
-        return ds, {"computed": counts.computed, "reused": counts.reused, "failed": counts.failed}
-    return ds
+                         shard=part, max_memory=max_memory, load=load)
+    doc: dict[str, Any] = {"computed": counts.computed, "reused": counts.reused, "failed": counts.failed}
+    if counts.distrusted:
+        warnings.warn(counts.distrusted, UserWarning, stacklevel=3)
+        doc["distrusted"] = counts.distrusted
+    return ds, doc
+
+
+def sweep_file(task: str, grid: Any, out: str | os.PathLike, *, model: str = "spring-block", law: Any = None,
+               params: Mapping[str, float] | None = None, executor: Executor | None = None,
+               workers: int | None = None, progress: bool = True, options: Mapping[str, Any] | None = None,
+               shard: tuple[int, int] | str | None = None, max_memory: int | str | None = None):
+    """:func:`sweep` into the file ``out`` without loading it: ``(facts, counts)``, the facts the file's
+    statuses (``status``: name -> count) and variables (``schema``), in the memory of the chunking
+    whatever the grid (what ``landau sweep`` runs).  Parameters as :func:`sweep`."""
+    return _execute(task, grid, model=model, law=law, params=params, executor=executor, workers=workers, out=out,
+                    progress=progress, options=options, shard=shard, max_memory=max_memory, load=False)
 
 
 def merge(paths, out: str | os.PathLike | None = None):

@@ -1,9 +1,12 @@
 """The memory budget of a sweep: its estimate, the machine's memory, the refusal.
 
-A sweep holds its whole grid in memory (:class:`landau.analyses.sweep_engine.Table`: every
-point's status, message and variables; the chunks; the periodic write's Dataset), so a grid too
-large for the machine does not fail at once: it grows for minutes or hours, then swaps or is
-killed by the kernel, its file half written.  :func:`check_memory` refuses such a grid before
+A sweep without a file holds its whole grid in memory (:class:`landau.analyses.sweep_engine.Table`:
+every point's status, message and variables), so a grid too large for the machine does not fail
+at once: it grows for minutes or hours, then swaps or is killed by the kernel.  A sweep written to
+a file holds one flag a point (what is still to compute; a shard's, two) and the chunks it is
+working on (:class:`landau.analyses.sweep_store.FileTable`: the results go to the file as they
+come, the file is assembled block by block): :data:`STORED_BYTES_PER_POINT` a point and
+:data:`STORED_OVERHEAD`, whatever the task's variables.  :func:`check_memory` refuses such a grid before
 anything is allocated, comparing :func:`memory_estimate` (:data:`BYTES_PER_POINT` a point,
 measured) with a budget: an explicit ``max_memory``, or :data:`MEMORY_FRACTION` of the machine's
 memory (:func:`machine_memory`: ``os.sysconf``, or the cgroup's limit where it is smaller, since a
@@ -33,6 +36,13 @@ if TYPE_CHECKING:
 #: sweep with a file, from 300 × 300 to 900 × 900 points); rounded up to 512 for a margin.  A
 #: point whose message is its own string (not shared) adds about its length plus 50 bytes
 BYTES_PER_POINT = 512
+#: the memory a sweep written to a file holds per grid point: the flag of the points still to compute
+#: and a shard's flag of its own points (one byte each)
+STORED_BYTES_PER_POINT = 2
+#: the memory a sweep written to a file holds whatever its grid: the blocks of the file being assembled
+#: (65536 points of every variable), the chunks in flight and the buffered results, the pool's queues
+#: (measured: a 10⁷-point hopf sweep peaks 150 MB above the interpreter with its modules; rounded up)
+STORED_OVERHEAD = 256 << 20
 #: the share of this machine's memory a sweep may use by default
 MEMORY_FRACTION = 0.5
 
@@ -78,8 +88,12 @@ def parse_memory(value: Any) -> int | None:
     return n
 
 
-def memory_estimate(grid: Grid) -> int:
-    """The bytes a sweep of ``grid`` holds in memory (:data:`BYTES_PER_POINT` a point, 8 more per axis)."""
+def memory_estimate(grid: Grid, stored: bool = False) -> int:
+    """The bytes a sweep of ``grid`` holds in memory: without a file (``stored`` False),
+    :data:`BYTES_PER_POINT` a point and 8 more per axis; written to a file,
+    :data:`STORED_BYTES_PER_POINT` a point and :data:`STORED_OVERHEAD`."""
+    if stored:
+        return grid.size * STORED_BYTES_PER_POINT + STORED_OVERHEAD
     return grid.size * (BYTES_PER_POINT + 8 * len(grid.axes))
 
 
@@ -87,10 +101,10 @@ def _gib(n: float) -> str:
     return f"{n / (1 << 30):.3g} GiB"
 
 
-def check_memory(grid: Grid, max_memory: Any = None) -> None:
-    """Refuse (InputError) a grid whose :func:`memory_estimate` exceeds ``max_memory`` (bytes or a
-    size such as ``"8G"``), by default :data:`MEMORY_FRACTION` of :func:`machine_memory` (no limit
-    when that is unknown).  Nothing is allocated."""
+def check_memory(grid: Grid, max_memory: Any = None, stored: bool = False) -> None:
+    """Refuse (InputError) a grid whose :func:`memory_estimate` (``stored``: the sweep is written to a
+    file) exceeds ``max_memory`` (bytes or a size such as ``"8G"``), by default :data:`MEMORY_FRACTION`
+    of :func:`machine_memory` (no limit when that is unknown).  Nothing is allocated."""
     budget = parse_memory(max_memory)
     what = "--max-memory"
     if budget is None:
@@ -98,7 +112,8 @@ def check_memory(grid: Grid, max_memory: Any = None) -> None:
         if total is None:
             return
         budget, what = int(MEMORY_FRACTION * total), f"{MEMORY_FRACTION:g} of this machine's {_gib(total)}"
-    need = memory_estimate(grid)
+    need = memory_estimate(grid, stored)
     if need > budget:
         raise InputError(f"the grid has {grid.size} points, about {_gib(need)} in memory, more than the budget of "
-                         f"{_gib(budget)} ({what}); sweep fewer points, or raise --max-memory")
+                         f"{_gib(budget)} ({what}); sweep fewer points{'' if stored else ', write it to a file'}, "
+                         "or raise --max-memory")

@@ -30,19 +30,24 @@ Cartesian product of named 1-D axes.  What it guarantees, and why:
 * **No orphans.**  The local processes end with the sweep's process, even when it is killed
   with SIGKILL (:func:`landau.support.lifetime.die_with_parent`); when the run is interrupted or
   fails, they are ended at once (the chunks they run would be thrown away).
-* **Stored atomically, never lost to a signal.**  The results are written to netCDF
-  (``ds.to_netcdf`` to a temporary file next to the target, then :func:`os.replace`: a reader
-  never sees half a file) every few seconds and at the end, also when the run is interrupted:
-  Ctrl-C, and SIGTERM, which raises :class:`~landau.support.lifetime.Terminated` (a
-  KeyboardInterrupt) in the main thread so that the same ``finally`` runs.  The temporary is
-  removed whatever ends a write; one left by a killed run (SIGKILL: no code runs) is removed by
-  the next run on the same host once its writer's pid is gone
+* **Stored as it goes, O(chunk) a write, never lost to a signal or a SIGKILL.**  With a file,
+  finished chunks go to a journal beside it, a small file each batch, written atomically
+  (:mod:`landau.analyses.sweep_store`: why a journal and not netCDF appended in place), so a
+  write costs O(chunk) whatever was written before; the netCDF file (the same labelled Dataset)
+  is assembled block by block at the end, also when the run is interrupted: Ctrl-C, and
+  SIGTERM, which raises :class:`~landau.support.lifetime.Terminated` (a KeyboardInterrupt) in
+  the main thread so that the same ``finally`` runs.  A run killed with SIGKILL leaves its
+  journal, taken up by the next run (none of its points lost or computed twice).  Temporaries
+  are removed whatever ends a write; one left by a killed run is removed by the next run on the
+  same host once its writer's pid is gone
   (:func:`~landau.analyses.sweep_files.remove_stale_temporaries`).
-  The periodic write rewrites the whole grid, so it waits at least :data:`WRITE_SPACING` times as
-  long as the last write took: writing takes at most a tenth of the run (:class:`_Writer`).
-* **Resumable.**  A re-run with the same file reuses every finished point and computes the rest:
-  the ``pending`` ones (not computed yet) and the ``failed`` ones (a worker lost, a run that
-  failed), tried again.
+* **A finished file is checked, not trusted.**  Before a file's points are reused, its statuses,
+  variables, finiteness at ``ok`` points, landau version and the checksum of its results are
+  checked (:func:`~landau.analyses.sweep_store.distrust`); a file that fails is recomputed and
+  the reason said.
+* **Resumable.**  A re-run with the same file reuses every finished point (of the file, if it is
+  trusted, and of the journal) and computes the rest: the ``pending`` ones (not computed yet) and
+  the ``failed`` ones (a worker lost, a run that failed), tried again.
 * **Shards: the same numbers on independent machines.**  ``shard=(I, N)`` computes only the
   chunks whose number is I − 1 modulo N (:func:`shard_of`): the chunks are those of the unsharded
   run (their composition depends on the grid and the task, never on N), so every point a shard
@@ -50,20 +55,20 @@ Cartesian product of named 1-D axes.  What it guarantees, and why:
   exactly once.  Chunks are dealt round-robin rather than in N consecutive blocks because a
   sweep's cost is not uniform over its grid (a regime map is slow near the Hopf line): dealt
   round-robin, each shard gets a share of every region.  Each shard's file holds the whole grid,
-  its points finished and the others ``pending``; :func:`~landau.analyses.sweep_files.merge_files`
+  its points finished and the others ``pending`` (on disk; in memory a shard holds what any run
+  holds); :func:`~landau.analyses.sweep_files.merge_files`
   joins them.
-* **Memory refused, not exhausted.**  The run holds the whole grid in memory (every point's
-  status, message and variables, and the chunks), about
-  :data:`~landau.analyses.sweep_budget.BYTES_PER_POINT` bytes a point for the ``hopf`` task
-  (measured: its eleven numbers and one string, the chunks and the periodic write), also in a
-  shard, whose file is the whole grid.  A grid whose estimate exceeds the memory budget —
-  ``max_memory`` bytes, by default half of this machine's memory (its physical memory or its
-  cgroup limit, whichever is smaller; :func:`~landau.analyses.sweep_budget.check_memory`) — is
-  refused with an InputError before anything is allocated or computed:
-  a sweep that would swap or be killed by the kernel hours later is refused in a millisecond.
-  The estimate does not know a task's variables before it runs: a task that stores per-point
-  lists (``simulate``'s Poincaré points) needs more per point; such sweeps are one-dimensional
-  continuations of thousands of points, far below any budget.
+* **Memory bounded by the chunking, or refused up front.**  A sweep with a file holds one flag a
+  point (what is left to compute; a shard two) and the chunks in flight
+  (:data:`~landau.analyses.sweep_budget.STORED_BYTES_PER_POINT`,
+  :data:`~landau.analyses.sweep_budget.STORED_OVERHEAD`); the chunks of consecutive points are
+  made one at a time (:class:`ChunkList`), never the grid's parameters at once: a 10⁷-point
+  sweep runs in a few hundred MB.  A sweep without a file returns its whole grid in memory
+  (:data:`~landau.analyses.sweep_budget.BYTES_PER_POINT` bytes a point for the ``hopf`` task).
+  A grid whose estimate exceeds the memory budget — ``max_memory`` bytes, by default half of this
+  machine's memory (its physical memory or its cgroup limit, whichever is smaller;
+  :func:`~landau.analyses.sweep_budget.check_memory`) — is refused with an InputError before
+  anything is allocated or computed.
 * **Write errors named.**  A file that cannot be written is an
   :class:`~landau.errors.OutputError` naming the file and the cause: a full disk as "no space left
   on device" (whatever the netCDF backend raised,
@@ -77,11 +82,10 @@ from __future__ import annotations
 
 import math
 import os
-import time
 from concurrent.futures import FIRST_COMPLETED, Executor, ProcessPoolExecutor, wait
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Iterator, Sequence
 
 import numpy as np
 
@@ -89,11 +93,9 @@ from landau.analyses.sweep_budget import check_memory
 from landau.analyses.sweep_files import (  # noqa: F401 - _engine, xarray: re-exported for the commands
     _engine,
     _first_line,
-    read_stored,
-    remove_stale_temporaries,
-    write_atomic,
     xarray,
 )
+from landau.analyses.sweep_store import FileTable
 from landau.errors import InputError
 
 #: chunks kept in flight on an executor of unknown size (a dask cluster): twice its workers otherwise
@@ -296,8 +298,45 @@ class Chunk:
     done: dict[int, dict[str, Any]] = field(default_factory=dict)  # position -> stored record (resume)
 
 
+class ChunkList(Sequence[Chunk]):
+    """The chunks of consecutive flat indices of a grid, each made when asked for: the list of a
+    grid of 10⁸ points is not 10⁸ parameters in memory."""
+
+    def __init__(self, grid: Grid, size: int):
+        self.grid, self.size = grid, int(size)
+
+    def __len__(self) -> int:
+        return -(-self.grid.size // self.size)
+
+    def span(self, number: int) -> slice:
+        """The flat indices of chunk ``number`` as a slice."""
+        return slice(number * self.size, min(self.grid.size, (number + 1) * self.size))
+
+    def __getitem__(self, number):
+        if isinstance(number, slice):
+            return [self[i] for i in range(*number.indices(len(self)))]
+        if not -len(self) <= number < len(self):
+            raise IndexError(number)
+        number %= len(self)
+        sp = self.span(number)
+        idx = np.arange(sp.start, sp.stop, dtype=np.int64)
+        return Chunk(number, idx, self.grid.columns(idx))
+
+    def with_todo(self, todo: np.ndarray) -> np.ndarray:
+        """The numbers of the chunks with a point flagged in ``todo`` (vectorised, in blocks)."""
+        out = []
+        step = max(1, (1 << 22) // self.size) * self.size
+        for s in range(0, self.grid.size, step):
+            part = todo[s:s + step]
+            pad = (-len(part)) % self.size
+            if pad:
+                part = np.concatenate([part, np.zeros(pad, dtype=bool)])
+            out.append(np.flatnonzero(part.reshape(-1, self.size).any(axis=1)) + s // self.size)
+        return np.concatenate(out) if out else np.zeros(0, dtype=np.int64)
+
+
 def chunks(grid: Grid, size: int, along: str | None = None, overlap: int = 0,
-           descending: bool = False) -> list[Chunk]:
+           descending: bool = False) -> Sequence[Chunk]:
     """The grid cut into chunks of at most ``size`` points.
 
     Without ``along`` the chunks are runs of consecutive flat indices.  With ``along`` (a
@@ -307,12 +346,9 @@ def chunks(grid: Grid, size: int, along: str | None = None, overlap: int = 0,
     """
     if size < 1:
         raise InputError(f"chunk size must be >= 1, got {size}")
-    out: list[Chunk] = []
     if along is None:
-        for s in range(0, grid.size, size):
-            idx = np.arange(s, min(grid.size, s + size), dtype=np.int64)
-            out.append(Chunk(len(out), idx, grid.columns(idx)))
-        return out
+        return ChunkList(grid, size)
+    out: list[Chunk] = []
     if along not in grid.names:
         raise InputError(f"the continuation parameter {along} is not swept (give --grid {along}=...)")
     ax = grid.names.index(along)
@@ -495,21 +531,6 @@ class Table:
                                          + f"; {PENDING}: not computed yet")
         return ds
 
-    def load(self, ds) -> None:
-        """Take the finished points of a stored dataset (same grid)."""
-        self.status = np.asarray(ds["status"].values, dtype=object).reshape(-1)
-        self.message = np.asarray(ds["message"].values, dtype=object).reshape(-1)
-        for name, var in ds.data_vars.items():
-            if name in ("status", "message"):
-                continue
-            arr = np.asarray(var.values)
-            if arr.dtype.kind in "OUS":
-                self.strings[name] = arr.astype(object).reshape(-1)
-            elif arr.ndim == len(self.grid.shape):   # the file's own array, not a copy (a resumed run holds one)
-                self.values[name] = arr.astype(float, copy=False).reshape(-1)
-            else:
-                self.values[name] = arr.astype(float, copy=False).reshape(self.grid.size, -1)
-
 
 # ---------------------------------------------------------------------------------------------
 # the run
@@ -519,103 +540,89 @@ class RunCounts:
     computed: int = 0
     reused: int = 0
     failed: int = 0
-
-
-#: the periodic write waits at least this many times as long as the last write took (see :class:`_Writer`)
-WRITE_SPACING = 9.0
-
-
-class _Writer:
-    """The netCDF file of a run: written every ``write_every`` seconds and at the end.
-
-    Every write rewrites the whole grid (the file is the full table from the start), so its cost
-    is proportional to the grid's size N; at a fixed interval a run of N points would spend
-    O(N²) writing.  The interval is therefore at least :data:`WRITE_SPACING` times the duration of
-    the last write: writing takes at most a tenth of the run's wall time (total write cost O(run
-    time), i.e. O(N) for a fixed cost per point), and a small file is still written every
-    ``write_every`` seconds."""
-
-    def __init__(self, path: Path | None, attrs: dict[str, Any], write_every: float):
-        self.path, self.attrs, self.every = path, attrs, float(write_every)
-        self.last = time.monotonic()
-        self.took = 0.0
-
-    def due(self) -> bool:
-        return self.path is not None and time.monotonic() - self.last > max(self.every, WRITE_SPACING * self.took)
-
-    def write(self, table: Table, counts: RunCounts | None = None) -> None:
-        if self.path is None:
-            return
-        start = time.monotonic()
-        extra = {} if counts is None else {"computed": counts.computed, "reused": counts.reused}
-        write_atomic(table.dataset({**self.attrs, **extra}), self.path)
-        self.last = time.monotonic()
-        self.took = self.last - start
+    distrusted: str = ""   # why a stored file was not reused (its points computed again); "" if it was
 
 
 def execute(task, grid: Grid, *, executor: Executor | None = None, workers: int | None = None,
             out: str | os.PathLike | None = None, attrs: dict[str, Any], progress: bool = True,
-            write_every: float = 5.0, shard: Any = None, max_memory: Any = None):
-    """Run ``task`` over ``grid`` and return ``(dataset, counts)``.
+            write_every: float = 5.0, shard: Any = None, max_memory: Any = None, load: bool = True):
+    """Run ``task`` over ``grid`` and return ``(dataset, counts)``; with ``out`` and not ``load``,
+    ``(facts, counts)``: the file's statuses and variables (:func:`landau.analyses.sweep_store.scan`),
+    the Dataset not loaded (a grid of 10⁷ points in bounded memory).
 
     See :func:`landau.analyses.sweep.sweep` for the parameters.
     """
     table, counts = run_table(task, grid, executor=executor, workers=workers, out=out, attrs=attrs,
                               progress=progress, write_every=write_every, shard=shard, max_memory=max_memory)
+    if isinstance(table, FileTable):
+        return (table.dataset() if load else table.facts), counts
     return table.dataset({**attrs, **_shard_attrs(table), "computed": counts.computed,
                           "reused": counts.reused}), counts
 
 
-def _shard_attrs(table: Table) -> dict[str, Any]:
+def _shard_attrs(table) -> dict[str, Any]:
     """The attributes naming a shard's part of the grid (none for an unsharded run)."""
     if table.shard is None:
         return {}
     return {"shard": f"{table.shard[0]}/{table.shard[1]}", "shard_points": int(table.shard_points)}
 
 
-def _owned(task, grid: Grid, shard: tuple[int, int] | None) -> tuple[list[Chunk], np.ndarray | None]:
-    """The chunks this run computes (a shard's: every N-th, :func:`shard_of`) and, for a shard, the
-    mask of their points."""
-    all_chunks = task.chunks(grid)
+def _spans(all_chunks: Sequence[Chunk]) -> Iterator[tuple[int, Any]]:
+    """Each chunk's number and flat indices (a slice for a :class:`ChunkList`: no chunk is made)."""
+    if isinstance(all_chunks, ChunkList):
+        for n in range(len(all_chunks)):
+            yield n, all_chunks.span(n)
+    else:
+        for ch in all_chunks:
+            yield ch.number, np.asarray(ch.index, dtype=np.int64)
+
+
+def _owned(all_chunks: Sequence[Chunk], grid: Grid, shard: tuple[int, int] | None) -> np.ndarray | None:
+    """For a shard, the flags of the points of its chunks (every N-th, :func:`shard_of`); None otherwise."""
     if shard is None:
-        return all_chunks, None
-    i, n = shard
-    mine = [ch for ch in all_chunks if shard_of(ch.number, n) == i]
-    owned = np.zeros(grid.size, dtype=bool)
-    for ch in mine:
-        owned[np.asarray(ch.index, dtype=np.int64)] = True
-    return mine, owned
-
-
-def _stored(out: str | os.PathLike | None, table: Table, attrs: dict[str, Any]) -> Path | None:
-    """The output file (checked), its finished points loaded into ``table``, the stale temporaries
-    of killed earlier runs removed."""
-    if out is None:
         return None
+    i, n = shard
+    owned = np.zeros(grid.size, dtype=bool)
+    for number, idx in _spans(all_chunks):
+        if shard_of(number, n) == i:
+            owned[idx] = True
+    return owned
+
+
+def _open_table(task, grid: Grid, out: str | os.PathLike | None, attrs: dict[str, Any], write_every: float):
+    """The run's table and the flags of the points to compute: in memory without ``out``, else a
+    :class:`~landau.analyses.sweep_store.FileTable` (the file checked, its trusted finished points and
+    the journal's taken)."""
+    if out is None:
+        table = Table(grid, task.units())
+        return table, np.ones(grid.size, dtype=bool)
     path = Path(out)
     if path.suffix.lower() not in (".nc", ".nc4", ".netcdf"):
         raise InputError(f"--out {str(path)!r}: a sweep is written as netCDF (.nc)")
     if path.exists() and not path.is_file():
         raise InputError(f"--out {str(path)!r} is not a regular file")
-    remove_stale_temporaries(path)
-    if path.exists():
-        table.load(read_stored(path, table.grid, attrs))
-    return path
+    ftable = FileTable(path, grid, task.units(), attrs, write_every)
+    return ftable, ftable.open(attrs)
 
 
-def _work(task, all_chunks: list[Chunk], table: Table, todo_mask: np.ndarray) -> list[Chunk]:
-    """The chunks with a point to compute (a continuation's finished points passed in ``done``)."""
-    work = []
-    for ch in all_chunks:
-        pending = todo_mask[ch.index]
-        if not pending.any():
-            continue
-        if not pending.all() and task.continuation:
-            ch.done = {j: table.record(int(i)) for j, i in enumerate(ch.index) if not todo_mask[i]}
-        # a partly finished chunk is computed whole (the same batch as in an uninterrupted run, so the
-        # same numbers to the last bit) and only its missing points are stored
-        work.append(ch)
-    return work
+def _work(task, all_chunks: Sequence[Chunk], table, todo_mask: np.ndarray) -> tuple[int, Iterator[Chunk]]:
+    """How many chunks have a point to compute, and those chunks, made one at a time (a
+    continuation's finished points passed in ``done``)."""
+    if isinstance(all_chunks, ChunkList):
+        numbers = all_chunks.with_todo(todo_mask)
+    else:
+        numbers = np.array([n for n, idx in _spans(all_chunks) if todo_mask[idx].any()], dtype=np.int64)
+
+    def made() -> Iterator[Chunk]:
+        for n in numbers:
+            ch = all_chunks[int(n)]
+            pending = todo_mask[ch.index]
+            if not pending.all() and task.continuation:
+                ch.done = {j: table.record(int(i)) for j, i in enumerate(ch.index) if not todo_mask[i]}
+            # a partly finished chunk is computed whole (the same batch as in an uninterrupted run, so the
+            # same numbers to the last bit) and only its missing points are stored
+            yield ch
+    return len(numbers), made()
 
 
 def local_pool(workers: int) -> ProcessPoolExecutor:
@@ -638,14 +645,20 @@ def _stop(pool: ProcessPoolExecutor, now: bool) -> None:
     pool.shutdown(wait=True, cancel_futures=True)
 
 
-def _drain(executor: Executor, work: list[Chunk], task, workers: int, take, strict: bool) -> None:
+def _drain(executor: Executor, work: Iterator[Chunk], task, workers: int, take, strict: bool) -> None:
     """Run ``work`` on ``executor``, at most ``2 × workers`` chunks in flight, each result to ``take``."""
-    queue = list(reversed(work))
     inflight: set = set()
     try:
-        while queue or inflight:
-            while queue and len(inflight) < 2 * workers:
-                inflight.add(executor.submit(run_chunk, task, queue.pop(), not strict))
+        more = True
+        while more or inflight:
+            while more and len(inflight) < 2 * workers:
+                ch = next(work, None)
+                if ch is None:
+                    more = False
+                    break
+                inflight.add(executor.submit(run_chunk, task, ch, not strict))
+            if not inflight:
+                break
             done, inflight = wait(inflight, return_when=FIRST_COMPLETED)
             for f in done:
                 take(f.result())
@@ -661,7 +674,7 @@ def _drain(executor: Executor, work: list[Chunk], task, workers: int, take, stri
 def run_table(task, grid: Grid, *, executor: Executor | None = None, workers: int | None = None,
               out: str | os.PathLike | None = None, attrs: dict[str, Any] | None = None, progress: bool = True,
               write_every: float = 5.0, strict: bool = False, shard: Any = None,
-              max_memory: Any = None) -> tuple[Table, RunCounts]:
+              max_memory: Any = None) -> tuple[Any, RunCounts]:
     """Run ``task`` over ``grid`` and return ``(table, counts)``: the engine under :func:`execute`,
     without the Dataset (xarray is needed only with ``out``).
 
@@ -678,7 +691,8 @@ def run_table(task, grid: Grid, *, executor: Executor | None = None, workers: in
 
     Returns
     -------
-    (Table, RunCounts)
+    (Table or FileTable, RunCounts)
+        In memory without ``out``; with ``out``, the file's table (:mod:`landau.analyses.sweep_store`).
 
     Raises
     ------
@@ -698,23 +712,33 @@ def run_table(task, grid: Grid, *, executor: Executor | None = None, workers: in
     a task with ``lead = True`` (a per-point callable that builds what it needs lazily) its first
     chunk is run here first.  The numbers do not depend on where a chunk ran.
     """
-    from landau.support.lifetime import terminate_as_interrupt
-    from landau.support.progress import progress as bar_for
-
     shard = parse_shard(shard)
-    check_memory(grid, max_memory)   # before the table (16 bytes a point at once) is allocated
+    # before anything is allocated: the table in memory, or one flag a point with a file
+    check_memory(grid, max_memory, stored=out is not None)
     attrs = dict(attrs or {})
-    table = Table(grid, task.units())
-    counts = RunCounts()
-    path = _stored(out, table, attrs)
-    todo_mask = (table.status == PENDING) | (table.status == "failed")  # a failed point is tried again
-    all_chunks, owned = _owned(task, grid, shard)
+    table, todo_mask = _open_table(task, grid, out, attrs, write_every)
+    counts = RunCounts(distrusted=getattr(table, "distrusted", ""))
+    all_chunks = task.chunks(grid)
+    owned = _owned(all_chunks, grid, shard)
     if owned is not None:   # a shard computes its own points only
         todo_mask &= owned
         table.shard, table.shard_points = shard, int(np.count_nonzero(owned))
         attrs.update(_shard_attrs(table))
-    counts.reused = int((grid.size if owned is None else table.shard_points) - np.count_nonzero(todo_mask))
-    work = _work(task, all_chunks, table, todo_mask)
+        del owned
+    counts.reused = int(table.shard_points - np.count_nonzero(todo_mask))
+    n_work, work = _work(task, all_chunks, table, todo_mask)
+    return table, _run(task, table, todo_mask, n_work, work, counts, executor=executor, workers=workers,
+                       attrs=attrs, progress=progress, strict=strict)
+
+
+def _run(task, table, todo_mask: np.ndarray, n_work: int, work: Iterator[Chunk], counts: RunCounts, *,
+         executor: Executor | None, workers: int | None, attrs: dict[str, Any], progress: bool,
+         strict: bool) -> RunCounts:
+    """The chunks ``work`` computed on the executor, each result put in ``table``; the file (if any)
+    written at the end, whatever ends the run."""
+    from landau.support.lifetime import terminate_as_interrupt
+    from landau.support.progress import progress as bar_for
+
     n_todo = int(np.count_nonzero(todo_mask))
     own = None
     lead: list[Chunk] = []
@@ -722,13 +746,12 @@ def run_table(task, grid: Grid, *, executor: Executor | None = None, workers: in
         workers = int(workers or os.cpu_count() or 1)
         if workers < 1:
             raise InputError(f"--workers must be >= 1, got {workers}")
-        if workers > 1 and len(work) > 1:
+        if workers > 1 and n_work > 1:
             task.prepare()  # compile (or load) in this process: forked workers inherit it
             if getattr(task, "lead", False):
-                lead, work = work[:1], work[1:]
+                lead = [next(work)]
     else:  # a foreign executor (a cluster's size is not known here): many chunks in flight
         workers = int(workers or getattr(executor, "_max_workers", None) or IN_FLIGHT // 2)
-    writer = _Writer(path, attrs, write_every)
     bar = bar_for(total=n_todo, desc=f"sweep {task.name}", unit="pt") if progress else None
 
     def take(res: ChunkResult):
@@ -740,17 +763,15 @@ def run_table(task, grid: Grid, *, executor: Executor | None = None, workers: in
         counts.failed += sum(1 for s in res.status if s == "failed")
         if bar is not None:
             bar.update(len(res.index))
-        if writer.due():
-            writer.write(table)
 
     finished = False
     with terminate_as_interrupt():
         try:
             for ch in lead:  # before the pool starts: forked workers inherit what it built
                 take(run_chunk(task, ch, not strict))
-            if lead or (executor is None and workers > 1 and len(work) > 1):
+            if lead or (executor is None and workers > 1 and n_work > 1):
                 # never more processes than chunks (a large --workers on a short sweep starts no idle process)
-                own = executor = local_pool(max(1, min(workers, len(work))))
+                own = executor = local_pool(max(1, min(workers, n_work)))
             if executor is None:
                 for ch in work:
                     take(run_chunk(task, ch, not strict))
@@ -762,5 +783,6 @@ def run_table(task, grid: Grid, *, executor: Executor | None = None, workers: in
                 bar.close()
             if own is not None:
                 _stop(own, now=not finished)
-            writer.write(table, counts)
-    return table, counts
+            if isinstance(table, FileTable):
+                table.finish({**attrs, "computed": counts.computed, "reused": counts.reused})
+    return counts

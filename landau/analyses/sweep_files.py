@@ -138,7 +138,8 @@ def write_error(exc: BaseException, path: Path, need: int) -> OutputError:
 
 def write_atomic(ds, path: Path) -> None:
     """Write ``ds`` to netCDF at ``path`` atomically: a temporary file next to it (this host's and
-    this process's), then os.replace.  The temporary is removed whatever ends the write (an error,
+    this process's), sealed (a sweep file's checksum, :func:`landau.analyses.sweep_store.seal`, with
+    the netCDF4 backend), then os.replace.  The temporary is removed whatever ends the write (an error,
     Ctrl-C, SIGTERM inside :func:`landau.support.lifetime.terminate_as_interrupt`).
 
     Raises
@@ -149,7 +150,13 @@ def write_atomic(ds, path: Path) -> None:
     """
     tmp = _temporary(path)
     try:
-        ds.to_netcdf(tmp, engine=_engine())
+        engine = _engine()
+        ds.to_netcdf(tmp, engine=engine)
+        if engine == "netcdf4" and "status" in ds:   # a sweep file: its checksum, so that a run may reuse it
+            from landau.analyses.sweep_store import netcdf4, seal
+
+            with netcdf4().Dataset(tmp, "a") as nc:
+                seal(nc, tuple(int(n) for n in nc.variables["status"].shape))
         os.replace(tmp, path)
     except (OSError, RuntimeError) as exc:   # RuntimeError: netCDF4's "NetCDF: HDF error" of a full disk
         raise write_error(exc, path, int(ds.nbytes)) from None

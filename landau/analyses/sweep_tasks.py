@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass, field
-from typing import Any, Callable, ClassVar
+from typing import Any, Callable, ClassVar, Sequence
 
 import numpy as np
 
@@ -177,7 +177,7 @@ class Task:
         """The task as it runs on ``grid`` (a choice made once, in the calling process)."""
         return self
 
-    def chunks(self, grid: Grid) -> list[Chunk]:
+    def chunks(self, grid: Grid) -> Sequence[Chunk]:
         return chunks(grid, self.chunk_size)
 
     def prepare(self) -> None:
@@ -545,7 +545,7 @@ class ModelTask(Task):
         if self.grid_fn is not None:
             self.grid_fn(self, grid)
 
-    def chunks(self, grid: Grid) -> list[Chunk]:
+    def chunks(self, grid: Grid) -> Sequence[Chunk]:
         return chunks(grid, self.chunk_size, self.along, self.overlap, self.descending)
 
     def prepare(self) -> None:

@@ -14,7 +14,9 @@ The result is an xarray Dataset in FILE.nc (dimensions: the swept parameters; va
 task's quantities as in ``--json``, ``status`` and ``message`` per point).  It is written as the
 sweep goes; running the same command again reuses the finished points (``computed``/``reused``
 in the summary), also after Ctrl-C or SIGTERM (both write what is done and exit 130), and tries the
-failed ones again; a point that fails its chunk fails alone.  Exit code 0, 1 when every point
+failed ones again; a point that fails its chunk fails alone.  A finished file is checked before its
+points are reused (statuses, variables, finiteness, version, the checksum of its results): an
+edited file is computed again, with a note on stderr saying why.  Exit code 0, 1 when every point
 computed in the run failed (each point's ``status`` and ``message`` say why), 2 for bad input or a
 file that cannot be written (``cannot write FILE: no space left on device``).
 
@@ -37,6 +39,7 @@ Examples::
 from __future__ import annotations
 
 import math
+import sys
 from typing import Any
 
 from landau.cli.common import add_friction_arguments, add_law_arguments, parse_params
@@ -181,7 +184,7 @@ def _executor(args):
 
 
 def run(args) -> dict:
-    from landau.analyses.sweep import sweep
+    from landau.analyses.sweep import sweep_file
     from landau.analyses.sweep_budget import check_memory, parse_memory
     from landau.analyses.sweep_engine import make_grid, parse_shard
     from landau.analyses.sweep_files import shard_path
@@ -198,30 +201,34 @@ def run(args) -> dict:
     options = _options(args, model)
     # checked before a cluster starts: a grid over the memory budget is refused without starting one
     shard, max_memory = parse_shard(args.shard), parse_memory(args.max_memory)
-    check_memory(make_grid(args.grid), max_memory)
+    grid = make_grid(args.grid)
+    check_memory(grid, max_memory, stored=True)
     out = args.out if shard is None else shard_path(args.out, shard)
     executor, close = _executor(args)
     try:
-        ds, counts = sweep(args.task, args.grid, model=args.model, law=law, params=fixed, executor=executor,
-                           workers=args.workers, out=args.out, progress=True, options=options,
-                           return_counts=True, shard=shard, max_memory=max_memory)
+        import warnings
+
+        with warnings.catch_warnings():   # a file not reused: said below, once
+            warnings.simplefilter("ignore", UserWarning)
+            facts, counts = sweep_file(args.task, args.grid, args.out, model=args.model, law=law, params=fixed,
+                                       executor=executor, workers=args.workers, progress=True, options=options,
+                                       shard=shard, max_memory=max_memory)
     finally:
         if close is not None:
             close()
-    import numpy as np
-
-    statuses = {str(s): int(n) for s, n in zip(*np.unique(ds.status.values, return_counts=True), strict=True)}
+    if counts.get("distrusted") and not getattr(args, "json", False):
+        print(f"landau: note: {counts['distrusted']}", file=sys.stderr)
     # every point computed in this run failed: the run as a whole did not work, and says why on stderr
     all_failed = bool(counts["computed"]) and counts["failed"] == counts["computed"]
     failure = {}
     if all_failed:
-        first = str(np.ravel(ds.message.values)[np.flatnonzero(np.ravel(ds.status.values) == "failed")[0]])
+        first = facts.get("first_failed")
         failure = {"failure": f"every computed point failed ({counts['failed']}); the first: {first}"}
-    return {"task": args.task, "model": args.model, "law": ds.attrs.get("law", ""), "out": str(out),
-            "shard": ds.attrs.get("shard", ""),
-            "dims": {k: int(v) for k, v in ds.sizes.items() if k in ds.status.dims},
-            "points": int(ds.status.size), **counts, "status": statuses,
-            "variables": [v for v in ds.data_vars if v not in ("status", "message")],
+    return {"task": args.task, "model": args.model, "law": "" if law is None else law.name, "out": str(out),
+            "shard": "" if shard is None else f"{shard[0]}/{shard[1]}",
+            "dims": {a.name: len(a.values) for a in grid.axes},
+            "points": grid.size, **counts, "status": dict(sorted(facts["status"].items())),
+            "variables": list(facts["schema"]),
             "fixed_parameters": fixed,
             **failure, "exit_code": 1 if all_failed else 0}
 

@@ -187,14 +187,15 @@ CHILD = textwrap.dedent("""
             return ChunkResult(chunk.index, ["ok"] * n, [""] * n, {"twice": 2.0 * chunk.points["x"]})
 
     slow_write = sys.argv[3] == "slow-write"
-    if slow_write:  # the temporary stays on disk for 3 s: a signal is sure to come mid-write
-        real = xarray.Dataset.to_netcdf
-        def to_netcdf(self, path, *a, **k):
-            out = real(self, path, *a, **k)
-            print("writing", path, flush=True)
-            time.sleep(3.0)
-            return out
-        xarray.Dataset.to_netcdf = to_netcdf
+    if slow_write:  # each part of the journal takes 3 s to write: a signal is sure to come mid-write
+        import landau.analyses.sweep_store as store
+        real = store._atomic_bytes
+        def slow(path, data):
+            if path.suffix == ".npz":
+                print("writing", path.parent, flush=True)
+                time.sleep(3.0)
+            return real(path, data)
+        store._atomic_bytes = slow
     if sys.argv[3] == "watchdog":   # as where prctl is missing: the workers poll their parent
         import landau.support.lifetime as lifetime
         lifetime._kernel_death_signal = lambda: False
@@ -283,9 +284,9 @@ def test_sigterm_mid_write_writes_what_is_done_and_leaves_no_temporary(tmp_path)
         end = time.monotonic() + 120
         while not line.startswith("writing") and time.monotonic() < end:
             line = proc.stdout.readline()
-        assert line.startswith("writing"), "the sweep never wrote its file"
-        tmp = Path(line.split()[1])
-        assert tmp.exists() and tmp.name.startswith(".slow.nc.")   # the temporary, mid-write
+        assert line.startswith("writing"), "the sweep never wrote its journal"
+        journal = Path(line.split()[1])
+        assert journal.is_dir() and journal.name == ".slow.nc.parts"   # the journal, mid-write
         workers = _wait_for_workers(proc.pid, 2)
         os.kill(proc.pid, signal.SIGTERM)
         rest, err = proc.communicate(timeout=60)
@@ -294,7 +295,7 @@ def test_sigterm_mid_write_writes_what_is_done_and_leaves_no_temporary(tmp_path)
         _kill(workers)
     assert proc.returncode == 130 and "interrupted Terminated" in rest, (proc.returncode, rest, err)
     assert "Traceback" not in err
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["slow.nc"]   # no temporary left
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["slow.nc"]   # no temporary, the journal in the file
     assert not _gone(workers, 5.0)
     with xr.open_dataset(out) as ds:
         ds = ds.load()
@@ -329,17 +330,21 @@ ARGV = ["sweep", "hopf", "spring-block", "dieterich", "--grid", "V=1e-5,1e-4", "
 
 
 def _failing_write(monkeypatch, exc: BaseException, free: int | None = None):
-    import xarray as xr
+    from landau.analyses import sweep_files, sweep_store  # where the file is created, where the free space is asked
 
-    from landau.analyses import sweep_files  # where the free space is asked
-
-    def to_netcdf(self, path, *args, **kwargs):
-        Path(path).write_bytes(b"partial")   # the backend had created its file
+    def create(tmp, *args, **kwargs):
+        Path(tmp).write_bytes(b"partial")   # the backend had created its file
         raise exc
 
-    monkeypatch.setattr(xr.Dataset, "to_netcdf", to_netcdf)
+    monkeypatch.setattr(sweep_store, "_create", create)
     if free is not None:
         monkeypatch.setattr(sweep_files, "_free_bytes", lambda folder: free)
+
+
+def _no_temporary(folder: Path) -> None:
+    """Nothing but the journal of the computed points (``.s.nc.parts``, resumable) is left, no temporary."""
+    assert [p.name for p in folder.iterdir()] == [".s.nc.parts"]
+    assert not [p for p in (folder / ".s.nc.parts").iterdir() if p.suffix == ".tmp"]
 
 
 @pytest.mark.parametrize("exc, free", [
@@ -354,7 +359,7 @@ def test_a_full_disk_is_reported_as_such(tmp_path, monkeypatch, capsys, exc, fre
     assert main([*ARGV, "--out", str(out)]) == 2   # a write error, as every command reports one
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith(f"landau: error: cannot write {out}: no space left on device"), err
-    assert list(tmp_path.iterdir()) == []    # no temporary left
+    _no_temporary(tmp_path)
 
 
 @pytest.mark.parametrize("exc, said", [
@@ -367,36 +372,4 @@ def test_another_write_error_is_reported_by_its_own_errno(tmp_path, monkeypatch,
     assert main([*ARGV, "--out", str(out)]) == 2
     err = capsys.readouterr().err.strip()
     assert err == f"landau: error: cannot write {out}: {said}"
-
-
-# ---------------------------------------------------------------------------------------------
-# 5. the periodic write costs at most a tenth of the run
-# ---------------------------------------------------------------------------------------------
-class Sleepy(Roots):
-    """Roots, each chunk 0.02 s long."""
-
-    def run(self, chunk: Chunk) -> ChunkResult:
-        time.sleep(0.02)
-        return super().run(chunk)
-
-
-def test_the_periodic_write_waits_nine_times_as_long_as_the_last_write_took(tmp_path, monkeypatch):
-    from landau.analyses import sweep_engine
-
-    took = 0.2
-    stamps: list[float] = []
-
-    def slow_write(ds, path):   # every write rewrites the whole grid: here a fixed 0.2 s
-        stamps.append(time.monotonic())
-        time.sleep(took)
-
-    monkeypatch.setattr(sweep_engine, "write_atomic", slow_write)
-    start = time.monotonic()
-    run_table(Sleepy(size=1), make_grid({"x": [float(i) for i in range(150)]}), workers=1, progress=False,
-              out=tmp_path / "w.nc", write_every=0.0)
-    elapsed = time.monotonic() - start
-    # a fixed interval of 0 s would write after each of the 150 chunks (30 s of writing for 3 s of work);
-    # spaced by 9 x 0.2 s, the periodic writes are at least 1.8 s apart, then the final write
-    gaps = np.diff(stamps[:-1])
-    assert len(stamps) >= 2 and np.all(gaps >= 9 * took)
-    assert len(stamps) * took <= 0.1 * elapsed + 2 * took   # writing is a tenth of the run, but the first and last
+    _no_temporary(tmp_path)

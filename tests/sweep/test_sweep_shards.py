@@ -175,19 +175,25 @@ def test_parse_shard_and_path():
 # the memory budget
 # ---------------------------------------------------------------------------------------------
 def test_big_grid_refused_before_any_work(tmp_path):
-    """3000 x 3000 points (9e6): about 4.4 GiB at BYTES_PER_POINT, refused under a 1 GiB budget at
-    once; no file is written and nothing allocated (the refusal takes well under a second, where
-    the table alone would take seconds to allocate)."""
+    """3000 x 3000 points (9e6): in memory about 4.4 GiB at BYTES_PER_POINT, refused under a 1 GiB
+    budget at once; written to a file about 0.27 GiB (STORED_BYTES_PER_POINT and the blocks), refused
+    under 100 MiB; no file is written and nothing allocated (the refusal takes well under a second,
+    where the table alone would take seconds to allocate)."""
     import time
+
+    from landau.analyses.sweep_budget import STORED_BYTES_PER_POINT, STORED_OVERHEAD
 
     grid = {"V": "1e-6:1e-3:3000:log", "a": "0.01:0.04:3000"}
     t0 = time.perf_counter()
     with pytest.raises(InputError, match=r"9000000 points, about 4\.\d+ GiB .*budget of 1 GiB"):
+        landau.sweep("hopf", grid, law="dieterich", workers=1, progress=False, max_memory="1G")
+    with pytest.raises(InputError, match=r"9000000 points, about 0\.267 GiB .*budget of 0\.0977 GiB"):
         landau.sweep("hopf", grid, law="dieterich", workers=1, progress=False, out=tmp_path / "big.nc",
-                     max_memory="1G")
+                     max_memory="100M")
     assert time.perf_counter() - t0 < 5.0
     assert not list(tmp_path.iterdir())
     assert memory_estimate(make_grid(grid)) == 9_000_000 * (BYTES_PER_POINT + 16)
+    assert memory_estimate(make_grid(grid), stored=True) == 9_000_000 * STORED_BYTES_PER_POINT + STORED_OVERHEAD
 
 
 def test_default_budget_is_a_fraction_of_the_machine(monkeypatch, tmp_path):
@@ -214,7 +220,8 @@ def test_cli_max_memory(capsys, tmp_path, monkeypatch):
 
     monkeypatch.setattr(command, "_executor", no_cluster)
     argv = ["sweep", "hopf", "spring-block", "dieterich", "--grid", "V=1e-6:1e-3:3000:log",
-            "--grid", "a=0.01:0.04:3000", "--out", str(tmp_path / "big.nc"), "--dask", "local:2", "--max-memory", "2G"]
+            "--grid", "a=0.01:0.04:3000", "--out", str(tmp_path / "big.nc"), "--dask", "local:2",
+            "--max-memory", "100M"]
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert "9000000 points" in err and "--max-memory" in err and "Traceback" not in err
