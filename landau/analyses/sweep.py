@@ -82,14 +82,16 @@ def sweep(task: str, grid: Any, *, model: str = "spring-block", law: Any = None,
     out : path, optional
         A netCDF file (``.nc``) written as the sweep goes (atomically) and at the end, also when
         the sweep is interrupted (Ctrl-C, or SIGTERM in the main thread); if it already holds this
-        sweep, its finished points are reused and only the rest computed (the failed ones again).
+        sweep, its finished points are reused and only the rest computed: the pending ones and those that
+        failed for a reason that may not repeat (memory, time, a lost worker); a point that failed
+        deterministically (a parameter outside its domain) is kept, and the count says so (``kept_failed``).
     progress : bool
         A progress bar on a terminal or in Jupyter.
     options : mapping, optional
         Task options (``eps2`` for ``check``; ``n_first``, ``n_step``, ``n_keep``, ``rtol``,
         ``overlap``, ``direction``, ``lyapunov`` for ``simulate``; ``chunk_size``).
     return_counts : bool
-        Also return the counts ``{"computed": n, "reused": m, "failed": f}``.
+        Also return the counts ``{"computed": n, "reused": m, "failed": f, "kept_failed": k}``.
     shard : (int, int) or str, optional
         ``(I, N)`` or ``"I/N"``: compute only the I-th of N disjoint parts of the grid (every N-th
         chunk, starting with chunk I − 1), written to ``out`` with ``.shard-I-of-N`` before its
@@ -152,7 +154,8 @@ def _execute(task: str, grid: Any, *, model: str, law: Any, params: Mapping[str,
         out = shard_path(out, part)
     ds, counts = execute(t, g, executor=executor, workers=workers, out=out, attrs=t.attrs(), progress=progress,
                          shard=part, max_memory=max_memory, load=load)
-    doc: dict[str, Any] = {"computed": counts.computed, "reused": counts.reused, "failed": counts.failed}
+    doc: dict[str, Any] = {"computed": counts.computed, "reused": counts.reused, "failed": counts.failed,
+                           "kept_failed": counts.kept_failed}
     if counts.distrusted:
         warnings.warn(counts.distrusted, UserWarning, stacklevel=3)
         doc["distrusted"] = counts.distrusted

@@ -541,6 +541,7 @@ class RunCounts:
     reused: int = 0
     failed: int = 0
     distrusted: str = ""   # why a stored file was not reused (its points computed again); "" if it was
+    kept_failed: int = 0   # failed points of the file not computed again (a deterministic failure would repeat)
 
 
 def execute(task, grid: Grid, *, executor: Executor | None = None, workers: int | None = None,
@@ -717,7 +718,7 @@ def run_table(task, grid: Grid, *, executor: Executor | None = None, workers: in
     check_memory(grid, max_memory, stored=out is not None)
     attrs = dict(attrs or {})
     table, todo_mask = _open_table(task, grid, out, attrs, write_every)
-    counts = RunCounts(distrusted=getattr(table, "distrusted", ""))
+    counts = RunCounts(distrusted=getattr(table, "distrusted", ""), kept_failed=getattr(table, "kept_failed", 0))
     all_chunks = task.chunks(grid)
     owned = _owned(all_chunks, grid, shard)
     if owned is not None:   # a shard computes its own points only

@@ -559,6 +559,22 @@ def assemble(path: Path, journal: Journal, grid: Grid, attrs: dict[str, Any], un
 FLUSH_POINTS = 4096
 #: the statuses of a point a re-run computes (again)
 TODO = ("pending", "failed")
+#: the exceptions of a failure that may not repeat (memory, time, a lost worker, the operating system): a
+#: point failed so is computed again by a re-run; any other failure (a parameter outside its domain, a
+#: value beyond float64, an integration that cannot succeed) is deterministic and is kept, said once
+TRANSIENT = ("MemoryError", "TimeoutError", "BudgetError", "BrokenProcessPool", "OSError", "CancelledError",
+             "KilledWorker", "CommClosedError")
+
+
+def to_compute(status, message) -> tuple[np.ndarray, np.ndarray]:
+    """(which points a re-run computes, which failed points it keeps): it computes the pending ones and
+    those failed for a :data:`TRANSIENT` reason (the message's leading exception name)."""
+    status = np.asarray(status, dtype=object)
+    failed = status == "failed"
+    transient = np.array([str(m).split(":", 1)[0] in TRANSIENT for m in np.asarray(message, dtype=object)],
+                         dtype=bool).reshape(status.shape) if failed.any() else np.zeros(status.shape, dtype=bool)
+    todo = (status == "pending") | (failed & transient)
+    return todo, failed & ~transient
 
 
 def _difference(nc, attrs: dict[str, Any], grid: Grid) -> str | None:
@@ -603,10 +619,12 @@ class FileTable:
         self.buffered = 0
         self.base = False
         self.distrusted = ""
+        self.kept_failed = 0
         self.facts: dict[str, Any] = {}
 
     def open(self, attrs: dict[str, Any]) -> np.ndarray:
-        """The flags of the points to compute: not finished in a trusted file nor in the journal.
+        """The flags of the points to compute: not finished in a trusted file nor in the journal (a failed
+        point is finished unless it failed for a :data:`TRANSIENT` reason; :func:`to_compute`).
 
         Raises
         ------
@@ -617,6 +635,7 @@ class FileTable:
 
         remove_stale_temporaries(self.path)
         todo = np.ones(self.grid.size, dtype=bool)
+        kept = np.zeros(self.grid.size, dtype=bool)     # failed points kept: their failure would repeat
         notes = []
         if self.path.exists():
             try:
@@ -634,7 +653,9 @@ class FileTable:
                 else:
                     self.base = True
                     for s, e, _ in flat_blocks(self.grid.shape):
-                        todo[s:e] = np.isin(read_flat(nc.variables["status"], s, e, self.grid.shape), TODO)
+                        status = read_flat(nc.variables["status"], s, e, self.grid.shape)
+                        message = read_flat(nc.variables["message"], s, e, self.grid.shape)
+                        todo[s:e], kept[s:e] = to_compute(status, message)
             finally:
                 nc.close()
         check = self.journal.check()
@@ -645,9 +666,10 @@ class FileTable:
             self.journal.remove()
         for part in self.journal.parts():
             index, _, _, strings = Journal.read(part)
-            todo[index] = np.isin(np.asarray(strings["status"], dtype=object), TODO)
+            todo[index], kept[index] = to_compute(strings["status"], strings["message"])
         if notes:
             self.distrusted = f"{self.path} is not reused: {'; '.join(notes)}; its points are computed again"
+        self.kept_failed = int(np.count_nonzero(kept))
         try:
             self.journal.open()
         except OSError as exc:

@@ -218,6 +218,9 @@ def run(args) -> dict:
             close()
     if counts.get("distrusted") and not getattr(args, "json", False):
         print(f"landau: note: {counts['distrusted']}", file=sys.stderr)
+    if counts.get("kept_failed") and not getattr(args, "json", False):
+        print(f"landau: note: {counts['kept_failed']} failed point(s) of {out} kept, not computed again: their "
+              "failures do not depend on the run (delete the file to compute them again)", file=sys.stderr)
     # every point computed in this run failed: the run as a whole did not work, and says why on stderr
     all_failed = bool(counts["computed"]) and counts["failed"] == counts["computed"]
     failure = {}

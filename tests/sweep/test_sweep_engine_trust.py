@@ -56,12 +56,27 @@ def test_a_point_beyond_float64_fails_alone_and_the_valid_point_keeps_its_value(
     # and the same number, to the last bit, as in a sweep where it has no failing neighbour
     alone = landau.sweep("hopf", {"b": [0.0489]}, law="dieterich", params={"V": 1e-4}, workers=1, progress=False)
     assert float(alone.kc.sel(b=0.0489)) == kc
-    # a re-run tries the failed points again (they fail again, each alone: exit 1, every point computed
-    # in the run failed) and reuses the ok one
+    # a re-run keeps the failed points (a value beyond float64 fails again whatever the run: it was tried
+    # again and failed again, exit 1) and reuses the ok one, and says so
     capsys.readouterr()
-    assert main(argv) == 1
+    assert main(argv) == 0
     doc = __import__("json").loads(capsys.readouterr().out)
-    assert (doc["computed"], doc["reused"], doc["failed"]) == (3, 1, 3)
+    assert (doc["computed"], doc["reused"], doc["failed"], doc["kept_failed"]) == (0, 4, 0, 3)
+    assert main(argv[:-1]) == 0
+    assert capsys.readouterr().err.strip() == (f"landau: note: 3 failed point(s) of {out} kept, not computed "
+                                               "again: their failures do not depend on the run (delete the file "
+                                               "to compute them again)")
+
+
+def test_a_point_failed_for_a_transient_reason_is_computed_again(tmp_path, capsys):
+    """A point that failed for want of memory (or time, or a lost worker) is computed by a re-run; one
+    that failed deterministically is not (landau.analyses.sweep_store.to_compute)."""
+    from landau.analyses.sweep_store import to_compute
+
+    todo, kept = to_compute(["ok", "failed", "failed", "pending", "failed"],
+                            ["", "MemoryError: out of memory", "InputError: a must be > 0", "",
+                             "spring-block: parameter 'a' must be > 0, got -0.01"])
+    assert list(todo) == [False, True, False, True, False] and list(kept) == [False, False, True, False, True]
 
 
 def test_a_point_outside_the_law_fails_alone():
