@@ -40,7 +40,30 @@ def _check(res, tol):
 
 
 def test_propagated_sd_of_kc_equals_the_posterior_spread():
-    _check(_posterior(120, 32, 40), 0.10)
+    res = _posterior(120, 32, 40)
+    _check(res, 0.10)
+    _figures(res)
+
+
+def _figures(res):
+    """The docs page's three figures draw what they say (landau.lab.figure)."""
+    from landau.lab.figure import plot_fit, plot_posterior, plot_verdict
+
+    law, data, _, _ = record("aging", noise=2e-4, seed=3, dt=0.2)
+    top, bottom = plot_fit(res, data).axes
+    x, mu = top.lines[0].get_data()
+    np.testing.assert_allclose(x, data.x_lp * 1e6)
+    np.testing.assert_array_equal(mu, data.mu)
+    np.testing.assert_array_equal(top.lines[1].get_data()[1], res.model)
+    np.testing.assert_allclose(bottom.lines[0].get_data()[1], res.model - data.mu)
+    corner = plot_posterior(res).axes
+    n = len(res.names)
+    assert len(corner) == n * n and sum(ax.get_visible() for ax in corner) == n * (n + 1) // 2
+    v = _verdict(res)
+    (curve, rig_line) = plot_verdict(v).axes[0].lines
+    assert float(rig_line.get_xdata()[0]) == v.rig["k"]
+    xs, dens = curve.get_data()
+    assert xs[int(np.argmax(dens))] == pytest.approx(v.values["k_c"], rel=2 * (xs[1] - xs[0]) / xs[0])
 
 
 @pytest.mark.slow
