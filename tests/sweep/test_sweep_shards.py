@@ -110,14 +110,16 @@ def test_merge_refuses_another_sweep(files, tmp_path):
     assert not (tmp_path / "m.nc").exists()
 
 
-def test_three_shards_cover_the_grid_once(tmp_path):
-    """The chunk composition does not depend on N: with 3 shards the union is again the direct run."""
+@pytest.mark.parametrize("n, sizes", [(3, [4, 4, 4]), (4, [4, 2, 2, 4])])
+def test_n_shards_cover_the_grid_once(tmp_path, n, sizes):
+    """The chunk composition does not depend on N: with 3 or 4 shards the union is again the direct run,
+    bit for bit (every N-th chunk of 2 points, the 6 chunks of the 12-point grid)."""
     direct = landau.sweep("hopf", GRID, law="dieterich", workers=1, progress=False, options={"chunk_size": 2})
-    for i in (1, 2, 3):
+    for i in range(1, n + 1):
         landau.sweep("hopf", GRID, law="dieterich", workers=1, progress=False, options={"chunk_size": 2},
-                     out=tmp_path / "s.nc", shard=f"{i}/3")
-    ds, report = merge([tmp_path / f"s.shard-{i}-of-3.nc" for i in (1, 2, 3)])
-    assert [f["points"] for f in report["files"]] == [4, 4, 4]
+                     out=tmp_path / "s.nc", shard=f"{i}/{n}")
+    ds, report = merge([tmp_path / f"s.shard-{i}-of-{n}.nc" for i in range(1, n + 1)])
+    assert sorted(f["points"] for f in report["files"]) == sorted(sizes)
     _same(ds, direct)
 
 
