@@ -71,8 +71,9 @@ def stiffness(text: str, law, params: dict, preset) -> float:
     from landau.systems.system import SpringBlock
 
     sigma = params.get("sigma")
-    if sigma is None:
-        sigma = SpringBlock.for_params(law, params).resolve(params)["sigma"]
+    if sigma is None:   # the block's default σ (= M g) at these values; V and k are not the block's parameters
+        block = {name: value for name, value in params.items() if name not in ("V", "k")}
+        sigma = SpringBlock.for_params(law, block).resolve(block)["sigma"]
     return preset.stiffness_value(text, float(sigma), "--k")
 
 

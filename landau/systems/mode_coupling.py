@@ -9,7 +9,7 @@ displacement x along the sliding direction:
 N(y) = k_H y (``linear``), k_H y + k_NL y³ (``cubic``) or k_H y^{3/2} (``hertz``) while the contact is
 closed (N > 0); μ is a constant Coulomb coefficient or any velocity law of the library (a friction
 *coefficient* of the sliding velocity v).  The built-in 2-DOF model is that of Hoffmann, Fischer,
-Begley & Gaul (2002): a mass m held by springs k₁, k₂ at angles α₁, α₂,
+Allgaier & Gaul (2002): a mass m held by springs k₁, k₂ at angles α₁, α₂,
 
     k₁₁ = k₁cos²α₁ + k₂cos²α₂,  k₁₂ = k₁ sinα₁ cosα₁ − k₂ sinα₂ cosα₂,  k₂₂ = k₁sin²α₁ + k₂sin²α₂,
 

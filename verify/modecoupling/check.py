@@ -19,7 +19,7 @@ or sticks (a mode change on the orbit) is outside the range of validity.
 
 References
 ----------
-Hoffmann, N., Fischer, M., Begley, R. & Gaul, L. (2002), Mech. Res. Commun. 29, 197–205.
+Hoffmann, N., Fischer, M., Allgaier, R. & Gaul, L. (2002), Mech. Res. Commun. 29, 197–205.
 Kuznetsov, Y. A. (2004), *Elements of Applied Bifurcation Theory*, 3rd ed., Sec. 3.5 and 10.3
 (the Hopf normal form; shooting for periodic orbits).
 """

@@ -31,7 +31,7 @@ located on its 7th-order dense output by the hybrid engine (:mod:`landau.verify.
 
 References
 ----------
-Hoffmann, N., Fischer, M., Begley, R. & Gaul, L. (2002), "A minimal model for studying properties
+Hoffmann, N., Fischer, M., Allgaier, R. & Gaul, L. (2002), "A minimal model for studying properties
 of the mode-coupling type instability in friction induced oscillations", Mech. Res. Commun. 29,
 197–205.
 """
