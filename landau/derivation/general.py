@@ -50,6 +50,7 @@ from landau.derivation.fredholm import (
     _pencil,
     best_drop,
     cubic_coefficient,
+    float64_drop,
     linear_coefficient,
     null_vectors,
     row_dot,
@@ -547,11 +548,9 @@ def normal_form_at(num: NumericSystem, pc, wc, y0, *, jets: str = "taylor", jets
             return 0.0
 
     normalise = num.sys.normalise
-    null = _float64_null_moduli(A)
-    if null is not None and null[1][normalise] > 1e-8 * null[1].max():
-        # |minor(A, i, j)| ∝ |p_i||q_j| (adj A = c q pᵀ for A of rank n − 1): the best-conditioned minors
-        # are those of the largest |p_i| and |q_j|, read from the float64 null vectors (ties to the first)
-        r, c = (int(np.flatnonzero(m >= (1 - 1e-8) * m.max())[0]) for m in null)
+    drop = float64_drop(A, normalise)
+    if drop is not None:
+        r, c = drop
     else:   # no clear float64 null space, or q[normalise] small: n determinants each at the working precision
         r, c = best_drop(A, normalise, absdet)
         _check_normalise(num, A, r, normalise, absdet)
@@ -606,25 +605,6 @@ def _check_normalise(num: NumericSystem, A, r: int, normalise: int, absdet) -> N
     raise InputError(f"{num.sys.name}: the state {names[normalise]!r} chosen to normalise the critical mode "
                      f"(normalise={normalise}) has no component in it at the Hopf point; normalise on one of "
                      f"{', '.join(carried)} (DynamicalSystem(..., normalise=INDEX))")
-
-
-def _float64_null_moduli(A) -> tuple[np.ndarray, np.ndarray] | None:
-    """(|p|, |q|), the moduli of the left and right null vectors of A = iωE − J in float64 (pᴴA = 0,
-    Aq = 0, from the SVD of A: O(n³) in float64), or None where float64 does not show a clear
-    one-dimensional null space (the smallest singular value not below 1e-6 of the next) or cannot
-    hold A.  They choose the minors of the Fredholm solve and tell whether q has a ``normalise``
-    component; otherwise :func:`best_drop` and :func:`_check_normalise` take 2n to n² determinants at
-    the working precision (minutes for a chain of a dozen blocks)."""
-    try:
-        a = np.array([[complex(float(z.re), float(z.im)) for z in row] for row in A])
-        if not np.all(np.isfinite(a)):
-            return None
-        u, sv, vh = np.linalg.svd(a)
-    except (np.linalg.LinAlgError, OverflowError, ValueError):
-        return None
-    if len(sv) < 2 or not sv[-1] < 1e-6 * sv[-2]:
-        return None
-    return np.abs(u[:, -1]), np.abs(vh[-1])
 
 
 def _verify_crossing(num: NumericSystem, pc, wc, y0, dlambda_dp: complex) -> None:

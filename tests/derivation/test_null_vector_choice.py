@@ -33,7 +33,7 @@ def test_the_float64_choice_gives_the_working_precision_choices_result(monkeypat
     chain = SpringBlockChain(get_law("dieterich"), 2)
     fast = chain_hopf(chain, PARAMS)
     # the previous route: every minor's determinant at the working precision
-    monkeypatch.setattr(general, "_float64_null_moduli", lambda A: None)
+    monkeypatch.setattr(general, "float64_drop", lambda A, normalise: None)
     slow = chain_hopf(chain, PARAMS)
     for name in ("p_c", "omega_c", "Lambda", "chi"):
         # both are 50-digit computations rounded to float64; the minors dropped differ at most
@@ -53,7 +53,7 @@ def test_no_working_precision_determinant_where_float64_shows_the_null_space(mon
         calls[0] = 0
         general.normal_form_at(num, pc, wc, y, params=p)
     assert calls[0] == 0
-    monkeypatch.setattr(general, "_float64_null_moduli", lambda A: None)
+    monkeypatch.setattr(general, "float64_drop", lambda A, normalise: None)
     with mpmath.workdps(30):
         general.normal_form_at(num, pc, wc, y, params=p)
     n = num.n
