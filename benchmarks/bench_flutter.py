@@ -5,7 +5,7 @@ For the 2-DOF model of Hoffmann et al. (2002) (its illustrative defaults, cubic 
 (:func:`landau.analyses.flutter_diagram.stability_diagram`), then the flutter onset with its amplitude
 equation (:func:`landau.analyses.flutter.flutter_hopf`: the threshold scan, the Hopf point at 50
 digits, Λ and C of every coordinate).  Warm: each is run once first (imports, sympy caches), then the
-best of ``--repeat`` runs is reported.  Goals (issue 35): the 2-DOF under 1 s, the 4-DOF under 3 s.
+best of ``--repeat`` runs is reported.  Goals: the 2-DOF under 1 s, the 4-DOF under 3 s (CPU time).
 
 Run:  python benchmarks/bench_flutter.py [--repeat 3] [--json]
 Timings are wall-clock on a shared machine.
