@@ -1,0 +1,12 @@
+"""Periodic orbits of any smooth system: continuation of cycles, Floquet multipliers and the
+bifurcations of cycles (fold, period doubling, Neimark–Sacker).
+
+The input is a :class:`~landau.periodic.problem.CycleProblem` (a vector field with its Jacobian,
+one continuation parameter, and optionally the Hopf point the branch starts from); models build
+one through their ``cycles`` declaration (:class:`landau.models.Model`), and
+:func:`landau.cycles` is the front door by model name.
+"""
+
+from landau.periodic.problem import CycleProblem, HopfStart
+
+__all__ = ["CycleProblem", "HopfStart"]
