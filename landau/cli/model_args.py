@@ -36,7 +36,10 @@ def add_model_options(p) -> None:
     p.add_argument("--bracket", default=None, metavar="LO:HI",
                    help="system, spring-block-chain, mode-coupling: interval of the Hopf parameter to search "
                         "(--bracket=-1:1 if LO < 0)")
-    p.add_argument("--blocks", default=None, metavar="N", help="spring-block-chain: the number of blocks (1 to 12)")
+    p.add_argument("--blocks", default=None, metavar="N", help="spring-block-chain: the number of blocks (1 to 100)")
+    p.add_argument("--route", default=None, choices=("auto", "symbolic", "numeric"),
+                   help="spring-block-chain: symbolic (the general engine, 50 digits, up to 12 blocks), numeric "
+                        "(float64 sparse solves from one block's law jets) or auto (by the number of blocks)")
     p.add_argument("--contact", default=None, choices=("linear", "cubic", "hertz"),
                    help="mode-coupling: the normal contact law N(y) (default cubic: kH*y + kNL*y^3)")
     for name, what in (("mass", "M"), ("damping", "C"), ("stiffness", "K")):
@@ -138,7 +141,7 @@ _OPTION_FLAGS = {"friction": "--friction", "friction_neg": "--friction-neg", "ki
                  "density": "--density", "shear_speed": "--shear-speed", "poisson": "--poisson",
                  "geometry": "--geometry", "contact": "--contact", "mass_matrix": "--mass-matrix",
                  "damping_matrix": "--damping-matrix", "stiffness_matrix": "--stiffness-matrix", "normal": "--normal",
-                 "tangential": "--tangential"}
+                 "tangential": "--tangential", "route": "--route"}
 #: the law options of each law kind
 _LAW_OPTIONS = {LawKind.VELOCITY: ("friction", "friction_neg", "friction_name"),
                 LawKind.KINETIC: ("kinetic", "kinetic_pos")}

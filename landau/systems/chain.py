@@ -12,8 +12,11 @@ parameter is k; the Hopf point reported is the first crossing met as k decreases
 where sliding is stable, with the critical mode shape (the slips X_i of the critical eigenvector).
 Identical blocks have the single block's k_c in the in-phase mode (the coupling springs are then
 not stretched), and every other mode is more stable (Putelat et al. 2010 eq. (30) for the single
-block).  Built as a :class:`~landau.systems.system.DynamicalSystem`, it goes through the general
-engine; its first Hopf point and mode shape are :func:`landau.analyses.chain.chain_hopf`.
+block).  Built as a :class:`~landau.systems.system.DynamicalSystem` (:attr:`SpringBlockChain.system`), it
+goes through the general engine; as numbers (a sparse Jacobian and one block's law jets,
+:func:`landau.systems.chain_forms.chain_sparse_system`) through the numeric route of
+:mod:`landau.derivation.sparse_hopf`; its first Hopf point and mode shape are
+:func:`landau.analyses.chain.chain_hopf`.
 
 References
 ----------
@@ -50,8 +53,12 @@ from landau.systems.system import (
 k_coupling = sp.Symbol("k_coupling", nonnegative=True)
 #: default coupling stiffness [N/m]: of the order of the single block's k_c at the defaults
 K_COUPLING_DEFAULT = 1.0e5
-#: most blocks accepted (the state has 2 + (law states) entries per block)
-MAX_BLOCKS = 12
+#: most blocks accepted (the state has 2 + (law states) entries per block; the numeric route's
+#: dense eigenvalue scan costs O(N³), about 1 CPU-s at 100 blocks)
+MAX_BLOCKS = 100
+#: most blocks the symbolic route (the general engine on :attr:`SpringBlockChain.system`) takes:
+#: its cost about doubles per block
+SYMBOLIC_MAX_BLOCKS = 12
 
 
 @dataclass(frozen=True, eq=False)

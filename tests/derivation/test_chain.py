@@ -84,7 +84,7 @@ def test_velocity_strengthening_has_no_hopf_point():
 
 @pytest.mark.parametrize("blocks, over, message", [
     (0, {}, "number of blocks"),
-    (13, {}, "number of blocks"),
+    (101, {}, "number of blocks"),
     (2, {"M": 1.0}, "one M per block"),
     (2, {"M_3": 1.0}, "unknown parameter 'M_3'"),
     (2, {"sigma_1": 0.0}, "sigma_1"),

@@ -238,7 +238,7 @@ def chain_hopf_setup(setup: Setup):
     params.setdefault("V", V_DEFAULT)
     bracket = setup.option("bracket")
     return chain_hopf(SpringBlockChain(_law(setup), chain_blocks(setup)), params,
-                      None if bracket is None else tuple(bracket))
+                      None if bracket is None else tuple(bracket), route=setup.option("route") or "auto")
 
 
 SPRING_BLOCK_CHAIN = Model(
@@ -250,7 +250,8 @@ SPRING_BLOCK_CHAIN = Model(
     hopf_parameter="k",
     hopf=chain_hopf_setup,
     options=(Option("blocks", f"the number of blocks (1 to {MAX_BLOCKS})"),
-             Option("bracket", "stiffnesses LO:HI (N/m) to search for the first crossing")),
+             Option("bracket", "stiffnesses LO:HI (N/m) to search for the first crossing"),
+             Option("route", "auto, symbolic (the general engine, up to 12 blocks) or numeric (sparse, float64)")),
     defaults={"V": V_DEFAULT},
     source="Burridge & Knopoff (1967); Putelat et al. (2010), eq. (4) per block",
     default_law="dieterich",
