@@ -11,8 +11,10 @@ amplitude equation and criticality.  The built-in models:
 * ``spring-block`` — the spring–block of Putelat, Dawes & Willis (2010) with a rate-and-state
   law (built-in name, or ``--mu``/``--state``), at driving velocity ``--V``: the bifurcation
   parameter is the stiffness k.
-* ``spring-block-chain`` — N such blocks (``--blocks N``) coupled by ``k_coupling``: the first Hopf
-  point as k decreases, with the critical mode shape.
+* ``spring-block-chain`` — N such blocks (``--blocks N``, up to 100) coupled by ``k_coupling``: the
+  first Hopf point as k decreases, with the critical mode shape; ``--route`` symbolic (the general
+  engine at 50 digits, up to 12 blocks), numeric (float64 sparse solves from one block's law jets) or
+  auto (symbolic up to 3 blocks); the route taken is printed and in the JSON (``route``).
 * ``impact-oscillator``, ``galvanetto-one-block`` — with ``--friction EXPR`` / ``--kinetic EXPR``.
 * ``system`` — any smooth system written with ``--rhs NAME=EXPR``.
 * ``mode-coupling`` — friction-induced flutter of Hoffmann et al. (2002): ``--param`` m, k1, k2,
@@ -58,6 +60,8 @@ def run(args) -> dict:
     doc = {"model": args.model}
     doc.update(res.as_dict() if hasattr(res, "as_dict") else {"result": repr(res)})
     doc["text"] = str(res)
+    if doc.get("route"):
+        doc["text"] += f"\nroute: {doc['route']}"
     if "k_patch" in doc:
         from landau.analyses.fault_patch import patch_text
 

@@ -1,0 +1,151 @@
+"""The chain's numeric route (one block's law jets, sparse solves): equal to the symbolic route where
+both run, its Hopf point against a bisection of a Jacobian assembled in the test, Λ of identical
+blocks against the single block, the law jets against their closed forms, and the route's choices."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from landau.analyses.chain import chain_hopf
+from landau.errors import InputError, NonSimpleHopfError, SingularPointError
+from landau.laws import get_law
+from landau.laws.local_jets import law_jets
+from landau.support.blas_threads import one_blas_thread
+from landau.systems.chain import SpringBlockChain
+
+# Putelat et al. (2010) Table 1 (the dieterich law's defaults)
+A_, B_, L_ = 0.0349, 0.0489, 9e-7
+
+
+def uneven(n: int, kc: float = 3e4, quasi_static: bool = False) -> dict:
+    """Blocks of different masses and loads (no tie between blocks in the critical mode)."""
+    over = {"k_coupling": kc, **{f"M_{i}": 0.8 + 0.3 * np.sin(1.7 * i) ** 2 for i in range(1, n + 1)},
+            **{f"sigma_{i}": 9.0 + 2.5 * np.cos(0.9 * i) ** 2 for i in range(1, n + 1)}}
+    if quasi_static:
+        over["M_1"] = 0.0
+    return over
+
+
+FIELDS = ("p_c", "omega_c", "Lambda", "chi", "C", "l1")
+
+
+def assert_same(num, sym, rel):
+    assert num.extra["route"] == "numeric" and sym.extra["route"] == "symbolic"
+    assert num.normalise == sym.normalise
+    for name in FIELDS:
+        assert getattr(num, name) == pytest.approx(getattr(sym, name), rel=rel), name
+    assert num.dlambda_dp == pytest.approx(sym.dlambda_dp, rel=rel)
+    assert num.c1 == pytest.approx(sym.c1, rel=rel)
+    assert np.allclose(num.extra["mode_shape"], sym.extra["mode_shape"], rtol=0, atol=1e-10)
+
+
+@pytest.mark.parametrize("n, quasi_static", [(2, False), (3, False), (2, True)])
+def test_the_numeric_route_equals_the_symbolic_route(n, quasi_static):
+    # the symbolic route works at 50 digits: float64 LU solves agree to ~1e-13 (1e-10 asked)
+    chain, over = SpringBlockChain("dieterich", n), uneven(n, quasi_static=quasi_static)
+    assert_same(chain_hopf(chain, over, route="numeric"), chain_hopf(chain, over, route="symbolic"), 1e-10)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("n", [4, 5, 6, 8])
+def test_the_numeric_route_equals_the_symbolic_route_up_to_eight_blocks(n):
+    chain, over = SpringBlockChain("dieterich", n), uneven(n)
+    assert_same(chain_hopf(chain, over, route="numeric"), chain_hopf(chain, over, route="symbolic"), 1e-10)
+
+
+def assembled_jacobian(k, V, Ms, sigmas, kc):
+    """ẏ = J y at steady sliding, y = (X_i, u_i, φ_i): aging law μ = a ln(v/V_s) + a_v + b ln(V_s φ/L),
+    dφ/dt = 1 − φv/L (φ_ss = L/V): μ_v = a/V, μ_φ = bV/L, ∂rate/∂v = −1/V, ∂rate/∂φ = −V/L."""
+    n = len(Ms)
+    J = np.zeros((3 * n, 3 * n))
+    for i in range(n):
+        x, u, f = 3 * i, 3 * i + 1, 3 * i + 2
+        J[x, u] = 1.0
+        nb = [j for j in (i - 1, i + 1) if 0 <= j < n]
+        J[u, x] = -(k + kc * len(nb)) / Ms[i]
+        for j in nb:
+            J[u, 3 * j] = kc / Ms[i]
+        J[u, u] = -sigmas[i] * A_ / V / Ms[i]
+        J[u, f] = -sigmas[i] * B_ * V / L_ / Ms[i]
+        J[f, u] = -1.0 / V
+        J[f, f] = -V / L_
+    return J
+
+
+def test_fifty_blocks_against_a_bisection_of_the_assembled_jacobian():
+    n, V, kc = 50, 1e-4, 3e4
+    over = uneven(n, kc)
+    Ms = [over[f"M_{i}"] for i in range(1, n + 1)]
+    sigmas = [over[f"sigma_{i}"] for i in range(1, n + 1)]
+
+    def rightmost(k):
+        with one_blas_thread():
+            return np.max(np.linalg.eigvals(assembled_jacobian(k, V, Ms, sigmas, kc)).real)
+
+    # the first crossing as k decreases: a geometric scan, then bisection on the sign of max Re λ
+    ks = np.geomspace(1e7, 1e4, 61)
+    i = next(i for i in range(len(ks) - 1) if rightmost(ks[i]) < 0 <= rightmost(ks[i + 1]))
+    hi, lo = ks[i], ks[i + 1]
+    while hi - lo > 1e-13 * hi:
+        mid = 0.5 * (hi + lo)
+        hi, lo = (hi, mid) if rightmost(mid) >= 0 else (mid, lo)
+    r = chain_hopf(SpringBlockChain("dieterich", n), {"V": V, **over})
+    assert r.extra["route"] == "numeric"
+    # max Re λ is resolved to ~eps‖J‖ = 1e-11, |dRe λ/dk| ≈ 1e-4: the bisection holds k_c to ~1e-12
+    assert r.p_c == pytest.approx(lo, rel=1e-10)
+    lam = np.linalg.eigvals(assembled_jacobian(lo, V, Ms, sigmas, kc))
+    assert r.omega_c == pytest.approx(abs(lam[np.argmax(lam.real)].imag), rel=1e-9)
+
+
+def test_identical_blocks_have_the_single_block_landau_coefficient_at_fifty_blocks():
+    # the in-phase subspace of identical blocks is invariant (the coupling springs are not stretched)
+    # and is the single block: its Λ, χ, C from the general engine on the one-block system
+    over = {"V": 2e-4, "k_coupling": 5e4}
+    r = chain_hopf(SpringBlockChain("dieterich", 50), over)
+    one = chain_hopf(SpringBlockChain("dieterich", 1), {"V": 2e-4}, route="symbolic")
+    assert r.extra["route"] == "numeric" and r.extra["mode"] == "in-phase"
+    for name in ("p_c", "omega_c", "Lambda", "chi", "C"):
+        assert getattr(r, name) == pytest.approx(getattr(one, name), rel=1e-10), name
+
+
+def test_the_law_jets_are_the_dieterich_derivatives():
+    # μ = a_v + a ln(v/V_s) + b ln(V_s φ/L), dφ/dt = 1 − vφ/L at (V, φ = L/V)
+    law = get_law("dieterich")
+    p = {q.name: q.default for q in law.parameters}
+    a, b, L = p["a"], p["b"], p["L"]
+    V = 1e-4
+    phi = L / V
+    D = law_jets(law, V, [phi], p, 3)
+    assert D[1] == pytest.approx(np.array([[a / V, b / phi], [-phi / L, -V / L]]), rel=1e-14)
+    assert D[2][0] == pytest.approx(np.array([[-a / V ** 2, 0], [0, -b / phi ** 2]]), rel=1e-14)
+    assert D[2][1] == pytest.approx(np.array([[0, -1 / L], [-1 / L, 0]]), rel=1e-14)
+    assert D[3][0][0, 0, 0] == pytest.approx(2 * a / V ** 3, rel=1e-14)
+    assert D[3][0][1, 1, 1] == pytest.approx(2 * b / phi ** 3, rel=1e-14)
+    assert np.count_nonzero(D[3][1]) == 0
+
+
+def test_the_route_is_chosen_by_the_number_of_blocks():
+    assert chain_hopf(SpringBlockChain("dieterich", 3), {}).extra["route"] == "symbolic"
+    assert chain_hopf(SpringBlockChain("dieterich", 4), {}).extra["route"] == "numeric"
+
+
+def test_uncoupled_identical_blocks_are_a_double_crossing_on_the_numeric_route():
+    with pytest.raises(NonSimpleHopfError, match=r"4 complex pairs cross .* together at k = 189062\.9"):
+        chain_hopf(SpringBlockChain("dieterich", 4), {"k_coupling": 0.0}, route="numeric")
+
+
+def test_a_degenerate_point_is_refused_by_the_numeric_route():
+    # identical quasi-static blocks: Λ = 0 in phase (tests/derivation/test_degenerate.py)
+    with pytest.raises(SingularPointError, match="not resolved in float64"):
+        chain_hopf(SpringBlockChain("dieterich", 2), {"M_1": 0.0, "M_2": 0.0, "k_coupling": 2e4}, route="numeric")
+
+
+@pytest.mark.parametrize("blocks, route, message", [
+    (2, "fast", "route must be one of"),
+    (13, "symbolic", "at most 12 blocks"),
+    (101, "numeric", "number of blocks"),
+])
+def test_bad_route(blocks, route, message):
+    with pytest.raises(InputError, match=message):
+        chain_hopf(SpringBlockChain("dieterich", blocks), {}, route=route)
