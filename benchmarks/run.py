@@ -26,7 +26,9 @@ Sections (``--only``), each described in its module:
 * ``coldstart``, ``help``, ``figures`` — commands in fresh processes, cold and warm (``sections_cli.py``);
 * ``sweep`` — landau.sweep: 1 → 2 workers, hopf points per second, executor overhead (``sections_sweep.py``);
 * ``usersystem`` — a DynamicalSystem from strings: compiled simulation and check against the scipy
-  route (``sections_usersystem.py``).
+  route (``sections_usersystem.py``);
+* ``chain`` — the spring–block chain's Hopf point and Λ against the number of blocks, both routes
+  (``bench_chain.py``).
 
 ``LANDAU_BENCH_BASELINE_PYTHON=/path/to/other/checkout/.venv/bin/python`` times that
 interpreter side by side with this one in ``coldstart`` and ``figures`` (per-repeat ratios,
@@ -49,6 +51,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import benchlib  # noqa: E402
 from benchlib import GOALS, RAW, TABLES, load, machine  # noqa: E402
+from bench_chain import section_chain  # noqa: E402
 from sections_cli import section_coldstart, section_figures, section_help  # noqa: E402
 from sections_engine import section_derive, section_lambda  # noqa: E402
 from sections_solvers import section_forced, section_galvanetto, section_springblock  # noqa: E402
@@ -57,11 +60,12 @@ from sections_sweep import section_sweep  # noqa: E402
 from sections_usersystem import section_usersystem  # noqa: E402
 
 SECTIONS = ("springblock", "springblock-paths", "forced", "galvanetto", "lambda", "derive", "coldstart", "help",
-            "figures", "sweep", "usersystem")
+            "figures", "sweep", "usersystem", "chain")
 RUNNERS = {"springblock": section_springblock, "springblock-paths": section_springblock_paths,
            "forced": section_forced, "galvanetto": section_galvanetto,
            "lambda": section_lambda, "coldstart": section_coldstart, "help": section_help,
-           "figures": section_figures, "sweep": section_sweep, "usersystem": section_usersystem}
+           "figures": section_figures, "sweep": section_sweep, "usersystem": section_usersystem,
+           "chain": section_chain}
 
 
 def main(argv=None) -> int:
