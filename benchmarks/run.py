@@ -50,8 +50,8 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import benchlib  # noqa: E402
-from benchlib import GOALS, RAW, TABLES, load, machine  # noqa: E402
 from bench_chain import section_chain  # noqa: E402
+from benchlib import GOALS, RAW, TABLES, load, machine  # noqa: E402
 from sections_cli import section_coldstart, section_figures, section_help  # noqa: E402
 from sections_engine import section_derive, section_lambda  # noqa: E402
 from sections_solvers import section_forced, section_galvanetto, section_springblock  # noqa: E402

@@ -60,7 +60,7 @@ def _compiled(law: FrictionLaw, order: int) -> tuple[list[tuple[int, int, tuple[
     return entries, fn
 
 
-def law_jets(law: FrictionLaw, v_value: float, phis: Sequence[float], params: Mapping[str, float],
+def law_jets(law: FrictionLaw, v_value: float, phis: Sequence[float] | np.ndarray, params: Mapping[str, float],
              order: int = 3) -> dict[int, np.ndarray]:
     """The derivatives of g = (μ, dφ₁/dt, …) in w = (v, φ₁…φₘ) at (v_value, phis), orders 1…``order``.
 
@@ -69,7 +69,7 @@ def law_jets(law: FrictionLaw, v_value: float, phis: Sequence[float], params: Ma
     law : FrictionLaw
     v_value : float
         The slip rate (m/s) of the point, e.g. the driving velocity V at steady sliding.
-    phis : sequence of float
+    phis : sequence of float or ndarray
         The states at the point (e.g. the steady state φ_ss(V)).
     params : mapping
         The law's parameter values by name.
@@ -88,7 +88,7 @@ def law_jets(law: FrictionLaw, v_value: float, phis: Sequence[float], params: Ma
     for (m, o, idx), val in zip(entries, vals, strict=True):
         val = float(val)
         for perm in set(itertools.permutations(idx)):
-            D[m][(o, *perm)] = val
+            D[m][(o,) + perm] = val
     return D
 
 

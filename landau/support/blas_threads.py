@@ -27,6 +27,8 @@ def _libraries() -> tuple[tuple[object, object], ...]:
             mod = __import__(package)
         except ImportError:        # pragma: no cover - both are dependencies
             continue
+        if not mod.__file__:
+            continue
         where = os.path.join(os.path.dirname(os.path.dirname(mod.__file__)), f"{package}.libs")
         for path in glob.glob(os.path.join(where, "*openblas*")):
             try:
