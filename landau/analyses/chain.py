@@ -28,8 +28,6 @@ from landau.systems.chain import SYMBOLIC_MAX_BLOCKS, SpringBlockChain
 ROUTES = ("auto", "symbolic", "numeric")
 #: most blocks the automatic choice sends to the symbolic route (the measured crossover)
 AUTO_SYMBOLIC_BLOCKS = 3
-#: Λ below this fraction of the size of its terms is not resolved in float64 (the numeric route)
-LAMBDA_RESOLVED = 1e-8
 
 
 def _mode_shape(num, pc: float, wc: float, y0, slips: list[int]) -> np.ndarray:
@@ -77,7 +75,7 @@ def _mode_shape_mp(num, pc, wc, y, slips: list[int], j: int) -> np.ndarray:
 
 
 def chain_hopf(chain: SpringBlockChain, params: Mapping[str, float] | None = None,
-               bracket: tuple[float, float] | None = None, dps: int = 50, route: str = "auto"):
+               bracket: tuple[float, float] | None = None, dps: int = 50, route: str = "auto", l2: bool = False):
     """The first Hopf point of a chain as k decreases, with its amplitude equation and mode shape.
 
     Parameters
@@ -101,6 +99,10 @@ def chain_hopf(chain: SpringBlockChain, params: Mapping[str, float] | None = Non
         its resolution, Λ ≈ 0).  The numeric route is faster at every N (measured: 4× at one block,
         40× at five); the symbolic one is kept for small chains for its 50 digits, Λ's round-off
         bound and the verdict at a degenerate point.
+    l2 : bool
+        Also compute the fifth order (``Lambda5`` and Kuznetsov's ``l2`` = Re c₂) where Λ does not
+        vanish (where it does, both routes compute it anyway); the symbolic route gives ``l2`` only
+        (:func:`landau.derivation.general.second_lyapunov`).
 
     Returns
     -------
@@ -110,7 +112,10 @@ def chain_hopf(chain: SpringBlockChain, params: Mapping[str, float] | None = Non
         ``mode`` ("in-phase", "anti-phase", "mixed" or "travelling").  Symbolic route: from the
         general engine (:func:`landau.derivation.general.normal_form_at`) with Λ's round-off
         bound and, where Λ vanishes, the next order (:func:`landau.derivation.degenerate.with_verdict`).
-        Numeric route: float64 values, with ``Lambda_scale`` (the size of the terms whose sum is Λ).
+        Numeric route: float64 values, with ``Lambda_scale`` (the size of the terms whose sum is Λ);
+        where Λ is below 1e-12 of it (zero to round-off), Λ = 0 and the fifth order
+        (:func:`landau.derivation.sparse_hopf.with_fifth_order`) with the same ``extra`` keys as
+        the symbolic route's verdict.
 
     Raises
     ------
@@ -129,7 +134,7 @@ def chain_hopf(chain: SpringBlockChain, params: Mapping[str, float] | None = Non
     if route == "numeric" or (route == "auto" and chain.blocks > AUTO_SYMBOLIC_BLOCKS):
         fallback = route == "auto" and chain.blocks <= SYMBOLIC_MAX_BLOCKS
         try:
-            res = _numeric_chain_hopf(chain, p, bracket, fallback=fallback)
+            res = _numeric_chain_hopf(chain, p, bracket, fallback=fallback, l2=l2)
         except SingularPointError:
             # float64 cannot settle the point (crossings closer than its resolution, Λ ≈ 0): the
             # symbolic route can, where it runs
@@ -138,7 +143,13 @@ def chain_hopf(chain: SpringBlockChain, params: Mapping[str, float] | None = Non
             res = None
         if res is not None:
             return res
-    return _symbolic_chain_hopf(chain, p, bracket, dps)
+    res = _symbolic_chain_hopf(chain, p, bracket, dps)
+    if l2 and res.l2 is None:
+        from landau.derivation.general import second_lyapunov
+
+        # Re c₂ with ⟨q, q⟩ = 1: independent of the component the engine normalised on
+        res = replace(res, l2=second_lyapunov(chain.system, p, res, max(dps, 40)))
+    return res
 
 
 def _first_stable_stiffness(p: Mapping[str, float], blocks: int, stable) -> float:
@@ -164,10 +175,10 @@ def _mode_name(shape: np.ndarray) -> str:
     return "travelling"
 
 
-def _numeric_chain_hopf(chain: SpringBlockChain, p: dict, bracket, fallback: bool):
-    """The numeric route (see :func:`chain_hopf`); None where ``fallback`` and Λ is not resolved in float64."""
+def _numeric_chain_hopf(chain: SpringBlockChain, p: dict, bracket, fallback: bool, l2: bool):
+    """The numeric route (see :func:`chain_hopf`); None where ``fallback`` and float64 cannot settle Λ."""
     from landau.derivation.hopf import SPRING_BLOCK_UNITS
-    from landau.derivation.sparse_hopf import _rightmost, sparse_hopf
+    from landau.derivation.sparse_hopf import _rightmost, resolution, sparse_hopf, with_fifth_order
     from landau.systems.chain_forms import chain_sparse_system
 
     sysm = chain_sparse_system(chain, p)
@@ -183,21 +194,25 @@ def _numeric_chain_hopf(chain: SpringBlockChain, p: dict, bracket, fallback: boo
         return int(slips[np.flatnonzero(mag >= (1 - 1e-9) * mag.max())[0]])
 
     res, nf = sparse_hopf(sysm, hi, lo, choose_normalise=biggest, params=p)
-    if not abs(res.Lambda) > LAMBDA_RESOLVED * 2 * nf.b_scale:
+    verdict = resolution(res.Lambda, 2 * nf.b_scale)
+    if verdict == "unresolved":
         if fallback:
             return None
-        raise SingularPointError(f"{sysm.name}: Λ = {res.Lambda:g} is not resolved in float64 (below "
-                                 f"{LAMBDA_RESOLVED:g} of its terms, {2 * nf.b_scale:g}): a degenerate point; "
-                                 "the symbolic route (route='symbolic', up to "
+        raise SingularPointError(f"{sysm.name}: Λ = {res.Lambda:g} is not resolved in float64 (below 1e-8 of "
+                                 f"its terms, {2 * nf.b_scale:g}); the symbolic route (route='symbolic', up to "
                                  f"{SYMBOLIC_MAX_BLOCKS} blocks) settles it")
     x = nf.q[slips]
     # float64 Newton and LU factors give the mode to ~1e-13: smaller parts are round-off
     x = np.where(np.abs(x.real) < 1e-10, 0.0, x.real) + 1j * np.where(np.abs(x.imag) < 1e-10, 0.0, x.imag)
     units = {key: val for key, val in SPRING_BLOCK_UNITS.items() if key in ("V", "p_c", "omega_c")}
-    return replace(res, units=units, at=("V",),
-                   extra={"route": "numeric", "blocks": chain.blocks, "mode": _mode_name(x),
-                          "mode_shape": [[float(z.real), float(z.imag)] for z in x],
-                          "Lambda_scale": 2 * nf.b_scale})
+    res = replace(res, units=units, at=("V",),
+                  extra={"route": "numeric", "blocks": chain.blocks, "mode": _mode_name(x),
+                         "mode_shape": [[float(z.real), float(z.imag)] for z in x],
+                         "Lambda_scale": 2 * nf.b_scale})
+    if verdict == "zero" or l2:
+        # Λ zero to round-off (or l₂ asked for): the fifth order, from the law's jets to order 5
+        res = with_fifth_order(res, nf, chain_sparse_system(chain, p, order=5), degenerate=verdict == "zero")
+    return res
 
 
 def _symbolic_chain_hopf(chain: SpringBlockChain, p: dict, bracket, dps: int):

@@ -42,6 +42,7 @@ Putelat, T., Dawes, J. H. P., Willis, J. R. (2010). J. Mech. Phys. Solids 58, 27
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import scipy.linalg
@@ -59,6 +60,10 @@ SCAN_RATIO = 0.5
 BRACKET_REL = 2e-2
 #: two eigenvalues of the pencil this close (relative to ω) at the located point: a non-simple crossing
 DOUBLE_REL = 1e-10
+#: a coefficient below this fraction of the size of the terms it sums is zero to float64's round-off
+ZERO_REL = 1e-12
+#: a coefficient above :data:`ZERO_REL` but below this fraction of its terms is not resolved in float64
+RESOLVED_REL = 1e-8
 
 
 def spectrum(system: SparseSystem, p: float) -> np.ndarray:
@@ -226,6 +231,98 @@ def sparse_normal_form(system: SparseSystem, pc: float, wc: float, q0: np.ndarra
     return SparseNormalForm(q=q, psi=psi, a=a, b=b, b_scale=float(np.sum(np.abs(psi * R))))
 
 
+def sparse_quintic(system: SparseSystem, pc: float, wc: float, nf: SparseNormalForm,
+                   normalise: int) -> tuple[complex, float]:
+    """(c, Σ|ψ_i r_i|): the quintic coefficient c of dA/dT = … + bA|A|² + cA|A|⁴ (q[normalise] = 1;
+    Λ₅ = 2 Re c, Kuznetsov's l₂ = Re c/⟨q, q⟩²) and the size of the terms whose sum it is.
+
+    The recursion of :func:`landau.derivation.fredholm.quintic_coefficient` (the Fredholm condition
+    at each monomial z^j z̄^k up to z³z̄², h₂₁ with its ``normalise`` component zero) with the forms
+    D₂…D₅ of the system and sparse LU solves:
+
+        (i(j − k)ωE − J) h_{jk} = [F(H)]_{jk} − E [H_z ż + H_z̄ dz̄/dt]_{jk, nonlinear}
+
+    (Kuznetsov 2004 §8.7, the generalised-Hopf coefficients; the singular systems at j − k = 1
+    bordered as for q: [[iωE − J, Eq], [e_nᵀ, 0]]).  Needs the forms to fifth order.
+    """
+    from landau.derivation.fredholm import _faa_terms
+
+    n = system.n
+    E = scipy.sparse.diags(system.mass).tocsc()
+    J = system.jacobian(pc)
+    q, psi = nf.q, nf.psi
+    en = scipy.sparse.csc_matrix(([1.0], ([0], [normalise])), shape=(1, n))
+    bordered = scipy.sparse.linalg.splu(scipy.sparse.bmat(
+        [[(1j * wc * E - J).tocsc(), scipy.sparse.csc_matrix((E @ q)[:, None])], [en, None]]).tocsc())
+    lus: dict[int, Any] = {}
+    h: dict[tuple[int, int], np.ndarray] = {(1, 0): q, (0, 1): q.conj()}
+    coef: dict[tuple[int, int], complex] = {}
+    for (j, k) in [(2, 0), (1, 1), (3, 0), (2, 1), (3, 1), (2, 2), (3, 2)]:
+        rhs = np.zeros(n, dtype=complex)
+        for ms, weight in _faa_terms((j, k), [m for m in h if m[0] <= j and m[1] <= k], 5):
+            rhs += system.form(*(h[m] for m in ms)) / weight
+        corr = np.zeros(n, dtype=complex)
+        for (mm1, mm), cm in coef.items():
+            for (a, b), vec in h.items():
+                if (a, b) in ((1, 0), (0, 1)):
+                    continue
+                if a > 0 and (a + mm1 - 1, b + mm) == (j, k):
+                    corr += vec * cm * a
+                if b > 0 and (a + mm, b + mm1 - 1) == (j, k):
+                    corr += vec * np.conj(cm) * b
+        rhs -= E @ corr
+        m = j - k
+        if m == 1:
+            c = complex(psi @ rhs)          # ψ E q = 1
+            coef[(j, k)] = c
+            if (j, k) == (3, 2):
+                return c, float(np.sum(np.abs(psi * rhs)))
+            # [[iωE − J, Eq], [e_nᵀ, 0]] (h, s) = (rhs − c E q, 0): h₂₁ with h[normalise] = 0
+            sol = bordered.solve(np.concatenate([rhs - c * (E @ q), [0.0]]))[:n]
+        else:
+            if m not in lus:
+                lus[m] = scipy.sparse.linalg.splu((1j * m * wc * E - J).astype(complex).tocsc())
+            # (i(j − k)ωE − J) h_{jk} = rhs
+            sol = lus[m].solve(rhs)
+        h[(j, k)] = sol
+        if j != k:
+            h[(k, j)] = sol.conj()
+    raise AssertionError("the recursion ends at z³z̄²")
+
+
+def resolution(value: float, scale: float) -> str:
+    """"zero" (|value| ≤ :data:`ZERO_REL`·scale: round-off), "unresolved" (below :data:`RESOLVED_REL`·scale)
+    or "resolved": the float64 verdict on a coefficient summed from terms of total size ``scale``."""
+    if not abs(value) > ZERO_REL * scale:
+        return "zero"
+    return "unresolved" if not abs(value) > RESOLVED_REL * scale else "resolved"
+
+
+def with_fifth_order(res: HopfResult, nf: SparseNormalForm, system5: SparseSystem, degenerate: bool) -> HopfResult:
+    """``res`` with Λ₅ = 2 Re c and l₂ = Re c/⟨q, q⟩² (:func:`sparse_quintic`, forms to fifth order in
+    ``system5``); where ``degenerate`` (Λ zero to round-off), Λ = l₁ = Re c₁ = 0 and the verdict of
+    the next order in ``extra`` as the general engine gives it (``criticality_next_order``,
+    ``degenerate_at_every_order_computed``)."""
+    from dataclasses import replace
+
+    from landau.derivation.hopf import Criticality
+
+    idx = system5.states.index(res.normalise)
+    c, scale = sparse_quintic(system5, res.p_c, res.omega_c, nf, idx)
+    qq = float(np.sum(np.abs(nf.q) ** 2))
+    verdict = resolution(2 * c.real, 2 * scale)
+    lam5 = 0.0 if verdict == "zero" else 2 * c.real
+    extra = dict(res.extra)
+    extra["Lambda5_scale"] = 2 * scale
+    out = replace(res, Lambda5=lam5, l2=lam5 / 2 / qq ** 2, extra=extra)
+    if not degenerate:
+        return out
+    extra["criticality_next_order"] = Criticality.from_sign(lam5).value if verdict == "resolved" else "degenerate"
+    extra["degenerate_at_every_order_computed"] = verdict != "resolved"
+    c1 = None if res.c1 is None else complex(0.0, res.c1.imag)
+    return replace(out, Lambda=0.0, l1=0.0, c1=c1, extra=extra)
+
+
 def _check_double(system: SparseSystem, a: float, b: float) -> None:
     """Where Newton fails: a double crossing (two rightmost eigenvalues equal to round-off at the
     bracket's end, e.g. identical uncoupled blocks) is named as such."""
@@ -310,4 +407,4 @@ def sparse_hopf(system: SparseSystem, hi: float, lo: float, choose_normalise=Non
 
 
 __all__ = ["SparseNormalForm", "eigenvector", "first_crossing", "newton_hopf", "sparse_hopf", "sparse_normal_form",
-           "spectrum"]
+           "resolution", "sparse_quintic", "spectrum", "with_fifth_order"]

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from landau.analyses.chain import chain_hopf
-from landau.errors import InputError, NonSimpleHopfError, SingularPointError
+from landau.errors import InputError, NonSimpleHopfError
 from landau.laws import get_law
 from landau.laws.local_jets import law_jets
 from landau.support.blas_threads import one_blas_thread
@@ -135,10 +135,28 @@ def test_uncoupled_identical_blocks_are_a_double_crossing_on_the_numeric_route()
         chain_hopf(SpringBlockChain("dieterich", 4), {"k_coupling": 0.0}, route="numeric")
 
 
-def test_a_degenerate_point_is_refused_by_the_numeric_route():
-    # identical quasi-static blocks: Λ = 0 in phase (tests/derivation/test_degenerate.py)
-    with pytest.raises(SingularPointError, match="not resolved in float64"):
-        chain_hopf(SpringBlockChain("dieterich", 2), {"M_1": 0.0, "M_2": 0.0, "k_coupling": 2e4}, route="numeric")
+@pytest.mark.parametrize("n", [2, 30])
+def test_identical_quasi_static_blocks_are_degenerate_on_the_numeric_route(n):
+    # identical quasi-static aging-law blocks: the in-phase mode is the single block's centre
+    # (Λ = Λ₅ = 0, tests/derivation/test_degenerate.py), at the single block's k_c = σ(b − a)/L
+    over = {"k_coupling": 2e4, **{f"M_{i}": 0.0 for i in range(1, n + 1)}}
+    r = chain_hopf(SpringBlockChain("dieterich", n), over, route="numeric")
+    assert r.p_c == pytest.approx(11.772 * (B_ - A_) / L_, rel=1e-12)
+    assert r.Lambda == 0.0 and r.Lambda5 == 0.0 and r.criticality == "degenerate"
+    assert r.extra["mode"] == "in-phase" and r.extra["degenerate_at_every_order_computed"] is True
+
+
+@pytest.mark.parametrize("quasi_static", [False, True])
+def test_the_fifth_order_equals_kuznetsovs_projection_route(quasi_static):
+    # l₂ = Re c₂ (⟨q, q⟩ = 1) by the sparse Fredholm recursion against Kuznetsov's projection
+    # formulas at 40 digits (landau.derivation.lyapunov, through second_lyapunov): another route
+    chain, over = SpringBlockChain("dieterich", 2), uneven(2, quasi_static=quasi_static)
+    num = chain_hopf(chain, over, route="numeric", l2=True)
+    sym = chain_hopf(chain, over, route="symbolic", l2=True)
+    assert num.l2 == pytest.approx(sym.l2, rel=1e-10)
+    # Λ₅ = 2 Re c with q_n = 1, l₂ = Re c/⟨q, q⟩², and ⟨q, q⟩ = Λ/(2 Re c₁) from the same result
+    qq = num.Lambda / (2 * num.c1.real)
+    assert num.Lambda5 == pytest.approx(2 * sym.l2 * qq ** 2, rel=1e-10)
 
 
 @pytest.mark.parametrize("blocks, route, message", [
