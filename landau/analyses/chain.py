@@ -21,13 +21,16 @@ from typing import Mapping
 import mpmath
 import numpy as np
 
-from landau.errors import InputError, NoHopfError, SingularPointError
+from landau.errors import InputError, NoHopfError, NonSimpleHopfError, SingularPointError
 from landau.systems.chain import SYMBOLIC_MAX_BLOCKS, SpringBlockChain
 
 #: the routes of :func:`chain_hopf`
 ROUTES = ("auto", "symbolic", "numeric")
 #: most blocks the automatic choice sends to the symbolic route (the measured crossover)
 AUTO_SYMBOLIC_BLOCKS = 3
+#: a numeric Hopf point whose Newton iteration stalled above this relative step (two crossings
+#: nearly coincide: weakly coupled identical blocks) goes to the symbolic route where it runs
+NEWTON_FLOOR = 1e-10
 
 
 def _mode_shape(num, pc: float, wc: float, y0, slips: list[int]) -> np.ndarray:
@@ -135,9 +138,9 @@ def chain_hopf(chain: SpringBlockChain, params: Mapping[str, float] | None = Non
         fallback = route == "auto" and chain.blocks <= SYMBOLIC_MAX_BLOCKS
         try:
             res = _numeric_chain_hopf(chain, p, bracket, fallback=fallback, l2=l2)
-        except SingularPointError:
-            # float64 cannot settle the point (crossings closer than its resolution, Λ ≈ 0): the
-            # symbolic route can, where it runs
+        except (SingularPointError, NonSimpleHopfError):
+            # float64 cannot settle the point (crossings closer than its resolution, Λ not
+            # resolved): the symbolic route can, where it runs
             if not fallback:
                 raise
             res = None
@@ -194,6 +197,9 @@ def _numeric_chain_hopf(chain: SpringBlockChain, p: dict, bracket, fallback: boo
         return int(slips[np.flatnonzero(mag >= (1 - 1e-9) * mag.max())[0]])
 
     res, nf = sparse_hopf(sysm, hi, lo, choose_normalise=biggest, params=p)
+    floor = float(res.extra["newton_floor"])
+    if floor > NEWTON_FLOOR and fallback:
+        return None         # a nearly double crossing: float64 holds the mode to `floor` only
     verdict = resolution(res.Lambda, 2 * nf.b_scale)
     if verdict == "unresolved":
         if fallback:
@@ -202,13 +208,15 @@ def _numeric_chain_hopf(chain: SpringBlockChain, p: dict, bracket, fallback: boo
                                  f"its terms, {2 * nf.b_scale:g}); the symbolic route (route='symbolic', up to "
                                  f"{SYMBOLIC_MAX_BLOCKS} blocks) settles it")
     x = nf.q[slips]
-    # float64 Newton and LU factors give the mode to ~1e-13: smaller parts are round-off
-    x = np.where(np.abs(x.real) < 1e-10, 0.0, x.real) + 1j * np.where(np.abs(x.imag) < 1e-10, 0.0, x.imag)
+    # float64 Newton and LU factors give the mode to ~1e-13 (to Newton's floor where two crossings
+    # nearly coincide): smaller parts are round-off
+    cut = max(1e-10, 100 * floor)
+    x = np.where(np.abs(x.real) < cut, 0.0, x.real) + 1j * np.where(np.abs(x.imag) < cut, 0.0, x.imag)
     units = {key: val for key, val in SPRING_BLOCK_UNITS.items() if key in ("V", "p_c", "omega_c")}
     res = replace(res, units=units, at=("V",),
                   extra={"route": "numeric", "blocks": chain.blocks, "mode": _mode_name(x),
                          "mode_shape": [[float(z.real), float(z.imag)] for z in x],
-                         "Lambda_scale": 2 * nf.b_scale})
+                         "Lambda_scale": 2 * nf.b_scale, "newton_floor": floor})
     if verdict == "zero" or l2:
         # Λ zero to round-off (or l₂ asked for): the fifth order, from the law's jets to order 5
         res = with_fifth_order(res, nf, chain_sparse_system(chain, p, order=5), degenerate=verdict == "zero")

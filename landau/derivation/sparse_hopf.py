@@ -139,8 +139,10 @@ def _start(system: SparseSystem, b: float) -> tuple[float, np.ndarray]:
 
 
 def newton_hopf(system: SparseSystem, p0: float, omega0: float, q0: np.ndarray, c: int | None = None,
-                tol: float = 1e-14, maxit: int = 30) -> tuple[float, float, np.ndarray]:
-    """(p_c, ω_c, q) by Newton's method on (J(p) − iωE) q = 0, q_c = 1 (see the module docstring, step 2).
+                tol: float = 1e-14, maxit: int = 30) -> tuple[float, float, np.ndarray, float]:
+    """(p_c, ω_c, q, floor) by Newton's method on (J(p) − iωE) q = 0, q_c = 1 (the module docstring,
+    step 2); ``floor`` is the relative size of the last step (≤ ``tol``, or the round-off floor the
+    iteration stalled at: about the relative accuracy of q where two crossings nearly coincide).
 
     ``c`` is the normalised component (default: the largest of q₀).
     """
@@ -170,17 +172,24 @@ def newton_hopf(system: SparseSystem, p0: float, omega0: float, q0: np.ndarray, 
         p += step[2 * n + 1]
         size = max(abs(step[2 * n + 1]) / abs(p), abs(step[2 * n]) / abs(w),
                    float(np.max(np.abs(step[:2 * n]))) / float(np.max(np.abs(q))))
-        # converged: the step at the tolerance, or at round-off (below 1e-11 and no longer shrinking
-        # quadratically: nearly coincident crossings make the extended system ill-conditioned)
-        if size <= tol or (size <= 1e-11 and size > 0.1 * last):
+        # converged: the step at the tolerance, or at round-off — small (1e-8) and no longer
+        # shrinking quadratically, as where nearly coincident crossings make the extended system
+        # ill-conditioned, with the residual of (J − iωE)q at round-off of its terms
+        if size <= tol:
             break
+        if size <= 1e-8 and size > 0.1 * last:
+            J = system.jacobian(p)
+            r = J @ q - 1j * w * (E @ q)
+            terms = abs(J) @ np.abs(q) + w * np.abs(E @ q)
+            if np.max(np.abs(r) / np.maximum(terms, 1e-300)) <= 1e-12:
+                break
         last = size
     else:
         raise SingularPointError(f"{system.name}: Newton's method on the Hopf point did not converge "
                                  f"(last {system.parameter} = {p:.10g})")
     if not w > 0:
         raise SingularPointError(f"{system.name}: Newton's method reached ω = {w:g} (no Hopf point)")
-    return p, w, q
+    return p, w, q, size
 
 
 @dataclass(frozen=True)
@@ -377,7 +386,7 @@ def sparse_hopf(system: SparseSystem, hi: float, lo: float, choose_normalise=Non
     while True:
         w0, q0 = _start(system, b)
         try:
-            pc, wc, q = newton_hopf(system, b, w0, q0)
+            pc, wc, q, floor = newton_hopf(system, b, w0, q0)
         except SingularPointError:
             _check_double(system, a, b)
             raise
@@ -402,7 +411,7 @@ def sparse_hopf(system: SparseSystem, hi: float, lo: float, choose_normalise=Non
                      equilibrium=tuple(float(x) for x in system.equilibrium), dlambda_dp=a,
                      Lambda=2 * b.real, chi=2 * b.imag, convention=GENERAL, normalise=system.states[idx],
                      l1=b.real / qq / wc, c1=b / qq, params=dict(params or {}),
-                     extra={"route": "numeric"})
+                     extra={"route": "numeric", "newton_floor": floor})
     return res, nf
 
 

@@ -126,3 +126,24 @@ def test_general_engine_on_the_command_line_says_degenerate_at_every_order(capsy
     assert doc["p_c"] == pytest.approx(11.772 * (0.0489 - 0.0349) / 9e-7, rel=1e-12)
     assert doc["criticality"] == "degenerate" and doc["Lambda"] == 0.0
     assert doc["degenerate_at_every_order_computed"] is True
+
+
+def test_a_chain_of_fifty_blocks_answers_by_the_numeric_route(capsys):
+    # identical blocks at the defaults: the in-phase mode at the single block's k_c, Putelat et al.
+    # (2010) eq. (30), aging law: k_c = σ(b − a)/L·(1 + MV²/(σaL)) with σ = 1.2·9.81 N, M = 1.2 kg
+    code, out, err = run(capsys, "hopf", "spring-block-chain", "dieterich", "--blocks", "50", "--json")
+    assert code == 0, err
+    doc = json.loads(out)
+    assert doc["route"] == "numeric" and doc["blocks"] == 50 and doc["mode"] == "in-phase"
+    s, m, v = 1.2 * 9.81, 1.2, 1e-4
+    assert doc["p_c"] == pytest.approx(s * (0.0489 - 0.0349) / 9e-7 * (1 + m * v ** 2 / (s * 0.0349 * 9e-7)), rel=1e-12)
+
+
+@pytest.mark.parametrize("argv, needle", [
+    (["--blocks", "101"], "1 to 100 blocks"),
+    (["--blocks", "13", "--route", "symbolic"], "at most 12 blocks"),
+])
+def test_chain_refusals_beyond_the_routes(capsys, argv, needle):
+    code, out, err = run(capsys, "hopf", "spring-block-chain", "dieterich", *argv)
+    assert code == 2 and out == ""
+    assert len(err.strip().splitlines()) == 1 and needle in err

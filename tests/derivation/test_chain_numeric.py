@@ -130,6 +130,28 @@ def test_the_route_is_chosen_by_the_number_of_blocks():
     assert chain_hopf(SpringBlockChain("dieterich", 4), {}).extra["route"] == "numeric"
 
 
+def single_block_kc(V: float = 1e-4, M: float = 1.2, sigma: float = 1.2 * 9.81) -> float:
+    """Putelat et al. (2010) eq. (30), aging law: k_c = σ(b − a)/L · (1 + M V²/(σ a L))."""
+    return sigma * (B_ - A_) / L_ * (1 + M * V ** 2 / (sigma * A_ * L_))
+
+
+@pytest.mark.parametrize("kc, stalls", [(1.0, False), (1e-2, True)])
+def test_weakly_coupled_identical_blocks_on_the_numeric_route(kc, stalls):
+    # the other modes cross at k_c − 2k_coupling(1 − cos(jπ/N)): within 1e-7 of k_c at k_coupling =
+    # 1e-2, where Newton's iteration stalls at its round-off floor (reported; auto then takes the
+    # symbolic route) and still finds the in-phase crossing at the single block's k_c
+    r = chain_hopf(SpringBlockChain("dieterich", 4), {"k_coupling": kc}, route="numeric")
+    assert r.p_c == pytest.approx(single_block_kc(), rel=1e-12)
+    assert r.extra["mode"] == "in-phase"
+    assert (r.extra["newton_floor"] > 1e-10) is stalls
+
+
+@pytest.mark.slow
+def test_auto_takes_the_symbolic_route_where_newton_stalls():
+    r = chain_hopf(SpringBlockChain("dieterich", 4), {"k_coupling": 1e-2})
+    assert r.extra["route"] == "symbolic" and r.p_c == pytest.approx(single_block_kc(), rel=1e-12)
+
+
 def test_uncoupled_identical_blocks_are_a_double_crossing_on_the_numeric_route():
     with pytest.raises(NonSimpleHopfError, match=r"4 complex pairs cross .* together at k = 189062\.9"):
         chain_hopf(SpringBlockChain("dieterich", 4), {"k_coupling": 0.0}, route="numeric")
