@@ -5,9 +5,11 @@
   (one block's law jets, sparse LU solves, :mod:`landau.derivation.sparse_hopf`) at N = 10, 20, 50,
   100, and — in the same run — both routes for N = 1…6 (the symbolic route: the general engine at 50
   digits; ``--quick``: N = 1…4), with their ratio and the largest relative difference of p_c, ω_c, Λ,
-  χ, C and l₁ between them.  Each call is timed warm (a first call compiles the law's jets and the
-  engine's kernels) as the best CPU time of three.  Goals: the exponent of a log–log least-squares
-  fit of CPU-s against N over 10…100 at most 3, and N = 50 within 10 CPU-s.
+  χ, C and l₁ between them, and N = 100 once more with OpenBLAS's default threads in the eigenvalue
+  scan (the cost that :mod:`landau.support.blas_threads` removes).  Each call is timed warm (a
+  first call compiles the law's jets and the engine's kernels) as the best CPU time of three.
+  Goals: the exponent of a log–log least-squares fit of CPU-s against N over 10…100 at most 3,
+  and N = 50 within 10 CPU-s.
 
 Run:  python benchmarks/bench_chain.py [--quick]    (the ``chain`` section of benchmarks/run.py;
       it writes benchmarks/results/results-full-chain.json, then python benchmarks/report.py)
@@ -51,6 +53,19 @@ def section_chain(quick: bool) -> None:
     report(Goal("chain", "chain-1", "chain_hopf CPU-s ~ N^x over N = 10…100 (log-log least squares): x",
                 slope, 3.0, "<="))
     report(Goal("chain", "chain-2", "chain_hopf at N = 50 blocks, CPU-s", float(ts[list(ns).index(50)]), 10.0, "<="))
+    # the eigenvalue scan with OpenBLAS's default threads (landau.support.blas_threads off), same run
+    import contextlib
+
+    import landau.derivation.sparse_hopf as sh
+
+    guard = sh.one_blas_thread
+    sh.one_blas_thread = contextlib.nullcontext        # type: ignore[assignment]
+    try:
+        _, threaded = cpu_time(lambda: _call(100), min_time=0.0, repeat=3)
+    finally:
+        sh.one_blas_thread = guard
+    one = float(ts[list(ns).index(100)])
+    print(f"  N = 100 with the default BLAS threads: {threaded:.3f} CPU-s ({threaded / one:.1f}x one thread)")
     both = []
     for n in range(1, (4 if quick else 6) + 1):
         num, c_num = cpu_time(lambda n=n: _call(n, "numeric"), min_time=0.0, repeat=3)
@@ -59,11 +74,15 @@ def section_chain(quick: bool) -> None:
         both.append({"N": n, "numeric CPU-s": c_num, "symbolic CPU-s": c_sym, "symbolic / numeric": c_sym / c_num,
                      "max rel. difference": diff})
         print(f"  N = {n}: numeric {c_num:.3f}, symbolic {c_sym:.3f} CPU-s, difference {diff:.1e}", flush=True)
+    rows.append({"N": 100, "states": 300, "route": "numeric, default BLAS threads", "CPU-s": threaded,
+                 "k_c": rows[-1]["k_c"], "Lambda": rows[-1]["Lambda"], "mode": rows[-1]["mode"]})
     RAW["chain"] = rows
     RAW["chain_routes"] = both
     TABLES["chain"] = (
         "`chain_hopf(SpringBlockChain('dieterich', N))` at the defaults, its default route (best CPU of 3, warm); "
-        f"fitted exponent over N = 10…100: **{slope:.2f}**.\n\n" + table(rows, list(rows[0]))
+        f"fitted exponent over N = 10…100: **{slope:.2f}**; the last row is N = 100 with OpenBLAS's default "
+        f"threads in the eigenvalue scan ({threaded / one:.1f}× the CPU of one thread, "
+        "`landau.support.blas_threads`).\n\n" + table(rows, list(rows[0]))
         + "\n\nBoth routes in the same run (the default chooses the symbolic route up to 3 blocks, for its 50 "
         "digits, Λ's round-off bound and the verdict at a degenerate point; the numeric one beyond):\n\n"
         + table(both, list(both[0])))
