@@ -99,9 +99,10 @@ def chain_hopf(chain: SpringBlockChain, params: Mapping[str, float] | None = Non
         cost about linear in N beyond the O(N³) eigenvalue scan); ``"auto"``: symbolic up to
         :data:`AUTO_SYMBOLIC_BLOCKS` blocks, numeric beyond (and symbolic again, up to
         :data:`SYMBOLIC_MAX_BLOCKS`, where float64 cannot settle the point: crossings closer than
-        its resolution, Λ ≈ 0).  The numeric route is faster at every N (measured: 4× at one block,
-        40× at five); the symbolic one is kept for small chains for its 50 digits, Λ's round-off
-        bound and the verdict at a degenerate point.
+        its resolution, Λ ≈ 0; Newton stalled above :data:`NEWTON_FLOOR`).  The numeric route is
+        faster at every N (measured: about 5× at one block, 55× at five, benchmarks/bench_chain.py);
+        the symbolic one is kept for small chains for its 50 digits, Λ's round-off bound and the
+        verdict at a degenerate point.
     l2 : bool
         Also compute the fifth order (``Lambda5`` and Kuznetsov's ``l2`` = Re c₂) where Λ does not
         vanish (where it does, both routes compute it anyway); the symbolic route gives ``l2`` only
