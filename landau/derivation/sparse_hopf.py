@@ -7,14 +7,17 @@ twofold per block of a chain:
 
 1. **first crossing** (:func:`first_crossing`): from a parameter value where the steady state is
    stable, the parameter is lowered geometrically until the rightmost eigenvalue of the pencil
-   (J(p), E) has Re λ > 0, and the bracket is bisected (in log p) to 1e-4 — dense eigenvalues,
-   O(n³) each, the only dense step;
+   (J(p), E) has Re λ > 0 (halving p), and the bracket is bisected (in log p) to 2e-2 — about
+   fifteen dense spectra, O(n³) each, the only dense step; the rightmost eigenvalue there and its
+   eigenvector by inverse iteration (sparse LU) start
 2. **Newton on the extended system** (:func:`newton_hopf`) in (q, ω, p), q = q_r + i q_i with
-   q_c = 1 (Kuznetsov 2004, §10.2.2, the standard defining system of a Hopf point):
+   q_c = 1 (Kuznetsov 2004, §10.3.1, the standard augmented system of a Hopf point):
 
        (J(p) − iωE) q = 0,   q_c − 1 = 0,
 
    2n + 2 real equations in 2n + 2 unknowns, each step one sparse LU (``scipy.sparse.linalg.splu``);
+   where it lands on a pair other than the first to cross (other pairs unstable at p_c: two
+   crossings in the bracket), the bracket is narrowed and Newton started again;
 3. **the amplitude equation** (:func:`sparse_normal_form`) by the same Fredholm condition as the
    general engine (:mod:`landau.derivation.fredholm`, Putelat et al. 2010, eqs 12–19), each solve
    a sparse LU of an n × n (or bordered (n+1) × (n+1)) matrix:
@@ -33,7 +36,7 @@ l₁ = Re c₁/ω.
 References
 ----------
 Kuznetsov, Yu. A. (2004). Elements of Applied Bifurcation Theory, 3rd ed., Springer, §3.5 (eq. 3.20),
-§8.7 and §10.2.2 (the defining systems of a Hopf point and their Newton solution).
+§8.7 (the fifth-order coefficient) and §10.2–10.3 (locating a Hopf point; its defining systems).
 Govaerts, W. (2000). Numerical Methods for Bifurcations of Dynamical Equilibria, SIAM, §4.4
 (bordered systems).
 Putelat, T., Dawes, J. H. P., Willis, J. R. (2010). J. Mech. Phys. Solids 58, 27–53, eqs 12–19.
