@@ -54,6 +54,19 @@ def test_the_numeric_route_equals_the_symbolic_route_up_to_eight_blocks(n):
     assert_same(chain_hopf(chain, over, route="numeric"), chain_hopf(chain, over, route="symbolic"), 1e-10)
 
 
+def test_a_two_state_law_on_both_routes():
+    # the law jets of a law with two states (mixed derivatives in φ₁, φ₂ and v)
+    chain, over = SpringBlockChain("two-state-dieterich", 2), {"k_coupling": 3e4, "M_2": 0.7}
+    assert_same(chain_hopf(chain, over, route="numeric"), chain_hopf(chain, over, route="symbolic"), 1e-10)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("law", ["ruina", "spinodal", "modified-dieterich", "nanoscale", "micron-scale"])
+def test_every_built_in_law_on_both_routes(law):
+    chain, over = SpringBlockChain(law, 2), {"k_coupling": 3e4, "M_2": 0.7}
+    assert_same(chain_hopf(chain, over, route="numeric"), chain_hopf(chain, over, route="symbolic"), 1e-10)
+
+
 def assembled_jacobian(k, V, Ms, sigmas, kc):
     """ẏ = J y at steady sliding, y = (X_i, u_i, φ_i): aging law μ = a ln(v/V_s) + a_v + b ln(V_s φ/L),
     dφ/dt = 1 − φv/L (φ_ss = L/V): μ_v = a/V, μ_φ = bV/L, ∂rate/∂v = −1/V, ∂rate/∂φ = −V/L."""
