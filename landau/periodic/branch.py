@@ -31,6 +31,7 @@ class EndReason(enum.Enum):
     COLLAPSE = "the cycle collapsed onto an equilibrium (a Hopf point was reached)"
     NO_CONVERGENCE = "Newton's method did not converge even at the smallest step ds_min"
     FIRST_POINT = "the first cycle could not be corrected"
+    SPECIAL_POINT = "a special point named in stop_at was located"
 
 
 @dataclass(frozen=True)
