@@ -65,3 +65,19 @@ def monodromy_by_shooting(problem: CycleProblem, y0: np.ndarray, T: float, p: fl
     z0 = np.concatenate([y0, np.eye(n).ravel()])
     sol = solve_ivp(f, (0.0, T), z0, method="DOP853", rtol=1e-12, atol=1e-14)
     return sol.y[n:, -1].reshape(n, n)
+
+
+def adaptive_control(beta: float = 1.0) -> CycleProblem:
+    """The adaptive-control (Lur'e) system ẋ = y, ẏ = z, ż = −αz − βy − x + x² (MatCont's ``adaptx``),
+    continued in α from its Hopf point at the origin, α = 1 (β = 1, ω = 1, q = (1, i, −1))."""
+
+    def rhs(y, a):
+        return np.array([y[1], y[2], -a * y[2] - beta * y[1] - y[0] + y[0] ** 2])
+
+    def jac(y, a):
+        x = np.asarray(y[0])
+        o, one = np.zeros_like(x), np.ones_like(x)
+        return np.array([[o, one, o], [o, o, one], [-1 + 2 * x, -beta * one, -a * one]])
+
+    hopf = HopfStart(1.0, np.zeros(3), 1.0, np.array([1.0, 1j, -1.0]))
+    return CycleProblem("adaptive-control", ("x", "y", "z"), "alpha", rhs, jac, hopf=hopf)
