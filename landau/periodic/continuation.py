@@ -30,7 +30,7 @@ import scipy.sparse.linalg as spla
 from landau.errors import InputError, IntegratorError
 from landau.periodic import bifurcations as bif
 from landau.periodic.branch import CycleBranch, EndReason, SpecialPoint
-from landau.periodic.collocation import Collocation, Mesh, adapt, evaluate, remesh
+from landau.periodic.collocation import Collocation, Mesh, adapt, at_points, evaluate, remesh
 from landau.periodic.floquet import Multipliers, floquet
 from landau.periodic.problem import CycleProblem, CycleStart, HopfStart
 
@@ -348,7 +348,7 @@ def _run(problem: CycleProblem, branch: CycleBranch, pt: Point, *, steps: int, d
                 branch.append(last.coll.mesh, last.Y, last.T, last.p, last.mu.all, last.mu.trivial)
             branch.end, branch.message = EndReason.PARAMETER_RANGE, f"{problem.parameter} reached the end of {lo, hi}"
             return branch
-        pt, psi = new, psi_new
+        prev_pt, pt, psi = pt, new, psi_new
         branch.append(pt.coll.mesh, pt.Y, pt.T, pt.p, pt.mu.all, pt.mu.trivial)
         if any(sp_.kind in stop_at for sp_ in branch.special):
             branch.end, branch.message = EndReason.SPECIAL_POINT, "stopped after " + ", ".join(stop_at)
@@ -357,9 +357,9 @@ def _run(problem: CycleProblem, branch: CycleBranch, pt: Point, *, steps: int, d
             failure = (EndReason.MAX_PERIOD, f"T = {pt.T:.6g} > max_period = {max_period:.6g} at "
                        f"{problem.parameter} = {pt.p:.10g}; raise max_period to go on")
             break
-        if half_amplitude(pt.coll, pt.Y, j) < collapse:
-            failure = (EndReason.COLLAPSE, f"the cycle collapsed (amplitude < {collapse:.3g}) at "
-                       f"{problem.parameter} = {pt.p:.10g}: a Hopf point")
+        if half_amplitude(pt.coll, pt.Y, j) < collapse or _inverted(prev_pt, pt):
+            failure = (EndReason.COLLAPSE, f"the cycle collapsed onto an equilibrium (a Hopf point) near "
+                       f"{problem.parameter} = {pt.p:.10g}; start there from the HopfStart to follow the other side")
             break
         ds = min(ds * 1.3, ds_max) if it <= 3 else (ds * 0.7 if it >= 6 else ds)
         if adapt_every and (k + 1) % adapt_every == 0:
@@ -374,6 +374,19 @@ def _run(problem: CycleProblem, branch: CycleBranch, pt: Point, *, steps: int, d
             err.branch = branch  # type: ignore[attr-defined]
             raise err
     return branch
+
+
+def _inverted(a: Point, b: Point) -> bool:
+    """True if the cycle's deviation from its mean reversed sign between two points: the branch
+    went through the equilibrium (a Hopf point), ⟨y_b − ȳ_b, y_a − ȳ_a⟩ < 0 at the same phase."""
+    if a.coll.mesh is not b.coll.mesh:
+        return False
+    ya, _ = at_points(a.coll.mesh, a.Y)
+    yb, _ = at_points(b.coll.mesh, b.Y)
+    w = a.coll.w / a.coll.scales[:, None] ** 2
+    da = ya - (ya * a.coll.w).sum(axis=1, keepdims=True)
+    db = yb - (yb * b.coll.w).sum(axis=1, keepdims=True)
+    return bool(np.sum(w * da * db) < 0)
 
 
 def _on_bound(problem: CycleProblem, pt: Point, bound: float, tol: float) -> Point | None:
