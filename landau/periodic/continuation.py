@@ -190,7 +190,8 @@ def _first_from_cycle(problem: CycleProblem, start: CycleStart, mesh: Mesh, tol:
 
 
 # ---- the continuation ----------------------------------------------------------------------------
-def continue_cycles(problem: CycleProblem, start: HopfStart | CycleStart | SpecialPoint | None = None, *, steps: int = 100,
+def continue_cycles(problem: CycleProblem, start: HopfStart | CycleStart | SpecialPoint | None = None, *,
+                    steps: int = 100,
                     ds: float = 0.01, ds_min: float = 1e-7, ds_max: float = 0.5, direction: int = 1,
                     detect: bool = True, normal_forms: bool = True, ntst: int = 40, ncol: int = 4,
                     adapt_every: int = 3, max_period: float = np.inf, tol: float = 1e-10,
