@@ -128,3 +128,24 @@ def test_period_doubling_coefficient_against_the_doubled_cycles_amplitude():
     extrapolated = (ca * b2 - cb * a2) / (b2 - a2)                  # Richardson in ξ²
     assert abs(ca / pd.coefficient - 1) < 1e-5
     assert abs(extrapolated / pd.coefficient - 1) < 3e-6
+
+
+def test_branch_point_on_the_twice_traversed_cycle_is_the_period_doubling():
+    # the period-1 cycle traversed twice (period 2T) has the multipliers μ², so its period doubling
+    # (μ = −1) is a branch point of the doubled representation (μ² = 1: the doubled branch crosses it)
+    pr = rossler()
+    st = simulated_cycle(pr, 2.5, [1.0, 1.0, 0.0])
+    pd = continue_cycles(pr, st, steps=6, ds=0.1, ntst=40, stop_at=("PD",)).points("PD")[0]
+    from landau.periodic import CycleStart
+
+    twice = CycleStart(np.concatenate([st.t, st.t[1:] + st.period]), np.concatenate([st.y, st.y[:, 1:]], axis=1),
+                       2 * st.period, 2.5)
+    from dataclasses import replace
+
+    br = continue_cycles(replace(pr, parameter_range=(0.0, 2.9)), twice, steps=6, ds=0.15, ntst=60)
+    bps = br.points("BP")
+    assert len(bps) == 1 and not br.points("PD")
+    # bisection on the sign of det [F_u; τᵀ]; Newton converges only linearly near the branch point,
+    # which limits the location to about 1e-5 (documented)
+    assert abs(bps[0].parameter - pd.parameter) < 1e-5
+    assert abs(bps[0].period - 2 * pd.period) < 1e-4
