@@ -111,7 +111,7 @@ def test_period_doubling_coefficient_against_the_doubled_cycles_amplitude():
         v = v / np.sqrt(T * np.mean(np.sum(evaluate(mesh, v, s) ** 2, axis=0)))
         x2 = evaluate(doubled.meshes[i], doubled.nodes[i], s)
 
-        def dist(shift):
+        def dist(shift, x2=x2, mesh=mesh, Y=Y, s=s):
             return np.mean(np.sum((x2 - evaluate(mesh, Y, 2 * s + shift)) ** 2, axis=0))
 
         from scipy.optimize import minimize_scalar
