@@ -99,20 +99,21 @@ def newton(coll: Collocation, u0: np.ndarray, phase: np.ndarray, row: np.ndarray
     raise _NoConvergence(f"no convergence in {maxit} Newton iterations (last step {size:.2e})")
 
 
-def tangent(coll: Collocation, u: np.ndarray, phase: np.ndarray, row: np.ndarray,
-            with_sign: bool = False) -> np.ndarray | tuple[np.ndarray, float]:
-    """The unit tangent τ at u: [F_u; rᵀ] τ = (0, 1), normalised in the inner product; with
-    ``with_sign`` also the sign of det [F_u; rᵀ] (from the same LU), oriented by τ's sign."""
+def tangent(coll: Collocation, u: np.ndarray, phase: np.ndarray, row: np.ndarray) -> np.ndarray:
+    """The unit tangent τ at u: [F_u; rᵀ] τ = (0, 1), normalised in the inner product."""
+    return tangent_and_sign(coll, u, phase, row)[0]
+
+
+def tangent_and_sign(coll: Collocation, u: np.ndarray, phase: np.ndarray,
+                     row: np.ndarray) -> tuple[np.ndarray, float]:
+    """The unit tangent (:func:`tangent`) and the sign of det [F_u; rᵀ] from the same LU."""
     J = sps.vstack([coll.jacobian(u, phase), sps.csr_matrix(row)]).tocsc()
     rhs = np.zeros(J.shape[0])
     rhs[-1] = 1.0
     # the kernel direction of F_u: [F_u; rᵀ] τ = e_last (r the previous tangent's row)
     lu = spla.splu(J)
     t = lu.solve(rhs)
-    t = t / np.sqrt(coll.inner(t, t))
-    if not with_sign:
-        return t
-    return t, _lu_sign(lu)
+    return t / np.sqrt(coll.inner(t, t)), _lu_sign(lu)
 
 
 def _lu_sign(lu) -> float:
@@ -298,9 +299,9 @@ def _correct(problem: CycleProblem, prev: Point, s: float, tol: float, near_sing
     row = _border_row(coll, prev.tau)
     g = coll.set_reference(prev.Y)
     # near a branch point Newton converges linearly: more iterations, no divergence guard
-    kw = {"maxit": 40, "guard": False} if near_singular else {}
-    u, it = newton(coll, prev.u + s * prev.tau, g, row, row @ prev.u + s, tol=tol, **kw)
-    tau, sign = tangent(coll, u, g, row, with_sign=True)
+    u, it = newton(coll, prev.u + s * prev.tau, g, row, row @ prev.u + s, tol=tol,
+                   maxit=40 if near_singular else 10, guard=not near_singular)
+    tau, sign = tangent_and_sign(coll, u, g, row)
     return Point(coll, u, tau, floquet(problem, coll.mesh, *coll.unpack(u)), sign), it
 
 
@@ -317,7 +318,7 @@ def _adapted(problem: CycleProblem, pt: Point, tol: float) -> Point:
     row = _border_row(coll, tau)
     g = coll.set_reference(coll.unpack(u0)[0])
     u, _ = newton(coll, u0, g, row, row @ u0, tol=tol)
-    _, sign = tangent(coll, u, g, row, with_sign=True)     # the orientation on the new mesh
+    _, sign = tangent_and_sign(coll, u, g, row)     # the orientation on the new mesh
     return Point(coll, u, tau, floquet(problem, mesh, *coll.unpack(u)), sign)
 
 
