@@ -289,8 +289,8 @@ def load_generated(source: str, globals_: Mapping[str, object], allowed_builtins
     return exec_cached(source, _KERNEL_TAG, globals_, allowed_builtins).__dict__
 
 
-def njit_cached(fn, signature, **options):
-    """``numba.njit(signature, cache=True, **options)(fn)``, bound in ``fn``'s module under its name.
+def njit_cached(fn, signature):
+    """``numba.njit(signature, cache=True)(fn)``, bound in ``fn``'s module under its name.
 
     A numba cache entry that cannot be loaded is dropped and the function compiled afresh;
     a function whose source is not in a cache file is compiled in memory.
@@ -301,9 +301,6 @@ def njit_cached(fn, signature, **options):
         A function of a module from :func:`exec_cached` / :func:`load_generated`.
     signature : numba signature
         The explicit signature (compilation happens here, not at the first call).
-    **options
-        Further options of ``numba.njit`` (``error_model``, ``nogil``; never ``fastmath`` for code
-        that relies on IEEE rounding).
 
     Returns
     -------
@@ -316,18 +313,18 @@ def njit_cached(fn, signature, **options):
     address_space_for_compiling(f"the generated function {fn.__name__!r}")
     path = Path(fn.__code__.co_filename)
     if not path.is_file() or not _cache_file(path):   # no verified cache file: compile in memory
-        disp = nb.njit(signature, **options)(fn)
+        disp = nb.njit(signature)(fn)
     else:
         verify_numba_entries(path)              # nothing unsigned reaches numba
         try:
-            disp = nb.njit(signature, cache=True, **options)(fn)
+            disp = nb.njit(signature, cache=True)(fn)
         except OSError as exc:                  # numba could not write its files (e.g. a full disk)
             cachedir.warn_once(f"write {cachedir.cache_root()}",
                                f"could not write compiled code to the cache ({exc}); it is compiled in memory")
-            disp = nb.njit(signature, **options)(fn)
+            disp = nb.njit(signature)(fn)
         except Exception:                       # a file numba cannot use: rebuilt
             _drop_numba_entries(path)
-            disp = nb.njit(signature, cache=True, **options)(fn)
+            disp = nb.njit(signature, cache=True)(fn)
         if signature is not None:
             sign_numba_entries(path)
     if fn.__globals__.get(fn.__name__) is fn:   # as a decorator would: importable by name
