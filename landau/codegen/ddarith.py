@@ -55,6 +55,11 @@ LN2_HI, LN2_LO = 0.6931471805599453, 2.3190468138462996e-17
 _INV_FACT = tuple(dd_const(Fraction(1, math.factorial(n))) for n in range(2, 14))
 _IF_HI = tuple(c[0] for c in _INV_FACT)
 _IF_LO = tuple(c[1] for c in _INV_FACT)
+#: asinh x = Σ (−1)ᵏ (2k)!/(4ᵏ (k!)² (2k+1)) x^(2k+1), used for |x| < 1/64 (10 terms: < 2⁻¹¹⁰)
+_ASINH = tuple(dd_const(Fraction((-1) ** k * math.factorial(2 * k), 4 ** k * math.factorial(k) ** 2 * (2 * k + 1)))
+               for k in range(10))
+_AS_HI = tuple(c[0] for c in _ASINH)
+_AS_LO = tuple(c[1] for c in _ASINH)
 
 
 @nb.njit(**_opts)
@@ -218,6 +223,13 @@ def dd_asinh(ah, al):
     if ah > 1e150:                         # asinh x = log 2x + O(x⁻²)
         rh, rl = dd_log(ah, al)
         rh, rl = dd_add(rh, rl, LN2_HI, LN2_LO)
+    elif ah < 0.015625:                    # the series: log(x + √(x²+1)) would cancel near 1
+        qh, ql = dd_mul(ah, al, ah, al)
+        rh, rl = _AS_HI[9], _AS_LO[9]
+        for k in range(8, -1, -1):
+            rh, rl = dd_mul(rh, rl, qh, ql)
+            rh, rl = dd_add(rh, rl, _AS_HI[k], _AS_LO[k])
+        rh, rl = dd_mul(rh, rl, ah, al)
     else:
         qh, ql = dd_mul(ah, al, ah, al)
         qh, ql = dd_add_d(qh, ql, 1.0)
