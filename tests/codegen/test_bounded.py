@@ -84,7 +84,8 @@ def test_log_power_and_asinh_chain_within_the_bounds():
     """A chain of the operations the friction laws use (log, x^y with a symbolic exponent,
     asinh, rational powers) near a cancellation between two logarithms."""
     x = sp.Symbol("x", positive=True)
-    expr = (sp.log(1 + x) - sp.log(1 + 2 * x) + x) * sp.asinh(x * 3e4) ** sp.Rational(3, 2) / (1 + x) ** (x + sp.Rational(1, 3))
+    expr = ((sp.log(1 + x) - sp.log(1 + 2 * x) + x) * sp.asinh(x * 3e4) ** sp.Rational(3, 2)
+            / (1 + x) ** (x + sp.Rational(1, 3)))
     xs = np.logspace(-7, 1, 40)
     kern = _kernels(expr, x)
 
@@ -113,7 +114,8 @@ def test_law_bounds_hold_for_lambda(name):
 
     d = derive(SpringBlock(get_law(name)), ["Lambda"])
     lo, hi, ends = vw_range(name)
-    Vs = np.logspace(np.log10(lo * (1 + 1e-3) if lo in ends else lo), np.log10(hi * (1 - 1e-3) if hi in ends else hi), 10)
+    lo, hi = (lo * (1 + 1e-3) if lo in ends else lo), (hi * (1 - 1e-3) if hi in ends else hi)
+    Vs = np.logspace(np.log10(lo), np.log10(hi), 10)
     vals = [np.broadcast_to(np.asarray(v, dtype=float), Vs.shape) for v in d.block.argvals(Vs, d.block.resolve())]
     kern = pr.bounded_kernels(d, ["Lambda"], pr._varying(vals))
     X = np.stack([v for v, var in zip(vals, pr._varying(vals), strict=True) if var])
