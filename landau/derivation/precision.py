@@ -294,14 +294,15 @@ def bounded_kernels(d: "Derivation", bases, varying: tuple[bool, ...]):
     from landau.codegen.bounded import BoundedKernels, Unsupported, linearise
     from landau.derivation.linear import w
 
-    closed = d.hopf.closed_form is not None
+    cf = d.hopf.closed_form
+    closed = cf is not None
     key = (tuple(bases), varying, closed)
     cache = d.__dict__.setdefault("_bounded", {})
     if key not in cache:
         formulas = [d.coefficient(n).formula for n in bases]
         try:
-            if closed:
-                kc, W = d.hopf.closed_form
+            if cf is not None:
+                kc, W = cf
                 prog = linearise([kc, W, *formulas], d.args, varying, d.jets.atoms,
                                  given={w: ("sqrt", 1), d.k: ("same", 0)})
                 prog.gate = (prog.outs[0], prog.outs[1])
