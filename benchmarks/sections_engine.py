@@ -111,7 +111,9 @@ def section_lambda(quick: bool) -> None:
             _, t_eng = cpu_time(lambda: d.evaluate(Vs, {}, ["Lambda"]), repeat=2, min_time=0.0)
             row = {"law": name, "points": n, "engine pts/s": n / t_eng, "first call pts/s": first,
                    "compile s": compile_s,
-                   "double-double points": stats["dd"] if stats["f64"] else "— (exact rational route)",
+                   "double-double points": stats["dd"] if stats["f64"] else (
+                       "— (exact rational route)" if d.hopf.closed_form is not None else
+                       "— (numeric Hopf line: long double screen)"),
                    "left to mpmath": stats["left"] if stats["f64"] else 0}
             if d.hopf.closed_form is not None and d.block.law.name in LAWS:
                 _, t_gen = cpu_time(lambda: d.evaluate(Vs, {}, ["Lambda"], method="general"), repeat=1, min_time=0.0)

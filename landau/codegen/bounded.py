@@ -247,6 +247,7 @@ class Encoded:
     var: np.ndarray         # int64 0/1: depends on a varying argument
     outs: np.ndarray        # int64 output slots
     gate: np.ndarray        # int64 (k_c slot, ω_c² slot) or (−1, −1)
+    cone: np.ndarray        # int64 (outputs × slots) 0/1: the slots an output depends on
 
 
 def encode(prog: Program) -> Encoded:
@@ -279,8 +280,14 @@ def encode(prog: Program) -> Encoded:
         else:
             kind[i] = _KIND[val]
     gate = np.array(prog.gate if prog.gate is not None else (-1, -1), dtype=np.int64)
+    cone = np.zeros((len(prog.outs), n), dtype=np.int64)
+    for q, top in enumerate(prog.outs):
+        cone[q, top] = 1
+        for i in range(top, -1, -1):
+            if cone[q, i]:
+                cone[q, list(prog.ops[i][2])] = 1
     return Encoded(kind, off, cnt, np.array(args or [0], dtype=np.int64), ival, fhi, flo, cerr, cerr_dd,
-                   np.array(prog.varying, dtype=np.int64), np.array(prog.outs, dtype=np.int64), gate)
+                   np.array(prog.varying, dtype=np.int64), np.array(prog.outs, dtype=np.int64), gate, cone)
 
 
 @nb.njit(**_F)
@@ -506,7 +513,7 @@ def _index(outs, s):
 
 
 @nb.njit(**_F)
-def run_f64(kind, off, cnt, args, ival, fhi, cerr, var, outs, gate, X, Q, out, rb):
+def run_f64(kind, off, cnt, args, ival, fhi, cerr, var, outs, gate, cone, X, Q, out, rb):
     """Every output in float64 with the first-order error bound Σᵢ |∂y/∂zᵢ|·Lᵢ over the slots zᵢ
     (Lᵢ: the bound on the rounding of slot i itself; ∂y/∂zᵢ by reverse accumulation), the
     linearised a-posteriori bound of Higham (2002), Sec. 3.3; blocks of :data:`BLOCK` points."""
@@ -530,14 +537,18 @@ def run_f64(kind, off, cnt, args, ival, fhi, cerr, var, outs, gate, X, Q, out, r
         for q in range(outs.size):
             top = outs[q]
             for i in range(top + 1):
-                for j in range(m):
-                    adj[i, j] = 0.0
+                if cone[q, i] != 0:
+                    for j in range(m):
+                        adj[i, j] = 0.0
             for j in range(m):
                 adj[top, j] = 1.0
                 bnd[q, j] = 0.0
             for i in range(top, -1, -1):
-                for j in range(m):
-                    bnd[q, j] += abs(adj[i, j]) * L[i, j]
+                if cone[q, i] == 0:
+                    continue
+                if kind[i] != K_IN and kind[i] != K_NEG and kind[i] != K_ABS and kind[i] != K_SIGN:
+                    for j in range(m):
+                        bnd[q, j] += abs(adj[i, j]) * L[i, j]
                 _rev64(i, kind[i], off, cnt, args, ival, v, adj, m)
         _finish(outs, gate, v, bnd, out, rb, start, m)
 
@@ -676,7 +687,7 @@ class BoundedKernels:
     def f64(self, X, Q):
         X, Q, out, rb = self._prep(X, Q)
         c = self.enc
-        run_f64(c.kind, c.off, c.cnt, c.args, c.ival, c.fhi, c.cerr, c.var, c.outs, c.gate, X, Q, out, rb)
+        run_f64(c.kind, c.off, c.cnt, c.args, c.ival, c.fhi, c.cerr, c.var, c.outs, c.gate, c.cone, X, Q, out, rb)
         return out, rb
 
     def dd(self, X, Q):
