@@ -44,12 +44,13 @@ from landau.codegen import ddarith
 U = 2.0 ** -53
 #: rounding allowed for a C-library elementary function (exp, log, pow, asinh, …): two ulps
 U_LIBM = 4 * U
-_F = {"error_model": "numpy", "cache": True, "nogil": True}
+#: IEEE semantics (never fastmath), NaN/inf instead of exceptions, cached on disk
+_jit = nb.njit(cache=True, error_model="numpy", nogil=True)
 _INF = math.inf
 
 
 # --- the propagation of one operation's bound in double-double -----------------------------------
-@nb.njit(**_F)
+@_jit
 def b_pow(ax, ex, az, r, rnd):
     """Bound on |x|^p, |p| = r: with ρ = e_x/|x̂| and s = rρ/(1 − ρ) ≥ −r log(1 − ρ), the relative
     change (1 − ρ)^(−r) − 1 ≤ s/(1 − s); plus the rounding rnd·|ẑ|."""
@@ -62,7 +63,7 @@ def b_pow(ax, ex, az, r, rnd):
     return az * (s / (1.0 - s) + rnd)
 
 
-@nb.njit(**_F)
+@_jit
 def b_exp(ex, az, rnd):
     """Bound on e^x: |ẑ|(e^{e_x} − 1 + rnd), e^t − 1 ≤ t/(1 − t)."""
     if not ex < 1.0:
@@ -70,7 +71,7 @@ def b_exp(ex, az, rnd):
     return az * (ex / (1.0 - ex) + rnd)
 
 
-@nb.njit(**_F)
+@_jit
 def b_log(ax, ex, az, rnd, rnd_abs):
     """Bound on log x: −log(1 − ρ) ≤ ρ/(1 − ρ), ρ = e_x/|x̂|; plus rnd·|ẑ| + rnd_abs."""
     if not ex < ax:
@@ -79,7 +80,7 @@ def b_log(ax, ex, az, rnd, rnd_abs):
     return rho / (1.0 - rho) + rnd * az + rnd_abs
 
 
-@nb.njit(**_F)
+@_jit
 def b_asinh(ax, ex, az, rnd, rnd_abs):
     """Bound on asinh x: e_x times the largest slope 1/√(1 + m²), m = max(|x̂| − e_x, 0)."""
     m = ax - ex
@@ -88,7 +89,7 @@ def b_asinh(ax, ex, az, rnd, rnd_abs):
     return ex / math.sqrt(1.0 + m * m) + rnd * az + rnd_abs
 
 
-@nb.njit(**_F)
+@_jit
 def b_sign(ax, ex):
     return 0.0 if ex < ax else _INF
 
@@ -290,7 +291,7 @@ def encode(prog: Program) -> Encoded:
                    np.array(prog.varying, dtype=np.int64), np.array(prog.outs, dtype=np.int64), gate, cone)
 
 
-@nb.njit(**_F)
+@_jit
 def _fwd64(i, k, off, cnt, args, ival, fhi, cerr, v, L, X, Q, start, m):
     """Slot i in float64 for m points: value v[i], bound on its own rounding L[i]."""
     a0 = args[off[i]]
@@ -401,7 +402,7 @@ def _fwd64(i, k, off, cnt, args, ival, fhi, cerr, v, L, X, Q, start, m):
             L[i, j] = U_LIBM * abs(z)
 
 
-@nb.njit(**_F)
+@_jit
 def _rev64(i, k, off, cnt, args, ival, v, adj, m):
     """Adjoints of slot i's arguments from adj[i] (∂output/∂slot, reverse accumulation)."""
     a0 = args[off[i]]
@@ -474,7 +475,7 @@ def _rev64(i, k, off, cnt, args, ival, v, adj, m):
             adj[a0, j] += adj[i, j] * d
 
 
-@nb.njit(**_F)
+@_jit
 def _finish(outs, gate, v, bnd, out, rb, start, m):
     """Values and relative bounds of the outputs (rb[0]: all, rb[1]: the gate k_c, ω_c²)."""
     for j in range(m):
@@ -504,7 +505,7 @@ def _finish(outs, gate, v, bnd, out, rb, start, m):
         rb[1, start + j] = mg
 
 
-@nb.njit(**_F)
+@_jit
 def _index(outs, s):
     for q in range(outs.size):
         if outs[q] == s:
@@ -512,7 +513,7 @@ def _index(outs, s):
     return 0
 
 
-@nb.njit(**_F)
+@_jit
 def run_f64(kind, off, cnt, args, ival, fhi, cerr, var, outs, gate, cone, X, Q, out, rb):
     """Every output in float64 with the first-order error bound Σᵢ |∂y/∂zᵢ|·Lᵢ over the slots zᵢ
     (Lᵢ: the bound on the rounding of slot i itself; ∂y/∂zᵢ by reverse accumulation), the
@@ -553,7 +554,7 @@ def run_f64(kind, off, cnt, args, ival, fhi, cerr, var, outs, gate, cone, X, Q, 
         _finish(outs, gate, v, bnd, out, rb, start, m)
 
 
-@nb.njit(**_F)
+@_jit
 def _fwd_dd(i, k, off, cnt, args, ival, fhi, flo, cerr, h, lo, e, X, Q, start, m):
     """Slot i in double-double for m points, with its running error bound e[i]."""
     UD, UV, UF = ddarith.UNIT, ddarith.UNIT_DIV, ddarith.UNIT_FUNC
@@ -629,7 +630,7 @@ def _fwd_dd(i, k, off, cnt, args, ival, fhi, flo, cerr, h, lo, e, X, Q, start, m
         h[i, j], lo[i, j], e[i, j] = zh, zl, ez
 
 
-@nb.njit(**_F)
+@_jit
 def _clz(n):
     c = 0
     while n > 0 and c < 64:
@@ -638,7 +639,7 @@ def _clz(n):
     return 64 - c
 
 
-@nb.njit(**_F)
+@_jit
 def run_dd(kind, off, cnt, args, ival, fhi, flo, cerr, var, outs, gate, X, Q, out, rb):
     """Every output in double-double with the running error bound of each operation."""
     ns = kind.size

@@ -35,7 +35,7 @@ UNIT_DIV = 2.0 ** -102
 UNIT_FUNC = 2.0 ** -96
 
 _SPLIT = 134217729.0            # 2^27 + 1 (Veltkamp)
-_opts = {"cache": True, "error_model": "numpy", "nogil": True}
+_jit = nb.njit(cache=True, error_model="numpy", nogil=True)
 
 
 def dd_const(x) -> tuple[float, float]:
@@ -62,27 +62,27 @@ _AS_HI = tuple(c[0] for c in _ASINH)
 _AS_LO = tuple(c[1] for c in _ASINH)
 
 
-@nb.njit(**_opts)
+@_jit
 def two_sum(a, b):
     s = a + b
     bb = s - a
     return s, (a - (s - bb)) + (b - bb)
 
 
-@nb.njit(**_opts)
+@_jit
 def fast_two_sum(a, b):          # |a| ≥ |b| (or a = 0)
     s = a + b
     return s, b - (s - a)
 
 
-@nb.njit(**_opts)
+@_jit
 def split(a):
     c = _SPLIT * a
     hi = c - (c - a)
     return hi, a - hi
 
 
-@nb.njit(**_opts)
+@_jit
 def two_prod(a, b):
     p = a * b
     ah, al = split(a)
@@ -90,7 +90,7 @@ def two_prod(a, b):
     return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
 
 
-@nb.njit(**_opts)
+@_jit
 def dd_add(ah, al, bh, bl):
     s, e = two_sum(ah, bh)
     t, f = two_sum(al, bl)
@@ -100,28 +100,28 @@ def dd_add(ah, al, bh, bl):
     return fast_two_sum(s, e)
 
 
-@nb.njit(**_opts)
+@_jit
 def dd_add_d(ah, al, b):
     s, e = two_sum(ah, b)
     e += al
     return fast_two_sum(s, e)
 
 
-@nb.njit(**_opts)
+@_jit
 def dd_mul(ah, al, bh, bl):
     p, e = two_prod(ah, bh)
     e += ah * bl + al * bh
     return fast_two_sum(p, e)
 
 
-@nb.njit(**_opts)
+@_jit
 def dd_mul_d(ah, al, b):
     p, e = two_prod(ah, b)
     e += al * b
     return fast_two_sum(p, e)
 
 
-@nb.njit(**_opts)
+@_jit
 def dd_div(ah, al, bh, bl):
     q1 = ah / bh
     ph, pl = dd_mul_d(bh, bl, q1)
@@ -134,12 +134,12 @@ def dd_div(ah, al, bh, bl):
     return dd_add_d(q1, q2, q3)
 
 
-@nb.njit(**_opts)
+@_jit
 def dd_recip(ah, al):
     return dd_div(1.0, 0.0, ah, al)
 
 
-@nb.njit(**_opts)
+@_jit
 def dd_sqrt(ah, al):
     if not ah > 0.0:
         return math.sqrt(ah), 0.0          # 0 → 0, negative or NaN → NaN
@@ -150,7 +150,7 @@ def dd_sqrt(ah, al):
     return two_sum(ax, dh * x * 0.5)
 
 
-@nb.njit(**_opts)
+@_jit
 def dd_powi(ah, al, n):
     """(hi, lo)ⁿ for an integer n ≥ 1, by binary powering."""
     rh, rl = 1.0, 0.0
@@ -164,7 +164,7 @@ def dd_powi(ah, al, n):
     return rh, rl
 
 
-@nb.njit(**_opts)
+@_jit
 def dd_exp(ah, al):
     if ah > 709.78:
         return math.inf, 0.0
@@ -197,7 +197,7 @@ def dd_exp(ah, al):
     return math.ldexp(sh, int(k)), math.ldexp(sl, int(k))
 
 
-@nb.njit(**_opts)
+@_jit
 def dd_log(ah, al):
     if not ah > 0.0 or ah == math.inf:
         return math.log(ah) if ah >= 0.0 else math.nan, 0.0
@@ -208,7 +208,7 @@ def dd_log(ah, al):
     return dd_add_d(th, tl, x)
 
 
-@nb.njit(**_opts)
+@_jit
 def dd_pow(ah, al, yh, yl):
     """a^y = exp(y log a), a > 0."""
     lh, ll = dd_log(ah, al)
@@ -216,7 +216,7 @@ def dd_pow(ah, al, yh, yl):
     return dd_exp(th, tl)
 
 
-@nb.njit(**_opts)
+@_jit
 def dd_asinh(ah, al):
     neg = ah < 0.0
     if neg:
