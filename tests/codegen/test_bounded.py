@@ -131,3 +131,39 @@ def test_law_bounds_hold_for_lambda(name):
                 assert err <= 1.01 * rb[0, 0] + 2.0 ** -53, (mode, V0, key, err, rb[0, 0])
                 if mode == "dd":
                     assert rb[0, 0] <= 1e-15, (V0, rb[0, 0])
+
+
+def _lambda_worst(name: str, n: int) -> tuple[float, int]:
+    from vw_ranges import vw_range
+
+    from landau.derivation.multiscale import derive
+    from landau.laws import get_law
+    from landau.systems.system import SpringBlock
+
+    d = derive(SpringBlock(get_law(name)), ["Lambda"])
+    lo, hi, ends = vw_range(name)
+    lo, hi = (lo * (1 + 1e-3) if lo in ends else lo), (hi * (1 - 1e-3) if hi in ends else hi)
+    Vs = np.logspace(np.log10(lo), np.log10(hi), n)
+    got = d.evaluate(Vs, {}, ["Lambda"])["Lambda"]
+    want = [d.evaluate_mp(float(V0), {}, ["Lambda"], dps=40)["Lambda"] for V0 in Vs]
+    errs = [float(abs(g - w) / abs(w)) for g, w in zip(got, want, strict=True)]
+    return max(errs), sum(e > 1e-10 for e in errs)
+
+
+LAWS6 = ("dieterich", "ruina", "spinodal", "modified-dieterich", "nanoscale", "micron-scale")
+
+
+@pytest.mark.parametrize("name", LAWS6)
+def test_every_law_lambda_within_1e_10_of_40_digits_small_sample(name):
+    """The default route (bounded float64, double-double, exact rational form) on 8 log-spaced
+    velocities of each one-state law's velocity-weakening range: within 1e-10 of 40 digits."""
+    worst, bad = _lambda_worst(name, 8)
+    assert bad == 0, worst
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", LAWS6)
+def test_every_law_lambda_within_1e_10_of_40_digits_1000_points(name):
+    """The same on 1000 points (the benchmark's sample; ~5–20 CPU-s a law)."""
+    worst, bad = _lambda_worst(name, 1000)
+    assert bad == 0, worst
