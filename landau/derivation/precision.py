@@ -83,6 +83,10 @@ MP_WARN = 2_000
 #: :data:`REL_GOOD`, a margin for the rounding of the bound itself and for the second-order
 #: terms it leaves out
 REL_BOUND = 0.5 * REL_GOOD
+#: points from which a batch takes the bounded route: below, the numpy route (float32 screen, long
+#: double) costs less than the one-time compilation of the interpreters (~3–5 CPU-s per machine,
+#: then loaded from numba's disk cache) that a single command would otherwise pay
+BOUNDED_MIN = 1_000
 #: points through the bounded kernels in this process: all of them (float64), those again in
 #: double-double, and those left in doubt after it (read by the benchmark and the tests)
 BOUNDED_STATS = {"f64": 0, "dd": 0, "left": 0}
@@ -350,7 +354,9 @@ def bounded_route(d: "Derivation", Vs, vals, shape, bases, p, exact: bool, sign_
     doubt (near a zero of a coefficient closer than ~1e-21 relative, Λ ≡ 0) is taken from
     the exactly cancelled form where it exists and is worth it (as in :func:`screened_route`),
     else by :func:`refine_mpmath`.  None (another route is taken) where the formulas use an
-    operation without a bounded form."""
+    operation without a bounded form, and for batches below :data:`BOUNDED_MIN` points."""
+    if int(np.prod(shape)) < BOUNDED_MIN:
+        return None
     varying = _varying(vals)
     kern = bounded_kernels(d, bases, varying)
     if kern is None:
