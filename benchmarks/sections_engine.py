@@ -1,8 +1,9 @@
 """Engine sections: Λ(V) throughput and accuracy, derivation cost against the number of states.
 
-* ``lambda`` — Λ(V) of every built-in one-state law: throughput of ``Derivation.evaluate`` on
-  one thread against ``sympy.lambdify(cse=True)`` of the same expression, the first call, and
-  the error of 1000 points against 50-digit mpmath.
+* ``lambda`` — Λ(V) of every built-in law: throughput of ``Derivation.evaluate`` on one thread
+  against the previous route and ``sympy.lambdify(cse=True)`` compiled by ``numba.vectorize``,
+  the first call, the points the float64 bound sends to double-double, and the error of 1000
+  points (plus the floats around each zero of Λ) against 40-digit mpmath.
 * ``derive`` — derivation + compile CPU time of Dieterich-type laws with 1…6 state variables
   (fresh interpreter each), with the growth exponent; ``--baseline-derive`` adds the direct
   routes (numeric conversion of symbolic pivots, Berkowitz determinant) for comparison.
@@ -18,73 +19,140 @@ from pathlib import Path
 import numpy as np
 from benchlib import RAW, TABLES, Goal, cpu_time, report, table
 
-
 # --------------------------------------------------------------------------------------------
 # Λ(V) (goal 5)
-def section_lambda(quick: bool) -> None:
-    import mpmath
+#: points of the two-state law (numeric Hopf line, solved point by point): far fewer
+N_NUMERIC = 2_000
+
+
+def _numba_lambdify(d):
+    """The peer: ``sympy.lambdify(args, Λ(V), "math", cse=True)`` compiled by ``numba.vectorize``
+    (one fused compiled loop over the points); None for a law without a closed-form Λ(V)."""
+    import numba
     import sympy as sp
 
+    if d.hopf.closed_form is None:
+        return None
+    fn = sp.lambdify(list(d.block.args), d.coefficient("Lambda").expr, modules="math", cse=True)
+    sig = numba.float64(*([numba.float64] * len(d.block.args)))
+    return numba.vectorize([sig])(fn)
+
+
+def _zeros_of(d, Vs, lam) -> list[float]:
+    """Float velocities at each sign change of Λ on the grid (bisected to adjacent floats), with
+    their neighbours 1, 10, 10³, 10⁶ ulps away: where relative error is hardest."""
+    out = []
+    s = np.sign(lam)
+    for i in np.flatnonzero((s[:-1] * s[1:] < 0) & np.isfinite(lam[:-1]) & np.isfinite(lam[1:]))[:4]:
+        a, b = Vs[i], Vs[i + 1]
+        sa = s[i]
+        for _ in range(200):
+            m = 0.5 * (a + b)
+            if m in (a, b):
+                break
+            sm = np.sign(d.evaluate_mp(float(m), {}, ["Lambda"], dps=40)["Lambda"])
+            a, b = (m, b) if sm == sa else (a, m)
+        for k in (0, 1, 10, 1_000, 1_000_000):
+            out += [a - k * np.spacing(a), b + k * np.spacing(b)]
+    return out
+
+
+def _accuracy(d, Vc, peer=None) -> tuple[float, int, int, float]:
+    """(largest relative error of Λ against 40-digit mpmath, points off by > 1e-10, points, the
+    peer's largest relative error on the same points)."""
+    got = d.evaluate(Vc, {}, ["Lambda"])["Lambda"]
+    theirs = np.full(Vc.shape, np.nan)
+    if peer is not None:
+        with np.errstate(all="ignore"):
+            theirs = np.asarray(peer(*d.block.argvals(Vc, d.block.resolve())), dtype=float)
+    errs, errs_peer = [], []
+    for V0, g, t in zip(Vc, got, theirs, strict=True):
+        want = d.evaluate_mp(float(V0), {}, ["Lambda"], dps=40)["Lambda"]
+        if not np.isfinite(g) and want != want:
+            continue
+        errs.append(float(abs(g - want) / abs(want)) if want != 0 else abs(g))
+        errs_peer.append(float(abs(t - want) / abs(want)) if want != 0 else abs(t))
+    e = np.array(errs)
+    return float(e.max()), int((e > 1e-10).sum()), len(e), float(np.max(errs_peer))
+
+
+def section_lambda(quick: bool) -> None:
     import landau.derivation.multiscale as ms
-    from landau.laws import get_law
+    import landau.derivation.precision as pr
+    from landau.laws import BUILTIN, get_law
     from landau.systems.system import SpringBlock
 
     sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
-    from vw_ranges import LAWS, vw_range
+    from vw_ranges import LAWS, OPEN_WINDOW, vw_range
 
-    workers = ms._WORKERS
-    ms._WORKERS = 1                     # single-threaded, like the lambdify baseline
+    workers = pr.WORKERS
+    pr.WORKERS = 1                      # single-threaded, like the peers
     n_points = 200_000 if quick else 1_000_000
     rows = []
     try:
-        for name in LAWS:
-            lo, hi, ends = vw_range(name)
-            lo, hi = (lo * (1 + 1e-3) if lo in ends else lo), (hi * (1 - 1e-3) if hi in ends else hi)
-            Vs = np.logspace(np.log10(lo), np.log10(hi), n_points)
+        for name in BUILTIN:
+            if name in LAWS:
+                lo, hi, ends = vw_range(name)
+                lo, hi = (lo * (1 + 1e-3) if lo in ends else lo), (hi * (1 - 1e-3) if hi in ends else hi)
+            else:
+                lo, hi = OPEN_WINDOW
             d = ms.derive(SpringBlock(get_law(name)), ["Lambda"])
+            n = n_points if d.hopf.closed_form is not None else N_NUMERIC
+            Vs = np.logspace(np.log10(lo), np.log10(hi), n)
             t0 = time.process_time()
             d.evaluate(Vs[:10], {}, ["Lambda"])
             compile_s = time.process_time() - t0
+            for k in pr.BOUNDED_STATS:
+                pr.BOUNDED_STATS[k] = 0
             t0 = time.process_time()
-            d.evaluate(Vs, {}, ["Lambda"])
-            first = n_points / (time.process_time() - t0)
-            _, t_eng = cpu_time(lambda: d.evaluate(Vs, {}, ["Lambda"]), repeat=2)
-            block = d.block
-            p = block.resolve()
-            expr = d.coefficient("Lambda").expr
-            args = list(block.args)
-            fn = sp.lambdify(args, expr, modules="numpy", cse=True)
-            vals = block.argvals(Vs, p)
-            with np.errstate(all="ignore"):
-                _, t_lam = cpu_time(lambda: fn(*vals), repeat=2)
-            # accuracy: 1000 log-spaced points against the 50-digit evaluation
-            Vc = np.logspace(np.log10(lo), np.log10(hi), 1000)
-            got = d.evaluate(Vc, {}, ["Lambda"])["Lambda"]
-            errs = []
-            for V0, g in zip(Vc, got, strict=True):
-                with mpmath.workdps(50):
-                    want = d.evaluate_mp(float(V0), {}, ["Lambda"], dps=50)["Lambda"]
-                errs.append(float(abs(g - want) / abs(want)) if want != 0 else abs(g))
-            errs = np.array(errs)
-            rows.append({"law": name, "engine pts/s": n_points / t_eng,
-                         "lambdify(cse) pts/s": n_points / t_lam,
-                         "first call pts/s": first, "compile s": compile_s, "max rel err": float(errs.max()),
-                         "points > 1e-10": int((errs > 1e-10).sum())})
-            r = rows[-1]
-            print(f"  {name:20s} engine {r['engine pts/s']:.3g}/s  "
-                  f"lambdify {r['lambdify(cse) pts/s']:.3g}/s  first "
-                  f"{first:.3g}/s  max err {r['max rel err']:.2g} ({r['points > 1e-10']} > 1e-10)", flush=True)
-            report(Goal("lambda", "5", f"Λ(V) {name}: engine / lambdify(cse=True) throughput (1 thread)",
-                        r["engine pts/s"] / r["lambdify(cse) pts/s"], 1.0))
-            report(Goal("lambda", "5", f"Λ(V) {name}: engine points/s (1 thread)", r["engine pts/s"], 1e6))
-            report(Goal("lambda", "5", f"Λ(V) {name}: points off 50-digit mpmath by > 1e-10 (of 1000)",
-                        float(r["points > 1e-10"]), 0.0, "<="))
+            lam = d.evaluate(Vs, {}, ["Lambda"])["Lambda"]
+            first = n / (time.process_time() - t0)
+            stats = dict(pr.BOUNDED_STATS)
+            _, t_eng = cpu_time(lambda: d.evaluate(Vs, {}, ["Lambda"]), repeat=2, min_time=0.0)
+            row = {"law": name, "points": n, "engine pts/s": n / t_eng, "first call pts/s": first,
+                   "compile s": compile_s,
+                   "double-double points": stats["dd"] if stats["f64"] else (
+                       "— (exact rational route)" if d.hopf.closed_form is not None else
+                       "— (numeric Hopf line: long double screen)"),
+                   "left to mpmath": stats["left"] if stats["f64"] else 0}
+            if d.hopf.closed_form is not None and d.block.law.name in LAWS:
+                _, t_gen = cpu_time(lambda: d.evaluate(Vs, {}, ["Lambda"], method="general"), repeat=1, min_time=0.0)
+                row["float32-screen + long double route pts/s"] = n / t_gen
+            peer = _numba_lambdify(d)
+            if peer is not None:
+                vals = d.block.argvals(Vs, d.block.resolve())
+                peer(*[np.ravel(v)[:10] if np.ndim(v) else v for v in vals])       # compiled before timing
+                with np.errstate(all="ignore"):
+                    _, t_lam = cpu_time(lambda: peer(*vals), repeat=2, min_time=0.0)
+                row["numba-lambdify pts/s"] = n / t_lam
+            # accuracy: 1000 log-spaced points plus the floats at and around each zero of Λ
+            Vc = np.concatenate([np.logspace(np.log10(lo), np.log10(hi), 1000), _zeros_of(d, Vs, lam)])
+            (row["max rel err (40 digits)"], row["points > 1e-10"], row["points checked"],
+             peer_err) = _accuracy(d, Vc, peer)
+            if peer is not None:
+                row["numba-lambdify max rel err"] = peer_err
+            rows.append(row)
+            print("  " + ", ".join(f"{k} {v:.3g}" if isinstance(v, float) else f"{k} {v}" for k, v in row.items()),
+                  flush=True)
+            if "numba-lambdify pts/s" in row:
+                report(Goal("lambda", "5", f"Λ(V) {name}: engine / numba-lambdify throughput (1 thread)",
+                            row["engine pts/s"] / row["numba-lambdify pts/s"], 1.0))
+            report(Goal("lambda", "5", f"Λ(V) {name}: engine points/s (1 thread)", row["engine pts/s"], 2e6))
+            report(Goal("lambda", "5", f"Λ(V) {name}: points off 40-digit mpmath by > 1e-10 "
+                        f"(of {row['points checked']})", float(row["points > 1e-10"]), 0.0, "<="))
     finally:
-        ms._WORKERS = workers
+        pr.WORKERS = workers
     RAW["lambda"] = rows
-    TABLES["lambda"] = (f"Λ(V) over {n_points:.0e} log-spaced V in the velocity-weakening range, one thread, CPU "
-                        "time (best of 2); first call includes no compilation (compile s is separate).\n\n"
-                        + table(rows, list(rows[0]) if rows else []))
+    TABLES["lambda"] = (
+        f"Λ(V) over {n_points:.0e} log-spaced V in the velocity-weakening range ({N_NUMERIC} for the two-state law, "
+        "whose Hopf line is solved point by point), one thread, CPU time (best of 2; the first call and the "
+        "compilation separately).  Route: the exactly cancelled form for the laws rational in V; else float64 with "
+        "a first-order error bound, the points it does not certify to 5e-11 again in double-double "
+        "(`landau.codegen.bounded`), the rest with mpmath.  Peers in the same run: the previous route "
+        "(float32 screen, numpy long double, mpmath) and `sympy.lambdify(cse=True)` compiled by `numba.vectorize` "
+        "(no accuracy guarantee).  Accuracy: 1000 log-spaced points plus the floats at each zero of Λ and 1, 10, "
+        "10³, 10⁶ ulps either side (a true zero, Λ = 0 exactly at a float V, would count its absolute value).\n\n"
+        + table(rows, list(dict.fromkeys(k for r in rows for k in r)) if rows else []))
 
 
 # --------------------------------------------------------------------------------------------

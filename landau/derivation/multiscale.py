@@ -408,13 +408,17 @@ class Derivation:
         vals = [np.broadcast_to(np.asarray(x, dtype=float), shape) for x in vals]
         bases = [n for n in _with_bases(names) if n not in ("kc", "omega_c") and n not in DERIVED]
         closed = self.hopf.closed_form is not None
-        forms = None
+        forms = raw = None
         if closed and not arr and method != "general" and (
                 method == "rational" or Vs.size >= precision.RATIONAL_DIRECT or precision.has_rational(self, bases, p)):
             forms = precision.rational_forms(self, bases, p)
             if forms is None and method == "rational":
                 raise InputError(f"{self.block.law.name}: the derivatives at steady sliding are not rational in V")
-        if forms is not None:
+        if forms is None and closed and method == "auto":   # float64 with an error bound, double-double where needed
+            raw = precision.bounded_route(self, Vs, vals, shape, bases, p, not arr, sign_only)
+        if raw is not None:
+            pass
+        elif forms is not None:
             raw = precision.exact_rational_route(self, Vs, shape, bases, forms)
         elif closed:
             raw = precision.screened_route(self, Vs, vals, shape, bases, p, not arr, sign_only)

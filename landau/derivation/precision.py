@@ -79,6 +79,17 @@ EXT_GAIN = 16.0
 SIGN_GAIN = 60.0
 #: points settled by mpmath in one call from which the cost (~1 ms a point) deserves a warning
 MP_WARN = 2_000
+#: relative error bound below which a value of the bounded kernels is certified: half of
+#: :data:`REL_GOOD`, a margin for the rounding of the bound itself and for the second-order
+#: terms it leaves out
+REL_BOUND = 0.5 * REL_GOOD
+#: points from which a batch takes the bounded route: below, the numpy route (float32 screen, long
+#: double) costs less than the one-time compilation of the interpreters (~3–5 CPU-s per machine,
+#: then loaded from numba's disk cache) that a single command would otherwise pay
+BOUNDED_MIN = 1_000
+#: points through the bounded kernels in this process: all of them (float64), those again in
+#: double-double, and those left in doubt after it (read by the benchmark and the tests)
+BOUNDED_STATS = {"f64": 0, "dd": 0, "left": 0}
 
 _warned: set[tuple[str, str]] = set()
 
@@ -278,6 +289,94 @@ def numeric_hopf_route(d: "Derivation", Vs, vals, shape, bases, p, sign_only: bo
         _no_extended(d.block.law.name, int(np.sum(np.isfinite(values["kc"]))))
     doubtful &= np.isfinite(values["kc"])
     return Raw(values, doubtful, np.zeros(shape, dtype=bool))
+
+
+def bounded_kernels(d: "Derivation", bases, varying: tuple[bool, ...]):
+    """The running-error-bound kernels (:mod:`landau.codegen.bounded`) of k_c, ω_c² (closed form)
+    and the coefficients ``bases`` for this pattern of varying arguments, made once per
+    derivation; None where an operation has no bounded form."""
+    from landau.codegen.bounded import BoundedKernels, Unsupported, linearise
+    from landau.derivation.linear import w
+
+    cf = d.hopf.closed_form
+    closed = cf is not None
+    key = (tuple(bases), varying, closed)
+    cache = d.__dict__.setdefault("_bounded", {})
+    if key not in cache:
+        formulas = [d.coefficient(n).formula for n in bases]
+        try:
+            if cf is not None:
+                kc, W = cf
+                prog = linearise([kc, W, *formulas], d.args, varying, d.jets.atoms,
+                                 given={w: ("sqrt", 1), d.k: ("same", 0)})
+                prog.gate = (prog.outs[0], prog.outs[1])
+            else:
+                prog = linearise(formulas, [w, d.k, *d.args], (True, True, *varying), d.jets.atoms)
+            cache[key] = BoundedKernels(prog)
+        except Unsupported as exc:
+            logger.debug("%s: no bounded kernel (%s)", d.block.law.name, exc)
+            cache[key] = None
+    return cache[key]
+
+
+def _varying(inputs) -> tuple[bool, ...]:
+    """Which arguments vary over the points (a scalar broadcast to the shape has zero strides)."""
+    return tuple(np.ndim(x) > 0 and any(np.asarray(x).strides) and np.size(x) > 1 for x in inputs)
+
+
+def _run_bounded(kern, inputs: Sequence[np.ndarray], size: int, sign_only: bool):
+    """Values (outputs × points), the relative bounds (2 × points) and the points still in doubt:
+    float64 with its running bound, the points above :data:`REL_BOUND` again in double-double."""
+    varying = _varying(inputs)
+    X = np.stack([np.ravel(x) for x, var in zip(inputs, varying, strict=True) if var]) if any(varying) \
+        else np.empty((0, size))
+    Q = np.array([0.0 if var else float(np.ravel(x)[0]) for x, var in zip(inputs, varying, strict=True)])
+    out, rb = kern.f64(X, Q)
+    flag = ~(rb[0] <= REL_BOUND)
+    if flag.any() and kern.dd_ok:
+        idx = np.flatnonzero(flag)
+        out2, rb2 = kern.dd(X[:, idx], Q)
+        out[:, idx], rb[:, idx] = out2, rb2
+        flag[idx] = ~(rb2[0] <= REL_BOUND)
+        BOUNDED_STATS["dd"] += idx.size
+    BOUNDED_STATS["f64"] += size
+    BOUNDED_STATS["left"] += int(flag.sum())
+    if sign_only:
+        flag &= ~(rb[0] < 1.0)
+    return out, rb, flag
+
+
+def bounded_route(d: "Derivation", Vs, vals, shape, bases, p, exact: bool, sign_only: bool) -> Raw | None:
+    """A closed-form Hopf line in float64 with a running error bound, the points it does not
+    certify to :data:`REL_BOUND` in compiled double-double (:mod:`landau.codegen.bounded`).
+
+    The default route of ``method="auto"``.  What the double-double bound still leaves in
+    doubt (near a zero of a coefficient closer than ~1e-21 relative, Λ ≡ 0) is taken from
+    the exactly cancelled form where it exists and is worth it (as in :func:`screened_route`),
+    else by :func:`refine_mpmath`.  None (another route is taken) where the formulas use an
+    operation without a bounded form, and for batches below :data:`BOUNDED_MIN` points."""
+    if int(np.prod(shape)) < BOUNDED_MIN:
+        return None
+    varying = _varying(vals)
+    kern = bounded_kernels(d, bases, varying)
+    if kern is None:
+        return None
+    size = int(np.prod(shape))
+    out, rb, flag = _run_bounded(kern, vals, size, sign_only)
+    values = {"kc": out[0].reshape(shape), "W": out[1].reshape(shape)}
+    values.update({n: out[2 + j].reshape(shape) for j, n in enumerate(bases)})
+    doubtful = flag.reshape(shape)
+    degenerate = np.zeros(shape, dtype=bool)
+    rest = doubtful & (rb[1] <= REL_BOUND).reshape(shape) & (values["kc"] > 0) & (values["W"] > 0)
+    if bases and exact and (rest.sum() >= RATIONAL_MIN or (rest.any() and has_rational(d, bases, p))):
+        forms = rational_forms(d, bases, p)
+        if forms is not None:
+            sub = forms.evaluate(np.broadcast_to(Vs, shape)[rest], bases, REL_GOOD)
+            for n in bases:
+                values[n][rest] = sub[n]
+            doubtful &= ~rest
+            degenerate = rest & bool("Lambda" in forms and forms["Lambda"].identically_zero)
+    return Raw(values, doubtful, degenerate)
 
 
 # --- mpmath ----------------------------------------------------------------------------------
