@@ -160,6 +160,28 @@ def mode_coupling_hopf(setup: Setup):
     return flutter_hopf(mc, hp, setup.option("bracket"))
 
 
+def mode_coupling_cycles(setup: Setup):
+    """The cycles of the smooth sliding motion (contact closed, v0 − ẋ > 0) from the damped flutter's Hopf
+    point (:func:`mode_coupling_hopf`); an undamped mode-coupling onset has no cycle branch to start
+    (two imaginary pairs collide: no amplitude equation) and is refused with an InputError.  A cycle is
+    the model's motion only while the contact stays closed and the slip positive: the branch says
+    nothing past a contact loss or a stick."""
+    from landau.analyses.cycle_problems import cycle_problem
+
+    result = mode_coupling_hopf(setup)
+    hp = _hopf_parameter(setup)
+    if getattr(result, "extra", {}).get("kind") != "hopf":
+        raise InputError(f"mode-coupling: the onset in {hp!r} is an undamped mode coupling (no Hopf point with an "
+                         "amplitude equation): no branch of cycles starts there; give damping (c1, c2 > 0)")
+    if setup.option("friction") is not None and hp not in setup.params and \
+            hp not in {p.name for p in _declare(setup) if p.default is not None}:
+        from dataclasses import replace
+
+        setup = replace(setup, params={**setup.params, hp: 0.3})
+    system = system_of(setup).with_value(hp, result.p_c).sliding_system(hp)
+    return cycle_problem(system, dict(system.defaults), result, name="mode-coupling")
+
+
 def _simulate(setup: Setup, **kw):
     """The non-smooth run (:func:`landau.verify.modecoupling.run.simulate`)."""
     from landau.verify.modecoupling.run import simulate
@@ -183,6 +205,7 @@ MODE_COUPLING = Model(
     hopf_parameter=_hopf_parameter,
     hopf=mode_coupling_hopf,
     simulate=_simulate,
+    cycles=mode_coupling_cycles,
     check=_check,
     options=(Option("friction", "friction coefficient mu(v) of the sliding velocity v = v0 - xdot > 0 (default the "
                                 "constant mu)"),
@@ -201,4 +224,4 @@ MODE_COUPLING = Model(
     source="Hoffmann et al. (2002); Hoffmann & Gaul (2003)",
 )
 
-__all__ = ["MODE_COUPLING", "mode_coupling_hopf", "system_of"]
+__all__ = ["MODE_COUPLING", "mode_coupling_cycles", "mode_coupling_hopf", "system_of"]
