@@ -269,11 +269,13 @@ class Model:
         """True where the model runs the sweep task (or offering) ``task``."""
         if task == "hopf":
             return self.hopf is not None
+        if task == "cycles" and "cycles" not in self.tasks:
+            return self.cycles is not None
         return task in self.tasks
 
     def offered(self) -> tuple[str, ...]:
         """The sweep tasks this model runs."""
-        return tuple(t for t in dict.fromkeys(("hopf", *self.tasks)) if self.offers(t))
+        return tuple(t for t in dict.fromkeys(("hopf", *self.tasks, "cycles")) if self.offers(t))
 
     def __repr__(self) -> str:
         return f"Model({self.name!r}, law={self.law_kind.value}, offers={list(self.offered())})"
