@@ -87,6 +87,8 @@ def test_spring_block_law_with_two_states():
                                          "parameter": "mu", "equilibrium": {"x": "0", "y": "0"},
                                          "bracket": (-1, 1)})),
     ("mode-coupling", Setup(None, {})),
+    ("impact-oscillator", Setup(None, {})),
+    ("galvanetto-one-block", Setup(None, {"V": 0.3})),
 ])
 def test_declarations_of_the_other_models(model, setup):
     pr = get(model).cycles(setup)
@@ -101,6 +103,12 @@ def test_system_amplitude_is_the_closed_form():
                                                        "bracket": (-1, 1)}))
     assert pr.hopf.amplitude == pytest.approx(0.5, rel=1e-9) and pr.hopf.side == 1
     assert pr.hopf.omega == pytest.approx(1.0, rel=1e-12)
+
+
+def test_models_without_a_smooth_cycle_problem_declare_none():
+    """The two-block stick–slip model has no smooth Hopf point (its blocks stick), the forced oscillator
+    is forced (its cycles are not born at a Hopf point of an autonomous field)."""
+    assert get("galvanetto-two-blocks").cycles is None and get("forced-oscillator").cycles is None
 
 
 def test_quasi_static_block_is_refused():
