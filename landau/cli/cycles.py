@@ -69,6 +69,8 @@ def run(args) -> dict:
                          f"{', '.join(have)})")
     steps = _int(args.steps, "--steps")
     direction = None if args.direction is None else _int(args.direction, "--direction")
+    if direction not in (None, 1, -1):
+        raise InputError(f"--direction must be +1 or -1, got {args.direction!r}")
     ds = None
     if args.ds is not None:
         from landau.cli.model_args import one_number
