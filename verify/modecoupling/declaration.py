@@ -145,6 +145,13 @@ def mode_coupling_hopf(setup: Setup):
     """The flutter onset of the setup's system (:func:`landau.analyses.flutter.flutter_hopf`)."""
     from landau.analyses.flutter import flutter_hopf
 
+    hp, setup = _hopf_setup(setup)
+    return flutter_hopf(system_of(setup), hp, setup.option("bracket"))
+
+
+def _hopf_setup(setup: Setup) -> tuple[str, Setup]:
+    """The bifurcation parameter and the setup the Hopf analysis builds the system from (a parameter of
+    the friction law as the bifurcation parameter gets a starting value: the scan sets it)."""
     hp = _hopf_parameter(setup)
     if hp is None:
         raise InputError("mode-coupling: name the bifurcation parameter (--parameter NAME)")
@@ -154,10 +161,8 @@ def mode_coupling_hopf(setup: Setup):
     if setup.option("friction") is not None and hp not in {p.name for p in _declare(setup) if p.default is not None}:
         from dataclasses import replace
 
-        # a parameter of the friction law as the bifurcation parameter: a starting value (the scan sets it)
         setup = replace(setup, params={**setup.params, hp: 0.3})
-    mc = system_of(setup)
-    return flutter_hopf(mc, hp, setup.option("bracket"))
+    return hp, setup
 
 
 def mode_coupling_cycles(setup: Setup):
@@ -169,15 +174,10 @@ def mode_coupling_cycles(setup: Setup):
     from landau.analyses.cycle_problems import cycle_problem
 
     result = mode_coupling_hopf(setup)
-    hp = _hopf_parameter(setup)
+    hp, setup = _hopf_setup(setup)
     if getattr(result, "extra", {}).get("kind") != "hopf":
         raise InputError(f"mode-coupling: the onset in {hp!r} is an undamped mode coupling (no Hopf point with an "
                          "amplitude equation): no branch of cycles starts there; give damping (c1, c2 > 0)")
-    if setup.option("friction") is not None and hp not in setup.params and \
-            hp not in {p.name for p in _declare(setup) if p.default is not None}:
-        from dataclasses import replace
-
-        setup = replace(setup, params={**setup.params, hp: 0.3})
     system = system_of(setup).with_value(hp, result.p_c).sliding_system(hp)
     return cycle_problem(system, dict(system.defaults), result, name="mode-coupling")
 
