@@ -7,6 +7,9 @@ one through their ``cycles`` declaration (:class:`landau.models.Model`), and
 :func:`landau.cycles` is the front door by model name.
 """
 
-from landau.periodic.problem import CycleProblem, HopfStart
+from landau.periodic.branch import CycleBranch, EndReason, SpecialPoint
+from landau.periodic.continuation import continue_cycles
+from landau.periodic.problem import CycleProblem, CycleStart, HopfStart
 
-__all__ = ["CycleProblem", "HopfStart"]
+__all__ = ["CycleProblem", "HopfStart", "CycleStart", "CycleBranch", "EndReason", "SpecialPoint",
+           "continue_cycles"]

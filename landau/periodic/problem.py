@@ -137,3 +137,44 @@ class CycleProblem:
     def n(self) -> int:
         """The number of states."""
         return len(self.states)
+
+
+@dataclass(frozen=True)
+class CycleStart:
+    """A cycle to start a branch from: states sampled on a time mesh over one period.
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Times (m,), increasing, spanning one period from ``t[0]`` (the last sample may or may not
+        repeat the first state at ``t[0] + period``).
+    y : numpy.ndarray
+        States (n, m) at ``t``.
+    period : float
+        T, or its guess.
+    p : float
+        The continuation parameter's value.
+    exact : bool
+        True for a computed cycle (a simulation's last period): the corrector starts from it
+        as is; False for a rough guess (a few more damped Newton iterations are allowed).
+    """
+
+    t: np.ndarray
+    y: np.ndarray
+    period: float
+    p: float
+    exact: bool = True
+
+    def __post_init__(self) -> None:
+        t = np.asarray(self.t, dtype=float)
+        y = np.asarray(self.y, dtype=float)
+        if t.ndim != 1 or t.size < 4 or np.any(np.diff(t) <= 0):
+            raise InputError(f"CycleStart: t must be at least 4 increasing times, got shape {t.shape}")
+        if y.ndim != 2 or y.shape[1] != t.size:
+            raise InputError(f"CycleStart: y must be (n, {t.size}) states at the times t, got shape {y.shape}")
+        if not (np.isfinite(self.period) and self.period > 0):
+            raise InputError(f"CycleStart: the period must be positive and finite, got {self.period!r}")
+        if not (np.all(np.isfinite(y)) and np.isfinite(self.p)):
+            raise InputError("CycleStart: the states and the parameter must be finite")
+        object.__setattr__(self, "t", t)
+        object.__setattr__(self, "y", y)
