@@ -61,6 +61,8 @@ class BranchTable:
     stable: np.ndarray
     special: tuple[SpecialPoint, ...]
     hopf: HopfMark | None
+    end: str = ""
+    end_message: str = ""
 
     def first(self, kind: str) -> SpecialPoint | None:
         """The first special point of ``kind`` along the branch (None where there is none)."""
@@ -79,17 +81,34 @@ def hopf_mark(problem) -> HopfMark | None:
     return HopfMark(h.p_c, h.omega, bool(np.all(lam.real < 0)))
 
 
-def branch_table(branch, problem) -> BranchTable:
-    """The :class:`BranchTable` of the engine's branch of cycles of ``problem`` (its columns along the
-    branch and its located special points, read from :meth:`CycleBranch.to_dataset`)."""
-    ds = branch.to_dataset()
-    p = np.asarray(ds[problem.parameter].values, dtype=float)
-    special = tuple(SpecialPoint(str(sp.kind), float(sp.p), float(sp.period), float(sp.amplitude),
-                                 float(getattr(sp, "coefficient", np.nan)))
-                    for sp in getattr(branch, "special", ()))
+def _special_amplitude(branch, sp) -> float:
+    """The half peak-to-peak of the measured state at a located special point: from its located cycle
+    where the engine kept it, else linear in the parameter between the branch points around it."""
+    j = branch.problem.measure
+    if sp.cycle is not None:
+        from landau.periodic.collocation import evaluate
+
+        mesh, Y = sp.cycle
+        y = evaluate(mesh, Y, np.linspace(0.0, 1.0, 8 * (mesh.npts - 1) + 1))[j]
+        return float((y.max() - y.min()) / 2)
+    amp = branch.amplitude
+    i = min(max(int(sp.index), 0), len(branch) - 2)
+    p0, p1 = branch.parameter[i], branch.parameter[i + 1]
+    w = 0.0 if p1 == p0 else (sp.parameter - p0) / (p1 - p0)
+    return float(amp[i] + min(max(w, 0.0), 1.0) * (amp[i + 1] - amp[i]))
+
+
+def branch_table(branch, problem=None) -> BranchTable:
+    """The :class:`BranchTable` of the engine's :class:`~landau.periodic.CycleBranch` (its columns
+    along the branch, its located special points with their amplitude, and the Hopf point)."""
+    problem = problem if problem is not None else branch.problem
+    special = tuple(SpecialPoint(str(sp.kind), float(sp.parameter), float(sp.period), _special_amplitude(branch, sp),
+                                 float("nan") if sp.coefficient is None else float(sp.coefficient))
+                    for sp in branch.special) if len(branch) > 1 else ()
     return BranchTable(problem.name, problem.parameter, problem.states[problem.measure], "",
-                       p, np.asarray(ds["period"].values, dtype=float), np.asarray(ds["amplitude"].values, dtype=float),
-                       np.asarray(ds["stable"].values, dtype=bool), special, hopf_mark(problem))
+                       np.asarray(branch.parameter, dtype=float), np.asarray(branch.period, dtype=float),
+                       np.asarray(branch.amplitude, dtype=float), np.asarray(branch.stable, dtype=bool), special,
+                       hopf_mark(problem), str(branch.end.name), str(branch.message))
 
 
 def branch_document(table: BranchTable) -> dict[str, Any]:
@@ -105,6 +124,7 @@ def branch_document(table: BranchTable) -> dict[str, Any]:
     if table.hopf is not None:
         doc["hopf"] = {"p_c": table.hopf.p_c, "omega_c": table.hopf.omega,
                        "equilibrium_stable_below": table.hopf.equilibrium_stable_below}
+    doc["end"] = {"reason": table.end, "message": table.end_message}
     doc["text"] = branch_text(table)
     return doc
 
@@ -131,6 +151,8 @@ def branch_text(table: BranchTable, rows: int = 25) -> str:
                          f"{sp.amplitude:.6g}{coef}")
     else:
         lines.append("no fold, period doubling or Neimark-Sacker point on the branch")
+    if table.end:
+        lines.append(f"end: {table.end}" + (f" ({table.end_message})" if table.end_message else ""))
     return "\n".join(lines)
 
 
@@ -188,11 +210,19 @@ def follow(problem, start: Any = "hopf", *, steps: int = 100, ds: float | None =
             raise InputError(f"cycles: {problem.name} has no Hopf point to start from")
         start = None
     kw: dict[str, Any] = {"steps": steps, "detect": detect, **engine}
+    # the engine's default Newton tolerance (1e-10 on the scaled step) lies below the round-off floor of a
+    # spring-block's collocation (slips of 1e-9 m beside states of 1e-2): steps fail as "Newton diverges"
+    kw.setdefault("tol", 1e-8)
+    if "ds_max" not in kw and problem.hopf is not None:
+        # the engine's pseudo-arclength norm takes the parameter unscaled: a step moves p by at most
+        # ds_max, so a stiffness of 2e5 N/m would crawl at 0.5 N/m a step; 2.5e-4 |p_c| a step at most
+        kw["ds_max"] = max(0.5, 2.5e-4 * abs(problem.hopf.p_c))
     if ds is not None:
         kw["ds"] = ds
     if direction is not None:
         kw["direction"] = direction
-    return continue_cycles(problem, start, **kw)
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):   # a predictor outside the field's domain:
+        return continue_cycles(problem, start, **kw)                       # NaN, and the engine halves the step
 
 
 def cycles(model: Any = "spring-block", law=None, params: Mapping[str, Any] | None = None, *,
