@@ -85,3 +85,65 @@ def test_bautin_fold_prediction_converges_linearly():
     assert abs(slope - 1.0) < 0.25
     small = np.polyfit(np.log(deltas[2:]), np.log(np.abs(err[2:])), 1)[0]
     assert abs(small - 1.0) < 0.15
+
+
+# ---------------------------------------------------------------------------------------------
+# Putelat, Dawes & Willis (2010): the codimension-two point where the fold line meets the Hopf line
+# ---------------------------------------------------------------------------------------------
+def _fold_meets_hopf(law: str, params: dict, which: int, steps: int) -> tuple[float, float]:
+    """The velocity where the fold of cycles located on the continued branches (at V = V*(1 ∓ δ),
+    δ = 0.02, 0.01, on the side where the fold exists) reaches the Hopf line: k_fold − k_c ∝ (V − V*)²
+    near the Bautin point, so sqrt|k_fold − k_c|/k_c is linear in V and its zero is the meeting point.
+    Returns (that velocity, landau's V* from Λ = 0 for comparison)."""
+    from landau.analyses.transition import codim2_points
+    from landau.derivation.multiscale import Derivation
+    from landau.laws import get_law
+    from landau.systems.system import SpringBlock
+
+    pt = codim2_points(Derivation(SpringBlock(get_law(law))), 1e-9, 1e-1, params)[which]
+    side = 1 if pt.sign_above > 0 else -1          # the fold lives where Λ > 0 (subcritical)
+    Vs, offs = [], []
+    for dl in (0.02, 0.01):
+        V = pt.V * (1 + side * dl)
+        pr = cycle_problem_of("spring-block", law, {"V": V, **params})
+        lpc = branch_table(follow(pr, steps=steps), pr).first("LPC")
+        assert lpc is not None, f"{law}: no fold of cycles located at V = {V!r}"
+        Vs.append(V)
+        offs.append(np.sqrt(abs(lpc.p - pr.hopf.p_c) / pr.hopf.p_c))
+    slope, intercept = np.polyfit(Vs, offs, 1)
+    return -intercept / slope, pt.V
+
+
+def test_micron_scale_fold_meets_the_hopf_line_at_the_printed_V_l():
+    """Putelat et al. (2010), Fig. 18 caption (micron-scale law (50), c = 1.4e-2): 'both the numerics
+    [AUTO] and the analysis give a transition velocity at small speed V_l* ≈ 1.039e-5 m/s
+    (log10(V_l*/V_*) ≈ 1.01679)'.  The fold line of the continued cycles meets the Hopf line there to
+    the printed digits (half a unit of the last: 5e-4 relative; the logarithm, printed with more
+    digits than the velocity, within 2e-4 as the Λ = 0 route's test takes it), and within 2e-4 of
+    landau's own V* (Λ = 0)."""
+    V_fold, V_star = _fold_meets_hopf("micron-scale", {"c": 1.4e-2}, 0, 60)
+    assert abs(V_fold / 1.039e-5 - 1) < 5e-4
+    assert abs(np.log10(V_fold / 1e-6) - 1.01679) < 2e-4
+    assert abs(V_fold / V_star - 1) < 2e-4
+
+
+@pytest.mark.slow
+def test_nanoscale_fold_meets_the_hopf_line_at_the_printed_V_l():
+    """Putelat et al. (2010), Fig. 16 caption (nanoscale law (48), a₂ = 0.0085): V_l* ≈ 6.24e-6 m/s
+    (log10 ≈ 0.7953); the fold line meets the Hopf line there to the printed digits (8e-4 relative,
+    2e-3 in the logarithm as the Λ = 0 route's test)."""
+    V_fold, V_star = _fold_meets_hopf("nanoscale", {}, 0, 80)
+    assert abs(V_fold / 6.24e-6 - 1) < 8e-4
+    assert abs(np.log10(V_fold / 1e-6) - 0.7953) < 2e-3
+    assert abs(V_fold / V_star - 1) < 2e-4
+
+
+@pytest.mark.slow
+def test_spinodal_fold_line_meets_the_hopf_line_at_V_star_fig12d():
+    """Putelat et al. (2010), Fig. 12(d) (spinodal law (37)–(38), c = 3e-4; the fold line computed with
+    AUTO): 'the saddle-node line meets the Hopf bifurcation curve at the codimension-two point (V*,
+    k_c(V*))'.  The figure prints no digits: the fold located on the continued branches meets the
+    Hopf line at landau's V* (Λ = 0, 1.1208e-3 m/s) within 1e-3 (measured 3.2e-4), on the side
+    V > V* where the figure draws it."""
+    V_fold, V_star = _fold_meets_hopf("spinodal", {"c": 3e-4}, 0, 100)
+    assert abs(V_fold / V_star - 1) < 1e-3
