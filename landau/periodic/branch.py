@@ -22,6 +22,19 @@ from landau.periodic.collocation import Mesh, evaluate
 from landau.periodic.problem import CycleProblem
 
 
+def _peak(vals: np.ndarray) -> np.ndarray:
+    """The maximum of each row of periodic samples (last = first), refined by the parabola through
+    the largest sample and its neighbours (error O(Δ⁴) instead of O(Δ²))."""
+    y = vals[:, :-1]
+    i = np.argmax(y, axis=1)
+    r = np.arange(y.shape[0])
+    y0, ym, yp = y[r, i], y[r, i - 1], y[r, (i + 1) % y.shape[1]]
+    curv = 2 * y0 - ym - yp
+    with np.errstate(divide="ignore", invalid="ignore"):
+        corr = np.where(curv > 0, (yp - ym) ** 2 / (8 * curv), 0.0)
+    return y0 + corr
+
+
 class EndReason(enum.Enum):
     """Why a continuation stopped (the branch computed so far is always kept)."""
 
@@ -31,6 +44,7 @@ class EndReason(enum.Enum):
     COLLAPSE = "the cycle collapsed onto an equilibrium (a Hopf point was reached)"
     NO_CONVERGENCE = "Newton's method did not converge even at the smallest step ds_min"
     FIRST_POINT = "the first cycle could not be corrected"
+    SPECIAL_POINT = "a special point named in stop_at was located"
 
 
 @dataclass(frozen=True)
@@ -91,12 +105,12 @@ class CycleBranch:
     @property
     def maxima(self) -> np.ndarray:
         """max over the cycle of every state, (points, n)."""
-        return np.array([self._dense(i).max(axis=1) for i in range(len(self))]).reshape(len(self), self.problem.n)
+        return np.array([_peak(self._dense(i)) for i in range(len(self))]).reshape(len(self), self.problem.n)
 
     @property
     def minima(self) -> np.ndarray:
         """min over the cycle of every state, (points, n)."""
-        return np.array([self._dense(i).min(axis=1) for i in range(len(self))]).reshape(len(self), self.problem.n)
+        return np.array([-_peak(-self._dense(i)) for i in range(len(self))]).reshape(len(self), self.problem.n)
 
     @property
     def amplitude(self) -> np.ndarray:

@@ -30,7 +30,7 @@ import scipy.sparse.linalg as spla
 from landau.errors import InputError, IntegratorError
 from landau.periodic import bifurcations as bif
 from landau.periodic.branch import CycleBranch, EndReason, SpecialPoint
-from landau.periodic.collocation import Collocation, Mesh, adapt, evaluate, remesh
+from landau.periodic.collocation import Collocation, Mesh, adapt, at_points, evaluate, remesh
 from landau.periodic.floquet import Multipliers, floquet
 from landau.periodic.problem import CycleProblem, CycleStart, HopfStart
 
@@ -143,9 +143,17 @@ def _first_from_hopf(problem: CycleProblem, hopf: HopfStart, mesh: Mesh, amplitu
     p = hopf.p_c
     if hopf.amplitude is not None and hopf.amplitude > 0 and hopf.side in (1, -1):
         p = hopf.p_c + hopf.side * (a0 / hopf.amplitude) ** 2
-    eps = a0 / 2
-    Y = y0[:, None] + eps * phi
-    u0 = coll.pack(Y, 2 * np.pi / hopf.omega, p)
+    return _first_along(problem, mesh, np.repeat(y0[:, None], t.size, axis=1), 2 * np.pi / hopf.omega, p,
+                        phi, a0 / 2, tol)
+
+
+def _first_along(problem: CycleProblem, mesh: Mesh, Ybase: np.ndarray, T: float, p: float, phi: np.ndarray,
+                 eps: float, tol: float):
+    """The cycle near Ybase + ε φ, corrected on the hyperplane through it orthogonal to (φ, 0, 0);
+    the tangent there oriented along +φ (away from the Hopf or PD point the branch starts at)."""
+    coll = Collocation(problem, mesh)
+    Y = Ybase + eps * phi
+    u0 = coll.pack(Y, T, p)
     d = coll.pack(phi, 0.0, 0.0)
     d /= np.sqrt(coll.inner(d, d))
     row = _border_row(coll, d)
@@ -182,20 +190,22 @@ def _first_from_cycle(problem: CycleProblem, start: CycleStart, mesh: Mesh, tol:
 
 
 # ---- the continuation ----------------------------------------------------------------------------
-def continue_cycles(problem: CycleProblem, start: HopfStart | CycleStart | None = None, *, steps: int = 100,
+def continue_cycles(problem: CycleProblem, start: HopfStart | CycleStart | SpecialPoint | None = None, *, steps: int = 100,
                     ds: float = 0.01, ds_min: float = 1e-7, ds_max: float = 0.5, direction: int = 1,
                     detect: bool = True, normal_forms: bool = True, ntst: int = 40, ncol: int = 4,
                     adapt_every: int = 3, max_period: float = np.inf, tol: float = 1e-10,
                     amplitude0: float | None = None, collapse: float | None = None,
-                    strict: bool = False) -> CycleBranch:
+                    strict: bool = False, stop_at: tuple[str, ...] = ()) -> CycleBranch:
     """Continue the branch of cycles of ``problem`` from ``start`` (default: ``problem.hopf``).
 
     Parameters
     ----------
     problem : CycleProblem
         The vector field and the continuation parameter.
-    start : HopfStart, CycleStart or None
-        Where the branch starts (None: ``problem.hopf``).
+    start : HopfStart, CycleStart, SpecialPoint or None
+        Where the branch starts (None: ``problem.hopf``); a located period doubling (a
+        ``SpecialPoint`` of kind "PD") switches onto the period-doubled branch
+        (:mod:`.switching`).
     steps : int
         The number of continuation steps after the first cycle.
     ds, ds_min, ds_max : float
@@ -218,6 +228,8 @@ def continue_cycles(problem: CycleProblem, start: HopfStart | CycleStart | None 
         (default 1e-3 × its scale).
     collapse : float, optional
         Stop (COLLAPSE) when the amplitude falls below it (default 1e-6 × the scale of ``measure``).
+    stop_at : tuple of str
+        Stop (SPECIAL_POINT) after locating a special point of one of these kinds ("LPC", "PD", "NS").
     strict : bool
         Raise :class:`landau.errors.IntegratorError` (carrying ``.branch``) when the continuation
         ends on a failure (no convergence, collapse, period beyond ``max_period``) instead of
@@ -235,7 +247,8 @@ def continue_cycles(problem: CycleProblem, start: HopfStart | CycleStart | None 
     if start is None:
         raise InputError(f"{problem.name}: no start given and the problem has no Hopf point (problem.hopf)")
     mesh = Mesh.uniform(ntst, ncol)
-    route = "hopf" if isinstance(start, HopfStart) else ("cycle" if start.exact else "guess")
+    route = ("hopf" if isinstance(start, HopfStart) else "period-doubling" if isinstance(start, SpecialPoint)
+             else "cycle" if start.exact else "guess")
     branch = CycleBranch(problem, route, settings={
         "discretisation": f"orthogonal collocation, Gauss-Legendre, ncol={ncol}", "ntst": ntst, "ncol": ncol,
         "newton_tol": tol, "ds": ds, "ds_max": ds_max, "adapt_every": adapt_every})
@@ -243,11 +256,15 @@ def continue_cycles(problem: CycleProblem, start: HopfStart | CycleStart | None 
         if isinstance(start, HopfStart):
             coll, u, tau = _first_from_hopf(problem, start, mesh, amplitude0, tol)
             tau = direction * tau
+        elif isinstance(start, SpecialPoint) and start.kind == "PD":
+            from landau.periodic.switching import doubled_start
+            mesh2, Yb, T2, p2, phi, eps = doubled_start(problem, start, amplitude0)
+            coll, u, tau = _first_along(problem, mesh2, Yb, T2, p2, phi, eps, tol)
         elif isinstance(start, CycleStart):
             coll, u, tau = _first_from_cycle(problem, start, mesh, tol)
             tau = direction * tau
         else:
-            raise InputError(f"start must be a HopfStart or a CycleStart, got {type(start).__name__}")
+            raise InputError(f"start must be a HopfStart, a CycleStart or a PD SpecialPoint, got {start!r}")
     except _NoConvergence as exc:
         branch.end, branch.message = EndReason.FIRST_POINT, str(exc)
         err = IntegratorError(f"{problem.name}: the first cycle did not converge ({exc}); "
@@ -256,7 +273,8 @@ def continue_cycles(problem: CycleProblem, start: HopfStart | CycleStart | None 
         raise err from exc
     return _run(problem, branch, Point(coll, u, tau, floquet(problem, coll.mesh, *coll.unpack(u))),
                steps=steps, ds=ds, ds_min=ds_min, ds_max=ds_max, detect=detect, normal_forms=normal_forms,
-               adapt_every=adapt_every, max_period=max_period, tol=tol, collapse=collapse, strict=strict)
+               adapt_every=adapt_every, max_period=max_period, tol=tol, collapse=collapse, strict=strict,
+               stop_at=tuple(stop_at))
 
 
 def half_amplitude(coll: Collocation, Y: np.ndarray, j: int) -> float:
@@ -296,7 +314,7 @@ def _adapted(problem: CycleProblem, pt: Point, tol: float) -> Point:
 
 def _run(problem: CycleProblem, branch: CycleBranch, pt: Point, *, steps: int, ds: float, ds_min: float,
          ds_max: float, detect: bool, normal_forms: bool, adapt_every: int, max_period: float, tol: float,
-         collapse: float | None, strict: bool) -> CycleBranch:
+         collapse: float | None, strict: bool, stop_at: tuple[str, ...]) -> CycleBranch:
     """The continuation loop: step, check the stops, detect and locate special points, adapt."""
     j = problem.measure
     s_meas = pt.coll.scales[j]
@@ -324,18 +342,24 @@ def _run(problem: CycleProblem, branch: CycleBranch, pt: Point, *, steps: int, d
                 sp_ = _locate(problem, pt, ds, kind, psi[kind], psi_new[kind], len(branch) - 1, tol, normal_forms)
                 if sp_ is not None:
                     branch.special.append(sp_)
-        pt, psi = new, psi_new
+        if not lo <= new.p <= hi:
+            last = _on_bound(problem, new, lo if new.p < lo else hi, tol)
+            if last is not None:
+                branch.append(last.coll.mesh, last.Y, last.T, last.p, last.mu.all, last.mu.trivial)
+            branch.end, branch.message = EndReason.PARAMETER_RANGE, f"{problem.parameter} reached the end of {lo, hi}"
+            return branch
+        prev_pt, pt, psi = pt, new, psi_new
         branch.append(pt.coll.mesh, pt.Y, pt.T, pt.p, pt.mu.all, pt.mu.trivial)
-        if not lo <= pt.p <= hi:
-            branch.end, branch.message = EndReason.PARAMETER_RANGE, f"{problem.parameter} = {pt.p:.10g} left {lo, hi}"
+        if any(sp_.kind in stop_at for sp_ in branch.special):
+            branch.end, branch.message = EndReason.SPECIAL_POINT, "stopped after " + ", ".join(stop_at)
             return branch
         if pt.T > max_period:
             failure = (EndReason.MAX_PERIOD, f"T = {pt.T:.6g} > max_period = {max_period:.6g} at "
                        f"{problem.parameter} = {pt.p:.10g}; raise max_period to go on")
             break
-        if half_amplitude(pt.coll, pt.Y, j) < collapse:
-            failure = (EndReason.COLLAPSE, f"the cycle collapsed (amplitude < {collapse:.3g}) at "
-                       f"{problem.parameter} = {pt.p:.10g}: a Hopf point")
+        if half_amplitude(pt.coll, pt.Y, j) < collapse or _inverted(prev_pt, pt):
+            failure = (EndReason.COLLAPSE, f"the cycle collapsed onto an equilibrium (a Hopf point) near "
+                       f"{problem.parameter} = {pt.p:.10g}; start there from the HopfStart to follow the other side")
             break
         ds = min(ds * 1.3, ds_max) if it <= 3 else (ds * 0.7 if it >= 6 else ds)
         if adapt_every and (k + 1) % adapt_every == 0:
@@ -350,6 +374,32 @@ def _run(problem: CycleProblem, branch: CycleBranch, pt: Point, *, steps: int, d
             err.branch = branch  # type: ignore[attr-defined]
             raise err
     return branch
+
+
+def _inverted(a: Point, b: Point) -> bool:
+    """True if the cycle's deviation from its mean reversed sign between two points: the branch
+    went through the equilibrium (a Hopf point), ⟨y_b − ȳ_b, y_a − ȳ_a⟩ < 0 at the same phase."""
+    if a.coll.mesh is not b.coll.mesh:
+        return False
+    ya, _ = at_points(a.coll.mesh, a.Y)
+    yb, _ = at_points(b.coll.mesh, b.Y)
+    w = a.coll.w / a.coll.scales[:, None] ** 2
+    da = ya - (ya * a.coll.w).sum(axis=1, keepdims=True)
+    db = yb - (yb * b.coll.w).sum(axis=1, keepdims=True)
+    return bool(np.sum(w * da * db) < 0)
+
+
+def _on_bound(problem: CycleProblem, pt: Point, bound: float, tol: float) -> Point | None:
+    """The cycle of pt corrected at p = bound (the end of parameter_range), or None if that fails."""
+    coll = pt.coll
+    row = np.zeros(coll.size)
+    row[-1] = 1.0
+    g = coll.set_reference(pt.Y)
+    try:
+        u, _ = newton(coll, pt.u, g, row, bound, tol=tol)
+    except _NoConvergence:
+        return None
+    return Point(coll, u, pt.tau, floquet(problem, coll.mesh, *coll.unpack(u)))
 
 
 def _locate(problem: CycleProblem, pt: Point, ds: float, kind: str, f0: float, f1: float, index: int,

@@ -133,6 +133,15 @@ class CycleProblem:
         if not lo < hi:
             raise InputError(f"{self.name}: parameter_range must be increasing, got {self.parameter_range!r}")
 
+    @classmethod
+    def from_system(cls, system, params: Mapping[str, float] | None = None, **kwargs) -> "CycleProblem":
+        """The problem of a :class:`landau.systems.system.DynamicalSystem` (E⁻¹ applied, sympy compiled
+        to vectorised numpy callables; keyword arguments ``hopf``, ``measure``, ``scales``,
+        ``parameter_range`` as for the constructor). See :mod:`landau.periodic.from_system`."""
+        from landau.periodic.from_system import build
+
+        return build(system, params, **kwargs)
+
     @property
     def n(self) -> int:
         """The number of states."""
