@@ -99,6 +99,8 @@ def plot_cycle_branch(table, *, fig=None, colour: str = "C0") -> dict[str, Any]:
     ax_t.set_xlabel(table.parameter)
     ax_t.set_ylabel("period")
     ax_t.ticklabel_format(axis="y", useOffset=False)
+    for ax in (ax_a, ax_t):
+        ax.tick_params(axis="x", labelrotation=25)
     ax_a.set_title(table.name, fontsize=9)
     if special or drawn_hopf:
         ax_a.legend(fontsize=8, loc="best")
