@@ -127,7 +127,7 @@ class CycleBranch:
     def stable(self) -> np.ndarray:
         """True where every nontrivial multiplier is inside the unit circle."""
         out = []
-        for mu, tr in zip(self.multipliers, self.trivial):
+        for mu, tr in zip(self.multipliers, self.trivial, strict=True):
             i = int(np.argmin(np.abs(mu - tr)))
             out.append(bool(np.all(np.abs(np.delete(mu, i)) < 1.0)))
         return np.array(out, dtype=bool)

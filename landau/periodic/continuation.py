@@ -47,6 +47,7 @@ class Point:
     u: np.ndarray
     tau: np.ndarray
     mu: Multipliers
+    orient: float = 0.0         # sign of det [F_u; τ_prevᵀ] (branch points), 0 where not computed
 
     @property
     def Y(self) -> np.ndarray:
@@ -67,7 +68,8 @@ def _border_row(coll: Collocation, tau: np.ndarray) -> np.ndarray:
 
 
 def newton(coll: Collocation, u0: np.ndarray, phase: np.ndarray, row: np.ndarray, c: float, *,
-           tol: float = 1e-10, maxit: int = 10, damped: bool = False) -> tuple[np.ndarray, int]:
+           tol: float = 1e-10, maxit: int = 10, damped: bool = False,
+           guard: bool = True) -> tuple[np.ndarray, int]:
     """Solve the collocation equations bordered by row·u = c, from u0; returns (u, iterations)."""
     u = u0.copy()
     s = np.concatenate([np.tile(coll.scales, coll.mesh.npts), [1.0, 1.0]])
@@ -91,26 +93,30 @@ def newton(coll: Collocation, u0: np.ndarray, phase: np.ndarray, row: np.ndarray
         u = u + lam * du
         if size < tol:
             return u, it
-        if not damped and it > 2 and size > 2 * prev:
+        if guard and not damped and it > 2 and size > 2 * prev:
             raise _NoConvergence("Newton diverges")
         prev = size
     raise _NoConvergence(f"no convergence in {maxit} Newton iterations (last step {size:.2e})")
 
 
-def tangent(coll: Collocation, u: np.ndarray, phase: np.ndarray, row: np.ndarray) -> np.ndarray:
-    """The unit tangent τ at u: [F_u; rᵀ] τ = (0, 1), normalised in the inner product."""
+def tangent(coll: Collocation, u: np.ndarray, phase: np.ndarray, row: np.ndarray,
+            with_sign: bool = False) -> np.ndarray | tuple[np.ndarray, float]:
+    """The unit tangent τ at u: [F_u; rᵀ] τ = (0, 1), normalised in the inner product; with
+    ``with_sign`` also the sign of det [F_u; rᵀ] (from the same LU), oriented by τ's sign."""
     J = sps.vstack([coll.jacobian(u, phase), sps.csr_matrix(row)]).tocsc()
     rhs = np.zeros(J.shape[0])
     rhs[-1] = 1.0
     # the kernel direction of F_u: [F_u; rᵀ] τ = e_last (r the previous tangent's row)
-    t = spla.splu(J).solve(rhs)
-    return t / np.sqrt(coll.inner(t, t))
-
-
-def bordered_sign(coll: Collocation, u: np.ndarray, phase: np.ndarray, row: np.ndarray) -> float:
-    """The sign of det [F_u; rᵀ] (from the sparse LU: diag(U) and the row and column permutations)."""
-    J = sps.vstack([coll.jacobian(u, phase), sps.csr_matrix(row)]).tocsc()
     lu = spla.splu(J)
+    t = lu.solve(rhs)
+    t = t / np.sqrt(coll.inner(t, t))
+    if not with_sign:
+        return t
+    return t, _lu_sign(lu)
+
+
+def _lu_sign(lu) -> float:
+    """The sign of the determinant of a matrix from its sparse LU (diag(U) and the permutations)."""
     d = np.sign(lu.U.diagonal()).prod()
     return float(d * _perm_sign(lu.perm_r) * _perm_sign(lu.perm_c))
 
@@ -190,7 +196,8 @@ def _first_from_cycle(problem: CycleProblem, start: CycleStart, mesh: Mesh, tol:
 
 
 # ---- the continuation ----------------------------------------------------------------------------
-def continue_cycles(problem: CycleProblem, start: HopfStart | CycleStart | SpecialPoint | None = None, *, steps: int = 100,
+def continue_cycles(problem: CycleProblem, start: HopfStart | CycleStart | SpecialPoint | None = None, *,
+                    steps: int = 100,
                     ds: float = 0.01, ds_min: float = 1e-7, ds_max: float = 0.5, direction: int = 1,
                     detect: bool = True, normal_forms: bool = True, ntst: int = 40, ncol: int = 4,
                     adapt_every: int = 3, max_period: float = np.inf, tol: float = 1e-10,
@@ -284,16 +291,17 @@ def half_amplitude(coll: Collocation, Y: np.ndarray, j: int) -> float:
     return float((yj.max() - yj.min()) / 2)
 
 
-def _correct(problem: CycleProblem, prev: Point, s: float, tol: float) -> tuple[Point, int]:
+def _correct(problem: CycleProblem, prev: Point, s: float, tol: float, near_singular: bool = False
+             ) -> tuple[Point, int]:
     """The point at pseudo-arclength step s from ``prev`` (predictor prev.u + s τ, corrector on (1))."""
     coll = prev.coll
     row = _border_row(coll, prev.tau)
     g = coll.set_reference(prev.Y)
-    u, it = newton(coll, prev.u + s * prev.tau, g, row, row @ prev.u + s, tol=tol)
-    tau = tangent(coll, u, g, row)
-    if coll.inner(tau, prev.tau) < 0:
-        tau = -tau
-    return Point(coll, u, tau, floquet(problem, coll.mesh, *coll.unpack(u))), it
+    # near a branch point Newton converges linearly: more iterations, no divergence guard
+    kw = {"maxit": 40, "guard": False} if near_singular else {}
+    u, it = newton(coll, prev.u + s * prev.tau, g, row, row @ prev.u + s, tol=tol, **kw)
+    tau, sign = tangent(coll, u, g, row, with_sign=True)
+    return Point(coll, u, tau, floquet(problem, coll.mesh, *coll.unpack(u)), sign), it
 
 
 def _adapted(problem: CycleProblem, pt: Point, tol: float) -> Point:
@@ -309,7 +317,8 @@ def _adapted(problem: CycleProblem, pt: Point, tol: float) -> Point:
     row = _border_row(coll, tau)
     g = coll.set_reference(coll.unpack(u0)[0])
     u, _ = newton(coll, u0, g, row, row @ u0, tol=tol)
-    return Point(coll, u, tau, floquet(problem, mesh, *coll.unpack(u)))
+    _, sign = tangent(coll, u, g, row, with_sign=True)     # the orientation on the new mesh
+    return Point(coll, u, tau, floquet(problem, mesh, *coll.unpack(u)), sign)
 
 
 def _run(problem: CycleProblem, branch: CycleBranch, pt: Point, *, steps: int, ds: float, ds_min: float,
@@ -337,6 +346,10 @@ def _run(problem: CycleProblem, branch: CycleBranch, pt: Point, *, steps: int, d
         if failure:
             break
         psi_new = bif.test_values(new.tau[-1], new.mu)
+        if detect and pt.coll is new.coll and pt.orient * new.orient < 0 and "LPC" not in bif.changes(psi, psi_new):
+            bp = _locate_bp(problem, pt, ds, new.orient, len(branch) - 1, tol)
+            if bp is not None:
+                branch.special.append(bp)
         if detect:
             for kind in bif.changes(psi, psi_new):
                 sp_ = _locate(problem, pt, ds, kind, psi[kind], psi_new[kind], len(branch) - 1, tol, normal_forms)
@@ -400,6 +413,29 @@ def _on_bound(problem: CycleProblem, pt: Point, bound: float, tol: float) -> Poi
     except _NoConvergence:
         return None
     return Point(coll, u, pt.tau, floquet(problem, coll.mesh, *coll.unpack(u)))
+
+
+def _locate_bp(problem: CycleProblem, pt: Point, ds: float, sign1: float, index: int,
+               tol: float) -> SpecialPoint | None:
+    """A branch point of cycles between pt and the step ds: bisection on the sign of det [F_u; τᵀ]."""
+    a, b = 0.0, ds
+    q = None
+    while b - a > 1e-7 * max(1.0, ds):
+        m = (a + b) / 2
+        try:
+            trial, _ = _correct(problem, pt, m, tol, near_singular=True)
+        except _NoConvergence:          # at the branch point itself the bordered system is singular
+            break
+        q = trial
+        if q.orient * sign1 > 0:
+            b = m
+        else:
+            a = m
+    if q is None:
+        return None
+    return SpecialPoint("BP", index, q.p, q.T, None, q.mu.all,
+                        "branch point of cycles (the orientation det [F_u; τᵀ] changes sign); no normal form",
+                        (q.coll.mesh, q.Y))
 
 
 def _locate(problem: CycleProblem, pt: Point, ds: float, kind: str, f0: float, f1: float, index: int,

@@ -31,7 +31,10 @@ anti-periodic one:
 
 c < 0: the doubled cycle is born stable on the side where the cycle is unstable (supercritical);
 c > 0 subcritical. KGD 2005 write c with ∫₀ᵀ normalisations in the rescaled time; their value and
-this one have the same sign and differ by a positive factor set by the normalisation of v.
+this one have the same sign; the magnitude depends on the normalisation of v (MatCont's printed value for
+its adaptive-control example is −0.04268, this one −0.3051). This c is checked independently against
+the doubled cycle: with ν = ln(−μ)/T from the multiplier μ of the period-1 cycle and ξ its amplitude
+along v, ξ² = −ν/c (tests/periodic/test_rossler.py).
 
 NS coefficients are not computed (the message says so).
 

@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import numpy as np
-
 from cycle_systems import stuart_landau
+
 from landau.periodic import CycleProblem, HopfStart, continue_cycles
 from landau.systems.system import DynamicalSystem
 

@@ -7,8 +7,8 @@ integrated with scipy's DOP853 (rtol 1e-12) from the collocation cycle's y(0) ov
 from __future__ import annotations
 
 import numpy as np
-
 from cycle_systems import monodromy_by_shooting, rossler, simulated_cycle
+
 from landau.periodic import continue_cycles
 
 

@@ -11,8 +11,8 @@ Normal form coefficient = -4.267675e-002".
 from __future__ import annotations
 
 import numpy as np
-
 from cycle_systems import adaptive_control, monodromy_by_shooting
+
 from landau.periodic import continue_cycles
 
 

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 from cycle_systems import stuart_landau
+
 from landau.errors import InputError, IntegratorError
 from landau.periodic import CycleProblem, CycleStart, continue_cycles
 
@@ -44,9 +44,9 @@ def test_neimark_sacker_located_with_its_closed_form_multipliers():
     assert len(ns) == 1 and abs(ns[0].parameter) < 1e-9
     mu = ns[0].multipliers
     pair = mu[np.abs(mu.imag) > 1e-3]
-    np.testing.assert_allclose(np.sort(np.angle(pair)), [-0.7 * 2 * np.pi + 2 * np.pi, 0.7 * 2 * np.pi - 2 * np.pi][::-1]
-                               if False else np.sort(np.angle(np.exp(1j * 0.7 * 2 * np.pi * np.array([1, -1])))),
-                               atol=1e-8)
+    # the pair e^{±iΩT}, Ω = 0.7, T = 2π
+    expected = np.exp(2j * np.pi * 0.7 * np.array([1, -1]))
+    np.testing.assert_allclose(np.sort_complex(pair), np.sort_complex(expected), atol=1e-8)
     assert br.stable[ns[0].index] and not br.stable[ns[0].index + 1]
 
 
