@@ -247,7 +247,7 @@ def cycles(model: Any = "spring-block", law=None, params: Mapping[str, Any] | No
     ds : float, optional
         The first arclength step (the engine's default where None).
     direction : {+1, -1}, optional
-        The direction in the parameter (default: the side of p_c where the cycle is born).
+        +1 (the engine's default): away from the Hopf point, the cycle growing; −1 the other way.
     detect : bool
         Locate the folds (LPC), period doublings (PD) and Neimark–Sacker points (NS) on the way.
     options : mapping, optional

@@ -42,7 +42,7 @@ def configure(p) -> None:
     p.add_argument("--steps", default="100", metavar="N", help="continuation steps (default 100)")
     p.add_argument("--ds", default=None, metavar="DS", help="the first arclength step (default the engine's)")
     p.add_argument("--direction", default=None, metavar="+1|-1",
-                   help="direction in the parameter (default the side where the cycle is born)")
+                   help="+1 (default): away from the Hopf point, the cycle growing; -1 the other way")
     p.add_argument("--start", default="hopf", choices=("hopf",),
                    help="where the branch starts: hopf, the amplitude equation's cycle (default)")
     p.add_argument("--csv", default=None, metavar="FILE", help="write the branch's columns to FILE (CSV)")
