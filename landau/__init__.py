@@ -13,6 +13,7 @@ from landau.errors import InputError, IntegratorError, LandauError, NoHopfError,
 if TYPE_CHECKING:  # the same names as _LAZY, for type checkers and the API documentation
     __version__: str
     from landau.analyses.checking import CheckResult, Verdict, check
+    from landau.analyses.cycles import cycles
     from landau.analyses.sweep import sweep
     from landau.derivation.general import hopf_normal_form
     from landau.derivation.linear import HopfLine, HopfPoint, critical_stiffness
@@ -34,6 +35,7 @@ _LAZY = {
     "check": "landau.analyses.checking",
     "sweep": "landau.analyses.sweep",
     "simulate": "landau.simulation",
+    "cycles": "landau.analyses.cycles",
 }
 
 
@@ -73,4 +75,5 @@ __all__ = [
     "HopfLine", "HopfPoint", "HopfResult", "InputError", "IntegratorError", "LandauError",
     "NoHopfError", "SingularPointError", "SpringBlock", "Verdict", "check", "critical_stiffness",
     "derive", "hopf_normal_form", "simulate", "sweep",
+    "cycles",
 ]

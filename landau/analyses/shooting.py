@@ -50,10 +50,12 @@ from landau.support.lambdify import lambdify_positional
 Seeds = Callable[[np.ndarray, Callable], Iterator[tuple[np.ndarray, float]]]
 
 
-def numeric_field(system, params: Mapping[str, float]):
+def numeric_field(system, params: Mapping[str, float], *, entries: bool = False):
     """The system's numeric pieces for a given parameter set: ``(f, J, E_inverse, vals)`` with
     ``f(*y, p, *vals)`` the right-hand side, ``J(*y, p, *vals)`` its Jacobian in the states,
     ``E_inverse(p)`` the inverse mass matrix and ``vals`` the values of ``system.parameters``.
+    With ``entries``, ``J`` gives the n² entries row by row as a flat list (each a scalar or an
+    array like the states: what the cycle engine evaluates on many points in one call).
 
     Raises :class:`~landau.errors.InputError` naming a missing parameter, or (from ``E_inverse``)
     a mass matrix that is not invertible (a differential-algebraic system)."""
@@ -65,7 +67,8 @@ def numeric_field(system, params: Mapping[str, float]):
     vals = [float(params[s.name]) for s in system.parameters]
     args = [*system.states, system.parameter, *system.parameters]
     f = lambdify_positional(args, list(system.rhs), "numpy")
-    J = lambdify_positional(args, sp.Matrix(system.rhs).jacobian(system.states), "numpy")
+    jac = sp.Matrix(system.rhs).jacobian(system.states)
+    J = lambdify_positional(args, list(jac) if entries else jac, "numpy")
     E_of = lambdify_positional([system.parameter, *system.parameters], system.mass_matrix, "numpy")
 
     def E_inverse(p: float) -> np.ndarray:

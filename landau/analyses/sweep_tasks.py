@@ -16,6 +16,9 @@ variables are named as in the matching ``--json`` output.
   Lyapunov exponent on request), :mod:`landau.verify.skurativskyi.sweep`.
 * ``regime`` (spring–block): the regime by direct simulation started on both sides,
   :mod:`landau.verify.springblock.regime_map`.
+* ``cycles`` (any model with a ``cycles`` declaration): the branch of cycles from the Hopf point at
+  each point (:func:`landau.analyses.cycles.follow`), its first fold of cycles LPC and first period
+  doubling PD (parameter, period, amplitude; NaN where the branch has none).
 * ``scene``: a published value (a scene of ``landau scene list``, named as the model) as a function
   of the scene's parameters, with its difference to the published number.
 
@@ -459,6 +462,70 @@ class SpringBlockCheck(Task):
 
 
 # ---------------------------------------------------------------------------------------------
+# cycles
+# ---------------------------------------------------------------------------------------------
+#: the numbers of the ``cycles`` task: the Hopf point, and where the branch first folds and first doubles
+CYCLES_FLOATS = ("p_c", "lpc_p", "lpc_period", "lpc_amplitude", "pd_p", "pd_period", "pd_amplitude",
+                 "p_end", "points")
+
+
+@dataclass(frozen=True)
+class CyclesTask(Task):
+    """The branch of cycles from the Hopf point at each point (options ``steps``, ``ds``), with its first
+    LPC and first PD: status ``ok`` with NaN where the branch has none, ``no-hopf`` without a Hopf
+    point, ``failed`` with the first line of the error (a continuation that fails)."""
+
+    lead: ClassVar[bool] = True
+
+    def check_grid(self, grid: Grid) -> None:
+        model = self.model_object
+        known = {o.name for o in model.options} | {"chunk_size", "steps", "ds"}
+        unknown = sorted(set(dict(self.options)) - known)
+        if unknown:
+            raise InputError(f"cycles {self.model}: option(s) {', '.join(unknown)} do not apply (the task takes "
+                             f"steps, ds and the model's options)")
+        check_declared(self, grid, refuse_hopf_parameter=True)
+
+    def run(self, chunk: Chunk) -> ChunkResult:
+        from landau.analyses.cycles import branch_table, follow
+
+        model = self.model_object
+        assert model.cycles is not None   # make_task gives this task only to models that declare cycles
+        opts = dict(self.options)
+        steps, ds = int(opts.get("steps", 60)), opts.get("ds")
+        own = {k: v for k, v in opts.items() if k not in ("chunk_size", "steps", "ds")}
+        bad, why = self.invalid(chunk)
+        status: list[str] = []
+        message: list[str] = []
+        rows: list[dict[str, float]] = []
+        for j in range(len(chunk.index)):
+            if bad[j]:
+                _skip(status, message, rows, "failed", InputError(why[j]))
+                continue
+            setup = Setup(self.setup().law, self.point(chunk, j), own)
+            try:
+                problem = model.cycles(setup)
+                table = branch_table(follow(problem, steps=steps, ds=None if ds is None else float(ds)), problem)
+            except NoHopfError as exc:
+                _skip(status, message, rows, "no-hopf", exc)
+                continue
+            except (LandauError, ArithmeticError, ValueError, np.linalg.LinAlgError) as exc:
+                _skip(status, message, rows, "failed", exc)
+                continue
+            row = {"p_c": problem.hopf.p_c if problem.hopf else np.nan, "p_end": float(table.p[-1]),
+                   "points": float(table.p.size)}
+            for kind in ("LPC", "PD"):
+                sp = table.first(kind)
+                for name in ("p", "period", "amplitude"):
+                    row[f"{kind.lower()}_{name}"] = np.nan if sp is None else float(getattr(sp, name))
+            rows.append(row)
+            status.append("ok")
+            message.append("")
+        vals = {k: np.array([r.get(k, np.nan) for r in rows]) for k in CYCLES_FLOATS}
+        return ChunkResult(chunk.index, status, message, vals, {})
+
+
+# ---------------------------------------------------------------------------------------------
 # scene
 # ---------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
@@ -562,7 +629,9 @@ TASKS = {"hopf": "the Hopf point and amplitude-equation coefficients (any model 
          "check": "the direct-simulation verdict of landau.check (spring-block)",
          "simulate": "statistics of a settled run (forced-oscillator: continuation in omega)",
          "regime": "the regime by direct simulation started on both sides (spring-block)",
-         "scene": "a published value as a function of parameters (MODEL: a scene of landau scene list)"}
+         "scene": "a published value as a function of parameters (MODEL: a scene of landau scene list)",
+         "cycles": "the first fold of cycles (LPC) and period doubling (PD) on the branch from the Hopf point "
+                   "(any model declaring cycles)"}
 
 
 def make_task(task: str, model: str, law: LawSpec | None, fixed: dict[str, Any], options: dict[str, Any]) -> Task:
@@ -594,4 +663,6 @@ def make_task(task: str, model: str, law: LawSpec | None, fixed: dict[str, Any],
         raise InputError(f"{task} {model}: this model takes no rate-and-state law")
     if task in m.tasks:
         return m.tasks[task](task, model, law, fx, opts)
+    if task == "cycles":
+        return CyclesTask("cycles", model, law, fx, opts, chunk_size=int(options.get("chunk_size", 1)))
     return PointwiseHopf("hopf", model, law, fx, opts, chunk_size=int(options.get("chunk_size", 1)))

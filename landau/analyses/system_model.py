@@ -92,6 +92,18 @@ def system_hopf(setup: Setup):
     return hopf_normal_form(system, dict(setup.params), tuple(bracket))
 
 
+def system_cycles(setup: Setup):
+    """The system's cycles in its Hopf parameter from the Hopf point in ``bracket`` (:func:`system_hopf`):
+    ẏ = E⁻¹ f(y; p) with E invertible, measured on the state the amplitude equation is normalised on."""
+    from landau.analyses.cycle_problems import cycle_problem
+
+    result = system_hopf(setup)
+    system = system_of(setup)
+    y0 = result.equilibrium
+    unknowns = {e.name: float(v) for e, v in zip(system.equilibrium, y0, strict=True) if e in system.unknowns}
+    return cycle_problem(system, dict(setup.params), result, unknowns=unknowns)
+
+
 def _simulation_setup(setup: Setup) -> Setup:
     """The setup as the simulation reads it: the Hopf parameter is a value like the others there (default
     the first parameter given), and a system without an equilibrium starts from a guess of 0."""
@@ -145,6 +157,7 @@ SYSTEM = Model(
     hopf_parameter=lambda setup: setup.option("parameter"),
     hopf=system_hopf,
     simulate=system_simulate,
+    cycles=system_cycles,
     options=(Option("rhs", "a state and its right-hand side dNAME/dt (NAME=EXPR, repeatable, in order)"),
              Option("equilibrium", "the equilibrium of a state as an expression of the parameters (NAME=EXPR)"),
              Option("guess", "instead of the equilibrium, a starting value of a state for Newton's method"),
@@ -155,4 +168,4 @@ SYSTEM = Model(
     source="Kuznetsov (2004), Sec. 3.5 (the normal form)",
 )
 
-__all__ = ["SYSTEM", "system_hopf", "system_of"]
+__all__ = ["SYSTEM", "system_cycles", "system_hopf", "system_of"]

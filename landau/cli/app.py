@@ -33,6 +33,7 @@ COMMANDS: dict[str, str] = {
     "plot": "landau.cli.plot",
     "simulate": "landau.cli.simulate",
     "hopf": "landau.cli.hopf",
+    "cycles": "landau.cli.cycles",
     "nucleation": "landau.cli.nucleation",
     "sweep": "landau.cli.sweep",
     "sweep-merge": "landau.cli.sweep_merge",
@@ -59,6 +60,8 @@ SUMMARIES: dict[str, str] = {
     "plot": "Plot a law's amplitude-equation coefficients against V, or its regime diagram, to a file.",
     "simulate": "Simulate one of the toolkit's models and write its time series (CSV, NPZ) or a plot (PNG).",
     "hopf": "Hopf point of a model's steady state, with its first Lyapunov coefficient and criticality.",
+    "cycles": "Continue the branch of cycles of a model from its Hopf point, with Floquet multipliers and LPC/PD/NS "
+              "points.",
     "nucleation": "The continuum fault's length scales: h*, L_b, the Rubin–Ampuero lengths and a patch's stiffness.",
     "figures": "Regenerate a paper's figures: landau figures PAPER [--only figN,...] [--out DIR].",
     "verify": "Check the engine's amplitude-equation predictions by direct simulation of the spring–block.",

@@ -51,7 +51,7 @@ _RESERVED = {"v": "v is the slip rate, the variable of the friction law, not a p
 
 
 def configure(p) -> None:
-    p.add_argument("task", help="hopf, check, simulate, regime or scene")
+    p.add_argument("task", help="hopf, check, simulate, regime, scene or cycles")
     p.add_argument("model", help="spring-block, forced-oscillator, any model of landau hopf, or a scene's name")
     add_law_arguments(p)
     p.add_argument("--grid", action="append", default=[], metavar="NAME=LO:HI:N[:log] | NAME=v1,v2,...",
@@ -78,6 +78,8 @@ def configure(p) -> None:
                              ("rtol", float, "integration tolerance")):
         p.add_argument(f"--{name}", type=kind, default=None, help=f"simulate: {what}")
     p.add_argument("--lyapunov", action="store_true", help="simulate: also the largest Lyapunov exponent")
+    p.add_argument("--steps", type=int, default=None, help="cycles: continuation steps per point (default 60)")
+    p.add_argument("--ds", type=float, default=None, help="cycles: the first arclength step (default the engine's)")
     add_friction_arguments(p)
     add_model_options(p)
 
@@ -86,7 +88,8 @@ def _options(args, model) -> dict[str, Any]:
     from landau.cli.model_args import model_options
 
     opts: dict[str, Any] = {}
-    for key in ("chunk_size", "eps2", "k_over_kc", "direction", "n_first", "n_step", "n_keep", "overlap", "rtol"):
+    for key in ("chunk_size", "eps2", "k_over_kc", "direction", "n_first", "n_step", "n_keep", "overlap", "rtol",
+                "steps", "ds"):
         val = getattr(args, key, None)
         if val is not None:
             if isinstance(val, float) and not math.isfinite(val):

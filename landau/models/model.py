@@ -170,6 +170,10 @@ class Model:
         The model's own check of its amplitude equation by simulation (``landau verify MODEL``),
         ``check(setup, eps2, tolerance) -> dict``: the JSON document, with ``exit_code`` and ``text`` (the
         human report).
+    cycles : callable, optional
+        ``cycles(setup) -> CycleProblem``: its smooth vector field, the Hopf parameter as the
+        continuation parameter and the Hopf point as the start (:mod:`landau.periodic`; what
+        :func:`landau.cycles` and ``landau cycles`` continue).
     tasks : mapping of str to callable
         The sweep tasks the model runs besides ``hopf`` (which it runs when it has :attr:`hopf`):
         task name -> ``factory(task, model, law, fixed, options) -> Task``.
@@ -191,6 +195,7 @@ class Model:
     hopf: Callable[[Setup], Any] | None = None
     simulate: Callable[..., Any] | None = None
     check: Callable[..., dict] | None = None
+    cycles: Callable[[Setup], Any] | None = None
     tasks: Mapping[str, Callable[..., Any]] = field(default_factory=dict)
     options: tuple[Option, ...] = ()
     defaults: Mapping[str, Any] = field(default_factory=dict)
@@ -264,11 +269,13 @@ class Model:
         """True where the model runs the sweep task (or offering) ``task``."""
         if task == "hopf":
             return self.hopf is not None
+        if task == "cycles" and "cycles" not in self.tasks:
+            return self.cycles is not None
         return task in self.tasks
 
     def offered(self) -> tuple[str, ...]:
         """The sweep tasks this model runs."""
-        return tuple(t for t in dict.fromkeys(("hopf", *self.tasks)) if self.offers(t))
+        return tuple(t for t in dict.fromkeys(("hopf", *self.tasks, "cycles")) if self.offers(t))
 
     def __repr__(self) -> str:
         return f"Model({self.name!r}, law={self.law_kind.value}, offers={list(self.offered())})"

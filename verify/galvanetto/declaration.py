@@ -113,6 +113,20 @@ def one_block_hopf(setup: Setup):
                          "bring V and the law's parameters nearer their physical scale") from None
 
 
+def one_block_cycles(setup: Setup):
+    """The cycles of the damped one block's smooth slip field (r = Ẋ − V < 0,
+    :func:`landau.verify.galvanetto.smooth.damped_slip_system`) in the damping c from c₁; a cycle is the
+    block's motion only while it slips (max Ẋ < V): the branch says nothing past the first stick."""
+    from landau.analyses.cycle_problems import cycle_problem
+    from landau.verify.galvanetto.smooth import damped_slip_system
+
+    result = one_block_hopf(setup)
+    params = dict(setup.params)
+    V = float(params.pop("V", V_HOPF))
+    system = damped_slip_system(V, law=kinetic_law(setup, params))
+    return cycle_problem(system, {**system.defaults, "V": V}, result, parameter_range=(0.0, np.inf))
+
+
 def _simulate_one(setup: Setup, **kw):
     from landau.verify.galvanetto.run import simulate_one_block
 
@@ -135,6 +149,7 @@ GALVANETTO_ONE_BLOCK = Model(
     declare=lambda setup: _declare(setup, 1),
     hopf_parameter="c",
     hopf=one_block_hopf,
+    cycles=one_block_cycles,
     simulate=_simulate_one,
     options=_KINETIC_OPTIONS,
     # simulate_options: settings of the simulation only (hopf: add the damped block's Hopf point)
@@ -153,4 +168,4 @@ GALVANETTO_TWO_BLOCKS = Model(
     source=SOURCE,
 )
 
-__all__ = ["GALVANETTO_ONE_BLOCK", "GALVANETTO_TWO_BLOCKS", "kinetic_law", "one_block_hopf"]
+__all__ = ["GALVANETTO_ONE_BLOCK", "GALVANETTO_TWO_BLOCKS", "kinetic_law", "one_block_cycles", "one_block_hopf"]

@@ -66,9 +66,9 @@ def _hopf_parameter(setup: Setup) -> str | None:
     return given[0] if given else (names[0] if names else None)
 
 
-def impact_oscillator_hopf(setup: Setup):
-    """The Hopf point of the slip equilibrium (:func:`landau.verify.lancioni.slip.slip_hopf`), with the
-    friction law's expression and the belt velocity in ``extra``."""
+def _slip_inputs(setup: Setup):
+    """``(params, friction, parameter, v, law)`` of the slip mode: the mechanical parameters, the friction
+    law (None: the paper's Coulomb μ), the bifurcation parameter, the belt velocity and the law named."""
     from landau.verify.lancioni import slip as S
 
     params = dict(setup.params)
@@ -85,6 +85,15 @@ def impact_oscillator_hopf(setup: Setup):
         raise InputError(f"impact-oscillator: v_belt must be < 0 (positive slip, the belt direction with the Hopf "
                          f"point), got {v!r}")
     friction = law if user or parameter not in (None, "mu") else None
+    return params, friction, parameter, v, law
+
+
+def impact_oscillator_hopf(setup: Setup):
+    """The Hopf point of the slip equilibrium (:func:`landau.verify.lancioni.slip.slip_hopf`), with the
+    friction law's expression and the belt velocity in ``extra``."""
+    from landau.verify.lancioni import slip as S
+
+    params, friction, parameter, v, law = _slip_inputs(setup)
     try:
         if friction is None:  # the paper's Coulomb friction, bifurcation parameter mu
             h = S.slip_hopf(params)
@@ -96,6 +105,23 @@ def impact_oscillator_hopf(setup: Setup):
     extra = {**h.extra, "friction": law.name, "friction_positive": str(law.positive),
              "friction_negative": str(law.branch(-1)), "v_belt": v}
     return replace(h, extra=extra)
+
+
+def impact_oscillator_cycles(setup: Setup):
+    """The cycles of the smooth slip mode (contact closed, g_T > 0: :func:`landau.verify.lancioni.slip.slip_system`)
+    from its Hopf point; a cycle is the oscillator's motion only while the contact stays closed and the
+    bar slips one way (no impact, no stick): the branch says nothing past either."""
+    from landau.analyses.cycle_problems import cycle_problem
+    from landau.verify.lancioni import slip as S
+
+    result = impact_oscillator_hopf(setup)
+    params, friction, parameter, v, _ = _slip_inputs(setup)
+    if friction is None:
+        system, values = S.slip_system(1), S.resolve(params)
+    else:
+        system = S.slip_system(1, friction, S.hopf_parameter(friction, parameter))
+        values = S.slip_values(params, 1, friction, v)
+    return cycle_problem(system, values, result, name="impact-oscillator slip mode")
 
 
 def _simulate(setup: Setup, **kw):
@@ -113,6 +139,7 @@ IMPACT_OSCILLATOR = Model(
     hopf_parameter=_hopf_parameter,
     hopf=impact_oscillator_hopf,
     simulate=_simulate,
+    cycles=impact_oscillator_cycles,
     options=(Option("friction", "friction F(v) for sliding velocity v > 0"),
              Option("friction_neg", "friction for v < 0 (default the odd extension)"),
              Option("friction_name", "a name for the friction law"),
@@ -121,4 +148,4 @@ IMPACT_OSCILLATOR = Model(
     source=SOURCE,
 )
 
-__all__ = ["IMPACT_OSCILLATOR", "friction_law", "impact_oscillator_hopf"]
+__all__ = ["IMPACT_OSCILLATOR", "friction_law", "impact_oscillator_cycles", "impact_oscillator_hopf"]

@@ -145,6 +145,13 @@ def mode_coupling_hopf(setup: Setup):
     """The flutter onset of the setup's system (:func:`landau.analyses.flutter.flutter_hopf`)."""
     from landau.analyses.flutter import flutter_hopf
 
+    hp, setup = _hopf_setup(setup)
+    return flutter_hopf(system_of(setup), hp, setup.option("bracket"))
+
+
+def _hopf_setup(setup: Setup) -> tuple[str, Setup]:
+    """The bifurcation parameter and the setup the Hopf analysis builds the system from (a parameter of
+    the friction law as the bifurcation parameter gets a starting value: the scan sets it)."""
     hp = _hopf_parameter(setup)
     if hp is None:
         raise InputError("mode-coupling: name the bifurcation parameter (--parameter NAME)")
@@ -154,10 +161,25 @@ def mode_coupling_hopf(setup: Setup):
     if setup.option("friction") is not None and hp not in {p.name for p in _declare(setup) if p.default is not None}:
         from dataclasses import replace
 
-        # a parameter of the friction law as the bifurcation parameter: a starting value (the scan sets it)
         setup = replace(setup, params={**setup.params, hp: 0.3})
-    mc = system_of(setup)
-    return flutter_hopf(mc, hp, setup.option("bracket"))
+    return hp, setup
+
+
+def mode_coupling_cycles(setup: Setup):
+    """The cycles of the smooth sliding motion (contact closed, v0 − ẋ > 0) from the damped flutter's Hopf
+    point (:func:`mode_coupling_hopf`); an undamped mode-coupling onset has no cycle branch to start
+    (two imaginary pairs collide: no amplitude equation) and is refused with an InputError.  A cycle is
+    the model's motion only while the contact stays closed and the slip positive: the branch says
+    nothing past a contact loss or a stick."""
+    from landau.analyses.cycle_problems import cycle_problem
+
+    result = mode_coupling_hopf(setup)
+    hp, setup = _hopf_setup(setup)
+    if getattr(result, "extra", {}).get("kind") != "hopf":
+        raise InputError(f"mode-coupling: the onset in {hp!r} is an undamped mode coupling (no Hopf point with an "
+                         "amplitude equation): no branch of cycles starts there; give damping (c1, c2 > 0)")
+    system = system_of(setup).with_value(hp, result.p_c).sliding_system(hp)
+    return cycle_problem(system, dict(system.defaults), result, name="mode-coupling")
 
 
 def _simulate(setup: Setup, **kw):
@@ -183,6 +205,7 @@ MODE_COUPLING = Model(
     hopf_parameter=_hopf_parameter,
     hopf=mode_coupling_hopf,
     simulate=_simulate,
+    cycles=mode_coupling_cycles,
     check=_check,
     options=(Option("friction", "friction coefficient mu(v) of the sliding velocity v = v0 - xdot > 0 (default the "
                                 "constant mu)"),
@@ -201,4 +224,4 @@ MODE_COUPLING = Model(
     source="Hoffmann et al. (2002); Hoffmann & Gaul (2003)",
 )
 
-__all__ = ["MODE_COUPLING", "mode_coupling_hopf", "system_of"]
+__all__ = ["MODE_COUPLING", "mode_coupling_cycles", "mode_coupling_hopf", "system_of"]

@@ -110,6 +110,29 @@ def _block_hopf(law, params: dict):
                    extra={**res.extra, **{k: gen.extra[k] for k in keys if k in gen.extra}})
 
 
+def spring_block_cycles(setup: Setup):
+    """The spring–block's cycles in k (:class:`~landau.periodic.problem.CycleProblem`) from its Hopf point:
+    eq. (4) of Putelat et al. (2010) with every optional term given (radiation damping η …), any law
+    and any number of states; the amplitude is the slip X's half swing (the amplitude equation's C).
+    A quasi-static block (M = 0) is a differential-algebraic system: refused with an InputError."""
+    import numpy as np
+
+    from landau.analyses.cycle_problems import cycle_problem
+    from landau.systems.system import SpringBlock
+
+    law = _law(setup)
+    result = spring_block_hopf(setup)
+    params = dict(setup.params)
+    V = float(params.pop("V", V_DEFAULT))
+    block = SpringBlock.for_params(law, params)
+    resolved = {**block.resolve(params), "V": V}
+    unknowns = {}
+    if block.system.unknowns:   # the steady state with no closed form, solved numerically
+        vals = block.argvals(V, resolved)
+        unknowns = {s.name: float(np.ravel(x)[0]) for s, x in zip(block.args, vals, strict=True) if s in block.phi0}
+    return cycle_problem(block.system, resolved, result, unknowns=unknowns, parameter_range=(0.0, np.inf))
+
+
 def _hopf_task(task, model, law, fixed, options):
     from landau.analyses.sweep_tasks import SpringBlockHopf
 
@@ -173,6 +196,7 @@ SPRING_BLOCK = Model(
     hopf_parameter="k",
     hopf=spring_block_hopf,
     simulate=_simulate,
+    cycles=spring_block_cycles,
     tasks={"hopf": _hopf_task, "check": _check_task, "regime": _regime_task},
     options=_patch_options(),
     # "presets": the conventions its load-point histories take (landau.lab.preset: si, lab)
@@ -241,6 +265,24 @@ def chain_hopf_setup(setup: Setup):
                       None if bracket is None else tuple(bracket), route=setup.option("route") or "auto")
 
 
+def chain_cycles(setup: Setup):
+    """The chain's cycles in k from its first Hopf point (:func:`chain_hopf_setup`), measured on the slip
+    of the block that moves most in the critical mode (the amplitude equation's normalisation)."""
+    import numpy as np
+
+    from landau.analyses.cycle_problems import cycle_problem
+    from landau.systems.chain import SpringBlockChain
+
+    result = chain_hopf_setup(setup)
+    chain = SpringBlockChain(_law(setup), chain_blocks(setup))
+    params = {"V": V_DEFAULT, **dict(setup.params)}
+    resolved = chain.resolve(params)
+    system = chain.system
+    y_eq = chain.equilibrium_values(resolved)
+    unknowns = {u.name: float(y_eq[2 + j]) for j, u in enumerate(system.unknowns)}
+    return cycle_problem(system, resolved, result, unknowns=unknowns, parameter_range=(0.0, np.inf))
+
+
 SPRING_BLOCK_CHAIN = Model(
     name="spring-block-chain",
     description="N spring-blocks coupled by k_coupling (Burridge-Knopoff with a rate-and-state law); "
@@ -249,6 +291,7 @@ SPRING_BLOCK_CHAIN = Model(
     declare=_chain_parameters,
     hopf_parameter="k",
     hopf=chain_hopf_setup,
+    cycles=chain_cycles,
     options=(Option("blocks", f"the number of blocks (1 to {MAX_BLOCKS})"),
              Option("bracket", "stiffnesses LO:HI (N/m) to search for the first crossing"),
              Option("route", "auto, symbolic (the general engine, up to 12 blocks) or numeric (sparse, float64)")),
@@ -257,4 +300,5 @@ SPRING_BLOCK_CHAIN = Model(
     default_law="dieterich",
 )
 
-__all__ = ["SPRING_BLOCK", "SPRING_BLOCK_CHAIN", "V_DEFAULT", "chain_blocks", "law_parameters"]
+__all__ = ["SPRING_BLOCK", "SPRING_BLOCK_CHAIN", "V_DEFAULT", "chain_blocks", "chain_cycles", "law_parameters",
+           "spring_block_cycles"]
