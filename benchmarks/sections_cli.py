@@ -5,7 +5,7 @@
   *and* a new ``NUMBA_CACHE_DIR`` (numba then writes and reads every cache file of the package
   there, so nothing compiled by an earlier run is found), in a fresh process; then the same
   command again with the caches that first run left (warm).
-  Then the commands a user repeats (``hopf``, ``derive``, ``linear`` with ``--json``): a first run in
+  Then the commands a user repeats (``hopf``, ``derive``, ``linear``, ``verify`` with ``--json``): a first run in
   fresh caches and the same command again, which prints the stored answer
   (:mod:`landau.support.answers`): its CPU time, whether its bytes equal the first run's, and whether
   it imported sympy (a probe run of the same command line that lists ``sys.modules``).
@@ -60,6 +60,7 @@ REPEATED = (
      "answers-1", 1.0),
     ("derive dieterich --V 1e-4 --json", ["derive", "dieterich", "--V", "1e-4", "--json"], None, None),
     ("linear dieterich --V 1e-4 --json", ["linear", "dieterich", "--V", "1e-4", "--json"], None, None),
+    ("verify ruina --V 1e-4 --json", ["verify", "ruina", "--V", "1e-4", "--json"], None, None),
 )
 
 #: a command line run in-process, then the heavy libraries it imported on stderr
