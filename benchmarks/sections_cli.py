@@ -188,7 +188,8 @@ def section_coldstart(quick: bool) -> None:
     summary = _summary(rows)
     again_summary = _summary(again)
     for line in again_summary:
-        sel = [r for r in again if r["command"] == line["command"] and r["state"] == line["state"]]
+        sel = [r for r in again if r["command"] == line["command"] and r["state"] == line["state"]
+               and r["python"] == "this"]
         line["same bytes"] = all(r["same bytes"] for r in sel)
         line["imports"] = "; ".join(sorted({r["imports"] for r in sel if r["imports"]}))
     RAW["coldstart"] = rows + again
@@ -196,7 +197,8 @@ def section_coldstart(quick: bool) -> None:
     TABLES["coldstart"] = (
         "A command in a fresh process: `cold` — new `LANDAU_CACHE_DIR`, `NUMBA_CACHE_DIR`, `HOME`, `XDG_CACHE_HOME` "
         "and `XDG_CONFIG_HOME` folders and no `*.pyc` of landau (nothing derived or compiled before); `warm` — the "
-        "same command again with the caches the cold run left. CPU s = "
+        "same command again with the caches the cold run left (a command of the store of finished answers, "
+        "such as `verify`, prints its stored answer). CPU s = "
         f"user + sys of the child; {repeats} repeat(s).\n\n" + table(summary, _cols(summary)) +
         "\n\nA command repeated: `first` — its first run in fresh caches; `repeat` — the same command line again, "
         "answered from the store of finished answers (`landau.support.answers`); `same bytes` — its stdout equals "
