@@ -122,3 +122,15 @@ def test_galvanetto_affine_guards_and_kernels_match_the_python_model(p):
             np.testing.assert_allclose(expect, g.fun(0.0, Y), rtol=0, atol=1e-13)
         for y in Y.T:
             np.testing.assert_allclose(k(0.0, y), mode.rhs(0.0, y), rtol=1e-14, atol=1e-14)
+
+
+def test_the_first_field_value_comes_from_the_loops_cfunc_without_compiling_the_kernels_dispatcher():
+    """f(t0, y0) of a compiled DOP853 run is evaluated by the cfunc its loops call: the kernel's own
+    numba dispatcher, which nothing else of the run calls, is never compiled (one build per kernel
+    saved on a first run)."""
+    q = sp.Symbol("q")
+    k = generate_kernel([_x, _v], [_v, -q * _x - _v ** 3 / 4], [q], [2.5], name="cubic-damped")
+    s = CompiledDOP853(rtol=1e-8, atol=1e-10)(k, 0.0, [0.6, -0.8], 5.0)
+    # closed form: (v, -q x - v³/4) at (0.6, -0.8), q = 2.5
+    np.testing.assert_allclose(s.f, [-0.8, -2.5 * 0.6 + 0.8 ** 3 / 4], rtol=1e-15, atol=0)
+    assert len(k.fun.signatures) == 0

@@ -60,7 +60,7 @@ from numba import cfunc, njit, types
 from landau.errors import InputError
 from landau.verify.compiling import compile_once
 from landau.verify.hybrid import dop853_tableau as _dc
-from landau.verify.hybrid.callbacks import FunctionPointer, jit_enabled, warn_once
+from landau.verify.hybrid.callbacks import FunctionPointer, call_pointer, jit_enabled, warn_once
 from landau.verify.hybrid.kernel import Kernel
 from landau.verify.hybrid.locate import _quiet_guards
 
@@ -525,7 +525,10 @@ class DOP853Solver:
         self.rtol = float(rtol)
         self.atol = np.array(np.broadcast_to(np.asarray(atol, float), self.y.shape), dtype=float)
         self.max_step = float(max_step)
-        self.f = kernel(self.t, self.y)
+        # f(t0, y0) by the cfunc the loops call (its values to the last bit): the kernel's own dispatcher,
+        # called from Python, would be compiled a second time for this one evaluation
+        self.f = np.empty(len(self.y))
+        call_pointer(self._fun, self.t, self.y, kernel.p, self.f)
         self.nfev, self.nsteps, self.njev, self.nlu = 1, 0, 0, 0
         if first_step:
             self.h_abs = min(float(first_step), abs(self.t_bound - self.t))
