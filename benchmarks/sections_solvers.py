@@ -71,6 +71,18 @@ def _base_core():
     return mod
 
 
+def _checkout_commit(path: str) -> str:
+    """The commit of the checkout holding ``path`` (short hash), or the path when it is in none."""
+    import subprocess
+
+    try:
+        out = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=os.path.dirname(os.path.abspath(path)),
+                             capture_output=True, text=True, timeout=30, check=True).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return path
+    return f"commit {out}" if out else path
+
+
 def _unit_costs(c, p, y, h) -> dict:
     """CPU seconds of one f evaluation, one Jacobian and one real (γ/h·I − J) and one complex
     ((α + iβ)/h·I − J) LU factorisation of the Radau IIA core, at the state ``y``: compiled loops
@@ -164,7 +176,9 @@ def section_springblock(quick: bool) -> None:
     meth = default_method(integrate)
     ours = f"landau integrate (default{', ' + meth if meth else ''})"
     for rtol in [10.0 ** -e for e in range(4, 12 if quick else 13)]:
-        run, cpu = cpu_time(lambda: integrate(model, y0, (0.0, T), rtol=rtol))
+        # runs of a millisecond or less on a shared machine: the best of 15 short rounds, as for the compiled
+        # stepper and the cores below
+        run, cpu = cpu_time(lambda: integrate(model, y0, (0.0, T), rtol=rtol), min_time=0.01, repeat=15)
         rows.append({"method": ours, "kind": COMPILED, "rtol": rtol, "error": error(run.y_final, ref), "cpu": cpu,
                      "steps": run.nsteps + run.rejected, "nfev": run.nfev, "njev": run.njev, "nlu": run.nlu})
     floor = min(r["error"] for r in rows)
@@ -175,13 +189,14 @@ def section_springblock(quick: bool) -> None:
     cores = [("landau Radau IIA core (this commit)", R)]
     base = _base_core()
     if base is not None:
-        cores.append((f"landau Radau IIA core (before: {os.environ[RADAU_BASE_ENV]})", base))
+        cores.append((f"landau Radau IIA core (before: {_checkout_commit(os.environ[RADAU_BASE_ENV])})", base))
     core_rows = []
     for rtol in [r["rtol"] for r in mine]:
         for label, mod in cores:
             at = np.full(n, rtol)
             out, cpu = cpu_time(lambda mod=mod, at=at, rtol=rtol: mod.radau_core(
-                c.rhs, c.jac, 0.0, y0, Ts, p, rtol, at, h0, np.inf, 5_000_000, -1, 0.0, 0, 0, 0), repeat=5)
+                c.rhs, c.jac, 0.0, y0, Ts, p, rtol, at, h0, np.inf, 5_000_000, -1, 0.0, 0, 0, 0), min_time=0.01,
+                repeat=15)
             cnt = out[3]
             core_rows.append({"method": label, "rtol": rtol, "error": error(out[2], ref), "cpu": cpu,
                               "steps": int(cnt[0] + cnt[1]), "nfev": int(cnt[2]), "njev": int(cnt[3]),
@@ -253,15 +268,15 @@ def section_springblock(quick: bool) -> None:
                 raise RuntimeError("lsoda failed")
             return usol[-1]
 
-        peers["numbalsoda LSODA (compiled stepper, compiled f)"] = (lsoda_run, 3, COMPILED)
+        peers["numbalsoda LSODA (compiled stepper, compiled f)"] = (lsoda_run, 15, COMPILED)
     except ImportError:
         print("  (numbalsoda not installed: it builds from source with a Fortran compiler)")
     # the peers' ladders start where their errors are comparable and go on until they reach the
     # toolkit's smallest error (multistep methods need tolerances ~1e4 tighter on this cycle)
     for name, (fn, repeat, kind) in peers.items():
         start = 4 if kind == PY_PY_F else 5
-        def one(rtol, fn=fn, repeat=repeat):
-            y, cpu = cpu_time(lambda: fn(rtol), repeat=repeat)
+        def one(rtol, fn=fn, repeat=repeat, kind=kind):
+            y, cpu = cpu_time(lambda: fn(rtol), min_time=0.01 if kind == COMPILED else 0.05, repeat=repeat)
             return error(y, ref), cpu
         for rt, err, cpu, note in ladder(one, [10.0 ** -e for e in range(start, 16)], floor,
                                          budget=5.0 if quick else 30.0):
@@ -281,8 +296,8 @@ def section_springblock(quick: bool) -> None:
             report(Goal("springblock", "2", f"spring-block: best Python stepper with compiled f/J / toolkit CPU at "
                         f"error {tgt:.0e} (no compiled stepper reaches it)", theirs / mine_cpu, 3.0,
                         note=f"best Python stepper: {who}"))
-    for tgt, (theirs, mine_cpu, _) in ratios_at_equal_error(rows, ours, ["solve_ivp Radau (Python stepper, Python f+J)"],
-                                                            [1e-6, 1e-8]).items():
+    slow_peer = ["solve_ivp Radau (Python stepper, Python f+J)"]
+    for tgt, (theirs, mine_cpu, _) in ratios_at_equal_error(rows, ours, slow_peer, [1e-6, 1e-8]).items():
         report(Goal("springblock", "2", f"spring-block: scipy Radau (Python stepper, Python f+J) / toolkit at error "
                     f"{tgt:.0e}", theirs / mine_cpu, 50.0))
     floor_lines = [{"error": tgt, "toolkit cpu": mine_cpu, "idealised cpu": theirs, "floor ratio": mine_cpu / theirs}
@@ -291,7 +306,8 @@ def section_springblock(quick: bool) -> None:
     if base is not None:
         for tgt, (theirs, mine_cpu, _) in ratios_at_equal_error(core_rows, cores[0][0], [cores[1][0]],
                                                                 targets).items():
-            ba_lines.append({"error": tgt, "before cpu": theirs, "after cpu": mine_cpu, "before / after": theirs / mine_cpu})
+            ba_lines.append({"error": tgt, "before cpu": theirs, "after cpu": mine_cpu,
+                             "before / after": theirs / mine_cpu})
     RAW["springblock-core"].update(floor=floor_lines, before_after=ba_lines)
     TABLES["springblock"] = (
         f"One period T = {T:.6g} s of the Fig. 3 cycle (Putelat et al. 2010), error at the end against the toolkit "

@@ -537,10 +537,11 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                 rec_cap, EVBUF, EVDIR):
     """The integrator (:func:`radau_core` documents the arguments and the returned tuple).
 
-    The work arrays are separate allocations, never views taken inside the loop: numba counts
-    the references of every view it makes with an atomic instruction, which cost this loop a
-    third of its time when a stage's f was written into a row view of F (measured on the
-    spring–block cycle of ``benchmarks/sections_solvers.py``).
+    Every work array is used through a borrowed view (:func:`_borrowed`) of an array the loop
+    owns until it returns: numba counts the references of an owned array, and of every view made
+    of it, with an atomic instruction at each copy, pass and call, which cost this loop a third
+    of its time when a stage's f was written into a row view of F (measured on the spring–block
+    cycle of ``benchmarks/sections_solvers.py``); views of a borrowed array (``F[a]``) cost nothing.
     """
     s = 3
     n = y0.shape[0]
@@ -928,7 +929,9 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
             h = h_new
     # the crossings are in EVBUF[:cnt[6]] and the recorded steps in rec_t, rec_y[:cnt[7]]: radau_core
     # cuts them to size (in Python, which spares the first build the slicing and copying)
-    _keep_alive(f0_own, J_own, Mf_own, Mr_own, pivF_own, pivR_own, pivC_own, Z_own, W_own, F_own, JB_own, R_own, Q_own, ytmp_own, wsc_own, ynew_own, scale_own, err_own, ZE_own, yprev_own, b0_own, Mcr_own, Mci_own, bre_own, bim_own, dinv_own)
+    _keep_alive(f0_own, J_own, Mf_own, Mr_own, pivF_own, pivR_own, pivC_own, Z_own, W_own, F_own, JB_own, R_own, Q_own,
+                ytmp_own, wsc_own, ynew_own, scale_own, err_own, ZE_own, yprev_own, b0_own, Mcr_own, Mci_own, bre_own,
+                bim_own, dinv_own)
     return status, t, y_own, cnt_own, rec_t, rec_y, h, Qprev_own
 
 
