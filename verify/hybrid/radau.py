@@ -146,9 +146,10 @@ _TI_ROWS = tuple(tuple(float(v) for v in row) for row in TI_SPLIT)
 _inner = nb.njit
 #: the decorator of the helpers the loop calls every step or every Newton sweep (the solves, the
 #: factorisations, the dense output): numba inlines them into the loop's own IR, so that they
-#: are optimised with it instead of being called through its calling convention (measured 1.4×
-#: faster loop on the spring–block cycle of ``benchmarks/sections_solvers.py``, for about two
-#: CPU-seconds more of first build)
+#: are optimised with it instead of being called through its calling convention (measured 1.6×
+#: faster loop on the spring–block cycle of ``benchmarks/sections_solvers.py``; the first build
+#: of the loop, 8–9 CPU-s on a loaded 2-core machine, is the same within its scatter with or
+#: without it)
 _inline = nb.njit(inline="always")
 
 
