@@ -2,9 +2,17 @@
 
 * ``springblock`` — one period of the Fig. 3 stick-slip cycle of Putelat, Dawes & Willis (2010)
   (Dieterich law, V/V_* = 100, κ = 1e-3): ``integrate`` with its default method (the one every
-  command, check and figure uses; read from its signature at run time) against ``solve_ivp``
-  Radau/BDF/LSODA with the generated right-hand side and Jacobian compiled, ``solve_ivp`` Radau
-  with them as plain Python, SUNDIALS CVODE (scikit-sundae) and, where installed, numbalsoda.
+  command, check and figure uses; read from its signature at run time) against peers labelled by
+  what they are: *compiled steppers* (numbalsoda's LSODA with the compiled right-hand side, where
+  installed), *Python steppers with compiled f/J* (``solve_ivp`` Radau/BDF/LSODA: scipy steps in
+  Python and calls the generated right-hand side and Jacobian compiled), a Python stepper with
+  Python f/J (``solve_ivp`` Radau) and SUNDIALS CVODE (scikit-sundae: a compiled stepper that calls
+  f and J through Python).  The speed goal is read against compiled steppers only.  The section
+  also reports the Radau IIA core's counts (steps, Jacobians, LU factorisations), the floor ratio
+  against an idealised Radau IIA (the same run with everything but its f and J evaluations and LU
+  factorisations free, their unit costs measured in the same process) and, with
+  ``LANDAU_BENCH_RADAU_BASE`` naming another checkout's ``verify/hybrid/radau.py``, that core on
+  the same kernels, before against after.
 * ``forced`` — Skurativskyi et al. (2019) eq. (1) at ω = 16 (20 periods) and ω = 15 (2 periods):
   the toolkit with its impact log against CVODE and LSODA (compiled, without events) and
   ``solve_ivp`` DOP853 with the contact event.
@@ -18,10 +26,22 @@ fronts only at errors both sides reach.
 
 from __future__ import annotations
 
+import importlib.util
 import inspect
+import os
+import sys
+import time
 
 import numpy as np
 from benchlib import RAW, TABLES, Goal, cpu_time, ladder, plot_work_precision, ratios_at_equal_error, report, table
+
+#: the peers' kinds (the goal of the spring–block section is read against compiled steppers only)
+COMPILED = "compiled stepper"
+PY_COMPILED_F = "Python stepper with compiled f/J"
+PY_PY_F = "Python stepper with Python f/J"
+COMPILED_PY_F = "compiled stepper calling f/J through Python"
+#: another checkout's Radau IIA core (its ``verify/hybrid/radau.py``), timed on the same kernels
+RADAU_BASE_ENV = "LANDAU_BENCH_RADAU_BASE"
 
 
 def _results():
@@ -38,9 +58,110 @@ def default_method(fn) -> str | None:
 
 # --------------------------------------------------------------------------------------------
 # spring-block (goal 2)
+def _base_core():
+    """The Radau IIA core of another checkout (:data:`RADAU_BASE_ENV` names its
+    ``verify/hybrid/radau.py``), loaded beside this one under the name ``radau_base``; None when unset."""
+    path = os.environ.get(RADAU_BASE_ENV)
+    if not path:
+        return None
+    spec = importlib.util.spec_from_file_location("radau_base", path)
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules["radau_base"] = mod         # numba's cache locates a compiled function by its module
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def _checkout_commit(path: str) -> str:
+    """The commit of the checkout holding ``path`` (short hash), or the path when it is in none."""
+    import subprocess
+
+    try:
+        out = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=os.path.dirname(os.path.abspath(path)),
+                             capture_output=True, text=True, timeout=30, check=True).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return path
+    return f"commit {out}" if out else path
+
+
+def _unit_costs(c, p, y, h) -> dict:
+    """CPU seconds of one f evaluation, one Jacobian and one real (γ/h·I − J) and one complex
+    ((α + iβ)/h·I − J) LU factorisation of the Radau IIA core, at the state ``y``: compiled loops
+    calling the very function pointers and factorisation routines the core calls."""
+    import numba as nb
+
+    from landau.verify.hybrid import radau as R
+    from landau.verify.hybrid.callbacks import make_pointers
+
+    fp, jp = make_pointers(c.rhs, c.jac, R.SIG, R.SIG_JAC)
+    n = y.size
+
+    @nb.njit
+    def f_loop(fun, y, p, reps):
+        out = np.empty(y.size)
+        yy = y.copy()
+        acc = 0.0
+        for k in range(reps):
+            yy[0] = y[0] + 1e-15 * k
+            fun(0.0, yy, p, out)
+            acc += out[0]
+        return acc
+
+    @nb.njit
+    def j_loop(jac, y, p, reps):
+        out = np.empty((y.size, y.size))
+        yy = y.copy()
+        acc = 0.0
+        for k in range(reps):
+            yy[0] = y[0] + 1e-15 * k
+            jac(0.0, yy, p, out)
+            acc += out[0, 0]
+        return acc
+
+    lu, lu_c = R._lu, R._lu_complex
+    g, al, be = R.GAMMA_SPLIT, R.ALPHA_SPLIT, R.BETA_SPLIT
+
+    @nb.njit
+    def lu_loop(J, h, reps):
+        n = J.shape[0]
+        a, ar, ai = np.empty((n, n)), np.empty((n, n)), np.empty((n, n))
+        piv, d, dr, di = np.empty(n, dtype=np.int64), np.empty(n), np.empty(n), np.empty(n)
+        acc = 0.0
+        for k in range(reps):
+            for i in range(n):
+                for j in range(n):
+                    a[i, j] = -J[i, j]
+                    ar[i, j] = -J[i, j]
+                    ai[i, j] = 0.0
+                a[i, i] += g / h + 1e-15 * k
+                ar[i, i] += al / h + 1e-15 * k
+                ai[i, i] = be / h
+            lu(a, piv, d)
+            lu_c(ar, ai, piv, dr, di)
+            acc += a[n - 1, n - 1] + ar[n - 1, n - 1]
+        return acc
+
+    J = np.empty((n, n))
+    c.jac(0.0, y, p, J)
+    reps = 200_000
+    f_loop(fp, y, p, 10)
+    j_loop(jp, y, p, 10)
+    lu_loop(J, h, 10)
+    out = {}
+    for name, fn in (("f", lambda: f_loop(fp, y, p, reps)), ("J", lambda: j_loop(jp, y, p, reps))):
+        t0 = time.process_time()
+        fn()
+        out[name] = (time.process_time() - t0) / reps
+    # a real and a complex factorisation, as the core makes them (with the matrices' set-up)
+    t0 = time.process_time()
+    lu_loop(J, h, reps)
+    out["LU (real + complex)"] = (time.process_time() - t0) / reps
+    return out
+
+
 def section_springblock(quick: bool) -> None:
     from scipy.integrate import solve_ivp
 
+    from landau.verify.hybrid import radau as R
     from landau.verify.springblock.simulate import W_INDEX, integrate
     from landau.verify.springblock.workprecision import error, fig3_cycle, fig3_model, scipy_run
 
@@ -55,9 +176,38 @@ def section_springblock(quick: bool) -> None:
     meth = default_method(integrate)
     ours = f"landau integrate (default{', ' + meth if meth else ''})"
     for rtol in [10.0 ** -e for e in range(4, 12 if quick else 13)]:
-        y, cpu = cpu_time(lambda: integrate(model, y0, (0.0, T), rtol=rtol).y_final)
-        rows.append({"method": ours, "rtol": rtol, "error": error(y, ref), "cpu": cpu})
+        # runs of a millisecond or less on a shared machine: the best of 15 short rounds, as for the compiled
+        # stepper and the cores below
+        run, cpu = cpu_time(lambda: integrate(model, y0, (0.0, T), rtol=rtol), min_time=0.01, repeat=15)
+        rows.append({"method": ours, "kind": COMPILED, "rtol": rtol, "error": error(run.y_final, ref), "cpu": cpu,
+                     "steps": run.nsteps + run.rejected, "nfev": run.nfev, "njev": run.njev, "nlu": run.nlu})
     floor = min(r["error"] for r in rows)
+    mine = [r for r in rows if r["method"] == ours]
+
+    # the core on its own (the same call as integrate's, without the record), this commit and before
+    h0 = min(1e-3 * Ts, 1e-4)
+    cores = [("landau Radau IIA core (this commit)", R)]
+    base = _base_core()
+    if base is not None:
+        cores.append((f"landau Radau IIA core (before: {_checkout_commit(os.environ[RADAU_BASE_ENV])})", base))
+    core_rows = []
+    for rtol in [r["rtol"] for r in mine]:
+        for label, mod in cores:
+            at = np.full(n, rtol)
+            out, cpu = cpu_time(lambda mod=mod, at=at, rtol=rtol: mod.radau_core(
+                c.rhs, c.jac, 0.0, y0, Ts, p, rtol, at, h0, np.inf, 5_000_000, -1, 0.0, 0, 0, 0), min_time=0.01,
+                repeat=15)
+            cnt = out[3]
+            core_rows.append({"method": label, "rtol": rtol, "error": error(out[2], ref), "cpu": cpu,
+                              "steps": int(cnt[0] + cnt[1]), "nfev": int(cnt[2]), "njev": int(cnt[3]),
+                              "nlu": int(cnt[4])})
+
+    # the idealised Radau IIA: this run's counts at the unit costs of f, J and the LU pair
+    unit = _unit_costs(c, p, y0, Ts / max(mine[0]["steps"], 1))
+    ideal = "idealised Radau IIA (f, J, LU of the toolkit's run only)"
+    for r in mine:
+        rows.append({"method": ideal, "kind": "model", "rtol": r["rtol"], "error": r["error"],
+                     "cpu": r["nfev"] * unit["f"] + r["njev"] * unit["J"] + r["nlu"] / 2 * unit["LU (real + complex)"]})
 
     def f_c(t, y):
         out = np.empty(n)
@@ -76,8 +226,9 @@ def section_springblock(quick: bool) -> None:
             if not s.success:
                 raise RuntimeError(s.message)
             return s.y[:, -1]
-        peers[f"solve_ivp {m} (compiled f+J)"] = (run, 1)
-    peers["solve_ivp Radau (Python f+J)"] = (lambda rtol: scipy_run(model, y0, T, "Radau", rtol, True)[0], 1)
+        peers[f"solve_ivp {m} (Python stepper, compiled f+J)"] = (run, 1, PY_COMPILED_F)
+    peers["solve_ivp Radau (Python stepper, Python f+J)"] = (
+        lambda rtol: scipy_run(model, y0, T, "Radau", rtol, True)[0], 1, PY_PY_F)
     try:
         from sksundae.cvode import CVODE
 
@@ -95,7 +246,7 @@ def section_springblock(quick: bool) -> None:
                 raise RuntimeError(s.message)
             return s.y[-1]
 
-        peers["CVODE BDF (compiled f+J)"] = (cvode, 3)
+        peers["CVODE BDF (compiled stepper, f+J through Python)"] = (cvode, 3, COMPILED_PY_F)
     except ImportError:
         print("  (scikit-sundae not installed: pip install -e '.[bench]')")
     try:
@@ -117,35 +268,66 @@ def section_springblock(quick: bool) -> None:
                 raise RuntimeError("lsoda failed")
             return usol[-1]
 
-        peers["numbalsoda LSODA (compiled f)"] = (lsoda_run, 3)
+        peers["numbalsoda LSODA (compiled stepper, compiled f)"] = (lsoda_run, 15, COMPILED)
     except ImportError:
         print("  (numbalsoda not installed: it builds from source with a Fortran compiler)")
     # the peers' ladders start where their errors are comparable and go on until they reach the
     # toolkit's smallest error (multistep methods need tolerances ~1e4 tighter on this cycle)
-    for name, (fn, repeat) in peers.items():
-        start = 4 if "Python" in name else 5
-        def one(rtol, fn=fn, repeat=repeat):
-            y, cpu = cpu_time(lambda: fn(rtol), repeat=repeat)
+    for name, (fn, repeat, kind) in peers.items():
+        start = 4 if kind == PY_PY_F else 5
+        def one(rtol, fn=fn, repeat=repeat, kind=kind):
+            y, cpu = cpu_time(lambda: fn(rtol), min_time=0.01 if kind == COMPILED else 0.05, repeat=repeat)
             return error(y, ref), cpu
         for rt, err, cpu, note in ladder(one, [10.0 ** -e for e in range(start, 16)], floor,
                                          budget=5.0 if quick else 30.0):
-            rows.append({"method": name, "rtol": rt, "error": err, "cpu": cpu, "note": note})
-    compiled = [m for m in peers if "Python" not in m]
+            rows.append({"method": name, "kind": kind, "rtol": rt, "error": err, "cpu": cpu, "note": note})
+    compiled = [m for m, (_, _, kind) in peers.items() if kind == COMPILED]
+    python_compiled = [m for m, (_, _, kind) in peers.items() if kind == PY_COMPILED_F]
     RAW["springblock"] = rows
-    TABLES["springblock"] = (f"One period T = {T:.6g} s of the Fig. 3 cycle (Putelat et al. 2010), error at the end "
-                             f"against the toolkit at rtol 1e-13 (max scaled state error); the toolkit is "
-                             f"`integrate` with its default method{' (' + meth + ')' if meth else ''}.\n\n"
-                             + table(rows, ["method", "rtol", "error", "cpu", "note"]))
-    plot_work_precision(rows, "Spring-block, one period of the Fig. 3 stick-slip cycle (Dieterich)",
-                        _results() / "springblock.png", "error at the end of one period")
+    RAW["springblock-core"] = {"rows": core_rows, "unit costs (CPU s)": unit}
     targets = [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10]
-    for tgt, (theirs, mine, who) in ratios_at_equal_error(rows, ours, compiled, targets).items():
-        report(Goal("springblock", "2", f"spring-block: best compiled peer / toolkit CPU at error {tgt:.0e}",
-                    theirs / mine, 3.0, note=f"best peer: {who}"))
-    for tgt, (theirs, mine, _) in ratios_at_equal_error(rows, ours, ["solve_ivp Radau (Python f+J)"],
-                                                        [1e-6, 1e-8]).items():
-        report(Goal("springblock", "2", f"spring-block: scipy Radau (Python f+J) / toolkit at error {tgt:.0e}",
-                    theirs / mine, 50.0))
+    eq = ratios_at_equal_error(rows, ours, compiled, targets)
+    for tgt, (theirs, mine_cpu, who) in eq.items():
+        report(Goal("springblock", "2", f"spring-block: best compiled stepper / toolkit CPU at error {tgt:.0e}",
+                    theirs / mine_cpu, 3.0, note=f"best compiled stepper: {who}"))
+    # where no compiled stepper reaches the error, the Python steppers are the only peers: reported as such
+    for tgt, (theirs, mine_cpu, who) in ratios_at_equal_error(rows, ours, python_compiled, targets).items():
+        if tgt not in eq:
+            report(Goal("springblock", "2", f"spring-block: best Python stepper with compiled f/J / toolkit CPU at "
+                        f"error {tgt:.0e} (no compiled stepper reaches it)", theirs / mine_cpu, 3.0,
+                        note=f"best Python stepper: {who}"))
+    slow_peer = ["solve_ivp Radau (Python stepper, Python f+J)"]
+    for tgt, (theirs, mine_cpu, _) in ratios_at_equal_error(rows, ours, slow_peer, [1e-6, 1e-8]).items():
+        report(Goal("springblock", "2", f"spring-block: scipy Radau (Python stepper, Python f+J) / toolkit at error "
+                    f"{tgt:.0e}", theirs / mine_cpu, 50.0))
+    floor_lines = [{"error": tgt, "toolkit cpu": mine_cpu, "idealised cpu": theirs, "floor ratio": mine_cpu / theirs}
+                   for tgt, (theirs, mine_cpu, _) in ratios_at_equal_error(rows, ours, [ideal], targets).items()]
+    ba_lines = []
+    if base is not None:
+        for tgt, (theirs, mine_cpu, _) in ratios_at_equal_error(core_rows, cores[0][0], [cores[1][0]],
+                                                                targets).items():
+            ba_lines.append({"error": tgt, "before cpu": theirs, "after cpu": mine_cpu,
+                             "before / after": theirs / mine_cpu})
+    RAW["springblock-core"].update(floor=floor_lines, before_after=ba_lines)
+    TABLES["springblock"] = (
+        f"One period T = {T:.6g} s of the Fig. 3 cycle (Putelat et al. 2010), error at the end against the toolkit "
+        f"at rtol 1e-13 (max scaled state error); the toolkit is `integrate` with its default "
+        f"method{' (' + meth + ')' if meth else ''}, a compiled stepper.  Kinds: *{COMPILED}* (the whole step "
+        f"loop compiled), *{PY_COMPILED_F}* (scipy steps in Python; f and J compiled), *{PY_PY_F}*, "
+        f"*{COMPILED_PY_F}*; the goal is read against compiled steppers only.  steps = accepted + rejected; "
+        f"njev, nlu = Jacobian evaluations and LU factorisations (real and complex counted apart).\n\n"
+        + table(rows, ["method", "kind", "rtol", "error", "cpu", "steps", "nfev", "njev", "nlu", "note"])
+        + "\n\nThe Radau IIA core alone (the call `integrate` makes, without the record):\n\n"
+        + table(core_rows, ["method", "rtol", "error", "cpu", "steps", "nfev", "njev", "nlu"])
+        + "\n\nFloor ratio: the toolkit against an idealised Radau IIA that makes the same f and J evaluations and "
+        f"LU factorisations and costs nothing else (unit costs measured in this run: f {unit['f']:.3g} s, "
+        f"J {unit['J']:.3g} s, a real and a complex LU {unit['LU (real + complex)']:.3g} s), at equal error:\n\n"
+        + table(floor_lines, ["error", "toolkit cpu", "idealised cpu", "floor ratio"])
+        + (("\n\nBefore and after (the core alone, same run, same kernels), at equal error:\n\n"
+            + table(ba_lines, ["error", "before cpu", "after cpu", "before / after"])) if ba_lines else ""))
+    plot_work_precision([r for r in rows if r["kind"] != "model"],
+                        "Spring-block, one period of the Fig. 3 stick-slip cycle (Dieterich)",
+                        _results() / "springblock.png", "error at the end of one period")
 
 
 # --------------------------------------------------------------------------------------------

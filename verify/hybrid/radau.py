@@ -2,15 +2,20 @@
 
 The three-stage Radau IIA collocation method (Hairer & Wanner 1996, *Solving ODEs II*,
 Sec. IV.8) with its simplified Newton iteration solved in the eigenbasis of A⁻¹, as in the
-classical code radau5: per step one real n × n LU of γ/h·I − J (also the matrix of the error
-estimate) and one LU of the complex system with (α + iβ)/h·I − J, written as the real
-2n × 2n system [[α/h·I − J, −β/h·I], [β/h·I, α/h·I − J]] (the same solution; compiling real
-arithmetic only halves the first build of the loop).  A Newton iteration that fails is
-retried at the same step with the stage Jacobians J(Yᵢ) on the full 3n × 3n system (needed when
-the Jacobian changes by orders of magnitude within a step: ẇ ∝ e^{−w} as v → 0) before the
-step is halved.  Error estimate and step-size control follow the radau5 recipe (embedded
-estimate (γ/h·I − J)⁻¹(f₀ + Σ eᵢZᵢ/h), predictive controller of Gustafsson 1994); the dense
-output is the collocation cubic.
+classical code radau5: one real n × n LU of γ/h·I − J (also the matrix of the error estimate)
+and one complex n × n LU of (α + iβ)/h·I − J, computed in real arithmetic on its real and
+imaginary parts (compiling real arithmetic only halves the first build of the loop).  The
+Jacobian and the factors are reused as radau5 reuses them (:data:`THETA_KEEP_JAC`,
+:data:`HOLD_LO`, :data:`HOLD_HI`): J is kept while the Newton iteration contracts fast, the
+step size is held when the controller proposes a growth below 20 %, and the factors are made
+again only when J or h changed; a sweep whose increment is already below the tolerance ends the
+iteration with the contraction factor of the last step (radau5's FACCON).  A Newton iteration
+that fails with a kept J is retried with a fresh one; with a fresh J it is retried at the same
+step with the stage Jacobians J(Yᵢ) on the full 3n × 3n system (needed when the Jacobian changes
+by orders of magnitude within a step: ẇ ∝ e^{−w} as v → 0) before the step is halved.  Error
+estimate and step-size control follow the radau5 recipe (embedded estimate
+(γ/h·I − J)⁻¹(f₀ + Σ eᵢZᵢ/h), predictive controller of Gustafsson 1994); the dense output is
+the collocation cubic.
 
 Crossings of ``y[ev_idx] = ev_val`` are located on the collocation cubic (the exact cubic scan
 of :func:`cubic_crossing`) and recorded; the run can stop after a number of crossings in a
@@ -45,12 +50,15 @@ import math
 import numba as nb
 import numpy as np
 from numba import types
+from numba.core import cgutils
+from numba.extending import intrinsic
 
 from landau.errors import InputError
 from landau.verify.compiling import compile_once
 from landau.verify.hybrid.callbacks import FunctionPointer, jit_enabled, make_pointers, warn_once
 
 __all__ = ["A_RADAU", "C_NODES", "E_ERR", "MU_REAL", "VINV", "SIG", "SIG_JAC", "FUN_T", "JAC_T", "STATUS",
+           "THETA_KEEP_JAC", "HOLD_LO", "HOLD_HI",
            "FunctionPointer", "pointers", "radau_core", "split_coefficients", "cubic", "cubic_crossing"]
 
 SQ6 = math.sqrt(6.0)
@@ -136,14 +144,60 @@ _TI_ROWS = tuple(tuple(float(v) for v in row) for row in TI_SPLIT)
 #: called from compiled code, so they get no disk-cache entry of their own (the loop's entry holds
 #: their machine code)
 _inner = nb.njit
+#: the decorator of the helpers the loop calls every step or every Newton sweep (the solves, the
+#: factorisations, the dense output): numba inlines them into the loop's own IR, so that they
+#: are optimised with it instead of being called through its calling convention (measured 1.6×
+#: faster loop on the spring–block cycle of ``benchmarks/sections_solvers.py``; the first build
+#: of the loop, 8–9 CPU-s on a loaded 2-core machine, is the same within its scatter with or
+#: without it)
+_inline = nb.njit(inline="always")
+
+
+@intrinsic
+def _borrowed_view(typingctx, arr):
+    """A view of the array ``arr`` that records no owner (its meminfo is null).
+
+    numba counts the references of an array with an atomic instruction each time a compiled
+    function receives it, copies it or passes it on (a cfunc callback included); with a null
+    meminfo the count is a test and a jump.  The loop takes every work array it passes on through
+    this, and keeps the owners alive until it returns (:func:`_keep_alive`): the counting cost
+    the loop a tenth of its time on the spring–block cycle (``benchmarks/sections_solvers.py``)."""
+    def codegen(context, builder, sig, args):
+        src = context.make_array(sig.args[0])(context, builder, value=args[0])
+        out = context.make_array(sig.return_type)(context, builder)
+        out.meminfo = cgutils.get_null_value(out.meminfo.type)
+        out.parent = cgutils.get_null_value(out.parent.type)
+        out.nitems = src.nitems
+        out.itemsize = src.itemsize
+        out.data = src.data
+        out.shape = src.shape
+        out.strides = src.strides
+        return out._getvalue()
+    return arr(arr), codegen
+
+
+def _same_array(arr):
+    """:func:`_borrowed_view` as plain Python (``NUMBA_DISABLE_JIT=1``): the array itself."""
+    return arr
+
+
+_borrowed = _borrowed_view if jit_enabled() else _same_array
+
+
+@_inner
+def _keep_alive(*owners):
+    """A use of the owners of the loop's borrowed views at its end: numba frees an array after its
+    last use, which must not come before the views' last use."""
+    return None
 
 
 # ---------------------------------------------------------------------------------------------
 # dense linear algebra, norms, dense output
-@_inner
-def _lu(a, piv):
-    """In-place LU decomposition of the square ``a`` with partial pivoting (row swaps in ``piv``);
-    False when a pivot is exactly zero."""
+@_inline
+def _lu(a, piv, dinv):
+    """In-place LU decomposition of the square ``a`` with partial pivoting (row swaps in ``piv``,
+    the reciprocals of the pivots in ``dinv``: the solves multiply instead of dividing, which
+    shortens their dependency chain); False when a pivot is exactly zero."""
     n = a.shape[0]
     for k in range(n):
         m = k
@@ -161,6 +215,7 @@ def _lu(a, piv):
                 a[k, j] = a[m, j]
                 a[m, j] = tmp
         inv = 1.0 / a[k, k]
+        dinv[k] = inv
         for i in range(k + 1, n):
             a[i, k] *= inv
             f = a[i, k]
@@ -170,8 +225,8 @@ def _lu(a, piv):
     return True
 
 
-@_inner
-def _solve(lu, piv, b):
+@_inline
+def _solve(lu, piv, dinv, b):
     """Solve with the factors of :func:`_lu`, in place in ``b``."""
     n = lu.shape[0]
     for k in range(n):
@@ -189,10 +244,98 @@ def _solve(lu, piv, b):
         s = b[i]
         for j in range(i + 1, n):
             s -= lu[i, j] * b[j]
-        b[i] = s / lu[i, i]
+        b[i] = s * dinv[i]
 
 
-@_inner
+@_inline
+def _lu_complex(ar, ai, piv, dr, di):
+    """In-place LU decomposition of the complex square matrix ``ar + i·ai`` with partial pivoting
+    (largest |Re| + |Im|; row swaps in ``piv``, reciprocals of the pivots in ``dr + i·di``), in
+    real arithmetic; False when a pivot is exactly zero.
+
+    The complex n × n system of the simplified Newton iteration costs a quarter of the flops of
+    the real 2n × 2n form of the same matrix and half its dependency chain in the solves."""
+    n = ar.shape[0]
+    for k in range(n):
+        m = k
+        big = abs(ar[k, k]) + abs(ai[k, k])
+        for i in range(k + 1, n):
+            v = abs(ar[i, k]) + abs(ai[i, k])
+            if v > big:
+                big = v
+                m = i
+        piv[k] = m
+        if big == 0.0:
+            return False
+        if m != k:
+            for j in range(n):
+                tr = ar[k, j]
+                ar[k, j] = ar[m, j]
+                ar[m, j] = tr
+                ti = ai[k, j]
+                ai[k, j] = ai[m, j]
+                ai[m, j] = ti
+        # 1/(pr + i·pi) by Smith's division (no overflow of pr² + pi²)
+        pr = ar[k, k]
+        pi = ai[k, k]
+        if abs(pr) >= abs(pi):
+            r = pi / pr
+            ir = 1.0 / (pr + pi * r)
+            ii = -r * ir
+        else:
+            r = pr / pi
+            ii = -1.0 / (pr * r + pi)
+            ir = -r * ii
+        dr[k] = ir
+        di[k] = ii
+        for i in range(k + 1, n):
+            xr = ar[i, k]
+            xi = ai[i, k]
+            lr = xr * ir - xi * ii
+            li = xr * ii + xi * ir
+            ar[i, k] = lr
+            ai[i, k] = li
+            if lr != 0.0 or li != 0.0:
+                for j in range(k + 1, n):
+                    ur = ar[k, j]
+                    ui = ai[k, j]
+                    ar[i, j] -= lr * ur - li * ui
+                    ai[i, j] -= lr * ui + li * ur
+    return True
+
+
+@_inline
+def _solve_complex(ar, ai, piv, dr, di, br, bi):
+    """Solve with the factors of :func:`_lu_complex`, in place in ``br + i·bi``."""
+    n = ar.shape[0]
+    for k in range(n):
+        m = piv[k]
+        if m != k:
+            tr = br[k]
+            br[k] = br[m]
+            br[m] = tr
+            ti = bi[k]
+            bi[k] = bi[m]
+            bi[m] = ti
+    for i in range(n):
+        sr = br[i]
+        si = bi[i]
+        for j in range(i):
+            sr -= ar[i, j] * br[j] - ai[i, j] * bi[j]
+            si -= ar[i, j] * bi[j] + ai[i, j] * br[j]
+        br[i] = sr
+        bi[i] = si
+    for i in range(n - 1, -1, -1):
+        sr = br[i]
+        si = bi[i]
+        for j in range(i + 1, n):
+            sr -= ar[i, j] * br[j] - ai[i, j] * bi[j]
+            si -= ar[i, j] * bi[j] + ai[i, j] * br[j]
+        br[i] = sr * dr[i] - si * di[i]
+        bi[i] = sr * di[i] + si * dr[i]
+
+
+@_inline
 def _poly(y0, Q, x, i):
     """Component i of the dense output y0 + Σ_j Q_j x^{j+1} (Horner)."""
     acc = Q[Q.shape[0] - 1, i]
@@ -310,7 +453,7 @@ def _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF,
 # ---------------------------------------------------------------------------------------------
 # the full Newton iteration of a retried step
 @_inner
-def _stage_jacobians(jac, t, h, y, Z, p, JB, ytmp, Mf, pivF, cnt):
+def _stage_jacobians(jac, t, h, y, Z, p, JB, ytmp, Mf, pivF, dinvF, cnt):
     """The full-Newton matrix I − h(A ⊗ I)·diag(J(Y_b)) with the stage Jacobians at the current
     iterate, factorised in place; False when it is singular."""
     s, n = Z.shape
@@ -327,10 +470,65 @@ def _stage_jacobians(jac, t, h, y, Z, p, JB, ytmp, Mf, pivF, cnt):
                     Mf[a * n + i, b * n + j] = hab * JB[b, i, j]
     for i in range(s * n):
         Mf[i, i] += 1.0
-    if not _lu(Mf, pivF):
+    if not _lu(Mf, pivF, dinvF):
         return False
     cnt[4] += 1
     return True
+
+
+# ---------------------------------------------------------------------------------------------
+# the reuse of the Jacobian and of the factors (the policy of radau5: Hairer & Wanner 1996,
+# IV.8, and the code's parameters THET, QUOT1, QUOT2)
+#: the Jacobian is kept for the next step when the accepted step's simplified Newton iteration
+#: contracted at a rate θ ≤ THETA_KEEP_JAC (a step that converged at its first sweep counts as
+#: θ = THETA_KEEP_JAC, as in radau5).  Reason: a J that still gives θ this small costs no extra
+#: sweep on the next step, and keeping it is what lets the factors survive.  radau5's default
+#: THET = 0.001; on the spring–block cycle of ``benchmarks/sections_solvers.py`` 0.01, 0.1 and
+#: 0.3 cost 10–40 % more CPU at equal tolerance (more sweeps and rejected steps with a stale J
+#: through the slip), so the default stays
+THETA_KEEP_JAC = 0.001
+#: the step size is held, and with it both LU factors, when the controller proposes a ratio
+#: h_new/h in [HOLD_LO, HOLD_HI] and the Jacobian is kept (radau5's QUOT1 = 1, QUOT2 = 1.2).
+#: Reason: a growth below 20 % saves less work than the two factorisations it would cost,
+#: while a shrink is never held (the error estimate asked for it)
+HOLD_LO = 1.0
+HOLD_HI = 1.2
+
+
+@_inline
+def _factor_real(J, h, Mr, pivR, dinvR):
+    """LU of γ/h·I − J in place in ``Mr`` (the matrix of the first decoupled system and of the
+    error estimate, Hairer & Wanner 1996, eq. (8.18)); False when singular."""
+    n = J.shape[0]
+    gh = GAMMA_SPLIT / h
+    for i in range(n):
+        for j in range(n):
+            Mr[i, j] = -J[i, j]
+        Mr[i, i] += gh
+    return _lu(Mr, pivR, dinvR)
+
+
+@_inline
+def _factor_complex(J, h, Mcr, Mci, pivC, dcr, dci):
+    """LU of the complex (α + iβ)/h·I − J (eq. (8.18)), real part in ``Mcr`` and imaginary part in
+    ``Mci`` (:func:`_lu_complex`); False when singular."""
+    n = J.shape[0]
+    ah = ALPHA_SPLIT / h
+    bh = BETA_SPLIT / h
+    for i in range(n):
+        for j in range(n):
+            Mcr[i, j] = -J[i, j]
+            Mci[i, j] = 0.0
+        Mcr[i, i] += ah
+        Mci[i, i] = bh
+    return _lu_complex(Mcr, Mci, pivC, dcr, dci)
+
+
+@_inline
+def _root4(x):
+    """x^(1/4) as two square roots (the controller's exponent 1/(s + 1) for s = 3 stages; a square
+    root costs a fraction of a general power)."""
+    return math.sqrt(math.sqrt(x))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -338,7 +536,14 @@ def _stage_jacobians(jac, t, h, y, Z, p, JB, ytmp, Mf, pivF, cnt):
 @nb.njit(cache=True)
 def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps, ev_idx, ev_val, ev_dir, ev_stop,
                 rec_cap, EVBUF, EVDIR):
-    """The integrator (:func:`radau_core` documents the arguments and the returned tuple)."""
+    """The integrator (:func:`radau_core` documents the arguments and the returned tuple).
+
+    Every work array is used through a borrowed view (:func:`_borrowed`) of an array the loop
+    owns until it returns: numba counts the references of an owned array, and of every view made
+    of it, with an atomic instruction at each copy, pass and call, which cost this loop a third
+    of its time when a stage's f was written into a row view of F (measured on the spring–block
+    cycle of ``benchmarks/sections_solvers.py``); views of a borrowed array (``F[a]``) cost nothing.
+    """
     s = 3
     n = y0.shape[0]
     N = s * n
@@ -348,13 +553,20 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
     alp = ALPHA_SPLIT
     bet = BETA_SPLIT
     # set-up: f at the start (counted), the first step, counters and recording buffers
-    cnt = np.empty(8, dtype=np.int64)
+    cnt_own = np.empty(8, dtype=np.int64)
+    cnt = _borrowed(cnt_own)
     for i in range(8):
         cnt[i] = 0
     rec_t = np.empty(rec_cap)
     rec_y = np.empty((rec_cap, n))
-    y = y0.copy()
-    f0 = np.empty(n)
+    y_own = y0.copy()
+    y = _borrowed(y_own)
+    p = _borrowed(p)
+    atol = _borrowed(atol)
+    EVBUF = _borrowed(EVBUF)
+    EVDIR = _borrowed(EVDIR)
+    f0_own = np.empty(n)
+    f0 = _borrowed(f0_own)
     fun(t0, y, p, f0)
     cnt[2] += 1
     h = min(h0, max_step, t_end - t0)
@@ -368,37 +580,83 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
         for i in range(n):
             rec_y[0, i] = y[i]
         cnt[7] = 1
-    J = np.empty((n, n))
-    Mf = np.empty((N, N))
-    Mr = np.empty((n, n))
-    Mc = np.empty((2 * n, 2 * n))
-    bc = np.empty(2 * n)
-    pivF = np.empty(N, dtype=np.int64)
-    pivR = np.empty(n, dtype=np.int64)
-    pivC = np.empty(2 * n, dtype=np.int64)
-    Z = np.empty((s, n))
-    W = np.empty((s, n))
-    F = np.empty((s, n))
-    JB = np.empty((s, n, n))
-    R = np.empty(N)
-    vec = np.empty((10, n))
-    Q = np.empty((s, n))
-    Qprev = np.empty((s, n))
+    J_own = np.empty((n, n))
+    J = _borrowed(J_own)
+    Mf_own = np.empty((N, N))
+    Mf = _borrowed(Mf_own)
+    Mr_own = np.empty((n, n))
+    Mr = _borrowed(Mr_own)
+    Mcr_own = np.empty((n, n))
+    Mcr = _borrowed(Mcr_own)
+    Mci_own = np.empty((n, n))
+    Mci = _borrowed(Mci_own)
+    bre_own = np.empty(n)
+    bre = _borrowed(bre_own)
+    bim_own = np.empty(n)
+    bim = _borrowed(bim_own)
+    dinv_own = np.empty((4, N))
+    dinv = _borrowed(dinv_own)
+    pivF_own = np.empty(N, dtype=np.int64)
+    pivF = _borrowed(pivF_own)
+    pivR_own = np.empty(n, dtype=np.int64)
+    pivR = _borrowed(pivR_own)
+    pivC_own = np.empty(n, dtype=np.int64)
+    pivC = _borrowed(pivC_own)
+    Z_own = np.empty((s, n))
+    Z = _borrowed(Z_own)
+    W_own = np.empty((s, n))
+    W = _borrowed(W_own)
+    F_own = np.empty((s, n))
+    F = _borrowed(F_own)
+    JB_own = np.empty((s, n, n))
+    JB = _borrowed(JB_own)
+    R_own = np.empty(N)
+    R = _borrowed(R_own)
+    Q_own = np.empty((s, n))
+    Q = _borrowed(Q_own)
+    Qprev_own = np.empty((s, n))
+    Qprev = _borrowed(Qprev_own)
     for a in range(s):
         for i in range(n):
             Qprev[a, i] = 0.0
-    ytmp, ynew, scale, err, ZE, yprev = vec[0], vec[1], vec[2], vec[3], vec[4], vec[5]
-    b0 = vec[6]
+    ytmp_own = np.empty(n)
+    ytmp = _borrowed(ytmp_own)
+    wsc_own = np.empty(n)
+    wsc = _borrowed(wsc_own)
+    ynew_own = np.empty(n)
+    ynew = _borrowed(ynew_own)
+    scale_own = np.empty(n)
+    scale = _borrowed(scale_own)
+    err_own = np.empty(n)
+    err = _borrowed(err_own)
+    ZE_own = np.empty(n)
+    ZE = _borrowed(ZE_own)
+    yprev_own = np.empty(n)
+    yprev = _borrowed(yprev_own)
+    b0_own = np.empty(n)
+    b0 = _borrowed(b0_own)
+    dinvR = dinv[0]
+    dcr = dinv[1]
+    dci = dinv[2]
+    dinvF = dinv[3]
     t = t0
     have_prev = False
     tprev = 0.0
     hprev = 1.0
     newton_tol = max(10 * EPS / rtol, min(0.03, rtol ** 0.5))
-    expo = 1.0 / (s + 1)
     use_full = False
     err_old = -1.0
     h_old = -1.0
     rejected = False
+    # the reuse state: J is evaluated when need_jac; jac_fresh says it was evaluated at the current
+    # (t, y); the factors belong to J and h_lu (real_ok, cplx_ok); faccon = θ/(1 − θ) of the last
+    # iteration, carried to the next step's convergence test (radau5's FACCON)
+    need_jac = True
+    jac_fresh = False
+    h_lu = -1.0
+    real_ok = False
+    cplx_ok = False
+    faccon = 1.0
     nev_dir = 0 * ev_stop      # (an int64 variable: a literal 0 would compile _crossings twice)
     while t < t_end:
         # before a step: the budget of step attempts (-2), h cut to the end of the interval,
@@ -411,39 +669,42 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
         if h < 10 * EPS * max(abs(t), 1e-300) or h <= 0.0:
             status = -1
             break
-        jac(t, y, p, J)
-        cnt[3] += 1
+        # the iteration matrices: J when asked for, the factors when J or h changed since they
+        # were made (the complex one is not needed by the full Newton retry)
+        if need_jac:
+            jac(t, y, p, J)
+            cnt[3] += 1
+            need_jac = False
+            jac_fresh = True
+            h_lu = -1.0
+        if h != h_lu:
+            real_ok = False
+            cplx_ok = False
+            h_lu = h
+        if not real_ok:
+            real_ok = _factor_real(J, h, Mr, pivR, dinvR)
+            cnt[4] += 1
+        if not use_full and not cplx_ok:
+            cplx_ok = _factor_complex(J, h, Mcr, Mci, pivC, dcr, dci)
+            cnt[4] += 1
+        ok = real_ok and (use_full or cplx_ok)
         gh = gam / h
         ah = alp / h
         bh = bet / h
-        # (α + iβ)/h·I − J acting on u + iv, as the real 2n × 2n matrix [[αI/h − J, −βI/h], [βI/h, αI/h − J]]
-        for i in range(n):
-            for j in range(n):
-                mij = -J[i, j]
-                Mr[i, j] = mij
-                Mc[i, j] = mij
-                Mc[n + i, n + j] = mij
-                Mc[i, n + j] = 0.0
-                Mc[n + i, j] = 0.0
-            Mr[i, i] += gh
-            Mc[i, i] += ah
-            Mc[n + i, n + i] += ah
-            Mc[i, n + i] = -bh
-            Mc[n + i, i] = bh
-        ok = _lu(Mr, pivR)
-        cnt[4] += 1
-        if not use_full:
-            ok = _lu(Mc, pivC) and ok
-            cnt[4] += 1
         # Newton start: the previous step's collocation polynomial, extrapolated
         # (and W = T⁻¹Z for the split iteration), one loop over the components
+        x0 = (t + _NODES[0] * h - tprev) / hprev
+        x1 = (t + _NODES[1] * h - tprev) / hprev
+        x2 = (t + _NODES[2] * h - tprev) / hprev
         for i in range(n):
-            for a in range(s):
-                if have_prev:
-                    x = (t + _NODES[a] * h - tprev) / hprev
-                    Z[a, i] = _poly(yprev, Qprev, x, i) - y[i]
-                else:
-                    Z[a, i] = 0.0
+            if have_prev:
+                Z[0, i] = _poly(yprev, Qprev, x0, i) - y[i]
+                Z[1, i] = _poly(yprev, Qprev, x1, i) - y[i]
+                Z[2, i] = _poly(yprev, Qprev, x2, i) - y[i]
+            else:
+                Z[0, i] = 0.0
+                Z[1, i] = 0.0
+                Z[2, i] = 0.0
             if not use_full:
                 W[0, i] = TI[0][0] * Z[0, i] + TI[0][1] * Z[1, i] + TI[0][2] * Z[2, i]
                 W[1, i] = TI[1][0] * Z[0, i] + TI[1][1] * Z[1, i] + TI[1][2] * Z[2, i]
@@ -451,25 +712,29 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
         converged = False
         dW_old = -1.0
         rate = -1.0
+        thq_old = 1.0
+        # radau5: the contraction factor of the last step, raised to 0.8 (so that a run of fast
+        # steps cannot lock it at a tiny value), lets a sweep whose increment is already below the
+        # tolerance end the iteration; θ starts at THETA_KEEP_JAC (one sweep counts as fast)
+        faccon = max(faccon, EPS) ** 0.8
+        theta = THETA_KEEP_JAC
         n_iter = 0
+        # the weights of the increments' norm, 1/(atol + rtol·|y|) at the start of the step (radau5's SCAL)
+        for i in range(n):
+            wsc[i] = 1.0 / (atol[i] + abs(y[i]) * rtol)
         if ok:
             for it in range(3 * NEWTON_MAXITER if use_full else NEWTON_MAXITER):
                 n_iter = min(it + 1, NEWTON_MAXITER)
-                finite = True
+                # the stage values f(t + c_a h, y + Z_a) straight into the rows of F (views of a
+                # borrowed array: no reference counts); a non-finite one shows in the increment's norm
                 for a in range(s):
                     for i in range(n):
                         ytmp[i] = y[i] + Z[a, i]
-                    fa = F[a]
-                    fun(t + _NODES[a] * h, ytmp, p, fa)
+                    fun(t + _NODES[a] * h, ytmp, p, F[a])
                     cnt[2] += 1
-                    for i in range(n):
-                        if not math.isfinite(fa[i]):
-                            finite = False
-                if not finite:
-                    break
                 if use_full:
                     # the retry: full Newton matrix with the stage Jacobians
-                    if not _stage_jacobians(jac, t, h, y, Z, p, JB, ytmp, Mf, pivF, cnt):
+                    if not _stage_jacobians(jac, t, h, y, Z, p, JB, ytmp, Mf, pivF, dinvF, cnt):
                         break
                     for a in range(s):
                         for i in range(n):
@@ -477,7 +742,7 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                             for b in range(s):
                                 acc += h * A_RADAU[a, b] * F[b, i]
                             R[a * n + i] = acc
-                    _solve(Mf, pivF, R)
+                    _solve(Mf, pivF, dinvF, R)
                 else:
                     # right-hand sides T⁻¹F − (Λ/h)·T⁻¹Z of the decoupled systems
                     for i in range(n):
@@ -486,16 +751,18 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                         g2 = TI[2][0] * F[0, i] + TI[2][1] * F[1, i] + TI[2][2] * F[2, i]
                         w0, w1, w2 = W[0, i], W[1, i], W[2, i]
                         b0[i] = g0 - gh * w0
-                        bc[i] = g1 - (ah * w1 - bh * w2)
-                        bc[n + i] = g2 - (bh * w1 + ah * w2)
-                    _solve(Mr, pivR, b0)
-                    _solve(Mc, pivC, bc)
+                        bre[i] = g1 - (ah * w1 - bh * w2)
+                        bim[i] = g2 - (bh * w1 + ah * w2)
+                    # (γ/h·I − J)·ΔW₁ = b0 and ((α + iβ)/h·I − J)·(ΔW₂ + iΔW₃) = bre + i·bim (eq. (8.18)),
+                    # with the factors made above
+                    _solve(Mr, pivR, dinvR, b0)
+                    _solve_complex(Mcr, Mci, pivC, dcr, dci, bre, bim)
                     # ΔW = (b0, Re, Im of the complex solution) and ΔZ = T·ΔW, one loop (constant
                     # indices into T: a variable index into a tuple compiles to a switch)
                     for i in range(n):
                         d0 = b0[i]
-                        d1 = bc[i]
-                        d2 = bc[n + i]
+                        d1 = bre[i]
+                        d2 = bim[i]
                         W[0, i] += d0
                         W[1, i] += d1
                         W[2, i] += d2
@@ -505,11 +772,12 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                 dW = 0.0
                 for a in range(s):
                     for i in range(n):
-                        sc = atol[i] + abs(y[i] + Z[a, i]) * rtol
-                        r = R[a * n + i] / sc
+                        r = R[a * n + i] * wsc[i]
                         dW += r * r
                         Z[a, i] += R[a * n + i]
                 dW = math.sqrt(dW / N)
+                if not math.isfinite(dW):
+                    break
                 if dW_old > 0:
                     rate = dW / dW_old
                 if use_full:
@@ -520,26 +788,43 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                         break
                     dW_old = dW
                     continue
-                if rate >= 1.0 or (rate > 0 and rate ** (NEWTON_MAXITER - it) / (1 - rate) * dW > newton_tol):
-                    break
-                if dW == 0.0 or (rate > 0 and rate / (1 - rate) * dW < newton_tol):
+                if rate > 0:
+                    # θ: the last ratio of increments, from the third sweep on the geometric mean of
+                    # the last two (radau5); divergence, or a rate too slow to reach the tolerance
+                    # within the sweeps left, fails the iteration
+                    theta = rate if it == 1 else math.sqrt(rate * thq_old)
+                    thq_old = rate
+                    if theta >= 0.99:
+                        break
+                    faccon = theta / (1.0 - theta)
+                    if n_iter < NEWTON_MAXITER and faccon * dW * theta ** (NEWTON_MAXITER - 1 - n_iter) > newton_tol:
+                        break
+                if dW == 0.0 or faccon * dW <= newton_tol:
                     converged = True
                     break
-                dW_old = dW
+                dW_old = max(dW, EPS)
         if not converged:
+            # a failed iteration (radau5's unexpected rejection): with a kept J, retry with a fresh one
+            # at the same h; with a fresh one, the full Newton retry with the stage Jacobians (needed
+            # when J changes by orders of magnitude within the step: ẇ ∝ e^{−w} as v → 0), then h/2
             cnt[5] += 1
             cnt[1] += 1
-            if use_full:
-                h *= 0.5
-            use_full = True
             rejected = True
+            faccon = 1.0
+            if not jac_fresh:
+                need_jac = True
+            elif not use_full:
+                use_full = True
+            else:
+                h *= 0.5
             continue
         # embedded error estimate: (γ/h I − J)⁻¹ (f0 + Σ e_a Z_a / h), with the real factors above
+        hinv = 1.0 / h
         for i in range(n):
             ynew[i] = y[i] + Z[s - 1, i]
             acc = f0[i]
             for a in range(s):
-                acc += E_ERR[a] * Z[a, i] / h
+                acc += E_ERR[a] * Z[a, i] * hinv
             err[i] = acc
             ZE[i] = acc - f0[i]
             scale[i] = atol[i] + max(abs(y[i]), abs(ynew[i])) * rtol
@@ -547,7 +832,7 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
         # (radau5): the solve and the norm are written once, for both passes
         err_norm = 0.0
         for sweep in range(2):
-            _solve(Mr, pivR, err)
+            _solve(Mr, pivR, dinvR, err)
             acc = 0.0
             for i in range(n):
                 r = err[i] / scale[i]
@@ -562,21 +847,23 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
             for i in range(n):
                 err[i] += ZE[i]
         safety = 0.9 * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter)
-        # the error test: retry with h/4 after a non-finite error, h·max(0.2, safety·err^(−expo))
-        # above the tolerance
+        # the error test: retry with h/4 after a non-finite error, h·max(0.2, safety·err^(−1/4))
+        # above the tolerance; a rejected step keeps J only when it was evaluated for this step (radau5)
         if not math.isfinite(err_norm):
             h_retry = h * 0.25
         elif err_norm > 1.0:
-            h_retry = h * max(0.2, safety * err_norm ** -expo)
+            h_retry = h * max(0.2, safety / _root4(err_norm))
         else:
             h_retry = -1.0
         if h_retry > 0.0:
             cnt[1] += 1
             h = h_retry
             rejected = True
+            need_jac = not jac_fresh
             continue
         # accepted: the collocation polynomial Q = V⁻¹Z is the dense output
         cnt[0] += 1
+        keep_jac = theta <= THETA_KEEP_JAC and not use_full
         use_full = False
         for i in range(n):
             for j in range(s):
@@ -620,23 +907,33 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
         if stop:
             status = 1
             break
-        # the predictive controller (Gustafsson 1994): expo = 1/4 for the order-3 estimate, growth by
+        # the predictive controller (Gustafsson 1994): exponent 1/4 for the order-3 estimate, growth by
         # at most FACMAX, and none right after a rejection
         if err_old > 0 and err_norm > 0:
-            mult = h / h_old * (err_old / err_norm) ** expo
+            mult = h / h_old * _root4(err_old / err_norm)
         else:
             mult = 1.0
-        fac = min(1.0, mult) * (err_norm ** -expo if err_norm > 0 else FACMAX)
+        fac = min(1.0, mult) * (1.0 / _root4(err_norm) if err_norm > 0 else FACMAX)
         fac = min(FACMAX, safety * fac)
         if rejected:
             fac = min(1.0, fac)
         h_old = h
-        h = min(h * fac, max_step)
         err_old = max(err_norm, 1e-10)
         rejected = False
+        # the reuse policy (THETA_KEEP_JAC, HOLD_LO, HOLD_HI): the step size and both factors are held
+        # when J is kept and the proposal grows h by less than 20 %; otherwise J is evaluated again at
+        # the new point unless the iteration contracted fast
+        jac_fresh = False
+        need_jac = not keep_jac
+        h_new = min(h * fac, max_step)
+        if not (keep_jac and HOLD_LO <= h_new / h <= HOLD_HI):
+            h = h_new
     # the crossings are in EVBUF[:cnt[6]] and the recorded steps in rec_t, rec_y[:cnt[7]]: radau_core
     # cuts them to size (in Python, which spares the first build the slicing and copying)
-    return status, t, y, cnt, rec_t, rec_y, h, Qprev
+    _keep_alive(f0_own, J_own, Mf_own, Mr_own, pivF_own, pivR_own, pivC_own, Z_own, W_own, F_own, JB_own, R_own, Q_own,
+                ytmp_own, wsc_own, ynew_own, scale_own, err_own, ZE_own, yprev_own, b0_own, Mcr_own, Mci_own, bre_own,
+                bim_own, dinv_own)
+    return status, t, y_own, cnt_own, rec_t, rec_y, h, Qprev_own
 
 
 def pointers(fun, jac):
