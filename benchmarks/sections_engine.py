@@ -4,20 +4,23 @@
   against the previous route and ``sympy.lambdify(cse=True)`` compiled by ``numba.vectorize``,
   the first call, the points the float64 bound sends to double-double, and the error of 1000
   points (plus the floats around each zero of Λ) against 40-digit mpmath.
-* ``derive`` — derivation + compile CPU time of Dieterich-type laws with 1…6 state variables
-  (fresh interpreter each), with the growth exponent; ``--baseline-derive`` adds the direct
-  routes (numeric conversion of symbolic pivots, Berkowitz determinant) for comparison.
+* ``derive`` — derivation + compile CPU time of Dieterich-type laws with 1…8 state variables
+  (fresh interpreter each, landau cache off), the ratio per added state and the growth exponent;
+  with ``LANDAU_BENCH_BASELINE_PYTHON`` the same for that interpreter's checkout in the same run
+  ("before"); ``--baseline-derive`` adds the direct routes (numeric conversion of symbolic
+  pivots, Berkowitz determinant) up to 6 states for comparison.
 """
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
-from benchlib import RAW, TABLES, Goal, cpu_time, report, table
+from benchlib import NEUTRAL, RAW, TABLES, Goal, cpu_time, interpreters, report, table
 
 # --------------------------------------------------------------------------------------------
 # Λ(V) (goal 5)
@@ -182,11 +185,14 @@ print(time.process_time() - t0, repr(float(r["Lambda"][0])))
 """
 
 
-def _derive_cpu(n: int, route: str, timeout: float) -> tuple[float, float]:
+def _derive_cpu(n: int, route: str, timeout: float, python: str = sys.executable) -> tuple[float, float]:
+    """CPU seconds of the derivation and first evaluation in a fresh interpreter ``python``, with the
+    landau cache off (a cold derivation: nothing read from an earlier run), and Λ(1e-5)."""
     code = _DERIVE_SNIPPET.format(bench=str(Path(__file__).resolve().parent))
+    env = dict(os.environ, LANDAU_CACHE="off")
     try:
-        out = subprocess.run([sys.executable, "-c", code, str(n), route], capture_output=True, text=True,
-                             check=True, timeout=timeout)
+        out = subprocess.run([python, "-c", code, str(n), route], capture_output=True, text=True,
+                             check=True, timeout=timeout, env=env, cwd=NEUTRAL)
     except subprocess.TimeoutExpired:
         return float("inf"), float("nan")
     a, b = out.stdout.split()[-2:]
@@ -201,31 +207,68 @@ def _exponent(ns, ts) -> float:
     return float(np.polyfit(x, y, 1)[0])
 
 
+#: the most states timed, and the most the direct routes are timed for (minutes beyond)
+DERIVE_STATES, DIRECT_STATES = 8, 6
+#: goal: the cost of one more state variable, t(n + 1)/t(n), from 1 → 2 to 7 → 8 states
+DERIVE_RATIO = 1.5
+
+
 def section_derive(quick: bool, baseline: bool) -> None:
-    ns = list(range(1, 6 if quick else 7))
+    """Derivation + first evaluation of the n-state Dieterich family, n = 1…8, CPU time (best of 3 for
+    this checkout; once for the baseline interpreter of ``LANDAU_BENCH_BASELINE_PYTHON``, interleaved:
+    the same machine load), and the ratios t(n + 1)/t(n)."""
+    ns = list(range(1, DERIVE_STATES + 1))
+    peers = interpreters()
     rows = []
     for n in ns:
-        t, lam = _derive_cpu(n, "current", 600)
-        row = {"states": n, "CPU s": t, "Lambda(1e-5)": lam}
-        if baseline:
+        row: dict = {"states": n}
+        for label, py in peers:
+            reps = (1 if quick else 3) if label == "this" else 1
+            runs = [_derive_cpu(n, "current", 900, py) for _ in range(reps)]
+            t, lam = min(runs)
+            row["CPU s" if label == "this" else "before CPU s"] = t
+            if label == "this":
+                row["Lambda(1e-5)"] = lam
+            else:
+                row["before Lambda(1e-5)"] = lam
+        if baseline and n <= DIRECT_STATES:
             tb, lamb = _derive_cpu(n, "direct", 900)
-            row.update({"direct routes CPU s": tb, "same Lambda": bool(lamb == lam) if np.isfinite(lamb) else "n/a"})
+            row.update({"direct routes CPU s": tb, "same Lambda": bool(lamb == row["Lambda(1e-5)"])
+                        if np.isfinite(lamb) else "n/a"})
         rows.append(row)
-        print(f"  {n} states: {t:.2f} s" + (f" (direct routes {row['direct routes CPU s']:.2f} s)" if baseline else ""),
-              flush=True)
+        print(f"  {n} states: {row['CPU s']:.2f} s" + "".join(f", {k} {v:.3g}" for k, v in row.items()
+                                                            if k.endswith("CPU s") and k != "CPU s"), flush=True)
+    for prev, row in zip(rows[:-1], rows[1:], strict=True):
+        row["ratio"] = row["CPU s"] / prev["CPU s"]
+        if "before CPU s" in row:
+            row["before ratio"] = row["before CPU s"] / prev["before CPU s"]
+    rows[0]["ratio"] = float("nan")
+    if "before CPU s" in rows[0]:
+        rows[0]["before ratio"] = float("nan")
     RAW["derive"] = rows
-    cols = list(rows[0])
-    TABLES["derive"] = ("Derivation + compile of all seven quantities, Dieterich law with n states "
+    cols = [c for c in ("states", "CPU s", "ratio", "before CPU s", "before ratio", "Lambda(1e-5)",
+                        "before Lambda(1e-5)", "direct routes CPU s", "same Lambda") if c in rows[0]]
+    TABLES["derive"] = ("Derivation + first evaluation of all seven quantities, Dieterich law with n states "
                         "(μ = a_v + a ln(v/V_*) + Σ bᵢ ln(V_*φᵢ/Lᵢ), dφᵢ/dt = 1 − vφᵢ/Lᵢ), CPU seconds in a fresh "
-                        "interpreter (imports excluded).\n\n" + table(rows, cols))
+                        "interpreter with the landau cache off (imports excluded; best of "
+                        f"{1 if quick else 3}); ratio = t(n)/t(n − 1)"
+                        + ("; before = the baseline interpreter's checkout, timed in the same run, "
+                           "interleaved" if len(peers) > 1 else "") + ".\n\n" + table(rows, cols))
     exp_now = _exponent(ns, [r["CPU s"] for r in rows])
     exp_pw = _exponent(ns[-3:], [r["CPU s"] for r in rows][-3:])
     TABLES["derive"] += (f"\n\nGrowth exponent (t ∝ n^p, fit over 1…{ns[-1]}): p = {exp_now:.2f}; "
                          f"over the last three: {exp_pw:.2f}")
+    if len(peers) > 1:
+        eb = _exponent(ns, [r["before CPU s"] for r in rows])
+        TABLES["derive"] += f"; before: p = {eb:.2f}"
     if baseline:
-        eb = _exponent(ns, [r["direct routes CPU s"] for r in rows])
-        TABLES["derive"] += f"; direct routes: p = {eb:.2f}"
+        nd = [r["states"] for r in rows if "direct routes CPU s" in r]
+        eb = _exponent(nd, [r["direct routes CPU s"] for r in rows if "direct routes CPU s" in r])
+        TABLES["derive"] += f"; direct routes (1…{nd[-1]}): p = {eb:.2f}"
     for r in rows:
         if r["states"] <= 5:
             report(Goal("derive", "6", f"derivation + compile, {r['states']} state(s) [CPU s]", r["CPU s"], 2.0, "<="))
+    for r in rows[1:]:
+        report(Goal("derive", "6", f"derivation cost ratio t({r['states']})/t({r['states'] - 1} states)",
+                    r["ratio"], DERIVE_RATIO, "<="))
     print(f"  growth exponent over 1..{ns[-1]} states: {exp_now:.2f}")

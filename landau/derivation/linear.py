@@ -23,8 +23,10 @@ import sympy as sp
 from sympy.polys.matrices import DomainMatrix
 
 from landau.codegen.formula import CompiledFormula, compile_expr
+from landau.derivation.hopf_polynomial import hopf_polynomials
 from landau.derivation.jets import Jets
 from landau.derivation.parameter_jets import ParameterJets
+from landau.derivation.sparse_det import det_by_sparsity
 from landau.errors import InputError, NoHopfError, SingularPointError
 from landau.systems.system import DynamicalSystem, SpringBlock, V
 
@@ -45,6 +47,25 @@ def _split_at_iw(poly: sp.Poly) -> tuple[sp.Poly, sp.Poly]:
         (re if m % 2 == 0 else im)[(m,)] = c if sign == 1 else -c
     dom = poly.domain
     return sp.Poly.from_dict(re, w, domain=dom), sp.Poly.from_dict(im, w, domain=dom)
+
+
+def _char_parts(det: Any, ring: Any, p: sp.Symbol) -> tuple[sp.Poly, sp.Poly]:
+    """(P, Q) of det(λE − J) = P(λ) + p Q(λ), an element of the sparse polynomial ring ``ring`` over
+    (atoms, λ, p), as polynomials in λ over the ring of the atoms: the terms sorted by their powers
+    of p and λ (no dense multivariate conversion: one generator per atom)."""
+    syms = ring.symbols
+    ip, il = syms.index(p), syms.index(lam)
+    keep = [i for i in range(len(syms)) if i not in (ip, il)]
+    coef = ring.domain[tuple(syms[i] for i in keep)] if keep else ring.domain
+    parts: tuple[dict, dict] = ({}, {})
+    for mon, c in det.items():
+        if mon[ip] > 1:
+            raise InputError("the Hopf parameter enters the characteristic polynomial nonlinearly")
+        parts[mon[ip]].setdefault(mon[il], {})[tuple(mon[i] for i in keep)] = c
+    make = (lambda d: coef.ring.from_dict(d)) if keep else (lambda d: d[()])
+    P, Q = (sp.Poly.from_dict({(m,): make(d) for m, d in part.items()} or {(0,): coef.zero}, lam, domain=coef)
+            for part in parts)
+    return P, Q
 
 
 def _in_lambda(poly: sp.Poly) -> sp.Poly:
@@ -173,12 +194,14 @@ class HopfLine:
         A = DomainMatrix.from_Matrix(lam * E - J)
         p = self.system.parameter
         ring = A.domain
+        # the same exact element by the block-arrow sparsity of λE − J (one term per state
+        # variable, no division), else by fraction-free elimination
+        rows = A.to_list()
+        det = det_by_sparsity(rows, ring.zero, ring.one)
+        det = A.det() if det is None else det
         if ring.is_PolynomialRing and lam in ring.symbols and p in ring.symbols:
-            char = sp.Poly.from_dict(dict(A.det()), *ring.symbols, domain=ring.domain)
-            if char.degree(p) > 1:
-                raise InputError("the Hopf parameter enters the characteristic polynomial nonlinearly")
-            return _in_lambda(char.eval(p, 0)), _in_lambda(char.diff(p).eval(p, 0))
-        char = sp.expand(ring.to_sympy(A.det()))
+            return _char_parts(det, ring, p)
+        char = sp.expand(ring.to_sympy(det))
         if sp.diff(char, p, 2) != 0:
             raise InputError("the Hopf parameter enters the characteristic polynomial nonlinearly")
         P = sp.Poly(char.subs(p, 0), lam)
@@ -189,6 +212,9 @@ class HopfLine:
     def _hopf_polys(self) -> tuple[sp.Poly, sp.Expr, sp.Expr]:
         """(H(W) = Im(P Q̄)/ω as a polynomial in W = ω², Re(P Q̄), |Q|²)."""
         P, Q = self._char
+        fast = hopf_polynomials(P, Q, W)     # exact products in ℤ[atoms] by FLINT
+        if fast is not None:
+            return fast
         # products of polynomials in ω over the coefficient ring; every product below is even
         # in ω (Im P(iω) is odd, Re P(iω) even), so ω² → W is a relabelling of the exponents
         Pr, Pi = _split_at_iw(P)
