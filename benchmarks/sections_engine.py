@@ -21,42 +21,48 @@ from benchlib import RAW, TABLES, Goal, cpu_time, report, table
 
 # --------------------------------------------------------------------------------------------
 # Λ(V) (goal 5)
-def section_lambda(quick: bool) -> None:
+def lambda_row(name: str, n_points: int, accuracy: bool = True) -> dict:
+    """Λ(V) of the built-in law ``name`` on ``n_points`` log-spaced points of its velocity-weakening
+    range, one thread: the engine's throughput (best repeated call, and its first call) and that of
+    ``sympy.lambdify(cse=True)`` of the same expression in the same run; with ``accuracy``, the
+    relative error of 1000 points against the 50-digit evaluation.  Used by :func:`section_lambda`
+    and by the drift test (``tests/codegen/test_benchmark_drift.py``)."""
     import mpmath
     import sympy as sp
 
     import landau.derivation.multiscale as ms
+    import landau.derivation.precision as precision
     from landau.laws import get_law
     from landau.systems.system import SpringBlock
 
     sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
-    from vw_ranges import LAWS, vw_range
+    from vw_ranges import vw_range
 
-    workers = ms._WORKERS
-    ms._WORKERS = 1                     # single-threaded, like the lambdify baseline
-    n_points = 200_000 if quick else 1_000_000
-    rows = []
+    workers = precision.WORKERS
+    precision.WORKERS = 1               # single-threaded, like the lambdify baseline
     try:
-        for name in LAWS:
-            lo, hi, ends = vw_range(name)
-            lo, hi = (lo * (1 + 1e-3) if lo in ends else lo), (hi * (1 - 1e-3) if hi in ends else hi)
-            Vs = np.logspace(np.log10(lo), np.log10(hi), n_points)
-            d = ms.derive(SpringBlock(get_law(name)), ["Lambda"])
-            t0 = time.process_time()
-            d.evaluate(Vs[:10], {}, ["Lambda"])
-            compile_s = time.process_time() - t0
-            t0 = time.process_time()
-            d.evaluate(Vs, {}, ["Lambda"])
-            first = n_points / (time.process_time() - t0)
-            _, t_eng = cpu_time(lambda: d.evaluate(Vs, {}, ["Lambda"]), repeat=2)
-            block = d.block
-            p = block.resolve()
-            expr = d.coefficient("Lambda").expr
-            args = list(block.args)
-            fn = sp.lambdify(args, expr, modules="numpy", cse=True)
-            vals = block.argvals(Vs, p)
-            with np.errstate(all="ignore"):
-                _, t_lam = cpu_time(lambda: fn(*vals), repeat=2)
+        lo, hi, ends = vw_range(name)
+        lo, hi = (lo * (1 + 1e-3) if lo in ends else lo), (hi * (1 - 1e-3) if hi in ends else hi)
+        Vs = np.logspace(np.log10(lo), np.log10(hi), n_points)
+        d = ms.derive(SpringBlock(get_law(name)), ["Lambda"])
+        t0 = time.process_time()
+        d.evaluate(Vs[:10], {}, ["Lambda"])
+        compile_s = time.process_time() - t0
+        t0 = time.process_time()
+        d.evaluate(Vs, {}, ["Lambda"])
+        first = n_points / (time.process_time() - t0)
+        _, t_eng = cpu_time(lambda: d.evaluate(Vs, {}, ["Lambda"]), repeat=2)
+        block = d.block
+        p = block.resolve()
+        expr = d.coefficient("Lambda").expr
+        args = list(block.args)
+        fn = sp.lambdify(args, expr, modules="numpy", cse=True)
+        vals = block.argvals(Vs, p)
+        with np.errstate(all="ignore"):
+            _, t_lam = cpu_time(lambda: fn(*vals), repeat=2)
+        row = {"law": name, "points": n_points, "engine pts/s": n_points / t_eng, "lambdify(cse) pts/s": n_points / t_lam,
+               "first call pts/s": first, "compile s": compile_s}
+        if accuracy:
             # accuracy: 1000 log-spaced points against the 50-digit evaluation
             Vc = np.logspace(np.log10(lo), np.log10(hi), 1000)
             got = d.evaluate(Vc, {}, ["Lambda"])["Lambda"]
@@ -66,21 +72,30 @@ def section_lambda(quick: bool) -> None:
                     want = d.evaluate_mp(float(V0), {}, ["Lambda"], dps=50)["Lambda"]
                 errs.append(float(abs(g - want) / abs(want)) if want != 0 else abs(g))
             errs = np.array(errs)
-            rows.append({"law": name, "engine pts/s": n_points / t_eng,
-                         "lambdify(cse) pts/s": n_points / t_lam,
-                         "first call pts/s": first, "compile s": compile_s, "max rel err": float(errs.max()),
-                         "points > 1e-10": int((errs > 1e-10).sum())})
-            r = rows[-1]
-            print(f"  {name:20s} engine {r['engine pts/s']:.3g}/s  "
-                  f"lambdify {r['lambdify(cse) pts/s']:.3g}/s  first "
-                  f"{first:.3g}/s  max err {r['max rel err']:.2g} ({r['points > 1e-10']} > 1e-10)", flush=True)
-            report(Goal("lambda", "5", f"Λ(V) {name}: engine / lambdify(cse=True) throughput (1 thread)",
-                        r["engine pts/s"] / r["lambdify(cse) pts/s"], 1.0))
-            report(Goal("lambda", "5", f"Λ(V) {name}: engine points/s (1 thread)", r["engine pts/s"], 1e6))
-            report(Goal("lambda", "5", f"Λ(V) {name}: points off 50-digit mpmath by > 1e-10 (of 1000)",
-                        float(r["points > 1e-10"]), 0.0, "<="))
+            row.update({"max rel err": float(errs.max()), "points > 1e-10": int((errs > 1e-10).sum())})
+        return row
     finally:
-        ms._WORKERS = workers
+        precision.WORKERS = workers
+
+
+def section_lambda(quick: bool) -> None:
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+    from vw_ranges import LAWS
+
+    n_points = 200_000 if quick else 1_000_000
+    rows = []
+    for name in LAWS:
+        rows.append(lambda_row(name, n_points))
+        r = rows[-1]
+        print(f"  {name:20s} engine {r['engine pts/s']:.3g}/s  "
+              f"lambdify {r['lambdify(cse) pts/s']:.3g}/s  first "
+              f"{r['first call pts/s']:.3g}/s  max err {r['max rel err']:.2g} ({r['points > 1e-10']} > 1e-10)",
+              flush=True)
+        report(Goal("lambda", "5", f"Λ(V) {name}: engine / lambdify(cse=True) throughput (1 thread)",
+                    r["engine pts/s"] / r["lambdify(cse) pts/s"], 1.0))
+        report(Goal("lambda", "5", f"Λ(V) {name}: engine points/s (1 thread)", r["engine pts/s"], 1e6))
+        report(Goal("lambda", "5", f"Λ(V) {name}: points off 50-digit mpmath by > 1e-10 (of 1000)",
+                    float(r["points > 1e-10"]), 0.0, "<="))
     RAW["lambda"] = rows
     TABLES["lambda"] = (f"Λ(V) over {n_points:.0e} log-spaced V in the velocity-weakening range, one thread, CPU "
                         "time (best of 2); first call includes no compilation (compile s is separate).\n\n"
