@@ -60,7 +60,8 @@ def lambda_row(name: str, n_points: int, accuracy: bool = True) -> dict:
         vals = block.argvals(Vs, p)
         with np.errstate(all="ignore"):
             _, t_lam = cpu_time(lambda: fn(*vals), repeat=2)
-        row = {"law": name, "points": n_points, "engine pts/s": n_points / t_eng, "lambdify(cse) pts/s": n_points / t_lam,
+        row = {"law": name, "points": n_points, "engine pts/s": n_points / t_eng,
+               "lambdify(cse) pts/s": n_points / t_lam,
                "first call pts/s": first, "compile s": compile_s}
         if accuracy:
             # accuracy: 1000 log-spaced points against the 50-digit evaluation

@@ -78,8 +78,9 @@ def section_springblock(quick: bool) -> None:
             return s.y[:, -1]
         # scipy steps in Python whatever f and J are: these are Python steppers, never "compiled peers"
         peers[f"solve_ivp {m} (Python stepper, compiled f+J)"] = (run, 1)
-    peers["solve_ivp Radau (Python stepper, Python f+J)"] = (lambda rtol: scipy_run(model, y0, T, "Radau", rtol, True)[0],
-                                                            1)
+    def python_radau(rtol):
+        return scipy_run(model, y0, T, "Radau", rtol, True)[0]
+    peers["solve_ivp Radau (Python stepper, Python f+J)"] = (python_radau, 1)
     try:
         from sksundae.cvode import CVODE
 

@@ -8,7 +8,6 @@ import tempfile
 
 import pytest
 
-
 _SHARED_CACHE: str | None = None
 
 
