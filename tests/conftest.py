@@ -3,48 +3,14 @@
 import json
 import os
 import resource
-import shutil
-import tempfile
 
 import pytest
 
-_SHARED_CACHE: str | None = None
-
 
 def pytest_configure(config):
-    # the suite tests derivations, not the user's disk cache: no test reads or writes it.  The
-    # derivations one test makes are shared with the tests after it through a cache in a temporary
-    # folder of this session (removed at its end), so that a formula, a closed form or a kernel's
-    # source is derived once per session, not once per test; generated code stays where it was
-    # (the ``jit`` folder is a link to the user's, as without the shared cache).  A test of cold
-    # behaviour sets LANDAU_CACHE_DIR to its own empty folder (tests/cli/test_latex.py,
-    # tests/hardening/test_cache_*.py).  LANDAU_TEST_SHARED_CACHE=0: no cache at all, every
-    # test derives for itself.
-    global _SHARED_CACHE
-    if os.environ.get("LANDAU_TEST_SHARED_CACHE", "1") == "0":
-        os.environ["LANDAU_CACHE"] = "off"
-        return
-    from landau.support import cachedir
-
-    jit = cachedir.code_dir()
-    _SHARED_CACHE = tempfile.mkdtemp(prefix="landau-test-cache-")
-    if cachedir.secure_folder(jit, "the generated-code cache"):
-        os.symlink(jit, os.path.join(_SHARED_CACHE, "jit"))
-    os.environ.pop("LANDAU_CACHE", None)
-    os.environ.pop("LANDAU_JIT_DIR", None)
-    os.environ[cachedir.ENV_ROOT] = _SHARED_CACHE
-
-
-@pytest.fixture
-def no_derivation_cache(monkeypatch):
-    """The disk cache off for one test: a test of what a derivation builds (which jets, which
-    formulas) must derive them itself, not read them from the session's shared cache."""
-    monkeypatch.setenv("LANDAU_CACHE", "off")
-
-
-def pytest_unconfigure(config):
-    if _SHARED_CACHE is not None:
-        shutil.rmtree(_SHARED_CACHE, ignore_errors=True)       # the link to ``jit``, not its target
+    # the suite tests derivations, not the user's disk cache: no test reads or writes it unless it
+    # turns the cache on for itself, in a temporary directory (tests/cli/test_latex.py)
+    os.environ["LANDAU_CACHE"] = "off"
 
 
 # --- CPU profile of the suite -------------------------------------------------------------------
