@@ -110,7 +110,8 @@ def _run_line(name: str, res: dict) -> str:
     load = f"load average {min(loads):g}–{max(loads):g}" if loads else "load average not recorded"
     return (f"*Measured {m.get('date', 'before runs were dated')} on {m.get('cpu', '?')} ({m.get('cpus', '?')} CPUs), "
             f"Python {m.get('python', '?')}, numba {m.get('numba', '?')}, {load}"
-            + (f", commit {m['commit']}" if m.get("commit") else "") + f"; `benchmarks/results/{name}`.*")
+            + f", commit {m.get('commit') or 'not recorded (rerun the section to date it)'}"
+            + f"; `benchmarks/results/{name}`.*")
 
 
 def _section_table(res: dict, section: str) -> str:

@@ -79,72 +79,94 @@ def _accuracy(d, Vc, peer=None) -> tuple[float, int, int, float]:
     return float(e.max()), int((e > 1e-10).sum()), len(e), float(np.max(errs_peer))
 
 
-def section_lambda(quick: bool) -> None:
-    import landau.derivation.multiscale as ms
-    import landau.derivation.precision as pr
-    from landau.laws import BUILTIN, get_law
-    from landau.systems.system import SpringBlock
-
+def _law_range(name: str) -> tuple[float, float]:
+    """The velocity range the benchmark samples for the built-in law ``name``: its velocity-weakening
+    range (ends pulled in by 1e-3 where Λ's domain ends there), or the open window."""
     sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
     from vw_ranges import LAWS, OPEN_WINDOW, vw_range
 
+    if name not in LAWS:
+        return OPEN_WINDOW
+    lo, hi, ends = vw_range(name)
+    return (lo * (1 + 1e-3) if lo in ends else lo), (hi * (1 - 1e-3) if hi in ends else hi)
+
+
+def lambda_row(name: str, n_points: int, accuracy: bool = True) -> dict:
+    """Λ(V) of the built-in law ``name`` on ``n_points`` log-spaced points (far fewer for a law with
+    no closed-form Λ(V)), one thread: the engine's throughput (best repeated call and first call),
+    the previous route's and that of ``sympy.lambdify(cse=True)`` compiled by ``numba.vectorize``
+    in the same run; with ``accuracy``, the error of 1000 points (and the floats around each zero
+    of Λ) against 40-digit mpmath.  Used by :func:`section_lambda` and by the drift test
+    (``tests/codegen/test_benchmark_drift.py``)."""
+    import landau.derivation.multiscale as ms
+    import landau.derivation.precision as pr
+    from landau.laws import get_law
+    from landau.systems.system import SpringBlock
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+    from vw_ranges import LAWS
+
     workers = pr.WORKERS
     pr.WORKERS = 1                      # single-threaded, like the peers
-    n_points = 200_000 if quick else 1_000_000
-    rows = []
     try:
-        for name in BUILTIN:
-            if name in LAWS:
-                lo, hi, ends = vw_range(name)
-                lo, hi = (lo * (1 + 1e-3) if lo in ends else lo), (hi * (1 - 1e-3) if hi in ends else hi)
-            else:
-                lo, hi = OPEN_WINDOW
-            d = ms.derive(SpringBlock(get_law(name)), ["Lambda"])
-            n = n_points if d.hopf.closed_form is not None else N_NUMERIC
-            Vs = np.logspace(np.log10(lo), np.log10(hi), n)
-            t0 = time.process_time()
-            d.evaluate(Vs[:10], {}, ["Lambda"])
-            compile_s = time.process_time() - t0
-            for k in pr.BOUNDED_STATS:
-                pr.BOUNDED_STATS[k] = 0
-            t0 = time.process_time()
-            lam = d.evaluate(Vs, {}, ["Lambda"])["Lambda"]
-            first = n / (time.process_time() - t0)
-            stats = dict(pr.BOUNDED_STATS)
-            _, t_eng = cpu_time(lambda: d.evaluate(Vs, {}, ["Lambda"]), repeat=2, min_time=0.0)
-            row = {"law": name, "points": n, "engine pts/s": n / t_eng, "first call pts/s": first,
-                   "compile s": compile_s,
-                   "double-double points": stats["dd"] if stats["f64"] else (
-                       "— (exact rational route)" if d.hopf.closed_form is not None else
-                       "— (numeric Hopf line: long double screen)"),
-                   "left to mpmath": stats["left"] if stats["f64"] else 0}
-            if d.hopf.closed_form is not None and d.block.law.name in LAWS:
-                _, t_gen = cpu_time(lambda: d.evaluate(Vs, {}, ["Lambda"], method="general"), repeat=1, min_time=0.0)
-                row["float32-screen + long double route pts/s"] = n / t_gen
-            peer = _numba_lambdify(d)
-            if peer is not None:
-                vals = d.block.argvals(Vs, d.block.resolve())
-                peer(*[np.ravel(v)[:10] if np.ndim(v) else v for v in vals])       # compiled before timing
-                with np.errstate(all="ignore"):
-                    _, t_lam = cpu_time(lambda: peer(*vals), repeat=2, min_time=0.0)
-                row["numba-lambdify pts/s"] = n / t_lam
-            # accuracy: 1000 log-spaced points plus the floats at and around each zero of Λ
+        lo, hi = _law_range(name)
+        d = ms.derive(SpringBlock(get_law(name)), ["Lambda"])
+        n = n_points if d.hopf.closed_form is not None else N_NUMERIC
+        Vs = np.logspace(np.log10(lo), np.log10(hi), n)
+        t0 = time.process_time()
+        d.evaluate(Vs[:10], {}, ["Lambda"])
+        compile_s = time.process_time() - t0
+        for k in pr.BOUNDED_STATS:
+            pr.BOUNDED_STATS[k] = 0
+        t0 = time.process_time()
+        lam = d.evaluate(Vs, {}, ["Lambda"])["Lambda"]
+        first = n / (time.process_time() - t0)
+        stats = dict(pr.BOUNDED_STATS)
+        _, t_eng = cpu_time(lambda: d.evaluate(Vs, {}, ["Lambda"]), repeat=2, min_time=0.0)
+        row = {"law": name, "points": n, "engine pts/s": n / t_eng, "first call pts/s": first,
+               "compile s": compile_s,
+               "double-double points": stats["dd"] if stats["f64"] else (
+                   "— (exact rational route)" if d.hopf.closed_form is not None else
+                   "— (numeric Hopf line: long double screen)"),
+               "left to mpmath": stats["left"] if stats["f64"] else 0}
+        if d.hopf.closed_form is not None and d.block.law.name in LAWS:
+            _, t_gen = cpu_time(lambda: d.evaluate(Vs, {}, ["Lambda"], method="general"), repeat=1, min_time=0.0)
+            row["float32-screen + long double route pts/s"] = n / t_gen
+        peer = _numba_lambdify(d)
+        if peer is not None:
+            vals = d.block.argvals(Vs, d.block.resolve())
+            peer(*[np.ravel(v)[:10] if np.ndim(v) else v for v in vals])       # compiled before timing
+            with np.errstate(all="ignore"):
+                _, t_lam = cpu_time(lambda: peer(*vals), repeat=2, min_time=0.0)
+            row["numba-lambdify pts/s"] = n / t_lam
+        if accuracy:
+            # 1000 log-spaced points plus the floats at and around each zero of Λ
             Vc = np.concatenate([np.logspace(np.log10(lo), np.log10(hi), 1000), _zeros_of(d, Vs, lam)])
             (row["max rel err (40 digits)"], row["points > 1e-10"], row["points checked"],
              peer_err) = _accuracy(d, Vc, peer)
             if peer is not None:
                 row["numba-lambdify max rel err"] = peer_err
-            rows.append(row)
-            print("  " + ", ".join(f"{k} {v:.3g}" if isinstance(v, float) else f"{k} {v}" for k, v in row.items()),
-                  flush=True)
-            if "numba-lambdify pts/s" in row:
-                report(Goal("lambda", "5", f"Λ(V) {name}: engine / numba-lambdify throughput (1 thread)",
-                            row["engine pts/s"] / row["numba-lambdify pts/s"], 1.0))
-            report(Goal("lambda", "5", f"Λ(V) {name}: engine points/s (1 thread)", row["engine pts/s"], 2e6))
-            report(Goal("lambda", "5", f"Λ(V) {name}: points off 40-digit mpmath by > 1e-10 "
-                        f"(of {row['points checked']})", float(row["points > 1e-10"]), 0.0, "<="))
+        return row
     finally:
         pr.WORKERS = workers
+
+
+def section_lambda(quick: bool) -> None:
+    from landau.laws import BUILTIN
+
+    n_points = 200_000 if quick else 1_000_000
+    rows = []
+    for name in BUILTIN:
+        row = lambda_row(name, n_points)
+        rows.append(row)
+        print("  " + ", ".join(f"{k} {v:.3g}" if isinstance(v, float) else f"{k} {v}" for k, v in row.items()),
+              flush=True)
+        if "numba-lambdify pts/s" in row:
+            report(Goal("lambda", "5", f"Λ(V) {name}: engine / numba-lambdify throughput (1 thread)",
+                        row["engine pts/s"] / row["numba-lambdify pts/s"], 1.0))
+        report(Goal("lambda", "5", f"Λ(V) {name}: engine points/s (1 thread)", row["engine pts/s"], 2e6))
+        report(Goal("lambda", "5", f"Λ(V) {name}: points off 40-digit mpmath by > 1e-10 "
+                    f"(of {row['points checked']})", float(row["points > 1e-10"]), 0.0, "<="))
     RAW["lambda"] = rows
     TABLES["lambda"] = (
         f"Λ(V) over {n_points:.0e} log-spaced V in the velocity-weakening range ({N_NUMERIC} for the two-state law, "

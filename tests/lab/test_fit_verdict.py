@@ -28,6 +28,7 @@ def _verdict(res):
 
 
 def _check(res, tol):
+    """The verdict's assertions; returns the verdict (each costs a Λ over every posterior draw)."""
     v = _verdict(res)
     sd1, sds = v.sd_first_order["k_c"], v.sd_samples["k_c"]
     assert v.n_no_hopf == 0 and v.n_samples == res.samples.shape[0]
@@ -37,15 +38,15 @@ def _check(res, tol):
     # the first-order sd is the gradient times the covariance: J Σ Jᵀ
     g = np.array([v.sensitivities["k_c"][n] for n in res.names])
     assert sd1 == pytest.approx(float(np.sqrt(g @ res.covariance @ g)), rel=1e-10)
+    return v
 
 
 def test_propagated_sd_of_kc_equals_the_posterior_spread():
     res = _posterior(120, 32, 40)
-    _check(res, 0.10)
-    _figures(res)
+    _figures(res, _check(res, 0.10))
 
 
-def _figures(res):
+def _figures(res, v):
     """The docs page's three figures draw what they say (landau.lab.figure)."""
     from landau.lab.figure import plot_fit, plot_posterior, plot_verdict
 
@@ -59,7 +60,6 @@ def _figures(res):
     corner = plot_posterior(res).axes
     n = len(res.names)
     assert len(corner) == n * n and sum(ax.get_visible() for ax in corner) == n * (n + 1) // 2
-    v = _verdict(res)
     (curve, rig_line) = plot_verdict(v).axes[0].lines
     assert float(rig_line.get_xdata()[0]) == v.rig["k"]
     xs, dens = curve.get_data()

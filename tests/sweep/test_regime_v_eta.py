@@ -15,6 +15,7 @@ from __future__ import annotations
 import json
 
 import numpy as np
+import pytest
 
 import landau
 
@@ -66,16 +67,28 @@ def test_a_small_v_eta_map_agrees_with_the_prediction(capsys):
     assert _check_map(ds, capsys) == {"supercritical": 3, "subcritical": 1}
 
 
-def test_the_v_eta_map_of_the_command_line(tmp_path, capsys):
+def _command_line_map(tmp_path, capsys, V, eta):
     from landau.cli import main
 
     out = tmp_path / "v_eta.nc"
-    assert main(["sweep", "regime", "spring-block", "dieterich", "--grid", "V=1e-5:1e-3:12:log", "--grid",
-                 "eta=0:300:7", "--workers", "1", "--out", str(out), "--json"]) == 0
+    assert main(["sweep", "regime", "spring-block", "dieterich", "--grid", V, "--grid", eta,
+                 "--workers", "1", "--out", str(out), "--json"]) == 0
     capsys.readouterr()
     import xarray as xr
 
     with xr.open_dataset(out) as ds:
         ds = ds.load()
-    judged = _check_map(ds, capsys)
+    return _check_map(ds, capsys)
+
+
+def test_the_v_eta_map_of_the_command_line(tmp_path, capsys):
+    """The command line's map on the small map's corners (log and linear ranges of ``--grid``): each
+    point agrees with its single ``landau hopf`` call and with the prediction, both kinds present."""
+    judged = _command_line_map(tmp_path, capsys, "V=8e-5:5e-4:2:log", "eta=0:300:2")
+    assert judged == {"supercritical": 3, "subcritical": 1}, judged
+
+
+@pytest.mark.slow
+def test_the_v_eta_map_of_the_command_line_12_by_7(tmp_path, capsys):
+    judged = _command_line_map(tmp_path, capsys, "V=1e-5:1e-3:12:log", "eta=0:300:7")
     assert judged["supercritical"] >= 70 and judged["subcritical"] >= 3, judged
