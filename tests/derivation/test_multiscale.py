@@ -168,13 +168,20 @@ def test_exactly_cancelled_route_matches_50_digits_and_finds_the_zero():
 
 def test_blocked_evaluation_equals_pointwise_pieces():
     """Large batches run in cache-sized blocks (multiscale._BLOCK): the result must be the same
-    numbers as small pieces (elementwise arithmetic, per-point screening: bitwise identical)."""
-    from landau.derivation import multiscale
+    numbers as small pieces taken by the same route (elementwise arithmetic, per-point screening:
+    bitwise identical).  A batch below precision.BOUNDED_MIN points takes the numpy route instead of
+    the float64-with-a-bound one: equal to the certified 1e-10, not bitwise."""
+    from landau.derivation import multiscale, precision
 
     d = derive(SpringBlock(get_law("spinodal")), ["Lambda", "Gamma_bar"])
     Vs = np.logspace(-7.5, -3.4, 3 * multiscale._BLOCK + 17)
     names = ["kc", "omega_c", "Gamma_bar", "Lambda"]
     whole = d.evaluate(Vs, None, names)
-    pieces = [d.evaluate(Vs[i:i + 1000], None, names) for i in range(0, Vs.size, 1000)]
+    size = precision.BOUNDED_MIN
+    cuts = list(range(0, Vs.size - size, size)) + [Vs.size]    # the short tail joins the last piece
+    pieces = [d.evaluate(Vs[a:b], None, names) for a, b in zip(cuts[:-1], cuts[1:], strict=True)]
     for n in names:
         assert np.array_equal(whole[n], np.concatenate([p[n] for p in pieces]), equal_nan=True), n
+    small = d.evaluate(Vs[-17:], None, names)
+    for n in names:
+        np.testing.assert_allclose(small[n], whole[n][-17:], rtol=1e-10, atol=0, err_msg=n)

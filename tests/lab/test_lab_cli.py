@@ -41,7 +41,11 @@ def test_the_lab_run_writes_displacement_slip_mu_v_and_states_in_lab_units(tmp_p
     assert x == pytest.approx(np.where(t < 100, t, 100 + 10 * (t - 100)), rel=1e-12, abs=1e-9)
     # quasi-static per unit normal stress: mu = k'(x_lp - slip) + mu(0), the spring's force (F) balancing it
     assert mu == pytest.approx(0.6 + 1e-3 * (x - slip), abs=1e-12)
-    assert F == pytest.approx(mu, abs=1e-13)
+    # F = mu holds at the collocation nodes; the rows are read from the dense output between them, where
+    # v and phi carry the integration's local error (rtol 1e-9 of the run, relative): mu then moves by
+    # a*dv/v + b*dphi/phi <= (a + b)*rtol = 1.5e-11 (measured 5.3e-13 with radau5's reuse policy,
+    # 1e-13 before it changed the steps)
+    assert F == pytest.approx(mu, abs=(0.005 + 0.01) * 1e-9)
     # settled: slip - x_lp = -(mu_ss(V2) - mu_ss(V1)) / k' = -(a - b) ln 10 / 1e-3 um
     assert slip[-1] - x[-1] == pytest.approx(5.0 * math.log(10.0), rel=1e-9)
     assert v[-1] == pytest.approx(10.0, rel=1e-9) and phi[-1] == pytest.approx(1.0, rel=1e-9)   # theta = L/V
