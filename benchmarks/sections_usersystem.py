@@ -9,7 +9,7 @@
 
   *Simulation*: :func:`landau.analyses.system_simulation.simulate_system` (the compiled Radau IIA,
   its default and only method) against today's scipy route for a user system — the field and
-  Jacobian lambdified with numpy and E⁻¹ applied in Python (``landau.analyses.checking._numeric_field``,
+  Jacobian lambdified with numpy and E⁻¹ applied in Python (``landau.systems.numeric_field.numeric_field``,
   what the check used), integrated by ``solve_ivp`` Radau with that Jacobian — both down a tolerance
   ladder with the same absolute-tolerance rule (atol = rtol·max|y₀|), the error at t_end against
   ``solve_ivp`` DOP853 at rtol = atol = 1e-13 (relative to max|y|), and the CPU ratio read along both
@@ -51,9 +51,9 @@ def _systems():
 
 def _scipy_route(system, values):
     """Today's scipy route: numpy-lambdified f, J and E⁻¹ applied in Python (the check's former field)."""
-    from landau.analyses.checking import _numeric_field
+    from landau.systems.numeric_field import numeric_field
 
-    f, J, E_inverse, vals = _numeric_field(system, values)
+    f, J, E_inverse, vals = numeric_field(system, values)
     pp = float(values[system.parameter.name])
     Einv = E_inverse(pp)
 

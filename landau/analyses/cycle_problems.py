@@ -2,9 +2,10 @@
 
 Every model whose motion (or a smooth part of it) is a :class:`~landau.systems.system.DynamicalSystem`
 E(p)·ẏ = f(y; p) declares its ``cycles`` through :func:`cycle_problem`: the field and its Jacobian
-come from the one numeric builder of the system (:func:`landau.analyses.shooting.numeric_field`, the
-one :func:`landau.check` shoots with), E⁻¹ applied, vectorised over the columns of ``y`` as the
-engine's contract asks; the Hopf point it starts from is the model's own Hopf result
+come from the one numeric builder of the system (:mod:`landau.systems.numeric_field`, the
+one :func:`landau.check` shoots with) through :meth:`CycleProblem.from_system`: E⁻¹ applied,
+vectorised over the columns of ``y`` as the engine's contract asks, with the exact ∂f/∂p and the
+multilinear forms of the normal forms; the Hopf point it starts from is the model's own Hopf result
 (:func:`hopf_start`: p_c, ω_c, the critical eigenvector q of J(y₀; p_c) for iω_c with its
 normalised component q_n = 1, the amplitude equation's C, its side and Λ, Λ₅).
 
@@ -23,66 +24,14 @@ system, J. Mech. Phys. Solids 58, 27–53.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Mapping
 
 import numpy as np
 
 from landau.errors import InputError
+from landau.periodic.from_system import without_unknowns
 from landau.periodic.problem import CycleProblem, HopfStart
-
-
-def _stack(values, shape: tuple[int, ...]) -> np.ndarray:
-    """The lambdified entries (scalars where an entry is constant) broadcast to ``shape`` and stacked."""
-    return np.stack([np.broadcast_to(np.asarray(v, dtype=float), shape) for v in values])
-
-
-def _without_unknowns(system, values: Mapping[str, float]):
-    """``system`` with its numeric unknowns (a steady state with no closed form) replaced by their values."""
-    if not system.unknowns:
-        return system
-    from dataclasses import replace
-
-    missing = [u.name for u in system.unknowns if u.name not in values]
-    if missing:
-        raise InputError(f"{system.name}: the values of the unknowns {', '.join(missing)} are needed")
-    sub = {u: float(values[u.name]) for u in system.unknowns}
-    return replace(system, rhs=tuple(e.xreplace(sub) for e in system.rhs),
-                   equilibrium=tuple(e.xreplace(sub) for e in system.equilibrium), unknowns=(),
-                   unknown_equations=(), unknown_guess=())
-
-
-def vector_field(system, params: Mapping[str, float]):
-    """``(rhs, jac)`` of ẏ = E(p)⁻¹ f(y; p) vectorised as :class:`CycleProblem` asks.
-
-    ``rhs(y, p)``: (n,) → (n,), (n, m) → (n, m); ``jac(y, p)``: (n, n) or (n, n, m).  The
-    pieces are :func:`landau.analyses.shooting.numeric_field`'s (E must be invertible: a
-    differential-algebraic system is refused there with an InputError).
-    """
-    from landau.analyses.shooting import numeric_field
-
-    f, J, E_inverse, vals = numeric_field(system, params, entries=True)
-    n = len(system.states)
-    cache: dict[float, np.ndarray] = {}
-
-    def einv(p: float) -> np.ndarray:
-        p = float(p)
-        if p not in cache:
-            if len(cache) > 64:
-                cache.clear()
-            cache[p] = E_inverse(p)
-        return cache[p]
-
-    def rhs(y, p):
-        y = np.asarray(y, dtype=float)
-        F = _stack(f(*y, float(p), *vals), y.shape[1:])
-        return np.tensordot(einv(p), F, axes=(1, 0))
-
-    def jac(y, p):
-        y = np.asarray(y, dtype=float)
-        A = _stack(J(*y, float(p), *vals), y.shape[1:]).reshape(n, n, *y.shape[1:])
-        return np.tensordot(einv(p), A, axes=(1, 0))
-
-    return rhs, jac
 
 
 def hopf_start(result, jac, measure: int, y0) -> HopfStart:
@@ -139,22 +88,18 @@ def cycle_problem(system, params: Mapping[str, float], result, *, name: str | No
     parameter_range : (float, float)
         Where p is meaningful (k > 0 for a spring–block).
     """
-    system = _without_unknowns(system, unknowns or {})
-    used = {s.name for s in system.parameters}
-    fixed = {k: float(v) for k, v in params.items() if k in used}
-    rhs, jac = vector_field(system, fixed)
-    states = tuple(s.name for s in system.states)
-    measure = system.normalise
-    start = None
-    if result is not None:
-        if result.normalise in states:
-            measure = states.index(result.normalise)
-        y0 = result.equilibrium if len(result.equilibrium) else equilibrium_values(system, fixed, result.p_c)
-        start = hopf_start(result, jac, measure, y0)
-    scales = None if start is None else state_scales(start, 0.1 * (abs(start.p_c) or 1.0))
-    return CycleProblem(name=name or system.name, states=states, parameter=system.parameter.name, rhs=rhs,
-                        jac=jac, params=fixed, scales=scales, measure=measure, hopf=start,
-                        parameter_range=parameter_range)
+    problem = CycleProblem.from_system(system, params, name=name, unknowns=unknowns,
+                                       parameter_range=parameter_range)
+    if result is None:
+        return problem
+    measure = problem.states.index(result.normalise) if result.normalise in problem.states else problem.measure
+    if len(result.equilibrium):
+        y0 = result.equilibrium
+    else:
+        y0 = equilibrium_values(without_unknowns(system, unknowns or {}), problem.params, result.p_c)
+    start = hopf_start(result, problem.jac, measure, y0)
+    return replace(problem, measure=measure, hopf=start,
+                   scales=state_scales(start, 0.1 * (abs(start.p_c) or 1.0)))
 
 
 def equilibrium_values(system, params: Mapping[str, float], p: float) -> np.ndarray:
@@ -169,4 +114,4 @@ def equilibrium_values(system, params: Mapping[str, float], p: float) -> np.ndar
     return y0
 
 
-__all__ = ["cycle_problem", "hopf_start", "equilibrium_values", "state_scales", "vector_field"]
+__all__ = ["cycle_problem", "hopf_start", "equilibrium_values", "state_scales"]

@@ -3,8 +3,8 @@
 For a :class:`~landau.systems.system.DynamicalSystem` E·ẏ = f(y; p) near a Hopf point p_c, the
 check measures the cycle at p = p_c + side·ε²·scale.  This module finds that cycle:
 
-* :func:`numeric_field` — the system's right-hand side, Jacobian and inverse mass matrix as
-  numeric functions of the state and the bifurcation parameter;
+* the system's right-hand side, Jacobian and inverse mass matrix come from its one numeric field
+  builder, :func:`landau.systems.numeric_field.numeric_field`;
 * :func:`shoot` — one periodic orbit by Newton's method on the closure of the flow over a
   period, with its nontrivial Floquet multipliers (the solver contract is in its docstring);
 * :class:`CycleShooter` — the cycles of one check: the seed from the critical eigenvector scaled
@@ -42,45 +42,12 @@ from typing import Any, Callable, Iterator, Mapping
 
 import numpy as np
 
-from landau.errors import InputError, IntegratorError
-from landau.support.lambdify import lambdify_positional
+from landau.errors import IntegratorError
+from landau.systems.numeric_field import numeric_field
 
 #: a seed generator: ``seeds(y0, jac)`` yields ``(start, T0)`` pairs to shoot from, around the
 #: equilibrium ``y0``
 Seeds = Callable[[np.ndarray, Callable], Iterator[tuple[np.ndarray, float]]]
-
-
-def numeric_field(system, params: Mapping[str, float], *, entries: bool = False):
-    """The system's numeric pieces for a given parameter set: ``(f, J, E_inverse, vals)`` with
-    ``f(*y, p, *vals)`` the right-hand side, ``J(*y, p, *vals)`` its Jacobian in the states,
-    ``E_inverse(p)`` the inverse mass matrix and ``vals`` the values of ``system.parameters``.
-    With ``entries``, ``J`` gives the n² entries row by row as a flat list (each a scalar or an
-    array like the states: what the cycle engine evaluates on many points in one call).
-
-    Raises :class:`~landau.errors.InputError` naming a missing parameter, or (from ``E_inverse``)
-    a mass matrix that is not invertible (a differential-algebraic system)."""
-    import sympy as sp
-
-    missing = [s.name for s in system.parameters if s.name not in params]
-    if missing:
-        raise InputError(f"{system.name}: missing parameter(s) {', '.join(missing)}")
-    vals = [float(params[s.name]) for s in system.parameters]
-    args = [*system.states, system.parameter, *system.parameters]
-    f = lambdify_positional(args, list(system.rhs), "numpy")
-    jac = sp.Matrix(system.rhs).jacobian(system.states)
-    J = lambdify_positional(args, list(jac) if entries else jac, "numpy")
-    E_of = lambdify_positional([system.parameter, *system.parameters], system.mass_matrix, "numpy")
-
-    def E_inverse(p: float) -> np.ndarray:
-        E = np.asarray(E_of(p, *vals), dtype=float)
-        if not np.all(np.isfinite(E)) or abs(np.linalg.det(E)) < 1e-300 or np.linalg.cond(E) > 1e14:
-            raise InputError(f"{system.name}: direct simulation needs an invertible mass matrix E; a "
-                             "differential-algebraic system (singular E) is not supported by the generic check")
-        # E⁻¹ once per parameter value: ẏ = E⁻¹ f(y; p) and ∂ẏ/∂y = E⁻¹ J(y; p) (E is small and
-        # well conditioned here: cond(E) ≤ 1e14 was checked above)
-        return np.linalg.inv(E)
-
-    return f, J, E_inverse, vals
 
 
 def shoot(rhs, jac, y0: np.ndarray, T0: float, anchor_f: np.ndarray, rtol: float, flow=None):

@@ -135,9 +135,10 @@ class CycleProblem:
 
     @classmethod
     def from_system(cls, system, params: Mapping[str, float] | None = None, **kwargs) -> "CycleProblem":
-        """The problem of a :class:`landau.systems.system.DynamicalSystem` (E⁻¹ applied, sympy compiled
-        to vectorised numpy callables; keyword arguments ``hopf``, ``measure``, ``scales``,
-        ``parameter_range`` as for the constructor). See :mod:`landau.periodic.from_system`."""
+        """The problem of a :class:`landau.systems.system.DynamicalSystem` from the system's one numeric
+        field builder (:mod:`landau.systems.numeric_field`: E⁻¹ applied, vectorised, exact ∂f/∂p and
+        multilinear forms); keyword arguments ``hopf``, ``measure``, ``scales``, ``name``, ``unknowns``,
+        ``parameter_range``. See :mod:`landau.periodic.from_system`."""
         from landau.periodic.from_system import build
 
         return build(system, params, **kwargs)

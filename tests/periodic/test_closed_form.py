@@ -54,7 +54,7 @@ def test_bautin_fold_of_cycles_and_its_coefficient():
     lpc = folds[0]
     assert abs(lpc.parameter + 1.0) < 1e-10
     assert abs(lpc.period - 2 * np.pi / (1 + beta)) < 1e-9
-    assert abs(lpc.coefficient - 2 * (1 + beta) / beta) < 1e-9      # exact B from from_system
+    assert abs(lpc.coefficient - 2 * (1 + beta) / beta) < 1e-9      # exact B: the system's multilinear forms
     # the inner branch (r < 1) is unstable, the outer one stable
     k = lpc.index
     assert not br.stable[k - 1] and br.stable[k + 2]
