@@ -142,21 +142,8 @@ def load(command: str, argv: Sequence[str]) -> tuple[int, str] | None:
         return None
     name = key(command, argv)
     path = folder / f"{name}.json"
-    try:
-        with open(path, "rb") as fh:
-            data = fh.read()
-    except FileNotFoundError:
-        return None
-    except OSError as exc:
-        _discard(path, f"unreadable: {exc.strerror or exc}")
-        return None
-    head, sep, body = data.partition(b"\n")
-    fields = head.split(b" ")
-    if not sep or len(fields) != 2 or fields[0] != MAGIC.encode():
-        _discard(path, "not an entry of this format")
-        return None
-    if not cachedir.verify(fields[1].decode("ascii", "replace"), MAGIC, KIND, name, body):
-        _discard(path, "its signature does not verify: written by someone else, or altered")
+    body = cachedir.read_signed(path, MAGIC, KIND, name, _discard)
+    if body is None:
         return None
     try:
         doc = json.loads(body)

@@ -169,21 +169,8 @@ def get(kind: str, key: str) -> Any | None:
     if not enabled() or _folder(kind) is None:
         return None
     path = _path(kind, key)
-    try:
-        with open(path, "rb") as fh:
-            data = fh.read()
-    except FileNotFoundError:
-        return None
-    except OSError as exc:
-        _discard(path, f"unreadable: {exc.strerror or exc}")
-        return None
-    head, sep, body = data.partition(b"\n")
-    fields = head.split(b" ")
-    if not sep or len(fields) != 2 or fields[0] != _MAGIC.encode():
-        _discard(path, "not an entry of this format")
-        return None
-    if not cachedir.verify(fields[1].decode("ascii", "replace"), _MAGIC, kind, key, body):
-        _discard(path, "its signature does not verify: written by someone else, or altered")
+    body = cachedir.read_signed(path, _MAGIC, kind, key, _discard)
+    if body is None:
         return None
     try:
         return cachecodec.loads(body)

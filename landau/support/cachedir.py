@@ -267,6 +267,34 @@ def verify(mac: str, *parts: bytes | str) -> bool:
     return hmac.compare_digest(_mac(key, parts).hexdigest(), mac)
 
 
+def read_signed(path: Path, magic: str, kind: str, key: str, discard) -> bytes | None:
+    """The body of the signed entry at ``path``, checked before anything in it is parsed, or None.
+
+    An entry is one header line ``MAGIC HMAC`` and the body; the HMAC (:func:`sign`) covers the
+    magic, the ``kind``, the ``key`` and the body, so an entry written by someone else, altered, or
+    copied under another key does not verify. A missing file is None quietly; an unreadable file,
+    a foreign format or a failed signature is handed to ``discard(path, reason)`` (the caller's
+    report-and-remove) and gives None. Shared by the kernel cache and the answer store, so the two
+    stores trust the same things."""
+    try:
+        with open(path, "rb") as fh:
+            data = fh.read()
+    except FileNotFoundError:
+        return None
+    except OSError as exc:
+        discard(path, f"unreadable: {exc.strerror or exc}")
+        return None
+    head, sep, body = data.partition(b"\n")
+    fields = head.split(b" ")
+    if not sep or len(fields) != 2 or fields[0] != magic.encode():
+        discard(path, "not an entry of this format")
+        return None
+    if not verify(fields[1].decode("ascii", "replace"), magic, kind, key, body):
+        discard(path, "its signature does not verify: written by someone else, or altered")
+        return None
+    return body
+
+
 def clean_temporaries(folder: Path, depth: int = 3, age: float = TEMP_AGE) -> int:
     """Remove the temporaries of killed writers under ``folder`` (down to ``depth`` levels) that
     are older than ``age`` seconds; returns how many were removed."""
