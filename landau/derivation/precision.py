@@ -217,6 +217,24 @@ def exact_rational_route(d: "Derivation", Vs, shape, bases, forms) -> Raw:
     return Raw(values, np.zeros(shape, dtype=bool), degenerate)
 
 
+def settle_exactly(d: "Derivation", Vs, shape, bases, p, exact: bool, values: dict[str, np.ndarray],
+                   doubtful: np.ndarray, rest: np.ndarray) -> Raw:
+    """The doubtful points ``rest`` (a valid Hopf point, only the coefficients in doubt) settled from
+    the exactly cancelled rational form, where the law has one and it is worth deriving (at least
+    :data:`RATIONAL_MIN` of them, or a form already derived); the points whose Λ is identically zero
+    there are marked degenerate. The others stay doubtful for mpmath."""
+    degenerate = np.zeros(shape, dtype=bool)
+    if bases and exact and (rest.sum() >= RATIONAL_MIN or (rest.any() and has_rational(d, bases, p))):
+        forms = rational_forms(d, bases, p)
+        if forms is not None:
+            sub = forms.evaluate(np.broadcast_to(Vs, shape)[rest], bases, REL_GOOD)
+            for n in bases:
+                values[n][rest] = sub[n]
+            doubtful &= ~rest
+            degenerate = rest & bool("Lambda" in forms and forms["Lambda"].identically_zero)
+    return Raw(values, doubtful, degenerate)
+
+
 def screened_route(d: "Derivation", Vs, vals, shape, bases, p, exact: bool, sign_only: bool) -> Raw:
     """A closed-form Hopf line: float64, screened by float32, suspects again in long double.
 
@@ -253,16 +271,7 @@ def screened_route(d: "Derivation", Vs, vals, shape, bases, p, exact: bool, sign
     for key in values:
         doubtful |= bad[key]
     rest = doubtful & ~(bad["kc"] | bad["W"]) & (values["kc"] > 0) & (values["W"] > 0)
-    degenerate = np.zeros(shape, dtype=bool)
-    if bases and exact and (rest.sum() >= RATIONAL_MIN or (rest.any() and has_rational(d, bases, p))):
-        forms = rational_forms(d, bases, p)
-        if forms is not None:
-            sub = forms.evaluate(np.broadcast_to(Vs, shape)[rest], bases, REL_GOOD)
-            for n in bases:
-                values[n][rest] = sub[n]
-            doubtful &= ~rest
-            degenerate = rest & bool("Lambda" in forms and forms["Lambda"].identically_zero)
-    return Raw(values, doubtful, degenerate)
+    return settle_exactly(d, Vs, shape, bases, p, exact, values, doubtful, rest)
 
 
 def numeric_hopf_route(d: "Derivation", Vs, vals, shape, bases, p, sign_only: bool) -> Raw:
@@ -385,17 +394,8 @@ def bounded_route(d: "Derivation", Vs, vals, shape, bases, p, exact: bool, sign_
     values = {"kc": out[0].reshape(shape), "W": out[1].reshape(shape)}
     values.update({n: out[2 + j].reshape(shape) for j, n in enumerate(bases)})
     doubtful = flag.reshape(shape)
-    degenerate = np.zeros(shape, dtype=bool)
     rest = doubtful & (rb[1] <= REL_BOUND).reshape(shape) & (values["kc"] > 0) & (values["W"] > 0)
-    if bases and exact and (rest.sum() >= RATIONAL_MIN or (rest.any() and has_rational(d, bases, p))):
-        forms = rational_forms(d, bases, p)
-        if forms is not None:
-            sub = forms.evaluate(np.broadcast_to(Vs, shape)[rest], bases, REL_GOOD)
-            for n in bases:
-                values[n][rest] = sub[n]
-            doubtful &= ~rest
-            degenerate = rest & bool("Lambda" in forms and forms["Lambda"].identically_zero)
-    return Raw(values, doubtful, degenerate)
+    return settle_exactly(d, Vs, shape, bases, p, exact, values, doubtful, rest)
 
 
 # --- mpmath ----------------------------------------------------------------------------------
