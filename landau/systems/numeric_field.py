@@ -127,7 +127,10 @@ def vectorised_field(system, params: Mapping[str, float]):
     return rhs, jac, dfdp
 
 
-def multilinear_forms(system, params: Mapping[str, float]) -> tuple[Callable[..., np.ndarray], Callable[..., np.ndarray]]:
+Form = Callable[..., np.ndarray]
+
+
+def multilinear_forms(system, params: Mapping[str, float]) -> tuple[Form, Form]:
     """``(B, C)``: B(y, p, u, v) = Σ_bc ∂²ẏ/∂y_b∂y_c u_b v_c and C(y, p, u, v, w) = Σ_bcd ∂³ẏ/∂y_b∂y_c∂y_d u_b v_c w_d
     of ẏ = E(p)⁻¹ f(y; p), exact, each compiled on its first call.
 
@@ -161,7 +164,7 @@ def multilinear_forms(system, params: Mapping[str, float]) -> tuple[Callable[...
             built[order] = lambdify_positional(args, list(expr), "numpy")
         return built[order]
 
-    def form(order: int) -> Callable[..., np.ndarray]:
+    def form(order: int) -> Form:
         def call(y, p, *vecs):
             y = np.asarray(y, dtype=float)
             flat = [x for v in vecs for x in np.asarray(v, dtype=float)]
