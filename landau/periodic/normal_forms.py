@@ -36,7 +36,18 @@ its adaptive-control example is −0.04268, this one −0.3051). This c is check
 the doubled cycle: with ν = ln(−μ)/T from the multiplier μ of the period-1 cycle and ξ its amplitude
 along v, ξ² = −ν/c (tests/periodic/test_rossler.py).
 
-NS coefficients are not computed (the message says so).
+**NS.** x = x₀(τ) + ξ v + ξ̄ v̄ + ½ξ² h₂₀ + ξξ̄ h₁₁ + …, normal form dτ/dt = 1 + a₁|ξ|² + …,
+dξ/dt = (iθ/T) ξ + d ξ|ξ|² + … (KGD 2005, Sect. 4.3), e^{iθ} the critical multiplier (0 < θ < π),
+v̇ − A v + (iθ/T) v = 0, v periodic, ∫₀ᵀ⟨v, v⟩ dt = 1 (Hermitian; fixes the scale of d, which scales
+as |v|⁻²); φ₁* the periodic adjoint (∫⟨φ₁*, f⟩ = 1) and φ* the adjoint of v̇ − A v + (iθ/T) v:
+
+    a₁ = ∫⟨φ₁*, B(v, v̄)⟩,   ḣ₁₁ − A h₁₁ = B(v, v̄) − a₁ f,  ∫⟨φ₁*, h₁₁⟩ = 0,
+    ḣ₂₀ − A h₂₀ + (2iθ/T) h₂₀ = B(v, v),
+    d = ∫⟨φ*, ½C(v, v, v̄) + B(v, h₁₁) + ½B(v̄, h₂₀) − a₁ A v⟩ / ∫⟨φ*, v⟩ + iθ a₁/T.
+
+The reported coefficient is Re d: Re d < 0 a stable invariant torus on the side where the cycle is
+unstable (supercritical), Re d > 0 subcritical. Checked against the closed form Re d = −2/T of a
+cycle times a transverse Hopf normal form, in nonlinear coordinates (tests/periodic/test_ns_coefficient.py).
 
 References
 ----------
@@ -69,9 +80,14 @@ def coefficient(problem: CycleProblem, kind: str, point: Any) -> tuple[float | N
             c = pd_coefficient(problem, point.coll, point.u)
             side = "supercritical" if c < 0 else "subcritical"
             return c, f"period doubling, normal-form coefficient c = {c:.6g} ({side}; dξ/dt = c ξ³, KGD 2005)"
+        if kind == "NS":
+            d = ns_coefficient(problem, point.coll, point.u)
+            side = "supercritical" if d.real < 0 else "subcritical"
+            return float(d.real), (f"Neimark-Sacker, normal-form coefficient Re d = {d.real:.6g} ({side}; "
+                                   f"dξ/dt = iθ/T ξ + d ξ|ξ|², KGD 2005)")
     except (np.linalg.LinAlgError, RuntimeError, ValueError) as exc:
         return None, f"{kind}: normal-form coefficient failed ({exc})"
-    return None, f"{kind}: normal-form coefficient not computed (only LPC and PD are)"
+    return None, f"{kind}: normal-form coefficient not computed (only LPC, PD and NS are)"
 
 
 # ---- multilinear forms ---------------------------------------------------------------------------
@@ -197,3 +213,63 @@ def _h2(coll: Collocation, Lper: sps.csc_matrix, phi1: np.ndarray, rhs_c: np.nda
     sol = spla.splu(E).solve(np.concatenate([rhs, [0.0]]))
     h2 = sol[:-1].reshape(-1, n).T
     return at_points(coll.mesh, h2)[0]
+
+
+# ---- Neimark–Sacker --------------------------------------------------------------------------------
+def _bc(problem: CycleProblem, y: np.ndarray, p: float, u: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """B(u, w) for complex u, w (bilinear, from the real form :func:`second`)."""
+    ur, ui, wr, wi = u.real, u.imag, w.real, w.imag
+    return (second(problem, y, p, ur, wr) - second(problem, y, p, ui, wi)
+            + 1j * (second(problem, y, p, ur, wi) + second(problem, y, p, ui, wr)))
+
+
+def _cvvvbar(problem: CycleProblem, y: np.ndarray, p: float, v: np.ndarray) -> np.ndarray:
+    """C(v, v, v̄) = C(a, a, v) + C(b, b, v) for v = a + ib (trilinear, from :func:`third`)."""
+    a, b = v.real, v.imag
+    out = np.zeros(v.shape, dtype=complex)
+    for s in (a, b):
+        out += third(problem, y, p, s, s, a) + 1j * third(problem, y, p, s, s, b)
+    return out
+
+
+def _shifted(coll: Collocation, Lper: sps.csc_matrix, shift: float) -> sps.csc_matrix:
+    """The periodic collocation matrix of v′ − T A v + i·shift·v (collocation rows + boundary rows)."""
+    ncol = coll.mesh.ntst * coll.mesh.m * coll.n
+    Pz = sps.vstack([coll.P, sps.csr_matrix((Lper.shape[0] - ncol, coll.nY))])
+    return (Lper.astype(complex) + 1j * shift * Pz).tocsc()
+
+
+def ns_coefficient(problem: CycleProblem, coll: Collocation, u: np.ndarray) -> complex:
+    """d of the Neimark–Sacker bifurcation (module docstring) at the located NS cycle u."""
+    Y, T, p = coll.unpack(u)
+    mesh = coll.mesh
+    lam, vecs = np.linalg.eig(monodromy(problem, mesh, Y, T, p))
+    cand = np.where(lam.imag > 1e-8)[0]
+    if cand.size == 0:
+        raise ValueError("no complex multiplier pair at the Neimark-Sacker point")
+    i = int(cand[np.argmin(np.abs(np.abs(lam[cand]) - 1.0))])
+    theta = float(np.angle(lam[i]))
+    w = propagate(problem, mesh, Y, T, p, vecs[:, i].astype(complex))   # w(1) = e^{iθ} w(0)
+    v = w * np.exp(-1j * theta * mesh.nodes)[None, :]                   # periodic
+    yc, _ = at_points(mesh, Y)
+    vc = at_points(mesh, v.real)[0] + 1j * at_points(mesh, v.imag)[0]
+    scale = np.sqrt(T * np.sum(coll.w * np.sum(np.abs(vc) ** 2, axis=0)))   # ∫₀ᵀ⟨v, v⟩ dt = 1
+    v, vc = v / scale, vc / scale
+    A = np.asarray(problem.jac(yc, p), dtype=float)
+    fc = np.asarray(problem.rhs(yc, p), dtype=float)
+    Lper = _operator(coll, u, +1.0)
+    phi1 = _colloc_part(coll, _left_null(Lper))
+    phi1 = phi1 / np.sum(phi1 * fc)                                      # ∫⟨φ₁*, f⟩ = 1
+    Bvvb = _bc(problem, yc, p, vc, np.conj(vc)).real
+    a1 = float(np.sum(phi1 * Bvvb))
+    h11 = _h2(coll, Lper, phi1, T * (Bvvb - a1 * fc))
+    # h₂₀: the periodic solution of h′ − T A h + 2iθ h = T B(v, v) (nonsingular away from strong
+    # resonance e^{iθ} ≠ e^{2πi k/3}, e^{2πi k/4})
+    L20 = _shifted(coll, Lper, 2 * theta)
+    rhs = np.concatenate([(T * _bc(problem, yc, p, vc, vc)).T.ravel(), np.zeros(coll.n)])
+    h20 = spla.splu(L20).solve(rhs).reshape(-1, coll.n).T
+    h20c = at_points(mesh, h20.real)[0] + 1j * at_points(mesh, h20.imag)[0]
+    phis = _colloc_part(coll, _left_null(_shifted(coll, Lper, theta)))
+    R = (0.5 * _cvvvbar(problem, yc, p, vc) + _bc(problem, yc, p, vc, h11.astype(complex))
+         + 0.5 * _bc(problem, yc, p, np.conj(vc), h20c) - a1 * np.einsum("abm,bm->am", A, vc))
+    return complex(np.sum(phis * R) / np.sum(phis * vc) + 1j * theta * a1 / T)
