@@ -47,7 +47,9 @@ as |v|⁻²); φ₁* the periodic adjoint (∫⟨φ₁*, f⟩ = 1) and φ* the a
 
 The reported coefficient is Re d: Re d < 0 a stable invariant torus on the side where the cycle is
 unstable (supercritical), Re d > 0 subcritical. Checked against the closed form Re d = −2/T of a
-cycle times a transverse Hopf normal form, in nonlinear coordinates (tests/periodic/test_ns_coefficient.py).
+cycle times a transverse Hopf normal form (tests/periodic/test_ns_coefficient.py). That system is
+decoupled, so the check covers the cubic term, the normalisation and the adjoint ratio but not the
+quadratic terms B(v, h₁₁), B(v̄, h₂₀), which vanish there.
 
 References
 ----------
