@@ -177,6 +177,18 @@ def lpc_coefficient(problem: CycleProblem, coll: Collocation, u: np.ndarray, tau
     return float(num / (2 * np.sum(phi * vc)))
 
 
+def _cycle_operators(problem: CycleProblem, coll: Collocation, u: np.ndarray, yc: np.ndarray, p: float):
+    """``(A, f, L, φ₁*)`` of the cycle u at its collocation points yc: A(t) = f_y, f(t), the periodic
+    operator L = d/dt − T·A(t) of the collocation, and its left null vector φ₁* (the adjoint of the
+    phase direction) scaled so that ∫⟨φ₁*, f⟩ = 1 — the pieces every periodic normal form starts from
+    (Kuznetsov, Govaerts & Doedel 2005, Sect. 2)."""
+    A = np.asarray(problem.jac(yc, p), dtype=float)
+    fc = np.asarray(problem.rhs(yc, p), dtype=float)
+    Lper = _operator(coll, u, +1.0)
+    phi1 = _colloc_part(coll, _left_null(Lper))
+    return A, fc, Lper, phi1 / np.sum(phi1 * fc)                        # ∫⟨φ₁*, f⟩ = 1
+
+
 def pd_coefficient(problem: CycleProblem, coll: Collocation, u: np.ndarray) -> float:
     """c of the period doubling (module docstring) at the located PD cycle u."""
     Y, T, p = coll.unpack(u)
@@ -189,11 +201,7 @@ def pd_coefficient(problem: CycleProblem, coll: Collocation, u: np.ndarray) -> f
     vc, _ = at_points(mesh, v)
     scale = np.sqrt(T * np.sum(coll.w * np.sum(vc * vc, axis=0)))      # ∫₀ᵀ⟨v, v⟩ dt = 1
     v, vc = v / scale, vc / scale
-    A = np.asarray(problem.jac(yc, p), dtype=float)
-    fc = np.asarray(problem.rhs(yc, p), dtype=float)
-    Lper = _operator(coll, u, +1.0)
-    phi1 = _colloc_part(coll, _left_null(Lper))
-    phi1 = phi1 / np.sum(phi1 * fc)                                     # ∫⟨φ₁*, f⟩ = 1
+    A, fc, Lper, phi1 = _cycle_operators(problem, coll, u, yc, p)
     Bvv = second(problem, yc, p, vc, vc)
     alpha = 0.5 * np.sum(phi1 * Bvv)
     h2c = _h2(coll, Lper, phi1, T * (Bvv - 2 * alpha * fc))
@@ -257,11 +265,7 @@ def ns_coefficient(problem: CycleProblem, coll: Collocation, u: np.ndarray) -> c
     vc = at_points(mesh, v.real)[0] + 1j * at_points(mesh, v.imag)[0]
     scale = np.sqrt(T * np.sum(coll.w * np.sum(np.abs(vc) ** 2, axis=0)))   # ∫₀ᵀ⟨v, v⟩ dt = 1
     v, vc = v / scale, vc / scale
-    A = np.asarray(problem.jac(yc, p), dtype=float)
-    fc = np.asarray(problem.rhs(yc, p), dtype=float)
-    Lper = _operator(coll, u, +1.0)
-    phi1 = _colloc_part(coll, _left_null(Lper))
-    phi1 = phi1 / np.sum(phi1 * fc)                                      # ∫⟨φ₁*, f⟩ = 1
+    A, fc, Lper, phi1 = _cycle_operators(problem, coll, u, yc, p)
     Bvvb = _bc(problem, yc, p, vc, np.conj(vc)).real
     a1 = float(np.sum(phi1 * Bvvb))
     h11 = _h2(coll, Lper, phi1, T * (Bvvb - a1 * fc))
