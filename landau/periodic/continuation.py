@@ -461,3 +461,46 @@ def _locate(problem: CycleProblem, pt: Point, ds: float, kind: str, f0: float, f
         from landau.periodic import normal_forms as nf
         coef, msg = nf.coefficient(problem, kind, q)
     return SpecialPoint(kind, index, q.p, q.T, coef, q.mu.all, msg, (q.coll.mesh, q.Y))
+
+
+# ---- a cycle at a given parameter value ----------------------------------------------------------
+@dataclass(frozen=True)
+class FixedCycle:
+    """The cycle at one parameter value: mesh, node values Y (n, npts), period T, p, multipliers."""
+
+    mesh: Mesh
+    Y: np.ndarray
+    T: float
+    p: float
+    multipliers: Multipliers
+
+
+def cycle_at(branch: CycleBranch, p: float, near: int | None = None, *, tol: float = 1e-10) -> FixedCycle:
+    """The cycle of ``branch`` at the parameter value ``p``, with its Floquet multipliers.
+
+    Newton's method on the collocation equations at fixed p (the border row picks p), on the mesh of
+    branch point ``near`` and from its cycle (default: the point whose parameter is nearest p).
+    Where the branch folds, the parameter does not fix the cycle: pass ``near`` on the wanted side,
+    close enough to p for Newton's method (the conditioning grows as 1/|μ_c − 1| toward the fold).
+    Raises IntegratorError when Newton's method does not converge.
+    """
+    if not len(branch):
+        raise InputError("cycle_at: the branch has no cycles")
+    if not np.isfinite(p):
+        raise InputError(f"cycle_at: p must be finite, got {p}")
+    i = int(np.argmin(np.abs(np.asarray(branch.parameter) - p))) if near is None else int(near)
+    if not -len(branch) <= i < len(branch):
+        raise InputError(f"cycle_at: near = {near} is not a point of the branch ({len(branch)} cycles)")
+    coll = Collocation(branch.problem, branch.meshes[i])
+    Y0 = np.array(branch.nodes[i])
+    row = np.zeros(coll.size)
+    row[-1] = 1.0
+    g = coll.set_reference(Y0)
+    try:
+        # Newton step: [F_u; e_pᵀ] δ = −(F, p_k − p), the collocation Jacobian bordered by p = const
+        u, _ = newton(coll, coll.pack(Y0, branch.period[i], p), g, row, p, tol=tol, maxit=30, damped=True)
+    except _NoConvergence as exc:
+        raise IntegratorError(f"cycle_at: no cycle found at {branch.problem.parameter} = {p} from branch "
+                              f"point {i} ({exc}); start nearer (near=) or refine the branch") from exc
+    Y, T, pv = coll.unpack(u)
+    return FixedCycle(coll.mesh, Y, T, pv, floquet(branch.problem, coll.mesh, Y, T, pv))

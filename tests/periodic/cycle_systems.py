@@ -81,3 +81,48 @@ def adaptive_control(beta: float = 1.0) -> CycleProblem:
 
     hopf = HopfStart(1.0, np.zeros(3), 1.0, np.array([1.0, 1j, -1.0]))
     return CycleProblem("adaptive-control", ("x", "y", "z"), "alpha", rhs, jac, hopf=hopf)
+
+
+STEINMETZ_LARTER = dict(k1=0.1631021, k2=1250.0, k3=0.046875, k4=20.0, k5=1.104, k6=0.001, km7=0.1175, k7=1.5)
+
+
+def steinmetz_larter() -> CycleProblem:
+    """The Steinmetz–Larter peroxidase–oxidase model (MatCont's and BifurcationKit's example),
+    Ȧ = −k₁ABX − k₃ABY + k₇ − k₋₇A, Ḃ = −k₁ABX − k₃ABY + k₈, Ẋ = k₁ABX − 2k₂X² + 2k₃ABY − k₄X + k₆,
+    Ẏ = −k₃ABY + 2k₂X² − k₅Y, with BifurcationKit's parameters (``STEINMETZ_LARTER``), continued in k₈."""
+    k = STEINMETZ_LARTER
+
+    def rhs(y, k8):
+        A, B, X, Y = y[0], y[1], y[2], y[3]
+        r1, r3 = k["k1"] * A * B * X, k["k3"] * A * B * Y
+        return np.array([-r1 - r3 + k["k7"] - k["km7"] * A, -r1 - r3 + k8,
+                         r1 - 2 * k["k2"] * X ** 2 + 2 * r3 - k["k4"] * X + k["k6"],
+                         -r3 + 2 * k["k2"] * X ** 2 - k["k5"] * Y])
+
+    def jac(y, k8):
+        A, B, X, Y = np.broadcast_arrays(y[0], y[1], y[2], y[3])
+        k1, k3 = k["k1"], k["k3"]
+        dA = -k1 * B * X - k3 * B * Y      # ∂(−k₁ABX − k₃ABY)/∂A
+        dB = -k1 * A * X - k3 * A * Y
+        dX, dY = -k1 * A * B, -k3 * A * B
+        return np.array([[dA - k["km7"], dB, dX, dY],
+                         [dA, dB, dX, dY],
+                         [k1 * B * X + 2 * k3 * B * Y, k1 * A * X + 2 * k3 * A * Y,
+                          k1 * A * B - 4 * k["k2"] * X - k["k4"], 2 * k3 * A * B],
+                         [-k3 * B * Y, -k3 * A * Y, 4 * k["k2"] * X, -k3 * A * B - k["k5"]]])
+
+    return CycleProblem("steinmetz-larter", ("A", "B", "X", "Y"), "k8", rhs, jac, parameter_range=(0.7, 0.9))
+
+
+def simulated_cycle_lsoda(problem: CycleProblem, p: float, y0, t_end: float, state: int = 0) -> CycleStart:
+    """The last full period of an LSODA simulation (rtol 1e-11, the analytic Jacobian) between two
+    upward crossings of state ``state`` through its mean over the second half."""
+    sol = solve_ivp(lambda t, y: problem.rhs(y, p), (0.0, t_end), y0, method="LSODA", rtol=1e-11, atol=1e-13,
+                    jac=lambda t, y: problem.jac(y, p), dense_output=True)
+    ts = np.linspace(t_end / 2, t_end, 1000 * int(t_end) + 1)
+    a = sol.sol(ts)[state]
+    m = a.mean()
+    i = np.where((a[:-1] < m) & (a[1:] >= m))[0]
+    t0, t1 = ts[i[-2]], ts[i[-1]]
+    tt = np.linspace(t0, t1, 400)
+    return CycleStart(tt, sol.sol(tt), t1 - t0, p)
