@@ -89,7 +89,17 @@ def system_hopf(setup: Setup):
     if system.parameter.name in setup.params:
         raise InputError(f"system: {system.parameter.name!r} is the Hopf parameter: its critical value is computed, "
                          "it cannot be given or swept")
-    return hopf_normal_form(system, dict(setup.params), tuple(bracket))
+    return hopf_normal_form(system, dict(setup.params), _bracket(bracket))
+
+
+def _bracket(value) -> tuple[float, float]:
+    """The Hopf parameter's interval from ``(lo, hi)`` or the command line's ``"LO:HI"``."""
+    parts = value.split(":") if isinstance(value, str) else value
+    try:
+        lo, hi = (float(v) for v in parts)
+    except (TypeError, ValueError):
+        raise InputError(f"system: bracket must be two numbers, (lo, hi) or 'LO:HI', got {value!r}") from None
+    return lo, hi
 
 
 def system_cycles(setup: Setup):

@@ -105,6 +105,15 @@ def test_system_amplitude_is_the_closed_form():
     assert pr.hopf.omega == pytest.approx(1.0, rel=1e-12)
 
 
+def test_system_bracket_as_the_command_line_writes_it_or_a_bad_one_named():
+    opts = {"rhs": {"x": "mu*x - y - x*(x**2 + y**2)", "y": "x + mu*y - y*(x**2 + y**2)"}, "parameter": "mu",
+            "equilibrium": {"x": "0", "y": "0"}}
+    pr = get("system").cycles(Setup(None, {}, {**opts, "bracket": "-1:1"}))
+    assert pr.hopf.p_c == pytest.approx(0.0, abs=1e-12)
+    with pytest.raises(InputError, match=r"bracket must be two numbers, \(lo, hi\) or 'LO:HI', got '1:2:3'"):
+        get("system").cycles(Setup(None, {}, {**opts, "bracket": "1:2:3"}))
+
+
 def test_models_without_a_smooth_cycle_problem_declare_none():
     """The two-block stick–slip model has no smooth Hopf point (its blocks stick), the forced oscillator
     is forced (its cycles are not born at a Hopf point of an autonomous field)."""

@@ -126,3 +126,36 @@ def simulated_cycle_lsoda(problem: CycleProblem, p: float, y0, t_end: float, sta
     t0, t1 = ts[i[-2]], ts[i[-1]]
     tt = np.linspace(t0, t1, 400)
     return CycleStart(tt, sol.sol(tt), t1 - t0, p)
+
+
+def lorenz(sigma: float = 10.0, b: float = 8.0 / 3.0) -> CycleProblem:
+    """Lorenz (1963): ẋ = σ(y − x), ẏ = rx − y − xz, ż = xy − bz, continued in r (σ = 10, b = 8/3)."""
+
+    def rhs(y, r):
+        return np.array([sigma * (y[1] - y[0]), r * y[0] - y[1] - y[0] * y[2], y[0] * y[1] - b * y[2]])
+
+    def jac(y, r):
+        x, v, z = np.broadcast_arrays(y[0], y[1], y[2])
+        o, one = np.zeros_like(x), np.ones_like(x)
+        return np.array([[-sigma * one, sigma * one, o], [r - z, -one, -x], [v, x, -b * one]])
+
+    return CycleProblem("lorenz", ("x", "y", "z"), "r", rhs, jac, scales=np.array([20.0, 30.0, 100.0]),
+                        parameter_range=(99.0, 101.0))
+
+
+def simulated_cycle_by_section(problem: CycleProblem, p: float, y0, t_end: float, section, state: int = 0,
+                               max_crossings: int = 16) -> CycleStart:
+    """One full period of a DOP853 simulation (rtol 1e-11) on its attractor: the section ``section(y)``
+    crossed upward; the period closes at the first later crossing where ``state`` repeats to 1e-6."""
+    sol = solve_ivp(lambda t, y: problem.rhs(y, p), (0.0, t_end), y0, method="DOP853", rtol=1e-11, atol=1e-11)
+
+    def event(t, y):
+        return section(y)
+    event.direction = 1
+    tail = solve_ivp(lambda t, y: problem.rhs(y, p), (0.0, t_end / 2), sol.y[:, -1], method="DOP853",
+                     rtol=1e-11, atol=1e-11, events=event, dense_output=True)
+    te, ye = tail.t_events[0], tail.y_events[0]
+    i0 = len(te) - max_crossings - 1
+    k = next(k for k in range(1, max_crossings + 1) if abs(ye[i0 + k, state] - ye[i0, state]) < 1e-6)
+    tt = np.linspace(te[i0], te[i0 + k], 600)
+    return CycleStart(tt, tail.sol(tt), te[i0 + k] - te[i0], p)
