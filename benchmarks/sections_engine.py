@@ -235,31 +235,42 @@ DERIVE_STATES, DIRECT_STATES = 8, 6
 DERIVE_RATIO = 1.5
 
 
+#: repetitions of each derivation (best of), in rounds over every n so that a change of machine load
+#: between rounds reaches every n alike: at 0.2–1.5 CPU-s a derivation's spread on a shared 2-core
+#: machine is ±30 % (measured: 0.33–0.51 s for 3 states), which a best of 3 in a row left in the ratios
+DERIVE_REPS = 5
+
+
 def section_derive(quick: bool, baseline: bool) -> None:
-    """Derivation + first evaluation of the n-state Dieterich family, n = 1…8, CPU time (best of 3 for
-    this checkout; once for the baseline interpreter of ``LANDAU_BENCH_BASELINE_PYTHON``, interleaved:
-    the same machine load), and the ratios t(n + 1)/t(n)."""
+    """Derivation + first evaluation of the n-state Dieterich family, n = 1…8, CPU time (best of
+    ``DERIVE_REPS`` in interleaved rounds over n, each peer interpreter of
+    ``LANDAU_BENCH_BASELINE_PYTHON`` in the same rounds: the same machine load), and the ratios
+    t(n + 1)/t(n)."""
     ns = list(range(1, DERIVE_STATES + 1))
     peers = interpreters()
+    reps = 1 if quick else DERIVE_REPS
+    runs: dict[tuple[int, str], list[tuple[float, float]]] = {}
+    for rnd in range(reps):
+        for n in ns:
+            for label, py in peers:
+                if label != "this" and rnd > 0:
+                    continue
+                runs.setdefault((n, label), []).append(_derive_cpu(n, "current", 900, py))
+        print(f"  round {rnd + 1}/{reps}: " + ", ".join(f"{n}: {runs[(n, 'this')][-1][0]:.2f} s" for n in ns),
+              flush=True)
     rows = []
     for n in ns:
         row: dict = {"states": n}
-        for label, py in peers:
-            reps = (1 if quick else 3) if label == "this" else 1
-            runs = [_derive_cpu(n, "current", 900, py) for _ in range(reps)]
-            t, lam = min(runs)
+        for label, _ in peers:
+            t, lam = min(runs[(n, label)])
             row["CPU s" if label == "this" else "before CPU s"] = t
-            if label == "this":
-                row["Lambda(1e-5)"] = lam
-            else:
-                row["before Lambda(1e-5)"] = lam
+            row["Lambda(1e-5)" if label == "this" else "before Lambda(1e-5)"] = lam
+        row["spread"] = max(r[0] for r in runs[(n, "this")]) / row["CPU s"]
         if baseline and n <= DIRECT_STATES:
             tb, lamb = _derive_cpu(n, "direct", 900)
             row.update({"direct routes CPU s": tb, "same Lambda": bool(lamb == row["Lambda(1e-5)"])
                         if np.isfinite(lamb) else "n/a"})
         rows.append(row)
-        print(f"  {n} states: {row['CPU s']:.2f} s" + "".join(f", {k} {v:.3g}" for k, v in row.items()
-                                                            if k.endswith("CPU s") and k != "CPU s"), flush=True)
     for prev, row in zip(rows[:-1], rows[1:], strict=True):
         row["ratio"] = row["CPU s"] / prev["CPU s"]
         if "before CPU s" in row:
@@ -268,12 +279,12 @@ def section_derive(quick: bool, baseline: bool) -> None:
     if "before CPU s" in rows[0]:
         rows[0]["before ratio"] = float("nan")
     RAW["derive"] = rows
-    cols = [c for c in ("states", "CPU s", "ratio", "before CPU s", "before ratio", "Lambda(1e-5)",
+    cols = [c for c in ("states", "CPU s", "ratio", "spread", "before CPU s", "before ratio", "Lambda(1e-5)",
                         "before Lambda(1e-5)", "direct routes CPU s", "same Lambda") if c in rows[0]]
     TABLES["derive"] = ("Derivation + first evaluation of all seven quantities, Dieterich law with n states "
                         "(μ = a_v + a ln(v/V_*) + Σ bᵢ ln(V_*φᵢ/Lᵢ), dφᵢ/dt = 1 − vφᵢ/Lᵢ), CPU seconds in a fresh "
-                        "interpreter with the landau cache off (imports excluded; best of "
-                        f"{1 if quick else 3}); ratio = t(n)/t(n − 1)"
+                        f"interpreter with the landau cache off (imports excluded; best of {reps}, in "
+                        "rounds over every n); ratio = t(n)/t(n − 1); spread = slowest/fastest run"
                         + ("; before = the baseline interpreter's checkout, timed in the same run, "
                            "interleaved" if len(peers) > 1 else "") + ".\n\n" + table(rows, cols))
     exp_now = _exponent(ns, [r["CPU s"] for r in rows])
