@@ -30,22 +30,15 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import benchlib  # noqa: E402
 
-A = B = 0.2
+from landau.periodic.examples import ROSSLER_AB  # noqa: E402
+
 GOAL_S = 10.0
 
 
 def problem():
-    from landau.periodic import CycleProblem
+    from landau.periodic.examples import rossler
 
-    def rhs(y, c):
-        return np.array([-y[1] - y[2], y[0] + A * y[1], B + y[2] * (y[0] - c)])
-
-    def jac(y, c):
-        x, _, z = np.broadcast_arrays(y[0], y[1], y[2])
-        o, one = np.zeros_like(x), np.ones_like(x)
-        return np.array([[o, -one, -one], [one, A * one, o], [z, o, x - c]])
-
-    return CycleProblem("rossler", ("x", "y", "z"), "c", rhs, jac, parameter_range=(0.0, 100.0))
+    return rossler(parameter_range=(0.0, 100.0))
 
 
 def start(pr):
@@ -85,7 +78,7 @@ def peer(pr, br):
             return p[0] * pr.rhs(y, c)
 
         def bc(ya, yb, p):
-            return np.array([ya[0] - yb[0], ya[1] - yb[1], ya[2] - yb[2], ya[0] + A * ya[1]])
+            return np.array([ya[0] - yb[0], ya[1] - yb[1], ya[2] - yb[2], ya[0] + ROSSLER_AB * ya[1]])
 
         res = solve_bvp(f, bc, s, Y, p=[T], tol=1e-8, max_nodes=20000)
         if not res.success:
