@@ -91,12 +91,14 @@ def machine() -> dict:
 
 def commit() -> str:
     """The checkout's commit (short hash), with ``+dirty`` when tracked files differ from it; "unknown"
-    outside a git checkout."""
+    outside a git checkout. The results files themselves (``benchmarks/results/``) do not count: a
+    section run after another has rewritten them measures the same code."""
     root = Path(__file__).resolve().parent.parent
     try:
         head = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], cwd=root, capture_output=True,
                               text=True, timeout=30, check=True).stdout.strip()
-        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=root,
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no", "--", ".",
+                                ":(exclude)benchmarks/results"], cwd=root,
                                capture_output=True, text=True, timeout=30, check=True).stdout.strip()
     except (OSError, subprocess.SubprocessError):
         return "unknown"
