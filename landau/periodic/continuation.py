@@ -482,7 +482,10 @@ def cycle_at(branch: CycleBranch, p: float, near: int | None = None, *, tol: flo
     branch point ``near`` and from its cycle (default: the point whose parameter is nearest p).
     Where the branch folds, the parameter does not fix the cycle: pass ``near`` on the wanted side,
     close enough to p for Newton's method (the conditioning grows as 1/|μ_c − 1| toward the fold).
-    Raises IntegratorError when Newton's method does not converge.
+    ``tol`` is Newton's tolerance on the scaled step, as in :func:`continue_cycles`.
+
+    Raises InputError for an empty branch, a non-finite p or a ``near`` off the branch, and
+    IntegratorError when Newton's method does not converge.
     """
     if not len(branch):
         raise InputError("cycle_at: the branch has no cycles")

@@ -60,8 +60,10 @@ def rossler(parameter_range: tuple[float, float] = (0.0, 5.7)) -> CycleProblem:
     return CycleProblem("rossler", ("x", "y", "z"), "c", rhs, jac, parameter_range=parameter_range)
 
 
-def lorenz(sigma: float = 10.0, b: float = 8.0 / 3.0) -> CycleProblem:
-    """Lorenz (1963): ẋ = σ(y − x), ẏ = rx − y − xz, ż = xy − bz, continued in r (σ = 10, b = 8/3)."""
+def lorenz(sigma: float = 10.0, b: float = 8.0 / 3.0,
+           parameter_range: tuple[float, float] = (99.0, 101.0)) -> CycleProblem:
+    """Lorenz (1963): ẋ = σ(y − x), ẏ = rx − y − xz, ż = xy − bz, continued in r (σ = 10, b = 8/3);
+    the default range is the period-doubling window near r = 100."""
 
     def rhs(y, r):
         return np.array([sigma * (y[1] - y[0]), r * y[0] - y[1] - y[0] * y[2], y[0] * y[1] - b * y[2]])
@@ -72,7 +74,7 @@ def lorenz(sigma: float = 10.0, b: float = 8.0 / 3.0) -> CycleProblem:
         return np.array([[-sigma * one, sigma * one, o], [r - z, -one, -x], [v, x, -b * one]])
 
     return CycleProblem("lorenz", ("x", "y", "z"), "r", rhs, jac, scales=np.array([20.0, 30.0, 100.0]),
-                        parameter_range=(99.0, 101.0))
+                        parameter_range=parameter_range)
 
 
 def adaptive_control(beta: float = 1.0) -> CycleProblem:
@@ -91,7 +93,7 @@ def adaptive_control(beta: float = 1.0) -> CycleProblem:
     return CycleProblem("adaptive-control", ("x", "y", "z"), "alpha", rhs, jac, hopf=hopf)
 
 
-def steinmetz_larter() -> CycleProblem:
+def steinmetz_larter(parameter_range: tuple[float, float] = (0.7, 0.9)) -> CycleProblem:
     """The Steinmetz–Larter peroxidase–oxidase model (MatCont's and BifurcationKit's example),
     Ȧ = −k₁ABX − k₃ABY + k₇ − k₋₇A, Ḃ = −k₁ABX − k₃ABY + k₈, Ẋ = k₁ABX − 2k₂X² + 2k₃ABY − k₄X + k₆,
     Ẏ = −k₃ABY + 2k₂X² − k₅Y, with BifurcationKit's parameters (``STEINMETZ_LARTER``), continued in k₈."""
@@ -116,7 +118,7 @@ def steinmetz_larter() -> CycleProblem:
                           k1 * A * B - 4 * k["k2"] * X - k["k4"], 2 * k3 * A * B],
                          [-k3 * B * Y, -k3 * A * Y, 4 * k["k2"] * X, -k3 * A * B - k["k5"]]])
 
-    return CycleProblem("steinmetz-larter", ("A", "B", "X", "Y"), "k8", rhs, jac, parameter_range=(0.7, 0.9))
+    return CycleProblem("steinmetz-larter", ("A", "B", "X", "Y"), "k8", rhs, jac, parameter_range=parameter_range)
 
 
 __all__ = ["ROSSLER_AB", "STEINMETZ_LARTER", "adaptive_control", "lorenz", "rossler", "steinmetz_larter",
