@@ -43,7 +43,8 @@ BK_TOL_STABILITY = 1e-3     # the tutorial's ContinuationPar(tol_stability = 1e-
 @pytest.fixture(scope="module")
 def branch():
     pr = steinmetz_larter()
-    # BifurcationKit's starting state (its MatCont origin) integrated onto the attracting cycle
+    # the starting state of Kuznetsov's MatCont tutorial on this model (BifurcationKit starts from a random one),
+    # integrated onto the attracting cycle
     start = simulated_cycle_lsoda(pr, 0.75, [31.78997, 1.45468, 0.01524586, 0.1776113], t_end=600.0)
     return pr, continue_cycles(pr, start, steps=200, ds=0.01, ds_max=0.05, ntst=60)
 
