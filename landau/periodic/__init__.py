@@ -9,8 +9,10 @@ one through their ``cycles`` declaration (:class:`landau.models.Model`), and
 
 from landau.periodic.branch import CycleBranch, EndReason, SpecialPoint
 from landau.periodic.continuation import FixedCycle, continue_cycles, cycle_at
+from landau.periodic.defect import Defect, periodicity_defect
 from landau.periodic.problem import CycleProblem, CycleStart, HopfStart
 from landau.periodic.switching import Cascade, follow_cascade
 
 __all__ = ["CycleProblem", "HopfStart", "CycleStart", "CycleBranch", "EndReason", "SpecialPoint",
-           "continue_cycles", "cycle_at", "FixedCycle", "follow_cascade", "Cascade"]
+           "continue_cycles", "cycle_at", "FixedCycle", "follow_cascade", "Cascade", "periodicity_defect",
+           "Defect"]
