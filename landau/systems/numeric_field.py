@@ -25,6 +25,7 @@ import numpy as np
 
 from landau.errors import InputError
 from landau.support.lambdify import lambdify_positional
+from landau.support.memo import FloatMemo
 
 
 def numeric_field(system, params: Mapping[str, float], *, entries: bool = False):
@@ -65,20 +66,9 @@ def _stack(values, shape: tuple[int, ...]) -> np.ndarray:
     return np.stack([np.broadcast_to(np.asarray(v, dtype=float), shape) for v in values])
 
 
-class _InverseMass:
+def _inverse_mass(E_inverse: Callable[[float], np.ndarray]) -> FloatMemo[np.ndarray]:
     """E(p)⁻¹ by parameter value, the last 64 values kept (a branch revisits its parameters)."""
-
-    def __init__(self, E_inverse: Callable[[float], np.ndarray]) -> None:
-        self.E_inverse = E_inverse
-        self.cache: dict[float, np.ndarray] = {}
-
-    def __call__(self, p: float) -> np.ndarray:
-        p = float(p)
-        if p not in self.cache:
-            if len(self.cache) > 64:
-                self.cache.clear()
-            self.cache[p] = self.E_inverse(p)
-        return self.cache[p]
+    return FloatMemo(E_inverse, 64)
 
 
 def vectorised_field(system, params: Mapping[str, float]):
@@ -98,7 +88,7 @@ def vectorised_field(system, params: Mapping[str, float]):
                          "algebraic system); cycles and simulations need E invertible")
     f, J, E_inverse, vals = numeric_field(system, params, entries=True)
     n = len(system.states)
-    einv = _InverseMass(E_inverse)
+    einv = _inverse_mass(E_inverse)
     args = [*system.states, system.parameter, *system.parameters]
     p = system.parameter
     f_p = lambdify_positional(args, [sp.diff(e, p) for e in system.rhs], "numpy")
@@ -144,11 +134,11 @@ def multilinear_forms(system, params: Mapping[str, float]) -> tuple[Form, Form]:
     vals = [float(params[s.name]) for s in system.parameters]
     n = len(system.states)
     built: dict[int, Any] = {}
-    inverse: list[_InverseMass] = []
+    inverse: list[FloatMemo[np.ndarray]] = []
 
     def einv(p: float) -> np.ndarray:
         if not inverse:
-            inverse.append(_InverseMass(numeric_field(system, params)[2]))
+            inverse.append(_inverse_mass(numeric_field(system, params)[2]))
         return inverse[0](p)
 
     def compiled(order: int):

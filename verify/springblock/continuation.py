@@ -29,6 +29,7 @@ import numpy as np
 from landau.analyses import arclength as al
 from landau.analyses.codim2 import SPRING_BLOCK_PARAMETERS, FoldOfCycles, GeneralisedHopfPoint
 from landau.errors import IntegratorError
+from landau.support.memo import FloatMemo
 from landau.support.progress import progress as bar
 from landau.verify.springblock.model import SpringBlockModel
 from landau.verify.springblock.orbits import (
@@ -73,15 +74,8 @@ class _Problem:
     def __init__(self, make: Callable[[float], SpringBlockModel], rtol: float):
         self.make = make
         self.rtol = rtol
-        self._cache: dict = {}
-
-    def model(self, lam: float) -> SpringBlockModel:
-        key = float(lam)
-        if key not in self._cache:
-            if len(self._cache) > 8:
-                self._cache.clear()
-            self._cache[key] = self.make(key)
-        return self._cache[key]
+        # the model by λ: the corrector and the difference at λ ± h revisit the same values
+        self.model: FloatMemo[SpringBlockModel] = FloatMemo(make, 9)
 
     def G(self, u: np.ndarray, jac: bool = True):
         z, lam = u[:-1], u[-1]
