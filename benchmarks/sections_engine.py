@@ -24,8 +24,6 @@ from benchlib import NEUTRAL, RAW, TABLES, Goal, cpu_time, interpreters, report,
 
 # --------------------------------------------------------------------------------------------
 # Λ(V) (goal 5)
-#: points of the two-state law (numeric Hopf line, solved point by point): far fewer
-N_NUMERIC = 2_000
 
 
 def _numba_lambdify(d):
@@ -92,11 +90,11 @@ def _law_range(name: str) -> tuple[float, float]:
 
 
 def lambda_row(name: str, n_points: int, accuracy: bool = True) -> dict:
-    """Λ(V) of the built-in law ``name`` on ``n_points`` log-spaced points (far fewer for a law with
-    no closed-form Λ(V)), one thread: the engine's throughput (best repeated call and first call),
-    the previous route's and that of ``sympy.lambdify(cse=True)`` compiled by ``numba.vectorize``
-    in the same run; with ``accuracy``, the error of 1000 points (and the floats around each zero
-    of Λ) against 40-digit mpmath.  Used by :func:`section_lambda` and by the drift test
+    """Λ(V) of the built-in law ``name`` on ``n_points`` log-spaced points, one thread: the
+    engine's throughput (best repeated call and first call), the previous route's and that of
+    ``sympy.lambdify(cse=True)`` compiled by ``numba.vectorize`` in the same run; with
+    ``accuracy``, the error of 1000 points (and the floats around each zero of Λ) against
+    40-digit mpmath.  Used by :func:`section_lambda` and by the drift test
     (``tests/codegen/test_benchmark_drift.py``)."""
     import landau.derivation.multiscale as ms
     import landau.derivation.precision as pr
@@ -111,7 +109,7 @@ def lambda_row(name: str, n_points: int, accuracy: bool = True) -> dict:
     try:
         lo, hi = _law_range(name)
         d = ms.derive(SpringBlock(get_law(name)), ["Lambda"])
-        n = n_points if d.hopf.closed_form is not None else N_NUMERIC
+        n = n_points
         Vs = np.logspace(np.log10(lo), np.log10(hi), n)
         t0 = time.process_time()
         d.evaluate(Vs[:10], {}, ["Lambda"])
@@ -125,9 +123,7 @@ def lambda_row(name: str, n_points: int, accuracy: bool = True) -> dict:
         _, t_eng = cpu_time(lambda: d.evaluate(Vs, {}, ["Lambda"]), repeat=2, min_time=0.0)
         row = {"law": name, "points": n, "engine pts/s": n / t_eng, "first call pts/s": first,
                "compile s": compile_s,
-               "double-double points": stats["dd"] if stats["f64"] else (
-                   "— (exact rational route)" if d.hopf.closed_form is not None else
-                   "— (numeric Hopf line: long double screen)"),
+               "double-double points": stats["dd"] if stats["f64"] else "— (exact rational route)",
                "left to mpmath": stats["left"] if stats["f64"] else 0}
         if d.hopf.closed_form is not None and d.block.law.name in LAWS:
             _, t_gen = cpu_time(lambda: d.evaluate(Vs, {}, ["Lambda"], method="general"), repeat=1, min_time=0.0)
@@ -169,14 +165,17 @@ def section_lambda(quick: bool) -> None:
                     f"(of {row['points checked']})", float(row["points > 1e-10"]), 0.0, "<="))
     RAW["lambda"] = rows
     TABLES["lambda"] = (
-        f"Λ(V) over {n_points:.0e} log-spaced V in the velocity-weakening range ({N_NUMERIC} for the two-state law, "
-        "whose Hopf line is solved point by point), one thread, CPU time (best of 2; the first call and the "
-        "compilation separately).  Route: the exactly cancelled form for the laws rational in V; else float64 with "
-        "a first-order error bound, the points it does not certify to 5e-11 again in double-double "
-        "(`landau.codegen.bounded`), the rest with mpmath.  Peers in the same run: the previous route "
-        "(float32 screen, numpy long double, mpmath) and `sympy.lambdify(cse=True)` compiled by `numba.vectorize` "
-        "(no accuracy guarantee).  Accuracy: 1000 log-spaced points plus the floats at each zero of Λ and 1, 10, "
-        "10³, 10⁶ ulps either side (a true zero, Λ = 0 exactly at a float V, would count its absolute value).\n\n"
+        f"Λ(V) over {n_points:.0e} log-spaced V in the velocity-weakening range, one thread, CPU time "
+        "(best of 2; the first call and the compilation separately).  Route: the exactly cancelled form "
+        "for the laws rational in V and a closed-form Hopf line; else float64 with a first-order error "
+        "bound, the points it does not certify to 5e-11 again in double-double (`landau.codegen.bounded`), "
+        "the rest with mpmath; for the two-state law the Hopf line is the stiffest root of the Hopf "
+        "polynomial at every point, with its bound (`landau.codegen.bounded_hopf`), and the coefficients' "
+        "bound includes that of (ω_c, k_c).  Peers in the same run: the previous route (float32 screen, "
+        "numpy long double, mpmath) and `sympy.lambdify(cse=True)` compiled by `numba.vectorize` (no "
+        "accuracy guarantee).  Accuracy: 1000 log-spaced points plus the floats at each zero of Λ and "
+        "1, 10, 10³, 10⁶ ulps either side (a true zero, Λ = 0 exactly at a float V, would count its "
+        "absolute value).\n\n"
         + table(rows, list(dict.fromkeys(k for r in rows for k in r)) if rows else []))
 
 

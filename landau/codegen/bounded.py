@@ -292,13 +292,14 @@ def encode(prog: Program) -> Encoded:
 
 
 @_jit
-def _fwd64(i, k, off, cnt, args, ival, fhi, cerr, v, L, X, Q, start, m):
-    """Slot i in float64 for m points: value v[i], bound on its own rounding L[i]."""
+def _fwd64(i, k, off, cnt, args, ival, fhi, cerr, v, L, X, EX, Q, start, m):
+    """Slot i in float64 for m points: value v[i], bound on its own rounding L[i] (for a varying
+    argument: its given error EX)."""
     a0 = args[off[i]]
     if k == K_IN:
         for j in range(m):
             v[i, j] = X[ival[i], start + j] if start >= 0 else Q[ival[i]]
-            L[i, j] = 0.0
+            L[i, j] = EX[ival[i], start + j] if start >= 0 else 0.0
     elif k == K_CONST:
         for j in range(m):
             v[i, j] = fhi[i]
@@ -514,10 +515,12 @@ def _index(outs, s):
 
 
 @_jit
-def run_f64(kind, off, cnt, args, ival, fhi, cerr, var, outs, gate, cone, X, Q, out, rb):
+def run_f64(kind, off, cnt, args, ival, fhi, cerr, var, outs, gate, cone, X, EX, Q, out, rb, oe):
     """Every output in float64 with the first-order error bound Σᵢ |∂y/∂zᵢ|·Lᵢ over the slots zᵢ
-    (Lᵢ: the bound on the rounding of slot i itself; ∂y/∂zᵢ by reverse accumulation), the
-    linearised a-posteriori bound of Higham (2002), Sec. 3.3; blocks of :data:`BLOCK` points."""
+    (Lᵢ: the bound on the rounding of slot i itself, or the given error EX of a varying argument;
+    ∂y/∂zᵢ by reverse accumulation), the linearised a-posteriori bound of Higham (2002),
+    Sec. 3.3; blocks of :data:`BLOCK` points.  out: values, rb: relative bounds, oe: the
+    absolute bound of each output."""
     ns = kind.size
     npts = X.shape[1]
     v = np.zeros((ns, BLOCK))
@@ -526,7 +529,7 @@ def run_f64(kind, off, cnt, args, ival, fhi, cerr, var, outs, gate, cone, X, Q, 
     bnd = np.zeros((outs.size, BLOCK))
     for i in range(ns):                   # the fixed slots once, for the whole block
         if var[i] == 0:
-            _fwd64(i, kind[i], off, cnt, args, ival, fhi, cerr, v, L, X, Q, -1, 1)
+            _fwd64(i, kind[i], off, cnt, args, ival, fhi, cerr, v, L, X, EX, Q, -1, 1)
             for j in range(1, BLOCK):
                 v[i, j] = v[i, 0]
                 L[i, j] = L[i, 0]
@@ -534,7 +537,7 @@ def run_f64(kind, off, cnt, args, ival, fhi, cerr, var, outs, gate, cone, X, Q, 
         m = min(BLOCK, npts - start)
         for i in range(ns):
             if var[i] != 0:
-                _fwd64(i, kind[i], off, cnt, args, ival, fhi, cerr, v, L, X, Q, start, m)
+                _fwd64(i, kind[i], off, cnt, args, ival, fhi, cerr, v, L, X, EX, Q, start, m)
         for q in range(outs.size):
             top = outs[q]
             for i in range(top + 1):
@@ -547,23 +550,27 @@ def run_f64(kind, off, cnt, args, ival, fhi, cerr, var, outs, gate, cone, X, Q, 
             for i in range(top, -1, -1):
                 if cone[q, i] == 0:
                     continue
-                if kind[i] != K_IN and kind[i] != K_NEG and kind[i] != K_ABS and kind[i] != K_SIGN:
+                if kind[i] != K_NEG and kind[i] != K_ABS and kind[i] != K_SIGN:
                     for j in range(m):
                         bnd[q, j] += abs(adj[i, j]) * L[i, j]
                 _rev64(i, kind[i], off, cnt, args, ival, v, adj, m)
+            for j in range(m):
+                oe[q, start + j] = bnd[q, j]
         _finish(outs, gate, v, bnd, out, rb, start, m)
 
 
 @_jit
-def _fwd_dd(i, k, off, cnt, args, ival, fhi, flo, cerr, h, lo, e, X, Q, start, m):
-    """Slot i in double-double for m points, with its running error bound e[i]."""
+def _fwd_dd(i, k, off, cnt, args, ival, fhi, flo, cerr, h, lo, e, X, XL, EX, Q, start, m):
+    """Slot i in double-double for m points, with its running error bound e[i] (a varying
+    argument: X + XL, off by at most EX)."""
     UD, UV, UF = ddarith.UNIT, ddarith.UNIT_DIV, ddarith.UNIT_FUNC
     a0 = args[off[i]]
     for j in range(m):
         if k == K_IN:
-            h[i, j] = X[ival[i], start + j] if start >= 0 else Q[ival[i]]
-            lo[i, j] = 0.0
-            e[i, j] = 0.0
+            if start >= 0:
+                h[i, j], lo[i, j], e[i, j] = X[ival[i], start + j], XL[ival[i], start + j], EX[ival[i], start + j]
+            else:
+                h[i, j], lo[i, j], e[i, j] = Q[ival[i]], 0.0, 0.0
             continue
         if k == K_CONST:
             h[i, j], lo[i, j], e[i, j] = fhi[i], flo[i], cerr[i]
@@ -640,8 +647,10 @@ def _clz(n):
 
 
 @_jit
-def run_dd(kind, off, cnt, args, ival, fhi, flo, cerr, var, outs, gate, X, Q, out, rb):
-    """Every output in double-double with the running error bound of each operation."""
+def run_dd(kind, off, cnt, args, ival, fhi, flo, cerr, var, outs, gate, X, XL, EX, Q, out, rb, ohi, olo, oe):
+    """Every output in double-double with the running error bound of each operation: out (hi + lo
+    rounded to float64), rb (relative bounds), and for a caller that goes on in double-double the
+    parts ohi, olo and the absolute bounds oe."""
     ns = kind.size
     npts = X.shape[1]
     h = np.zeros((ns, BLOCK))
@@ -650,18 +659,24 @@ def run_dd(kind, off, cnt, args, ival, fhi, flo, cerr, var, outs, gate, X, Q, ou
     bnd = np.zeros((outs.size, BLOCK))
     for i in range(ns):
         if var[i] == 0:
-            _fwd_dd(i, kind[i], off, cnt, args, ival, fhi, flo, cerr, h, lo, e, X, Q, -1, 1)
+            _fwd_dd(i, kind[i], off, cnt, args, ival, fhi, flo, cerr, h, lo, e, X, XL, EX, Q, -1, 1)
             for j in range(1, BLOCK):
                 h[i, j], lo[i, j], e[i, j] = h[i, 0], lo[i, 0], e[i, 0]
     for start in range(0, npts, BLOCK):
         m = min(BLOCK, npts - start)
         for i in range(ns):
             if var[i] != 0:
-                _fwd_dd(i, kind[i], off, cnt, args, ival, fhi, flo, cerr, h, lo, e, X, Q, start, m)
+                _fwd_dd(i, kind[i], off, cnt, args, ival, fhi, flo, cerr, h, lo, e, X, XL, EX, Q, start, m)
         for q in range(outs.size):
             s = outs[q]
             for j in range(m):
                 bnd[q, j] = e[s, j]
+                oe[q, start + j] = e[s, j]
+                ohi[q, start + j] = h[s, j]
+                olo[q, start + j] = lo[s, j]
+        for q in range(outs.size):
+            s = outs[q]
+            for j in range(m):
                 h[s, j] = h[s, j] + lo[s, j]
         _finish(outs, gate, h, bnd, out, rb, start, m)
 
@@ -685,16 +700,38 @@ class BoundedKernels:
         return X, np.ascontiguousarray(Q, dtype=float), np.empty((len(self.program.outs), X.shape[1])), \
             np.empty((2, X.shape[1]))
 
-    def f64(self, X, Q):
+    @staticmethod
+    def _given(A, X):
+        return np.zeros_like(X) if A is None else np.ascontiguousarray(np.broadcast_to(A, X.shape), dtype=float)
+
+    def f64_parts(self, X, Q, EX=None):
+        """Float64 (values, relative bounds, absolute bound of each output); ``EX``: absolute
+        errors of the varying arguments (same shape as X; none by default)."""
         X, Q, out, rb = self._prep(X, Q)
+        oe = np.empty_like(out)
         c = self.enc
-        run_f64(c.kind, c.off, c.cnt, c.args, c.ival, c.fhi, c.cerr, c.var, c.outs, c.gate, c.cone, X, Q, out, rb)
+        run_f64(c.kind, c.off, c.cnt, c.args, c.ival, c.fhi, c.cerr, c.var, c.outs, c.gate, c.cone,
+                X, self._given(EX, X), Q, out, rb, oe)
+        return out, rb, oe
+
+    def f64(self, X, Q, EX=None):
+        """Float64 values and relative bounds (see :meth:`f64_parts`)."""
+        out, rb, _ = self.f64_parts(X, Q, EX)
         return out, rb
 
-    def dd(self, X, Q):
+    def dd_parts(self, X, Q, XL=None, EX=None):
+        """Double-double evaluation at the arguments X + XL (varying ones; each off by at most
+        EX): (values rounded to float64, relative bounds, high parts, low parts, absolute bounds)."""
         if not self.dd_ok:
             raise Unsupported("a function without a double-double version")
         X, Q, out, rb = self._prep(X, Q)
+        hi, lo, e = (np.empty_like(out) for _ in range(3))
         c = self.enc
-        run_dd(c.kind, c.off, c.cnt, c.args, c.ival, c.fhi, c.flo, c.cerr_dd, c.var, c.outs, c.gate, X, Q, out, rb)
+        run_dd(c.kind, c.off, c.cnt, c.args, c.ival, c.fhi, c.flo, c.cerr_dd, c.var, c.outs, c.gate,
+               X, self._given(XL, X), self._given(EX, X), Q, out, rb, hi, lo, e)
+        return out, rb, hi, lo, e
+
+    def dd(self, X, Q, XL=None, EX=None):
+        """Double-double values (rounded to float64) and relative bounds."""
+        out, rb, _, _, _ = self.dd_parts(X, Q, XL, EX)
         return out, rb

@@ -23,6 +23,7 @@ import sympy as sp
 from sympy.polys.matrices import DomainMatrix
 
 from landau.codegen.formula import CompiledFormula, compile_expr
+from landau.derivation import hopf_roots
 from landau.derivation.hopf_polynomial import hopf_polynomials
 from landau.derivation.jets import Jets
 from landau.derivation.parameter_jets import ParameterJets
@@ -398,17 +399,17 @@ class HopfLine:
             ok = (W_c > 0) & (kc > 0) & np.isfinite(kc)
             return np.where(ok, kc, np.nan), np.where(ok, np.sqrt(np.where(ok, W_c, 1.0)), np.nan)
         coeffs, fre, fq2 = self._compiled_poly
-        kcs, oms = np.full(Vs.shape, np.nan), np.full(Vs.shape, np.nan)
-        # every argument at once (the numeric steady states are solved together), then point by point
-        table = [np.broadcast_to(np.asarray(x, dtype=float), Vs.shape) for x in self._argvals(Vs, p)]
-        for n in range(Vs.size):
-            vals = [np.float64(x[n]) for x in table]
-            cs = [float(c(*vals)) for c in coeffs]
-            kk, Wr = _stiffest_hopf_root(np.roots(cs),
-                                         lambda Wr, vals=vals: -float(fre(Wr, *vals)) / float(fq2(Wr, *vals)),
-                                         1e-9, np.nan)
-            kcs[n], oms[n] = kk, np.sqrt(Wr)
-        return kcs, oms
+        # every argument at once (the numeric steady states are solved together), then the
+        # roots of every point's Hopf polynomial at once (landau.derivation.hopf_roots)
+        table = [np.broadcast_to(np.asarray(x, dtype=float), Vs.shape).ravel() for x in self._argvals(Vs, p)]
+        C = np.stack([np.broadcast_to(np.asarray(c(*table), dtype=float), (Vs.size,)) for c in coeffs], axis=1)
+
+        def stiffness(Wr: np.ndarray, rows: np.ndarray) -> np.ndarray:
+            at = [x[rows] for x in table]
+            return -fre(Wr, *at) / fq2(Wr, *at)
+
+        kcs, Ws = hopf_roots.stiffest(C, stiffness, 1e-9)
+        return kcs.reshape(Vs.shape), np.sqrt(Ws).reshape(Vs.shape)
 
     def points(self, Vs: Sequence[float] | float | np.ndarray,
                params: Mapping[str, float] | None = None) -> list[HopfPoint]:

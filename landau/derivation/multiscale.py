@@ -350,8 +350,12 @@ class Derivation:
         NaN where there is no Hopf point.  Every value is accurate to 1e-10 relative or
         settled by a slower route (:mod:`landau.derivation.precision`): the exactly cancelled form when
         the law's derivatives are rational in V (:mod:`landau.derivation.rational`: Dieterich, Ruina,
-        modified Dieterich); otherwise float64 screened by float32, the suspects in long
-        double; what is still doubtful from the exactly cancelled form where it exists, else
+        modified Dieterich); otherwise, for batches of 1000 points or more, float64 with a
+        first-order error bound and the points it does not certify in double-double
+        (:mod:`landau.codegen.bounded`; on a Hopf line without closed form the bound includes
+        that of the numeric (ω_c, k_c), :mod:`landau.codegen.bounded_hopf`), for smaller ones
+        float64 screened by float32 or long double; what is still doubtful from the exactly
+        cancelled form where it exists, else
         with mpmath at 50 and 80 digits, and at up to 550 digits until two successive
         precisions agree (a tiny but genuine value, e.g. Λ ∝ M at M = 1e-50, keeps its value
         and sign).  A quantity that vanishes identically is returned as 0 and the point
@@ -425,7 +429,10 @@ class Derivation:
         elif arr:
             raise InputError("array-valued parameters need a closed-form Hopf line (one state variable)")
         else:
-            raw = precision.numeric_hopf_route(self, Vs, vals, shape, bases, p, sign_only)
+            if method == "auto":    # float64 with error bounds, double-double where needed
+                raw = precision.bounded_numeric_route(self, Vs, vals, shape, bases, p, sign_only)
+            if raw is None:
+                raw = precision.numeric_hopf_route(self, Vs, vals, shape, bases, p, sign_only)
         table = precision.finish(self, Vs, vals, raw, names, bases, sign_only, {**p, **arr})
         if "k_c" in asked and "kc" not in asked:   # under the name asked for
             return CoefficientTable({("k_c" if k == "kc" else k): v for k, v in table.items()},

@@ -347,6 +347,28 @@ def bounded_kernels(d: "Derivation", bases, varying: tuple[bool, ...]):
     return cache[key]
 
 
+def hopf_coefficient_kernels(d: "Derivation", varying: tuple[bool, ...]):
+    """The bounded kernels of the coefficients of the Hopf polynomial H(W), of Re(P Q̄)(W) and of
+    |Q|²(W) (:mod:`landau.derivation.hopf_polynomial`), highest power first, for a Hopf line without
+    closed form: (kernels, number of terms of each); None where an operation has no bounded form."""
+    import sympy as sp
+
+    from landau.codegen.bounded import BoundedKernels, Unsupported, linearise
+    from landau.derivation.linear import W
+
+    cache = d.__dict__.setdefault("_bounded_hopf", {})
+    if varying not in cache:
+        H, re, q2 = d.hopf._hopf_polys
+        polys = [H.all_coeffs(), sp.Poly(re, W).all_coeffs(), sp.Poly(q2, W).all_coeffs()]
+        try:
+            prog = linearise([c for cs in polys for c in cs], d.args, varying, d.jets.atoms)
+            cache[varying] = (BoundedKernels(prog), tuple(len(cs) for cs in polys))
+        except Unsupported as exc:
+            logger.debug("%s: no bounded Hopf polynomial (%s)", d.block.law.name, exc)
+            cache[varying] = None
+    return cache[varying]
+
+
 def _varying(inputs) -> tuple[bool, ...]:
     """Which arguments vary over the points (a scalar broadcast to the shape has zero strides)."""
     return tuple(np.ndim(x) > 0 and any(np.asarray(x).strides) and np.size(x) > 1 for x in inputs)
@@ -399,6 +421,97 @@ def bounded_route(d: "Derivation", Vs, vals, shape, bases, p, exact: bool, sign_
 
 
 # --- mpmath ----------------------------------------------------------------------------------
+def _split(a: np.ndarray, sizes: Sequence[int]) -> list[np.ndarray]:
+    return np.split(a, np.cumsum(sizes)[:-1], axis=0)
+
+
+def _polyval(c: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Σᵢ c[i] x^(d−i) per column (Horner), c: terms × points."""
+    out = c[0].copy()
+    for ci in c[1:]:
+        out = out * x + ci
+    return out
+
+
+def bounded_numeric_route(d: "Derivation", Vs, vals, shape, bases, p, sign_only: bool) -> Raw | None:
+    """A Hopf line without closed form (several state variables) in float64 with error bounds,
+    the points they do not certify to :data:`REL_BOUND` in double-double; the default for
+    batches of :data:`BOUNDED_MIN` points or more.
+
+    1. The coefficients of H(W), Re(P Q̄)(W) and |Q|²(W) with the float64 bounded kernels.
+    2. The stiffest root W of every point (:func:`landau.derivation.hopf_roots.stiffest`), and
+       ω_c, k_c with bounds on their distance to the exact root
+       (:func:`landau.codegen.bounded_hopf.f64_point`).
+    3. The coefficients (Λ, …) at (ω_c, k_c) with the float64 bounded kernels, the errors of
+       ω_c and k_c among their inputs' errors: a point where the formula amplifies them (the
+       two-state Dieterich law near V = 3e-6 m/s: |d ln Λ/d ln k_c| ~ 1e6) is not certified.
+    4. The points not certified: steps 1–3 in double-double, with two Newton steps on the root
+       (:func:`landau.codegen.bounded_hopf.dd_point`), so that ω_c and k_c are off by ~1e-30.
+    5. What is still in doubt (a double root, Λ ≡ 0, a zero of Λ closer than ~1e-20) is left
+       to :func:`refine_mpmath`.
+
+    None (another route is taken) where an operation has no bounded form, for array-valued
+    parameters, and for batches below :data:`BOUNDED_MIN` points."""
+    from landau.codegen.bounded_hopf import hopf_dd, hopf_f64
+    from landau.derivation.hopf_roots import stiffest
+
+    size = int(np.prod(shape))
+    if size < BOUNDED_MIN or not bases:
+        return None
+    varying = _varying(vals)
+    hk = hopf_coefficient_kernels(d, varying)
+    kern = bounded_kernels(d, bases, varying)
+    if hk is None or kern is None or not (kern.dd_ok and hk[0].dd_ok):
+        return None
+    coef, sizes = hk
+    X = np.stack([np.ravel(x) for x, var in zip(vals, varying, strict=True) if var]) if any(varying) \
+        else np.empty((0, size))
+    Q = np.array([0.0 if var else float(np.ravel(x)[0]) for x, var in zip(vals, varying, strict=True)])
+    # 1–2: the Hopf point with its bounds, in float64
+    cv, _, ce = coef.f64_parts(X, Q)
+    (C, R, S), (EC, ER, ES) = _split(cv, sizes), _split(ce, sizes)
+    with np.errstate(all="ignore"):
+        _, W0 = stiffest(C.T, lambda Wr, rows: -_polyval(R[:, rows], Wr) / _polyval(S[:, rows], Wr), 1e-9)
+    hp = hopf_f64(C, EC, R, ER, S, ES, W0)
+    has = np.isfinite(hp[2])
+    # 3: the coefficients at (ω_c, k_c), their errors among the inputs'
+    Xf = np.vstack([hp[0][None], hp[2][None], X])
+    EXf = np.zeros_like(Xf)
+    EXf[0], EXf[1] = hp[1], hp[3]
+    Qf = np.concatenate([[0.0, 0.0], Q])            # the formulas' arguments: ω, k, then the law's
+    out, rb = kern.f64(np.where(np.isfinite(Xf), Xf, 1.0), Qf, EXf)
+    kc, om = hp[2].copy(), hp[0].copy()
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rin = np.maximum(hp[1] / om, hp[3] / np.abs(kc))
+    flag = has & ~((rb[0] <= REL_BOUND) & (rin <= REL_BOUND))
+    BOUNDED_STATS["f64"] += size
+    # 4: the rest in double-double
+    if flag.any():
+        idx = np.flatnonzero(flag)
+        _, _, ch, cl, cde = coef.dd_parts(X[:, idx], Q)
+        parts = [tuple(_split(a, sizes)[i] for a in (ch, cl, cde)) for i in range(3)]
+        hq = hopf_dd(parts[0], parts[1], parts[2], W0[idx])
+        Xd = np.vstack([hq[0][None], hq[3][None], X[:, idx]])
+        XLd = np.zeros_like(Xd)
+        XLd[0], XLd[1] = hq[1], hq[4]
+        EXd = np.zeros_like(Xd)
+        EXd[0], EXd[1] = hq[2], hq[5]
+        ok = np.isfinite(Xd).all(axis=0)
+        out2, rb2 = kern.dd(np.where(ok, Xd, 1.0), Qf, np.where(ok, XLd, 0.0), EXd)
+        out[:, idx], rb[0, idx] = out2, rb2[0]
+        kc[idx], om[idx] = hq[3] + hq[4], hq[0] + hq[1]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            rin2 = np.maximum(hq[2] / np.abs(hq[0]), hq[5] / np.abs(hq[3]))
+        flag[idx] = ~((rb2[0] <= REL_BOUND) & (rin2 <= REL_BOUND) & ok)
+        BOUNDED_STATS["dd"] += idx.size
+    BOUNDED_STATS["left"] += int(flag.sum())
+    if sign_only:
+        flag &= ~(rb[0] < 1.0)
+    values = {"kc": np.where(has, kc, np.nan).reshape(shape), "W": np.where(has, om * om, np.nan).reshape(shape)}
+    values.update({n: np.where(has, out[j], np.nan).reshape(shape) for j, n in enumerate(bases)})
+    return Raw(values, flag.reshape(shape), np.zeros(shape, dtype=bool))
+
+
 def evaluate_mp_checked(d: "Derivation", V0: float, point: Mapping[str, float], names,
                         sign_estimate: Mapping[str, float] | None = None) -> tuple[dict, bool]:
     """Values at 50 digits, or more where needed.  A coefficient whose values at two
