@@ -565,6 +565,23 @@ def _fwd_dd(i, k, off, cnt, args, ival, fhi, flo, cerr, h, lo, e, X, XL, EX, Q, 
     argument: X + XL, off by at most EX)."""
     UD, UV, UF = ddarith.UNIT, ddarith.UNIT_DIV, ddarith.UNIT_FUNC
     a0 = args[off[i]]
+    if k == K_ADD or k == K_MUL:    # most operations: one loop over the points per argument
+        for j in range(m):
+            h[i, j], lo[i, j], e[i, j] = h[a0, j], lo[a0, j], e[a0, j]
+        for q in range(1, cnt[i]):
+            b = args[off[i] + q]
+            if k == K_ADD:
+                for j in range(m):
+                    zh, zl = ddarith.dd_add(h[i, j], lo[i, j], h[b, j], lo[b, j])
+                    h[i, j], lo[i, j] = zh, zl
+                    e[i, j] = e[i, j] + e[b, j] + UD * abs(zh)
+            else:
+                for j in range(m):
+                    zh, ez = h[i, j], e[i, j]
+                    ph, pl = ddarith.dd_mul(zh, lo[i, j], h[b, j], lo[b, j])
+                    e[i, j] = abs(zh) * e[b, j] + abs(h[b, j]) * ez + ez * e[b, j] + UD * abs(ph)
+                    h[i, j], lo[i, j] = ph, pl
+        return
     for j in range(m):
         if k == K_IN:
             if start >= 0:
@@ -579,19 +596,6 @@ def _fwd_dd(i, k, off, cnt, args, ival, fhi, flo, cerr, h, lo, e, X, XL, EX, Q, 
         ax = abs(xh)
         if k == K_NEG:
             zh, zl, ez = -xh, -xl, ex
-        elif k == K_ADD:
-            zh, zl, ez = xh, xl, ex
-            for q in range(1, cnt[i]):
-                b = args[off[i] + q]
-                zh, zl = ddarith.dd_add(zh, zl, h[b, j], lo[b, j])
-                ez = ez + e[b, j] + UD * abs(zh)
-        elif k == K_MUL:
-            zh, zl, ez = xh, xl, ex
-            for q in range(1, cnt[i]):
-                b = args[off[i] + q]
-                ph, pl = ddarith.dd_mul(zh, zl, h[b, j], lo[b, j])
-                ez = abs(zh) * e[b, j] + abs(h[b, j]) * ez + ez * e[b, j] + UD * abs(ph)
-                zh, zl = ph, pl
         elif k == K_POWI or k == K_POWH:
             n = ival[i]
             an = abs(n)

@@ -398,18 +398,37 @@ class HopfLine:
             self._rescue_closed(kc, W_c, vals)
             ok = (W_c > 0) & (kc > 0) & np.isfinite(kc)
             return np.where(ok, kc, np.nan), np.where(ok, np.sqrt(np.where(ok, W_c, 1.0)), np.nan)
+        # every argument at once (the numeric steady states are solved together)
+        table = [np.broadcast_to(np.asarray(x, dtype=float), Vs.shape) for x in self._argvals(Vs, p)]
+        return self.numeric_at(table)
+
+    def numeric_at(self, table: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+        """(k_c, ω_c) of the n-state route at argument values :attr:`args` broadcast to one shape
+        (NaN where there is no Hopf point): the roots of every point's Hopf polynomial at once
+        (:mod:`landau.derivation.hopf_roots`), the stiffest real positive one kept.
+
+        Parameters
+        ----------
+        table : sequence of numpy.ndarray
+            Values of :attr:`args` (the driving velocity and the parameters), all of one shape.
+
+        Returns
+        -------
+        kc, omega_c : numpy.ndarray
+            Of that shape.
+        """
         coeffs, fre, fq2 = self._compiled_poly
-        # every argument at once (the numeric steady states are solved together), then the
-        # roots of every point's Hopf polynomial at once (landau.derivation.hopf_roots)
-        table = [np.broadcast_to(np.asarray(x, dtype=float), Vs.shape).ravel() for x in self._argvals(Vs, p)]
-        C = np.stack([np.broadcast_to(np.asarray(c(*table), dtype=float), (Vs.size,)) for c in coeffs], axis=1)
+        shape = np.shape(table[0])
+        flat = [np.ravel(np.asarray(x, dtype=float)) for x in table]
+        n = flat[0].size
+        C = np.stack([np.broadcast_to(np.asarray(c(*flat), dtype=float), (n,)) for c in coeffs], axis=1)
 
         def stiffness(Wr: np.ndarray, rows: np.ndarray) -> np.ndarray:
-            at = [x[rows] for x in table]
+            at = [x[rows] for x in flat]
             return -fre(Wr, *at) / fq2(Wr, *at)
 
         kcs, Ws = hopf_roots.stiffest(C, stiffness, 1e-9)
-        return kcs.reshape(Vs.shape), np.sqrt(Ws).reshape(Vs.shape)
+        return kcs.reshape(shape), np.sqrt(Ws).reshape(shape)
 
     def points(self, Vs: Sequence[float] | float | np.ndarray,
                params: Mapping[str, float] | None = None) -> list[HopfPoint]:

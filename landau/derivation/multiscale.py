@@ -426,8 +426,6 @@ class Derivation:
             raw = precision.exact_rational_route(self, Vs, shape, bases, forms)
         elif closed:
             raw = precision.screened_route(self, Vs, vals, shape, bases, p, not arr, sign_only)
-        elif arr:
-            raise InputError("array-valued parameters need a closed-form Hopf line (one state variable)")
         else:
             if method == "auto":    # float64 with error bounds, double-double where needed
                 raw = precision.bounded_numeric_route(self, Vs, vals, shape, bases, p, sign_only)

@@ -286,7 +286,7 @@ def numeric_hopf_route(d: "Derivation", Vs, vals, shape, bases, p, sign_only: bo
     movement (it is then returned). The second condition is needed because float64 and long double
     evaluated at the same rounded inputs agree even where Λ amplifies their error a millionfold
     (the two-state Dieterich law near V = 3e-6 m/s: |d ln Λ/d ln k_c| ~ 1e6)."""
-    kc, om = d.hopf.evaluate(Vs.ravel(), p)
+    kc, om = d.hopf.numeric_at(vals)
     values = {"kc": kc.reshape(shape), "W": om.reshape(shape) ** 2}
     values.update(raw(d, vals, shape, bases, np.float64, values["kc"], np.sqrt(values["W"])))
     doubtful = np.zeros(shape, dtype=bool)
