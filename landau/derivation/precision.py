@@ -77,10 +77,12 @@ EXT_GAIN = 16.0
 #: the same gain where only a sign is needed: the smallest measured (60); a sign is taken as
 #: certain where the long double value's error so estimated is below half its size
 SIGN_GAIN = 60.0
-#: relative error of the numerically solved (k_c, ω_c) a coefficient is evaluated at on a Hopf line
-#: without closed form (roots of the Hopf polynomial in float64): measured ≤ 4.5 ulps (1.0e-15) on
-#: the 1000 log-spaced points of the two-state Dieterich law against 40 digits; ten times that
-INPUT_REL = 1e-14
+#: relative error of the numerically solved (k_c, ω_c) polished in long double (:func:`polish_extended`)
+#: a coefficient is screened at on a Hopf line without closed form: measured ≤ 1.0e-18 against
+#: 40 digits (the two-state Dieterich law, 400 log-spaced points from 1e-8 to 0.1 m/s; the 3- and
+#: 5-state Dieterich laws of the derivation benchmark, 150 points each; float64 roots: ≤ 2.2e-15);
+#: ten times that
+INPUT_REL_EXT = 1e-17
 #: points settled by mpmath in one call from which the cost (~1 ms a point) deserves a warning
 MP_WARN = 2_000
 #: relative error bound below which a value of the bounded kernels is certified: half of
@@ -274,31 +276,60 @@ def screened_route(d: "Derivation", Vs, vals, shape, bases, p, exact: bool, sign
     return settle_exactly(d, Vs, shape, bases, p, exact, values, doubtful, rest)
 
 
+def polish_extended(d: "Derivation", lvals, kc80: np.ndarray, om80: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(k_c, ω_c) in long double from a float64 root: two Newton steps W ← W − H(W)/H′(W) on the
+    Hopf polynomial (:mod:`landau.derivation.hopf_polynomial`), its coefficients evaluated in long
+    double, then k_c = −Re(P Q̄)/|Q|² at that W.  Each step squares the relative error of a simple
+    root, so W is then as accurate as its long double coefficients make it (measured against 40
+    digits: :data:`INPUT_REL_EXT`)."""
+    ld = np.longdouble
+    coeffs, fre, fq2 = d.hopf._compiled_poly
+    syms = sorted(set().union(*(f.atom_syms for f in [*coeffs, fre, fq2])), key=str)
+    atoms = d._atom_table.evaluate(syms, *lvals)
+    cs = [np.asarray(c.call_with_atoms(atoms, *lvals), dtype=ld) for c in coeffs]
+    W = om80 * om80
+    with np.errstate(all="ignore"):
+        for _ in range(2):
+            h, dh = cs[0] * np.ones_like(W), np.zeros_like(W)
+            for c in cs[1:]:
+                dh = dh * W + h
+                h = h * W + c
+            W = np.where(np.isfinite(W) & (dh != 0), W - h / dh, W)
+        k = -(np.asarray(fre.call_with_atoms(atoms, W, *lvals), dtype=ld)
+              / np.asarray(fq2.call_with_atoms(atoms, W, *lvals), dtype=ld))
+        ok = np.isfinite(kc80) & np.isfinite(k) & (W > 0)
+        return np.where(ok, k, kc80), np.where(ok, np.sqrt(np.where(ok, W, 1)), om80)
+
+
 def numeric_hopf_route(d: "Derivation", Vs, vals, shape, bases, p, sign_only: bool) -> Raw:
-    """A Hopf line without closed form (several state variables): k_c and ω_c solved numerically
-    (:meth:`landau.derivation.linear.HopfLine.evaluate`), the coefficients in float64 there, screened by
-    the same formulas in long double at the same (k_c, ω_c).
+    """A Hopf line without closed form (several state variables), for batches below
+    :data:`BOUNDED_MIN`: k_c and ω_c solved numerically (:meth:`landau.derivation.linear.HopfLine.numeric_at`)
+    and polished in long double (:func:`polish_extended`), the coefficients in float64 at the
+    rounded polished point, screened by the same formulas in long double at the polished point.
 
     Guarantee: a coefficient is kept where float64 and long double agree to :data:`REL_GOOD` and
-    where the error of its inputs (k_c, ω_c), each off by up to :data:`INPUT_REL`, moves it by less
-    than half of that; elsewhere the point is doubtful (:func:`refine_mpmath`), except with
+    where the error of its inputs (k_c, ω_c), each off by up to :data:`INPUT_REL_EXT`, moves it by
+    less than half of that; elsewhere the point is doubtful (:func:`refine_mpmath`), except with
     ``sign_only`` where the long double value is certain in sign and larger than twice that
-    movement (it is then returned). The second condition is needed because float64 and long double
-    evaluated at the same rounded inputs agree even where Λ amplifies their error a millionfold
-    (the two-state Dieterich law near V = 3e-6 m/s: |d ln Λ/d ln k_c| ~ 1e6)."""
+    movement.  The long double value is returned where kept.  The second condition is needed because
+    float64 and long double evaluated at the same rounded inputs agree even where Λ amplifies their
+    error a millionfold (the two-state Dieterich law near V = 3e-6 m/s: |d ln Λ/d ln k_c| ~ 1e6);
+    the polish makes that error ~2000 times smaller than a float64 root's, so only points more
+    sensitive than ~1e6 are left to mpmath (with float64 roots: ~1e3)."""
     kc, om = d.hopf.numeric_at(vals)
-    values = {"kc": kc.reshape(shape), "W": om.reshape(shape) ** 2}
-    values.update(raw(d, vals, shape, bases, np.float64, values["kc"], np.sqrt(values["W"])))
+    kc, om = kc.reshape(shape), om.reshape(shape)
     doubtful = np.zeros(shape, dtype=bool)
     if EXTENDED and bases:
         ld = np.longdouble
         lvals = [v.astype(ld) for v in vals]
-        kc80, om80 = values["kc"].astype(ld), np.sqrt(values["W"]).astype(ld)
+        kc80, om80 = polish_extended(d, lvals, kc.astype(ld), om.astype(ld))
+        values = {"kc": kc80.astype(float), "W": (om80 * om80).astype(float)}
+        values.update(raw(d, vals, shape, bases, np.float64, values["kc"], om80.astype(float)))
         ext = raw(d, lvals, shape, bases, ld, kc80, om80)
         # the coefficients again with k_c and ω_c each moved by their error bound: a first-order
         # estimate of what the inputs' error does to each (in long double, so that the formula's
         # own round-off does not mask it)
-        bump = ld(1) + ld(INPUT_REL)
+        bump = ld(1) + ld(INPUT_REL_EXT)
         moved_k = raw(d, lvals, shape, bases, ld, kc80 * bump, om80)
         moved_w = raw(d, lvals, shape, bases, ld, kc80, om80 * bump)
         for n in bases:
@@ -310,11 +341,14 @@ def numeric_hopf_route(d: "Derivation", Vs, vals, shape, bases, p, sign_only: bo
             off = ~agree(values[n], x80, REL_GOOD) | (sensitive & np.isfinite(x80))
             if sign_only:
                 off &= ~(sign_settled(values[n], x80) & (np.abs(x80) > 2 * moved))
-                values[n] = np.where(off, values[n], x80)
+            values[n] = np.where(off, values[n], x80)
             doubtful |= off
-    elif bases:
-        doubtful[...] = True
-        _no_extended(d.block.law.name, int(np.sum(np.isfinite(values["kc"]))))
+    else:
+        values = {"kc": kc, "W": om ** 2}
+        values.update(raw(d, vals, shape, bases, np.float64, kc, om))
+        if bases:
+            doubtful[...] = True
+            _no_extended(d.block.law.name, int(np.sum(np.isfinite(values["kc"]))))
     doubtful &= np.isfinite(values["kc"])
     return Raw(values, doubtful, np.zeros(shape, dtype=bool))
 

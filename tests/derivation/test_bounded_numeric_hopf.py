@@ -177,3 +177,33 @@ def test_two_state_map_over_a_parameter_array(two_state, monkeypatch, bounded_mi
                     assert abs(got[name][i, j] - w) <= 1e-10 * abs(w), (i, j, name, got[name][i, j], float(w))
     # b₂ matters: the three columns differ
     assert np.all(np.abs(np.diff(got["k_c"], axis=1)) > 0)
+
+
+def _mp_longdouble(x) -> mpmath.mpf:
+    """A long double exactly as an mpmath number (mpmath takes no numpy long double)."""
+    m, e = np.frexp(x)
+    return mpmath.mpf(int(np.ldexp(m, 64))) * mpmath.mpf(2) ** (int(e) - 64)
+
+
+@pytest.mark.skipif(not pr.EXTENDED, reason="no extended long double on this platform")
+def test_long_double_polish_within_its_stated_error(two_state):
+    """``polish_extended`` (the small-batch route's (k_c, ω_c)): within ``INPUT_REL_EXT`` of 40 digits
+    on 120 log-spaced velocities, where the float64 roots are off by up to ~2e-15."""
+    d = two_state
+    Vs = np.logspace(-8, -1, 120)
+    vals = [np.broadcast_to(np.asarray(x, dtype=float), Vs.shape) for x in d.block.argvals(Vs, d.block.resolve({}))]
+    kc, om = d.hopf.numeric_at(vals)
+    ld = np.longdouble
+    k80, o80 = pr.polish_extended(d, [v.astype(ld) for v in vals], kc.astype(ld), om.astype(ld))
+    worst64 = worst80 = 0.0
+    for i in range(Vs.size):
+        if not np.isfinite(kc[i]):
+            continue
+        with mpmath.workdps(40):
+            km, Wm = d.hopf.numeric_point_mp([mpmath.mpf(float(np.ravel(x)[i])) for x in vals])
+            wm = mpmath.sqrt(Wm)
+            worst64 = max(worst64, float(abs(kc[i] / km - 1)), float(abs(om[i] / wm - 1)))
+            worst80 = max(worst80, float(abs(_mp_longdouble(k80[i]) / km - 1)),
+                          float(abs(_mp_longdouble(o80[i]) / wm - 1)))
+    assert worst80 <= pr.INPUT_REL_EXT, worst80
+    assert worst64 > 100 * worst80          # the polish is what makes the screen's input error small
