@@ -38,7 +38,7 @@ from typing import Any, Callable, ClassVar, Sequence
 import numpy as np
 
 from landau.analyses.sweep_engine import Chunk, ChunkResult, Grid, chunks
-from landau.errors import DomainError, InputError, LandauError, NoHopfError, NoSteadySlidingError
+from landau.errors import InputError, LandauError, NoHopfError
 from landau.models import LawKind, Model, Setup
 from landau.models import get as get_model
 
@@ -290,18 +290,9 @@ class SpringBlockHopf(Task):
             from landau.systems.system import M_DEFAULT, default_normal_load
 
             params["sigma"] = default_normal_load(params.get("M", M_DEFAULT), params["g"])
-        try:
-            r = d.evaluate(V, params, HOPF_NAMES, method=self.method)
-        except (DomainError, NoSteadySlidingError):
-            raise   # a point outside the law's or the terms' domain: the engine splits the chunk down to it
-        except InputError:
-            if not pts:
-                raise
-            # array-valued parameters need a closed-form Hopf line: point by point
-            rows = [d.evaluate(np.array([V[j]]), {k: float(np.ravel(v)[j]) if np.ndim(v) else v
-                                                  for k, v in params.items()},
-                               HOPF_NAMES, method=self.method) for j in range(len(V))]
-            r = {n: np.array([float(np.ravel(row[n])[0]) for row in rows]) for n in [*HOPF_NAMES, "degenerate"]}
+        # vectorised over V and the parameters alike (for a law with several states too); a point
+        # outside the law's or the terms' domain raises, and the engine splits the chunk down to it
+        r = d.evaluate(V, params, HOPF_NAMES, method=self.method)
         vals = {k: np.broadcast_to(np.asarray(r[k], dtype=float), (n,)).copy() for k in HOPF_NAMES}
         degenerate = np.broadcast_to(np.asarray(r.get("degenerate", False), dtype=bool), (n,))
         kc = vals["kc"]

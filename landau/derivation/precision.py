@@ -486,12 +486,12 @@ def bounded_numeric_route(d: "Derivation", Vs, vals, shape, bases, p, sign_only:
 
     None (another route is taken) where an operation has no bounded form, for array-valued
     parameters, and for batches below :data:`BOUNDED_MIN` points."""
+    size = int(np.prod(shape))
+    if size < BOUNDED_MIN or not bases:     # before the imports: numba is not loaded for a small batch
+        return None
     from landau.codegen.bounded_hopf import hopf_dd, hopf_f64
     from landau.derivation.hopf_roots import stiffest
 
-    size = int(np.prod(shape))
-    if size < BOUNDED_MIN or not bases:
-        return None
     varying = _varying(vals)
     hk = hopf_coefficient_kernels(d, varying)
     kern = bounded_kernels(d, bases, varying)

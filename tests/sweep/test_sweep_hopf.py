@@ -151,3 +151,24 @@ def test_a_declared_law_sweeps_like_the_same_built_in_law():
     assert a.attrs["law"] == "my-dieterich" and "dphi/dt" in a.attrs["law_declaration"]
     for name in ("kc", "omega_c", "Lambda", "C"):
         assert np.allclose(a[name].values, b[name].values, rtol=1e-10, atol=0), name
+
+
+def test_a_two_state_law_sweeps_over_a_parameter_as_one_chunk_equal_to_40_digits():
+    """A (V, b₂) sweep of the two-state Dieterich law: its chunks go through the vectorised route
+    (array-valued parameters on a Hopf line without closed form; they were evaluated point by point),
+    cut into chunks or not the same numbers, each within 1e-10 of a 40-digit evaluation at its point."""
+    from landau.derivation.multiscale import derive
+    from landau.laws import get_law
+    from landau.systems.system import SpringBlock
+
+    grid = {"V": [1e-7, 3e-6, 1e-4], "b2": [0.010, 0.0189]}
+    one = landau.sweep("hopf", grid, law="two-state-dieterich", workers=1, progress=False)
+    cut = landau.sweep("hopf", grid, law="two-state-dieterich", workers=1, progress=False, options={"chunk_size": 1})
+    _same(one, cut)
+    d = derive(SpringBlock(get_law("two-state-dieterich")), ["Lambda"])
+    for V in grid["V"]:
+        for b2 in grid["b2"]:
+            want = d.evaluate_mp(V, {"b2": b2}, ["kc", "Lambda"], dps=40)
+            for name, key in (("kc", "kc"), ("Lambda", "Lambda")):
+                got = float(one[name].sel(V=V, b2=b2))
+                assert abs(got - want[key]) <= 1e-10 * abs(want[key]), (V, b2, name, got, float(want[key]))
