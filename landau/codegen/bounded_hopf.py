@@ -19,7 +19,8 @@ own bound once these errors are known.  So this module gives, for every point:
   both polynomials and the division; ω = √W with e_W/(2ω).
 * :func:`dd_point` — the same in double-double (u → 2⁻¹⁰³ of :mod:`landau.codegen.ddarith`),
   after two Newton steps W ← W − Ĥ(W)/H′(W) with Ĥ in double-double and H′ in float64 (each
-  step multiplies the error by |1 − H′/Ĥ′| ~ 1e-16: from the float64 root to ~1e-32).
+  step multiplies the error by |1 − H′/Ĥ′| ~ 1e-16: from the float64 root to ~1e-32); refused
+  where the steps moved W by more than 1e-12 relative (they may have found another root).
 
 Coefficient arrays are (terms, points), highest power first, as ``sympy.Poly.all_coeffs``.
 """
@@ -38,6 +39,9 @@ U = 2.0 ** -53
 _INF = math.inf
 #: the second-order term of the root's bound, relative to the first, above which it is refused
 _KANTOROVICH = 0.1
+#: the largest relative move of the Newton steps from the float64 root (accurate to ~1e-15) that is
+#: taken as converging to that root; beyond it the bound is refused (it might be another root's)
+_MOVE = 1e-12
 
 
 @_jit
@@ -158,7 +162,8 @@ def dd_point(CH, CL, CE, RH, RL, RE, SH, SL, SE, W, out):
         kh, kl = -kh, -kl
         omh, oml = ddarith.dd_sqrt(wh, wl)
         ak, aq = abs(kh), abs(qh)
-        if not (e_q2 <= _KANTOROVICH * aq) or not (eW <= _KANTOROVICH * wh):
+        moved = abs((wh - W[j]) + wl) > _MOVE * W[j]     # Newton left the float64 root: another root?
+        if moved or not (e_q2 <= _KANTOROVICH * aq) or not (eW <= _KANTOROVICH * wh):
             ek = _INF
             ew = _INF
         else:

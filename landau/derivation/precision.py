@@ -276,18 +276,22 @@ def screened_route(d: "Derivation", Vs, vals, shape, bases, p, exact: bool, sign
     return settle_exactly(d, Vs, shape, bases, p, exact, values, doubtful, rest)
 
 
-def polish_extended(d: "Derivation", lvals, kc80: np.ndarray, om80: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(k_c, ω_c) in long double from a float64 root: two Newton steps W ← W − H(W)/H′(W) on the
-    Hopf polynomial (:mod:`landau.derivation.hopf_polynomial`), its coefficients evaluated in long
-    double, then k_c = −Re(P Q̄)/|Q|² at that W.  Each step squares the relative error of a simple
-    root, so W is then as accurate as its long double coefficients make it (measured against 40
-    digits: :data:`INPUT_REL_EXT`)."""
+def polish_extended(d: "Derivation", lvals, kc80: np.ndarray,
+                    om80: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(k_c, ω_c, polished) in long double from a float64 root: two Newton steps W ← W − H(W)/H′(W)
+    on the Hopf polynomial (:mod:`landau.derivation.hopf_polynomial`), its coefficients evaluated
+    in long double, then k_c = −Re(P Q̄)/|Q|² at that W.  Each step squares the relative error of
+    a simple root, so W is then as accurate as its long double coefficients make it (measured
+    against 40 digits: :data:`INPUT_REL_EXT`).  ``polished`` is False (the float64 values are
+    returned) where there is no Hopf point, and where the steps moved W by more than 1e-12
+    relative or left it non-positive — not a simple root within the float64 root's error (near a
+    double root of H)."""
     ld = np.longdouble
     coeffs, fre, fq2 = d.hopf._compiled_poly
     syms = sorted(set().union(*(f.atom_syms for f in [*coeffs, fre, fq2])), key=str)
     atoms = d._atom_table.evaluate(syms, *lvals)
     cs = [np.asarray(c.call_with_atoms(atoms, *lvals), dtype=ld) for c in coeffs]
-    W = om80 * om80
+    W = W64 = om80 * om80
     with np.errstate(all="ignore"):
         for _ in range(2):
             h, dh = cs[0] * np.ones_like(W), np.zeros_like(W)
@@ -297,8 +301,8 @@ def polish_extended(d: "Derivation", lvals, kc80: np.ndarray, om80: np.ndarray) 
             W = np.where(np.isfinite(W) & (dh != 0), W - h / dh, W)
         k = -(np.asarray(fre.call_with_atoms(atoms, W, *lvals), dtype=ld)
               / np.asarray(fq2.call_with_atoms(atoms, W, *lvals), dtype=ld))
-        ok = np.isfinite(kc80) & np.isfinite(k) & (W > 0)
-        return np.where(ok, k, kc80), np.where(ok, np.sqrt(np.where(ok, W, 1)), om80)
+        ok = np.isfinite(kc80) & np.isfinite(k) & (W > 0) & (np.abs(W - W64) <= ld(1e-12) * W64)
+        return np.where(ok, k, kc80), np.where(ok, np.sqrt(np.where(ok, W, 1)), om80), ok
 
 
 def numeric_hopf_route(d: "Derivation", Vs, vals, shape, bases, p, sign_only: bool) -> Raw:
@@ -322,7 +326,7 @@ def numeric_hopf_route(d: "Derivation", Vs, vals, shape, bases, p, sign_only: bo
     if EXTENDED and bases:
         ld = np.longdouble
         lvals = [v.astype(ld) for v in vals]
-        kc80, om80 = polish_extended(d, lvals, kc.astype(ld), om.astype(ld))
+        kc80, om80, polished = polish_extended(d, lvals, kc.astype(ld), om.astype(ld))
         values = {"kc": kc80.astype(float), "W": (om80 * om80).astype(float)}
         values.update(raw(d, vals, shape, bases, np.float64, values["kc"], om80.astype(float)))
         ext = raw(d, lvals, shape, bases, ld, kc80, om80)
@@ -343,6 +347,7 @@ def numeric_hopf_route(d: "Derivation", Vs, vals, shape, bases, p, sign_only: bo
                 off &= ~(sign_settled(values[n], x80) & (np.abs(x80) > 2 * moved))
             values[n] = np.where(off, values[n], x80)
             doubtful |= off
+        doubtful |= ~polished        # the screen's input error is not known there: 50 digits
     else:
         values = {"kc": kc, "W": om ** 2}
         values.update(raw(d, vals, shape, bases, np.float64, kc, om))

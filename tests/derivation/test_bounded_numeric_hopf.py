@@ -194,7 +194,8 @@ def test_long_double_polish_within_its_stated_error(two_state):
     vals = [np.broadcast_to(np.asarray(x, dtype=float), Vs.shape) for x in d.block.argvals(Vs, d.block.resolve({}))]
     kc, om = d.hopf.numeric_at(vals)
     ld = np.longdouble
-    k80, o80 = pr.polish_extended(d, [v.astype(ld) for v in vals], kc.astype(ld), om.astype(ld))
+    k80, o80, polished = pr.polish_extended(d, [v.astype(ld) for v in vals], kc.astype(ld), om.astype(ld))
+    assert np.array_equal(polished, np.isfinite(kc))     # simple roots: every Hopf point polished
     worst64 = worst80 = 0.0
     for i in range(Vs.size):
         if not np.isfinite(kc[i]):
@@ -207,3 +208,37 @@ def test_long_double_polish_within_its_stated_error(two_state):
                           float(abs(_mp_longdouble(o80[i]) / wm - 1)))
     assert worst80 <= pr.INPUT_REL_EXT, worst80
     assert worst64 > 100 * worst80          # the polish is what makes the screen's input error small
+
+
+def test_root_bounds_hold_or_are_refused_near_a_double_root():
+    """H(W) = (W − 1)(W − 1 − δ) with δ from 1e-16 to 1e-2, and p(W) = W (Re(P Q̄) = −W, |Q|² = 1):
+    from each float64 root, every finite bound of ω = √W and k = W (float64 and double-double)
+    contains a true root's values, and the float64 bounds are refused where the roots are closer than
+    float64 resolves (δ ≤ 1e-9)."""
+    deltas = 10.0 ** -np.linspace(2, 16, 57)
+    C = np.stack([np.ones_like(deltas), -(2.0 + deltas), 1.0 + deltas])
+    zeros = np.zeros_like(C)
+    R, S = np.stack([-np.ones_like(deltas), np.zeros_like(deltas)]), np.ones((1, deltas.size))
+    W0 = hopf_roots.roots(C.T).real.max(axis=1)
+    f64 = hopf_f64(C, zeros, R, np.zeros_like(R), S, np.zeros_like(S), W0)
+    dd = hopf_dd((C, zeros, zeros), (R, np.zeros_like(R), np.zeros_like(R)),
+                 (S, np.zeros_like(S), np.zeros_like(S)), W0)
+    refused = 0
+    for j, dl in enumerate(deltas):
+        # the exact roots of the float64 coefficients (1 + δ rounded, 2 + δ rounded): by the exact
+        # quadratic formula in 60 digits
+        with mpmath.workdps(60):
+            a, b, c = (mpmath.mpf(float(x)) for x in C[:, j])     # exact
+            disc = b * b - 4 * a * c
+            roots = [(-b + s * mpmath.sqrt(disc)) / (2 * a) for s in (1, -1)] if disc >= 0 else []
+            for om, eom, k, ek in ((f64[0, j], f64[1, j], f64[2, j], f64[3, j]),
+                                   (mpmath.mpf(dd[0, j]) + mpmath.mpf(dd[1, j]), dd[2, j],
+                                    mpmath.mpf(dd[3, j]) + mpmath.mpf(dd[4, j]), dd[5, j])):
+                if not np.isfinite(ek) or not np.isfinite(eom):
+                    refused += 1
+                    continue
+                assert any(abs(k - r) <= ek and abs(om - mpmath.sqrt(r)) <= eom for r in roots), (dl, k, ek)
+        # float64 cannot resolve roots closer than ~1e-8 (√u): refused there
+        if dl <= 1e-9:
+            assert not np.isfinite(f64[3, j]), (dl, f64[:, j])
+    assert refused > 0
