@@ -36,7 +36,7 @@ import mpmath
 import numpy as np
 
 from landau.derivation.coefficients import DERIVED, CoefficientTable, _with_bases
-from landau.errors import SingularPointError
+from landau.errors import NoHopfError, SingularPointError
 
 if TYPE_CHECKING:
     from landau.derivation.multiscale import Derivation
@@ -622,7 +622,16 @@ def refine_mpmath(d: "Derivation", out: dict[str, np.ndarray], vals, where: np.n
     for idx in map(tuple, idx_all):
         point = {s.name: float(vals[i + 1][idx]) for i, s in enumerate(d.args[1:])}
         estimate = {n: float(out[n][idx]) for n in extra if n in out} if sign_only else None
-        mp, degenerate = d._evaluate_mp_checked(float(vals[0][idx]), point, extra, estimate)
+        try:
+            mp, degenerate = d._evaluate_mp_checked(float(vals[0][idx]), point, extra, estimate)
+        except NoHopfError:
+            # the float route's Hopf point was round-off (k_c or ω_c² of either sign within its
+            # error, at the end of a velocity-weakening range): at 50 digits there is none
+            for n in ("kc", "omega_c", *extra):
+                if n not in DERIVED:
+                    out[n][idx] = np.nan
+            out["degenerate"][idx] = False
+            continue
         for n in ("kc", "omega_c", *extra):
             if n not in DERIVED:
                 out[n][idx] = float(mp[n])
