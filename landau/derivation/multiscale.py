@@ -24,7 +24,7 @@ import numpy as np
 import sympy as sp
 
 from landau.codegen.formula import AtomTable, CompiledFormula
-from landau.derivation import precision
+from landau.derivation import precision, precision_numeric
 from landau.derivation.coefficients import (  # noqa: F401
     _GB,
     _LA,
@@ -428,9 +428,9 @@ class Derivation:
             raw = precision.screened_route(self, Vs, vals, shape, bases, p, not arr, sign_only)
         else:
             if method == "auto":    # float64 with error bounds, double-double where needed
-                raw = precision.bounded_numeric_route(self, Vs, vals, shape, bases, p, sign_only)
+                raw = precision_numeric.bounded_numeric_route(self, Vs, vals, shape, bases, p, sign_only)
             if raw is None:
-                raw = precision.numeric_hopf_route(self, Vs, vals, shape, bases, p, sign_only)
+                raw = precision_numeric.numeric_hopf_route(self, Vs, vals, shape, bases, p, sign_only)
         table = precision.finish(self, Vs, vals, raw, names, bases, sign_only, {**p, **arr})
         if "k_c" in asked and "kc" not in asked:   # under the name asked for
             return CoefficientTable({("k_c" if k == "kc" else k): v for k, v in table.items()},

@@ -169,6 +169,6 @@ def test_every_law_lambda_within_1e_10_of_40_digits_small_sample(name, monkeypat
 @pytest.mark.parametrize("name", [*LAWS6, "two-state-dieterich"])
 def test_every_law_lambda_within_1e_10_of_40_digits_1000_points(name):
     """The same on 1000 points (the benchmark's sample; ~5–20 CPU-s a law), and for the two-state law
-    (a Hopf line without closed form: ``landau.derivation.precision.bounded_numeric_route``)."""
+    (a Hopf line without closed form: ``landau.derivation.precision_numeric.bounded_numeric_route``)."""
     worst, bad = _lambda_worst(name, 1000)
     assert bad == 0, worst

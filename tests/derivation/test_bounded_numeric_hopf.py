@@ -1,7 +1,7 @@
 """The Hopf line without closed form (several state variables) at full speed: the roots of every
 point's Hopf polynomial at once (``landau.derivation.hopf_roots``), their error bounds in float64
 and double-double (``landau.codegen.bounded_hopf``) and the bounded route of ``Derivation.evaluate``
-built on them (``landau.derivation.precision.bounded_numeric_route``).
+built on them (``landau.derivation.precision_numeric.bounded_numeric_route``).
 
 Independent references: ``numpy.roots`` point by point (the previous route), and 40-digit mpmath
 (``HopfLine.numeric_point_mp``: the Hopf polynomial's roots by ``mpmath.polyroots``, and
@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 import landau.derivation.precision as pr
+import landau.derivation.precision_numeric as pn
 from landau.codegen.bounded_hopf import hopf_dd, hopf_f64
 from landau.derivation import hopf_roots
 from landau.derivation.linear import _stiffest_hopf_root
@@ -92,7 +93,7 @@ def test_hopf_line_of_two_states_vectorised_equals_40_digits(two_state):
 def _hopf_inputs(d, Vs):
     vals = [np.broadcast_to(np.asarray(x, dtype=float), Vs.shape) for x in d.block.argvals(Vs, d.block.resolve({}))]
     varying = pr._varying(vals)
-    kern, sizes = pr.hopf_coefficient_kernels(d, varying)
+    kern, sizes = pn.hopf_coefficient_kernels(d, varying)
     X = np.stack([np.ravel(x) for x, var in zip(vals, varying, strict=True) if var])
     Q = np.array([0.0 if var else float(np.ravel(x)[0]) for x, var in zip(vals, varying, strict=True)])
     return kern, sizes, X, Q
@@ -106,11 +107,11 @@ def test_root_bounds_hold_in_float64_and_double_double(two_state):
     Vs = np.logspace(-8, -1, 150)
     kern, sizes, X, Q = _hopf_inputs(d, Vs)
     cv, _, ce = kern.f64_parts(X, Q)
-    (C, R, S), (EC, ER, ES) = pr._split(cv, sizes), pr._split(ce, sizes)
-    _, W0 = hopf_roots.stiffest(C.T, lambda Wr, rows: -pr._polyval(R[:, rows], Wr) / pr._polyval(S[:, rows], Wr))
+    (C, R, S), (EC, ER, ES) = pn._split(cv, sizes), pn._split(ce, sizes)
+    _, W0 = hopf_roots.stiffest(C.T, lambda Wr, rows: -pn._polyval(R[:, rows], Wr) / pn._polyval(S[:, rows], Wr))
     f64 = hopf_f64(C, EC, R, ER, S, ES, W0)
     _, _, ch, cl, cde = kern.dd_parts(X, Q)
-    parts = [tuple(pr._split(a, sizes)[i] for a in (ch, cl, cde)) for i in range(3)]
+    parts = [tuple(pn._split(a, sizes)[i] for a in (ch, cl, cde)) for i in range(3)]
     dd = hopf_dd(parts[0], parts[1], parts[2], W0)
     p = d.block.resolve({})
     checked = 0
@@ -194,7 +195,7 @@ def test_long_double_polish_within_its_stated_error(two_state):
     vals = [np.broadcast_to(np.asarray(x, dtype=float), Vs.shape) for x in d.block.argvals(Vs, d.block.resolve({}))]
     kc, om = d.hopf.numeric_at(vals)
     ld = np.longdouble
-    k80, o80, polished = pr.polish_extended(d, [v.astype(ld) for v in vals], kc.astype(ld), om.astype(ld))
+    k80, o80, polished = pn.polish_extended(d, [v.astype(ld) for v in vals], kc.astype(ld), om.astype(ld))
     assert np.array_equal(polished, np.isfinite(kc))     # simple roots: every Hopf point polished
     worst64 = worst80 = 0.0
     for i in range(Vs.size):
@@ -206,7 +207,7 @@ def test_long_double_polish_within_its_stated_error(two_state):
             worst64 = max(worst64, float(abs(kc[i] / km - 1)), float(abs(om[i] / wm - 1)))
             worst80 = max(worst80, float(abs(_mp_longdouble(k80[i]) / km - 1)),
                           float(abs(_mp_longdouble(o80[i]) / wm - 1)))
-    assert worst80 <= pr.INPUT_REL_EXT, worst80
+    assert worst80 <= pn.INPUT_REL_EXT, worst80
     assert worst64 > 100 * worst80          # the polish is what makes the screen's input error small
 
 
