@@ -21,6 +21,11 @@ linearised once into a straight-line :class:`Program` (:func:`linearise`), encod
   (1 − ρ)^(−|p|) − 1 for a power, e^e − 1 for exp, −log(1 − ρ) for log, the largest slope for
   asinh) plus the rounding of the double-double operation itself.
 
+A varying argument may carry an absolute error of its own (``EX``; in double-double also a low
+part ``XL``), counted as the rounding of an operation is: the bound then covers what the inputs'
+error does to every output, with the signs of the derivatives (where the inputs are computed
+themselves: the numeric Hopf point of :mod:`landau.codegen.bounded_hopf`).
+
 Each returns the values and, per point, the largest relative bound eᵢ/|vᵢ| over the outputs
 (∞ where a bound is infinite or NaN; 0 where the point certainly has no Hopf point: k_c or ω_c²
 negative by more than its bound) and the same over k_c and ω_c² alone.  Arguments that are the
