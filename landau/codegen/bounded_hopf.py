@@ -113,20 +113,13 @@ def f64_point(C, EC, R, ER, S, ES, W, out):
 @_jit
 def _horner_dd(ch, cl, ce, j, wh, wl):
     """Double-double Horner at W = wh + wl: (hi, lo, H′ in float64, H″ in float64,
-    Σ|cᵢ||W|^(d−i), Σ eᵢ|W|^(d−i))."""
+    Σ|cᵢ||W|^(d−i), Σ eᵢ|W|^(d−i)); the float64 parts by :func:`_horner64` on the high parts,
+    the two sums raised by 4u for their own rounding."""
     hh, hl = ch[0, j], cl[0, j]
-    d1 = 0.0
-    d2 = 0.0
-    a = abs(ch[0, j])
-    ea = ce[0, j]
-    aw = abs(wh)
     for i in range(1, ch.shape[0]):
-        d2 = d2 * wh + 2.0 * d1
-        d1 = d1 * wh + hh
         ph, pl = ddarith.dd_mul(hh, hl, wh, wl)
         hh, hl = ddarith.dd_add(ph, pl, ch[i, j], cl[i, j])
-        a = a * aw + abs(ch[i, j])
-        ea = ea * aw + ce[i, j]
+    _, d1, d2, a, ea = _horner64(ch, ce, j, wh)
     return hh, hl, d1, d2, a * (1.0 + 4 * U), ea * (1.0 + 4 * U)
 
 
