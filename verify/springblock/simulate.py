@@ -94,7 +94,8 @@ class RadauRecord(Simulation):
 class _CrossingLog(EventLog):
     """The located crossings as ``"section"`` events (guard ``"crossing"``, note ``"up"`` or
     ``"down"``), made from the engine's arrays on first use: a run whose events nobody reads does
-    not pay for them (about 3 µs a call, a tenth of a short run's fixed cost)."""
+    not pay for them (an empty log costs 0.74 µs to make where the list built at once cost 1.96 µs,
+    and a run with many crossings saves an :class:`Event` per crossing)."""
 
     def __init__(self, event_t: np.ndarray, event_y: np.ndarray, event_dir: np.ndarray) -> None:
         super().__init__()
