@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Iterator, Sequence
+from typing import Callable, Iterable, Iterator, Sequence
 
 import numpy as np
 
@@ -72,3 +72,25 @@ class EventLog(Sequence[Event]):
         head = "\n  ".join(repr(e) for e in self._list()[:8])
         more = f"\n  ... ({len(self) - 8} more)" if len(self) > 8 else ""
         return f"EventLog({len(self)} events\n  {head}{more})"
+
+
+class LazyEventLog(EventLog):
+    """An :class:`EventLog` whose events are made on first use by ``make()`` (from a compiled run's
+    arrays, say): a run whose events nobody reads pays no Python work per event (a sweep runs a
+    simulator thousands of times and reads the arrays only).
+
+    Parameters
+    ----------
+    make : callable
+        No arguments; returns the events in time order.  Called at most once, then dropped.
+    """
+
+    def __init__(self, make: Callable[[], Iterable[Event]]) -> None:
+        super().__init__()
+        self._make: Callable[[], Iterable[Event]] | None = make
+
+    def _list(self) -> list[Event]:
+        if self._make is not None:
+            make, self._make = self._make, None
+            self._events.extend(make())
+        return self._events

@@ -22,7 +22,8 @@ import numpy as np
 
 from landau.errors import InputError, IntegratorError
 from landau.support.deprecation import former_names
-from landau.verify.hybrid import Event, EventLog, Guard, HybridModel, Jump, Mode
+from landau.verify.hybrid import Event, Guard, HybridModel, Jump, Mode
+from landau.verify.hybrid.log import LazyEventLog
 from landau.verify.hybrid.result import Simulation, Status
 from landau.verify.skurativskyi import rk as R
 from landau.verify.skurativskyi.friction import quiet_first_class
@@ -81,7 +82,7 @@ METHODS = {"mixed": (V_STIFF, A_STICK), "dopri5": (0.0, 0.0)}
 MAX_STROBES = 2_000_000
 
 
-class ContactLog(EventLog):
+class ContactLog(LazyEventLog):
     """The impacts and detachments of a :class:`ForcedRun` as an :class:`EventLog`, its
     :class:`Event` objects built on first use from the run's arrays (a sweep over ω runs the
     simulator thousands of times and reads the arrays only: no Python work per event there).
@@ -95,20 +96,18 @@ class ContactLog(EventLog):
     """
 
     def __init__(self, xI: float, impacts: np.ndarray, impact_v: np.ndarray, detachments: np.ndarray) -> None:
-        super().__init__()
-        self._source: tuple[float, np.ndarray, np.ndarray, np.ndarray] | None = \
-            (float(xI), impacts, impact_v, detachments)
+        xI = float(xI)
 
-    def _list(self) -> list[Event]:
-        if self._source is not None:
-            xI, impacts, impact_v, detachments = self._source
-            self._source = None
+        def make() -> list[Event]:
             ev = sorted([(t, v, "impact") for t, v in zip(impacts, impact_v, strict=True)]
                         + [(t, np.nan, "detach") for t in detachments])
+            out = []
             for t, v, g in ev:
                 frm, to = ("free", "contact") if g == "impact" else ("contact", "free")
-                self._events.append(Event(float(t), np.array([xI, v]), g, frm, to))
-        return self._events
+                out.append(Event(float(t), np.array([xI, v]), g, frm, to))
+            return out
+
+        super().__init__(make)
 
 
 def _contact_regimes(start: float, t_final: float, impacts: np.ndarray, detachments: np.ndarray,
