@@ -29,13 +29,14 @@ sixth of the steps (each step is one guard screen and, in Python, one call), and
 The right-hand side reaches the compiled loop as a documented numba first-class function:
 :func:`kernel_function` wraps the kernel's ``fun(t, y, p, out)`` as a ``cfunc`` and hands it
 over through :class:`numba.core.types.WrapperAddressProtocol` typed
-``types.FunctionType(FUN_SIG)``, so :func:`run_screened`, :func:`advance` and :func:`dense` compile
-once per machine for every kernel (``njit(cache=True)``, built on first use through
-:func:`landau.verify.compiling.compile_once`).  The step's helpers (:func:`advance`, :func:`dense`,
-:func:`dense_at`) are part of the loops that call them (``inline="always"``: numba inlines them
-before typing), so a first build types and optimises one function per loop rather than a tree of
-functions whose machine code every caller optimises again; called from Python they compile on
-their own.
+``AddressedFunctionType(FUN_SIG)`` (:mod:`landau.verify.hybrid.callbacks`: numba's
+``FunctionType``, unboxed from the address the pointer holds), so :func:`run_screened`,
+:func:`advance` and :func:`dense` compile once per machine for every kernel
+(``njit(cache=True)``, built on first use through :func:`landau.verify.compiling.compile_once`).
+The step's helpers (:func:`advance`, :func:`dense`, :func:`dense_at`) are part of the loops that
+call them (``inline="always"``: numba inlines them before typing), so a first build types and
+optimises one function per loop rather than a tree of functions whose machine code every caller
+optimises again; called from Python they compile on their own.
 
 :func:`run_screened` takes steps while the mode's guards pass the engine's scan test
 (:func:`landau.verify.hybrid.locate._quiet_guards`) on the dense output, and returns to Python
@@ -60,7 +61,7 @@ from numba import cfunc, njit, types
 from landau.errors import InputError
 from landau.verify.compiling import compile_once
 from landau.verify.hybrid import dop853_tableau as _dc
-from landau.verify.hybrid.callbacks import FunctionPointer, call_pointer, jit_enabled, warn_once
+from landau.verify.hybrid.callbacks import AddressedFunctionType, FunctionPointer, call_pointer, jit_enabled, warn_once
 from landau.verify.hybrid.kernel import Kernel
 from landau.verify.hybrid.locate import _quiet_guards
 
@@ -68,7 +69,7 @@ __all__ = ["CompiledDOP853", "DOP853Solver", "FUN_SIG", "FUN_T", "kernel_functio
 
 _ARR = types.float64[::1]
 FUN_SIG = types.void(types.float64, _ARR, _ARR, _ARR)
-FUN_T = types.FunctionType(FUN_SIG)
+FUN_T = AddressedFunctionType(FUN_SIG)
 
 N_STAGES = _dc.N_STAGES
 A = np.ascontiguousarray(_dc.A[:N_STAGES, :N_STAGES])

@@ -55,7 +55,7 @@ from numba.extending import intrinsic
 
 from landau.errors import InputError
 from landau.verify.compiling import compile_once
-from landau.verify.hybrid.callbacks import FunctionPointer, jit_enabled, make_pointers, warn_once
+from landau.verify.hybrid.callbacks import AddressedFunctionType, FunctionPointer, jit_enabled, make_pointers, warn_once
 
 __all__ = ["A_RADAU", "C_NODES", "E_ERR", "MU_REAL", "VINV", "SIG", "SIG_JAC", "FUN_T", "JAC_T", "STATUS",
            "THETA_KEEP_JAC", "HOLD_LO", "HOLD_HI",
@@ -91,8 +91,8 @@ STATUS = {0: "finished", 1: "terminal event", -1: "step size too small", -2: "ma
 
 SIG = types.void(types.float64, types.float64[::1], types.float64[::1], types.float64[::1])
 SIG_JAC = types.void(types.float64, types.float64[::1], types.float64[::1], types.float64[:, ::1])
-FUN_T = types.FunctionType(SIG)
-JAC_T = types.FunctionType(SIG_JAC)
+FUN_T = AddressedFunctionType(SIG)
+JAC_T = AddressedFunctionType(SIG_JAC)
 
 
 def split_coefficients(A):
