@@ -90,6 +90,7 @@ def _unit_costs(c, p, y, h) -> dict:
     import numba as nb
 
     from landau.verify.hybrid import radau as R
+    from landau.verify.hybrid import radau_linalg
     from landau.verify.hybrid.callbacks import make_pointers
 
     fp, jp = make_pointers(c.rhs, c.jac, R.SIG, R.SIG_JAC)
@@ -117,7 +118,7 @@ def _unit_costs(c, p, y, h) -> dict:
             acc += out[0, 0]
         return acc
 
-    lu, lu_c = R._lu, R._lu_complex
+    lu, lu_c = radau_linalg.lu, radau_linalg.lu_complex
     g, al, be = R.GAMMA_SPLIT, R.ALPHA_SPLIT, R.BETA_SPLIT
 
     @nb.njit

@@ -191,8 +191,8 @@ def test_runs_as_plain_python_and_agrees_with_the_compiled_run():
 def test_nothing_compiles_at_import():
     """Importing the integrator and the spring–block simulation compiles no numba function."""
     code = ("import landau.verify.springblock.simulate, landau.verify.hybrid.radau as R\n"
-            "import landau.verify.hybrid.crossing\n"
-            "fs = [R._radau_loop, R._lu, R._solve, R.cubic_crossing, R._crossings]\n"
+            "import landau.verify.hybrid.crossing as C, landau.verify.hybrid.radau_linalg as L\n"
+            "fs = [R._radau_loop, L.lu, L.solve, L.stage_jacobians, C.cubic_crossing, R._crossings]\n"
             "print(sum(len(f.signatures) for f in fs))\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert out.returncode == 0, out.stderr

@@ -28,9 +28,12 @@ and the Jacobian, ``f(t, y, p, out)`` and ``jac(t, y, p, out)`` (signatures :dat
 :data:`SIG_JAC`), reach it as first-class functions: :func:`pointers` compiles each as a
 ``numba.cfunc`` (cached on disk) and wraps its address in a
 :class:`numba.types.WrapperAddressProtocol` object (:mod:`landau.verify.hybrid.callbacks`), so a
-new friction law compiles only its own two small functions.  The loop and every helper it calls
-live in this one file, because numba's cache of a function is invalidated by edits of that
-function's own file only.
+new friction law compiles only its own two small functions.  The method's coefficients are in
+:mod:`landau.verify.hybrid.radau_tableau`, the Newton matrices, their LU factors and solves in
+:mod:`landau.verify.hybrid.radau_linalg` (inlined into the loop), the exact scan of a cubic for
+crossings in :mod:`landau.verify.hybrid.crossing`; :func:`~landau.verify.compiling.compile_once`
+keys the loop's disk cache on the sources of all of them, so an edit of any one builds the loop
+again (numba's own cache would notice edits of this file only).
 
 With ``NUMBA_DISABLE_JIT=1`` the same code runs as plain Python (slowly; a warning says so once).
 
@@ -56,28 +59,33 @@ from numba.extending import intrinsic
 from landau.errors import InputError
 from landau.verify.compiling import compile_once
 from landau.verify.hybrid.callbacks import AddressedFunctionType, FunctionPointer, jit_enabled, make_pointers, warn_once
+from landau.verify.hybrid.crossing import cubic, cubic_crossing
+from landau.verify.hybrid.radau_linalg import (
+    factor_complex,
+    factor_real,
+    inlined,
+    solve,
+    solve_complex,
+    stage_jacobians,
+)
+from landau.verify.hybrid.radau_tableau import (
+    A_RADAU,
+    ALPHA_SPLIT,
+    BETA_SPLIT,
+    C_NODES,
+    E_ERR,
+    GAMMA_SPLIT,
+    MU_REAL,
+    NODES,
+    T_ROWS,
+    TI_ROWS,
+    VINV,
+    split_coefficients,
+)
 
 __all__ = ["A_RADAU", "C_NODES", "E_ERR", "MU_REAL", "VINV", "SIG", "SIG_JAC", "FUN_T", "JAC_T", "STATUS",
            "THETA_KEEP_JAC", "HOLD_LO", "HOLD_HI",
            "FunctionPointer", "pointers", "radau_core", "split_coefficients", "cubic", "cubic_crossing"]
-
-SQ6 = math.sqrt(6.0)
-#: collocation nodes c_i and Butcher matrix A of Radau IIA (order 5)
-C_NODES = np.array([(4 - SQ6) / 10, (4 + SQ6) / 10, 1.0])
-A_RADAU = np.array([
-    [(88 - 7 * SQ6) / 360, (296 - 169 * SQ6) / 1800, (-2 + 3 * SQ6) / 225],
-    [(296 + 169 * SQ6) / 1800, (88 + 7 * SQ6) / 360, (-2 - 3 * SQ6) / 225],
-    [(16 - SQ6) / 36, (16 + SQ6) / 36, 1.0 / 9],
-])
-#: the real eigenvalue of A⁻¹ (γ₀⁻¹) and the embedded-error weights e_i (radau5)
-MU_REAL = 3 + 3 ** (2 / 3) - 3 ** (1 / 3)
-E_ERR = np.array([-13 - 7 * SQ6, -13 + 7 * SQ6, -1.0]) / 3
-#: Z_i = Σ_j Q_j c_i^j  →  Q = VINV·Z (dense output y(t+xh) = y + Σ Q_j x^j)
-VINV = np.linalg.inv(np.array([[c ** j for j in (1, 2, 3)] for c in C_NODES]))
-
-#: the nodes the stage equations are evaluated at: C_NODES to 16 digits (the first differs from
-#: (4 − √6)/10 in the last bit; the code has used these since its first version)
-_NODES = np.array([0.1550510257216822, 0.6449489742783178, 1.0])
 
 #: double-precision machine epsilon
 EPS = 2.220446049250313e-16
@@ -95,62 +103,10 @@ FUN_T = AddressedFunctionType(SIG)
 JAC_T = AddressedFunctionType(SIG_JAC)
 
 
-def split_coefficients(A):
-    """The transformation of the 3-stage Newton system to one real and one complex n × n system.
-
-    A⁻¹ = T·Λ·T⁻¹ with Λ = diag(γ, [[α, −β], [β, α]]): γ the real eigenvalue of A⁻¹ and
-    α ± iβ (β > 0) its complex pair (Hairer & Wanner 1996, IV.8, eq. (8.15)–(8.18)).  With
-    W = T⁻¹Z the stage equations Z = h(A ⊗ I)F decouple, for a constant Jacobian, into
-    (γ/h·I − J)·ΔW₁ = … and ((α + iβ)/h·I − J)·(ΔW₂ + iΔW₃) = ….
-
-    Parameters
-    ----------
-    A : ndarray, shape (3, 3)
-        Butcher matrix of a 3-stage method whose A⁻¹ has one real eigenvalue and a complex pair.
-
-    Returns
-    -------
-    (T, TI, gamma, alpha, beta) : (ndarray, ndarray, float, float, float)
-    """
-    A = np.asarray(A, dtype=float)
-    if A.shape != (3, 3):
-        raise InputError(f"split_coefficients: a 3 x 3 Butcher matrix is needed, got shape {A.shape}")
-    AI = np.linalg.inv(A)
-    lam, vec = np.linalg.eig(AI)
-    ir = int(np.argmin(np.abs(np.imag(lam))))
-    ic = int(np.argmin(np.imag(lam)))          # the eigenvalue α − iβ of the pair
-    if ic == ir or abs(np.imag(lam[ic])) == 0.0:
-        raise InputError("split_coefficients: A⁻¹ has no complex eigenvalue pair")
-    gamma = float(np.real(lam[ir]))
-    alpha, beta = float(np.real(lam[ic])), float(-np.imag(lam[ic]))
-    u = vec[:, ic]
-    T = np.column_stack([np.real(vec[:, ir]), np.real(u), np.imag(u)])
-    TI = np.linalg.inv(T)
-    Lam = np.array([[gamma, 0.0, 0.0], [0.0, alpha, -beta], [0.0, beta, alpha]])
-    if not np.allclose(T @ Lam @ TI, AI, rtol=1e-12, atol=1e-12 * np.abs(AI).max()):
-        raise InputError("split_coefficients: the eigen-decomposition of A⁻¹ does not reproduce it")
-    return T, TI, gamma, alpha, beta
-
-
-#: A⁻¹ = T·diag(γ, [[α, −β], [β, α]])·T⁻¹, computed from :data:`A_RADAU` (:func:`split_coefficients`)
-T_SPLIT, TI_SPLIT, GAMMA_SPLIT, ALPHA_SPLIT, BETA_SPLIT = split_coefficients(A_RADAU)
-
-#: T and T⁻¹ as tuples of rows: the loop reads them as constants (an element of a constant array
-#: costs numba an indexing operation to type and lower at the first build)
-_T_ROWS = tuple(tuple(float(v) for v in row) for row in T_SPLIT)
-_TI_ROWS = tuple(tuple(float(v) for v in row) for row in TI_SPLIT)
-
 #: the decorator of the loop's private helpers: they are compiled as part of the loop and only
 #: called from compiled code, so they get no disk-cache entry of their own (the loop's entry holds
 #: their machine code)
 _inner = nb.njit
-#: the decorator of the helpers the loop calls every step or every Newton sweep (the solves, the
-#: factorisations, the dense output): numba inlines them into the loop's own IR, so that they
-#: are optimised with it instead of being called through its calling convention (measured 1.6×
-#: faster loop on the spring–block cycle of ``benchmarks/sections_solvers.py``; the first build
-#: of the loop, 8–9 CPU-s on a loaded 2-core machine, is the same within its scatter with or
-#: without it)
-_inline = nb.njit(inline="always")
 
 
 @intrinsic
@@ -192,150 +148,8 @@ def _keep_alive(*owners):
 
 
 # ---------------------------------------------------------------------------------------------
-# dense linear algebra, norms, dense output
-@_inline
-def _lu(a, piv, dinv):
-    """In-place LU decomposition of the square ``a`` with partial pivoting (row swaps in ``piv``,
-    the reciprocals of the pivots in ``dinv``: the solves multiply instead of dividing, which
-    shortens their dependency chain); False when a pivot is exactly zero."""
-    n = a.shape[0]
-    for k in range(n):
-        m = k
-        big = abs(a[k, k])
-        for i in range(k + 1, n):
-            if abs(a[i, k]) > big:
-                big = abs(a[i, k])
-                m = i
-        piv[k] = m
-        if big == 0.0:
-            return False
-        if m != k:
-            for j in range(n):
-                tmp = a[k, j]
-                a[k, j] = a[m, j]
-                a[m, j] = tmp
-        inv = 1.0 / a[k, k]
-        dinv[k] = inv
-        for i in range(k + 1, n):
-            a[i, k] *= inv
-            f = a[i, k]
-            if f != 0.0:
-                for j in range(k + 1, n):
-                    a[i, j] -= f * a[k, j]
-    return True
-
-
-@_inline
-def _solve(lu, piv, dinv, b):
-    """Solve with the factors of :func:`_lu`, in place in ``b``."""
-    n = lu.shape[0]
-    for k in range(n):
-        m = piv[k]
-        if m != k:
-            tmp = b[k]
-            b[k] = b[m]
-            b[m] = tmp
-    for i in range(n):
-        s = b[i]
-        for j in range(i):
-            s -= lu[i, j] * b[j]
-        b[i] = s
-    for i in range(n - 1, -1, -1):
-        s = b[i]
-        for j in range(i + 1, n):
-            s -= lu[i, j] * b[j]
-        b[i] = s * dinv[i]
-
-
-@_inline
-def _lu_complex(ar, ai, piv, dr, di):
-    """In-place LU decomposition of the complex square matrix ``ar + i·ai`` with partial pivoting
-    (largest |Re| + |Im|; row swaps in ``piv``, reciprocals of the pivots in ``dr + i·di``), in
-    real arithmetic; False when a pivot is exactly zero.
-
-    The complex n × n system of the simplified Newton iteration costs a quarter of the flops of
-    the real 2n × 2n form of the same matrix and half its dependency chain in the solves."""
-    n = ar.shape[0]
-    for k in range(n):
-        m = k
-        big = abs(ar[k, k]) + abs(ai[k, k])
-        for i in range(k + 1, n):
-            v = abs(ar[i, k]) + abs(ai[i, k])
-            if v > big:
-                big = v
-                m = i
-        piv[k] = m
-        if big == 0.0:
-            return False
-        if m != k:
-            for j in range(n):
-                tr = ar[k, j]
-                ar[k, j] = ar[m, j]
-                ar[m, j] = tr
-                ti = ai[k, j]
-                ai[k, j] = ai[m, j]
-                ai[m, j] = ti
-        # 1/(pr + i·pi) by Smith's division (no overflow of pr² + pi²)
-        pr = ar[k, k]
-        pi = ai[k, k]
-        if abs(pr) >= abs(pi):
-            r = pi / pr
-            ir = 1.0 / (pr + pi * r)
-            ii = -r * ir
-        else:
-            r = pr / pi
-            ii = -1.0 / (pr * r + pi)
-            ir = -r * ii
-        dr[k] = ir
-        di[k] = ii
-        for i in range(k + 1, n):
-            xr = ar[i, k]
-            xi = ai[i, k]
-            lr = xr * ir - xi * ii
-            li = xr * ii + xi * ir
-            ar[i, k] = lr
-            ai[i, k] = li
-            if lr != 0.0 or li != 0.0:
-                for j in range(k + 1, n):
-                    ur = ar[k, j]
-                    ui = ai[k, j]
-                    ar[i, j] -= lr * ur - li * ui
-                    ai[i, j] -= lr * ui + li * ur
-    return True
-
-
-@_inline
-def _solve_complex(ar, ai, piv, dr, di, br, bi):
-    """Solve with the factors of :func:`_lu_complex`, in place in ``br + i·bi``."""
-    n = ar.shape[0]
-    for k in range(n):
-        m = piv[k]
-        if m != k:
-            tr = br[k]
-            br[k] = br[m]
-            br[m] = tr
-            ti = bi[k]
-            bi[k] = bi[m]
-            bi[m] = ti
-    for i in range(n):
-        sr = br[i]
-        si = bi[i]
-        for j in range(i):
-            sr -= ar[i, j] * br[j] - ai[i, j] * bi[j]
-            si -= ar[i, j] * bi[j] + ai[i, j] * br[j]
-        br[i] = sr
-        bi[i] = si
-    for i in range(n - 1, -1, -1):
-        sr = br[i]
-        si = bi[i]
-        for j in range(i + 1, n):
-            sr -= ar[i, j] * br[j] - ai[i, j] * bi[j]
-            si -= ar[i, j] * bi[j] + ai[i, j] * br[j]
-        br[i] = sr * dr[i] - si * di[i]
-        bi[i] = sr * di[i] + si * dr[i]
-
-
-@_inline
+# dense output
+@inlined
 def _poly(y0, Q, x, i):
     """Component i of the dense output y0 + Σ_j Q_j x^{j+1} (Horner)."""
     acc = Q[Q.shape[0] - 1, i]
@@ -345,65 +159,7 @@ def _poly(y0, Q, x, i):
 
 
 # ---------------------------------------------------------------------------------------------
-# event location on the collocation cubic
-@nb.njit(cache=True)
-def cubic(c1, c2, c3, s):
-    """c₁s + c₂s² + c₃s³ (Horner)."""
-    return s * (c1 + s * (c2 + s * c3))
-
-
-@nb.njit(cache=True)
-def cubic_crossing(g0, c1, c2, c3, lo, outside_sign, inclusive):
-    """First s in (lo, 1] where g(s) = g0 + c1 s + c2 s² + c3 s³ is on the side
-    ``outside_sign`` (g·sign > 0, or g = 0 too when ``inclusive``), or −1 if none.
-
-    g(lo) must be on the other side.  The scan is exact for a cubic: g is monotone between its
-    critical points, so evaluating g at every critical point inside the interval and at its end
-    finds the first sign change, including a guard that dips across and back inside one step.
-    The bracket is bisected to adjacent floating-point numbers and the root is returned on the
-    *new side* (the side the guard is crossing to)."""
-    pts = np.empty(3)
-    npts = 0
-    a, b, c = 3 * c3, 2 * c2, c1
-    if a != 0.0:
-        disc = b * b - 4 * a * c
-        if disc >= 0:
-            r = math.sqrt(disc)
-            s1 = (-b - r) / (2 * a)
-            s2 = (-b + r) / (2 * a)
-            if s1 > s2:
-                s1, s2 = s2, s1
-            if lo < s1 < 1.0:
-                pts[npts] = s1
-                npts += 1
-            if lo < s2 < 1.0:
-                pts[npts] = s2
-                npts += 1
-    elif b != 0.0:
-        s = -c / b
-        if lo < s < 1.0:
-            pts[npts] = s
-            npts += 1
-    pts[npts] = 1.0
-    npts += 1
-    for k in range(npts):
-        hi = pts[k]
-        gh = (g0 + cubic(c1, c2, c3, hi)) * outside_sign
-        if gh > 0.0 or (inclusive and gh == 0.0):
-            for _ in range(100):
-                mid = 0.5 * (lo + hi)
-                if mid <= lo or mid >= hi:
-                    break
-                gm = (g0 + cubic(c1, c2, c3, mid)) * outside_sign
-                if gm > 0.0 or (inclusive and gm == 0.0):
-                    hi = mid
-                else:
-                    lo = mid
-            return hi
-        lo = hi
-    return -1.0
-
-
+# event location on the collocation cubic (the scan itself: landau.verify.hybrid.crossing)
 #: the loop's own build of :func:`cubic_crossing` (the same Python function): compiled inside the
 #: loop's build without a disk-cache entry of its own, which the public function keeps for its
 #: other callers
@@ -451,32 +207,6 @@ def _crossings(y, Q, t, h, ev_idx, ev_val, ev_dir, ev_stop, nev_dir, cnt, EVBUF,
 
 
 # ---------------------------------------------------------------------------------------------
-# the full Newton iteration of a retried step
-@_inner
-def _stage_jacobians(jac, t, h, y, Z, p, JB, ytmp, Mf, pivF, dinvF, cnt):
-    """The full-Newton matrix I − h(A ⊗ I)·diag(J(Y_b)) with the stage Jacobians at the current
-    iterate, factorised in place; False when it is singular."""
-    s, n = Z.shape
-    for b in range(s):
-        for i in range(n):
-            ytmp[i] = y[i] + Z[b, i]
-        jac(t + _NODES[b] * h, ytmp, p, JB[b])
-        cnt[3] += 1
-    for a in range(s):
-        for b in range(s):
-            hab = -h * A_RADAU[a, b]
-            for i in range(n):
-                for j in range(n):
-                    Mf[a * n + i, b * n + j] = hab * JB[b, i, j]
-    for i in range(s * n):
-        Mf[i, i] += 1.0
-    if not _lu(Mf, pivF, dinvF):
-        return False
-    cnt[4] += 1
-    return True
-
-
-# ---------------------------------------------------------------------------------------------
 # the reuse of the Jacobian and of the factors (the policy of radau5: Hairer & Wanner 1996,
 # IV.8, and the code's parameters THET, QUOT1, QUOT2)
 #: the Jacobian is kept for the next step when the accepted step's simplified Newton iteration
@@ -495,36 +225,7 @@ HOLD_LO = 1.0
 HOLD_HI = 1.2
 
 
-@_inline
-def _factor_real(J, h, Mr, pivR, dinvR):
-    """LU of γ/h·I − J in place in ``Mr`` (the matrix of the first decoupled system and of the
-    error estimate, Hairer & Wanner 1996, eq. (8.18)); False when singular."""
-    n = J.shape[0]
-    gh = GAMMA_SPLIT / h
-    for i in range(n):
-        for j in range(n):
-            Mr[i, j] = -J[i, j]
-        Mr[i, i] += gh
-    return _lu(Mr, pivR, dinvR)
-
-
-@_inline
-def _factor_complex(J, h, Mcr, Mci, pivC, dcr, dci):
-    """LU of the complex (α + iβ)/h·I − J (eq. (8.18)), real part in ``Mcr`` and imaginary part in
-    ``Mci`` (:func:`_lu_complex`); False when singular."""
-    n = J.shape[0]
-    ah = ALPHA_SPLIT / h
-    bh = BETA_SPLIT / h
-    for i in range(n):
-        for j in range(n):
-            Mcr[i, j] = -J[i, j]
-            Mci[i, j] = 0.0
-        Mcr[i, i] += ah
-        Mci[i, i] = bh
-    return _lu_complex(Mcr, Mci, pivC, dcr, dci)
-
-
-@_inline
+@inlined
 def _root4(x):
     """x^(1/4) as two square roots (the controller's exponent 1/(s + 1) for s = 3 stages; a square
     root costs a fraction of a general power)."""
@@ -547,8 +248,8 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
     s = 3
     n = y0.shape[0]
     N = s * n
-    T = _T_ROWS
-    TI = _TI_ROWS
+    T = T_ROWS
+    TI = TI_ROWS
     gam = GAMMA_SPLIT
     alp = ALPHA_SPLIT
     bet = BETA_SPLIT
@@ -682,10 +383,10 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
             cplx_ok = False
             h_lu = h
         if not real_ok:
-            real_ok = _factor_real(J, h, Mr, pivR, dinvR)
+            real_ok = factor_real(J, h, Mr, pivR, dinvR)
             cnt[4] += 1
         if not use_full and not cplx_ok:
-            cplx_ok = _factor_complex(J, h, Mcr, Mci, pivC, dcr, dci)
+            cplx_ok = factor_complex(J, h, Mcr, Mci, pivC, dcr, dci)
             cnt[4] += 1
         ok = real_ok and (use_full or cplx_ok)
         gh = gam / h
@@ -693,9 +394,9 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
         bh = bet / h
         # Newton start: the previous step's collocation polynomial, extrapolated
         # (and W = T⁻¹Z for the split iteration), one loop over the components
-        x0 = (t + _NODES[0] * h - tprev) / hprev
-        x1 = (t + _NODES[1] * h - tprev) / hprev
-        x2 = (t + _NODES[2] * h - tprev) / hprev
+        x0 = (t + NODES[0] * h - tprev) / hprev
+        x1 = (t + NODES[1] * h - tprev) / hprev
+        x2 = (t + NODES[2] * h - tprev) / hprev
         for i in range(n):
             if have_prev:
                 Z[0, i] = _poly(yprev, Qprev, x0, i) - y[i]
@@ -730,11 +431,11 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                 for a in range(s):
                     for i in range(n):
                         ytmp[i] = y[i] + Z[a, i]
-                    fun(t + _NODES[a] * h, ytmp, p, F[a])
+                    fun(t + NODES[a] * h, ytmp, p, F[a])
                     cnt[2] += 1
                 if use_full:
                     # the retry: full Newton matrix with the stage Jacobians
-                    if not _stage_jacobians(jac, t, h, y, Z, p, JB, ytmp, Mf, pivF, dinvF, cnt):
+                    if not stage_jacobians(jac, t, h, y, Z, p, JB, ytmp, Mf, pivF, dinvF, cnt):
                         break
                     for a in range(s):
                         for i in range(n):
@@ -742,7 +443,7 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                             for b in range(s):
                                 acc += h * A_RADAU[a, b] * F[b, i]
                             R[a * n + i] = acc
-                    _solve(Mf, pivF, dinvF, R)
+                    solve(Mf, pivF, dinvF, R)
                 else:
                     # right-hand sides T⁻¹F − (Λ/h)·T⁻¹Z of the decoupled systems
                     for i in range(n):
@@ -755,8 +456,8 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                         bim[i] = g2 - (bh * w1 + ah * w2)
                     # (γ/h·I − J)·ΔW₁ = b0 and ((α + iβ)/h·I − J)·(ΔW₂ + iΔW₃) = bre + i·bim (eq. (8.18)),
                     # with the factors made above
-                    _solve(Mr, pivR, dinvR, b0)
-                    _solve_complex(Mcr, Mci, pivC, dcr, dci, bre, bim)
+                    solve(Mr, pivR, dinvR, b0)
+                    solve_complex(Mcr, Mci, pivC, dcr, dci, bre, bim)
                     # ΔW = (b0, Re, Im of the complex solution) and ΔZ = T·ΔW, one loop (constant
                     # indices into T: a variable index into a tuple compiles to a switch)
                     for i in range(n):
@@ -832,7 +533,7 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
         # (radau5): the solve and the norm are written once, for both passes
         err_norm = 0.0
         for sweep in range(2):
-            _solve(Mr, pivR, dinvR, err)
+            solve(Mr, pivR, dinvR, err)
             acc = 0.0
             for i in range(n):
                 r = err[i] / scale[i]
