@@ -111,3 +111,15 @@ def test_nothing_compiles_at_import_of_the_simulation_layer():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert out.returncode == 0, out.stderr
     assert out.stdout.startswith("0 "), out.stdout
+
+
+def test_the_radau_loop_s_stamp_covers_the_modules_it_inlines():
+    """The Radau IIA loop inlines its factorisations and solves (radau_linalg), reads the method's
+    coefficients (radau_tableau) and builds the cubic scan (crossing) from other files: the stamp
+    that keys its disk cache must hash each of them, or an edit there would be served stale."""
+    from landau.verify.compiling import WATCHED, _reachable_modules
+    from landau.verify.hybrid import radau
+
+    reached = _reachable_modules(sys.modules[radau._radau_loop.py_func.__module__], WATCHED)
+    for part in ("radau", "radau_linalg", "radau_tableau", "crossing", "callbacks"):
+        assert f"landau.verify.hybrid.{part}" in reached
