@@ -80,6 +80,29 @@ def test_cancellation_the_float64_bound_holds_and_double_double_removes_it():
     assert edd.max() <= 2.0 ** -53 * (1 + 1e-10) and bdd.max() <= 1e-15, (edd.max(), bdd.max())
 
 
+def test_product_bound_is_the_closed_form_with_zero_factors():
+    """The float64 bound of z = a·b·c·d over four varying inputs with given errors e: first order,
+    Σ_q |Π_{r≠q} x_r|·e_q + 3u|z| (three roundings of the product), the closed form of Higham
+    (2002), Sec. 3.3.  The interpreter's adjoints of an n-factor product are products of the other
+    factors (no division), so the closed form holds to rounding also where factors are exactly 0:
+    one zero factor leaves only its own term, two leave none."""
+    a, b, c, dd = sp.symbols("a b c d")
+    kern = BoundedKernels(linearise([a * b * c * dd], [a, b, c, dd], [True] * 4, {}))
+    rng = np.random.default_rng(3)
+    X = rng.uniform(-3.0, 3.0, (4, 400))
+    X[1, :50] = 0.0                     # one zero factor
+    X[2, 25:75] = 0.0                   # and two zero factors where both sets overlap
+    EX = np.abs(X) * 1e-9 + 1e-12 * rng.random((4, 400))
+    out, rb, oe = kern.f64_parts(X, np.zeros(4), EX)
+    z = X.prod(axis=0)
+    others = np.stack([np.prod(np.delete(X, q, axis=0), axis=0) for q in range(4)])
+    want = (np.abs(others) * EX).sum(axis=0) + 3 * 2.0 ** -53 * np.abs(z)
+    assert np.array_equal(out[0], X[0] * X[1] * X[2] * X[3])
+    np.testing.assert_allclose(oe[0], want, rtol=1e-12, atol=0)
+    assert np.all(oe[0, 25:50] == 0.0)                  # two zero factors: nothing to propagate
+    assert np.all(oe[0, :25] > 0.0) and np.all(np.isfinite(rb[0, 75:]))
+
+
 def test_log_power_and_asinh_chain_within_the_bounds():
     """A chain of the operations the friction laws use (log, x^y with a symbolic exponent,
     asinh, rational powers) near a cancellation between two logarithms."""
