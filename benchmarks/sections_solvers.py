@@ -7,7 +7,10 @@
   installed), *Python steppers with compiled f/J* (``solve_ivp`` Radau/BDF/LSODA: scipy steps in
   Python and calls the generated right-hand side and Jacobian compiled), a Python stepper with
   Python f/J (``solve_ivp`` Radau) and SUNDIALS CVODE (scikit-sundae: a compiled stepper that calls
-  f and J through Python).  The speed goal is read against compiled steppers only.  The section
+  f and J through Python).  The speed goal is read against compiled steppers only, and the
+  toolkit's and the compiled steppers' CPU are taken again in interleaved rounds
+  (:func:`benchlib.interleaved_cpu`), so that the ratio compares the same stretches of the
+  machine's load.  The section
   also reports the Radau IIA core's counts (steps, Jacobians, LU factorisations), the floor ratio
   against an idealised Radau IIA (the same run with everything but its f and J evaluations and LU
   factorisations free, their unit costs measured in the same process) and, with
@@ -189,7 +192,7 @@ def section_springblock(quick: bool) -> None:
     ours = f"landau integrate (default{', ' + meth if meth else ''})"
     for rtol in [10.0 ** -e for e in range(4, 12 if quick else 13)]:
         # runs of a millisecond or less on a shared machine: the best of 15 short rounds, as for the compiled
-        # stepper and the cores below
+        # stepper and the cores below (the goal's rows are timed again, interleaved, once every ladder is known)
         run, cpu = cpu_time(lambda: integrate(model, y0, (0.0, T), rtol=rtol), min_time=0.01, repeat=15)
         rows.append({"method": ours, "kind": COMPILED, "rtol": rtol, "error": error(run.y_final, ref), "cpu": cpu,
                      "steps": run.nsteps + run.rejected, "nfev": run.nfev, "njev": run.njev, "nlu": run.nlu})
