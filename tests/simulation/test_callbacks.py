@@ -5,7 +5,8 @@ it holds, not by numba's generic unboxing of a ``FunctionType``.  These tests ch
 compiled loop called with two different pointers of one signature runs each one's own machine
 code (so the address is read per call, not frozen into the loop), that the values are the
 Python function's, and that an object claiming the type without an address raises instead of
-calling a null pointer.
+calling a null pointer.  The fallback for a numba without the ``FunctionModel`` the unboxing
+builds on (numba's own ``FunctionType``) is run the same way.
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ import numba as nb
 import numpy as np
 import pytest
 
+from landau.verify.hybrid import callbacks
 from landau.verify.hybrid.callbacks import AddressedFunctionType, FunctionPointer, jit_enabled, pointer
 from landau.verify.hybrid.radau import SIG
 
@@ -77,3 +79,32 @@ def test_an_object_without_an_address_raises_instead_of_calling_null():
     f = pointer(_square, SIG, "test square")
     with pytest.raises(AttributeError, match="_address"):
         _apply_twice(_NoAddress(), f, 0.0, np.ones(2), np.ones(1))
+
+
+@nb.njit
+def _apply_twice_fallback(f, g, t, y, p):
+    """:func:`_apply_twice`, a dispatcher of its own for the fallback's argument type."""
+    a = np.empty_like(y)
+    b = np.empty_like(y)
+    f(t, y, p, a)
+    g(t, a, p, b)
+    return b
+
+
+def test_the_model_the_unboxing_builds_on_is_checked_and_the_fallback_runs(monkeypatch):
+    assert callbacks.ADDRESSED                      # this numba has the FunctionModel of three fields
+    monkeypatch.setattr(callbacks, "_FUNCTION_MODEL_FIELDS", ("c_addr", "jit_addr"))
+    assert callbacks._install_addressed_unboxing() is False     # another layout: nothing registered
+    monkeypatch.setattr(callbacks, "ADDRESSED", False)
+    assert callbacks.pointer_type(SIG) == nb.types.FunctionType(SIG)
+    pointers = []
+    for fn in (_square, _shifted_exp):
+        cf, py = callbacks._cfunc(fn, SIG, "test fallback")
+        pointers.append(FunctionPointer(cf, SIG, py))
+    f, g = pointers
+    assert nb.typeof(f) == nb.types.FunctionType(SIG)       # numba's own type and unboxing
+    y, p, t = np.array([0.5, -1.25, 2.0]), np.array([3.0]), 0.75
+    a, b = np.empty(3), np.empty(3)
+    _square(t, y, p, a)
+    _shifted_exp(t, a, p, b)
+    np.testing.assert_allclose(_apply_twice_fallback(f, g, t, y, p), b, rtol=1e-15, atol=0)

@@ -23,7 +23,8 @@ fig. 12, 5512 maps: 13.0 → 12.4 CPU-s).  The unboxing builds numba's ``Functio
 (``c_addr``, ``py_addr``, ``jit_addr``, from ``numba.experimental.function_type``) with
 ``jit_addr`` null, as numba's own unboxing does for an object of the wrapper-address protocol;
 ``tests/simulation/test_callbacks.py`` checks that a loop calls the right machine code through
-it.  :func:`call_pointer` runs such a function from
+it.  Where a numba has no such model, pointers fall back to numba's own ``FunctionType``
+(:data:`ADDRESSED`, :func:`pointer_type`), which the same tests run too.  :func:`call_pointer` runs such a function from
 Python (a one-line compiled trampoline), so a model evaluates its field with the very machine
 code the integrator calls instead of building the same function a second time.
 """
@@ -36,15 +37,13 @@ import warnings
 import numba as nb
 import numpy as np
 from numba import types
-from numba.core import cgutils
-from numba.experimental.function_type import FunctionModel
-from numba.extending import NativeValue, register_model, typeof_impl, unbox
+from numba.extending import typeof_impl
 
 from landau.errors import InputError
 from landau.verify.compiling import paused_gc
 
-__all__ = ["AddressedFunctionType", "FunctionPointer", "call_pointer", "jit_enabled", "make_pointers", "pointer",
-           "warn_once"]
+__all__ = ["ADDRESSED", "AddressedFunctionType", "FunctionPointer", "call_pointer", "jit_enabled", "make_pointers",
+           "pointer", "pointer_type", "warn_once"]
 
 _WARNED: set[str] = set()
 
@@ -76,24 +75,60 @@ class AddressedFunctionType(types.FunctionType):
     """
 
 
-register_model(AddressedFunctionType)(FunctionModel)
+#: the struct numba's ``FunctionModel`` must have for :func:`_install_addressed_unboxing`
+_FUNCTION_MODEL_FIELDS = ("c_addr", "py_addr", "jit_addr")
 
 
-@unbox(AddressedFunctionType)
-def _unbox_addressed(typ, obj, c):
-    # the FunctionModel struct numba's unboxing builds for a wrapper-address object: the C
-    # address of the cfunc, the Python object, and no numba-convention entry (jit_addr null)
-    voidptr = c.context.get_value_type(types.voidptr)
-    fn = cgutils.create_struct_proxy(typ)(c.context, c.builder)
-    fn.c_addr = cgutils.get_null_value(voidptr)
-    fn.py_addr = c.builder.ptrtoint(obj, voidptr)
-    fn.jit_addr = cgutils.get_null_value(voidptr)
-    addr = c.pyapi.object_getattr_string(obj, "_address")
-    failed = cgutils.is_null(c.builder, addr)       # not a FunctionPointer: the AttributeError is raised
-    with c.builder.if_then(c.builder.not_(failed), likely=True):
-        fn.c_addr = c.pyapi.long_as_voidptr(addr)
-        c.pyapi.decref(addr)
-    return NativeValue(fn._getvalue(), is_error=failed)
+def _install_addressed_unboxing() -> bool:
+    """Register the data model and the unboxing of :class:`AddressedFunctionType`.
+
+    They build on numba's ``FunctionModel`` (``numba.experimental.function_type``) and its three
+    fields.  When this numba has no such model, or its fields differ, nothing is registered and
+    False is returned: pointers are then typed numba's own ``FunctionType`` (:func:`pointer_type`)
+    and unboxed by numba, as before this type existed (slower by ~10 µs a call, the same results).
+    """
+    try:
+        from numba.core import cgutils
+        from numba.core.datamodel import default_manager
+        from numba.experimental.function_type import FunctionModel
+        from numba.extending import NativeValue, register_model, unbox
+
+        fields = tuple(FunctionModel(default_manager, types.FunctionType(types.void()))._fields)
+    except (ImportError, AttributeError, TypeError):
+        return False
+    if fields != _FUNCTION_MODEL_FIELDS:
+        return False
+    register_model(AddressedFunctionType)(FunctionModel)
+
+    @unbox(AddressedFunctionType)
+    def _unbox_addressed(typ, obj, c):
+        # the FunctionModel struct numba's unboxing builds for a wrapper-address object: the C
+        # address of the cfunc, the Python object, and no numba-convention entry (jit_addr null)
+        voidptr = c.context.get_value_type(types.voidptr)
+        fn = cgutils.create_struct_proxy(typ)(c.context, c.builder)
+        fn.c_addr = cgutils.get_null_value(voidptr)
+        fn.py_addr = c.builder.ptrtoint(obj, voidptr)
+        fn.jit_addr = cgutils.get_null_value(voidptr)
+        addr = c.pyapi.object_getattr_string(obj, "_address")
+        failed = cgutils.is_null(c.builder, addr)       # not a FunctionPointer: the AttributeError is raised
+        with c.builder.if_then(c.builder.not_(failed), likely=True):
+            fn.c_addr = c.pyapi.long_as_voidptr(addr)
+            c.pyapi.decref(addr)
+        return NativeValue(fn._getvalue(), is_error=failed)
+
+    return True
+
+
+#: whether pointers are typed :class:`AddressedFunctionType` (False: numba's ``FunctionType``,
+#: the tested fallback of :func:`_install_addressed_unboxing`)
+ADDRESSED = _install_addressed_unboxing()
+
+
+def pointer_type(signature):
+    """The numba type of a :class:`FunctionPointer` of ``signature``, and of a compiled loop's
+    argument that takes one: :class:`AddressedFunctionType`, or numba's ``FunctionType`` where
+    :data:`ADDRESSED` is False."""
+    return AddressedFunctionType(signature) if ADDRESSED else types.FunctionType(signature)
 
 
 class FunctionPointer(types.WrapperAddressProtocol):
@@ -108,7 +143,7 @@ class FunctionPointer(types.WrapperAddressProtocol):
     def __init__(self, cfunc, signature, python):
         self._cfunc = cfunc
         self._signature = signature
-        self._ftype = self._numba_type_ = AddressedFunctionType(signature)
+        self._ftype = self._numba_type_ = pointer_type(signature)
         self._address = int(cfunc.address)
         self._python = python
 

@@ -29,7 +29,7 @@ sixth of the steps (each step is one guard screen and, in Python, one call), and
 The right-hand side reaches the compiled loop as a documented numba first-class function:
 :func:`kernel_function` wraps the kernel's ``fun(t, y, p, out)`` as a ``cfunc`` and hands it
 over through :class:`numba.core.types.WrapperAddressProtocol` typed
-``AddressedFunctionType(FUN_SIG)`` (:mod:`landau.verify.hybrid.callbacks`: numba's
+``pointer_type(FUN_SIG)`` (:mod:`landau.verify.hybrid.callbacks`: numba's
 ``FunctionType``, unboxed from the address the pointer holds), so :func:`run_screened`,
 :func:`advance` and :func:`dense` compile once per machine for every kernel
 (``njit(cache=True)``, built on first use through :func:`landau.verify.compiling.compile_once`).
@@ -61,7 +61,7 @@ from numba import cfunc, njit, types
 from landau.errors import InputError
 from landau.verify.compiling import compile_once
 from landau.verify.hybrid import dop853_tableau as _dc
-from landau.verify.hybrid.callbacks import AddressedFunctionType, FunctionPointer, call_pointer, jit_enabled, warn_once
+from landau.verify.hybrid.callbacks import FunctionPointer, call_pointer, jit_enabled, pointer_type, warn_once
 from landau.verify.hybrid.kernel import Kernel
 from landau.verify.hybrid.locate import _quiet_guards
 
@@ -69,7 +69,7 @@ __all__ = ["CompiledDOP853", "DOP853Solver", "FUN_SIG", "FUN_T", "kernel_functio
 
 _ARR = types.float64[::1]
 FUN_SIG = types.void(types.float64, _ARR, _ARR, _ARR)
-FUN_T = AddressedFunctionType(FUN_SIG)
+FUN_T = pointer_type(FUN_SIG)
 
 N_STAGES = _dc.N_STAGES
 A = np.ascontiguousarray(_dc.A[:N_STAGES, :N_STAGES])

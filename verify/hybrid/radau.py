@@ -58,7 +58,7 @@ from numba.extending import intrinsic
 
 from landau.errors import InputError
 from landau.verify.compiling import compile_once
-from landau.verify.hybrid.callbacks import AddressedFunctionType, FunctionPointer, jit_enabled, make_pointers, warn_once
+from landau.verify.hybrid.callbacks import FunctionPointer, jit_enabled, make_pointers, pointer_type, warn_once
 from landau.verify.hybrid.crossing import cubic, cubic_crossing
 from landau.verify.hybrid.radau_linalg import (
     factor_complex,
@@ -99,8 +99,8 @@ STATUS = {0: "finished", 1: "terminal event", -1: "step size too small", -2: "ma
 
 SIG = types.void(types.float64, types.float64[::1], types.float64[::1], types.float64[::1])
 SIG_JAC = types.void(types.float64, types.float64[::1], types.float64[::1], types.float64[:, ::1])
-FUN_T = AddressedFunctionType(SIG)
-JAC_T = AddressedFunctionType(SIG_JAC)
+FUN_T = pointer_type(SIG)
+JAC_T = pointer_type(SIG_JAC)
 
 
 #: the decorator of the loop's private helpers: they are compiled as part of the loop and only
