@@ -60,7 +60,9 @@ system, J. Mech. Phys. Solids 58(1), 27–53.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Callable, Mapping
 
 import numpy as np
@@ -510,12 +512,35 @@ def force_balance(law, terms, at, *, v, F, F_dot, V_lp, k, sigma0, symbol=None):
 
 def steady_values(terms, sigma0: float, mu0: float, V: float, params) -> tuple[float, float]:
     """(F_ss, σ_ss) at steady sliding as numbers: the spring force and the normal load of
-    :func:`steady_spring_force` and :func:`normal_load_ss` at these values."""
+    :func:`steady_spring_force` and :func:`normal_load_ss` at these values.
+
+    Both are solved once per set of terms in symbols (:func:`_steady_functions`) and evaluated
+    here in floats: solving with the numbers themselves (sympy turns every float of the equation
+    into a rational first, by PSLQ) cost 17 ms a call, which was most of the CPU of a compiled
+    load history (``benchmarks/sections_springblock_paths.py``)."""
     terms = check_terms(terms)
-    sym = {name: sp.Float(float(params[name])) for name, *_ in parameters(terms)}
-    F_ss = steady_spring_force(terms, sp.Float(float(sigma0)), sp.Float(float(mu0)), sp.Float(float(V)), sym)
-    sigma_ss = normal_load_ss(sp.Float(float(sigma0)), sp.Float(float(mu0)), sp.Float(float(V)), terms, sym)
-    return float(F_ss), float(sigma_ss)
+    values = [float(sigma0), float(mu0), float(V)] + [float(params[name]) for name, *_ in parameters(terms)]
+    try:
+        F_ss, sigma_ss = (float(x) for x in _steady_functions(tuple((t, TERMS[t]) for t in terms))(*values))
+    except ZeroDivisionError:
+        F_ss = sigma_ss = math.inf
+    if not (math.isfinite(F_ss) and math.isfinite(sigma_ss)):
+        raise InputError(f"the steady sliding of the spring-block with terms {', '.join(terms)} has no finite spring "
+                         f"force and normal load at sigma = {sigma0:g}, mu_ss = {mu0:g}, V = {V:g}")
+    return F_ss, sigma_ss
+
+
+@lru_cache(maxsize=None)
+def _steady_functions(declared: tuple[tuple[str, Term], ...]) -> Callable[..., tuple[float, float]]:
+    """(F_ss, σ_ss)(σ₀, μ_ss, V, the terms' parameters…) in floats, from :func:`steady_spring_force`
+    and :func:`normal_load_ss` solved in symbols.  Keyed by the terms' declarations, not only their
+    names, so that a term registered again under an old name is solved again."""
+    terms = tuple(t for t, _ in declared)
+    s0, m0, v = sp.Dummy("sigma0"), sp.Dummy("mu_ss"), sp.Dummy("V")
+    sym = {name: symbol for name, symbol, *_ in parameters(terms)}
+    F_ss = steady_spring_force(terms, s0, m0, v, sym)
+    sigma_ss = normal_load_ss(s0, m0, v, terms, sym)
+    return sp.lambdify([s0, m0, v, *sym.values()], (F_ss, sigma_ss), "math")
 
 
 def loads_block(terms) -> bool:
