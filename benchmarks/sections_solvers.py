@@ -362,7 +362,9 @@ def section_springblock(quick: bool) -> None:
 # forced oscillator (goal 3)
 def section_forced(quick: bool) -> None:
     from landau.verify.benchmarks.skurativskyi_work_precision import errors, scipy_run, toolkit_run
-    from landau.verify.skurativskyi.model import Params, accel
+    from landau.verify.skurativskyi.field import accel as field_accel
+    from landau.verify.skurativskyi.friction import quiet_first_class
+    from landau.verify.skurativskyi.model import Params, compiled_field
     from landau.verify.skurativskyi.simulate import rest_state, run
 
     run(Params(), 1)  # compile
@@ -390,9 +392,10 @@ def section_forced(quick: bool) -> None:
             from sksundae.cvode import CVODE
 
             def make_rhs(pk):  # CVODE reads a fourth parameter as user data: bind pk by closure
+                field_rhs = compiled_field(prm).rhs   # compiled (ẋ, ẍ), the law's callbacks bound
+
                 def rhs_s(t, y, yp):
-                    yp[0] = y[1]
-                    yp[1] = accel(t, y[0], y[1], pk)
+                    field_rhs(t, y, pk, yp)
                 return rhs_s
             rhs_s = make_rhs(pk)
 
@@ -417,12 +420,18 @@ def section_forced(quick: bool) -> None:
             # same as the per-component atol (rtol·1e-4 m, rtol·1e-2 m/s) of the other runs
             s0, s1 = 1e-4, 1e-2
 
-            @nb.cfunc(lsoda_sig)
-            def rhs_l(t, u, du, pp):
-                uu = nb.carray(u, (2,))
-                dd = nb.carray(du, (2,))
-                dd[0] = uu[1] * s1 / s0
-                dd[1] = accel(t, uu[0] * s0, uu[1] * s1, nb.carray(pp, (npk,))) / s1
+            # the compiled ẍ of eq. (1) with the paper law's C callbacks bound by closure, as
+            # landau.verify.skurativskyi.model._bound_rhs binds them (model.accel is a Python method)
+            f0, f1, f2, built_in, ptr = compiled_field(prm).pointers
+
+            with quiet_first_class():
+                @nb.cfunc(lsoda_sig)
+                def rhs_l(t, u, du, pp):
+                    uu = nb.carray(u, (2,))
+                    dd = nb.carray(du, (2,))
+                    dd[0] = uu[1] * s1 / s0
+                    dd[1] = field_accel(t, uu[0] * s0, uu[1] * s1, nb.carray(pp, (npk,)),
+                                        (f0, f1, f2, built_in, ptr)) / s1
 
             def ls(rt, prm=prm, tend=tend, pk=pk, addr=rhs_l.address):
                 u0 = rest_state(prm) / np.array([s0, s1])
