@@ -126,3 +126,24 @@ def test_the_former_names_are_gone_and_simulation_warns():
         renamed = sol.simulation("a clock")
     assert renamed.model == "a clock" and renamed.t is sol.t and renamed.final_mode == sol.final_mode
     assert repr(sol).startswith("HybridSolution(clock, finished, t_final=3, final_mode='slip'")
+
+
+@pytest.mark.parametrize("with_field", [False, True])
+def test_one_time_is_interpolated_as_the_array_of_times_is(with_field):
+    """``at`` of one time (its scalar path) equals, bit for bit, the same time read through the
+    array path; a recorded time returns the recorded state; outside the span (and NaN) is an
+    error."""
+    t = np.array([0.0, 0.5, 0.5, 1.25, 2.0])            # a repeated time: an interval of length 0
+    y = np.vstack([np.cos(t), np.sin(3 * t)])
+    f = np.vstack([-np.sin(t), 3 * np.cos(3 * t)]) if with_field else None
+    sim = Simulation("closed form", t, y, None, Status.FINISHED, "", 2.0, y[:, -1], f=f)
+    times = np.r_[np.linspace(0.0, 2.0, 41), 0.5, 1.25, 1e-300, np.nextafter(2.0, 0.0)]
+    many = sim.at(times)
+    for k, tk in enumerate(times):
+        np.testing.assert_array_equal(sim.at(float(tk)), many[:, k])
+    # at a recorded time the recorded state (to rounding: y0 + 1·(y1 − y0) on the linear path)
+    np.testing.assert_allclose(sim.at(2.0), y[:, -1], rtol=1e-15, atol=0)
+    np.testing.assert_allclose(sim.at(1.25), y[:, 3], rtol=1e-15, atol=0)
+    for bad in (-1e-9, 2.0 + 1e-9, math.nan):
+        with pytest.raises(ValueError, match="outside the recorded span"):
+            sim.at(bad)
