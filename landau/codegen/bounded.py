@@ -720,7 +720,10 @@ class BoundedKernels:
 
     @staticmethod
     def _given(A, X):
-        return np.zeros_like(X) if A is None else np.ascontiguousarray(np.broadcast_to(A, X.shape), dtype=float)
+        """``A`` broadcast to X's shape as a new writable C-contiguous float64 array (zeros for
+        None): numba compiles the interpreters once per array type, and the read-only view
+        ``np.broadcast_to`` returns is another type (a second build of both, ~8 CPU-s cold)."""
+        return np.zeros_like(X) if A is None else np.array(np.broadcast_to(A, X.shape), dtype=float, order="C")
 
     def f64_parts(self, X, Q, EX=None):
         """Float64 (values, relative bounds, absolute bound of each output); ``EX``: absolute

@@ -13,7 +13,7 @@ points and :func:`finish` assembles the table.
   eps 1.1e-19); what is still doubtful from the exactly cancelled form where it exists.
 * :func:`bounded_route` — a closed-form Hopf line in float64 with a running error bound
   (:mod:`landau.codegen.bounded`), double-double where it does not certify (the default for
-  batches of :data:`BOUNDED_MIN` points or more).
+  batches of :data:`BOUNDED_MIN` points or more, :data:`BOUNDED_MIN_SIGN` for a sign scan).
 * a Hopf line found numerically (several state variables): the routes of
   :mod:`landau.derivation.precision_numeric`.
 * :func:`refine_mpmath` — the points in doubt after a route: 50 and 80 digits, and up to 550
@@ -90,6 +90,12 @@ REL_BOUND = 0.5 * REL_GOOD
 #: double) costs less than the one-time compilation of the interpreters (~3–5 CPU-s per machine,
 #: then loaded from numba's disk cache) that a single command would otherwise pay
 BOUNDED_MIN = 1_000
+#: the same for a batch that asks only for signs (a sign scan, ``sign_only``): the numpy route
+#: settles a sign in long double for almost every point, about 1 µs a point more than the warm
+#: interpreters (a 1300-point scan of Λ: 2.5–4.8 ms against 1.7–3.2 ms, five built-in laws),
+#: while their first compilation costs ~8 CPU-s (float64 and double-double, measured on a cold
+#: ``landau figures putelat2010``, whose 37 sign scans of 1000–1300 points paid it)
+BOUNDED_MIN_SIGN = 100_000
 #: points through the bounded kernels in this process: all of them (float64), those again in
 #: double-double, and those left in doubt after it (read by the benchmark and the tests)
 BOUNDED_STATS = {"f64": 0, "dd": 0, "left": 0}
@@ -328,6 +334,12 @@ def _run_bounded(kern, inputs: Sequence[np.ndarray], size: int, sign_only: bool)
     return out, rb, flag
 
 
+def takes_bounded(size: int, sign_only: bool) -> bool:
+    """Whether a batch of ``size`` points takes the bounded kernels: from :data:`BOUNDED_MIN`
+    points, from :data:`BOUNDED_MIN_SIGN` where only signs are asked for."""
+    return size >= (BOUNDED_MIN_SIGN if sign_only else BOUNDED_MIN)
+
+
 def bounded_route(d: "Derivation", Vs, vals, shape, bases, p, exact: bool, sign_only: bool) -> Raw | None:
     """A closed-form Hopf line in float64 with a running error bound, the points it does not
     certify to :data:`REL_BOUND` in compiled double-double (:mod:`landau.codegen.bounded`).
@@ -336,8 +348,8 @@ def bounded_route(d: "Derivation", Vs, vals, shape, bases, p, exact: bool, sign_
     doubt (near a zero of a coefficient closer than ~1e-21 relative, Λ ≡ 0) is taken from
     the exactly cancelled form where it exists and is worth it (as in :func:`screened_route`),
     else by :func:`refine_mpmath`.  None (another route is taken) where the formulas use an
-    operation without a bounded form, and for batches below :data:`BOUNDED_MIN` points."""
-    if int(np.prod(shape)) < BOUNDED_MIN:
+    operation without a bounded form, and for batches too small for it (:func:`takes_bounded`)."""
+    if not takes_bounded(int(np.prod(shape)), sign_only):
         return None
     varying = _varying(vals)
     kern = bounded_kernels(d, bases, varying)

@@ -5,8 +5,9 @@ to :data:`~landau.derivation.precision.REL_GOOD` or left doubtful for
 :func:`~landau.derivation.precision.refine_mpmath`.
 
 * :func:`bounded_numeric_route` — batches of :data:`~landau.derivation.precision.BOUNDED_MIN`
-  points or more: the Hopf polynomial's coefficients and the coefficients (Λ, …) by the bounded
-  kernels of :mod:`landau.codegen.bounded`, (ω_c, k_c) with error bounds from
+  points or more (:data:`~landau.derivation.precision.BOUNDED_MIN_SIGN` for a sign scan): the
+  Hopf polynomial's coefficients and the coefficients (Λ, …) by the bounded kernels of
+  :mod:`landau.codegen.bounded`, (ω_c, k_c) with error bounds from
   :mod:`landau.codegen.bounded_hopf`, double-double where float64 does not certify.
 * :func:`numeric_hopf_route` — smaller batches: (k_c, ω_c) polished in long double
   (:func:`polish_extended`), the coefficients in float64 screened by long double there.
@@ -77,8 +78,8 @@ def polish_extended(d: "Derivation", lvals, kc80: np.ndarray,
 
 
 def numeric_hopf_route(d: "Derivation", Vs, vals, shape, bases, p, sign_only: bool) -> Raw:
-    """A Hopf line without closed form (several state variables), for batches below
-    :data:`~landau.derivation.precision.BOUNDED_MIN`: k_c and ω_c solved numerically
+    """A Hopf line without closed form (several state variables), for batches too small for the
+    bounded kernels (:func:`~landau.derivation.precision.takes_bounded`): k_c and ω_c solved numerically
     (:meth:`landau.derivation.linear.HopfLine.numeric_at`) and polished in long double
     (:func:`polish_extended`), the coefficients in float64 at the rounded polished point, screened
     by the same formulas in long double at the polished point.
@@ -169,7 +170,7 @@ def bounded_numeric_route(d: "Derivation", Vs, vals, shape, bases, p, sign_only:
     """A Hopf line without closed form (several state variables) in float64 with error bounds,
     the points they do not certify to :data:`~landau.derivation.precision.REL_BOUND` in
     double-double; the default for batches of :data:`~landau.derivation.precision.BOUNDED_MIN`
-    points or more.
+    points or more (:data:`~landau.derivation.precision.BOUNDED_MIN_SIGN` for a sign scan).
 
     1. The coefficients of H(W), Re(P Q̄)(W) and |Q|²(W) with the float64 bounded kernels.
     2. The stiffest root W of every point (:func:`landau.derivation.hopf_roots.stiffest`), and
@@ -183,10 +184,10 @@ def bounded_numeric_route(d: "Derivation", Vs, vals, shape, bases, p, sign_only:
     5. What is still in doubt (a double root, Λ ≡ 0, a zero of Λ closer than ~1e-20) is left
        to :func:`~landau.derivation.precision.refine_mpmath`.
 
-    None (another route is taken) where an operation has no bounded form, and for batches below
-    :data:`~landau.derivation.precision.BOUNDED_MIN` points."""
+    None (another route is taken) where an operation has no bounded form, and for batches too small
+    for it (:func:`~landau.derivation.precision.takes_bounded`)."""
     size = int(np.prod(shape))
-    if size < precision.BOUNDED_MIN or not bases:    # before the imports: no numba for a small batch
+    if not precision.takes_bounded(size, sign_only) or not bases:   # before the imports: no numba for a small batch
         return None
     from landau.codegen.bounded_hopf import hopf_dd, hopf_f64
     from landau.derivation.hopf_roots import stiffest

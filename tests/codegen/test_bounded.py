@@ -195,3 +195,26 @@ def test_every_law_lambda_within_1e_10_of_40_digits_1000_points(name):
     (a Hopf line without closed form: ``landau.derivation.precision_numeric.bounded_numeric_route``)."""
     worst, bad = _lambda_worst(name, 1000)
     assert bad == 0, worst
+
+
+def test_given_errors_as_a_read_only_view_build_no_second_interpreter():
+    """Errors given as arrays of X's shape (which ``np.broadcast_to`` hands on as read-only
+    views: another array type for numba), as a read-only broadcast and as None run the one
+    compiled interpreter of each precision: a second build of both cost ~8 CPU-s on a fresh
+    machine (the numeric Hopf route gives its errors, the closed-form route none).  The values do
+    not depend on how the zeros were given."""
+    from landau.codegen import bounded
+
+    a, b = sp.symbols("a b")
+    kern = BoundedKernels(linearise([a * b + a], [a, b], [True, True], {}))
+    X = np.array([[1.5, -2.0, 3.0], [0.25, 4.0, -1.0]])
+    Q = np.zeros(2)
+    runs = []
+    for given in (None, np.zeros_like(X), np.broadcast_to(0.0, X.shape)):
+        out, _, oe = kern.f64_parts(X, Q, given)
+        hi = kern.dd_parts(X, Q, given, given)[2]
+        runs.append((out, oe, hi))
+    for out, oe, hi in runs[1:]:
+        assert np.array_equal(out, runs[0][0]) and np.array_equal(oe, runs[0][1]) and np.array_equal(hi, runs[0][2])
+    np.testing.assert_array_equal(runs[0][0][0], X[0] * X[1] + X[0])
+    assert len(bounded.run_f64.signatures) == 1 and len(bounded.run_dd.signatures) == 1

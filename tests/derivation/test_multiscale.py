@@ -185,3 +185,23 @@ def test_blocked_evaluation_equals_pointwise_pieces():
     small = d.evaluate(Vs[-17:], None, names)
     for n in names:
         np.testing.assert_allclose(small[n], whole[n][-17:], rtol=1e-10, atol=0, err_msg=n)
+
+
+def test_a_sign_scan_below_bounded_min_sign_takes_the_numpy_route_with_the_same_signs():
+    """A sign scan (``sign_only``) of fewer than precision.BOUNDED_MIN_SIGN points stays on the
+    numpy route, never building the bounded interpreters (~8 CPU-s on a fresh machine, which a
+    cold ``landau figures putelat2010`` paid for its 37 scans of ~1000–1300 points); its signs are
+    those of the certified values of the bounded route on the same points (Dieterich law, whose
+    Λ changes sign between 1e-9 and 1e-1 m/s)."""
+    from landau.derivation import precision
+
+    d = derive(SpringBlock(get_law("dieterich")), ["Lambda"])
+    Vs = np.logspace(-9, -1, 1300)
+    assert precision.BOUNDED_MIN <= Vs.size < precision.BOUNDED_MIN_SIGN
+    before = dict(precision.BOUNDED_STATS)
+    signs = d.evaluate(Vs, None, ["Lambda"], sign_only=True)["Lambda"]
+    assert precision.BOUNDED_STATS == before                    # not one point through the interpreters
+    values = d.evaluate(Vs, None, ["Lambda"])["Lambda"]         # the bounded route (values)
+    assert precision.BOUNDED_STATS["f64"] == before["f64"] + Vs.size
+    assert (np.sign(values) > 0).any() and (np.sign(values) < 0).any()
+    np.testing.assert_array_equal(np.sign(signs), np.sign(values))
