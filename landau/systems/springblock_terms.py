@@ -522,7 +522,7 @@ def steady_values(terms, sigma0: float, mu0: float, V: float, params) -> tuple[f
     values = [float(sigma0), float(mu0), float(V)] + [float(params[name]) for name, *_ in parameters(terms)]
     try:
         F_ss, sigma_ss = (float(x) for x in _steady_functions(tuple((t, TERMS[t]) for t in terms))(*values))
-    except ZeroDivisionError:
+    except (ArithmeticError, ValueError):   # a division by zero, an overflow, a root of a negative load
         F_ss = sigma_ss = math.inf
     if not (math.isfinite(F_ss) and math.isfinite(sigma_ss)):
         raise InputError(f"the steady sliding of the spring-block with terms {', '.join(terms)} has no finite spring "
@@ -540,7 +540,8 @@ def _steady_functions(declared: tuple[tuple[str, Term], ...]) -> Callable[..., t
     sym = {name: symbol for name, symbol, *_ in parameters(terms)}
     F_ss = steady_spring_force(terms, s0, m0, v, sym)
     sigma_ss = normal_load_ss(s0, m0, v, terms, sym)
-    return sp.lambdify([s0, m0, v, *sym.values()], (F_ss, sigma_ss), "math")
+    # math first; a function math lacks (a term may write any sympy function) from mpmath
+    return sp.lambdify([s0, m0, v, *sym.values()], (F_ss, sigma_ss), ["math", "mpmath"])
 
 
 def loads_block(terms) -> bool:
