@@ -53,11 +53,11 @@ import math
 import numba as nb
 import numpy as np
 from numba import types
-from numba.core import cgutils
-from numba.extending import intrinsic
 
 from landau.errors import InputError
 from landau.verify.compiling import compile_once
+from landau.verify.hybrid.borrowed import borrowed as _borrowed
+from landau.verify.hybrid.borrowed import keep_alive as _keep_alive
 from landau.verify.hybrid.callbacks import FunctionPointer, jit_enabled, make_pointers, pointer_type, warn_once
 from landau.verify.hybrid.crossing import cubic, cubic_crossing
 from landau.verify.hybrid.radau_linalg import (
@@ -107,44 +107,6 @@ JAC_T = pointer_type(SIG_JAC)
 #: called from compiled code, so they get no disk-cache entry of their own (the loop's entry holds
 #: their machine code)
 _inner = nb.njit
-
-
-@intrinsic
-def _borrowed_view(typingctx, arr):
-    """A view of the array ``arr`` that records no owner (its meminfo is null).
-
-    numba counts the references of an array with an atomic instruction each time a compiled
-    function receives it, copies it or passes it on (a cfunc callback included); with a null
-    meminfo the count is a test and a jump.  The loop takes every work array it passes on through
-    this, and keeps the owners alive until it returns (:func:`_keep_alive`): the counting cost
-    the loop a tenth of its time on the spring–block cycle (``benchmarks/sections_solvers.py``)."""
-    def codegen(context, builder, sig, args):
-        src = context.make_array(sig.args[0])(context, builder, value=args[0])
-        out = context.make_array(sig.return_type)(context, builder)
-        out.meminfo = cgutils.get_null_value(out.meminfo.type)
-        out.parent = cgutils.get_null_value(out.parent.type)
-        out.nitems = src.nitems
-        out.itemsize = src.itemsize
-        out.data = src.data
-        out.shape = src.shape
-        out.strides = src.strides
-        return out._getvalue()
-    return arr(arr), codegen
-
-
-def _same_array(arr):
-    """:func:`_borrowed_view` as plain Python (``NUMBA_DISABLE_JIT=1``): the array itself."""
-    return arr
-
-
-_borrowed = _borrowed_view if jit_enabled() else _same_array
-
-
-@_inner
-def _keep_alive(*owners):
-    """A use of the owners of the loop's borrowed views at its end: numba frees an array after its
-    last use, which must not come before the views' last use."""
-    return None
 
 
 # ---------------------------------------------------------------------------------------------
@@ -239,11 +201,12 @@ def _radau_loop(fun, jac, t0, y0, t_end, p, rtol, atol, h0, max_step, max_steps,
                 rec_cap, EVBUF, EVDIR):
     """The integrator (:func:`radau_core` documents the arguments and the returned tuple).
 
-    Every work array is used through a borrowed view (:func:`_borrowed`) of an array the loop
-    owns until it returns: numba counts the references of an owned array, and of every view made
-    of it, with an atomic instruction at each copy, pass and call, which cost this loop a third
-    of its time when a stage's f was written into a row view of F (measured on the spring–block
-    cycle of ``benchmarks/sections_solvers.py``); views of a borrowed array (``F[a]``) cost nothing.
+    Every work array is used through a borrowed view
+    (:func:`~landau.verify.hybrid.borrowed.borrowed`) of an array the loop owns until it returns:
+    numba counts the references of an owned array, and of every view made of it, with an atomic
+    instruction at each copy, pass and call, which cost this loop a third of its time when a
+    stage's f was written into a row view of F (measured on the spring–block cycle of
+    ``benchmarks/sections_solvers.py``); views of a borrowed array (``F[a]``) cost nothing.
 
     Why the step's phases (Newton start, iteration, error estimate, dense output, controller) are
     written in this one function rather than apart: numba's inliner copies an inlined callee's IR

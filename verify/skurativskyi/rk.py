@@ -60,13 +60,16 @@ Stroboscopic samples t = t₀ + i·2π/ω are step ends (steps are clipped onto 
 4-D variational system the tangent vector is renormalised there (top Lyapunov exponent).
 
 Speed (not the arithmetic): the steps are inlined into the loop (``inline="always"``), the
-stage vectors are arrays local to the call, and the field reads the packed parameters through
-their data pointer (:mod:`landau.verify.skurativskyi.field`), so numba's atomic reference counts
-(paid for every array handed to a compiled call that is not inlined) stay out of the explicit
-steps but for the field's own call.  The paper's friction law is compiled into the field; any
-other law costs one indirect call per evaluation (two with the tangent vector).  With the
-tangent vector the field and its Jacobian are one call that computes the contact force's powers
-once (:func:`landau.verify.skurativskyi.field.field_values`).  Measured at ω = 16, 20 periods
+stage vectors are borrowed views (:mod:`landau.verify.hybrid.borrowed`) of an array the call
+owns, and the field reads the packed parameters through their data pointer
+(:mod:`landau.verify.skurativskyi.field`), so numba's atomic reference counts (paid for every
+array handed to a compiled call that is not inlined) stay out of the steps, the field's own
+calls included: the borrowed views took 20 periods at ω = 16 from 3.57 to 2.43 ms at rtol 1e-5
+and from 5.78 to 4.31 ms at 1e-7 (every step the same; Intel Xeon, the other core busy).  The
+paper's friction law is compiled into the field; any other law costs one indirect call per
+evaluation (two with the tangent vector).  With the tangent vector the field and its Jacobian
+are one call that computes the contact force's powers once
+(:func:`landau.verify.skurativskyi.field.field_values`).  Measured at ω = 16, 20 periods
 from rest (CPU time, best of 3 in 2 alternated rounds, 2 shared cores), against the earlier loop
 specialised per law from a source template: 3.1 → 4.0 ms at rtol 1e-6, 12.6 → 14.8 ms at
 1e-9; with the tangent vector (Lyapunov exponent) 18.4 → 18.4 ms and 59.8 → 58.0 ms; every
@@ -81,6 +84,7 @@ from functools import lru_cache
 import numpy as np
 from numba import njit
 
+from landau.verify.hybrid.borrowed import borrowed, keep_alive
 from landau.verify.hybrid.crossing import cubic_crossing
 from landau.verify.skurativskyi.field import hold, rhs
 from landau.verify.skurativskyi.sdirk import sdirk_step
@@ -337,11 +341,16 @@ def integrate_mixed(p_arr, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strob
     # calls of the field: measured 20-40 % of a step); ``p_arr`` is owned by the caller for the
     # whole call
     p = hold(p_arr, fr)
-    # the state and the stage vectors: arrays local to this call, used only by inlined code
-    y = np.empty(n)
-    y[:] = y0
-    k1, ynew, k7, err = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
-    yt, k2, k3, k4, k5, k6 = np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    # the state and the stage vectors: arrays owned by this call, used through borrowed views
+    # (no reference counts at the field's calls, landau.verify.hybrid.borrowed); the owners are
+    # kept alive to the end, and the state is returned as its owner
+    y_own = np.empty(n)
+    y_own[:] = y0
+    y = borrowed(y_own)
+    S = np.empty((10, n))
+    k1, ynew, k7, err = borrowed(S[0]), borrowed(S[1]), borrowed(S[2]), borrowed(S[3])
+    yt, k2, k3, k4, k5, k6 = borrowed(S[4]), borrowed(S[5]), borrowed(S[6]), borrowed(S[7]), borrowed(S[8]), \
+        borrowed(S[9])
     t = t0
     rhs(t, y, p, k1, fr)
     nfev = 1
@@ -439,7 +448,8 @@ def integrate_mixed(p_arr, t0, y0, t_end, rtol, atol, h0, hmax, xI, guard, strob
             contact = not contact
             h_next = max(h_next, h_free)
         h = h_next
-    return (t, y, status, ev_t[:nev].copy(), ev_k[:nev].copy(), ev_v[:nev].copy(), st_t[:nst].copy(),
+    keep_alive(S)
+    return (t, y_own, status, ev_t[:nev].copy(), ev_k[:nev].copy(), ev_v[:nev].copy(), st_t[:nst].copy(),
             st_y[:nst].copy(), lyap, nly, nsteps, nfev, nrej, max_mismatch, nstiff, rec_t[:nrec].copy(),
             rec_y[:nrec].copy(), rec_f[:nrec].copy())
 
