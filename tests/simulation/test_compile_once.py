@@ -115,11 +115,16 @@ def test_nothing_compiles_at_import_of_the_simulation_layer():
 
 def test_the_radau_loop_s_stamp_covers_the_modules_it_inlines():
     """The Radau IIA loop inlines its factorisations and solves (radau_linalg), reads the method's
-    coefficients (radau_tableau) and builds the cubic scan (crossing) from other files: the stamp
-    that keys its disk cache must hash each of them, or an edit there would be served stale."""
+    coefficients (radau_tableau), builds the cubic scan (crossing) and takes its views without
+    reference counts (borrowed) from other files: the stamp that keys its disk cache must hash each
+    of them, or an edit there would be served stale; so must the forced oscillator's loop."""
     from landau.verify.compiling import WATCHED, _reachable_modules
     from landau.verify.hybrid import radau
 
     reached = _reachable_modules(sys.modules[radau._radau_loop.py_func.__module__], WATCHED)
-    for part in ("radau", "radau_linalg", "radau_tableau", "crossing", "callbacks"):
+    for part in ("radau", "radau_linalg", "radau_tableau", "crossing", "callbacks", "borrowed"):
         assert f"landau.verify.hybrid.{part}" in reached
+    from landau.verify.skurativskyi import rk
+
+    reached = _reachable_modules(sys.modules[rk.integrate_mixed.py_func.__module__], WATCHED)
+    assert "landau.verify.hybrid.borrowed" in reached and "landau.verify.skurativskyi.field" in reached
