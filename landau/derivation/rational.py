@@ -92,12 +92,22 @@ class Polynomial:
         return all(c == 0 for c in self.coeffs)
 
     def evaluate(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
-        """(p(x)/2^e, relative error bound, e) in float64; x > 0."""
-        s = np.ldexp(x, -self._k)
+        """(p(x)/2^e, relative error bound, e) in float64; x > 0.  A batch of
+        :data:`~landau.derivation.precision.BOUNDED_MIN` points or more is evaluated by the
+        compiled :func:`landau.codegen.horner.horner_bounded` (one pass, the same bits)."""
+        from landau.derivation.precision import BOUNDED_MIN
+
+        factor = (2 * len(self._desc) + 1) * _U
+        if np.size(x) >= BOUNDED_MIN:
+            from landau.codegen.horner import horner_bounded
+
+            val, rel = horner_bounded(self._desc, self._abs, self._k, x, factor, self._safe)
+            return val, rel, self._e
         with np.errstate(all="ignore"):
+            s = np.ldexp(x, -self._k)
             val = np.polyval(self._desc, s)
             mag = np.polyval(self._abs, s)
-            rel = (2 * len(self._desc) + 1) * _U * mag / np.abs(val)
+            rel = factor * mag / np.abs(val)
         ok = np.isfinite(rel) & self._safe
         return val, np.where(ok, rel, np.inf), self._e
 

@@ -205,3 +205,27 @@ def test_a_sign_scan_below_bounded_min_sign_takes_the_numpy_route_with_the_same_
     assert precision.BOUNDED_STATS["f64"] == before["f64"] + Vs.size
     assert (np.sign(values) > 0).any() and (np.sign(values) < 0).any()
     np.testing.assert_array_equal(np.sign(signs), np.sign(values))
+
+
+def test_compiled_horner_equals_numpys_bit_for_bit():
+    """From precision.BOUNDED_MIN points a Polynomial of the exactly cancelled forms is evaluated by
+    the compiled Horner of landau.codegen.horner (one pass for p and Σ|cᵢ|sⁱ): its values and bounds
+    are those of numpy.polyval bit for bit, over the whole float range (subnormal and huge V,
+    coefficients beyond 1e300 scaled by 2^k, 2^e; a zero and a cancelling polynomial)."""
+    from fractions import Fraction
+
+    from landau.derivation import precision
+    from landau.derivation.rational import Polynomial
+
+    rng = np.random.default_rng(7)
+    x = np.concatenate([10.0 ** rng.uniform(-320, 300, 2000), [5e-324, 1.0, 2.0, 1e308, np.inf]])
+    polys = [Polynomial(tuple(Fraction(int(c)) * Fraction(10) ** (40 * i) for i, c in enumerate([3, -7, 0, 2, 5]))),
+             Polynomial((Fraction(1, 3), Fraction(-2, 3), Fraction(1, 3))),       # (1 − V)²/3: cancels near V = 1
+             Polynomial((Fraction(0),)), Polynomial((Fraction(-5, 7),))]
+    small = precision.BOUNDED_MIN - 1
+    for p in polys:
+        whole = p.evaluate(x)
+        parts = [p.evaluate(x[i:i + small]) for i in range(0, x.size, small)]
+        for j in range(2):
+            assert np.array_equal(whole[j], np.concatenate([q[j] for q in parts]), equal_nan=True)
+        assert whole[2] == parts[0][2]
