@@ -32,14 +32,16 @@ def _shifted_exp(t, y, p, out):
         out[i] = np.exp(y[i]) - p[0] * t
 
 
-@nb.njit
-def _apply_twice(f, g, t, y, p):
+def _compose(f, g, t, y, p):
     """f(t, y) and then g(t, f(t, y)), both through the first-class functions."""
     a = np.empty_like(y)
     b = np.empty_like(y)
     f(t, y, p, a)
     g(t, a, p, b)
     return b
+
+
+_apply_twice = nb.njit(_compose)
 
 
 def test_a_pointer_is_typed_addressed_function_type_once():
@@ -81,14 +83,8 @@ def test_an_object_without_an_address_raises_instead_of_calling_null():
         _apply_twice(_NoAddress(), f, 0.0, np.ones(2), np.ones(1))
 
 
-@nb.njit
-def _apply_twice_fallback(f, g, t, y, p):
-    """:func:`_apply_twice`, a dispatcher of its own for the fallback's argument type."""
-    a = np.empty_like(y)
-    b = np.empty_like(y)
-    f(t, y, p, a)
-    g(t, a, p, b)
-    return b
+#: :func:`_compose` again, a dispatcher of its own for the fallback's argument type
+_apply_twice_fallback = nb.njit(_compose)
 
 
 def test_the_model_the_unboxing_builds_on_is_checked_and_the_fallback_runs(monkeypatch):
