@@ -109,18 +109,24 @@ def load() -> tuple[float, float, float]:
     return os.getloadavg()
 
 
+def _round(fn, min_time: float):
+    """One timed round: ``fn()`` looped until ``min_time`` CPU seconds (at most 50 calls);
+    (the last result, CPU seconds per call)."""
+    n, t0 = 0, time.process_time()
+    while True:
+        out = fn()
+        n += 1
+        el = time.process_time() - t0
+        if el >= min_time or n >= 50:
+            return out, el / n
+
+
 def cpu_time(fn, min_time: float = 0.05, repeat: int = 3):
     """Best CPU seconds per call over ``repeat`` rounds; fast calls are looped within a round."""
     best, out = np.inf, None
     for _ in range(repeat):
-        n, t0 = 0, time.process_time()
-        while True:
-            out = fn()
-            n += 1
-            el = time.process_time() - t0
-            if el >= min_time or n >= 50:
-                break
-        best = min(best, el / n)
+        out, per_call = _round(fn, min_time)
+        best = min(best, per_call)
     return out, best
 
 
@@ -138,14 +144,7 @@ def interleaved_cpu(calls: dict, min_time: float = 0.01, rounds: int = 15) -> di
     for r in range(rounds):
         for i in range(len(keys)):
             k = keys[(i + r) % len(keys)]
-            n, t0 = 0, time.process_time()
-            while True:
-                calls[k]()
-                n += 1
-                el = time.process_time() - t0
-                if el >= min_time or n >= 50:
-                    break
-            best[k] = min(best[k], el / n)
+            best[k] = min(best[k], _round(calls[k], min_time)[1])
     return best
 
 
