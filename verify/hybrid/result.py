@@ -176,23 +176,13 @@ class Simulation:
         t0, t1 = self.t[i], self.t[i + 1]
         h = t1 - t0
         s = np.where(h > 0, (ts - t0) / np.where(h > 0, h, 1.0), 1.0)
-        y0, y1 = self.y[:, i], self.y[:, i + 1]
-        if self.f is None:
-            out = y0 + s * (y1 - y0)
-        else:
-            f0, f1 = self.f[:, i], self.f[:, i + 1]
-            h00 = (1 + 2 * s) * (1 - s) ** 2
-            h10 = s * (1 - s) ** 2
-            h01 = s * s * (3 - 2 * s)
-            h11 = s * s * (s - 1)
-            out = h00 * y0 + h10 * h * f0 + h01 * y1 + h11 * h * f1
-        return out
+        return self._between(i, s, h)
 
     def _at_one(self, time: float) -> np.ndarray:
         """:meth:`at` for one time, in scalar arithmetic: the right-hand side of an integration
         along the run (the monodromy of :mod:`landau.analyses.shooting`) asks for one time per
         call, where the array path cost 46 µs a call, most of it the set-up of arrays of one
-        element (the same formulas, the same rounding)."""
+        element (the same interpolant, :meth:`_between`, the same rounding)."""
         t = self.t
         if not t[0] <= time <= t[-1]:
             raise ValueError(f"times outside the recorded span [{t[0]:.6g}, {t[-1]:.6g}]")
@@ -200,6 +190,12 @@ class Simulation:
         t0 = float(t[i])
         h = float(t[i + 1]) - t0
         s = (time - t0) / h if h > 0 else 1.0
+        return self._between(i, s, h)
+
+    def _between(self, i, s, h) -> np.ndarray:
+        """The interpolant on the recorded intervals ``i`` (an index or an array of them) at the
+        fractions ``s`` of their lengths ``h``: cubic Hermite where the field is recorded, else
+        linear (scalars or arrays alike, the same operations)."""
         y0, y1 = self.y[:, i], self.y[:, i + 1]
         if self.f is None:
             return y0 + s * (y1 - y0)
