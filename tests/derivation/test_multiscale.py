@@ -104,7 +104,7 @@ def test_dieterich_quasi_static_lambda_is_exactly_zero():
         for _ in range(5):
             pt = {a: sp.Rational(349, 10000), b: sp.Rational(489, 10000), L: sp.Rational(9, 10 ** 7),
                   sigma: sp.Rational(11772, 1000), V: sp.Rational(rng.randint(1, 10 ** 4), 10 ** 7)}
-            x = [mpmath.mpf(pt[s].p) / pt[s].q for s in args[:-1]]
+            x = [mpmath.mpf(pt[sym].p) / pt[sym].q for sym in args[:-1]]
             assert abs(f(*x, mpmath.mpf(0))) < mpmath.mpf("1e-80") * abs(f(*x, mpmath.mpf(6) / 5))
     # the compiled path returns 0 and flags the point degenerate instead of returning round-off
     r = d.evaluate([1e-5, 1e-4, 1e-3], {"M": 0.0}, ["Lambda", "C"])

@@ -4,7 +4,6 @@ A locator's search interval must come from the model, not from the published num
 parameter sets move the answers well outside the published windows.
 """
 
-
 import mpmath
 import numpy as np
 import pytest
