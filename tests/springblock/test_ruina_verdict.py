@@ -13,6 +13,7 @@ independently in log-variables — has l₁ = 0, as the correct form says and (3
 
 from __future__ import annotations
 
+import functools
 import math
 import random
 
@@ -46,8 +47,14 @@ def ruina():
     return derive(SpringBlock(get_law("ruina")), ["Gamma_bar", "Lambda", "C"])
 
 
+@functools.lru_cache(maxsize=None)
+def _mp_function(expr, args):
+    return sp.lambdify(list(args), expr, "mpmath")
+
+
 def _at(expr, values):
-    return sp.lambdify(list(values), expr, "mpmath")(*values.values())
+    """``expr`` at ``values`` (symbol -> mpf), with mpmath; lambdified once per expression."""
+    return _mp_function(expr, tuple(values))(*values.values())
 
 
 def test_engine_closed_form_is_the_correct_form_not_the_printed_one(ruina):
@@ -57,8 +64,6 @@ def test_engine_closed_form_is_the_correct_form_not_the_printed_one(ruina):
     # once, with common subexpressions shared: the unsimplified form is a tree of the formula DAG
     # (0.1 s per 50-digit evaluation without cse, 1 ms with it; the same digits)
     f_engine = sp.lambdify(order, engine, "mpmath", cse=True)
-    args = (a, b, L, V, s, M)
-    f_correct, f_printed = (sp.lambdify(args, form, "mpmath") for form in (CORRECT, PRINTED))
     rng = random.Random(35)
     with mpmath.workdps(50):
         for _ in range(20):
@@ -68,8 +73,8 @@ def test_engine_closed_form_is_the_correct_form_not_the_printed_one(ruina):
                   "V": sp.Rational(rng.randint(1, 50), 11), "sigma": sp.Rational(rng.randint(1, 30), 3),
                   "M": sp.Rational(rng.randint(1, 40), 9)}
             e = f_engine(*[mpmath.mpf(pt[x.name].p) / pt[x.name].q for x in order])
-            vals = [mpmath.mpf(pt[x.name].p) / pt[x.name].q for x in args]
-            c, p = f_correct(*vals), f_printed(*vals)
+            vals = {x: mpmath.mpf(pt[x.name].p) / pt[x.name].q for x in (a, b, L, V, s, M)}
+            c, p = _at(CORRECT, vals), _at(PRINTED, vals)
             # 50-digit evaluation of a formula with ~30 levels of nesting: 1e-30 is rounding
             assert abs(e - c) <= mpmath.mpf("1e-30") * abs(c), (pt, e, c)
             # the printed form is off by O(1), not by rounding
