@@ -3,14 +3,41 @@
 import json
 import os
 import resource
+import secrets
+import shutil
+import tempfile
 
 import pytest
 
 
 def pytest_configure(config):
-    # the suite tests derivations, not the user's disk cache: no test reads or writes it unless it
-    # turns the cache on for itself, in a temporary directory (tests/cli/test_latex.py)
-    os.environ["LANDAU_CACHE"] = "off"
+    # The suite never reads or writes the user's disk cache.  By default it keeps one cache of its
+    # own for the session, in a fresh temporary folder signed with a fresh key: the first test that
+    # derives a law derives it (so every derivation the suite checks is computed in this run, from
+    # an empty cache), and later tests and the commands they run in child processes read that
+    # entry, verified, as a user's second command does.  LANDAU_TEST_CACHE=off derives in every
+    # test instead (the cache switched off, as before).
+    if os.environ.get("LANDAU_TEST_CACHE", "session").strip().lower() == "off":
+        os.environ["LANDAU_CACHE"] = "off"
+        return
+    root = tempfile.mkdtemp(prefix="landau-test-cache-")
+    config.add_cleanup(lambda: shutil.rmtree(root, ignore_errors=True))
+    os.environ["LANDAU_CACHE"] = "on"
+    os.environ["LANDAU_CACHE_DIR"] = root
+    os.environ["LANDAU_CACHE_KEY"] = secrets.token_hex(32)
+
+
+@pytest.fixture
+def cache_off(monkeypatch):
+    """The disk cache switched off for one test (and the commands it runs in child processes):
+    for tests of what a derivation itself builds, which a cache hit would skip."""
+    from landau.support import cache
+
+    monkeypatch.setenv("LANDAU_CACHE", "off")
+    cache.set_enabled(None)
+    yield
+    monkeypatch.undo()
+    cache.set_enabled(None)
 
 
 # --- CPU profile of the suite -------------------------------------------------------------------

@@ -12,9 +12,21 @@ expressions:
   and the names of sympy's constants (it walks the syntax tree; nothing is evaluated);
 * any other expression is ``[class name, [node numbers of its arguments]]``, the class taken from
   the fixed table :data:`CLASSES` (sympy's arithmetic, elementary and special functions,
-  relations and conditions) and rebuilt as ``cls(*args)`` — what unpickling a sympy object does;
+  relations and conditions) and rebuilt as ``cls(*args, evaluate=False)``: the stored tree is the
+  tree of the object that was written, rebuilt exactly as it was, without evaluating it again;
 * each distinct sub-expression is written once (the formulas are DAGs whose tree form is
   exponentially larger), so the size is linear in the number of distinct operations.
+
+Reading back never compares two expressions structurally.  sympy's constructors sit behind a
+cache whose lookups compare a new call's arguments with those of earlier calls by ``==``, and
+``==`` of two equal but distinct DAGs walks their *tree* form: a formula rebuilt in a process that
+already holds an equal copy (a derivation, then a second command reading its entry, in one
+notebook or test session) cost seconds there: the quintic coefficients of a law read back in 6.6
+CPU-s instead of 0.21, and the walk grows exponentially with the formula's depth.  Two
+things keep every such comparison an identity check: ``evaluate=False`` calls never meet the
+evaluated calls of a derivation in that cache (their keyword is part of its key), and every node
+read back is *interned* (:data:`_INTERNED`, keyed by its class and the identities of its
+arguments), so equal sub-expressions of all the entries a process reads are one object.
 
 A value the format cannot hold (another class, a numpy array) raises :class:`Unencodable`; the
 cache then keeps nothing for it and the result is simply computed each time.
@@ -188,24 +200,57 @@ def dumps(value: Any) -> bytes:
     return json.dumps({"format": FORMAT, "nodes": nodes.rows, "value": doc}, separators=(",", ":")).encode()
 
 
+#: every node read back in this process: ``("atom", srepr text)`` or ``(class name, identities of
+#: the argument nodes)`` -> the node.  The table holds each node, and so its arguments, alive, so an
+#: identity in a key is never reused by another object.
+_INTERNED: dict[tuple, sp.Basic] = {}
+#: above this many nodes the table starts afresh (memory of a long session that reads many
+#: laws); nodes read after that are new objects, equal to the earlier ones
+INTERN_LIMIT = 1_000_000
+#: the classes whose constructor takes no ``evaluate`` keyword (it evaluates nothing)
+_NO_EVALUATE_KEYWORD = frozenset({"ExprCondPair"})
+
+
+def _node(head: str, args: tuple) -> sp.Basic:
+    """The node ``head(*args)`` of an entry, interned (see the module docstring)."""
+    key = (head, tuple(map(id, args)))
+    node = _INTERNED.get(key)
+    if node is None:
+        cls = CLASSES[head]
+        node = cls(*args) if head in _NO_EVALUATE_KEYWORD else cls(*args, evaluate=False)
+        _INTERNED[key] = node
+    return node
+
+
+def _atom_node(text: str) -> sp.Basic:
+    key = ("atom", text)
+    node = _INTERNED.get(key)
+    if node is None:
+        node = _INTERNED[key] = parse_atom(text)
+    return node
+
+
 def _build(rows) -> list:
     if not isinstance(rows, list):
         raise Undecodable("the node table is not a list")
+    if len(_INTERNED) + len(rows) > INTERN_LIMIT:
+        _INTERNED.clear()
     out: list = []
     for row in rows:
         if not (isinstance(row, list) and len(row) == 2 and isinstance(row[0], str)):
             raise Undecodable("a malformed node")
         head, body = row
         if head == "atom":
-            out.append(parse_atom(body))
+            if not isinstance(body, str):
+                raise Undecodable("an atom is not a short string")
+            out.append(_atom_node(body))
             continue
-        cls = CLASSES.get(head)
-        if cls is None:
+        if head not in CLASSES:
             raise Undecodable(f"a node of class {head[:40]!r}, which the format does not allow")
         if not (isinstance(body, list) and all(type(i) is int and 0 <= i < len(out) for i in body)):
             raise Undecodable("a node refers to a node that is not before it")
         try:
-            out.append(cls(*(out[i] for i in body)))
+            out.append(_node(head, tuple(out[i] for i in body)))
         except Exception as exc:
             raise Undecodable(f"a node cannot be rebuilt ({type(exc).__name__})") from None
     return out

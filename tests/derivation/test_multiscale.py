@@ -111,6 +111,7 @@ def test_dieterich_quasi_static_lambda_is_exactly_zero():
     assert list(r["Lambda"]) == [0.0, 0.0, 0.0] and r["degenerate"].all()
 
 
+@pytest.mark.usefixtures("cache_off")
 def test_only_needed_derivative_orders_are_built():
     d = derive(SpringBlock(get_law("spinodal")), ["kc", "omega_c"])
     d.evaluate([1e-5, 1e-4], None, ["kc", "omega_c"])

@@ -171,6 +171,7 @@ def test_spring_block_quintic_both_routes_at_codim2(derivations, name, params):
         assert k.l2 == pytest.approx(k.Lambda5 * k.q_norm ** 4 / 2, rel=1e-12)
 
 
+@pytest.mark.usefixtures("cache_off")
 def test_quintic_is_lazy():
     """A derivation asked only for Λ builds derivatives up to third order; Λ₅ adds the fourth and fifth."""
     d = Derivation(SpringBlock(get_law("dieterich")))

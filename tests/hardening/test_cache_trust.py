@@ -120,6 +120,57 @@ def test_shared_subexpressions_are_written_once():
     assert len(cachecodec.dumps(e)) < 40_000
 
 
+def _same_dag(x, y, seen=None) -> bool:
+    """Structural equality of two expressions that visits each pair of distinct nodes once
+    (``==`` walks the tree form, 2**40 nodes below)."""
+    seen = set() if seen is None else seen
+    if x is y or (id(x), id(y)) in seen:
+        return True
+    seen.add((id(x), id(y)))
+    if not x.args or not y.args:
+        return x == y
+    return (type(x) is type(y) and len(x.args) == len(y.args)
+            and all(_same_dag(p, q, seen) for p, q in zip(x.args, y.args)))
+
+
+def test_reading_back_never_compares_formulas_by_structure(monkeypatch):
+    """A formula read back in a process that already holds an equal copy (a derivation, then a
+    command that reads its entry) is rebuilt without one structural comparison with that copy.
+    sympy's constructor cache compares a new call's arguments with an earlier call's by ``==``,
+    which for a DAG walks the tree form: before the fix this read-back stopped at the budget
+    below (the unbounded walk over 2**40 nodes would never end); one quintic coefficient of the
+    atan state law took 14 s to read."""
+    from sympy.core.cache import clear_cache
+
+    x = sp.Symbol("x", positive=True)
+    e = x
+    for _ in range(40):                               # 2**40 tree nodes, 120 distinct ones
+        e = (e + 1) * (e + 2)
+    data = cachecodec.dumps(e)
+    clear_cache()
+    sp.Mul(*e.args)               # the top call of the derivation, as sympy's cache keeps it
+    calls = 0
+    structural_eq = sp.Basic.__eq__
+
+    class Budget(Exception):
+        pass
+
+    def counting_eq(self, other):
+        nonlocal calls
+        calls += 1
+        if calls > 10_000:
+            raise Budget
+        return structural_eq(self, other)
+
+    monkeypatch.setattr(sp.Basic, "__eq__", counting_eq)
+    back = cachecodec.loads(data)
+    again = cachecodec.loads(data)
+    monkeypatch.undo()
+    assert calls < 100
+    assert back is not e and _same_dag(back, e) and hash(back) == hash(e)
+    assert again is back                              # equal nodes read back are one object
+
+
 @pytest.mark.parametrize("atom", [
     "__import__('os').system('true')", "Symbol('x').__class__", "Symbol(*['x'])", "Symbol('x', **{})",
     "Function('f')", "eval('1')", "Integer(1) + Integer(2)", "Symbol('x', _assumptions=1)", "(lambda: 0)()"])
