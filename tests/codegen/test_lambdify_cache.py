@@ -106,7 +106,11 @@ def test_unwritable_folder_runs_from_memory(tmp_path, monkeypatch):
     blocker = tmp_path / "file"
     blocker.write_text("not a folder")
     monkeypatch.setenv("LANDAU_CACHE_DIR", str(blocker))           # <file>/jit cannot be created
-    f = codegen.lambdify([x, y], FORMULA, "numpy")
+    from landau.support.cachedir import CacheWarning
+
+    with pytest.warns(CacheWarning, match="it is not a folder") as caught:   # said once, with the fix
+        f = codegen.lambdify([x, y], FORMULA, "numpy")
+    assert len(caught) == 1 and "LANDAU_CACHE_DIR" in str(caught[0].message)
     np.testing.assert_allclose(f(0.5, 2.0), _reference(0.5, 2.0), rtol=1e-14)
 
 
