@@ -130,7 +130,7 @@ def _same_dag(x, y, seen=None) -> bool:
     if not x.args or not y.args:
         return x == y
     return (type(x) is type(y) and len(x.args) == len(y.args)
-            and all(_same_dag(p, q, seen) for p, q in zip(x.args, y.args)))
+            and all(_same_dag(p, q, seen) for p, q in zip(x.args, y.args, strict=True)))
 
 
 def test_reading_back_never_compares_formulas_by_structure(monkeypatch):
