@@ -138,8 +138,9 @@ def test_reading_back_never_compares_formulas_by_structure(monkeypatch):
     command that reads its entry) is rebuilt without one structural comparison with that copy.
     sympy's constructor cache compares a new call's arguments with an earlier call's by ``==``,
     which for a DAG walks the tree form: before the fix this read-back stopped at the budget
-    below (the unbounded walk over 2**40 nodes would never end); one quintic coefficient of the
-    atan state law took 14 s to read."""
+    below (the unbounded walk over 2**40 nodes would never end); the second of two
+    ``landau derive … --codim2`` commands for the atan state law in one process took 6.6 CPU-s
+    instead of 0.21."""
     from sympy.core.cache import clear_cache
 
     x = sp.Symbol("x", positive=True)
